@@ -1,0 +1,34 @@
+//! Evaluator throughput: a 100-segment random path on thesis-1 (issue: evaluations per second
+//! and swept cells per second).
+
+use covga::coverage::{CoverageGrid, Footprint, SweepScratch};
+use covga::geom::Point;
+use covga::map::presets::preset;
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use rand::{Rng, SeedableRng};
+use std::hint::black_box;
+
+fn evaluate(c: &mut Criterion) {
+    let map = preset("thesis-1").expect("preset");
+    let grid = CoverageGrid::new(&map);
+    let mut scratch = SweepScratch::new(&grid);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+    let path: Vec<Point> =
+        (0..=100).map(|_| Point::new(rng.random_range(1.0..10.0), rng.random_range(1.0..10.0))).collect();
+    let robot = Footprint::default();
+    let swept = robot.measure(&grid, &mut scratch, &path);
+    let cells = swept.cells_swept + swept.obstacle_cells;
+    let mut group = c.benchmark_group("evaluate");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("random_100_segments/evaluations", |b| {
+        b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
+    });
+    group.throughput(Throughput::Elements(cells));
+    group.bench_function("random_100_segments/swept_cells", |b| {
+        b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, evaluate);
+criterion_main!(benches);

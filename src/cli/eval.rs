@@ -1,0 +1,204 @@
+//! `covga eval`: score a pattern or a path file with the footprint model and the thesis
+//! fitness, print every metric and draw the path.
+
+use super::{CliError, parse_point};
+use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
+use crate::map::ros::load_map;
+use crate::patterns::{self, Pattern};
+use crate::plot::path::PathFigure;
+use crate::thesis::fitness::{Projection, ThesisScore, score};
+use std::path::PathBuf;
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum PatternName {
+    Boustrophedon,
+    Spiral,
+}
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+enum ProjectionName {
+    F1,
+    F2,
+}
+
+/// Arguments of `covga eval`.
+#[derive(clap::Args, Debug)]
+pub struct EvalArgs {
+    /// Map: a preset (thesis-1, thesis-2, office), a ROS map YAML, or a PGM/PNG image with --resolution.
+    #[arg(long, default_value = "thesis-1")]
+    map: String,
+    /// Metres per pixel for a bare image map.
+    #[arg(long)]
+    resolution: Option<f64>,
+    /// Plan this pattern (the default when no --path is given is boustrophedon).
+    #[arg(long, conflicts_with = "path")]
+    pattern: Option<PatternName>,
+    /// Lane direction of the boustrophedon in degrees from +x.
+    #[arg(long, default_value_t = 0.0)]
+    angle: f64,
+    /// Score this path file instead: CSV with header x_m,y_m (optional agent column).
+    #[arg(long)]
+    path: Option<PathBuf>,
+    /// Robot width R_width in metres.
+    #[arg(long, default_value_t = 0.6)]
+    width: f64,
+    /// Robot speed R_speed in m/s.
+    #[arg(long, default_value_t = 0.2)]
+    speed: f64,
+    /// Rotation speed R_rot in rad/s (0 = no rotation cost).
+    #[arg(long = "rot-speed", default_value_t = 0.0)]
+    rot_speed: f64,
+    /// Start station X,Y in metres (patterns only).
+    #[arg(long, default_value = "1.3,1.3")]
+    start: String,
+    /// End station X,Y in metres (default: the start).
+    #[arg(long)]
+    end: Option<String>,
+    /// Projection f of the fitness (003 eqs. 3.14–3.15).
+    #[arg(long, value_enum, default_value = "f1")]
+    projection: ProjectionName,
+    /// Print JSON instead of a table.
+    #[arg(long)]
+    json: bool,
+    /// Folder for path.png, path.svg, path.csv and metrics.json.
+    #[arg(long, default_value = "out/eval")]
+    out: PathBuf,
+}
+
+fn check_robot(a: &EvalArgs) -> Result<Footprint, CliError> {
+    let positive = |name: &str, v: f64| {
+        if v.is_finite() && v > 0.0 {
+            Ok(())
+        } else {
+            Err(CliError::Input(format!("--{name} = {v} is out of range: expected a finite number > 0")))
+        }
+    };
+    positive("width", a.width)?;
+    positive("speed", a.speed)?;
+    if !(a.rot_speed.is_finite() && a.rot_speed >= 0.0) {
+        return Err(CliError::Input(format!(
+            "--rot-speed = {} is out of range: expected a finite number >= 0 (0 disables the rotation cost)",
+            a.rot_speed
+        )));
+    }
+    if !a.angle.is_finite() {
+        return Err(CliError::Input(format!("--angle = {} is not a finite number of degrees", a.angle)));
+    }
+    Ok(Footprint { width: a.width, speed: a.speed, rot_speed: a.rot_speed })
+}
+
+/// Everything `eval` reports, as printed in JSON.
+#[derive(serde::Serialize)]
+struct Report<'a> {
+    map: &'a str,
+    source: String,
+    robot: Footprint,
+    projection: Projection,
+    agents: usize,
+    #[serde(flatten)]
+    metrics: PathMetrics,
+    #[serde(flatten)]
+    score: ThesisScore,
+    f_obstacle: f64,
+}
+
+pub fn run(a: EvalArgs) -> Result<(), CliError> {
+    let robot = check_robot(&a)?;
+    if let Some(r) = a.resolution
+        && !(r.is_finite() && r > 0.0)
+    {
+        return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
+    }
+    let map = load_map(&a.map, a.resolution).map_err(CliError::input)?;
+    let projection = match a.projection {
+        ProjectionName::F1 => Projection::F1,
+        ProjectionName::F2 => Projection::F2,
+    };
+    let (paths, source) = match &a.path {
+        Some(file) => {
+            let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;
+            for (k, p) in paths.iter().enumerate() {
+                let what = |end: &str| format!("{}: agent {k} {end}", file.display());
+                map.check_station(p[0], &what("start")).map_err(CliError::Input)?;
+                map.check_station(*p.last().expect("non-empty"), &what("end")).map_err(CliError::Input)?;
+            }
+            (paths, file.display().to_string())
+        }
+        None => {
+            let start = parse_point(&a.start).map_err(|m| CliError::Input(format!("--start: {m}")))?;
+            let end = match &a.end {
+                Some(e) => parse_point(e).map_err(|m| CliError::Input(format!("--end: {m}")))?,
+                None => start,
+            };
+            map.check_station(start, "--start").map_err(CliError::Input)?;
+            map.check_station(end, "--end").map_err(CliError::Input)?;
+            let pattern = match a.pattern.unwrap_or(PatternName::Boustrophedon) {
+                PatternName::Boustrophedon => Pattern::Boustrophedon { angle_deg: a.angle },
+                PatternName::Spiral => Pattern::Spiral,
+            };
+            let path = patterns::plan(&map, pattern, robot.width, start, end).map_err(CliError::input)?;
+            let name = match pattern {
+                Pattern::Boustrophedon { angle_deg } => format!("boustrophedon {angle_deg}°"),
+                Pattern::Spiral => "spiral".into(),
+            };
+            (vec![path], name)
+        }
+    };
+    let grid = CoverageGrid::new(&map);
+    let metrics = robot.measure_plan(&grid, &mut SweepScratch::new(&grid), &paths);
+    let sc = score(&metrics, &robot, map.resolution(), projection);
+    let report = Report {
+        map: map.name(),
+        source,
+        robot,
+        projection,
+        agents: paths.len(),
+        metrics,
+        score: sc,
+        f_obstacle: sc.fitness,
+    };
+    let json = serde_json::to_string_pretty(&report).map_err(CliError::internal)?;
+    std::fs::create_dir_all(&a.out).map_err(|e| CliError::Internal(format!("{}: {e}", a.out.display())))?;
+    crate::io::write_atomic(&a.out.join("metrics.json"), json.as_bytes()).map_err(CliError::internal)?;
+    crate::io::write_atomic(&a.out.join("path.csv"), &crate::io::path_csv(&paths)).map_err(CliError::internal)?;
+    let figure = PathFigure {
+        map: &map,
+        grid: &grid,
+        paths: paths.clone(),
+        width: robot.width,
+        title: format!("{} on {}: cov_final {:.3}, t_final {:.3}", report.source, map.name(), sc.cov_final, sc.t_final),
+    };
+    crate::plot::save(&figure, &a.out.join("path")).map_err(CliError::internal)?;
+    if a.json {
+        println!("{json}");
+    } else {
+        print_table(&report);
+        println!("wrote {}/path.png, path.svg, path.csv, metrics.json", a.out.display());
+    }
+    Ok(())
+}
+
+fn print_table(r: &Report) {
+    let m = &r.metrics;
+    let rows: [(&str, String); 16] = [
+        ("map", r.map.to_string()),
+        ("path", r.source.clone()),
+        ("agents", r.agents.to_string()),
+        ("cells swept (cov_pix)", m.cells_swept.to_string()),
+        ("unique cells", m.unique_cells.to_string()),
+        ("crossings (cross_pix)", m.crossings.to_string()),
+        ("obstacle cells (obj_pix)", m.obstacle_cells.to_string()),
+        ("area cells (A_pix)", m.area_cells.to_string()),
+        ("length [m]", format!("{:.3}", m.length_m)),
+        ("total turn [rad]", format!("{:.4}", m.total_turn_rad)),
+        ("T_rot [s]", format!("{:.4}", m.t_rot_s)),
+        ("cov_final", format!("{:.6}", r.score.cov_final)),
+        ("t_final", format!("{:.6}", r.score.t_final)),
+        ("f1", format!("{:.6}", r.score.f1)),
+        ("f2", format!("{:.6}", r.score.f2)),
+        ("f_obstacle", format!("{:.6} ({:?})", r.f_obstacle, r.projection)),
+    ];
+    for (k, v) in rows {
+        println!("{k:<26} {v}");
+    }
+}

@@ -1,0 +1,22 @@
+//! `covga maps`: write the presets as ROS map files.
+
+use super::CliError;
+use crate::map::presets::{PRESET_NAMES, preset};
+use std::path::PathBuf;
+
+/// Arguments of `covga maps`.
+#[derive(clap::Args, Debug)]
+pub struct MapsArgs {
+    /// Folder to write `<preset>.yaml` + `<preset>.pgm` into.
+    #[arg(long, default_value = "experiments/maps")]
+    out: PathBuf,
+}
+
+pub fn run(a: MapsArgs) -> Result<(), CliError> {
+    for name in PRESET_NAMES {
+        let map = preset(name).expect("listed presets exist");
+        crate::map::ros::write_ros(&map, &a.out, name).map_err(CliError::internal)?;
+        println!("wrote {}", a.out.join(format!("{name}.yaml")).display());
+    }
+    Ok(())
+}

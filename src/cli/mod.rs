@@ -1,0 +1,84 @@
+//! The `covga` command line. The only place that prints for humans.
+
+mod eval;
+mod maps;
+
+use clap::{Parser, Subcommand};
+use std::ffi::OsString;
+
+/// Failure of a command: bad input (exit code 2) or an internal error (exit code 1).
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    /// The user's input is wrong; the message says what is allowed.
+    #[error("{0}")]
+    Input(String),
+    /// Something failed that is not the user's input (a file could not be written, …).
+    #[error("{0}")]
+    Internal(String),
+}
+
+impl CliError {
+    /// Process exit code: 2 for bad input, 1 otherwise.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            CliError::Input(_) => 2,
+            CliError::Internal(_) => 1,
+        }
+    }
+    /// Wraps any displayable error as bad input.
+    pub fn input(e: impl std::fmt::Display) -> Self {
+        CliError::Input(e.to_string())
+    }
+    /// Wraps any displayable error as an internal failure.
+    pub fn internal(e: impl std::fmt::Display) -> Self {
+        CliError::Internal(e.to_string())
+    }
+}
+
+#[derive(Parser, Debug)]
+#[command(name = "covga", version, about = "Coverage path planning with genetic algorithms")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Score a pattern or a path file on a map: every metric, plus path.png / path.svg.
+    Eval(eval::EvalArgs),
+    /// Write the built-in maps as ROS map_server files (YAML + PGM).
+    Maps(maps::MapsArgs),
+}
+
+/// Parses `args` and runs the command.
+pub fn run<I, T>(args: I) -> Result<(), CliError>
+where
+    I: IntoIterator<Item = T>,
+    T: Into<OsString> + Clone,
+{
+    let cli = match Cli::try_parse_from(args) {
+        Ok(cli) => cli,
+        Err(e) => {
+            // Help and version go to stdout with success; usage errors exit 2 like bad input.
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            std::process::exit(code);
+        }
+    };
+    match cli.command {
+        Command::Eval(a) => eval::run(a),
+        Command::Maps(a) => maps::run(a),
+    }
+}
+
+/// Parses `X,Y` in metres.
+pub(crate) fn parse_point(s: &str) -> Result<crate::geom::Point, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    match parts[..] {
+        [x, y] => match (x.parse::<f64>(), y.parse::<f64>()) {
+            (Ok(x), Ok(y)) if x.is_finite() && y.is_finite() => Ok(crate::geom::Point::new(x, y)),
+            _ => Err(format!("`{s}` is not X,Y with finite numbers in metres")),
+        },
+        _ => Err(format!("`{s}` is not X,Y in metres (two numbers separated by a comma)")),
+    }
+}

@@ -1,0 +1,133 @@
+//! Coverage of a path on a grid map: the swept footprint of 003 §3.1 ([`raster`], [`sweep`])
+//! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`].
+
+pub mod motion;
+pub mod raster;
+pub mod sweep;
+
+pub use sweep::{CoverageGrid, SweepCounts, SweepScratch};
+
+use crate::geom::Point;
+
+/// The robot's cleaning footprint and motion (003 §3.1, Table 4.2).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Footprint {
+    /// `R_width`: width of the swept rectangle in metres.
+    pub width: f64,
+    /// `R_speed`: translation speed in m/s.
+    pub speed: f64,
+    /// `R_rot`: rotation speed in rad/s; 0 disables the rotation cost.
+    pub rot_speed: f64,
+}
+
+impl Default for Footprint {
+    /// The thesis robot: 0.6 m wide, 0.2 m/s, no rotation cost.
+    fn default() -> Self {
+        Self { width: 0.6, speed: 0.2, rot_speed: 0.0 }
+    }
+}
+
+/// Everything the footprint model measures of one path.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct PathMetrics {
+    /// `cov_pix`: free-cell traversals.
+    pub cells_swept: u64,
+    /// `cov_pix − cross_pix`: distinct free cells newly covered.
+    pub unique_cells: u64,
+    /// `cross_pix`: revisits of free cells.
+    pub crossings: u64,
+    /// `obj_pix`: traversals of obstacle cells.
+    pub obstacle_cells: u64,
+    /// `A_pix`: cells to cover.
+    pub area_cells: u64,
+    /// `PA_len` in metres.
+    pub length_m: f64,
+    /// Sum of absolute turns in radians.
+    pub total_turn_rad: f64,
+    /// Number of non-zero turns.
+    pub turns: u64,
+    /// `T_rot` in seconds.
+    pub t_rot_s: f64,
+}
+
+impl PathMetrics {
+    /// The Listing 3.1 counts these metrics were made from.
+    pub fn counts(&self) -> SweepCounts {
+        SweepCounts { cov_pix: self.cells_swept, cross_pix: self.crossings, obj_pix: self.obstacle_cells }
+    }
+}
+
+impl Footprint {
+    /// Measures a path: sweeps it on `grid` with `scratch` (no allocation once the scratch has
+    /// grown) and adds length, turning and rotation time.
+    pub fn measure(&self, grid: &CoverageGrid, scratch: &mut SweepScratch, points: &[Point]) -> PathMetrics {
+        let counts = scratch.sweep(grid, points, self.width);
+        let (total_turn_rad, turns) = motion::turning(points);
+        self.metrics(grid, counts, motion::path_length(points), total_turn_rad, turns)
+    }
+
+    /// Measures a multi-agent plan: all paths sweep one shared visit grid; lengths, turns and
+    /// rotation times add up.
+    pub fn measure_plan(&self, grid: &CoverageGrid, scratch: &mut SweepScratch, paths: &[Vec<Point>]) -> PathMetrics {
+        let counts = scratch.sweep_all(grid, paths, self.width);
+        let (mut length, mut turn, mut turns) = (0.0, 0.0, 0);
+        for p in paths {
+            let (t, n) = motion::turning(p);
+            length += motion::path_length(p);
+            turn += t;
+            turns += n;
+        }
+        self.metrics(grid, counts, length, turn, turns)
+    }
+
+    fn metrics(
+        &self,
+        grid: &CoverageGrid,
+        counts: SweepCounts,
+        length_m: f64,
+        total_turn_rad: f64,
+        turns: usize,
+    ) -> PathMetrics {
+        PathMetrics {
+            cells_swept: counts.cov_pix,
+            unique_cells: counts.unique(),
+            crossings: counts.cross_pix,
+            obstacle_cells: counts.obj_pix,
+            area_cells: grid.area_cells() as u64,
+            length_m,
+            total_turn_rad,
+            turns: turns as u64,
+            t_rot_s: motion::rotation_time(total_turn_rad, self.rot_speed),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+
+    /// The five hand-computed cases of spec §3.3 on map 1.
+    #[test]
+    fn spec_table_3_3_cases() {
+        let map = preset("thesis-1").unwrap();
+        let grid = CoverageGrid::new(&map);
+        let mut scratch = SweepScratch::new(&grid);
+        let fp = Footprint { width: 0.6, speed: 0.2, rot_speed: std::f64::consts::TAU };
+        let p = |x, y| Point::new(x, y);
+        let cases: [(&[Point], u64, u64, u64, f64); 5] = [
+            (&[p(1.3, 1.3), p(4.3, 1.3)], 45, 0, 0, 0.0),
+            (&[p(1.3, 1.3), p(4.3, 1.3), p(4.3, 4.3)], 90, 2, 0, 90.0),
+            (&[p(1.3, 1.3), p(4.3, 1.3), p(1.3, 1.3)], 90, 42, 0, 180.0),
+            (&[p(1.3, 1.3), p(4.3, 1.3), p(4.3, 4.3), p(1.3, 1.3)], 165, 14, 0, 225.0),
+            (&[p(1.3, 1.3), p(0.5, 1.3)], 6, 0, 6, 0.0),
+        ];
+        for (i, (path, cov, cross, obj, turn_deg)) in cases.into_iter().enumerate() {
+            let m = fp.measure(&grid, &mut scratch, path);
+            assert_eq!((m.cells_swept, m.crossings, m.obstacle_cells), (cov, cross, obj), "case {i}");
+            assert!((m.total_turn_rad.to_degrees() - turn_deg).abs() < 1e-9, "case {i}");
+        }
+        let m = fp.measure(&grid, &mut scratch, cases[3].0);
+        assert!((m.t_rot_s - 0.625).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,62 @@
+//! Path length (003 eq. 3.1), turning (eq. 3.2) and rotation time (eq. 3.3 as resolved by
+//! spec R6–R7).
+
+use crate::geom::{Point, ZERO_LENGTH, turn_deg};
+
+/// `PA_len`: the sum of segment lengths in metres (003 eq. 3.1).
+pub fn path_length(points: &[Point]) -> f64 {
+    points.windows(2).map(|w| (w[1] - w[0]).norm()).sum()
+}
+
+/// Turning along a path: the sum of absolute turn angles in radians between consecutive
+/// non-degenerate segments (003 eq. 3.2; zero-length segments carry the heading over, R6) and
+/// the number of non-zero turns.
+pub fn turning(points: &[Point]) -> (f64, usize) {
+    let mut previous = None;
+    let mut total_deg = 0.0;
+    let mut turns = 0;
+    for w in points.windows(2) {
+        let v = w[1] - w[0];
+        if v.norm() < ZERO_LENGTH {
+            continue;
+        }
+        if let Some(prev) = previous {
+            let a = turn_deg(prev, v).abs();
+            if a > 1e-9 {
+                turns += 1;
+            }
+            total_deg += a;
+        }
+        previous = Some(v);
+    }
+    (total_deg.to_radians(), turns)
+}
+
+/// `T_rot` in seconds: total absolute turn (rad) over the rotation speed `R_rot` (rad/s);
+/// 0 when `R_rot` = 0 disables the rotation cost (003 eq. 3.3, spec R6–R7).
+pub fn rotation_time(total_turn_rad: f64, r_rot: f64) -> f64 {
+    if r_rot > 0.0 { total_turn_rad / r_rot } else { 0.0 }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn square_loop_turns_and_time() {
+        let pts = [Point::new(1.3, 1.3), Point::new(4.3, 1.3), Point::new(4.3, 4.3), Point::new(1.3, 1.3)];
+        let (rad, n) = turning(&pts);
+        assert!((rad.to_degrees() - 225.0).abs() < 1e-9);
+        assert_eq!(n, 2);
+        // spec §3.3 table: T_rot = 0.625 s at 2π rad/s.
+        assert!((rotation_time(rad, std::f64::consts::TAU) - 0.625).abs() < 1e-12);
+        assert!((path_length(&pts) - (6.0 + 18f64.sqrt())).abs() < 1e-12);
+        assert_eq!(rotation_time(rad, 0.0), 0.0);
+    }
+
+    #[test]
+    fn zero_length_segments_carry_the_heading() {
+        let pts = [Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 0.0), Point::new(2.0, 0.0)];
+        assert_eq!(turning(&pts), (0.0, 0));
+    }
+}

@@ -1,0 +1,204 @@
+//! Cell counting along a path: Listing 3.1 of 003 with the reading of spec R5.
+//!
+//! For every segment in order and every swept cell once: an obstacle cell adds to `obj_pix`;
+//! a free cell adds to `cov_pix`, adds to `cross_pix` when it was already visited, and its
+//! visit count `M_traveled` is incremented. So `cov_pix − cross_pix` is the number of
+//! distinct free cells swept (`unique`).
+
+use super::raster::{RasterGrid, for_each_swept_cell};
+use crate::geom::Point;
+use crate::map::{CellState, GridMap};
+
+/// The per-map, per-scenario layers the counting reads: which cells are obstacles and which
+/// are pre-marked as already covered (the retrain region of 003 §3.5.3, spec R25).
+#[derive(Clone, Debug)]
+pub struct CoverageGrid {
+    raster: RasterGrid,
+    blocked: Vec<bool>,
+    premark: Vec<u32>,
+    area_cells: usize,
+}
+
+impl CoverageGrid {
+    /// Layers of a map with nothing pre-marked; `A_pix` = free cells (spec R29).
+    pub fn new(map: &GridMap) -> Self {
+        let blocked: Vec<bool> = map.cells().iter().map(|&c| c != CellState::Free).collect();
+        Self { raster: RasterGrid::of(map), premark: vec![0; blocked.len()], area_cells: map.free_count(), blocked }
+    }
+
+    /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` (metres) as already
+    /// covered: their visit count starts at 1 and they leave `A_pix` (spec §13, R25).
+    pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
+        let g = self.raster;
+        for r in 0..g.rows {
+            let y = g.origin_y + (r as f64 + 0.5) * g.resolution;
+            if y < y0 || y >= y1 {
+                continue;
+            }
+            for c in 0..g.cols {
+                let x = g.origin_x + (c as f64 + 0.5) * g.resolution;
+                let i = r * g.cols + c;
+                if x >= x0 && x < x1 && !self.blocked[i] && self.premark[i] == 0 {
+                    self.premark[i] = 1;
+                    self.area_cells -= 1;
+                }
+            }
+        }
+    }
+
+    /// `A_pix`: free cells still to be covered.
+    pub fn area_cells(&self) -> usize {
+        self.area_cells
+    }
+    /// The raster geometry.
+    pub fn raster(&self) -> &RasterGrid {
+        &self.raster
+    }
+    /// Whether a cell is an obstacle (occupied or unknown).
+    pub fn is_blocked(&self, index: usize) -> bool {
+        self.blocked[index]
+    }
+    /// Whether a cell is pre-marked as covered.
+    pub fn is_premarked(&self, index: usize) -> bool {
+        self.premark[index] > 0
+    }
+    /// Number of cells.
+    pub fn len(&self) -> usize {
+        self.blocked.len()
+    }
+    /// Whether the grid has no cells.
+    pub fn is_empty(&self) -> bool {
+        self.blocked.is_empty()
+    }
+}
+
+/// The raw counts of Listing 3.1.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SweepCounts {
+    /// `cov_pix`: free-cell traversals (every sweep of a free cell counts).
+    pub cov_pix: u64,
+    /// `cross_pix`: traversals of free cells already visited.
+    pub cross_pix: u64,
+    /// `obj_pix`: traversals of obstacle cells.
+    pub obj_pix: u64,
+}
+
+impl SweepCounts {
+    /// Distinct free cells newly covered: `cov_pix − cross_pix`.
+    pub fn unique(&self) -> u64 {
+        self.cov_pix - self.cross_pix
+    }
+}
+
+/// Reusable visit-count grid (`M_traveled` without its pre-marks), reset in O(touched cells).
+#[derive(Clone, Debug)]
+pub struct SweepScratch {
+    visits: Vec<u32>,
+    /// Cells visited since the last reset, in first-visit order; only `touched_len` are valid.
+    /// Sized to the grid so that recording a first visit needs no branch.
+    touched: Vec<u32>,
+    touched_len: usize,
+}
+
+impl SweepScratch {
+    /// A scratch grid for `grid`.
+    pub fn new(grid: &CoverageGrid) -> Self {
+        Self { visits: vec![0; grid.len()], touched: vec![0; grid.len() + 1], touched_len: 0 }
+    }
+
+    fn reset(&mut self) {
+        for &i in &self.touched[..self.touched_len] {
+            self.visits[i as usize] = 0;
+        }
+        self.touched_len = 0;
+    }
+
+    /// Sweeps the polyline `points` with width `width` and counts per Listing 3.1. The visit
+    /// counts stay in the scratch until the next call (see [`Self::visit_counts`]).
+    pub fn sweep(&mut self, grid: &CoverageGrid, points: &[Point], width: f64) -> SweepCounts {
+        self.reset();
+        let mut counts = SweepCounts::default();
+        self.add_path(grid, points, width, &mut counts);
+        counts
+    }
+
+    /// Sweeps several paths (one per agent) into one shared visit grid, in order.
+    pub fn sweep_all(&mut self, grid: &CoverageGrid, paths: &[Vec<Point>], width: f64) -> SweepCounts {
+        self.reset();
+        let mut counts = SweepCounts::default();
+        for p in paths {
+            self.add_path(grid, p, width, &mut counts);
+        }
+        counts
+    }
+
+    fn add_path(&mut self, grid: &CoverageGrid, points: &[Point], width: f64, counts: &mut SweepCounts) {
+        let Self { visits, touched, touched_len } = self;
+        let (blocked, premark) = (&grid.blocked[..], &grid.premark[..]);
+        let (mut cov, mut cross, mut obj, mut len) = (0u64, 0u64, 0u64, *touched_len);
+        for pair in points.windows(2) {
+            for_each_swept_cell(&grid.raster, pair[0], pair[1], width, |i| {
+                if blocked[i] {
+                    obj += 1;
+                } else {
+                    // Branch-free bookkeeping: random paths make these outcomes unpredictable.
+                    let v = visits[i];
+                    cross += u64::from((v | premark[i]) != 0);
+                    touched[len] = i as u32;
+                    len += usize::from(v == 0);
+                    visits[i] = v + 1;
+                    cov += 1;
+                }
+            });
+        }
+        *touched_len = len;
+        counts.cov_pix += cov;
+        counts.cross_pix += cross;
+        counts.obj_pix += obj;
+    }
+
+    /// The cells visited by the last sweep with the number of visits it added (pre-marks
+    /// excluded), in first-visit order.
+    pub fn visit_counts(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        self.touched[..self.touched_len].iter().map(move |&i| (i, self.visits[i as usize]))
+    }
+
+    /// Visits of one cell by the last sweep (pre-marks not included).
+    pub fn visits(&self, index: usize) -> u32 {
+        self.visits[index]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    #[test]
+    fn premark_of_the_retrain_corner_matches_spec() {
+        // spec §16.4: the 5 m corner square leaves A_pix = 1400 (map 1) and 1225 (map 2).
+        for (name, expected) in [("thesis-1", 1400), ("thesis-2", 1225)] {
+            let mut g = CoverageGrid::new(&preset(name).unwrap());
+            g.premark_rect(5.0, 5.0, 10.0, 10.0);
+            assert_eq!(g.area_cells(), expected, "{name}");
+        }
+    }
+
+    #[test]
+    fn premarked_cells_count_as_crossings() {
+        let mut g = CoverageGrid::new(&preset("thesis-1").unwrap());
+        g.premark_rect(1.0, 1.0, 2.0, 2.0);
+        let mut s = SweepScratch::new(&g);
+        let c = s.sweep(&g, &[p(1.3, 1.3), p(4.3, 1.3)], 0.6);
+        // Pre-marked cells of the lane: columns 1.3..1.9 (4) × rows 1.1..1.5 (3).
+        assert_eq!(c, SweepCounts { cov_pix: 45, cross_pix: 12, obj_pix: 0 });
+        // The scratch resets to the pre-marks.
+        let c2 = s.sweep(&g, &[p(1.3, 1.3), p(4.3, 1.3)], 0.6);
+        assert_eq!(c, c2);
+        assert_eq!(s.visit_counts().map(|(_, n)| n as u64).sum::<u64>(), 45);
+    }
+}

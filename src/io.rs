@@ -1,0 +1,122 @@
+//! Small file helpers: atomic writes (write to a temporary sibling, fsync, rename), so a killed
+//! process never leaves a half-written result file.
+
+use std::io::Write;
+use std::path::Path;
+
+/// Writes `bytes` to `path` atomically: a temporary file in the same folder is written, synced
+/// and renamed over the target.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
+    let tmp = dir.join(format!(".{name}.tmp{}", std::process::id()));
+    {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+    }
+    std::fs::rename(&tmp, path)
+}
+
+use crate::geom::Point;
+use std::path::PathBuf;
+
+/// A bad path file: the file, the line (1-based, header = 1) and what is expected.
+#[derive(Debug, thiserror::Error)]
+#[error("{path}:{line}: {message}")]
+pub struct PathFileError {
+    /// The file.
+    pub path: PathBuf,
+    /// The line (0 when the file could not be read).
+    pub line: u64,
+    /// What is wrong and what is expected.
+    pub message: String,
+}
+
+/// Reads a path file: CSV with header `x_m,y_m` (metres, one point per row), optionally an
+/// `agent` column (non-negative integer) that splits the rows into one path per agent, and an
+/// `index` column that is ignored. Returns the paths in ascending agent order.
+pub fn read_path_csv(path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
+    let fail = |line: u64, message: String| PathFileError { path: path.to_path_buf(), line, message };
+    let text = std::fs::read_to_string(path).map_err(|e| fail(0, format!("cannot read path file: {e}")))?;
+    let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
+    let headers = reader.headers().map_err(|e| fail(1, format!("bad CSV header: {e}")))?.clone();
+    let col = |name: &str| headers.iter().position(|h| h == name);
+    let (Some(xi), Some(yi)) = (col("x_m"), col("y_m")) else {
+        return Err(fail(
+            1,
+            format!(
+                "header is `{}`; expected columns x_m,y_m (and optionally agent, index)",
+                headers.iter().collect::<Vec<_>>().join(",")
+            ),
+        ));
+    };
+    if let Some(bad) = headers.iter().find(|h| !["x_m", "y_m", "agent", "index"].contains(h)) {
+        return Err(fail(1, format!("unknown column `{bad}`; allowed: x_m, y_m, agent, index")));
+    }
+    let ai = col("agent");
+    let mut by_agent: std::collections::BTreeMap<u64, Vec<Point>> = Default::default();
+    for (k, record) in reader.records().enumerate() {
+        let line = k as u64 + 2;
+        let record = record.map_err(|e| fail(line, format!("bad CSV row: {e}")))?;
+        let num = |i: usize, name: &str| -> Result<f64, PathFileError> {
+            let raw = record.get(i).unwrap_or("");
+            match raw.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(fail(line, format!("`{name}` = `{raw}` is not a finite number of metres"))),
+            }
+        };
+        let p = Point::new(num(xi, "x_m")?, num(yi, "y_m")?);
+        let agent = match ai {
+            None => 0,
+            Some(i) => {
+                let raw = record.get(i).unwrap_or("");
+                raw.parse::<u64>()
+                    .map_err(|_| fail(line, format!("`agent` = `{raw}` is not a non-negative integer")))?
+            }
+        };
+        by_agent.entry(agent).or_default().push(p);
+    }
+    let paths: Vec<Vec<Point>> = by_agent.into_values().collect();
+    if paths.is_empty() {
+        return Err(fail(2, "the file has no points; expected at least one row x_m,y_m".into()));
+    }
+    Ok(paths)
+}
+
+/// Writes paths as CSV `agent,index,x_m,y_m` (the format [`read_path_csv`] reads).
+pub fn path_csv(paths: &[Vec<Point>]) -> Vec<u8> {
+    let mut out = String::from("agent,index,x_m,y_m\n");
+    for (a, path) in paths.iter().enumerate() {
+        for (i, p) in path.iter().enumerate() {
+            out.push_str(&format!("{a},{i},{},{}\n", p.x, p.y));
+        }
+    }
+    out.into_bytes()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn path_csv_round_trip_and_errors() {
+        let dir = tempfile::tempdir().unwrap();
+        let f = dir.path().join("p.csv");
+        let paths = vec![vec![Point::new(1.0, 2.0), Point::new(3.5, 4.25)], vec![Point::new(0.1, 0.2)]];
+        std::fs::write(&f, path_csv(&paths)).unwrap();
+        assert_eq!(read_path_csv(&f).unwrap(), paths);
+        for (text, needle) in [
+            ("x,y\n1,2\n", "expected columns x_m,y_m"),
+            ("x_m,y_m\n1,abc\n", ":2: `y_m` = `abc`"),
+            ("x_m,y_m\n1,2\n1,inf\n", ":3: `y_m` = `inf`"),
+            ("x_m,y_m\n", "no points"),
+            ("x_m,y_m,z\n1,2,3\n", "unknown column `z`"),
+        ] {
+            std::fs::write(&f, text).unwrap();
+            let e = read_path_csv(&f).unwrap_err().to_string();
+            assert!(e.contains(needle), "{e}");
+        }
+    }
+}

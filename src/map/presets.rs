@@ -1,0 +1,134 @@
+//! Built-in maps: the two experiment maps of 003 (Fig. 4.1, geometry of spec §1.2 / §16.4) and a
+//! synthetic office floor for the waypoint planner (000 §II-B uses real floor plans).
+
+use super::{CellState, GridMap, MapError};
+use crate::geom::Point;
+
+/// Names of the presets accepted by [`preset`].
+pub const PRESET_NAMES: [&str; 3] = ["thesis-1", "thesis-2", "office"];
+
+/// Builds a preset by name.
+pub fn preset(name: &str) -> Option<GridMap> {
+    let map = match name {
+        "thesis-1" => thesis_map(false),
+        "thesis-2" => thesis_map(true),
+        "office" => office(),
+        _ => return None,
+    };
+    Some(map.expect("presets always have free cells"))
+}
+
+/// 003 map 1 (and map 2 with `disc`): 11 m × 11 m at 0.2 m, a 1 m wall frame, free area
+/// `[1, 10)² m` = 2025 cells. Map 2 adds the disc of cells whose centre is strictly within 2 m
+/// of (5.5, 5.5) m, tested in integer cell units (`dr² + dc² < 10²`, DESIGN "Numerical care"),
+/// leaving 1720 free cells (spec §16.4).
+fn thesis_map(disc: bool) -> Result<GridMap, MapError> {
+    const N: usize = 55;
+    const WALL: usize = 5;
+    let mut cells = vec![CellState::Free; N * N];
+    for r in 0..N {
+        for c in 0..N {
+            let wall = r < WALL || c < WALL || r >= N - WALL || c >= N - WALL;
+            let (dr, dc) = (r as i64 - 27, c as i64 - 27);
+            let in_disc = disc && dr * dr + dc * dc < 100;
+            if wall || in_disc {
+                cells[r * N + c] = CellState::Occupied;
+            }
+        }
+    }
+    let name = if disc { "thesis-2" } else { "thesis-1" };
+    GridMap::new(name, N, N, 0.2, Point::origin(), cells)
+}
+
+/// Fills the half-open metre rectangle `[x0, x1) × [y0, y1)` (cell centres inside) with `state`.
+fn fill(cells: &mut [CellState], cols: usize, res: f64, rect: [f64; 4], state: CellState) {
+    let [x0, y0, x1, y1] = rect;
+    let rows = cells.len() / cols;
+    for r in 0..rows {
+        let y = (r as f64 + 0.5) * res;
+        if y < y0 || y >= y1 {
+            continue;
+        }
+        for c in 0..cols {
+            let x = (c as f64 + 0.5) * res;
+            if x >= x0 && x < x1 {
+                cells[r * cols + c] = state;
+            }
+        }
+    }
+}
+
+/// A synthetic office floor, 30 m × 20 m at 0.1 m: 0.2 m walls, a 2.4 m corridor across the
+/// middle, three rooms below and four above with 1 m doors, a door between two lower rooms, a
+/// pillar in the corridor and a table block in one room.
+fn office() -> Result<GridMap, MapError> {
+    const COLS: usize = 300;
+    const ROWS: usize = 200;
+    const RES: f64 = 0.1;
+    use CellState::{Free, Occupied};
+    let mut cells = vec![Occupied; COLS * ROWS];
+    let f = |cells: &mut Vec<CellState>, rect: [f64; 4], s: CellState| fill(cells, COLS, RES, rect, s);
+    // Interior.
+    f(&mut cells, [0.2, 0.2, 29.8, 19.8], Free);
+    // Corridor walls (below y 8.6 and above y 11.0).
+    f(&mut cells, [0.2, 8.4, 29.8, 8.6], Occupied);
+    f(&mut cells, [0.2, 11.0, 29.8, 11.2], Occupied);
+    // Lower rooms: walls at x = 10 and 20.
+    for x in [10.0, 20.0] {
+        f(&mut cells, [x, 0.2, x + 0.2, 8.4], Occupied);
+    }
+    // Upper rooms: walls at x = 7.5, 15, 22.5.
+    for x in [7.5, 15.0, 22.5] {
+        f(&mut cells, [x, 11.2, x + 0.2, 19.8], Occupied);
+    }
+    // Doors from the corridor, 1 m wide.
+    for x in [4.5, 14.5, 24.5] {
+        f(&mut cells, [x, 8.4, x + 1.0, 8.6], Free);
+    }
+    for x in [3.3, 10.8, 18.3, 25.8] {
+        f(&mut cells, [x, 11.0, x + 1.0, 11.2], Free);
+    }
+    // Door between the first two lower rooms.
+    f(&mut cells, [10.0, 2.0, 10.2, 3.0], Free);
+    // Pillar in the corridor and a table block in the lower-right room.
+    f(&mut cells, [14.8, 9.5, 15.2, 9.9], Occupied);
+    f(&mut cells, [24.0, 3.5, 26.0, 4.5], Occupied);
+    GridMap::new("office", COLS, ROWS, RES, Point::origin(), cells)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thesis_free_cell_counts_match_spec() {
+        // spec §16.4: A_pix = 2025 on map 1 and 1720 on map 2 (disc of 305 cells).
+        assert_eq!(preset("thesis-1").unwrap().free_count(), 2025);
+        assert_eq!(preset("thesis-2").unwrap().free_count(), 1720);
+    }
+
+    #[test]
+    fn thesis_free_area_is_one_to_ten_metres() {
+        let m = preset("thesis-1").unwrap();
+        assert!(m.is_free_point(Point::new(1.01, 1.01)));
+        assert!(!m.is_free_point(Point::new(0.99, 5.0)));
+        assert!(m.is_free_point(Point::new(9.99, 9.99)));
+        assert!(!m.is_free_point(Point::new(10.0, 5.0)));
+    }
+
+    #[test]
+    fn office_has_rooms_and_doors() {
+        let m = preset("office").unwrap();
+        assert_eq!((m.cols(), m.rows()), (300, 200));
+        assert!(m.is_free_point(Point::new(5.0, 8.5)), "door of the first lower room");
+        assert!(!m.is_free_point(Point::new(3.0, 8.5)), "corridor wall");
+        assert!(m.is_free_point(Point::new(15.5, 9.7)), "corridor beside the pillar");
+        assert!(!m.is_free_point(Point::new(15.0, 9.7)), "pillar");
+        assert!(m.free_count() > 40_000);
+    }
+
+    #[test]
+    fn unknown_preset_is_none() {
+        assert!(preset("thesis-3").is_none());
+    }
+}

@@ -1,0 +1,283 @@
+//! ROS map_server files (YAML + PGM/PNG) and bare map images.
+//!
+//! The interpretation of pixel values follows map_server: with `negate: 0` the occupancy
+//! probability of a pixel `x` is `p = (255 − x) / 255`; `p > occupied_thresh` is occupied,
+//! `p < free_thresh` is free, anything else is unknown (`trinary`, and the intermediate
+//! probabilities of `scale`); in `scale` mode a fully transparent pixel is unknown; `raw` reads
+//! `x` as a percentage.
+
+use super::presets::{PRESET_NAMES, preset};
+use super::{CellState, GridMap, MapError};
+use crate::geom::Point;
+use serde::Deserialize;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// How map_server turns pixel values into occupancy (`mode` in the YAML).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PixelMode {
+    /// Free / occupied / unknown by the two thresholds (the default).
+    Trinary,
+    /// Like trinary; intermediate values and transparent pixels are unknown.
+    Scale,
+    /// The pixel value is the occupancy in percent.
+    Raw,
+}
+
+/// Reads `negate` written either as `0`/`1` or as a boolean.
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum Flag {
+    Int(i64),
+    Bool(bool),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RosYaml {
+    image: String,
+    resolution: f64,
+    origin: Vec<f64>,
+    #[serde(default = "no_flag")]
+    negate: Flag,
+    occupied_thresh: f64,
+    free_thresh: f64,
+    #[serde(default = "trinary")]
+    mode: PixelMode,
+}
+
+fn no_flag() -> Flag {
+    Flag::Int(0)
+}
+fn trinary() -> PixelMode {
+    PixelMode::Trinary
+}
+
+/// How to read pixels of an image.
+#[derive(Clone, Copy, Debug)]
+pub struct PixelRule {
+    /// `negate` of the YAML.
+    pub negate: bool,
+    /// `occupied_thresh` in [0, 1].
+    pub occupied_thresh: f64,
+    /// `free_thresh` in [0, 1].
+    pub free_thresh: f64,
+    /// `mode` of the YAML.
+    pub mode: PixelMode,
+}
+
+impl Default for PixelRule {
+    /// map_server's usual values: 0.65 / 0.196, trinary, not negated.
+    fn default() -> Self {
+        Self { negate: false, occupied_thresh: 0.65, free_thresh: 0.196, mode: PixelMode::Trinary }
+    }
+}
+
+impl PixelRule {
+    /// Classifies one pixel (grey value and alpha).
+    pub fn classify(&self, value: u8, alpha: u8) -> CellState {
+        if self.mode == PixelMode::Scale && alpha == 0 {
+            return CellState::Unknown;
+        }
+        if self.mode == PixelMode::Raw {
+            let pct = f64::from(value);
+            return if pct <= self.free_thresh * 100.0 {
+                CellState::Free
+            } else if pct >= self.occupied_thresh * 100.0 && pct <= 100.0 {
+                CellState::Occupied
+            } else {
+                CellState::Unknown
+            };
+        }
+        let x = f64::from(value);
+        let p = if self.negate { x / 255.0 } else { (255.0 - x) / 255.0 };
+        if p > self.occupied_thresh {
+            CellState::Occupied
+        } else if p < self.free_thresh {
+            CellState::Free
+        } else {
+            CellState::Unknown
+        }
+    }
+}
+
+fn yaml_error(path: &Path, message: impl Into<String>) -> MapError {
+    MapError::Yaml { path: path.to_path_buf(), message: message.into() }
+}
+
+/// Loads a ROS map_server YAML file and the image it names (relative to the YAML's folder).
+pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
+    let text = std::fs::read_to_string(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
+    let y: RosYaml = serde_norway::from_str(&text).map_err(|e| {
+        let expected =
+            "expected keys image, resolution, origin, negate, occupied_thresh, free_thresh, mode (trinary|scale|raw)";
+        yaml_error(path, format!("malformed map YAML: {e} ({expected})"))
+    })?;
+    if !(y.resolution.is_finite() && y.resolution > 0.0) {
+        return Err(yaml_error(
+            path,
+            format!("`resolution` = {} must be a number of metres per cell > 0", y.resolution),
+        ));
+    }
+    if y.origin.len() != 3 || y.origin.iter().any(|v| !v.is_finite()) {
+        return Err(yaml_error(path, format!("`origin` = {:?} must be [x, y, yaw] with finite numbers", y.origin)));
+    }
+    if y.origin[2].abs() > 1e-12 {
+        return Err(yaml_error(
+            path,
+            format!("`origin` yaw = {} is not supported: only axis-aligned maps (yaw 0)", y.origin[2]),
+        ));
+    }
+    for (field, v) in [("occupied_thresh", y.occupied_thresh), ("free_thresh", y.free_thresh)] {
+        if !(0.0..=1.0).contains(&v) {
+            return Err(yaml_error(path, format!("`{field}` = {v} must lie in [0, 1]")));
+        }
+    }
+    if y.free_thresh > y.occupied_thresh {
+        return Err(yaml_error(
+            path,
+            format!("`free_thresh` = {} must not exceed `occupied_thresh` = {}", y.free_thresh, y.occupied_thresh),
+        ));
+    }
+    let negate = match y.negate {
+        Flag::Int(0) | Flag::Bool(false) => false,
+        Flag::Int(1) | Flag::Bool(true) => true,
+        Flag::Int(v) => return Err(yaml_error(path, format!("`negate` = {v} must be 0 or 1"))),
+    };
+    let image_path = path.parent().unwrap_or(Path::new(".")).join(&y.image);
+    let rule = PixelRule { negate, occupied_thresh: y.occupied_thresh, free_thresh: y.free_thresh, mode: y.mode };
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    load_image_with(&image_path, &name, y.resolution, Point::new(y.origin[0], y.origin[1]), rule)
+}
+
+/// Loads a bare PGM/PNG image at `resolution` m per pixel, origin (0, 0), default thresholds.
+pub fn load_image(path: &Path, resolution: f64) -> Result<GridMap, MapError> {
+    let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    load_image_with(path, &name, resolution, Point::origin(), PixelRule::default())
+}
+
+fn load_image_with(
+    path: &Path,
+    name: &str,
+    resolution: f64,
+    origin: Point,
+    rule: PixelRule,
+) -> Result<GridMap, MapError> {
+    let bytes = std::fs::read(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
+    let img = image::load_from_memory(&bytes)
+        .map_err(|e| MapError::Image { path: path.to_path_buf(), message: e.to_string() })?;
+    let la = img.to_luma_alpha8();
+    let (w, h) = (la.width() as usize, la.height() as usize);
+    let mut cells = vec![CellState::Unknown; w * h];
+    for (x, y, px) in la.enumerate_pixels() {
+        let row = h - 1 - y as usize; // image row 0 is the top
+        cells[row * w + x as usize] = rule.classify(px.0[0], px.0[1]);
+    }
+    GridMap::new(name, w, h, resolution, origin, cells).map_err(|e| match e {
+        MapError::NoFreeCell { .. } => MapError::NoFreeCell { source_name: path.display().to_string() },
+        other => other,
+    })
+}
+
+/// Resolves `--map`: a preset name, a ROS YAML file, or an image with a resolution.
+pub fn load_map(spec: &str, resolution: Option<f64>) -> Result<GridMap, MapError> {
+    if let Some(m) = preset(spec) {
+        return Ok(m);
+    }
+    let path = PathBuf::from(spec);
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    match ext.as_str() {
+        "yaml" | "yml" => load_ros_yaml(&path),
+        "pgm" | "png" => match resolution {
+            Some(r) => load_image(&path, r),
+            None => Err(MapError::OutOfRange {
+                source_name: spec.to_string(),
+                field: "resolution",
+                value: "missing".into(),
+                allowed: "a bare image needs --resolution (metres per pixel, > 0)",
+            }),
+        },
+        _ => Err(MapError::UnknownMap { name: spec.to_string(), presets: PRESET_NAMES.join(", ") }),
+    }
+}
+
+/// Writes `map` as `<dir>/<stem>.yaml` + `<dir>/<stem>.pgm` in map_server's trinary convention
+/// (free 254, occupied 0, unknown 205).
+pub fn write_ros(map: &GridMap, dir: &Path, stem: &str) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut pgm = format!("P5\n{} {}\n255\n", map.cols(), map.rows()).into_bytes();
+    for row in (0..map.rows()).rev() {
+        for col in 0..map.cols() {
+            pgm.push(match map.state(row, col) {
+                CellState::Free => 254,
+                CellState::Occupied => 0,
+                CellState::Unknown => 205,
+            });
+        }
+    }
+    crate::io::write_atomic(&dir.join(format!("{stem}.pgm")), &pgm)?;
+    let mut yaml = Vec::new();
+    writeln!(yaml, "image: {stem}.pgm")?;
+    writeln!(yaml, "mode: trinary")?;
+    writeln!(yaml, "resolution: {}", map.resolution())?;
+    writeln!(yaml, "origin: [{:?}, {:?}, 0.0]", map.origin().x, map.origin().y)?;
+    writeln!(yaml, "negate: 0")?;
+    writeln!(yaml, "occupied_thresh: 0.65")?;
+    writeln!(yaml, "free_thresh: 0.196")?;
+    crate::io::write_atomic(&dir.join(format!("{stem}.yaml")), &yaml)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn trinary_thresholds_follow_map_server() {
+        let rule = PixelRule::default();
+        assert_eq!(rule.classify(254, 255), CellState::Free);
+        assert_eq!(rule.classify(0, 255), CellState::Occupied);
+        assert_eq!(rule.classify(205, 255), CellState::Unknown);
+        let neg = PixelRule { negate: true, ..rule };
+        assert_eq!(neg.classify(0, 255), CellState::Free);
+        let scale = PixelRule { mode: PixelMode::Scale, ..rule };
+        assert_eq!(scale.classify(254, 0), CellState::Unknown);
+        let raw = PixelRule { mode: PixelMode::Raw, ..rule };
+        assert_eq!(raw.classify(0, 255), CellState::Free);
+        assert_eq!(raw.classify(100, 255), CellState::Occupied);
+        assert_eq!(raw.classify(255, 255), CellState::Unknown);
+    }
+
+    #[test]
+    fn round_trip_through_ros_files() {
+        let dir = tempfile::tempdir().unwrap();
+        for name in PRESET_NAMES {
+            let m = preset(name).unwrap();
+            write_ros(&m, dir.path(), name).unwrap();
+            let back = load_ros_yaml(&dir.path().join(format!("{name}.yaml"))).unwrap();
+            assert_eq!(back.cells(), m.cells(), "{name}");
+            assert_eq!(back.resolution(), m.resolution());
+            assert_eq!(back.origin(), m.origin());
+        }
+    }
+
+    #[test]
+    fn bad_yaml_names_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("bad.yaml");
+        std::fs::write(
+            &p,
+            "image: x.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nfree_thresh: 0.2\noccupied_thresh: 0.6\nmode: fuzzy\n",
+        )
+        .unwrap();
+        let e = load_ros_yaml(&p).unwrap_err().to_string();
+        assert!(e.contains("bad.yaml") && e.contains("fuzzy"), "{e}");
+        std::fs::write(
+            &p,
+            "image: x.pgm\nresolution: 0.1\norigin: [0, 0, 0]\nfree_thresh: 0.2\noccupied_thresh: 0.6\n",
+        )
+        .unwrap();
+        let e = load_ros_yaml(&p).unwrap_err().to_string();
+        assert!(e.contains("x.pgm"), "{e}");
+    }
+}

@@ -1,0 +1,252 @@
+//! Where a disc-shaped robot of a given width fits, and collision-free connecting moves
+//! (8-connected A* over cell centres, shortened by line of sight) for the pattern planners.
+
+use crate::geom::Point;
+use crate::map::GridMap;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// Slack on the clearance test, so that lanes exactly half a width off a wall are drivable.
+const CLEARANCE_EPS: f64 = 1e-6;
+
+/// Clearance queries for a robot of radius `width / 2` on one map.
+pub struct Clearance<'m> {
+    map: &'m GridMap,
+    radius: f64,
+    window: isize,
+    centre_ok: Vec<bool>,
+}
+
+impl<'m> Clearance<'m> {
+    /// Precomputes which cell centres the robot can occupy.
+    pub fn new(map: &'m GridMap, width: f64) -> Self {
+        let radius = 0.5 * width;
+        let window = (radius / map.resolution()).ceil() as isize + 1;
+        let mut c = Self { map, radius, window, centre_ok: Vec::new() };
+        c.centre_ok = (0..map.rows())
+            .flat_map(|r| (0..map.cols()).map(move |col| (r, col)))
+            .map(|(r, col)| c.fits(map.cell_centre(r, col)))
+            .collect();
+        c
+    }
+
+    /// The map.
+    pub fn map(&self) -> &GridMap {
+        self.map
+    }
+
+    /// Whether the robot disc centred at `p` stays on the map and off every non-free cell.
+    pub fn fits(&self, p: Point) -> bool {
+        let m = self.map;
+        let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
+        let lim = self.radius - CLEARANCE_EPS;
+        if p.x - ox < lim || p.y - oy < lim || ox + m.width_m() - p.x < lim || oy + m.height_m() - p.y < lim {
+            return false;
+        }
+        let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
+        for r in (cr - self.window).max(0)..=(cr + self.window).min(m.rows() as isize - 1) {
+            for c in (cc - self.window).max(0)..=(cc + self.window).min(m.cols() as isize - 1) {
+                if m.is_free(r as usize, c as usize) {
+                    continue;
+                }
+                let (x0, y0) = (ox + c as f64 * res, oy + r as f64 * res);
+                let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
+                let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+                if dx * dx + dy * dy < lim * lim {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Whether every point of the segment fits (sampled every quarter cell).
+    pub fn segment_fits(&self, a: Point, b: Point) -> bool {
+        let steps = ((b - a).norm() / (0.25 * self.map.resolution())).ceil().max(1.0) as usize;
+        (0..=steps).all(|i| self.fits(a + (b - a) * (i as f64 / steps as f64)))
+    }
+
+    /// The free sub-intervals `[t0, t1]` (parameters in [0, 1]) of the segment `a → b` where the
+    /// robot fits, ends refined by bisection; intervals shorter than `min_len` metres dropped.
+    pub fn fitting_intervals(&self, a: Point, b: Point, min_len: f64) -> Vec<(f64, f64)> {
+        let len = (b - a).norm();
+        let steps = (len / (0.5 * self.map.resolution())).ceil().max(1.0) as usize;
+        let at = |t: f64| self.fits(a + (b - a) * t);
+        let refine = |mut inside: f64, mut outside: f64| {
+            for _ in 0..40 {
+                let mid = 0.5 * (inside + outside);
+                if at(mid) { inside = mid } else { outside = mid }
+            }
+            inside
+        };
+        let mut out = Vec::new();
+        let mut start: Option<f64> = None;
+        let mut prev_t = 0.0;
+        let mut prev_ok = false;
+        for i in 0..=steps {
+            let t = i as f64 / steps as f64;
+            let ok = at(t);
+            match (prev_ok, ok, i) {
+                (_, true, 0) => start = Some(0.0),
+                (false, true, _) => start = Some(refine(t, prev_t)),
+                (true, false, _) => {
+                    let end = refine(prev_t, t);
+                    out.push((start.take().unwrap_or(0.0), end));
+                }
+                _ => {}
+            }
+            prev_ok = ok;
+            prev_t = t;
+        }
+        if let Some(s) = start {
+            out.push((s, 1.0));
+        }
+        out.retain(|&(t0, t1)| (t1 - t0) * len >= min_len);
+        out
+    }
+
+    fn snap(&self, p: Point) -> Option<usize> {
+        let m = self.map;
+        let (r0, c0) = m.cell_at(m.clamp(p)).unwrap_or((0, 0));
+        // Nearest fitting cell centre by growing square rings.
+        let max_ring = m.rows().max(m.cols()) as isize;
+        for ring in 0..max_ring {
+            let mut best: Option<(f64, usize)> = None;
+            for r in (r0 as isize - ring)..=(r0 as isize + ring) {
+                for c in (c0 as isize - ring)..=(c0 as isize + ring) {
+                    let on_ring = (r - r0 as isize).abs() == ring || (c - c0 as isize).abs() == ring;
+                    if !on_ring || r < 0 || c < 0 || r >= m.rows() as isize || c >= m.cols() as isize {
+                        continue;
+                    }
+                    let i = m.index(r as usize, c as usize);
+                    if self.centre_ok[i] {
+                        let d = (m.cell_centre(r as usize, c as usize) - p).norm();
+                        if best.is_none_or(|(bd, _)| d < bd) {
+                            best = Some((d, i));
+                        }
+                    }
+                }
+            }
+            if let Some((_, i)) = best {
+                return Some(i);
+            }
+        }
+        None
+    }
+
+    /// A collision-free route from `a` to `b`: the points after `a`, ending with `b`. Straight
+    /// when the segment fits, else A* over fitting cell centres shortened by line of sight.
+    /// `None` when `b` cannot be reached.
+    pub fn connect(&self, a: Point, b: Point) -> Option<Vec<Point>> {
+        if self.segment_fits(a, b) {
+            return Some(vec![b]);
+        }
+        let (from, to) = (self.snap(a)?, self.snap(b)?);
+        let cells = self.astar(from, to)?;
+        let mut raw: Vec<Point> = Vec::with_capacity(cells.len() + 2);
+        raw.push(a);
+        raw.extend(cells.iter().map(|&i| self.map.cell_centre(i / self.map.cols(), i % self.map.cols())));
+        raw.push(b);
+        // Line-of-sight shortening: from each anchor jump to the farthest visible point.
+        let mut out = Vec::new();
+        let mut anchor = 0;
+        while anchor < raw.len() - 1 {
+            let mut next = anchor + 1;
+            for j in (anchor + 2..raw.len()).rev() {
+                if self.segment_fits(raw[anchor], raw[j]) {
+                    next = j;
+                    break;
+                }
+            }
+            out.push(raw[next]);
+            anchor = next;
+        }
+        Some(out)
+    }
+
+    fn astar(&self, from: usize, to: usize) -> Option<Vec<usize>> {
+        let m = self.map;
+        let cols = m.cols() as isize;
+        let n = self.centre_ok.len();
+        let h = |i: usize| {
+            let (dr, dc) =
+                ((i / m.cols()) as f64 - (to / m.cols()) as f64, (i % m.cols()) as f64 - (to % m.cols()) as f64);
+            (dr * dr + dc * dc).sqrt()
+        };
+        let mut g = vec![f64::INFINITY; n];
+        let mut parent = vec![usize::MAX; n];
+        let mut heap = BinaryHeap::new();
+        g[from] = 0.0;
+        // Keys in 1e-6 cell units keep the order total and deterministic.
+        let key = |f: f64| (f * 1e6) as u64;
+        heap.push(Reverse((key(h(from)), from)));
+        while let Some(Reverse((_, i))) = heap.pop() {
+            if i == to {
+                let mut path = vec![to];
+                let mut k = to;
+                while k != from {
+                    k = parent[k];
+                    path.push(k);
+                }
+                path.reverse();
+                return Some(path);
+            }
+            let (r, c) = ((i / m.cols()) as isize, (i % m.cols()) as isize);
+            for (dr, dc) in [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)] {
+                let (nr, nc) = (r + dr, c + dc);
+                if nr < 0 || nc < 0 || nr >= m.rows() as isize || nc >= cols {
+                    continue;
+                }
+                let j = (nr * cols + nc) as usize;
+                // Diagonal steps need both orthogonal neighbours, so corners are not cut.
+                if !self.centre_ok[j]
+                    || (dr != 0
+                        && dc != 0
+                        && !(self.centre_ok[(r * cols + nc) as usize] && self.centre_ok[(nr * cols + c) as usize]))
+                {
+                    continue;
+                }
+                let step = if dr != 0 && dc != 0 { std::f64::consts::SQRT_2 } else { 1.0 };
+                let cand = g[i] + step;
+                if cand < g[j] - 1e-12 {
+                    g[j] = cand;
+                    parent[j] = i;
+                    heap.push(Reverse((key(cand + h(j)), j)));
+                }
+            }
+        }
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+
+    #[test]
+    fn lanes_half_a_width_off_the_wall_fit() {
+        let m = preset("thesis-1").unwrap();
+        let c = Clearance::new(&m, 0.6);
+        assert!(c.fits(Point::new(1.3, 1.3)));
+        assert!(!c.fits(Point::new(1.2, 5.0)));
+        let iv = c.fitting_intervals(Point::new(0.0, 5.0), Point::new(11.0, 5.0), 0.2);
+        assert_eq!(iv.len(), 1);
+        assert!((iv[0].0 * 11.0 - 1.3).abs() < 1e-5 && (iv[0].1 * 11.0 - 9.7).abs() < 1e-5);
+    }
+
+    #[test]
+    fn connection_goes_around_the_disc() {
+        let m = preset("thesis-2").unwrap();
+        let c = Clearance::new(&m, 0.6);
+        let (a, b) = (Point::new(2.0, 5.5), Point::new(9.0, 5.5));
+        assert!(!c.segment_fits(a, b));
+        let route = c.connect(a, b).unwrap();
+        assert_eq!(*route.last().unwrap(), b);
+        let mut prev = a;
+        for &p in &route {
+            assert!(c.segment_fits(prev, p));
+            prev = p;
+        }
+    }
+}

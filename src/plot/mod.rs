@@ -1,0 +1,96 @@
+//! Figures, drawn with plotters and written as PNG and SVG.
+//!
+//! Text uses DejaVu Sans embedded in the binary (plotters' `ab_glyph` backend), so building
+//! needs no system font libraries (DESIGN "Plots and fonts"). Files are written atomically.
+
+pub mod path;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+use std::sync::Once;
+
+/// The embedded font (licence in `assets/fonts/DejaVuSans-LICENSE.txt`).
+static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+static REGISTER: Once = Once::new();
+
+/// Font family name used by every figure.
+pub const FAMILY: &str = "sans-serif";
+
+fn register_font() {
+    REGISTER.call_once(|| {
+        if plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_err() {
+            unreachable!("the embedded DejaVu Sans is a valid TrueType font");
+        }
+    });
+}
+
+/// Error while drawing or writing a figure.
+#[derive(Debug, thiserror::Error)]
+#[error("cannot write figure {path}: {message}")]
+pub struct PlotError {
+    /// The file.
+    pub path: String,
+    /// What failed.
+    pub message: String,
+}
+
+/// Something that draws itself on any plotters backend.
+pub trait Figure {
+    /// Pixel size of the PNG (the SVG uses the same units).
+    fn size(&self) -> (u32, u32);
+    /// Draws the figure.
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String>;
+}
+
+/// Converts a drawing error to a message.
+pub fn err<E: std::fmt::Debug>(e: E) -> String {
+    format!("{e:?}")
+}
+
+/// Renders `figure` to `<stem>.png` and `<stem>.svg`.
+pub fn save<F: Figure>(figure: &F, stem: &Path) -> Result<(), PlotError> {
+    register_font();
+    let (w, h) = figure.size();
+    let fail = |ext: &str, message: String| PlotError { path: stem.with_extension(ext).display().to_string(), message };
+    let mut rgb = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| fail("png", err(e)))?;
+        figure.draw(&root).map_err(|m| fail("png", m))?;
+        root.present().map_err(|e| fail("png", err(e)))?;
+    }
+    let mut png = Vec::new();
+    let img = image::RgbImage::from_raw(w, h, rgb).ok_or_else(|| fail("png", "buffer size".into()))?;
+    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .map_err(|e| fail("png", e.to_string()))?;
+    crate::io::write_atomic(&stem.with_extension("png"), &png).map_err(|e| fail("png", e.to_string()))?;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| fail("svg", err(e)))?;
+        figure.draw(&root).map_err(|m| fail("svg", m))?;
+        root.present().map_err(|e| fail("svg", err(e)))?;
+    }
+    crate::io::write_atomic(&stem.with_extension("svg"), svg.as_bytes()).map_err(|e| fail("svg", e.to_string()))
+}
+
+/// A text style of the embedded font.
+pub fn text(size: f64) -> TextStyle<'static> {
+    (FAMILY, size).into_font().into()
+}
+
+/// Draws a legend as colour swatches with labels in `area`, one entry per line.
+pub fn legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    entries: &[(RGBColor, String)],
+    y0: i32,
+) -> Result<(), String> {
+    for (k, (colour, label)) in entries.iter().enumerate() {
+        let y = y0 + 26 * k as i32;
+        area.draw(&Rectangle::new([(8, y), (26, y + 18)], colour.filled())).map_err(err)?;
+        area.draw(&Rectangle::new([(8, y), (26, y + 18)], BLACK.stroke_width(1))).map_err(err)?;
+        area.draw(&Text::new(label.clone(), (34, y + 1), text(17.0))).map_err(err)?;
+    }
+    Ok(())
+}

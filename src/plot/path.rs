@@ -1,0 +1,187 @@
+//! Path pictures: the map, free cells covered once / several times / never, pre-marked cells,
+//! obstacle cells the path swept, the path on top, a legend and a metre scale.
+
+use super::{Figure, err, legend, text};
+use crate::coverage::CoverageGrid;
+use crate::coverage::raster::for_each_swept_cell;
+use crate::geom::Point;
+use crate::map::{CellState, GridMap};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+const OBSTACLE: RGBColor = RGBColor(70, 70, 70);
+const UNKNOWN: RGBColor = RGBColor(160, 160, 160);
+const NEVER: RGBColor = RGBColor(255, 255, 255);
+const ONCE: RGBColor = RGBColor(150, 215, 150);
+const SEVERAL: RGBColor = RGBColor(240, 170, 80);
+const PREMARKED: RGBColor = RGBColor(170, 200, 240);
+const HIT: RGBColor = RGBColor(220, 30, 30);
+const PATH: RGBColor = RGBColor(20, 40, 160);
+
+/// A path over its map with the coverage it produces.
+pub struct PathFigure<'a> {
+    /// The map.
+    pub map: &'a GridMap,
+    /// Obstacles and pre-marks as scored.
+    pub grid: &'a CoverageGrid,
+    /// The paths (one per agent).
+    pub paths: Vec<Vec<Point>>,
+    /// Robot width in metres.
+    pub width: f64,
+    /// Title line.
+    pub title: String,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Class {
+    Obstacle,
+    Unknown,
+    Never,
+    Once,
+    Several,
+    Premarked,
+    Hit,
+}
+
+impl Class {
+    fn colour(self) -> RGBColor {
+        match self {
+            Class::Obstacle => OBSTACLE,
+            Class::Unknown => UNKNOWN,
+            Class::Never => NEVER,
+            Class::Once => ONCE,
+            Class::Several => SEVERAL,
+            Class::Premarked => PREMARKED,
+            Class::Hit => HIT,
+        }
+    }
+}
+
+impl PathFigure<'_> {
+    fn classes(&self) -> Vec<Class> {
+        let n = self.grid.len();
+        let mut visits = vec![0u32; n];
+        let mut hits = vec![false; n];
+        for path in &self.paths {
+            for w in path.windows(2) {
+                for_each_swept_cell(self.grid.raster(), w[0], w[1], self.width, |i| {
+                    if self.grid.is_blocked(i) { hits[i] = true } else { visits[i] += 1 }
+                });
+            }
+        }
+        (0..n)
+            .map(|i| match self.map.state_at(i) {
+                _ if hits[i] => Class::Hit,
+                CellState::Occupied => Class::Obstacle,
+                CellState::Unknown => Class::Unknown,
+                CellState::Free if self.grid.is_premarked(i) => Class::Premarked,
+                CellState::Free => match visits[i] {
+                    0 => Class::Never,
+                    1 => Class::Once,
+                    _ => Class::Several,
+                },
+            })
+            .collect()
+    }
+}
+
+/// A round scale-bar length (1, 2 or 5 × 10^k m) near a fifth of `extent`.
+pub fn scale_length(extent: f64) -> f64 {
+    let target = extent / 5.0;
+    let base = 10f64.powf(target.log10().floor());
+    [5.0, 2.0, 1.0].into_iter().map(|m| m * base).find(|&l| l <= target).unwrap_or(base)
+}
+
+impl Figure for PathFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        let aspect = self.map.height_m() / self.map.width_m();
+        let w = 820u32;
+        (w + 260, ((w as f64 - 80.0) * aspect) as u32 + 120)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let (w, _) = self.size();
+        let (plot_area, side) = root.split_horizontally(w - 260);
+        let (ox, oy) = (self.map.origin().x, self.map.origin().y);
+        let (x1, y1) = (ox + self.map.width_m(), oy + self.map.height_m());
+        let mut chart = ChartBuilder::on(&plot_area)
+            .caption(&self.title, text(20.0))
+            .margin(10)
+            .x_label_area_size(45)
+            .y_label_area_size(55)
+            .build_cartesian_2d(ox..x1, oy..y1)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .disable_mesh()
+            .x_desc("x [m]")
+            .y_desc("y [m]")
+            .label_style(text(15.0))
+            .axis_desc_style(text(17.0))
+            .draw()
+            .map_err(err)?;
+        // Cells, merged into runs of one class per row to keep the SVG small.
+        let classes = self.classes();
+        let res = self.map.resolution();
+        let cols = self.map.cols();
+        let mut rects = Vec::new();
+        for r in 0..self.map.rows() {
+            let mut c = 0;
+            while c < cols {
+                let class = classes[r * cols + c];
+                let start = c;
+                while c < cols && classes[r * cols + c] == class {
+                    c += 1;
+                }
+                let (xa, ya) = (ox + start as f64 * res, oy + r as f64 * res);
+                rects.push(Rectangle::new([(xa, ya), (ox + c as f64 * res, ya + res)], class.colour().filled()));
+            }
+        }
+        chart.draw_series(rects).map_err(err)?;
+        for path in &self.paths {
+            chart.draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(2))).map_err(err)?;
+            chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), 2, PATH.filled()))).map_err(err)?;
+            if let (Some(s), Some(e)) = (path.first(), path.last()) {
+                chart.draw_series([TriangleMarker::new((s.x, s.y), 9, GREEN.filled())]).map_err(err)?;
+                chart.draw_series([Cross::new((e.x, e.y), 8, RED.stroke_width(3))]).map_err(err)?;
+            }
+        }
+        // Scale bar in the lower-left corner of the map.
+        let len = scale_length(self.map.width_m());
+        let (bx, by) = (ox + 0.04 * self.map.width_m(), oy + 0.04 * self.map.height_m());
+        chart.draw_series([PathElement::new(vec![(bx, by), (bx + len, by)], BLACK.stroke_width(4))]).map_err(err)?;
+        chart
+            .draw_series([Text::new(format!("{len} m"), (bx, by + 0.02 * self.map.height_m()), text(16.0))])
+            .map_err(err)?;
+        // Legend on the side.
+        let entries = [
+            (NEVER, "free, not covered"),
+            (ONCE, "covered once"),
+            (SEVERAL, "covered 2+ times"),
+            (PREMARKED, "already covered (pre-marked)"),
+            (HIT, "obstacle swept"),
+            (OBSTACLE, "obstacle"),
+            (UNKNOWN, "unknown"),
+            (PATH, "path"),
+        ];
+        let entries: Vec<(RGBColor, String)> = entries.iter().map(|(c, s)| (*c, s.to_string())).collect();
+        legend(&side, &entries, 60)?;
+        side.draw(&TriangleMarker::new((17, 60 + 26 * 8 + 9), 9, GREEN.filled())).map_err(err)?;
+        side.draw(&Text::new("start", (34, 60 + 26 * 8), text(17.0))).map_err(err)?;
+        side.draw(&Cross::new((17, 60 + 26 * 9 + 9), 8, RED.stroke_width(3))).map_err(err)?;
+        side.draw(&Text::new("end", (34, 60 + 26 * 9), text(17.0))).map_err(err)?;
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scale_bar_lengths_are_round() {
+        assert_eq!(scale_length(11.0), 2.0);
+        assert_eq!(scale_length(30.0), 5.0);
+        assert_eq!(scale_length(3.0), 0.5);
+    }
+}

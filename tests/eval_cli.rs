@@ -1,0 +1,170 @@
+//! End-to-end tests of `covga eval` and `covga maps`: metrics, pictures and bad input.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn covga(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
+}
+
+fn json_of(out: &Output) -> serde_json::Value {
+    assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("valid JSON")
+}
+
+fn num(v: &serde_json::Value, key: &str) -> f64 {
+    v[key].as_f64().unwrap_or_else(|| panic!("{key} missing in {v}"))
+}
+
+#[test]
+fn patterns_meet_the_thesis_reference_quality() {
+    let dir = tempfile::tempdir().unwrap();
+    for (map, pattern, min_cov, min_t) in [
+        ("thesis-1", "boustrophedon", 0.93, 0.85),
+        ("thesis-1", "spiral", 0.93, 0.85),
+        ("thesis-2", "boustrophedon", 0.85, 0.0),
+        ("thesis-2", "spiral", 0.85, 0.0),
+    ] {
+        let out_dir = dir.path().join(format!("{map}-{pattern}"));
+        let out = covga(&["eval", "--map", map, "--pattern", pattern, "--json", "--out", out_dir.to_str().unwrap()]);
+        let v = json_of(&out);
+        assert!(num(&v, "cov_final") >= min_cov, "{map} {pattern}: {v}");
+        assert!(num(&v, "t_final") >= min_t, "{map} {pattern}: {v}");
+        assert_eq!(num(&v, "obstacle_cells"), 0.0);
+        for f in ["path.png", "path.svg", "path.csv", "metrics.json"] {
+            assert!(out_dir.join(f).metadata().unwrap().len() > 100, "{f}");
+        }
+        // The written path scores the same when read back.
+        let again = covga(&[
+            "eval",
+            "--map",
+            map,
+            "--path",
+            out_dir.join("path.csv").to_str().unwrap(),
+            "--json",
+            "--out",
+            out_dir.join("again").to_str().unwrap(),
+        ]);
+        let w = json_of(&again);
+        assert_eq!(v["cells_swept"], w["cells_swept"]);
+        assert_eq!(v["crossings"], w["crossings"]);
+    }
+}
+
+#[test]
+fn table_output_lists_every_metric() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = covga(&[
+        "eval",
+        "--map",
+        "thesis-1",
+        "--pattern",
+        "spiral",
+        "--rot-speed",
+        "6.28",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for key in [
+        "cells swept",
+        "unique cells",
+        "crossings",
+        "obstacle cells",
+        "length [m]",
+        "total turn",
+        "T_rot",
+        "cov_final",
+        "t_final",
+        "f1",
+        "f2",
+        "f_obstacle",
+    ] {
+        assert!(text.contains(key), "{key} missing:\n{text}");
+    }
+}
+
+#[test]
+fn shipped_map_files_equal_the_presets() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["thesis-1", "thesis-2", "office"] {
+        let shipped = Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/maps").join(format!("{name}.yaml"));
+        let a = covga(&["eval", "--map", name, "--json", "--out", dir.path().join("a").to_str().unwrap()]);
+        let b = covga(&[
+            "eval",
+            "--map",
+            shipped.to_str().unwrap(),
+            "--json",
+            "--out",
+            dir.path().join("b").to_str().unwrap(),
+        ]);
+        let (a, b) = (json_of(&a), json_of(&b));
+        for key in ["cells_swept", "crossings", "area_cells", "unique_cells"] {
+            assert_eq!(a[key], b[key], "{name} {key}");
+        }
+    }
+}
+
+fn expect_input_error(args: &[&str], needle: &str) {
+    let out = covga(args);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: expected `{needle}` in: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.trim().lines().count(), 1, "one error line: {err}");
+}
+
+#[test]
+fn bad_input_gives_one_clear_error_and_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |name: &str| dir.path().join(name).to_str().unwrap().to_string();
+    let out = d("out");
+    let write = |name: &str, bytes: &[u8]| std::fs::write(dir.path().join(name), bytes).unwrap();
+    write("ok.pgm", b"P5\n4 4\n255\n\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe\xfe");
+    write("black.pgm", b"P5\n2 2\n255\n\x00\x00\x00\x00");
+    write("notimage.pgm", b"hello");
+    let yaml = |image: &str, extra: &str| {
+        format!(
+            "image: {image}\nresolution: 0.5\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n{extra}"
+        )
+    };
+    write("mode.yaml", yaml("ok.pgm", "mode: fuzzy\n").as_bytes());
+    write("malformed.yaml", b"image: [unclosed\n");
+    write("mismatch.yaml", yaml("notimage.pgm", "").as_bytes());
+    write("missing_image.yaml", yaml("nowhere.pgm", "").as_bytes());
+    write("black.yaml", yaml("black.pgm", "").as_bytes());
+    write("ok.yaml", yaml("ok.pgm", "").as_bytes());
+    write("badheader.csv", b"x,y\n1,2\n");
+    write("nonnum.csv", b"x_m,y_m\n1.3,1.3\n2.0,two\n");
+    write("nonfinite.csv", b"x_m,y_m\n1.3,1.3\nNaN,2\n");
+    write("inwall.csv", b"x_m,y_m\n0.5,0.5\n2,2\n");
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (vec!["--map".into(), d("nowhere.yaml")], "nowhere.yaml"),
+        (vec!["--map".into(), d("malformed.yaml")], "malformed.yaml"),
+        (vec!["--map".into(), d("mode.yaml")], "fuzzy"),
+        (vec!["--map".into(), d("mismatch.yaml")], "cannot decode map image"),
+        (vec!["--map".into(), d("missing_image.yaml")], "nowhere.pgm"),
+        (vec!["--map".into(), d("black.yaml")], "no free cell"),
+        (vec!["--map".into(), d("ok.pgm")], "--resolution"),
+        (vec!["--map".into(), "thesis-9".into()], "unknown map `thesis-9`"),
+        (vec!["--start".into(), "20,20".into()], "outside map"),
+        (vec!["--start".into(), "0.5,0.5".into()], "inside an obstacle"),
+        (vec!["--end".into(), "5.5,5.5".into(), "--map".into(), "thesis-2".into()], "inside an obstacle"),
+        (vec!["--start".into(), "1.3".into()], "X,Y"),
+        (vec!["--path".into(), d("badheader.csv")], "expected columns x_m,y_m"),
+        (vec!["--path".into(), d("nonnum.csv")], "nonnum.csv:3: `y_m` = `two`"),
+        (vec!["--path".into(), d("nonfinite.csv")], "nonfinite.csv:3: `x_m` = `NaN`"),
+        (vec!["--path".into(), d("inwall.csv")], "inside an obstacle"),
+        (vec!["--path".into(), d("absent.csv")], "absent.csv"),
+        (vec!["--width=-1".into()], "--width"),
+    ];
+    for (args, needle) in cases {
+        let mut all = vec!["eval".to_string(), "--out".into(), out.clone()];
+        all.extend(args);
+        expect_input_error(&all.iter().map(String::as_str).collect::<Vec<_>>(), needle);
+    }
+    // A valid tiny image map with a resolution works.
+    let ok = covga(&["eval", "--map", &d("ok.yaml"), "--start", "1,1", "--width", "0.5", "--json", "--out", &out]);
+    assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
+}
