@@ -27,6 +27,20 @@ fn evaluate(c: &mut Criterion) {
     group.bench_function("random_100_segments/swept_cells", |b| {
         b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
     });
+    let start = Point::new(1.3, 1.3);
+    let lanes =
+        covga::patterns::plan(&map, covga::patterns::Pattern::Boustrophedon { angle_deg: 0.0 }, 0.6, start, start)
+            .expect("pattern");
+    let tilted =
+        covga::patterns::plan(&map, covga::patterns::Pattern::Boustrophedon { angle_deg: 30.0 }, 0.6, start, start)
+            .expect("pattern");
+    for (name, p) in [("boustrophedon_0deg", &lanes), ("boustrophedon_30deg", &tilted)] {
+        let m = robot.measure(&grid, &mut scratch, p);
+        group.throughput(Throughput::Elements(m.cells_swept + m.obstacle_cells));
+        group.bench_function(format!("{name}/swept_cells"), |b| {
+            b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(p))))
+        });
+    }
     group.finish();
 }
 

@@ -8,9 +8,11 @@
 
 pub mod cli;
 pub mod coverage;
+pub mod ga;
 pub mod geom;
 pub mod io;
 pub mod map;
 pub mod patterns;
 pub mod plot;
+pub mod study;
 pub mod thesis;

@@ -2,6 +2,7 @@
 
 mod eval;
 mod maps;
+mod run;
 
 use clap::{Parser, Subcommand};
 use std::ffi::OsString;
@@ -44,6 +45,8 @@ struct Cli {
 
 #[derive(Subcommand, Debug)]
 enum Command {
+    /// Run one experiment (TOML); without a file, the built-in thesis map 1 Elite run.
+    Run(run::RunArgs),
     /// Score a pattern or a path file on a map: every metric, plus path.png / path.svg.
     Eval(eval::EvalArgs),
     /// Write the built-in maps as ROS map_server files (YAML + PGM).
@@ -66,6 +69,7 @@ where
         }
     };
     match cli.command {
+        Command::Run(a) => run::run(a),
         Command::Eval(a) => eval::run(a),
         Command::Maps(a) => maps::run(a),
     }

@@ -1,7 +1,7 @@
 //! Path length (003 eq. 3.1), turning (eq. 3.2) and rotation time (eq. 3.3 as resolved by
 //! spec R6–R7).
 
-use crate::geom::{Point, ZERO_LENGTH, turn_deg};
+use crate::geom::{Point, Vector, ZERO_LENGTH};
 
 /// `PA_len`: the sum of segment lengths in metres (003 eq. 3.1).
 pub fn path_length(points: &[Point]) -> f64 {
@@ -21,7 +21,7 @@ pub fn turning(points: &[Point]) -> (f64, usize) {
             continue;
         }
         if let Some(prev) = previous {
-            let a = turn_deg(prev, v).abs();
+            let a = abs_turn_deg(prev, v);
             if a > 1e-9 {
                 turns += 1;
             }
@@ -30,6 +30,13 @@ pub fn turning(points: &[Point]) -> (f64, usize) {
         previous = Some(v);
     }
     (total_deg.to_radians(), turns)
+}
+
+/// `|α|` of 003 eq. 3.2 in degrees: the unsigned angle between two segment vectors, which is
+/// `|rotAngle(β(V_i) − β(V_{i+1}))|` computed with one `atan2` instead of two.
+pub fn abs_turn_deg(from: Vector, to: Vector) -> f64 {
+    let cross = from.x * to.y - from.y * to.x;
+    cross.abs().atan2(from.dot(&to)).to_degrees()
 }
 
 /// `T_rot` in seconds: total absolute turn (rad) over the rotation speed `R_rot` (rad/s);
@@ -52,6 +59,14 @@ mod tests {
         assert!((rotation_time(rad, std::f64::consts::TAU) - 0.625).abs() < 1e-12);
         assert!((path_length(&pts) - (6.0 + 18f64.sqrt())).abs() < 1e-12);
         assert_eq!(rotation_time(rad, 0.0), 0.0);
+    }
+
+    #[test]
+    fn unsigned_turn_equals_eq_3_2() {
+        for (a, b) in [(0.3, 2.9), (-2.0, 1.0), (3.1, -3.1), (1.0, 1.0), (0.0, 3.1)] {
+            let (u, v) = (Vector::new(f64::cos(a), f64::sin(a)), Vector::new(f64::cos(b), f64::sin(b)) * 2.5);
+            assert!((abs_turn_deg(u, v) - crate::geom::turn_deg(u, v).abs()).abs() < 1e-9, "{a} {b}");
+        }
     }
 
     #[test]

@@ -5,7 +5,7 @@
 //! visit count `M_traveled` is incremented. So `cov_pix − cross_pix` is the number of
 //! distinct free cells swept (`unique`).
 
-use super::raster::{RasterGrid, for_each_swept_cell};
+use super::raster::{RasterGrid, for_each_swept_run};
 use crate::geom::Point;
 use crate::map::{CellState, GridMap};
 
@@ -133,22 +133,34 @@ impl SweepScratch {
     }
 
     fn add_path(&mut self, grid: &CoverageGrid, points: &[Point], width: f64, counts: &mut SweepCounts) {
-        let Self { visits, touched, touched_len } = self;
+        // Plain slices, so the loop keeps their addresses in registers.
+        let (visits, touched) = (&mut self.visits[..], &mut self.touched[..]);
+        let touched_len = &mut self.touched_len;
         let (blocked, premark) = (&grid.blocked[..], &grid.premark[..]);
         let (mut cov, mut cross, mut obj, mut len) = (0u64, 0u64, 0u64, *touched_len);
         for pair in points.windows(2) {
-            for_each_swept_cell(&grid.raster, pair[0], pair[1], width, |i| {
-                if blocked[i] {
-                    obj += 1;
-                } else {
-                    // Branch-free bookkeeping: random paths make these outcomes unpredictable.
-                    let v = visits[i];
-                    cross += u64::from((v | premark[i]) != 0);
-                    touched[len] = i as u32;
-                    len += usize::from(v == 0);
-                    visits[i] = v + 1;
-                    cov += 1;
+            for_each_swept_run(&grid.raster, pair[0], pair[1], width, |first, count, stride| {
+                // Local counters stay in registers for the whole run.
+                let (mut c, mut x, mut o, mut l) = (0u64, 0u64, 0u64, len);
+                let mut i = first;
+                for _ in 0..count {
+                    if blocked[i] {
+                        o += 1;
+                    } else {
+                        // Branch-free bookkeeping: random paths make these outcomes unpredictable.
+                        let v = visits[i];
+                        x += u64::from((v | premark[i]) != 0);
+                        touched[l] = i as u32;
+                        l += usize::from(v == 0);
+                        visits[i] = v + 1;
+                        c += 1;
+                    }
+                    i += stride;
                 }
+                cov += c;
+                cross += x;
+                obj += o;
+                len = l;
             });
         }
         *touched_len = len;

@@ -1,4 +1,13 @@
 //! The action-encoded variable-length GA of 003 (§3.2–3.5): fitness, genome and decoding,
-//! crossover, mutation and corrections, diversity, the two architectures and retraining.
+//! crossover, mutation and corrections, diversity, the two architectures, parameters and the
+//! run loop with retraining.
 
+pub mod architecture;
+pub mod crossover;
+pub mod diversity;
 pub mod fitness;
+pub mod genome;
+pub mod individual;
+pub mod mutation;
+pub mod params;
+pub mod run;

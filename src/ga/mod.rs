@@ -1,0 +1,8 @@
+//! What both GAs share: seeded random streams ([`rng`]), selection schemes ([`selection`]),
+//! parameter-control schedules ([`control`]) and per-generation statistics with their
+//! observers ([`observer`]).
+
+pub mod control;
+pub mod observer;
+pub mod rng;
+pub mod selection;

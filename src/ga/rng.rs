@@ -1,0 +1,62 @@
+//! Seeded, portable random streams. One `u64` seed per run; every consumer gets its own
+//! ChaCha8 stream derived from (seed, purpose, indices) by a stable mix, so results do not
+//! depend on thread count or scheduling and never on OS entropy.
+
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+
+/// The generator used everywhere.
+pub type Rng = ChaCha8Rng;
+
+/// SplitMix64 finaliser: a stable bijective mix of 64 bits.
+pub fn mix64(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Combines a seed with a list of labels into one stream id.
+pub fn derive(seed: u64, labels: &[u64]) -> u64 {
+    labels
+        .iter()
+        .fold(mix64(seed ^ 0x9e37_79b9_7f4a_7c15), |h, &l| mix64(h ^ mix64(l.wrapping_add(0x632b_e59b_d9b4_e019))))
+}
+
+/// Purposes of streams, so that different uses of one seed never share a stream.
+#[derive(Clone, Copy, Debug)]
+#[repr(u64)]
+pub enum Purpose {
+    /// The run's main decisions (pairing, selection, crossover).
+    Main = 1,
+    /// One individual's mutation and re-initialisation (labels: iteration, slot).
+    Individual = 2,
+    /// A run's seed inside a study (labels: run-id hash, replicate).
+    Run = 3,
+}
+
+/// A generator for `purpose` and `labels` under `seed`.
+pub fn stream(seed: u64, purpose: Purpose, labels: &[u64]) -> Rng {
+    let mut all = Vec::with_capacity(labels.len() + 1);
+    all.push(purpose as u64);
+    all.extend_from_slice(labels);
+    Rng::seed_from_u64(derive(seed, &all))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::Rng as _;
+
+    #[test]
+    fn streams_are_stable_and_distinct() {
+        let a: u64 = stream(42, Purpose::Individual, &[3, 7]).random();
+        let b: u64 = stream(42, Purpose::Individual, &[3, 7]).random();
+        let c: u64 = stream(42, Purpose::Individual, &[7, 3]).random();
+        let d: u64 = stream(43, Purpose::Individual, &[3, 7]).random();
+        assert_eq!(a, b);
+        assert_ne!(a, c);
+        assert_ne!(a, d);
+        // Pinned value: a change of the derivation would silently change every result.
+        assert_eq!(derive(0, &[]), mix64(0x9e37_79b9_7f4a_7c15));
+    }
+}

@@ -1,0 +1,354 @@
+//! One generation of each architecture (003 §3.5.1, Fig. 3.9; spec §11): (a) keep + selection
+//! + crossover + mutation + refill for Tournament / PRWS / RRWS, and (b) Elite families.
+//!
+//! Decisions that shape the generation (selection, pairing, crossover, cut points) come from
+//! the run's main stream in a fixed order. Each new or changed individual is then a job with
+//! its own stream (seed, iteration, slot) for mutation and re-initialisation, and jobs are
+//! mutated, corrected and evaluated in parallel: the result does not depend on the threads.
+
+use super::crossover::{Parent, crossover};
+use super::genome::{Action, random_genome};
+use super::individual::{Individual, InitParams, Scenario, correct_and_evaluate};
+use super::mutation::{mutate, mutate_action};
+use super::params::{Selection, ThesisParams};
+use crate::coverage::SweepScratch;
+use crate::ga::rng::{Purpose, Rng, stream};
+use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
+use rand::Rng as _;
+use rand::seq::SliceRandom;
+use rayon::prelude::*;
+
+/// Effective operator probabilities of one generation (after parameter control).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Effective {
+    /// `P_c`.
+    pub p_c: f64,
+    /// `P_mI`.
+    pub p_mi: f64,
+    /// `P_mA`, fixed or per individual.
+    pub p_ma: MutationRate,
+    /// `TS` for tournaments.
+    pub tournament_size: usize,
+    /// `SP` for RRWS.
+    pub pressure: f64,
+}
+
+/// The action-mutation probability: fixed, or the adaptive `P_m` of eqs. 2.4–2.6 per individual.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MutationRate {
+    /// One value for everyone.
+    Fixed(f64),
+    /// `(P_m^Diversity + K·(f_max − f)/(f_max − f_min)) / 2` for an individual of fitness `f`.
+    Adaptive {
+        /// `P_m^Diversity` (eq. 2.4).
+        diversity_part: f64,
+        /// `K`.
+        k: f64,
+        /// Population minimum fitness.
+        f_min: f64,
+        /// Population maximum fitness.
+        f_max: f64,
+    },
+}
+
+impl MutationRate {
+    /// The probability for an individual of fitness `f`.
+    pub fn for_fitness(&self, f: f64) -> f64 {
+        match *self {
+            MutationRate::Fixed(p) => p,
+            MutationRate::Adaptive { diversity_part, k, f_min, f_max } => {
+                let c = crate::ga::control::AdaptiveConstants { k1: 0.0, k2: 0.0, k };
+                crate::ga::control::adaptive_p_m(
+                    diversity_part,
+                    crate::ga::control::adaptive_p_m_fitness(f, f_min, f_max, &c),
+                )
+            }
+        }
+    }
+}
+
+/// What a job does before it is corrected and evaluated.
+#[derive(Clone, Copy, Debug)]
+enum Op {
+    /// Architecture (a): `randInit` with `P_mI`, else the action mutation with `P_mA`.
+    Mutate { p_mi: f64, p_ma: f64 },
+    /// Architecture (b) children: the action mutation with `P_mA`.
+    MutateAction { p_ma: f64 },
+    /// A fresh random genome (`randInit`).
+    Reinit,
+}
+
+/// An individual to be changed and evaluated, with its own random stream.
+pub(crate) struct Job {
+    ind: Individual,
+    rng: Rng,
+    op: Op,
+    needs_eval: bool,
+    evaluations: u64,
+}
+
+impl Job {
+    fn fresh(genome: Vec<Action>, rng: Rng, op: Op) -> Self {
+        Self { ind: Individual { genome, ..Default::default() }, rng, op, needs_eval: true, evaluations: 0 }
+    }
+    fn copy(ind: Individual, rng: Rng, op: Op) -> Self {
+        Self { ind, rng, op, needs_eval: false, evaluations: 0 }
+    }
+    fn execute(&mut self, scenario: &Scenario, init: &InitParams, scratch: &mut SweepScratch) {
+        let rng = &mut self.rng;
+        let changed = match self.op {
+            Op::Mutate { p_mi, p_ma } => {
+                mutate(&mut self.ind.genome, p_mi, p_ma, init, rng) != super::mutation::Mutation::None
+            }
+            Op::MutateAction { p_ma } => {
+                let fire = rng.random_bool(p_ma.clamp(0.0, 1.0));
+                if fire {
+                    mutate_action(&mut self.ind.genome, rng);
+                }
+                fire
+            }
+            Op::Reinit => {
+                random_genome(rng, init.actions, init.dist_max, &mut self.ind.genome);
+                true
+            }
+        };
+        if changed || self.needs_eval {
+            self.evaluations += correct_and_evaluate(&mut self.ind, scenario, scratch, init, rng);
+        }
+    }
+}
+
+/// Runs jobs in parallel, one scratch grid per chunk. Returns the evaluations spent.
+pub(crate) fn run_jobs(
+    jobs: &mut [Job],
+    scenario: &Scenario,
+    init: &InitParams,
+    scratches: &mut [SweepScratch],
+) -> u64 {
+    if jobs.is_empty() {
+        return 0;
+    }
+    let chunk = jobs.len().div_ceil(scratches.len());
+    jobs.par_chunks_mut(chunk).zip(scratches.par_iter_mut()).for_each(|(jobs, scratch)| {
+        for job in jobs {
+            job.execute(scenario, init, scratch);
+        }
+    });
+    jobs.iter().map(|j| j.evaluations).sum()
+}
+
+/// The family contest of the Elite scheme (003 §3.4.1): indices of the two fittest members,
+/// listed children first so that a child wins a tie with a parent (R20).
+pub fn family_survivors(fitness: &[f64]) -> [usize; 2] {
+    let mut idx: Vec<usize> = (0..fitness.len()).collect();
+    idx.sort_by(|&x, &y| fitness[y].total_cmp(&fitness[x]));
+    [idx[0], idx[1]]
+}
+
+/// Context of one generation.
+pub(crate) struct Generation<'a> {
+    pub scenario: &'a Scenario,
+    pub params: &'a ThesisParams,
+    pub effective: Effective,
+    pub seed: u64,
+    pub iteration: u32,
+}
+
+impl Generation<'_> {
+    fn stream(&self, slot: usize) -> Rng {
+        stream(self.seed, Purpose::Individual, &[u64::from(self.iteration), slot as u64])
+    }
+
+    fn parent<'p>(pop: &'p [Individual], i: usize) -> Parent<'p> {
+        Parent { genome: &pop[i].genome, points: &pop[i].points }
+    }
+
+    fn cross(&self, pop: &[Individual], a: usize, b: usize, rng: &mut Rng) -> Option<Vec<Vec<Action>>> {
+        let p = self.params;
+        crossover(
+            Self::parent(pop, a),
+            Self::parent(pop, b),
+            p.c_len,
+            p.c_child,
+            p.max_genome_len,
+            &self.scenario.frame,
+            rng,
+        )
+    }
+
+    /// Initial population of `size` random genomes, evaluated (spec §6).
+    pub fn initial(&self, size: usize, scratches: &mut [SweepScratch]) -> (Vec<Individual>, u64) {
+        let mut jobs: Vec<Job> = (0..size).map(|s| Job::fresh(Vec::new(), self.stream(s), Op::Reinit)).collect();
+        let evaluations = run_jobs(&mut jobs, self.scenario, &self.params.init, scratches);
+        (jobs.into_iter().map(|j| j.ind).collect(), evaluations)
+    }
+
+    /// Architecture (a) (spec §11.1): `keep` elite copies, `select` pairs by the scheme,
+    /// crossover with `P_c`, mutation of offspring and rest, refill to `Pop_min` (R22).
+    pub fn step_a(
+        &self,
+        pop: Vec<Individual>,
+        rng: &mut Rng,
+        scratches: &mut [SweepScratch],
+    ) -> (Vec<Individual>, u64) {
+        let (p, e) = (self.params, self.effective);
+        let n = pop.len();
+        let fit: Vec<f64> = pop.iter().map(Individual::fitness).collect();
+        let elite = best_k(&fit, p.keep.min(n));
+        let wheel = match p.selection {
+            Selection::Prws => cumulative(&proportionate_probabilities(&fit)),
+            Selection::Rrws { .. } => cumulative(&rank_probabilities(&fit, e.pressure)),
+            _ => Vec::new(),
+        };
+        let pick = |rng: &mut Rng| match p.selection {
+            Selection::Tournament { .. } => tournament(&fit, e.tournament_size, rng),
+            _ => spin(&wheel, rng),
+        };
+        let mut jobs = Vec::with_capacity(4 * p.select);
+        for _ in 0..p.select {
+            let p1 = pick(rng);
+            let mut p2 = pick(rng);
+            for _ in 0..10 {
+                if p2 != p1 || n < 2 {
+                    break;
+                }
+                p2 = pick(rng);
+            }
+            let crossing = rng.random_bool(e.p_c.clamp(0.0, 1.0));
+            match crossing.then(|| self.cross(&pop, p1, p2, rng)).flatten() {
+                Some(kids) => {
+                    for (k, genome) in kids.into_iter().enumerate() {
+                        let receiver = if k % 2 == 0 { p1 } else { p2 };
+                        let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
+                        jobs.push(Job::fresh(genome, self.stream(jobs.len()), op));
+                    }
+                }
+                None => {
+                    for q in [p1, p2] {
+                        let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[q]) };
+                        jobs.push(Job::copy(pop[q].clone(), self.stream(jobs.len()), op));
+                    }
+                }
+            }
+        }
+        let evaluations = run_jobs(&mut jobs, self.scenario, &p.init, scratches);
+        let mut old: Vec<Option<Individual>> = pop.into_iter().map(Some).collect();
+        let mut next: Vec<Individual> = elite.iter().map(|&i| old[i].take().expect("distinct elite")).collect();
+        next.extend(jobs.into_iter().map(|j| j.ind));
+        if next.len() < p.pop_min {
+            let rest: Vec<usize> = (0..n).filter(|&i| old[i].is_some()).collect();
+            let want = (p.pop_min - next.len()).min(rest.len());
+            for k in rand::seq::index::sample(rng, rest.len(), want) {
+                next.push(old[rest[k]].take().expect("sampled once"));
+            }
+        }
+        (next, evaluations)
+    }
+
+    /// Architecture (b) (spec §11.2): random families of two; crossing families keep their two
+    /// best of parents and children (ties to children, R20); the others pass on, each
+    /// re-initialised with `P_mI`; an odd individual passes unchanged.
+    pub fn step_b(
+        &self,
+        pop: Vec<Individual>,
+        rng: &mut Rng,
+        scratches: &mut [SweepScratch],
+    ) -> (Vec<Individual>, u64) {
+        enum Family {
+            Cross { parents: [usize; 2], kids: std::ops::Range<usize> },
+            Apart([Result<usize, usize>; 2]),
+        }
+        let (p, e) = (self.params, self.effective);
+        let n = pop.len();
+        let mut order: Vec<usize> = (0..n).collect();
+        order.shuffle(rng);
+        let mut jobs = Vec::new();
+        let mut families = Vec::with_capacity(n / 2);
+        let mut slot = 0;
+        for pair in order.chunks_exact(2) {
+            let (a, b) = (pair[0], pair[1]);
+            let crossing = rng.random_bool(e.p_c.clamp(0.0, 1.0));
+            if let Some(kids) = crossing.then(|| self.cross(&pop, a, b, rng)).flatten() {
+                let start = jobs.len();
+                for (k, genome) in kids.into_iter().enumerate() {
+                    let receiver = if k % 2 == 0 { a } else { b };
+                    let op = Op::MutateAction { p_ma: e.p_ma.for_fitness(pop[receiver].fitness()) };
+                    jobs.push(Job::fresh(genome, self.stream(slot), op));
+                    slot += 1;
+                }
+                families.push(Family::Cross { parents: [a, b], kids: start..jobs.len() });
+            } else {
+                let mut member = |q: usize, jobs: &mut Vec<Job>| {
+                    let mut s = self.stream(slot);
+                    slot += 1;
+                    if s.random_bool(e.p_mi.clamp(0.0, 1.0)) {
+                        jobs.push(Job::fresh(Vec::new(), s, Op::Reinit));
+                        Err(jobs.len() - 1)
+                    } else {
+                        Ok(q)
+                    }
+                };
+                let ma = member(a, &mut jobs);
+                let mb = member(b, &mut jobs);
+                families.push(Family::Apart([ma, mb]));
+            }
+        }
+        let evaluations = run_jobs(&mut jobs, self.scenario, &p.init, scratches);
+        let mut old: Vec<Option<Individual>> = pop.into_iter().map(Some).collect();
+        let mut new: Vec<Option<Individual>> = jobs.into_iter().map(|j| Some(j.ind)).collect();
+        let mut next = Vec::with_capacity(n);
+        if n % 2 == 1 {
+            next.push(old[order[n - 1]].take().expect("odd one"));
+        }
+        for family in families {
+            match family {
+                Family::Cross { parents, kids } => {
+                    // Children first, so that they win ties.
+                    let mut cands: Vec<Option<Individual>> = kids.map(|k| new[k].take()).collect();
+                    cands.extend(parents.iter().map(|&q| old[q].take()));
+                    let fitness: Vec<f64> =
+                        cands.iter().map(|c| c.as_ref().map_or(f64::NEG_INFINITY, Individual::fitness)).collect();
+                    for k in family_survivors(&fitness) {
+                        next.push(cands[k].take().expect("each member survives once"));
+                    }
+                }
+                Family::Apart(members) => {
+                    for m in members {
+                        next.push(match m {
+                            Ok(q) => old[q].take().expect("member"),
+                            Err(k) => new[k].take().expect("re-initialised"),
+                        });
+                    }
+                }
+            }
+        }
+        (next, evaluations)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn family_contest_keeps_the_two_best_and_children_win_ties() {
+        // (fitness of [kids..., parent1, parent2], survivors)
+        let cases: [(&[f64], [usize; 2]); 4] = [
+            (&[0.2, 0.9, 0.5, 0.7], [1, 3]),
+            (&[0.1, 0.2, 0.8, 0.9], [3, 2]),
+            (&[0.5, 0.3, 0.5, 0.5], [0, 2]),
+            (&[0.4, 0.4, 0.4, 0.4, 0.9, 0.1], [4, 0]),
+        ];
+        for (fitness, expected) in cases {
+            assert_eq!(family_survivors(fitness), expected, "{fitness:?}");
+        }
+    }
+
+    #[test]
+    fn adaptive_rate_spares_the_best() {
+        let r = MutationRate::Adaptive { diversity_part: 0.2, k: 0.5, f_min: 0.1, f_max: 0.9 };
+        assert!((r.for_fitness(0.9) - 0.1).abs() < 1e-12);
+        assert!((r.for_fitness(0.1) - 0.35).abs() < 1e-12);
+        assert_eq!(MutationRate::Fixed(0.3).for_fitness(0.5), 0.3);
+    }
+}

@@ -1,0 +1,270 @@
+//! Modified dual-point crossover with locality-changing and locality-preserving children
+//! (003 §3.3.2, eqs. 3.20–3.22, Figs. 3.6–3.7; spec §7, R12–R14).
+
+use super::genome::{Action, Frame, decode_prefix, set_move};
+use crate::geom::Point;
+use rand::Rng;
+use serde::{Deserialize, Serialize};
+
+/// `C_child`: which children a crossover produces (spec §7.5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ChildMode {
+    /// `C_child = 0`: two locality-changing children.
+    Changing,
+    /// `C_child = 1`: two locality-preserving children.
+    Preserving,
+    /// `C_child = 2`: both interpretations of the same cut points, four children.
+    Both,
+}
+
+impl ChildMode {
+    /// From the thesis's number 0, 1, 2.
+    pub fn from_index(i: u8) -> Option<Self> {
+        [ChildMode::Changing, ChildMode::Preserving, ChildMode::Both].get(i as usize).copied()
+    }
+    /// The thesis's number.
+    pub fn index(self) -> u8 {
+        self as u8
+    }
+    /// Children per crossover.
+    pub fn children(self) -> usize {
+        if self == ChildMode::Both { 4 } else { 2 }
+    }
+}
+
+/// `absShare = max(1, ⌊C_len·G_len⌋)` (003 eq. 3.20, integer form of R12).
+pub fn abs_share(n: usize, c_len: f64) -> usize {
+    ((c_len * n as f64).floor() as usize).max(1)
+}
+
+/// Draws a shared block for a parent of length `n` (003 eqs. 3.21–3.22, 1-based
+/// `CP_1 ∈ {2, …, n − absShare − 1}`, `CP_2 ∈ {CP_1 + 1, …, CP_1 + absShare}`), returned
+/// 0-based half-open as `[CP_1 − 1, CP_2 − 1)`. `None` when the `CP_1` range is empty.
+pub fn draw_block<R: Rng + ?Sized>(n: usize, c_len: f64, rng: &mut R) -> Option<(usize, usize)> {
+    let share = abs_share(n, c_len);
+    if n < share + 3 {
+        return None;
+    }
+    let cp1 = rng.random_range(2..=n - share - 1);
+    let cp2 = rng.random_range(cp1 + 1..=cp1 + share);
+    Some((cp1 - 1, cp2 - 1))
+}
+
+/// A parent as crossover sees it: its genome and decoded viewpoints.
+#[derive(Clone, Copy, Debug)]
+pub struct Parent<'a> {
+    /// The genome.
+    pub genome: &'a [Action],
+    /// Its decoded, corrected viewpoints.
+    pub points: &'a [Point],
+}
+
+fn splice(a: &[Action], (a0, a1): (usize, usize), b: &[Action], (b0, b1): (usize, usize)) -> Vec<Action> {
+    let mut child = Vec::with_capacity(a.len() - (a1 - a0) + (b1 - b0));
+    child.extend_from_slice(&a[..a0]);
+    child.extend_from_slice(&b[b0..b1]);
+    child.extend_from_slice(&a[a1..]);
+    child
+}
+
+/// Locality-changing child of receiver `a` with donor block `b[b0..b1]` (spec §7.3): the
+/// inserted genes keep their relative moves; the first gene after the block is re-aimed at the
+/// receiver's next viewpoint, so the rest of the receiver stays in place.
+pub fn changing_child(
+    a: Parent,
+    (a0, a1): (usize, usize),
+    b: Parent,
+    (b0, b1): (usize, usize),
+    frame: &Frame,
+) -> Vec<Action> {
+    let mut child = splice(a.genome, (a0, a1), b.genome, (b0, b1));
+    let k = a0 + (b1 - b0);
+    if k < child.len() - 2 {
+        let mut pts = Vec::with_capacity(k + 1);
+        decode_prefix(&mut child, frame, k, &mut pts);
+        set_move(&mut child, k, pts[k], a.points[a1 + 1]);
+    }
+    child
+}
+
+/// Locality-preserving child (spec §7.4): the inserted genes keep the donor's absolute
+/// viewpoints; the gene before the block is re-aimed at the donor block's start and the gene
+/// after it from the block's end to the receiver's next viewpoint.
+pub fn preserving_child(a: Parent, (a0, a1): (usize, usize), b: Parent, (b0, b1): (usize, usize)) -> Vec<Action> {
+    let mut child = splice(a.genome, (a0, a1), b.genome, (b0, b1));
+    set_move(&mut child, a0 - 1, a.points[a0 - 1], b.points[b0]);
+    let k = a0 + (b1 - b0);
+    if k < child.len() - 2 {
+        set_move(&mut child, k, b.points[b1], a.points[a1 + 1]);
+    }
+    child
+}
+
+/// Crossover of two parents (spec §7): draws blocks for both, redrawing up to 10 times while a
+/// child would exceed `max_len` (R14); `None` means "no crossover" (children = copies).
+pub fn crossover<R: Rng + ?Sized>(
+    a: Parent,
+    b: Parent,
+    c_len: f64,
+    mode: ChildMode,
+    max_len: usize,
+    frame: &Frame,
+    rng: &mut R,
+) -> Option<Vec<Vec<Action>>> {
+    let (na, nb) = (a.genome.len(), b.genome.len());
+    for _ in 0..10 {
+        let ba = draw_block(na, c_len, rng)?;
+        let bb = draw_block(nb, c_len, rng)?;
+        let (la, lb) = (ba.1 - ba.0, bb.1 - bb.0);
+        if na - la + lb > max_len || nb - lb + la > max_len {
+            continue;
+        }
+        let mut kids = Vec::with_capacity(mode.children());
+        if mode != ChildMode::Preserving {
+            kids.push(changing_child(a, ba, b, bb, frame));
+            kids.push(changing_child(b, bb, a, ba, frame));
+        }
+        if mode != ChildMode::Changing {
+            kids.push(preserving_child(a, ba, b, bb));
+            kids.push(preserving_child(b, bb, a, ba));
+        }
+        return Some(kids);
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ga::rng::{Purpose, stream};
+    use crate::thesis::genome::{decode, random_genome};
+    use proptest::prelude::*;
+
+    #[test]
+    fn worked_example_of_section_3_3_2_1() {
+        // G_len = 30, C_len = 0.5 → absShare = 15, CP1 ∈ {2..14}, CP2 ∈ {CP1+1 ..= CP1+15}.
+        assert_eq!(abs_share(30, 0.5), 15);
+        let mut rng = stream(1, Purpose::Main, &[]);
+        let (mut seen_lo, mut seen_hi) = (usize::MAX, 0);
+        for _ in 0..5000 {
+            let (a0, a1) = draw_block(30, 0.5, &mut rng).unwrap();
+            let (cp1, cp2) = (a0 + 1, a1 + 1);
+            assert!((2..=14).contains(&cp1), "{cp1}");
+            assert!(cp2 > cp1 && cp2 <= cp1 + 15);
+            seen_lo = seen_lo.min(cp1);
+            seen_hi = seen_hi.max(cp1);
+        }
+        assert_eq!((seen_lo, seen_hi), (2, 14));
+        // CP1 = 3, CP2 = 8 shares positions 3..7 (five genes) = 0-based 2..7.
+        let a: Vec<Action> = (0..30).map(|i| Action { alpha_deg: i as f64, dist_m: 1.0 }).collect();
+        let b: Vec<Action> = (0..30).map(|i| Action { alpha_deg: 100.0 + i as f64, dist_m: 1.0 }).collect();
+        let child = splice(&a, (2, 7), &b, (2, 7));
+        let angles: Vec<f64> = child.iter().map(|x| x.alpha_deg).collect();
+        assert_eq!(&angles[..9], &[0.0, 1.0, 102.0, 103.0, 104.0, 105.0, 106.0, 7.0, 8.0]);
+    }
+
+    #[test]
+    fn too_short_parents_do_not_cross() {
+        let mut rng = stream(2, Purpose::Main, &[]);
+        assert!(draw_block(3, 0.2, &mut rng).is_none());
+        assert!(draw_block(4, 0.2, &mut rng).is_some());
+        assert!(draw_block(10, 0.8, &mut rng).is_none());
+    }
+
+    fn frame() -> Frame {
+        Frame {
+            start: Point::new(1.3, 1.3),
+            end: Point::new(1.3, 1.3),
+            min: Point::origin(),
+            max: Point::new(11.0, 11.0),
+        }
+    }
+
+    fn parent(seed: u64, n: usize) -> (Vec<Action>, Vec<Point>) {
+        let mut rng = stream(seed, Purpose::Main, &[]);
+        let mut g = Vec::new();
+        random_genome(&mut rng, n - 2, 3.0, &mut g);
+        let mut p = Vec::new();
+        decode(&mut g, &frame(), &mut p);
+        (g, p)
+    }
+
+    fn close(p: Point, q: Point) -> bool {
+        (p - q).norm() < 1e-6
+    }
+
+    #[test]
+    fn preserving_child_keeps_absolute_positions() {
+        let (ga, pa) = parent(3, 20);
+        let (gb, pb) = parent(4, 16);
+        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        let mut child = preserving_child(a, (4, 9), b, (3, 6));
+        let mut pts = Vec::new();
+        decode(&mut child, &frame(), &mut pts);
+        // Prefix 0..=3 from A, then B's viewpoints 3..=6, then A's from 10 on.
+        for i in 0..4 {
+            assert!(close(pts[i], pa[i]));
+        }
+        for (k, j) in (3..=6).enumerate() {
+            assert!(close(pts[4 + k], pb[j]), "block viewpoint {j}");
+        }
+        for (k, j) in (10..20).enumerate() {
+            assert!(close(pts[8 + k], pa[j]), "suffix viewpoint {j}");
+        }
+    }
+
+    #[test]
+    fn changing_child_keeps_relative_moves_and_the_receiver_suffix() {
+        // Short moves from the map centre never leave the map, so nothing is clamped.
+        let centre = Frame { start: Point::new(5.5, 5.5), end: Point::new(5.5, 5.5), ..frame() };
+        let make = |seed: u64, n: usize| {
+            let mut rng = stream(seed, Purpose::Main, &[]);
+            let mut g = Vec::new();
+            random_genome(&mut rng, n - 2, 0.25, &mut g);
+            let mut p = Vec::new();
+            decode(&mut g, &centre, &mut p);
+            (g, p)
+        };
+        let ((ga, pa), (gb, pb)) = (make(5, 20), make(6, 16));
+        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        let mut child = changing_child(a, (4, 9), b, (3, 6), &centre);
+        let mut pts = Vec::new();
+        decode(&mut child, &centre, &mut pts);
+        for i in 0..=4 {
+            assert!(close(pts[i], pa[i]));
+        }
+        // The inserted block keeps B's relative moves from wherever A left off.
+        for (k, j) in (3..6).enumerate() {
+            assert!(((pts[5 + k] - pts[4 + k]) - (pb[j + 1] - pb[j])).norm() < 1e-9);
+        }
+        // Child gene 7 was A's gene 9; from viewpoint 8 on the child follows A from 10.
+        for (k, j) in (10..20).enumerate() {
+            assert!(close(pts[8 + k], pa[j]), "suffix viewpoint {j}");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn children_keep_stations_stay_on_the_map_and_respect_the_cap(seed in 0u64..10_000, na in 3usize..80, nb in 3usize..80, c_len in 0.0..1.0f64, mode in 0u8..3) {
+            let (ga, pa) = parent(seed, na);
+            let (gb, pb) = parent(seed + 1, nb);
+            let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+            let mode = ChildMode::from_index(mode).unwrap();
+            let mut rng = stream(seed, Purpose::Individual, &[]);
+            if let Some(kids) = crossover(a, b, c_len, mode, 100, &frame(), &mut rng) {
+                prop_assert_eq!(kids.len(), mode.children());
+                for mut k in kids {
+                    prop_assert!(k.len() >= 3 && k.len() <= 100);
+                    let mut pts = Vec::new();
+                    decode(&mut k, &frame(), &mut pts);
+                    prop_assert_eq!(pts[0], frame().start);
+                    prop_assert_eq!(*pts.last().unwrap(), frame().end);
+                    for p in &pts {
+                        prop_assert!(p.x >= 0.0 && p.x <= 11.0 && p.y >= 0.0 && p.y <= 11.0);
+                    }
+                }
+            }
+        }
+    }
+}

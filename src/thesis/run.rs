@@ -1,0 +1,290 @@
+//! The run loop of the thesis GA: the algorithm ([`ThesisGa`]: scenario, parameters, seed) is
+//! kept apart from the state it evolves ([`GaState`]); every iteration's statistics go to
+//! observers. Stops at `Iter_max`, at the optional wall-clock or stall limit; optionally marks
+//! a region as covered part-way (retrain, 003 §3.5.3).
+
+use super::architecture::{Effective, Generation, MutationRate};
+use super::diversity::{DiversityScratch, diversity, max_distance};
+use super::individual::{Individual, Scenario, evaluate};
+use super::params::{Budget, Control, Retrain, Selection, ThesisParams};
+use crate::coverage::SweepScratch;
+use crate::ga::control;
+use crate::ga::observer::{GenerationStats, Observer, RunEvent};
+use crate::ga::rng::{Purpose, Rng, stream};
+use std::time::Instant;
+
+/// The algorithm: what stays fixed during a run.
+pub struct ThesisGa {
+    /// Map, robot, stations, projection.
+    pub scenario: Scenario,
+    /// Operator and population parameters.
+    pub params: ThesisParams,
+    /// The run's seed.
+    pub seed: u64,
+}
+
+/// What a run evolves.
+pub struct GaState {
+    /// The current population.
+    pub population: Vec<Individual>,
+    /// Iterations completed.
+    pub iteration: u32,
+    /// Evaluations so far.
+    pub evaluations: u64,
+    /// `Div` of the current population.
+    pub diversity: f64,
+    /// `Div_max` of the current population (adaptive control only, else 0).
+    pub diversity_max: f64,
+    rng: Rng,
+}
+
+/// Why a run ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StopReason {
+    /// `Iter_max` reached.
+    Iterations,
+    /// The wall-clock limit.
+    WallClock,
+    /// No better best individual for the stall limit.
+    Stall,
+}
+
+/// The result of a run.
+pub struct RunOutcome {
+    /// Best individual of the final population (R30).
+    pub best: Individual,
+    /// Best individual just before the environment changed, if it did.
+    pub best_before_retrain: Option<Individual>,
+    /// Iterations completed.
+    pub iterations: u32,
+    /// Evaluations spent.
+    pub evaluations: u64,
+    /// Why the run ended.
+    pub stop: StopReason,
+    /// Wall time in seconds (not part of the deterministic outputs).
+    pub wall_s: f64,
+}
+
+/// Index of the fittest individual (first on ties).
+pub fn best_index(pop: &[Individual]) -> usize {
+    let mut best = 0;
+    for (i, ind) in pop.iter().enumerate() {
+        if ind.fitness() > pop[best].fitness() {
+            best = i;
+        }
+    }
+    best
+}
+
+impl ThesisGa {
+    fn scratches(&self) -> Vec<SweepScratch> {
+        (0..rayon::current_num_threads().max(1)).map(|_| SweepScratch::new(&self.scenario.grid)).collect()
+    }
+
+    fn generation(&self, iteration: u32, effective: Effective) -> Generation<'_> {
+        Generation { scenario: &self.scenario, params: &self.params, effective, seed: self.seed, iteration }
+    }
+
+    fn fixed_effective(&self) -> Effective {
+        let p = &self.params;
+        let (tournament_size, pressure) = match p.selection {
+            Selection::Tournament { size } => (size, 0.0),
+            Selection::Rrws { pressure } => (0, pressure),
+            _ => (0, 0.0),
+        };
+        Effective { p_c: p.p_c, p_mi: p.p_mi, p_ma: MutationRate::Fixed(p.p_ma), tournament_size, pressure }
+    }
+
+    /// Operator probabilities for `iteration` under the configured control (spec §12).
+    pub fn effective(&self, state: &GaState, iteration: u32, iter_max: u32) -> Effective {
+        let mut e = self.fixed_effective();
+        match self.params.control {
+            Control::None => {}
+            Control::Ramp { min, max } => match self.params.selection {
+                Selection::Tournament { .. } => {
+                    let ts = control::ramp_tournament_size(iteration, iter_max, min, max);
+                    e.tournament_size = ts.min(state.population.len());
+                }
+                Selection::Rrws { .. } => e.pressure = control::linear_ramp(iteration, iter_max, min, max),
+                _ => {}
+            },
+            Control::Adaptive(c) => {
+                let fit = state.population.iter().map(Individual::fitness);
+                let f_min = fit.clone().fold(f64::INFINITY, f64::min);
+                let f_max = fit.fold(f64::NEG_INFINITY, f64::max);
+                e.p_c = control::adaptive_p_c(state.diversity, state.diversity_max, &c);
+                let diversity_part = control::adaptive_p_m_diversity(state.diversity, state.diversity_max, &c);
+                e.p_ma = MutationRate::Adaptive { diversity_part, k: c.k, f_min, f_max };
+            }
+            Control::Muhlenbein => {
+                e.p_ma = MutationRate::Fixed(control::muhlenbein_p_m(iteration, iter_max));
+                e.p_c = control::muhlenbein_p_c(iteration, iter_max);
+            }
+        }
+        e
+    }
+
+    /// Creates and evaluates the initial population (spec §6) — iteration 0.
+    pub fn init(&self) -> GaState {
+        let mut scratches = self.scratches();
+        let size = self.params.initial_size();
+        let (population, evaluations) = self.generation(0, self.fixed_effective()).initial(size, &mut scratches);
+        let mut state = GaState {
+            population,
+            iteration: 0,
+            evaluations,
+            diversity: 0.0,
+            diversity_max: 0.0,
+            rng: stream(self.seed, Purpose::Main, &[]),
+        };
+        self.measure_diversity(&mut state, &mut DiversityScratch::default());
+        state
+    }
+
+    fn measure_diversity(&self, state: &mut GaState, scratch: &mut DiversityScratch) {
+        let cells = self.scenario.grid.len();
+        state.diversity = diversity(&state.population, cells, scratch);
+        if matches!(self.params.control, Control::Adaptive(_)) {
+            state.diversity_max = max_distance(&state.population, cells) as f64;
+        }
+    }
+
+    /// One iteration: both architectures share the loop, selection decides which runs.
+    pub fn step(
+        &self,
+        state: &mut GaState,
+        effective: Effective,
+        scratches: &mut [SweepScratch],
+        div: &mut DiversityScratch,
+    ) {
+        state.iteration += 1;
+        let generation = self.generation(state.iteration, effective);
+        let pop = std::mem::take(&mut state.population);
+        let (next, evaluations) = match self.params.selection {
+            Selection::Elite => generation.step_b(pop, &mut state.rng, scratches),
+            _ => generation.step_a(pop, &mut state.rng, scratches),
+        };
+        state.population = next;
+        state.evaluations += evaluations;
+        self.measure_diversity(state, div);
+    }
+
+    /// Marks `region` as already covered and re-evaluates everyone (spec §13, R25).
+    pub fn change_environment(&mut self, state: &mut GaState, region: [f64; 4]) {
+        let [x0, y0, x1, y1] = region;
+        self.scenario.grid.premark_rect(x0, y0, x1, y1);
+        let mut scratch = SweepScratch::new(&self.scenario.grid);
+        for ind in &mut state.population {
+            evaluate(ind, &self.scenario, &mut scratch);
+            state.evaluations += 1;
+        }
+        self.measure_diversity(state, &mut DiversityScratch::default());
+    }
+
+    /// Runs to the end of the budget, handing statistics to `observers`.
+    pub fn run(
+        &mut self,
+        budget: &Budget,
+        retrain: Option<&Retrain>,
+        observers: &mut [&mut dyn Observer],
+    ) -> std::io::Result<RunOutcome> {
+        let started = Instant::now();
+        let mut state = self.init();
+        let mut scratches = self.scratches();
+        let mut div = DiversityScratch::default();
+        let fixed = self.fixed_effective();
+        for o in observers.iter_mut() {
+            o.generation(&stats(&state, &fixed))?;
+        }
+        let mut best_seen = state.population[best_index(&state.population)].fitness();
+        let mut stalled = 0u32;
+        let mut best_before_retrain = None;
+        let mut stop = StopReason::Iterations;
+        while state.iteration < budget.iterations {
+            if budget.wall_clock.is_some_and(|limit| started.elapsed() >= limit) {
+                stop = StopReason::WallClock;
+                break;
+            }
+            if let Some(r) = retrain.filter(|r| r.at_iteration == state.iteration) {
+                best_before_retrain = Some(state.population[best_index(&state.population)].clone());
+                self.change_environment(&mut state, r.region);
+                scratches = self.scratches();
+                for o in observers.iter_mut() {
+                    o.event(RunEvent::EnvironmentChanged { iteration: state.iteration + 1 })?;
+                }
+                best_seen = f64::NEG_INFINITY;
+            }
+            let effective = self.effective(&state, state.iteration + 1, budget.iterations);
+            self.step(&mut state, effective, &mut scratches, &mut div);
+            for o in observers.iter_mut() {
+                o.generation(&stats(&state, &effective))?;
+            }
+            let best = state.population[best_index(&state.population)].fitness();
+            if best > best_seen {
+                best_seen = best;
+                stalled = 0;
+            } else {
+                stalled += 1;
+            }
+            if budget.stall_iterations.is_some_and(|s| stalled >= s) {
+                stop = StopReason::Stall;
+                break;
+            }
+        }
+        let best = state.population[best_index(&state.population)].clone();
+        Ok(RunOutcome {
+            best,
+            best_before_retrain,
+            iterations: state.iteration,
+            evaluations: state.evaluations,
+            stop,
+            wall_s: started.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// Statistics of the current population (spec §17).
+pub fn stats(state: &GaState, effective: &Effective) -> GenerationStats {
+    let pop = &state.population;
+    let n = pop.len() as f64;
+    let best = &pop[best_index(pop)];
+    let (mut s, mut lo, mut hi) = ([0.0; 3], [f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let (mut len_sum, mut len_min, mut len_max) = (0usize, usize::MAX, 0usize);
+    let mut p_ma_sum = 0.0;
+    for ind in pop {
+        let v = [ind.score.cov_final, ind.score.t_final];
+        for k in 0..2 {
+            s[k] += v[k];
+            lo[k] = lo[k].min(v[k]);
+            hi[k] = hi[k].max(v[k]);
+        }
+        s[2] += ind.fitness();
+        len_sum += ind.len();
+        len_min = len_min.min(ind.len());
+        len_max = len_max.max(ind.len());
+        p_ma_sum += effective.p_ma.for_fitness(ind.fitness());
+    }
+    GenerationStats {
+        iteration: state.iteration,
+        evaluations: state.evaluations,
+        best_fitness: best.fitness(),
+        best_cov_final: best.score.cov_final,
+        best_t_final: best.score.t_final,
+        mean_cov_final: s[0] / n,
+        min_cov_final: lo[0],
+        max_cov_final: hi[0],
+        mean_t_final: s[1] / n,
+        min_t_final: lo[1],
+        max_t_final: hi[1],
+        mean_fitness: s[2] / n,
+        mean_genome_len: len_sum as f64 / n,
+        min_genome_len: len_min as u32,
+        max_genome_len: len_max as u32,
+        diversity: state.diversity,
+        p_c: effective.p_c,
+        p_ma: p_ma_sum / n,
+        sp: if effective.tournament_size > 0 { effective.tournament_size as f64 } else { effective.pressure },
+        population: pop.len() as u32,
+    }
+}

@@ -1,0 +1,157 @@
+//! End-to-end tests of `covga run`: outputs, determinism across thread counts, improvement
+//! over the initial population, retrain, and bad experiment files.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn covga(args: &[&str], threads: &str) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).env("RAYON_NUM_THREADS", threads).output().expect("covga runs")
+}
+
+/// A small experiment (map 1, Elite, 40 individuals, 200 iterations) as TOML text.
+fn small(extra: &str) -> String {
+    format!(
+        "seed = 7\n[map]\nsource = \"thesis-1\"\n[thesis]\npop_min = 40\ninit_actions = 30\n{extra}\n[budget]\niterations = 200\n"
+    )
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn read(p: &Path) -> String {
+    std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
+}
+
+/// summary.json without its timing field.
+fn summary_without_time(dir: &Path) -> serde_json::Value {
+    let mut v: serde_json::Value = serde_json::from_str(&read(&dir.join("summary.json"))).unwrap();
+    v.as_object_mut().unwrap().remove("wall_s");
+    v
+}
+
+#[test]
+fn run_writes_every_result_file_and_improves() {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), "e.toml", &small(""));
+    let out = dir.path().join("out");
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "config.toml",
+        "best_path.csv",
+        "best_genome.csv",
+        "history.csv",
+        "summary.json",
+        "path.png",
+        "path.svg",
+        "history.png",
+        "history.svg",
+    ] {
+        assert!(out.join(f).metadata().map(|m| m.len() > 50).unwrap_or(false), "{f}");
+    }
+    let s: serde_json::Value = serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+    for key in ["cov_final", "t_final", "fitness", "evaluations", "iterations", "seed", "wall_s"] {
+        assert!(s.get(key).is_some(), "{key}");
+    }
+    assert_eq!(s["iterations"], 200);
+    assert_eq!(s["seed"], 7);
+    // history.csv: header + iteration 0 + 200 iterations; the best at the end beats the start.
+    let hist = read(&out.join("history.csv"));
+    let rows: Vec<Vec<f64>> =
+        hist.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
+    assert_eq!(rows.len(), 201);
+    assert!(rows[200][2] > rows[0][2], "best f {} should beat the initial best {}", rows[200][2], rows[0][2]);
+    // The best path is scored identically by `covga eval`.
+    let ev = covga(
+        &[
+            "eval",
+            "--map",
+            "thesis-1",
+            "--path",
+            out.join("best_path.csv").to_str().unwrap(),
+            "--projection",
+            "f2",
+            "--json",
+            "--out",
+            dir.path().join("ev").to_str().unwrap(),
+        ],
+        "1",
+    );
+    let v: serde_json::Value = serde_json::from_slice(&ev.stdout).unwrap();
+    assert!((v["cov_final"].as_f64().unwrap() - s["cov_final"].as_f64().unwrap()).abs() < 1e-12);
+    assert!((v["t_final"].as_f64().unwrap() - s["t_final"].as_f64().unwrap()).abs() < 1e-12);
+}
+
+#[test]
+fn same_seed_same_bytes_with_one_or_two_threads() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, extra) in [
+        ("elite", String::new()),
+        ("tournament", "selection = \"tournament\"\ninit_individuals = 80\ntournament_size = 3\nkeep = 2\nselect = 10\np_mi = 0.05\np_ma = 0.1\n".to_string()),
+        ("rrws-adaptive", "selection = \"rrws\"\ninit_individuals = 60\nkeep = 2\nselect = 10\n[thesis.control]\nkind = \"adaptive\"\n".to_string()),
+    ] {
+        let exp = write(dir.path(), &format!("{name}.toml"), &small(&extra));
+        let a = dir.path().join(format!("{name}-1"));
+        let b = dir.path().join(format!("{name}-2"));
+        for (out, threads) in [(&a, "1"), (&b, "2")] {
+            let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], threads);
+            assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        }
+        for f in ["config.toml", "best_path.csv", "best_genome.csv", "history.csv", "path.svg", "history.svg"] {
+            assert_eq!(read(&a.join(f)), read(&b.join(f)), "{name}: {f} differs between 1 and 2 threads");
+        }
+        assert_eq!(summary_without_time(&a), summary_without_time(&b), "{name}");
+    }
+}
+
+#[test]
+fn retrain_marks_the_region_and_recovers() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = small("") + "[retrain]\nat_iteration = 100\n";
+    let exp = write(dir.path(), "r.toml", &text);
+    let out = dir.path().join("out");
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(out.join("path_before_retrain.png").exists());
+    let s: serde_json::Value = serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+    assert_eq!(s["metrics"]["area_cells"], 1400, "A_pix after marking the 5 m corner (spec §16.4)");
+    let hist = read(&out.join("history.csv"));
+    let best_t: Vec<f64> = hist.lines().skip(1).map(|l| l.split(',').nth(4).unwrap().parse().unwrap()).collect();
+    // The switch after iteration 100 turns covered cells into crossings: t_final drops.
+    assert!(best_t[101] < best_t[100], "t_final should drop at the switch: {} -> {}", best_t[100], best_t[101]);
+}
+
+fn expect_error(text: &str, needle: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), "bad.toml", text);
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], "1");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{text}: {err}");
+    assert!(err.contains(needle) && err.contains("bad.toml"), "expected `{needle}` in: {err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+    assert!(!dir.path().join("o").exists(), "no results for a bad file");
+}
+
+#[test]
+fn bad_experiment_files_are_rejected_with_exit_2() {
+    expect_error(&small("colour = 3"), "unknown field `colour`");
+    expect_error(&small("p_c = 1.5"), "`thesis.p_c` = 1.5 is out of range");
+    expect_error(
+        &small("selection = \"tournament\"\ntournament_size = 500\ninit_individuals = 100\nselect = 5"),
+        "`thesis.tournament_size` = 500 is out of range [1, 40]",
+    );
+    expect_error(&small("").replace("thesis-1", "maps/nowhere.yaml"), "nowhere.yaml");
+    expect_error(&small("c_child = 3"), "`thesis.c_child`");
+    expect_error(&small("").replace("[map]", "[stations]\nstart = [0.5, 0.5]\n[map]"), "inside an obstacle");
+    expect_error("seed = \"x\"\n", "bad.toml:1");
+}
+
+#[test]
+fn missing_experiment_file_is_an_input_error() {
+    let o = covga(&["run", "no/such/experiment.toml"], "1");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("no/such/experiment.toml"));
+}
