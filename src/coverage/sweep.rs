@@ -90,6 +90,51 @@ impl SweepCounts {
     }
 }
 
+/// Running counts of one sweep.
+#[derive(Default)]
+struct RunTally {
+    cov: u64,
+    cross: u64,
+    obj: u64,
+    len: usize,
+}
+
+/// Listing 3.1 for one run of cells `first + k·stride`, `k < count`. Local counters stay in
+/// registers; the bookkeeping is branch-free because random paths make its outcomes
+/// unpredictable.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn tally_run(
+    acc: &mut RunTally,
+    first: usize,
+    count: usize,
+    stride: usize,
+    blocked: &[bool],
+    premark: &[u32],
+    visits: &mut [u32],
+    touched: &mut [u32],
+) {
+    let (mut c, mut x, mut o, mut l) = (0u64, 0u64, 0u64, acc.len);
+    let mut i = first;
+    for _ in 0..count {
+        if blocked[i] {
+            o += 1;
+        } else {
+            let v = visits[i];
+            x += u64::from((v | premark[i]) != 0);
+            touched[l] = i as u32;
+            l += usize::from(v == 0);
+            visits[i] = v + 1;
+            c += 1;
+        }
+        i += stride;
+    }
+    acc.cov += c;
+    acc.cross += x;
+    acc.obj += o;
+    acc.len = l;
+}
+
 /// Reusable visit-count grid (`M_traveled` without its pre-marks), reset in O(touched cells).
 #[derive(Clone, Debug)]
 pub struct SweepScratch {
@@ -135,38 +180,17 @@ impl SweepScratch {
     fn add_path(&mut self, grid: &CoverageGrid, points: &[Point], width: f64, counts: &mut SweepCounts) {
         // Plain slices, so the loop keeps their addresses in registers.
         let (visits, touched) = (&mut self.visits[..], &mut self.touched[..]);
-        let touched_len = &mut self.touched_len;
         let (blocked, premark) = (&grid.blocked[..], &grid.premark[..]);
-        let (mut cov, mut cross, mut obj, mut len) = (0u64, 0u64, 0u64, *touched_len);
+        let mut acc = RunTally { len: self.touched_len, ..RunTally::default() };
         for pair in points.windows(2) {
             for_each_swept_run(&grid.raster, pair[0], pair[1], width, |first, count, stride| {
-                // Local counters stay in registers for the whole run.
-                let (mut c, mut x, mut o, mut l) = (0u64, 0u64, 0u64, len);
-                let mut i = first;
-                for _ in 0..count {
-                    if blocked[i] {
-                        o += 1;
-                    } else {
-                        // Branch-free bookkeeping: random paths make these outcomes unpredictable.
-                        let v = visits[i];
-                        x += u64::from((v | premark[i]) != 0);
-                        touched[l] = i as u32;
-                        l += usize::from(v == 0);
-                        visits[i] = v + 1;
-                        c += 1;
-                    }
-                    i += stride;
-                }
-                cov += c;
-                cross += x;
-                obj += o;
-                len = l;
+                tally_run(&mut acc, first, count, stride, blocked, premark, visits, touched);
             });
         }
-        *touched_len = len;
-        counts.cov_pix += cov;
-        counts.cross_pix += cross;
-        counts.obj_pix += obj;
+        self.touched_len = acc.len;
+        counts.cov_pix += acc.cov;
+        counts.cross_pix += acc.cross;
+        counts.obj_pix += acc.obj;
     }
 
     /// The cells visited by the last sweep with the number of visits it added (pre-marks
