@@ -1,6 +1,7 @@
 //! The `covga` command line. The only place that prints for humans.
 
 mod eval;
+mod grid;
 mod maps;
 mod run;
 
@@ -49,6 +50,12 @@ enum Command {
     Run(run::RunArgs),
     /// Score a pattern or a path file on a map: every metric, plus path.png / path.svg.
     Eval(eval::EvalArgs),
+    /// Run a grid study (parallel, resumable, shardable), estimate it, or write a Slurm array.
+    Grid(grid::GridArgs),
+    /// Merge the shard outputs of a study into runs.csv.
+    Merge(grid::MergeArgs),
+    /// Figures, tables and statistics of a study folder (report/summary.md).
+    Report(grid::ReportArgs),
     /// Write the built-in maps as ROS map_server files (YAML + PGM).
     Maps(maps::MapsArgs),
 }
@@ -71,6 +78,9 @@ where
     match cli.command {
         Command::Run(a) => run::run(a),
         Command::Eval(a) => eval::run(a),
+        Command::Grid(a) => grid::run(a),
+        Command::Merge(a) => grid::merge(a),
+        Command::Report(a) => grid::report(a),
         Command::Maps(a) => maps::run(a),
     }
 }

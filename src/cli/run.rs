@@ -76,7 +76,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
     let mut progress = Progress(bar);
-    let (_, summary) = run_experiment(&exp, &dir, &mut [&mut progress]).map_err(CliError::internal)?;
+    let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(CliError::internal)?;
     progress.0.finish_and_clear();
     if !a.quiet {
         println!(

@@ -4,5 +4,6 @@
 
 pub mod control;
 pub mod observer;
+pub mod pareto;
 pub mod rng;
 pub mod selection;

@@ -5,6 +5,7 @@
 
 pub mod history;
 pub mod path;
+pub mod report;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -85,6 +85,76 @@ impl PathFigure<'_> {
     }
 }
 
+/// Draws the map, coverage classes and paths of `fig` into `area`, with axes in metres;
+/// `(title, labels)` are font sizes; `scale_bar` adds a metre bar.
+pub fn draw_map_paths<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    fig: &PathFigure,
+    fonts: (f64, f64),
+    scale_bar: bool,
+) -> Result<(), String> {
+    let map = fig.map;
+    let (ox, oy) = (map.origin().x, map.origin().y);
+    let (x1, y1) = (ox + map.width_m(), oy + map.height_m());
+    let small = fonts.1 < 14.0;
+    let mut chart = ChartBuilder::on(area)
+        .caption(&fig.title, text(fonts.0))
+        .margin(if small { 4 } else { 10 })
+        .x_label_area_size(if small { 28 } else { 45 })
+        .y_label_area_size(if small { 36 } else { 55 })
+        .build_cartesian_2d(ox..x1, oy..y1)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x [m]")
+        .y_desc("y [m]")
+        .x_labels(if small { 4 } else { 10 })
+        .y_labels(if small { 4 } else { 10 })
+        .label_style(text(fonts.1))
+        .axis_desc_style(text(fonts.1 + 2.0))
+        .draw()
+        .map_err(err)?;
+    // Cells, merged into runs of one class per row to keep the SVG small.
+    let classes = fig.classes();
+    let res = map.resolution();
+    let cols = map.cols();
+    let mut rects = Vec::new();
+    for r in 0..map.rows() {
+        let mut c = 0;
+        while c < cols {
+            let class = classes[r * cols + c];
+            let start = c;
+            while c < cols && classes[r * cols + c] == class {
+                c += 1;
+            }
+            let (xa, ya) = (ox + start as f64 * res, oy + r as f64 * res);
+            rects.push(Rectangle::new([(xa, ya), (ox + c as f64 * res, ya + res)], class.colour().filled()));
+        }
+    }
+    chart.draw_series(rects).map_err(err)?;
+    let dot = if small { 1 } else { 2 };
+    for path in &fig.paths {
+        chart
+            .draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(if small { 1 } else { 2 })))
+            .map_err(err)?;
+        chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), dot, PATH.filled()))).map_err(err)?;
+        if let (Some(s), Some(e)) = (path.first(), path.last()) {
+            chart.draw_series([TriangleMarker::new((s.x, s.y), 9, GREEN.filled())]).map_err(err)?;
+            chart.draw_series([Cross::new((e.x, e.y), 8, RED.stroke_width(3))]).map_err(err)?;
+        }
+    }
+    if scale_bar {
+        let len = scale_length(map.width_m());
+        let (bx, by) = (ox + 0.04 * map.width_m(), oy + 0.04 * map.height_m());
+        chart.draw_series([PathElement::new(vec![(bx, by), (bx + len, by)], BLACK.stroke_width(4))]).map_err(err)?;
+        chart
+            .draw_series([Text::new(format!("{len} m"), (bx, by + 0.02 * map.height_m()), text(16.0))])
+            .map_err(err)?;
+    }
+    Ok(())
+}
+
 /// A round scale-bar length (1, 2 or 5 × 10^k m) near a fifth of `extent`.
 pub fn scale_length(extent: f64) -> f64 {
     let target = extent / 5.0;
@@ -102,57 +172,7 @@ impl Figure for PathFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let (w, _) = self.size();
         let (plot_area, side) = root.split_horizontally(w - 260);
-        let (ox, oy) = (self.map.origin().x, self.map.origin().y);
-        let (x1, y1) = (ox + self.map.width_m(), oy + self.map.height_m());
-        let mut chart = ChartBuilder::on(&plot_area)
-            .caption(&self.title, text(20.0))
-            .margin(10)
-            .x_label_area_size(45)
-            .y_label_area_size(55)
-            .build_cartesian_2d(ox..x1, oy..y1)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .disable_mesh()
-            .x_desc("x [m]")
-            .y_desc("y [m]")
-            .label_style(text(15.0))
-            .axis_desc_style(text(17.0))
-            .draw()
-            .map_err(err)?;
-        // Cells, merged into runs of one class per row to keep the SVG small.
-        let classes = self.classes();
-        let res = self.map.resolution();
-        let cols = self.map.cols();
-        let mut rects = Vec::new();
-        for r in 0..self.map.rows() {
-            let mut c = 0;
-            while c < cols {
-                let class = classes[r * cols + c];
-                let start = c;
-                while c < cols && classes[r * cols + c] == class {
-                    c += 1;
-                }
-                let (xa, ya) = (ox + start as f64 * res, oy + r as f64 * res);
-                rects.push(Rectangle::new([(xa, ya), (ox + c as f64 * res, ya + res)], class.colour().filled()));
-            }
-        }
-        chart.draw_series(rects).map_err(err)?;
-        for path in &self.paths {
-            chart.draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(2))).map_err(err)?;
-            chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), 2, PATH.filled()))).map_err(err)?;
-            if let (Some(s), Some(e)) = (path.first(), path.last()) {
-                chart.draw_series([TriangleMarker::new((s.x, s.y), 9, GREEN.filled())]).map_err(err)?;
-                chart.draw_series([Cross::new((e.x, e.y), 8, RED.stroke_width(3))]).map_err(err)?;
-            }
-        }
-        // Scale bar in the lower-left corner of the map.
-        let len = scale_length(self.map.width_m());
-        let (bx, by) = (ox + 0.04 * self.map.width_m(), oy + 0.04 * self.map.height_m());
-        chart.draw_series([PathElement::new(vec![(bx, by), (bx + len, by)], BLACK.stroke_width(4))]).map_err(err)?;
-        chart
-            .draw_series([Text::new(format!("{len} m"), (bx, by + 0.02 * self.map.height_m()), text(16.0))])
-            .map_err(err)?;
+        draw_map_paths(&plot_area, self, (20.0, 15.0), true)?;
         // Legend on the side.
         let entries = [
             (NEVER, "free, not covered"),

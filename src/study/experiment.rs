@@ -273,6 +273,9 @@ impl Default for BudgetSection {
     }
 }
 
+/// Loads a map from `(source, resolution)`.
+pub type MapLoader<'a> = dyn Fn(&str, Option<f64>) -> Result<GridMap, crate::map::MapError> + 'a;
+
 /// A validated experiment, ready to run.
 #[derive(Clone, Debug)]
 pub struct Experiment {
@@ -313,8 +316,25 @@ impl ExperimentFile {
 
     /// Validates every value and loads the map. `base` resolves relative map paths; `origin`
     /// names the file in messages; `stem` names the default output folder.
-    pub fn validate(mut self, origin: &str, base: &Path, stem: &str) -> Result<Experiment, ConfigError> {
+    pub fn validate(self, origin: &str, base: &Path, stem: &str) -> Result<Experiment, ConfigError> {
+        self.validate_with(origin, base, stem, &|src: &str, res: Option<f64>| crate::map::ros::load_map(src, res))
+    }
+
+    /// [`Self::validate`] with a map loader (studies share one cache of loaded maps).
+    pub fn validate_with(
+        mut self,
+        origin: &str,
+        base: &Path,
+        stem: &str,
+        load: &MapLoader<'_>,
+    ) -> Result<Experiment, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+        if self.seed > i64::MAX as u64 {
+            return Err(err(
+                "seed",
+                format!("= {} is out of range [0, {}] (TOML integers are signed 64-bit)", self.seed, i64::MAX),
+            ));
+        }
         let r = self.robot;
         check_range(origin, "robot.width", r.width, 1e-6, f64::MAX, "> 0 metres")?;
         check_range(origin, "robot.speed", r.speed, 1e-9, f64::MAX, "> 0 m/s")?;
@@ -414,8 +434,7 @@ impl ExperimentFile {
         if let Some(res) = self.map.resolution {
             check_range(origin, "map.resolution", res, 1e-9, 1e6, "> 0 metres per pixel")?;
         }
-        let map =
-            crate::map::ros::load_map(&source, self.map.resolution).map_err(|e| err("map.source", e.to_string()))?;
+        let map = load(&source, self.map.resolution).map_err(|e| err("map.source", e.to_string()))?;
         let start = Point::new(self.stations.start[0], self.stations.start[1]);
         let end = self.stations.end.map_or(start, |e| Point::new(e[0], e[1]));
         map.check_station(start, "start").map_err(|m| err("stations.start", m))?;

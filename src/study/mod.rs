@@ -1,5 +1,13 @@
 //! Experiment files, their validation and running one experiment with all its outputs.
 
 pub mod config;
+pub mod estimate;
 pub mod experiment;
+pub mod grid;
+pub mod merge;
 pub mod output;
+pub mod records;
+pub mod report;
+pub mod runner;
+pub mod slurm;
+pub mod stats;

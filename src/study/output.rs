@@ -140,10 +140,12 @@ pub struct Summary {
     pub wall_s: f64,
 }
 
-/// Runs the experiment, streaming history to `dir`, and writes every result file.
+/// Runs the experiment, streaming history to `dir`, and writes every result file; `figures`
+/// adds the PNG/SVG pictures (studies leave them out: one picture costs more than a run).
 pub fn run_experiment(
     exp: &Experiment,
     dir: &Path,
+    figures: bool,
     extra: &mut [&mut dyn Observer],
 ) -> Result<(RunOutcome, Summary), OutputError> {
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
@@ -154,7 +156,10 @@ pub fn run_experiment(
     let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
     let mut recorder = Recorder::default();
     let outcome = {
-        let mut observers: Vec<&mut dyn Observer> = vec![&mut history, &mut recorder];
+        let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
+        if figures {
+            observers.push(&mut recorder);
+        }
         observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
         ga.run(&exp.budget, exp.retrain.as_ref(), &mut observers).map_err(io_err(dir))?
     };
@@ -182,6 +187,9 @@ pub fn run_experiment(
         wall_s: outcome.wall_s,
     };
     write("summary.json", serde_json::to_string_pretty(&summary).expect("summary serialises").as_bytes())?;
+    if !figures {
+        return Ok((outcome, summary));
+    }
     let title = |ind: &Individual, what: &str| {
         format!(
             "{what} on {}: cov_final {:.3}, t_final {:.3}, G_len {}",

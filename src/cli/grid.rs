@@ -1,0 +1,195 @@
+//! `covga grid` (run, dry-run, Slurm script) and `covga merge`.
+
+use super::CliError;
+use crate::study::estimate::{self, human};
+use crate::study::grid::Study;
+use crate::study::runner::{RunDone, RunnerOptions, Shard, run_study};
+use crate::study::slurm::{SlurmOptions, check_time, sbatch_script};
+use std::io::IsTerminal;
+use std::path::PathBuf;
+
+/// Arguments of `covga grid`.
+#[derive(clap::Args, Debug)]
+pub struct GridArgs {
+    /// Grid file (TOML).
+    file: PathBuf,
+    /// Runs in parallel.
+    #[arg(long, default_value_t = 1)]
+    jobs: usize,
+    /// Run only shard K of N (0 <= K < N): every N-th run in sorted id order.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Study folder (default out/<grid stem>).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print the runs per branch and a time estimate; run nothing.
+    #[arg(long)]
+    dry_run: bool,
+    /// With --dry-run: time 3 short runs per branch for the estimate.
+    #[arg(long, requires = "dry_run")]
+    calibrate: bool,
+    /// Write study.sbatch (a Slurm job array over shards) instead of running.
+    #[arg(long)]
+    slurm: bool,
+    /// Slurm array tasks (shards).
+    #[arg(long, default_value_t = 16)]
+    array_size: usize,
+    /// Slurm time limit per task, HH:MM:SS.
+    #[arg(long, default_value = "04:00:00")]
+    time: String,
+    /// CPUs per Slurm task (each shard runs that many runs at once).
+    #[arg(long, default_value_t = 1)]
+    cpus_per_task: usize,
+}
+
+/// Arguments of `covga merge`.
+#[derive(clap::Args, Debug)]
+pub struct MergeArgs {
+    /// Study folder holding runs-shard-*.csv files.
+    dir: PathBuf,
+}
+
+pub fn run(a: GridArgs) -> Result<(), CliError> {
+    let study = Study::load(&a.file).map_err(CliError::input)?;
+    if a.jobs == 0 {
+        return Err(CliError::Input("--jobs = 0 is out of range: at least 1".into()));
+    }
+    let shard = a.shard.as_deref().map(Shard::parse).transpose().map_err(CliError::Input)?;
+    let stem = a.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "study".into());
+    let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&stem));
+    let all: Vec<&crate::study::grid::RunSpec> = study.runs.iter().collect();
+    crate::study::runner::validate_runs(&study, &all, &crate::study::runner::MapCache::default())
+        .map_err(CliError::input)?;
+    if a.dry_run {
+        return dry_run(&study, &a, &out);
+    }
+    if a.slurm {
+        return write_slurm(&a, &out, &stem);
+    }
+    let terminal = std::io::stderr().is_terminal();
+    let bar = indicatif::ProgressBar::new(0);
+    if terminal {
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:30}] {pos}/{len} runs {per_sec} eta {eta} {msg}",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+    } else {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    let on_done = |d: RunDone| {
+        if terminal {
+            bar.set_length(d.total as u64);
+            bar.set_position(d.done as u64);
+            bar.set_message(format!("last cov {:.3} t {:.3}", d.result.0, d.result.1));
+        } else {
+            eprintln!(
+                "[{}/{}] {} replicate {} cov_final {:.4} t_final {:.4} {:.2} s",
+                d.done + d.skipped,
+                d.total + d.skipped,
+                d.run.id,
+                d.run.replicate,
+                d.result.0,
+                d.result.1,
+                d.result.2
+            );
+        }
+    };
+    let opts = RunnerOptions { jobs: a.jobs, shard, out: out.clone(), on_done: &on_done };
+    let outcome = run_study(&study, &opts).map_err(|e| match e {
+        crate::study::runner::StudyError::Config(c) => CliError::input(c),
+        crate::study::runner::StudyError::Mismatch { .. } => CliError::input(e),
+        other => CliError::internal(other),
+    })?;
+    bar.finish_and_clear();
+    println!(
+        "{}: {} runs{}: {} already recorded, {} run now; results in {}",
+        a.file.display(),
+        outcome.selected,
+        shard.map(|s| format!(" in shard {}/{}", s.index, s.count)).unwrap_or_default(),
+        outcome.skipped,
+        outcome.completed,
+        out.display()
+    );
+    Ok(())
+}
+
+fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), CliError> {
+    let configs = study.runs.iter().map(|r| &r.config_id).collect::<std::collections::HashSet<_>>().len();
+    println!("{}: {} runs ({} configurations x replicates)", study.path.display(), study.runs.len(), configs);
+    for (branch, n) in study.branches() {
+        println!("  {n:>7} runs  {branch}");
+    }
+    let times = if a.calibrate {
+        Some((estimate::calibrate(study).map_err(CliError::internal)?, "calibrated on 3 short runs per branch"))
+    } else {
+        estimate::from_records(study, out).map(|t| (t, "from runs recorded in the study folder"))
+    };
+    match times {
+        None => println!("estimate: none yet (add --calibrate, or run a few runs first)"),
+        Some((times, source)) => {
+            println!("estimate ({source}, one core per run):");
+            for b in &times {
+                println!("  {:>8.2} s per run  x {:>6}  {}", b.seconds_per_run, b.runs, b.branch);
+            }
+            println!(
+                "  CPU time {}; wall time with --jobs {}: {}",
+                human(estimate::cpu_seconds(&times)),
+                a.jobs,
+                human(estimate::wall_seconds(&times, a.jobs))
+            );
+        }
+    }
+    Ok(())
+}
+
+fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str) -> Result<(), CliError> {
+    check_time(&a.time).map_err(CliError::Input)?;
+    if a.array_size == 0 || a.cpus_per_task == 0 {
+        return Err(CliError::Input("--array-size and --cpus-per-task must be at least 1".into()));
+    }
+    let abs =
+        |p: &std::path::Path| std::path::absolute(p).map_err(|e| CliError::Internal(format!("{}: {e}", p.display())));
+    let exe = std::env::current_exe().map_err(CliError::internal)?;
+    let (grid, out_abs) = (abs(&a.file)?, abs(out)?);
+    std::fs::create_dir_all(out_abs.join("slurm"))
+        .map_err(|e| CliError::Internal(format!("{}: {e}", out_abs.display())))?;
+    let opts = SlurmOptions { array_size: a.array_size, time: a.time.clone(), cpus_per_task: a.cpus_per_task };
+    let script = sbatch_script(&exe, &grid, &out_abs, stem, &opts);
+    let path = out_abs.join("study.sbatch");
+    crate::io::write_atomic(&path, script.as_bytes()).map_err(CliError::internal)?;
+    println!("wrote {}", path.display());
+    println!("submit:  sbatch {}", path.display());
+    println!("then:    covga merge {}", out_abs.display());
+    Ok(())
+}
+
+pub fn merge(a: MergeArgs) -> Result<(), CliError> {
+    let (files, runs) = crate::study::merge::merge(&a.dir).map_err(|e| match e {
+        crate::study::merge::MergeError::File { .. } => CliError::internal(e),
+        other => CliError::input(other),
+    })?;
+    println!("merged {files} files into {} ({runs} runs)", a.dir.join("runs.csv").display());
+    Ok(())
+}
+
+/// Arguments of `covga report`.
+#[derive(clap::Args, Debug)]
+pub struct ReportArgs {
+    /// Study folder (with runs.csv).
+    dir: PathBuf,
+    /// Group (facet) by these columns, e.g. --by thesis.selection --by thesis.projection.
+    #[arg(long)]
+    by: Vec<String>,
+}
+
+pub fn report(a: ReportArgs) -> Result<(), CliError> {
+    let path = crate::study::report::write_report(&a.dir, &a.by).map_err(|e| match e {
+        crate::study::report::ReportError::Input(m) => CliError::Input(m),
+        other => CliError::internal(other),
+    })?;
+    println!("wrote {} and the figures beside it", path.display());
+    Ok(())
+}

@@ -1,0 +1,180 @@
+//! Study figures: Pareto scatter per group with the front highlighted (003 Figs. 4.2–4.5),
+//! diversity over iterations of the front runs (median and range per group), and the best
+//! path of each group as a grid of small maps (003 Figs. A.17/A.18).
+
+use super::path::{PathFigure, draw_map_paths};
+use super::{Figure, err, text};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// One facet of the Pareto figure.
+pub struct ParetoFacet {
+    /// Group label.
+    pub label: String,
+    /// `(t_final, cov_final)` of each run's best individual.
+    pub points: Vec<(f64, f64)>,
+    /// Indices of the non-dominated points.
+    pub front: Vec<usize>,
+}
+
+/// Pareto scatter, one panel per group.
+pub struct ParetoFigure {
+    /// The facets.
+    pub facets: Vec<ParetoFacet>,
+}
+
+fn grid_shape(n: usize) -> (usize, usize) {
+    let cols = (n as f64).sqrt().ceil().max(1.0) as usize;
+    (n.div_ceil(cols).max(1), cols)
+}
+
+const RUN: RGBColor = RGBColor(120, 150, 200);
+const FRONT: RGBColor = RGBColor(210, 40, 30);
+
+impl Figure for ParetoFigure {
+    fn size(&self) -> (u32, u32) {
+        let (r, c) = grid_shape(self.facets.len());
+        (c as u32 * 480, r as u32 * 440 + 40)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root
+            .titled("Best individual per run: coverage vs time efficiency (front in red)", text(20.0))
+            .map_err(err)?;
+        let (r, c) = grid_shape(self.facets.len());
+        let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
+        for f in &self.facets {
+            for p in &f.points {
+                lo_x = lo_x.min(p.0);
+                lo_y = lo_y.min(p.1);
+            }
+        }
+        let (lo_x, lo_y) = ((lo_x - 0.05).max(0.0), (lo_y - 0.05).max(0.0));
+        for (area, facet) in root.split_evenly((r, c)).iter().zip(&self.facets) {
+            let mut chart = ChartBuilder::on(area)
+                .caption(&facet.label, text(16.0))
+                .margin(8)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d(lo_x..1.0, lo_y..1.0)
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_desc("t_final [-]")
+                .y_desc("cov_final [-]")
+                .label_style(text(13.0))
+                .axis_desc_style(text(14.0))
+                .draw()
+                .map_err(err)?;
+            chart
+                .draw_series(facet.points.iter().map(|&p| Circle::new(p, 3, RUN.filled())))
+                .map_err(err)?
+                .label(format!("runs ({})", facet.points.len()))
+                .legend(|(x, y)| Circle::new((x + 8, y), 4, RUN.filled()));
+            let mut front: Vec<(f64, f64)> = facet.front.iter().map(|&i| facet.points[i]).collect();
+            front.sort_by(|a, b| a.0.total_cmp(&b.0));
+            chart.draw_series(LineSeries::new(front.iter().copied(), FRONT.stroke_width(1))).map_err(err)?;
+            chart
+                .draw_series(front.iter().map(|&p| Circle::new(p, 5, FRONT.filled())))
+                .map_err(err)?
+                .label(format!("non-dominated ({})", front.len()))
+                .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerLeft)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font(text(13.0))
+                .draw()
+                .map_err(err)?;
+        }
+        Ok(())
+    }
+}
+
+/// Per-iteration diversity summary of one group: `(iteration, median, min, max)`.
+pub struct DiversityGroup {
+    /// Group label.
+    pub label: String,
+    /// Runs summarised.
+    pub runs: usize,
+    /// The curve.
+    pub curve: Vec<(u32, f64, f64, f64)>,
+}
+
+/// Diversity over iterations of the runs on each group's front.
+pub struct DiversityFigure {
+    /// The groups.
+    pub groups: Vec<DiversityGroup>,
+}
+
+impl Figure for DiversityFigure {
+    fn size(&self) -> (u32, u32) {
+        (1000, 560)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let x_max = self.groups.iter().flat_map(|g| g.curve.last().map(|c| c.0)).max().unwrap_or(1).max(1);
+        let y_max = self.groups.iter().flat_map(|g| g.curve.iter().map(|c| c.3)).fold(1.0f64, f64::max);
+        let mut chart = ChartBuilder::on(root)
+            .caption("Diversity of the runs on each group's front (median, band = min..max)", text(18.0))
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(0u32..x_max, 0.0..y_max * 1.05)
+            .map_err(err)?;
+        chart
+            .configure_mesh()
+            .light_line_style(RGBColor(235, 235, 235))
+            .x_desc("iteration")
+            .y_desc("Div [cells]")
+            .label_style(text(14.0))
+            .axis_desc_style(text(15.0))
+            .draw()
+            .map_err(err)?;
+        for (k, g) in self.groups.iter().enumerate() {
+            let colour = Palette99::pick(k).to_rgba();
+            let band: Vec<(u32, f64)> =
+                g.curve.iter().map(|c| (c.0, c.3)).chain(g.curve.iter().rev().map(|c| (c.0, c.2))).collect();
+            chart.draw_series([Polygon::new(band, colour.mix(0.18).filled())]).map_err(err)?;
+            chart
+                .draw_series(LineSeries::new(g.curve.iter().map(|c| (c.0, c.1)), colour.stroke_width(2)))
+                .map_err(err)?
+                .label(format!("{} ({} runs)", g.label, g.runs))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(text(13.0))
+            .draw()
+            .map_err(err)
+    }
+}
+
+/// The best path of each group as small maps.
+pub struct PathsGridFigure<'a> {
+    /// One panel per group (title = group and scores).
+    pub panels: Vec<PathFigure<'a>>,
+}
+
+impl Figure for PathsGridFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        let (r, c) = grid_shape(self.panels.len());
+        (c as u32 * 400, r as u32 * 420 + 40)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root
+            .titled("Best path per group (green once, orange 2+ times, red obstacle swept)", text(18.0))
+            .map_err(err)?;
+        let (r, c) = grid_shape(self.panels.len());
+        for (area, panel) in root.split_evenly((r, c)).iter().zip(&self.panels) {
+            draw_map_paths(area, panel, (13.0, 11.0), false)?;
+        }
+        Ok(())
+    }
+}

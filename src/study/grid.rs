@@ -1,0 +1,331 @@
+//! Grid studies: a base experiment, axes given as dotted keys with value lists, conditional
+//! axes that apply only where another key has a given value, and `seeds` replicates (003 §4.1.2,
+//! Table 4.3). Expansion is deterministic; every run gets a stable id from its resolved
+//! configuration and replicate.
+
+use super::config::ConfigError;
+use super::experiment::ExperimentFile;
+use crate::ga::rng::{Purpose, derive};
+use serde::Deserialize;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use toml::{Table, Value};
+
+/// The base experiment: a path (relative to the grid file) or an inline table.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum BaseRef {
+    /// Path to an experiment file.
+    Path(String),
+    /// The experiment inline.
+    Inline(Table),
+}
+
+/// Axes that apply only where the `when` keys have the given values.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Conditional {
+    /// Dotted key → required value.
+    pub when: Table,
+    /// Dotted key → values.
+    pub axes: Table,
+}
+
+/// A grid file as written.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridFile {
+    /// The base experiment.
+    pub base: BaseRef,
+    /// The study seed; each replicate's run seed is derived from it.
+    #[serde(default = "one")]
+    pub seed: u64,
+    /// Replicates per configuration.
+    #[serde(default = "one_u32")]
+    pub seeds: u32,
+    /// Unconditional axes: dotted key → values.
+    #[serde(default)]
+    pub axes: Table,
+    /// Conditional axes, applied in order.
+    #[serde(default)]
+    pub conditional: Vec<Conditional>,
+}
+
+fn one() -> u64 {
+    1
+}
+fn one_u32() -> u32 {
+    1
+}
+
+/// One run of a study.
+#[derive(Clone, Debug)]
+pub struct RunSpec {
+    /// Stable id: hash of the resolved configuration and the replicate.
+    pub id: String,
+    /// Hash of the configuration without seed and replicate (groups replicates).
+    pub config_id: String,
+    /// Replicate index.
+    pub replicate: u32,
+    /// The resolved experiment (seed set, output folder cleared).
+    pub file: ExperimentFile,
+    /// The swept keys' values for this run (`None` where a conditional axis does not apply).
+    pub params: Vec<(String, Option<String>)>,
+    /// The conditionals that applied (for `--dry-run`), e.g. `thesis.selection=tournament`.
+    pub branch: String,
+}
+
+/// An expanded study.
+#[derive(Clone, Debug)]
+pub struct Study {
+    /// The grid file.
+    pub path: PathBuf,
+    /// The file's text.
+    pub text: String,
+    /// Every swept key, in column order.
+    pub columns: Vec<String>,
+    /// All runs, in expansion order.
+    pub runs: Vec<RunSpec>,
+}
+
+/// FNV-1a, 64 bit: a stable hash for ids.
+pub fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
+}
+
+/// Sets a dotted key in a table, creating intermediate tables.
+fn set(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
+    let mut parts = key.split('.').peekable();
+    let mut t = table;
+    while let Some(p) = parts.next() {
+        if parts.peek().is_none() {
+            t.insert(p.to_string(), value);
+            return Ok(());
+        }
+        let entry = t.entry(p.to_string()).or_insert_with(|| Value::Table(Table::new()));
+        t = entry.as_table_mut().ok_or_else(|| format!("`{p}` in `{key}` is not a table"))?;
+    }
+    Err(format!("empty key `{key}`"))
+}
+
+/// Reads a dotted key.
+fn get<'a>(table: &'a Table, key: &str) -> Option<&'a Value> {
+    let mut parts = key.split('.');
+    let first = table.get(parts.next()?)?;
+    parts.try_fold(first, |v, p| v.as_table()?.get(p))
+}
+
+/// A scalar as text for a CSV cell.
+pub fn scalar_text(v: &Value) -> String {
+    match v {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+fn values_of(axes: &Table, origin: &str, section: &str) -> Result<Vec<(String, Vec<Value>)>, ConfigError> {
+    axes.iter()
+        .map(|(k, v)| match v {
+            Value::Array(a) if !a.is_empty() => Ok((k.clone(), a.clone())),
+            Value::Array(_) => Err(ConfigError::new(
+                origin,
+                &format!("{section}.\"{k}\""),
+                "has an empty value list; give at least one value",
+            )),
+            _ => Err(ConfigError::new(
+                origin,
+                &format!("{section}.\"{k}\""),
+                "must be a list of values, e.g. [0.2, 0.4]",
+            )),
+        })
+        .collect()
+}
+
+/// Checks that a dotted key names a field of an experiment file.
+fn check_key(base: &Table, key: &str, sample: &Value, origin: &str, section: &str) -> Result<(), ConfigError> {
+    let mut t = base.clone();
+    set(&mut t, key, sample.clone()).map_err(|m| ConfigError::new(origin, &format!("{section}.\"{key}\""), m))?;
+    match Value::Table(t).try_into::<ExperimentFile>() {
+        Ok(_) => Ok(()),
+        Err(e) if e.message().contains("unknown field") => Err(ConfigError::new(
+            origin,
+            &format!("{section}.\"{key}\""),
+            format!("is not an experiment key: {}", e.message().trim()),
+        )),
+        Err(e) => Err(ConfigError::new(
+            origin,
+            &format!("{section}.\"{key}\""),
+            format!("has a bad value: {}", e.message().trim()),
+        )),
+    }
+}
+
+impl Study {
+    /// Reads and expands a grid file.
+    pub fn load(path: &Path) -> Result<Self, ConfigError> {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| ConfigError::new(path.display(), "", format!("cannot read grid file: {e}")))?;
+        Self::parse(&text, path)
+    }
+
+    /// Expands grid text; `path` names the file and resolves a base path.
+    pub fn parse(text: &str, path: &Path) -> Result<Self, ConfigError> {
+        let origin = path.display().to_string();
+        let grid: GridFile = toml::from_str(text).map_err(|e| ConfigError::from_toml(&origin, text, &e))?;
+        let mut base = match &grid.base {
+            BaseRef::Inline(t) => t.clone(),
+            BaseRef::Path(p) => {
+                let full = path.parent().unwrap_or(Path::new(".")).join(p);
+                let body = std::fs::read_to_string(&full)
+                    .map_err(|e| ConfigError::new(&origin, "base", format!("cannot read {}: {e}", full.display())))?;
+                let t: Table = toml::from_str(&body)
+                    .map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?;
+                // Relative map paths in the base are relative to the base file.
+                if let Some(Value::String(src)) = get(&t, "map.source").cloned()
+                    && crate::map::presets::preset(&src).is_none()
+                    && !Path::new(&src).is_absolute()
+                {
+                    let mut t = t;
+                    let rel = full.parent().unwrap_or(Path::new(".")).join(&src);
+                    set(&mut t, "map.source", Value::String(rel.display().to_string())).expect("map is a table");
+                    t
+                } else {
+                    t
+                }
+            }
+        };
+        base.remove("output");
+        // The base itself must be a valid experiment file.
+        Value::Table(base.clone())
+            .try_into::<ExperimentFile>()
+            .map_err(|e| ConfigError::new(&origin, "base", e.message().trim().to_string()))?;
+        if grid.seeds == 0 {
+            return Err(ConfigError::new(&origin, "seeds", "= 0 is out of range: at least 1 replicate"));
+        }
+        let axes = values_of(&grid.axes, &origin, "axes")?;
+        let mut columns: Vec<String> = axes.iter().map(|(k, _)| k.clone()).collect();
+        for (k, vals) in &axes {
+            check_key(&base, k, &vals[0], &origin, "axes")?;
+        }
+        let mut conds = Vec::new();
+        for (n, c) in grid.conditional.iter().enumerate() {
+            let section = format!("conditional[{n}].axes");
+            let cax = values_of(&c.axes, &origin, &section)?;
+            for (k, v) in &cax {
+                check_key(&base, k, &v[0], &origin, &section)?;
+                if !columns.contains(k) {
+                    columns.push(k.clone());
+                }
+            }
+            for (k, v) in &c.when {
+                let swept =
+                    axes.iter().any(|(a, _)| a == k) || grid.conditional[..n].iter().any(|p| p.axes.contains_key(k));
+                if get(&base, k).is_none() && !swept && !default_has(k) {
+                    return Err(ConfigError::new(
+                        &origin,
+                        &format!("conditional[{n}].when.\"{k}\""),
+                        "names a key that is neither in the base experiment nor swept",
+                    ));
+                }
+                check_key(&base, k, v, &origin, &format!("conditional[{n}].when"))?;
+            }
+            conds.push((c.when.clone(), cax));
+        }
+        // Cartesian product of the unconditional axes, then each conditional in order.
+        type Partial = (Table, Vec<(String, Value)>, Vec<String>);
+        let mut partials: Vec<Partial> = vec![(base.clone(), Vec::new(), Vec::new())];
+        let product = |partials: Vec<Partial>, axes: &[(String, Vec<Value>)]| -> Result<Vec<Partial>, ConfigError> {
+            let mut out = partials;
+            for (k, vals) in axes {
+                let mut next = Vec::with_capacity(out.len() * vals.len());
+                for (t, params, branch) in &out {
+                    for v in vals {
+                        let mut t = t.clone();
+                        set(&mut t, k, v.clone()).map_err(|m| ConfigError::new(&origin, k, m))?;
+                        let mut p = params.clone();
+                        p.push((k.clone(), v.clone()));
+                        next.push((t, p, branch.clone()));
+                    }
+                }
+                out = next;
+            }
+            Ok(out)
+        };
+        partials = product(partials, &axes)?;
+        for (when, cax) in &conds {
+            let mut next = Vec::new();
+            for (t, params, branch) in partials {
+                let resolved: ExperimentFile = Value::Table(t.clone())
+                    .try_into()
+                    .map_err(|e| ConfigError::new(&origin, "", e.message().trim().to_string()))?;
+                let resolved_table = Table::try_from(resolved).expect("experiment files serialise");
+                let applies =
+                    when.iter().all(|(k, v)| get(&resolved_table, k).map(scalar_text) == Some(scalar_text(v)));
+                if applies {
+                    let label =
+                        when.iter().map(|(k, v)| format!("{k}={}", scalar_text(v))).collect::<Vec<_>>().join(",");
+                    let mut b = branch.clone();
+                    b.push(label);
+                    next.extend(product(vec![(t, params, b)], cax)?);
+                } else {
+                    next.push((t, params, branch));
+                }
+            }
+            partials = next;
+        }
+        let mut runs = Vec::with_capacity(partials.len() * grid.seeds as usize);
+        for (t, params, branch) in partials {
+            let mut file: ExperimentFile = Value::Table(t)
+                .try_into()
+                .map_err(|e| ConfigError::new(&origin, "", e.message().trim().to_string()))?;
+            file.output.dir = None;
+            let by_key: BTreeMap<&String, &Value> = params.iter().map(|(k, v)| (k, v)).collect();
+            let cells: Vec<(String, Option<String>)> =
+                columns.iter().map(|c| (c.clone(), by_key.get(c).map(|v| scalar_text(v)))).collect();
+            file.seed = 0;
+            let config_text = toml::to_string(&file).expect("experiment files serialise");
+            let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
+            for replicate in 0..grid.seeds {
+                let mut f = file.clone();
+                // TOML integers are signed 64-bit: keep run seeds below 2^63.
+                f.seed = derive(grid.seed, &[Purpose::Run as u64, u64::from(replicate)]) >> 1;
+                let text = toml::to_string(&f).expect("experiment files serialise");
+                let id = format!("{:016x}", fnv1a(format!("{text}\nreplicate={replicate}").as_bytes()));
+                runs.push(RunSpec {
+                    id,
+                    config_id: config_id.clone(),
+                    replicate,
+                    file: f,
+                    params: cells.clone(),
+                    branch: if branch.is_empty() { "no conditional axes".into() } else { branch.join(" & ") },
+                });
+            }
+        }
+        Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs })
+    }
+
+    /// Run counts per branch, in first-seen order.
+    pub fn branches(&self) -> Vec<(String, usize)> {
+        let mut out: Vec<(String, usize)> = Vec::new();
+        for r in &self.runs {
+            match out.iter_mut().find(|(b, _)| *b == r.branch) {
+                Some((_, n)) => *n += 1,
+                None => out.push((r.branch.clone(), 1)),
+            }
+        }
+        out
+    }
+
+    /// The runs of shard `k` of `n` (0-based): every `n`-th run in sorted id order.
+    pub fn shard(&self, k: usize, n: usize) -> Vec<&RunSpec> {
+        let mut sorted: Vec<&RunSpec> = self.runs.iter().collect();
+        sorted.sort_by(|a, b| a.id.cmp(&b.id));
+        sorted.into_iter().enumerate().filter(|(i, _)| i % n == k).map(|(_, r)| r).collect()
+    }
+}
+
+/// Keys that an experiment has through defaults even when the base omits them.
+fn default_has(key: &str) -> bool {
+    let t = Table::try_from(ExperimentFile::default()).expect("experiment files serialise");
+    get(&t, key).is_some()
+}

@@ -1,0 +1,171 @@
+//! `runs.csv`: one tidy row per finished run — id, replicate, seed, every swept parameter as
+//! its own column named by its dotted key, then the final metrics and timing.
+
+use super::grid::RunSpec;
+use super::output::Summary;
+use std::collections::BTreeMap;
+
+/// Columns before the swept parameters.
+pub const ID_COLUMNS: [&str; 4] = ["run_id", "config_id", "replicate", "seed"];
+/// Columns after the swept parameters.
+pub const METRIC_COLUMNS: [&str; 21] = [
+    "planner",
+    "map",
+    "selection",
+    "cov_final",
+    "t_final",
+    "fitness",
+    "f1",
+    "f2",
+    "unique_cells",
+    "cells_swept",
+    "crossings",
+    "obstacle_cells",
+    "area_cells",
+    "length_m",
+    "turns",
+    "total_turn_rad",
+    "t_rot_s",
+    "genome_len",
+    "evaluations",
+    "iterations",
+    "wall_s",
+];
+/// Columns that measure time and so differ between otherwise identical runs.
+pub const TIMING_COLUMNS: [&str; 1] = ["wall_s"];
+
+/// The header for a study with `params` swept keys.
+pub fn header(params: &[String]) -> Vec<String> {
+    ID_COLUMNS
+        .iter()
+        .map(|s| s.to_string())
+        .chain(params.iter().cloned())
+        .chain(METRIC_COLUMNS.iter().map(|s| s.to_string()))
+        .collect()
+}
+
+/// The row of a finished run.
+pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
+    let m = &summary.metrics;
+    let mut out = vec![run.id.clone(), run.config_id.clone(), run.replicate.to_string(), run.file.seed.to_string()];
+    out.extend(run.params.iter().map(|(_, v)| v.clone().unwrap_or_default()));
+    let sel = serde_json::to_value(run.file.thesis.selection)
+        .ok()
+        .and_then(|v| v.as_str().map(str::to_string))
+        .unwrap_or_default();
+    out.extend([
+        "thesis".to_string(),
+        run.file.map.source.clone(),
+        sel,
+        summary.cov_final.to_string(),
+        summary.t_final.to_string(),
+        summary.fitness.to_string(),
+        summary.f1.to_string(),
+        summary.f2.to_string(),
+        m.unique_cells.to_string(),
+        m.cells_swept.to_string(),
+        m.crossings.to_string(),
+        m.obstacle_cells.to_string(),
+        m.area_cells.to_string(),
+        m.length_m.to_string(),
+        m.turns.to_string(),
+        m.total_turn_rad.to_string(),
+        m.t_rot_s.to_string(),
+        summary.genome_len.to_string(),
+        summary.evaluations.to_string(),
+        summary.iterations.to_string(),
+        format!("{:.3}", summary.wall_s),
+    ]);
+    out
+}
+
+/// One CSV line (with its newline) for `fields`.
+pub fn csv_line(fields: &[String]) -> Vec<u8> {
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    w.write_record(fields).expect("writing to memory");
+    w.into_inner().expect("writing to memory")
+}
+
+/// A parsed `runs.csv`: header and rows keyed by column.
+#[derive(Clone, Debug, Default)]
+pub struct RunsTable {
+    /// Column names.
+    pub header: Vec<String>,
+    /// Rows as field lists.
+    pub rows: Vec<Vec<String>>,
+}
+
+impl RunsTable {
+    /// Parses CSV text; a last line without its newline (a killed writer) is dropped.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let complete = match text.rfind('\n') {
+            Some(end) => &text[..=end],
+            None => "",
+        };
+        let mut r = csv::ReaderBuilder::new().from_reader(complete.as_bytes());
+        let header: Vec<String> = r.headers().map_err(|e| e.to_string())?.iter().map(str::to_string).collect();
+        let mut rows = Vec::new();
+        for rec in r.records() {
+            let rec = rec.map_err(|e| e.to_string())?;
+            if rec.len() != header.len() {
+                return Err(format!("a row has {} fields, the header {}", rec.len(), header.len()));
+            }
+            rows.push(rec.iter().map(str::to_string).collect());
+        }
+        Ok(Self { header, rows })
+    }
+
+    /// Index of a column.
+    pub fn col(&self, name: &str) -> Option<usize> {
+        self.header.iter().position(|h| h == name)
+    }
+
+    /// Rows by run id.
+    pub fn by_id(&self) -> BTreeMap<String, &Vec<String>> {
+        let i = self.col("run_id").unwrap_or(0);
+        self.rows.iter().map(|r| (r[i].clone(), r)).collect()
+    }
+
+    /// The whole table as CSV, rows sorted by run id.
+    pub fn to_csv_sorted(&self) -> Vec<u8> {
+        let mut out = csv_line(&self.header);
+        for r in self.by_id().values() {
+            out.extend(csv_line(r));
+        }
+        out
+    }
+
+    /// A row without its timing columns (for comparisons).
+    pub fn without_timing(&self, row: &[String]) -> Vec<String> {
+        row.iter()
+            .zip(&self.header)
+            .filter(|(_, h)| !TIMING_COLUMNS.contains(&h.as_str()))
+            .map(|(v, _)| v.clone())
+            .collect()
+    }
+
+    /// A numeric column of a row.
+    pub fn num(&self, row: &[String], name: &str) -> Option<f64> {
+        self.col(name).and_then(|i| row[i].parse().ok())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_written_last_line_is_dropped() {
+        let t = RunsTable::parse("run_id,x\na,1\nb,2\nc,").unwrap();
+        assert_eq!(t.rows.len(), 2);
+        let t = RunsTable::parse("run_id,x\na,1\n").unwrap();
+        assert_eq!(t.rows, vec![vec!["a".to_string(), "1".to_string()]]);
+    }
+
+    #[test]
+    fn quoting_round_trips() {
+        let line = csv_line(&["a,b".to_string(), "c\"d".to_string()]);
+        let t = RunsTable::parse(&format!("x,y\n{}", String::from_utf8(line).unwrap())).unwrap();
+        assert_eq!(t.rows[0], vec!["a,b".to_string(), "c\"d".to_string()]);
+    }
+}

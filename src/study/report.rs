@@ -1,0 +1,326 @@
+//! `covga report`: figures, tables and statistics of a study folder — Pareto fronts per group
+//! with hypervolume, diversity of the front runs, best paths, the best configuration and run
+//! durations per group (003 Tables A.1/A.2, 4.4), means with 95 % confidence intervals over
+//! seeds, and Kruskal–Wallis tests per swept parameter (003 §5.3).
+
+use super::records::RunsTable;
+use super::stats::{kruskal_wallis, mean_ci95};
+use crate::coverage::CoverageGrid;
+use crate::ga::pareto::{hypervolume_2d, non_dominated};
+use crate::plot::path::PathFigure;
+use crate::plot::report::{DiversityFigure, DiversityGroup, ParetoFacet, ParetoFigure, PathsGridFigure};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Report failures.
+#[derive(Debug, thiserror::Error)]
+pub enum ReportError {
+    /// Bad input (no runs, unknown column).
+    #[error("{0}")]
+    Input(String),
+    /// A file could not be read or written.
+    #[error("{0}")]
+    Io(String),
+    /// A figure failed.
+    #[error(transparent)]
+    Plot(#[from] crate::plot::PlotError),
+}
+
+/// One configuration over its replicates: id, rows, cov (mean, CI), t (mean, CI), mean f.
+type ConfigRow = (String, Vec<usize>, (f64, f64), (f64, f64), f64);
+
+struct Group {
+    label: String,
+    rows: Vec<usize>,
+}
+
+/// The swept-parameter columns of a runs table (between `seed` and `planner`).
+pub fn param_columns(t: &RunsTable) -> Vec<String> {
+    match (t.col("seed"), t.col("planner")) {
+        (Some(a), Some(b)) if b > a => t.header[a + 1..b].to_vec(),
+        _ => Vec::new(),
+    }
+}
+
+fn read_history_diversity(path: &Path) -> Option<Vec<(u32, f64)>> {
+    let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
+    let (i, d) = (t.col("iteration")?, t.col("diversity")?);
+    t.rows.iter().map(|r| Some((r[i].parse().ok()?, r[d].parse().ok()?))).collect()
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+}
+
+/// Writes `<dir>/report/` and returns the path of `summary.md`.
+pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, ReportError> {
+    let runs_file = dir.join("runs.csv");
+    let text = std::fs::read_to_string(&runs_file).map_err(|e| {
+        let shards = std::fs::read_dir(dir)
+            .map(|d| d.flatten().any(|e| e.file_name().to_string_lossy().starts_with("runs-shard-")))
+            .unwrap_or(false);
+        if shards {
+            ReportError::Input(format!(
+                "{}: missing; this study has shard files: run `covga merge {}` first",
+                runs_file.display(),
+                dir.display()
+            ))
+        } else {
+            ReportError::Input(format!("{}: {e}", runs_file.display()))
+        }
+    })?;
+    let t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
+    if t.rows.is_empty() {
+        return Err(ReportError::Input(format!("{}: no runs recorded yet", runs_file.display())));
+    }
+    for b in by {
+        if t.col(b).is_none() {
+            return Err(ReportError::Input(format!(
+                "--by `{b}` is not a column of {}; columns: {}",
+                runs_file.display(),
+                t.header.join(", ")
+            )));
+        }
+    }
+    let out = dir.join("report");
+    std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
+    let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
+    let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
+    // Groups by the --by columns.
+    let mut groups: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for r in 0..t.rows.len() {
+        let label = if by.is_empty() {
+            "all runs".to_string()
+        } else {
+            by.iter().map(|b| format!("{b}={}", get(r, b))).collect::<Vec<_>>().join(", ")
+        };
+        groups.entry(label).or_default().push(r);
+    }
+    let groups: Vec<Group> = groups.into_iter().map(|(label, rows)| Group { label, rows }).collect();
+    let point = |r: usize| (num(r, "t_final"), num(r, "cov_final"));
+    // Pareto facets.
+    let facets: Vec<ParetoFacet> = groups
+        .iter()
+        .map(|g| {
+            let points: Vec<(f64, f64)> = g.rows.iter().map(|&r| point(r)).collect();
+            let front = non_dominated(&points);
+            ParetoFacet { label: g.label.clone(), points, front }
+        })
+        .collect();
+    crate::plot::save(
+        &ParetoFigure {
+            facets: facets
+                .iter()
+                .map(|f| ParetoFacet { label: f.label.clone(), points: f.points.clone(), front: f.front.clone() })
+                .collect(),
+        },
+        &out.join("pareto"),
+    )?;
+    // Diversity of the front runs.
+    let mut div_groups = Vec::new();
+    for (g, f) in groups.iter().zip(&facets) {
+        let curves: Vec<Vec<(u32, f64)>> = f
+            .front
+            .iter()
+            .filter_map(|&k| {
+                read_history_diversity(&dir.join("runs").join(get(g.rows[k], "run_id")).join("history.csv"))
+            })
+            .collect();
+        if curves.is_empty() {
+            continue;
+        }
+        let len = curves.iter().map(Vec::len).min().unwrap_or(0);
+        let curve = (0..len)
+            .map(|i| {
+                let mut v: Vec<f64> = curves.iter().map(|c| c[i].1).collect();
+                let (lo, hi) = (
+                    v.iter().copied().fold(f64::INFINITY, f64::min),
+                    v.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+                );
+                (curves[0][i].0, median(&mut v), lo, hi)
+            })
+            .collect();
+        div_groups.push(DiversityGroup { label: g.label.clone(), runs: curves.len(), curve });
+    }
+    if !div_groups.is_empty() {
+        crate::plot::save(&DiversityFigure { groups: div_groups }, &out.join("diversity"))?;
+    }
+    // Best run per group, its path.
+    let best: Vec<usize> = groups
+        .iter()
+        .map(|g| {
+            *g.rows.iter().max_by(|&&a, &&b| num(a, "fitness").total_cmp(&num(b, "fitness"))).expect("non-empty group")
+        })
+        .collect();
+    let mut loaded = Vec::new();
+    for (g, &r) in groups.iter().zip(&best) {
+        let run_dir = dir.join("runs").join(get(r, "run_id"));
+        let Ok(cfg) = super::experiment::ExperimentFile::read(&run_dir.join("config.toml")) else { continue };
+        let Ok(paths) = crate::io::read_path_csv(&run_dir.join("best_path.csv")) else { continue };
+        let Ok(map) = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution) else { continue };
+        let mut grid = CoverageGrid::new(&map);
+        if let Some(rt) = cfg.retrain {
+            let [x0, y0, x1, y1] = rt.region;
+            grid.premark_rect(x0, y0, x1, y1);
+        }
+        let title = format!("{}: cov {:.3}, t {:.3}", g.label, num(r, "cov_final"), num(r, "t_final"));
+        loaded.push((map, grid, paths, cfg.robot.width, title));
+    }
+    if !loaded.is_empty() {
+        let panels = loaded
+            .iter()
+            .map(|(map, grid, paths, width, title)| PathFigure {
+                map,
+                grid,
+                paths: paths.clone(),
+                width: *width,
+                title: title.clone(),
+            })
+            .collect();
+        crate::plot::save(&PathsGridFigure { panels }, &out.join("best_paths"))?;
+    }
+    // Per-configuration means over seeds.
+    let params = param_columns(&t);
+    let mut configs: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    for r in 0..t.rows.len() {
+        configs.entry(get(r, "config_id")).or_default().push(r);
+    }
+    let mut conf_rows: Vec<ConfigRow> = configs
+        .into_iter()
+        .map(|(id, rows)| {
+            let cov: Vec<f64> = rows.iter().map(|&r| num(r, "cov_final")).collect();
+            let tf: Vec<f64> = rows.iter().map(|&r| num(r, "t_final")).collect();
+            let f = rows.iter().map(|&r| num(r, "fitness")).sum::<f64>() / rows.len() as f64;
+            (id, rows, mean_ci95(&cov), mean_ci95(&tf), f)
+        })
+        .collect();
+    conf_rows.sort_by(|a, b| b.4.total_cmp(&a.4).then(a.0.cmp(&b.0)));
+    let mut csv = String::from("config_id,");
+    for p in &params {
+        csv.push_str(&format!("{p},"));
+    }
+    csv.push_str("n,cov_final_mean,cov_final_ci95,t_final_mean,t_final_ci95,fitness_mean\n");
+    for (id, rows, c, tf, f) in &conf_rows {
+        let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
+        csv.push_str(&format!("{id},{},{},{},{},{},{},{}\n", vals.join(","), rows.len(), c.0, c.1, tf.0, tf.1, f));
+    }
+    crate::io::write_atomic(&out.join("configurations.csv"), csv.as_bytes())
+        .map_err(|e| ReportError::Io(e.to_string()))?;
+    // summary.md
+    let mut md = String::new();
+    let replicates = t
+        .rows
+        .iter()
+        .map(|r| r[t.col("replicate").unwrap_or(0)].clone())
+        .collect::<std::collections::BTreeSet<_>>()
+        .len();
+    let _ = writeln!(md, "# Study report: {}\n", dir.display());
+    let _ = writeln!(
+        md,
+        "{} runs, {} configurations, {} replicate(s); grouped by {}.\n",
+        t.rows.len(),
+        conf_rows.len(),
+        replicates,
+        if by.is_empty() { "nothing (one group)".to_string() } else { by.join(", ") }
+    );
+    let _ = writeln!(
+        md,
+        "![Pareto fronts](pareto.png)\n\n![Diversity of the front runs](diversity.png)\n\n![Best path per group](best_paths.png)\n"
+    );
+    let _ = writeln!(md, "## Best configuration per group (highest f_obstacle)\n");
+    let _ = writeln!(md, "| group | run | {} | cov_final | t_final | f |", params.join(" | "));
+    let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
+    for (g, &r) in groups.iter().zip(&best) {
+        let vals: Vec<String> = params.iter().map(|p| get(r, p)).collect();
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.6} | {:.6} | {:.6} |",
+            g.label,
+            get(r, "run_id"),
+            vals.join(" | "),
+            num(r, "cov_final"),
+            num(r, "t_final"),
+            num(r, "fitness")
+        );
+    }
+    let _ = writeln!(md, "\n## Fronts, hypervolume (reference point (0, 0)) and run durations per group\n");
+    let _ = writeln!(
+        md,
+        "| group | runs | front size | hypervolume | wall s mean | min | max |\n|---|---|---|---|---|---|---|"
+    );
+    for (g, f) in groups.iter().zip(&facets) {
+        let w: Vec<f64> = g.rows.iter().map(|&r| num(r, "wall_s")).collect();
+        let mean = w.iter().sum::<f64>() / w.len() as f64;
+        let (lo, hi) =
+            (w.iter().copied().fold(f64::INFINITY, f64::min), w.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+        let _ = writeln!(
+            md,
+            "| {} | {} | {} | {:.4} | {:.3} | {:.3} | {:.3} |",
+            g.label,
+            g.rows.len(),
+            f.front.len(),
+            hypervolume_2d(&f.points, (0.0, 0.0)),
+            mean,
+            lo,
+            hi
+        );
+    }
+    let _ =
+        writeln!(md, "\n## Across seeds: the 20 configurations with the highest mean f (all in configurations.csv)\n");
+    let _ = writeln!(
+        md,
+        "| {} | n | cov_final mean ± 95 % CI | t_final mean ± 95 % CI | mean f |\n|{}---|---|---|---|",
+        params.join(" | "),
+        "---|".repeat(params.len())
+    );
+    for (_, rows, c, tf, f) in conf_rows.iter().take(20) {
+        let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
+            vals.join(" | "),
+            rows.len(),
+            c.0,
+            c.1,
+            tf.0,
+            tf.1,
+            f
+        );
+    }
+    let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
+    let _ = writeln!(
+        md,
+        "Does the parameter's value shift the distribution of the run results? H (tie-corrected), degrees of freedom, p-value and effect size ε² = H/(N−1); runs where the parameter does not apply are left out.\n"
+    );
+    let _ = writeln!(md, "| parameter | metric | groups | H | df | p | ε² |\n|---|---|---|---|---|---|---|");
+    for p in &params {
+        for metric in ["cov_final", "t_final"] {
+            let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+            for r in 0..t.rows.len() {
+                let v = get(r, p);
+                if !v.is_empty() {
+                    by_value.entry(v).or_default().push(num(r, metric));
+                }
+            }
+            let k = by_value.len();
+            match kruskal_wallis(&by_value.into_values().collect::<Vec<_>>()) {
+                Some(kw) => {
+                    let _ = writeln!(
+                        md,
+                        "| {p} | {metric} | {k} | {:.3} | {} | {:.3e} | {:.4} |",
+                        kw.h, kw.df, kw.p_value, kw.epsilon_squared
+                    );
+                }
+                None => {
+                    let _ = writeln!(md, "| {p} | {metric} | {k} | – | – | – | – |");
+                }
+            }
+        }
+    }
+    let path = out.join("summary.md");
+    crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
+    Ok(path)
+}

@@ -1,0 +1,253 @@
+//! Running a study: runs in parallel (rayon, `--jobs`), each finished run's files under
+//! `runs/<id>/` and its row appended to the runs file (write, flush, fsync), resumable (recorded
+//! ids are skipped, a half-written last line dropped), shardable (`--shard K/N` takes every N-th
+//! id in sorted order and writes `runs-shard-K-of-N.csv`). When all of a study's (or shard's)
+//! runs are recorded the file is rewritten sorted by run id, so its bytes do not depend on
+//! the number of jobs. Nothing is printed; progress goes to a callback.
+
+use super::config::ConfigError;
+use super::experiment::Experiment;
+use super::grid::{RunSpec, Study};
+use super::records::{RunsTable, csv_line, header, row};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Failure of a study.
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    /// Bad grid or experiment values.
+    #[error(transparent)]
+    Config(#[from] ConfigError),
+    /// The existing runs file does not belong to this grid.
+    #[error("{path}: {message}")]
+    Mismatch {
+        /// The file.
+        path: PathBuf,
+        /// What does not match.
+        message: String,
+    },
+    /// A file could not be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// A run failed.
+    #[error("run {id}: {message}")]
+    Run {
+        /// The run id.
+        id: String,
+        /// What failed.
+        message: String,
+    },
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> StudyError + '_ {
+    move |source| StudyError::Io { path: path.to_path_buf(), source }
+}
+
+/// A shard: `index` of `count`, 0-based.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Shard {
+    /// This shard, `0 ≤ index < count`.
+    pub index: usize,
+    /// Number of shards.
+    pub count: usize,
+}
+
+impl Shard {
+    /// Parses `K/N` with `0 ≤ K < N`.
+    pub fn parse(s: &str) -> Result<Self, String> {
+        let (k, n) = s.split_once('/').ok_or_else(|| format!("--shard `{s}` is not K/N"))?;
+        let (index, count) = (k.trim().parse::<usize>(), n.trim().parse::<usize>());
+        match (index, count) {
+            (Ok(index), Ok(count)) if count > 0 && index < count => Ok(Self { index, count }),
+            _ => Err(format!("--shard `{s}`: expected K/N with 0 <= K < N (Slurm's array task id and count)")),
+        }
+    }
+    /// The runs file of this shard.
+    pub fn file_name(&self) -> String {
+        format!("runs-shard-{}-of-{}.csv", self.index, self.count)
+    }
+}
+
+/// Progress of a study, handed to the caller after every run.
+pub struct RunDone<'a> {
+    /// The run.
+    pub run: &'a RunSpec,
+    /// Runs finished in this invocation so far.
+    pub done: usize,
+    /// Runs to do in this invocation.
+    pub total: usize,
+    /// Already recorded before this invocation.
+    pub skipped: usize,
+    /// `cov_final`, `t_final`, wall seconds.
+    pub result: (f64, f64, f64),
+}
+
+/// How a study is run.
+pub struct RunnerOptions<'a> {
+    /// Parallel runs.
+    pub jobs: usize,
+    /// Optional shard.
+    pub shard: Option<Shard>,
+    /// Study folder.
+    pub out: PathBuf,
+    /// Called after each finished run (from worker threads).
+    pub on_done: &'a (dyn Fn(RunDone) + Sync),
+}
+
+/// What a study invocation did.
+#[derive(Debug, Clone, Copy)]
+pub struct StudyOutcome {
+    /// Runs in the study or shard.
+    pub selected: usize,
+    /// Runs already recorded.
+    pub skipped: usize,
+    /// Runs completed now.
+    pub completed: usize,
+}
+
+/// Maps loaded once per study and shared by its runs.
+#[derive(Default)]
+pub struct MapCache(Mutex<std::collections::HashMap<(String, Option<u64>), crate::map::GridMap>>);
+
+impl MapCache {
+    /// Loads a map, or clones the one loaded before.
+    pub fn load(&self, source: &str, resolution: Option<f64>) -> Result<crate::map::GridMap, crate::map::MapError> {
+        let key = (source.to_string(), resolution.map(f64::to_bits));
+        if let Some(m) = self.0.lock().expect("map cache").get(&key) {
+            return Ok(m.clone());
+        }
+        let m = crate::map::ros::load_map(source, resolution)?;
+        self.0.lock().expect("map cache").insert(key, m.clone());
+        Ok(m)
+    }
+}
+
+/// Validates a run's experiment.
+pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Experiment, ConfigError> {
+    let origin = format!("{} (run {})", study.path.display(), run.id);
+    run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r))
+}
+
+/// Validates the experiments of `runs` (maps loaded once through `maps`).
+pub fn validate_runs(study: &Study, runs: &[&RunSpec], maps: &MapCache) -> Result<(), ConfigError> {
+    runs.iter().try_for_each(|run| experiment_of(study, run, maps).map(|_| ()))
+}
+
+/// Writes `grid.toml` and `study.json` (version, commit, counts) into the study folder.
+pub fn write_study_files(study: &Study, out: &Path) -> Result<(), StudyError> {
+    std::fs::create_dir_all(out).map_err(io(out))?;
+    crate::io::write_atomic(&out.join("grid.toml"), study.text.as_bytes()).map_err(io(out))?;
+    let meta = serde_json::json!({
+        "grid_file": study.path.display().to_string(),
+        "covga_version": env!("CARGO_PKG_VERSION"),
+        "git_commit": env!("COVGA_GIT_COMMIT"),
+        "runs": study.runs.len(),
+        "columns": study.columns,
+    });
+    crate::io::write_atomic(&out.join("study.json"), serde_json::to_string_pretty(&meta).expect("json").as_bytes())
+        .map_err(io(out))
+}
+
+/// Runs (or resumes) a study.
+pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, StudyError> {
+    let selected: Vec<&RunSpec> = match opts.shard {
+        Some(s) => study.shard(s.index, s.count),
+        None => study.runs.iter().collect(),
+    };
+    // Validate everything before the first run starts: bad input loses nothing. The validated
+    // experiments are not kept (memory stays flat); each worker validates its run again.
+    let maps = MapCache::default();
+    validate_runs(study, &selected, &maps)?;
+    write_study_files(study, &opts.out)?;
+    let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
+    let head = header(&study.columns);
+    let done_ids = recorded_ids(&file, &head)?;
+    let pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
+    let skipped = selected.len() - pending.len();
+    let writer = Mutex::new(std::fs::OpenOptions::new().create(true).append(true).open(&file).map_err(io(&file))?);
+    if done_ids.is_empty() {
+        let mut w = writer.lock().expect("writer");
+        w.set_len(0).map_err(io(&file))?;
+        w.write_all(&csv_line(&head)).map_err(io(&file))?;
+        w.sync_data().map_err(io(&file))?;
+    }
+    let failed = AtomicBool::new(false);
+    let first_error: Mutex<Option<StudyError>> = Mutex::new(None);
+    let counter = AtomicUsize::new(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.jobs.max(1))
+        .build()
+        .map_err(|e| StudyError::Run { id: String::new(), message: e.to_string() })?;
+    pool.install(|| {
+        use rayon::prelude::*;
+        pending.par_iter().for_each(|&run| {
+            if failed.load(Ordering::Relaxed) {
+                return;
+            }
+            let result = (|| -> Result<(f64, f64, f64), StudyError> {
+                let dir = opts.out.join("runs").join(&run.id);
+                let exp = experiment_of(study, run, &maps)?;
+                let (_, summary) = super::output::run_experiment(&exp, &dir, false, &mut [])
+                    .map_err(|e| StudyError::Run { id: run.id.clone(), message: e.to_string() })?;
+                let line = csv_line(&row(run, &summary));
+                let mut w = writer.lock().expect("writer");
+                w.write_all(&line).map_err(io(&file))?;
+                w.flush().map_err(io(&file))?;
+                w.sync_data().map_err(io(&file))?;
+                Ok((summary.cov_final, summary.t_final, summary.wall_s))
+            })();
+            match result {
+                Ok(r) => {
+                    let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
+                    (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result: r });
+                }
+                Err(e) => {
+                    failed.store(true, Ordering::Relaxed);
+                    first_error.lock().expect("error slot").get_or_insert(e);
+                }
+            }
+        });
+    });
+    if let Some(e) = first_error.into_inner().expect("error slot") {
+        return Err(e);
+    }
+    // Complete: rewrite sorted by run id, atomically.
+    let text = std::fs::read_to_string(&file).map_err(io(&file))?;
+    let table = RunsTable::parse(&text).map_err(|m| StudyError::Mismatch { path: file.clone(), message: m })?;
+    crate::io::write_atomic(&file, &table.to_csv_sorted()).map_err(io(&file))?;
+    Ok(StudyOutcome { selected: selected.len(), skipped, completed: pending.len() })
+}
+
+/// Ids recorded in an existing runs file; drops a half-written last line in place.
+fn recorded_ids(file: &Path, head: &[String]) -> Result<std::collections::HashSet<String>, StudyError> {
+    let Ok(bytes) = std::fs::read(file) else { return Ok(Default::default()) };
+    let text = String::from_utf8_lossy(&bytes).into_owned();
+    if text.is_empty() {
+        return Ok(Default::default());
+    }
+    let keep = text.rfind('\n').map_or(0, |i| i + 1);
+    if keep < text.len() {
+        let f = std::fs::OpenOptions::new().write(true).open(file).map_err(io(file))?;
+        f.set_len(keep as u64).map_err(io(file))?;
+        f.sync_data().map_err(io(file))?;
+    }
+    let table =
+        RunsTable::parse(&text[..keep]).map_err(|m| StudyError::Mismatch { path: file.to_path_buf(), message: m })?;
+    if table.header.is_empty() && table.rows.is_empty() {
+        return Ok(Default::default());
+    }
+    if table.header != head {
+        return Err(StudyError::Mismatch {
+            path: file.to_path_buf(),
+            message: "its columns differ from this grid's; use another --out folder or remove the file".into(),
+        });
+    }
+    Ok(table.by_id().into_keys().collect())
+}

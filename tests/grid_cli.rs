@@ -1,0 +1,225 @@
+//! End-to-end tests of grid studies: expansion counts, resume after kill -9, shards + merge,
+//! --jobs independence, the report, and bad grid files.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn covga(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
+}
+
+fn ok(o: &Output) {
+    assert!(
+        o.status.success(),
+        "stdout: {}\nstderr: {}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// A 12-run grid: elite, and tournament with 2 sizes, x 2 C_len x 2 seeds, 60 iterations.
+const GRID: &str = r#"
+seed = 5
+seeds = 2
+[base]
+[base.thesis]
+pop_min = 30
+init_individuals = 60
+init_actions = 25
+keep = 2
+select = 8
+[base.budget]
+iterations = 60
+[axes]
+"thesis.selection" = ["elite", "tournament"]
+"thesis.c_len" = [0.1, 0.4]
+[[conditional]]
+when = { "thesis.selection" = "tournament" }
+axes = { "thesis.tournament_size" = [2, 5] }
+"#;
+
+fn grid_file(dir: &Path) -> PathBuf {
+    let p = dir.join("g.toml");
+    std::fs::write(&p, GRID).unwrap();
+    p
+}
+
+/// runs.csv rows without the timing column, keyed by run id.
+fn rows_without_timing(file: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(file).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let wall = header.iter().position(|h| *h == "wall_s").unwrap();
+    let mut rows: Vec<String> = lines
+        .map(|l| l.split(',').enumerate().filter(|(i, _)| *i != wall).map(|(_, v)| v).collect::<Vec<_>>().join(","))
+        .collect();
+    rows.sort();
+    rows
+}
+
+#[test]
+fn thesis_grids_expand_to_table_4_3() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("grids");
+    for (file, runs) in [
+        ("thesis-elite.toml", 864),
+        ("thesis-turn.toml", 6912),
+        ("thesis-prws.toml", 3456),
+        ("thesis-rrws.toml", 6912),
+        ("thesis-table-4-3.toml", 18144),
+        ("thesis-extended.toml", 27216),
+        ("smoke.toml", 36),
+    ] {
+        let o = covga(&["grid", root.join(file).to_str().unwrap(), "--dry-run"]);
+        ok(&o);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(text.contains(&format!(": {runs} runs")), "{file}: {text}");
+    }
+    let o = covga(&["grid", root.join("thesis-table-4-3.toml").to_str().unwrap(), "--dry-run"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    for line in [
+        "864 runs  no conditional axes",
+        "6912 runs  thesis.selection=tournament",
+        "3456 runs  thesis.selection=prws",
+        "6912 runs  thesis.selection=rrws",
+    ] {
+        assert!(text.contains(line), "{line}: {text}");
+    }
+}
+
+#[test]
+fn jobs_one_and_two_give_identical_results_and_a_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = grid_file(dir.path());
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "1", "--out", a.to_str().unwrap()]));
+    ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", b.to_str().unwrap()]));
+    let ra = rows_without_timing(&a.join("runs.csv"));
+    assert_eq!(ra.len(), 12);
+    assert_eq!(ra, rows_without_timing(&b.join("runs.csv")));
+    // Sorted by run id and written whole: the files differ only in wall_s.
+    for f in ["grid.toml", "study.json"] {
+        assert!(a.join(f).exists(), "{f}");
+    }
+    let study: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(a.join("study.json")).unwrap()).unwrap();
+    assert!(study["git_commit"].is_string() && study["covga_version"].is_string());
+    // A second invocation resumes and runs nothing.
+    let again = covga(&["grid", g.to_str().unwrap(), "--out", a.to_str().unwrap()]);
+    ok(&again);
+    assert!(String::from_utf8_lossy(&again.stdout).contains("12 already recorded, 0 run now"));
+    // The report.
+    let rep = covga(&["report", a.to_str().unwrap(), "--by", "thesis.selection"]);
+    ok(&rep);
+    for f in ["pareto.png", "pareto.svg", "diversity.png", "best_paths.png", "summary.md", "configurations.csv"] {
+        assert!(a.join("report").join(f).metadata().map(|m| m.len() > 100).unwrap_or(false), "{f}");
+    }
+    let md = std::fs::read_to_string(a.join("report/summary.md")).unwrap();
+    for section in [
+        "Best configuration per group",
+        "hypervolume",
+        "95 % CI",
+        "Kruskal–Wallis",
+        "thesis.selection=elite",
+        "thesis.selection=tournament",
+    ] {
+        assert!(md.contains(section), "{section}");
+    }
+    // 6 configurations x 2 replicates.
+    assert_eq!(std::fs::read_to_string(a.join("report/configurations.csv")).unwrap().lines().count(), 7);
+    let bad = covga(&["report", a.to_str().unwrap(), "--by", "nope"]);
+    assert_eq!(bad.status.code(), Some(2));
+}
+
+#[test]
+fn shards_merge_to_the_full_study() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = grid_file(dir.path());
+    let (full, sharded) = (dir.path().join("full"), dir.path().join("sharded"));
+    ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", full.to_str().unwrap()]));
+    for k in 0..3 {
+        ok(&covga(&["grid", g.to_str().unwrap(), "--shard", &format!("{k}/3"), "--out", sharded.to_str().unwrap()]));
+    }
+    let m = covga(&["merge", sharded.to_str().unwrap()]);
+    ok(&m);
+    assert!(String::from_utf8_lossy(&m.stdout).contains("(12 runs)"));
+    assert_eq!(rows_without_timing(&sharded.join("runs.csv")), rows_without_timing(&full.join("runs.csv")));
+    // A conflicting duplicate is refused.
+    let shard0 = sharded.join("runs-shard-0-of-3.csv");
+    let text = std::fs::read_to_string(&shard0).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let cov = header.iter().position(|h| *h == "cov_final").unwrap();
+    let mut fields: Vec<String> = lines[1].split(',').map(str::to_string).collect();
+    fields[cov] = "0.123".into();
+    lines[1] = fields.join(",");
+    std::fs::write(&shard0, lines.join("\n") + "\n").unwrap();
+    let conflict = covga(&["merge", sharded.to_str().unwrap()]);
+    assert_eq!(conflict.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&conflict.stderr).contains("recorded differently"));
+}
+
+#[test]
+fn killed_study_resumes_to_the_same_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = grid_file(dir.path());
+    let (reference, killed) = (dir.path().join("reference"), dir.path().join("killed"));
+    ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", reference.to_str().unwrap()]));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["grid", g.to_str().unwrap(), "--jobs", "1", "--out", killed.to_str().unwrap()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let runs = killed.join("runs.csv");
+    let start = std::time::Instant::now();
+    loop {
+        let n = std::fs::read_to_string(&runs).map(|t| t.lines().count()).unwrap_or(0);
+        if n >= 4 || start.elapsed().as_secs() > 60 {
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap(); // SIGKILL
+    child.wait().unwrap();
+    let recorded = std::fs::read_to_string(&runs).unwrap().lines().count() - 1;
+    assert!(recorded < 12, "the study should have been killed mid-way ({recorded} runs)");
+    // Simulate a torn write of the next row.
+    let mut f = std::fs::OpenOptions::new().append(true).open(&runs).unwrap();
+    std::io::Write::write_all(&mut f, b"deadbeef00000000,half").unwrap();
+    drop(f);
+    let resumed = covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", killed.to_str().unwrap()]);
+    ok(&resumed);
+    assert!(String::from_utf8_lossy(&resumed.stdout).contains(&format!("{recorded} already recorded")));
+    let rows = rows_without_timing(&runs);
+    let ids: std::collections::BTreeSet<&str> = rows.iter().map(|r| r.split(',').next().unwrap()).collect();
+    assert_eq!(ids.len(), 12, "every run exactly once");
+    assert_eq!(rows, rows_without_timing(&reference.join("runs.csv")));
+}
+
+fn expect_grid_error(text: &str, needle: &str) {
+    let dir = tempfile::tempdir().unwrap();
+    let p = dir.path().join("bad.toml");
+    std::fs::write(&p, text).unwrap();
+    let o = covga(&["grid", p.to_str().unwrap(), "--dry-run"]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{text}: {err}");
+    assert!(err.contains(needle) && err.contains("bad.toml"), "expected `{needle}` in {err}");
+    assert_eq!(err.trim().lines().count(), 1, "{err}");
+}
+
+#[test]
+fn bad_grid_files_are_rejected() {
+    let base = "[base]\n[base.budget]\niterations = 10\n";
+    expect_grid_error(&format!("{base}[axes]\n\"thesis.c_lenn\" = [0.1]\n"), "is not an experiment key");
+    expect_grid_error(&format!("{base}[axes]\n\"thesis.c_len\" = []\n"), "empty value list");
+    expect_grid_error(&format!("{base}[axes]\n\"thesis.c_len\" = 0.1\n"), "must be a list");
+    expect_grid_error(
+        &format!(
+            "{base}[[conditional]]\nwhen = {{ \"thesis.colour\" = \"red\" }}\naxes = {{ \"thesis.keep\" = [1] }}\n"
+        ),
+        "neither in the base experiment nor swept",
+    );
+    expect_grid_error(&format!("seeds = 0\n{base}"), "at least 1 replicate");
+    expect_grid_error("[axes]\n\"thesis.c_len\" = [0.1]\n", "missing field `base`");
+    expect_grid_error(&format!("{base}[axes]\n\"thesis.p_c\" = [1.5]\n"), "`thesis.p_c` = 1.5 is out of range");
+}
