@@ -69,8 +69,9 @@ pub struct RunSpec {
     pub replicate: u32,
     /// The resolved experiment (seed set, output folder cleared).
     pub file: ExperimentFile,
-    /// The swept keys' values for this run (`None` where a conditional axis does not apply).
-    pub params: Vec<(String, Option<String>)>,
+    /// The swept keys' values for this run in [`Study::columns`] order (`None` where a
+    /// conditional axis does not apply).
+    pub params: Vec<Option<String>>,
     /// The conditionals that applied (for `--dry-run`), e.g. `thesis.selection=tournament`.
     pub branch: String,
 }
@@ -232,73 +233,55 @@ impl Study {
             conds.push((c.when.clone(), cax));
         }
         // Cartesian product of the unconditional axes, then each conditional in order.
-        type Partial = (Table, Vec<(String, Value)>, Vec<String>);
-        let mut partials: Vec<Partial> = vec![(base.clone(), Vec::new(), Vec::new())];
-        let product = |partials: Vec<Partial>, axes: &[(String, Vec<Value>)]| -> Result<Vec<Partial>, ConfigError> {
-            let mut out = partials;
-            for (k, vals) in axes {
-                let mut next = Vec::with_capacity(out.len() * vals.len());
-                for (t, params, branch) in &out {
-                    for v in vals {
-                        let mut t = t.clone();
-                        set(&mut t, k, v.clone()).map_err(|m| ConfigError::new(&origin, k, m))?;
-                        let mut p = params.clone();
-                        p.push((k.clone(), v.clone()));
-                        next.push((t, p, branch.clone()));
-                    }
-                }
-                out = next;
+        // Depth first: each combination of the unconditional axes goes through the
+        // conditionals and becomes runs at once, so only the runs stay in memory.
+        let mut runs = Vec::new();
+        let radix: Vec<usize> = axes.iter().map(|(_, v)| v.len()).collect();
+        let combos: usize = radix.iter().product();
+        for mut index in 0..combos {
+            let mut table = base.clone();
+            let mut params = Vec::with_capacity(axes.len());
+            for (k, vals) in axes.iter().rev() {
+                let v = &vals[index % vals.len()];
+                index /= vals.len();
+                set(&mut table, k, v.clone()).map_err(|m| ConfigError::new(&origin, k, m))?;
+                params.push((k.clone(), v.clone()));
             }
-            Ok(out)
-        };
-        partials = product(partials, &axes)?;
-        for (when, cax) in &conds {
-            let mut next = Vec::new();
-            for (t, params, branch) in partials {
+            params.reverse();
+            let mut stack = vec![(table, params, Vec::<String>::new(), 0usize)];
+            while let Some((t, params, branch, next_cond)) = stack.pop() {
+                let Some((when, cax)) = conds.get(next_cond) else {
+                    self_runs(&origin, &grid, &columns, t, &params, &branch, &mut runs)?;
+                    continue;
+                };
                 let resolved: ExperimentFile = Value::Table(t.clone())
                     .try_into()
                     .map_err(|e| ConfigError::new(&origin, "", e.message().trim().to_string()))?;
                 let resolved_table = Table::try_from(resolved).expect("experiment files serialise");
-                let applies =
-                    when.iter().all(|(k, v)| get(&resolved_table, k).map(scalar_text) == Some(scalar_text(v)));
-                if applies {
-                    let label =
-                        when.iter().map(|(k, v)| format!("{k}={}", scalar_text(v))).collect::<Vec<_>>().join(",");
-                    let mut b = branch.clone();
-                    b.push(label);
-                    next.extend(product(vec![(t, params, b)], cax)?);
-                } else {
-                    next.push((t, params, branch));
+                if !when.iter().all(|(k, v)| get(&resolved_table, k).map(scalar_text) == Some(scalar_text(v))) {
+                    stack.push((t, params, branch, next_cond + 1));
+                    continue;
                 }
-            }
-            partials = next;
-        }
-        let mut runs = Vec::with_capacity(partials.len() * grid.seeds as usize);
-        for (t, params, branch) in partials {
-            let mut file: ExperimentFile = Value::Table(t)
-                .try_into()
-                .map_err(|e| ConfigError::new(&origin, "", e.message().trim().to_string()))?;
-            file.output.dir = None;
-            let by_key: BTreeMap<&String, &Value> = params.iter().map(|(k, v)| (k, v)).collect();
-            let cells: Vec<(String, Option<String>)> =
-                columns.iter().map(|c| (c.clone(), by_key.get(c).map(|v| scalar_text(v)))).collect();
-            file.seed = 0;
-            let config_text = toml::to_string(&file).expect("experiment files serialise");
-            let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
-            for replicate in 0..grid.seeds {
-                let mut f = file.clone();
-                // TOML integers are signed 64-bit: keep run seeds below 2^63.
-                f.seed = derive(grid.seed, &[Purpose::Run as u64, u64::from(replicate)]) >> 1;
-                let text = toml::to_string(&f).expect("experiment files serialise");
-                let id = format!("{:016x}", fnv1a(format!("{text}\nreplicate={replicate}").as_bytes()));
-                runs.push(RunSpec {
-                    id,
-                    config_id: config_id.clone(),
-                    replicate,
-                    file: f,
-                    params: cells.clone(),
-                    branch: if branch.is_empty() { "no conditional axes".into() } else { branch.join(" & ") },
-                });
+                let mut b = branch.clone();
+                b.push(when.iter().map(|(k, v)| format!("{k}={}", scalar_text(v))).collect::<Vec<_>>().join(","));
+                let mut expanded = vec![(t, params)];
+                for (k, vals) in cax {
+                    let mut next = Vec::with_capacity(expanded.len() * vals.len());
+                    for (t, p) in &expanded {
+                        for v in vals {
+                            let mut t = t.clone();
+                            set(&mut t, k, v.clone()).map_err(|m| ConfigError::new(&origin, k, m))?;
+                            let mut p = p.clone();
+                            p.push((k.clone(), v.clone()));
+                            next.push((t, p));
+                        }
+                    }
+                    expanded = next;
+                }
+                // Reversed, so that the stack pops them in expansion order.
+                for (t, p) in expanded.into_iter().rev() {
+                    stack.push((t, p, b.clone(), next_cond + 1));
+                }
             }
         }
         Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs })
@@ -322,6 +305,43 @@ impl Study {
         sorted.sort_by(|a, b| a.id.cmp(&b.id));
         sorted.into_iter().enumerate().filter(|(i, _)| i % n == k).map(|(_, r)| r).collect()
     }
+}
+
+/// Turns one fully expanded configuration into its replicate runs.
+fn self_runs(
+    origin: &str,
+    grid: &GridFile,
+    columns: &[String],
+    t: Table,
+    params: &[(String, Value)],
+    branch: &[String],
+    runs: &mut Vec<RunSpec>,
+) -> Result<(), ConfigError> {
+    let mut file: ExperimentFile =
+        Value::Table(t).try_into().map_err(|e| ConfigError::new(origin, "", e.message().trim().to_string()))?;
+    file.output.dir = None;
+    let by_key: BTreeMap<&String, &Value> = params.iter().map(|(k, v)| (k, v)).collect();
+    let cells: Vec<Option<String>> = columns.iter().map(|c| by_key.get(c).map(|v| scalar_text(v))).collect();
+    file.seed = 0;
+    let config_text = toml::to_string(&file).expect("experiment files serialise");
+    let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
+    let branch = if branch.is_empty() { "no conditional axes".to_string() } else { branch.join(" & ") };
+    for replicate in 0..grid.seeds {
+        let mut f = file.clone();
+        // TOML integers are signed 64-bit: keep run seeds below 2^63.
+        f.seed = derive(grid.seed, &[Purpose::Run as u64, u64::from(replicate)]) >> 1;
+        let text = toml::to_string(&f).expect("experiment files serialise");
+        let id = format!("{:016x}", fnv1a(format!("{text}\nreplicate={replicate}").as_bytes()));
+        runs.push(RunSpec {
+            id,
+            config_id: config_id.clone(),
+            replicate,
+            file: f,
+            params: cells.clone(),
+            branch: branch.clone(),
+        });
+    }
+    Ok(())
 }
 
 /// Keys that an experiment has through defaults even when the base omits them.

@@ -48,7 +48,7 @@ pub fn header(params: &[String]) -> Vec<String> {
 pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
     let m = &summary.metrics;
     let mut out = vec![run.id.clone(), run.config_id.clone(), run.replicate.to_string(), run.file.seed.to_string()];
-    out.extend(run.params.iter().map(|(_, v)| v.clone().unwrap_or_default()));
+    out.extend(run.params.iter().map(|v| v.clone().unwrap_or_default()));
     let sel = serde_json::to_value(run.file.thesis.selection)
         .ok()
         .and_then(|v| v.as_str().map(str::to_string))
