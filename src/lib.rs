@@ -16,3 +16,4 @@ pub mod patterns;
 pub mod plot;
 pub mod study;
 pub mod thesis;
+pub mod waypoint;

@@ -75,6 +75,36 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     } else {
         bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     }
+    if exp.waypoint.is_some() {
+        bar.set_length(u64::from(exp.file.waypoint.generations));
+        let summary = crate::study::waypoint_output::run_waypoint(&exp, &dir, &mut |s| {
+            bar.set_position(u64::from(s.generation));
+            bar.set_message(format!("C {:.3} walls {:.3} feasible {}", s.max_coverage, s.mean_walls, s.feasible));
+        })
+        .map_err(CliError::internal)?;
+        bar.finish_and_clear();
+        if !a.quiet {
+            println!(
+                "{origin}: seed {}, {} agent(s), {} generations, {} waypoints, {:.2} s (precompute {:.2} s)",
+                summary.seed,
+                summary.agents,
+                summary.generations,
+                summary.waypoints,
+                summary.wall_s,
+                summary.precompute_s
+            );
+            println!(
+                "best: wall coverage {:.4}  open {:.4}  flight time {:.0}  loop closures ok {}  connected {}",
+                summary.wall_coverage,
+                summary.open_coverage,
+                summary.flight_time,
+                summary.loop_closures_ok,
+                summary.connected
+            );
+            println!("wrote {}", dir.display());
+        }
+        return Ok(());
+    }
     let mut progress = Progress(bar);
     let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(CliError::internal)?;
     progress.0.finish_and_clear();

@@ -1,6 +1,7 @@
 //! Coverage of a path on a grid map: the swept footprint of 003 §3.1 ([`raster`], [`sweep`])
 //! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`].
 
+pub mod camera;
 pub mod motion;
 pub mod raster;
 pub mod sweep;

@@ -3,6 +3,7 @@
 //! observers ([`observer`]).
 
 pub mod control;
+pub mod maximin;
 pub mod observer;
 pub mod pareto;
 pub mod rng;

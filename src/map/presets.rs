@@ -5,7 +5,7 @@ use super::{CellState, GridMap, MapError};
 use crate::geom::Point;
 
 /// Names of the presets accepted by [`preset`].
-pub const PRESET_NAMES: [&str; 3] = ["thesis-1", "thesis-2", "office"];
+pub const PRESET_NAMES: [&str; 4] = ["thesis-1", "thesis-2", "office", "office-large"];
 
 /// Builds a preset by name.
 pub fn preset(name: &str) -> Option<GridMap> {
@@ -13,6 +13,7 @@ pub fn preset(name: &str) -> Option<GridMap> {
         "thesis-1" => thesis_map(false),
         "thesis-2" => thesis_map(true),
         "office" => office(),
+        "office-large" => office_large(),
         _ => return None,
     };
     Some(map.expect("presets always have free cells"))
@@ -94,6 +95,58 @@ fn office() -> Result<GridMap, MapError> {
     f(&mut cells, [14.8, 9.5, 15.2, 9.9], Occupied);
     f(&mut cells, [24.0, 3.5, 26.0, 4.5], Occupied);
     GridMap::new("office", COLS, ROWS, RES, Point::origin(), cells)
+}
+
+/// A larger synthetic floor for multi-agent runs, 45 m × 30 m at 0.1 m: two corridors across
+/// joined by a cross corridor, three rows of rooms with 1 m doors, a few obstacles.
+fn office_large() -> Result<GridMap, MapError> {
+    const COLS: usize = 450;
+    const ROWS: usize = 300;
+    const RES: f64 = 0.1;
+    use CellState::{Free, Occupied};
+    let mut cells = vec![Occupied; COLS * ROWS];
+    let f = |cells: &mut Vec<CellState>, rect: [f64; 4], s: CellState| fill(cells, COLS, RES, rect, s);
+    f(&mut cells, [0.2, 0.2, 44.8, 29.8], Free);
+    // Corridor walls: corridor A at y 9.0–11.4, corridor B at y 19.0–21.4.
+    for y in [8.8, 11.4, 18.8, 21.4] {
+        f(&mut cells, [0.2, y, 44.8, y + 0.2], Occupied);
+    }
+    // Room walls: bottom row every 9 m, middle row every 7.5 m, top row every 9 m.
+    for k in 1..5 {
+        let x = 9.0 * k as f64;
+        f(&mut cells, [x, 0.2, x + 0.2, 8.8], Occupied);
+        f(&mut cells, [x, 21.6, x + 0.2, 29.8], Occupied);
+    }
+    for k in 1..6 {
+        let x = 7.5 * k as f64;
+        f(&mut cells, [x, 11.6, x + 0.2, 18.8], Occupied);
+    }
+    // Cross corridor between A and B at x 21.0–23.4 (replaces the middle room walls there).
+    f(&mut cells, [21.0, 11.4, 23.4, 19.0], Free);
+    f(&mut cells, [20.8, 11.6, 21.0, 18.8], Occupied);
+    f(&mut cells, [23.4, 11.6, 23.6, 18.8], Occupied);
+    // Doors (1 m) from every room to its corridor.
+    for k in 0..5 {
+        let x = 9.0 * k as f64 + 4.0;
+        f(&mut cells, [x, 8.8, x + 1.0, 9.0], Free);
+        f(&mut cells, [x, 21.4, x + 1.0, 21.6], Free);
+    }
+    for k in 0..6 {
+        let x = 7.5 * k as f64 + 3.0;
+        if (20.8..23.6).contains(&x) {
+            continue;
+        }
+        f(&mut cells, [x, 11.4, x + 1.0, 11.6], Free);
+        f(&mut cells, [x, 18.8, x + 1.0, 19.0], Free);
+    }
+    // Obstacles: pillars in the corridors, tables in two rooms.
+    for x in [10.0, 30.0] {
+        f(&mut cells, [x, 9.9, x + 0.4, 10.3], Occupied);
+        f(&mut cells, [x + 5.0, 19.9, x + 5.4, 20.3], Occupied);
+    }
+    f(&mut cells, [2.5, 3.5, 5.5, 4.5], Occupied);
+    f(&mut cells, [38.0, 24.0, 40.0, 26.0], Occupied);
+    GridMap::new("office-large", COLS, ROWS, RES, Point::origin(), cells)
 }
 
 #[cfg(test)]

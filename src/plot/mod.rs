@@ -6,6 +6,7 @@
 pub mod history;
 pub mod path;
 pub mod report;
+pub mod waypoint;
 
 use plotters::coord::Shift;
 use plotters::prelude::*;

@@ -31,6 +31,8 @@ pub struct ExperimentFile {
     pub stations: StationsSection,
     /// Thesis GA parameters.
     pub thesis: ThesisSection,
+    /// Waypoint planner parameters (used when `planner = "waypoint"`).
+    pub waypoint: WaypointSection,
     /// When to stop.
     pub budget: BudgetSection,
     /// Optional changing-environment retrain.
@@ -47,6 +49,132 @@ pub enum PlannerKind {
     /// The action-encoded GA of 003.
     #[default]
     Thesis,
+    /// The waypoint-graph maximin planner of 000.
+    Waypoint,
+}
+
+/// `[waypoint]`: 000 Table I as reconciled (spec §18–19); metres, degrees.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WaypointSection {
+    /// Pixel scale `s` (m/px).
+    pub scale: f64,
+    /// UAV width (m).
+    pub uav_width: f64,
+    /// Narrowest accessible hallway (m).
+    pub hallway: f64,
+    /// Maximum traverse distance of an edge (m).
+    pub max_traverse: f64,
+    /// Camera `d_min` (m).
+    pub d_min: f64,
+    /// Camera `d_max` (m).
+    pub d_max: f64,
+    /// Camera field of view (degrees).
+    pub fov_deg: f64,
+    /// Coverage sections `m`.
+    pub sections: usize,
+    /// `full` or `near_wall`.
+    pub waypoint_set: crate::waypoint::world::WaypointSet,
+    /// Number of agents.
+    pub agents: usize,
+    /// Per-agent entry positions (m); empty = all start at `stations.start`.
+    pub starts: Vec<[f64; 2]>,
+    /// `N`.
+    pub population: usize,
+    /// Generations.
+    pub generations: u32,
+    /// `p_c`.
+    pub p_c: f64,
+    /// `p_A`.
+    pub p_a: f64,
+    /// `p_B`.
+    pub p_b: f64,
+    /// `γ`.
+    pub gamma: f64,
+    /// `l_init`.
+    pub l_init: usize,
+    /// `l_min`.
+    pub l_min: usize,
+    /// `l_max`.
+    pub l_max: usize,
+    /// `T_x`.
+    pub crossover_threshold: usize,
+    /// `n_B`.
+    pub b_instances: usize,
+    /// `D`.
+    pub b_distance: usize,
+    /// `p_acc`.
+    pub b_accept: f64,
+    /// `M`.
+    pub memory: usize,
+    /// `λ`.
+    pub lambda: f64,
+    /// `ρ`.
+    pub rho: f64,
+    /// `α_cov`.
+    pub alpha_cov: f64,
+    /// `C_start`.
+    pub c_start: f64,
+    /// `C_end`.
+    pub c_end: f64,
+    /// `G_age`.
+    pub aging: u32,
+    /// `T_sep`.
+    pub lc_separation: usize,
+    /// Minimum self loop closures.
+    pub lc_min: usize,
+    /// Penalty per violated constraint type (scaled units).
+    pub penalty: f64,
+}
+
+impl Default for WaypointSection {
+    fn default() -> Self {
+        Self {
+            scale: 0.15,
+            uav_width: 0.5,
+            hallway: 1.5,
+            max_traverse: 4.0,
+            d_min: 0.2,
+            d_max: 7.0,
+            fov_deg: 69.4,
+            sections: 15,
+            waypoint_set: crate::waypoint::world::WaypointSet::Full,
+            agents: 1,
+            starts: Vec::new(),
+            population: 100,
+            generations: 1000,
+            p_c: 0.7,
+            p_a: 0.3,
+            p_b: 0.3,
+            gamma: 0.5,
+            l_init: 150,
+            l_min: 75,
+            l_max: 250,
+            crossover_threshold: 70,
+            b_instances: 20,
+            b_distance: 5,
+            b_accept: 0.8,
+            memory: 10,
+            lambda: 0.7,
+            rho: 8.0,
+            alpha_cov: 0.1,
+            c_start: 0.3,
+            c_end: 0.8,
+            aging: 60,
+            lc_separation: 30,
+            lc_min: 2,
+            penalty: 1000.0,
+        }
+    }
+}
+
+/// A validated waypoint plan: world geometry and GA parameters.
+#[derive(Clone, Debug)]
+pub struct WaypointPlan {
+    /// Geometry.
+    pub world: crate::waypoint::world::WorldParams,
+    /// GA.
+    pub ga: crate::waypoint::run::GaParams,
 }
 
 /// `[map]`.
@@ -221,6 +349,7 @@ impl Default for ExperimentFile {
             robot: RobotSection::default(),
             stations: StationsSection::default(),
             thesis: ThesisSection::default(),
+            waypoint: WaypointSection::default(),
             budget: BudgetSection::default(),
             retrain: None,
             output: OutputSection::default(),
@@ -297,6 +426,8 @@ pub struct Experiment {
     pub budget: Budget,
     /// Retrain, if any.
     pub retrain: Option<Retrain>,
+    /// The waypoint planner's setup when `planner = "waypoint"`.
+    pub waypoint: Option<WaypointPlan>,
     /// Results folder.
     pub output_dir: PathBuf,
 }
@@ -459,6 +590,10 @@ impl ExperimentFile {
             wall_clock: (b.wall_clock_s > 0.0).then(|| Duration::from_secs_f64(b.wall_clock_s)),
             stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
         };
+        let waypoint = match self.planner {
+            PlannerKind::Thesis => None,
+            PlannerKind::Waypoint => Some(validate_waypoint(&self.waypoint, origin, &map, start)?),
+        };
         let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
         self.stations.end = Some([end.x, end.y]);
         Ok(Experiment {
@@ -471,7 +606,132 @@ impl ExperimentFile {
             params,
             budget,
             retrain,
+            waypoint,
             output_dir,
         })
     }
+}
+
+/// Range checks of `[waypoint]` and the conversion into planner parameters.
+fn validate_waypoint(
+    w: &WaypointSection,
+    origin: &str,
+    map: &GridMap,
+    start: Point,
+) -> Result<WaypointPlan, ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+    check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
+    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "> 0 metres")?;
+    if !(w.hallway.is_finite() && w.hallway >= 2.0 * w.scale && w.hallway >= map.resolution()) {
+        return Err(err(
+            "waypoint.hallway",
+            format!(
+                "= {} m is below the cell size: the narrowest hallway must be at least 2 x scale = {} m and the map resolution {} m",
+                w.hallway,
+                2.0 * w.scale,
+                map.resolution()
+            ),
+        ));
+    }
+    check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "> 0 metres")?;
+    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, ">= 0 metres")?;
+    if !(w.d_max.is_finite() && w.d_max > w.d_min) {
+        return Err(err(
+            "waypoint.d_max",
+            format!("= {} must exceed d_min = {} (camera depth range)", w.d_max, w.d_min),
+        ));
+    }
+    if !(w.fov_deg > 0.0 && w.fov_deg <= 360.0) {
+        return Err(err("waypoint.fov_deg", format!("= {} is out of range (0, 360] degrees", w.fov_deg)));
+    }
+    if w.sections == 0 {
+        return Err(err("waypoint.sections", "= 0 is out of range: at least 1".into()));
+    }
+    if w.agents == 0 || w.agents > 64 {
+        return Err(err("waypoint.agents", format!("= {} is out of range [1, 64]", w.agents)));
+    }
+    if !(w.starts.is_empty() || w.starts.len() == 1 || w.starts.len() == w.agents) {
+        return Err(err(
+            "waypoint.starts",
+            format!("has {} entries: give none, one shared, or one per agent ({})", w.starts.len(), w.agents),
+        ));
+    }
+    for (k, s) in w.starts.iter().enumerate() {
+        map.check_station(Point::new(s[0], s[1]), &format!("start of agent {k}"))
+            .map_err(|m| err("waypoint.starts", m))?;
+    }
+    for (key, v) in [
+        ("waypoint.p_c", w.p_c),
+        ("waypoint.p_a", w.p_a),
+        ("waypoint.p_b", w.p_b),
+        ("waypoint.gamma", w.gamma),
+        ("waypoint.b_accept", w.b_accept),
+        ("waypoint.alpha_cov", w.alpha_cov),
+        ("waypoint.c_start", w.c_start),
+        ("waypoint.c_end", w.c_end),
+    ] {
+        check_unit(origin, key, v)?;
+    }
+    if w.population < 2 {
+        return Err(err("waypoint.population", format!("= {} is out of range: at least 2", w.population)));
+    }
+    if !(2 <= w.l_min && w.l_min <= w.l_init && w.l_init <= w.l_max) {
+        return Err(err(
+            "waypoint.l_init",
+            format!("needs 2 <= l_min ({}) <= l_init ({}) <= l_max ({})", w.l_min, w.l_init, w.l_max),
+        ));
+    }
+    check_range(origin, "waypoint.lambda", w.lambda, 0.0, 100.0, "[0, 100]")?;
+    check_range(origin, "waypoint.rho", w.rho, 0.0, 100.0, "[0, 100]")?;
+    check_range(origin, "waypoint.penalty", w.penalty, 0.0, 1e12, ">= 0")?;
+    let starts: Vec<(f64, f64)> =
+        if w.starts.is_empty() { vec![(start.x, start.y)] } else { w.starts.iter().map(|s| (s[0], s[1])).collect() };
+    use crate::waypoint::evaluate::ObjectiveParams;
+    use crate::waypoint::operators::OperatorParams;
+    Ok(WaypointPlan {
+        world: crate::waypoint::world::WorldParams {
+            scale: w.scale,
+            uav_width: w.uav_width,
+            hallway: w.hallway,
+            max_traverse: w.max_traverse,
+            d_min: w.d_min,
+            d_max: w.d_max,
+            fov_deg: w.fov_deg,
+            sections: w.sections,
+            set: w.waypoint_set,
+            starts,
+        },
+        ga: crate::waypoint::run::GaParams {
+            population: w.population,
+            generations: w.generations,
+            p_c: w.p_c,
+            p_a: w.p_a,
+            p_b: w.p_b,
+            gamma: w.gamma,
+            l_init: w.l_init,
+            agents: w.agents,
+            ops: OperatorParams {
+                lambda: w.lambda,
+                memory: w.memory,
+                l_min: w.l_min,
+                l_max: w.l_max,
+                crossover_threshold: w.crossover_threshold,
+                b_instances: w.b_instances,
+                b_distance: w.b_distance,
+                b_accept: w.b_accept,
+            },
+            objectives: ObjectiveParams {
+                alpha_cov: w.alpha_cov,
+                rho: w.rho,
+                scale_coverage: -1.0,
+                scale_time: 1e-4,
+                c_start: w.c_start,
+                c_end: w.c_end,
+                aging: w.aging,
+                lc_separation: w.lc_separation,
+                lc_min: w.lc_min,
+                penalty: w.penalty,
+            },
+        },
+    })
 }

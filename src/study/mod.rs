@@ -11,3 +11,4 @@ pub mod report;
 pub mod runner;
 pub mod slurm;
 pub mod stats;
+pub mod waypoint_output;

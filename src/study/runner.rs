@@ -132,6 +132,13 @@ impl MapCache {
 /// Validates a run's experiment.
 pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Experiment, ConfigError> {
     let origin = format!("{} (run {})", study.path.display(), run.id);
+    if run.file.planner != super::experiment::PlannerKind::Thesis {
+        return Err(ConfigError::new(
+            &origin,
+            "planner",
+            "grid studies run the thesis planner; run waypoint experiments with `covga run`",
+        ));
+    }
     run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r))
 }
 

@@ -1,0 +1,36 @@
+//! The waypoint planner's speed targets: precomputation (waypoints, graph, per-edge views) on
+//! the office preset, and 1000 generations of 100 organisms, single agent.
+//!
+//! `cargo bench --bench waypoint`
+
+use covga::map::presets::preset;
+use covga::study::experiment::{ExperimentFile, PlannerKind};
+use covga::waypoint::run::run;
+use covga::waypoint::world::World;
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::path::Path;
+use std::time::Duration;
+
+fn bench(c: &mut Criterion) {
+    let file = ExperimentFile { planner: PlannerKind::Waypoint, ..ExperimentFile::default() };
+    let mut file = file;
+    file.map.source = "office".into();
+    file.stations.start = [2.0, 2.0];
+    file.waypoint.l_init = 200;
+    let exp = file.validate("bench", Path::new("."), "bench").expect("valid");
+    let plan = exp.waypoint.clone().expect("waypoint plan");
+    let map = preset("office").expect("preset");
+    let mut group = c.benchmark_group("waypoint");
+    group.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(20));
+    group.bench_function("precompute_office", |b| {
+        b.iter(|| World::build(&map, &plan.world, 1).expect("world").graph.points.len())
+    });
+    let world = World::build(&map, &plan.world, 1).expect("world");
+    group.measurement_time(Duration::from_secs(60));
+    group
+        .bench_function("ga_1000_generations_100_organisms", |b| b.iter(|| run(&world, &plan.ga, 1, &mut |_| {}).best));
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

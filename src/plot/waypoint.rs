@@ -1,0 +1,287 @@
+//! Figures of the waypoint planner: paths per agent with self and inter-agent loop closures
+//! (000 Fig. 15), the coverage map (Fig. 5), Pareto-front snapshots (Fig. 11) and average
+//! objectives over generations (Fig. 12).
+
+use super::{Figure, err, text};
+use crate::waypoint::raster::WorkMap;
+use crate::waypoint::run::WaypointStats;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+const OBSTACLE: RGBColor = RGBColor(70, 70, 70);
+const FREE: RGBColor = RGBColor(250, 250, 250);
+
+fn agent_colour(k: usize) -> RGBColor {
+    [
+        RGBColor(31, 119, 180),
+        RGBColor(255, 127, 14),
+        RGBColor(44, 160, 44),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+        RGBColor(23, 190, 207),
+    ][k % 6]
+}
+
+/// Draws raster classes (`class(index) -> colour`) as row runs on a metre chart.
+fn raster_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    map: &WorkMap,
+    title: &str,
+    class: impl Fn(usize) -> RGBColor,
+) -> Result<
+    ChartContext<'a, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>,
+    String,
+> {
+    let (ox, oy) = map.origin;
+    let (w, h) = (map.width as f64 * map.scale, map.height as f64 * map.scale);
+    let mut chart = ChartBuilder::on(area)
+        .caption(title, text(18.0))
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(50)
+        .build_cartesian_2d(ox..ox + w, oy..oy + h)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x [m]")
+        .y_desc("y [m]")
+        .label_style(text(14.0))
+        .axis_desc_style(text(15.0))
+        .draw()
+        .map_err(err)?;
+    let mut rects = Vec::new();
+    for r in 0..map.height {
+        let mut c = 0;
+        while c < map.width {
+            let colour = class(r * map.width + c);
+            let s = c;
+            while c < map.width && class(r * map.width + c) == colour {
+                c += 1;
+            }
+            let (x0, y0) = (ox + s as f64 * map.scale, oy + r as f64 * map.scale);
+            rects.push(Rectangle::new([(x0, y0), (ox + c as f64 * map.scale, y0 + map.scale)], colour.filled()));
+        }
+    }
+    chart.draw_series(rects).map_err(err)?;
+    Ok(chart)
+}
+
+/// Paths over the map, one colour per agent, with loop closures marked.
+pub struct PathsFigure<'a> {
+    /// The raster.
+    pub map: &'a WorkMap,
+    /// Paths in metres, one per agent.
+    pub paths: Vec<Vec<(f64, f64)>>,
+    /// Re-traversed edges of an agent's own path (metres).
+    pub self_closures: Vec<((f64, f64), (f64, f64))>,
+    /// Edges shared between agents (metres).
+    pub shared_closures: Vec<((f64, f64), (f64, f64))>,
+    /// Title.
+    pub title: String,
+}
+
+impl Figure for PathsFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        let aspect = self.map.height as f64 / self.map.width as f64;
+        (1100, (840.0 * aspect) as u32 + 110)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let (area, side) = root.split_horizontally(860);
+        let mut chart =
+            raster_chart(&area, self.map, &self.title, |i| if self.map.occluded[i] { OBSTACLE } else { FREE })?;
+        for (k, p) in self.paths.iter().enumerate() {
+            chart.draw_series(LineSeries::new(p.iter().copied(), agent_colour(k).stroke_width(2))).map_err(err)?;
+            if let Some(&s) = p.first() {
+                chart.draw_series([TriangleMarker::new(s, 9, agent_colour(k).filled())]).map_err(err)?;
+            }
+        }
+        for &(a, b) in &self.self_closures {
+            chart.draw_series([PathElement::new(vec![a, b], RED.stroke_width(6))]).map_err(err)?;
+        }
+        for &(a, b) in &self.shared_closures {
+            chart.draw_series([PathElement::new(vec![a, b], MAGENTA.stroke_width(6))]).map_err(err)?;
+        }
+        let mut entries: Vec<(RGBColor, String)> =
+            (0..self.paths.len()).map(|k| (agent_colour(k), format!("agent {k} path"))).collect();
+        entries.push((RED, format!("self loop closure ({})", self.self_closures.len())));
+        entries.push((MAGENTA, format!("inter-agent closure ({})", self.shared_closures.len())));
+        entries.push((OBSTACLE, "obstacle".into()));
+        super::legend(&side, &entries, 60)
+    }
+}
+
+/// The coverage map of 000 Fig. 5.
+pub struct CoverageFigure<'a> {
+    /// The raster.
+    pub map: &'a WorkMap,
+    /// Seen pixels.
+    pub seen: Vec<bool>,
+    /// Wall band pixels.
+    pub band: Vec<bool>,
+    /// Title.
+    pub title: String,
+}
+
+impl Figure for CoverageFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        let aspect = self.map.height as f64 / self.map.width as f64;
+        (1100, (840.0 * aspect) as u32 + 110)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        const SEEN: RGBColor = RGBColor(120, 200, 120);
+        const OPEN: RGBColor = RGBColor(255, 255, 255);
+        const WALL: RGBColor = RGBColor(230, 60, 60);
+        let (area, side) = root.split_horizontally(860);
+        raster_chart(&area, self.map, &self.title, |i| {
+            if self.map.occluded[i] {
+                OBSTACLE
+            } else if self.seen[i] {
+                SEEN
+            } else if self.band[i] {
+                WALL
+            } else {
+                OPEN
+            }
+        })?;
+        let entries = [
+            (OBSTACLE, "obstacle"),
+            (SEEN, "explored"),
+            (OPEN, "unexplored open space"),
+            (WALL, "unexplored wall band"),
+        ];
+        super::legend(&side, &entries.iter().map(|(c, s)| (*c, s.to_string())).collect::<Vec<_>>(), 60)
+    }
+}
+
+/// Population objectives at a few generations (000 Fig. 11).
+pub struct SnapshotsFigure<'a> {
+    /// `(generation, [(coverage, flight time, feasible)])`.
+    pub snapshots: &'a [crate::waypoint::run::Snapshot],
+}
+
+impl Figure for SnapshotsFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1000, 800)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root
+            .titled("Population in objective space (feasible in blue, violating in grey)", text(18.0))
+            .map_err(err)?;
+        let all = self.snapshots.iter().flat_map(|s| s.1.iter());
+        let (mut t0, mut t1, mut c0) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+        for &(c, t, _) in all {
+            t0 = t0.min(t);
+            t1 = t1.max(t);
+            c0 = c0.min(c);
+        }
+        let pad = ((t1 - t0) * 0.05).max(1.0);
+        for (area, (g, pts)) in root.split_evenly((2, 2)).iter().zip(self.snapshots) {
+            let mut chart = ChartBuilder::on(area)
+                .caption(format!("generation {g}"), text(15.0))
+                .margin(8)
+                .x_label_area_size(40)
+                .y_label_area_size(55)
+                .build_cartesian_2d((t0 - pad)..(t1 + pad), (c0 - 0.02).max(0.0)..1.0)
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_desc("flight time [px-equivalent]")
+                .y_desc("coverage C [-]")
+                .label_style(text(12.0))
+                .axis_desc_style(text(13.0))
+                .draw()
+                .map_err(err)?;
+            chart
+                .draw_series(
+                    pts.iter().filter(|p| !p.2).map(|p| Circle::new((p.1, p.0), 3, RGBColor(170, 170, 170).filled())),
+                )
+                .map_err(err)?;
+            chart
+                .draw_series(
+                    pts.iter().filter(|p| p.2).map(|p| Circle::new((p.1, p.0), 3, RGBColor(31, 119, 180).filled())),
+                )
+                .map_err(err)?;
+        }
+        Ok(())
+    }
+}
+
+/// Average objectives over generations (000 Fig. 12).
+pub struct ObjectivesFigure<'a> {
+    /// The statistics.
+    pub history: &'a [WaypointStats],
+}
+
+impl Figure for ObjectivesFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        (1000, 700)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root.titled("Population averages over generations", text(18.0)).map_err(err)?;
+        let panels = root.split_evenly((2, 1));
+        let x_max = self.history.last().map_or(1, |s| s.generation.max(1));
+        type Pick = fn(&WaypointStats) -> f64;
+        type Panel<'p> = (&'p str, &'p [(&'p str, RGBColor, Pick)]);
+        let series: [Panel; 2] = [
+            (
+                "coverage [-]",
+                &[
+                    ("mean C", RGBColor(31, 119, 180), |s| s.mean_coverage),
+                    ("mean C_walls", RGBColor(44, 160, 44), |s| s.mean_walls),
+                    ("C_req (ramp)", RGBColor(200, 40, 40), |s| s.c_required),
+                ],
+            ),
+            (
+                "flight time [px-eq.]",
+                &[
+                    ("mean flight time", RGBColor(255, 127, 14), |s| s.mean_flight_time),
+                    ("min flight time", RGBColor(140, 86, 75), |s| s.min_flight_time),
+                ],
+            ),
+        ];
+        for (area, (label, lines)) in panels.iter().zip(series) {
+            let vals: Vec<f64> = lines.iter().flat_map(|(_, _, f)| self.history.iter().map(f)).collect();
+            let (lo, hi) = (
+                vals.iter().copied().fold(f64::INFINITY, f64::min),
+                vals.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            );
+            let pad = ((hi - lo) * 0.05).max(1e-3);
+            let mut chart = ChartBuilder::on(area)
+                .margin(10)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0u32..x_max, (lo - pad)..(hi + pad))
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_desc("generation")
+                .y_desc(label)
+                .label_style(text(13.0))
+                .axis_desc_style(text(14.0))
+                .draw()
+                .map_err(err)?;
+            for &(name, colour, f) in lines {
+                chart
+                    .draw_series(LineSeries::new(
+                        self.history.iter().map(|s| (s.generation, f(s))),
+                        colour.stroke_width(2),
+                    ))
+                    .map_err(err)?
+                    .label(name)
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::LowerRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(BLACK)
+                .label_font(text(13.0))
+                .draw()
+                .map_err(err)?;
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,303 @@
+//! Objectives, constraints and penalties of the waypoint planner (000 §II-C, §III-A.4, §III-B;
+//! spec §5–6, §12–13): union camera coverage (eq. 2), flight time with turning cost (eq. 3),
+//! loop closures, the agents' loop-closure Laplacian, the coverage ramp and the scaled,
+//! penalised objective vector.
+
+use super::graph::Graph;
+use super::precompute::{Traversals, Union};
+use crate::coverage::camera::wrap;
+
+/// Parameters of the objectives and constraints (Table I as reconciled in spec §18–19).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ObjectiveParams {
+    /// `α_cov`, weight of open-space coverage in eq. 2.
+    pub alpha_cov: f64,
+    /// `ρ`, turning cost factor (multiplier and exponent, eq. 3).
+    pub rho: f64,
+    /// Scaling of `−C` (−1.0).
+    pub scale_coverage: f64,
+    /// Scaling of flight time (0.0001).
+    pub scale_time: f64,
+    /// `C_start`.
+    pub c_start: f64,
+    /// `C_end`.
+    pub c_end: f64,
+    /// `G_age`.
+    pub aging: u32,
+    /// `T_sep` (waypoints).
+    pub lc_separation: usize,
+    /// Minimum self loop closures per agent.
+    pub lc_min: usize,
+    /// `P_cov` = `P_time` (scaled units).
+    pub penalty: f64,
+}
+
+/// `C_req(g) = C_start + (C_end − C_start)·min(1, g/G_age)` (spec §12.2, W22).
+pub fn required_coverage(p: &ObjectiveParams, generation: u32) -> f64 {
+    let t = if p.aging == 0 { 1.0 } else { (f64::from(generation) / f64::from(p.aging)).min(1.0) };
+    p.c_start + (p.c_end - p.c_start) * t
+}
+
+/// `C = α·C_open + (1 − α)·C_walls` (000 eq. 2).
+pub fn blended_coverage(alpha: f64, open: f64, walls: f64) -> f64 {
+    alpha * open + (1.0 - alpha) * walls
+}
+
+/// Turning surcharge `ρ·|Δψ/(π/2)|^ρ` of one interior waypoint (000 eq. 3, W12).
+pub fn turn_cost(rho: f64, delta_psi: f64) -> f64 {
+    rho * (wrap(delta_psi).abs() / std::f64::consts::FRAC_PI_2).powf(rho)
+}
+
+/// Flight time of a path in px-equivalents: leg lengths plus turning surcharges (000 eq. 3).
+pub fn flight_time(path: &[u32], graph: &Graph, tr: &Traversals, rho: f64) -> f64 {
+    let mut total = 0.0;
+    let mut prev: Option<f64> = None;
+    for w in path.windows(2) {
+        let t = tr.get(graph, w[0] as usize, w[1] as usize);
+        total += t.dist;
+        if let Some(h) = prev {
+            total += turn_cost(rho, t.heading - h);
+        }
+        prev = Some(t.heading);
+    }
+    total
+}
+
+/// ORs the views of a path into `u` (one pose per waypoint facing the next; the last facing
+/// its arrival direction, W10).
+pub fn add_views(path: &[u32], graph: &Graph, tr: &Traversals, u: &mut Union) {
+    for w in path.windows(2) {
+        u.add(&tr.get(graph, w[0] as usize, w[1] as usize).depart);
+    }
+    if let [.., a, b] = path {
+        u.add(&tr.get(graph, *a as usize, *b as usize).arrive);
+    }
+}
+
+/// Loop closures between the directed edges of `a` and `b` (spec §12.3, W23): matches `(i, j)`
+/// with the same directed edge and, for a path with itself (`same`), `j − i ≥ separation`;
+/// a run of consecutive matches counts once.
+pub fn loop_closures(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
+    let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));
+    let is_match = |i: usize, j: usize| -> bool {
+        if same && (j < i + separation.max(1)) {
+            return false;
+        }
+        a[i] == b[j] && a[i + 1] == b[j + 1]
+    };
+    let mut count = 0;
+    for i in 0..ea {
+        for j in 0..eb {
+            if is_match(i, j) && !(i > 0 && j > 0 && is_match(i - 1, j - 1)) {
+                count += 1;
+            }
+        }
+    }
+    count
+}
+
+/// Number of connected components of the agents' loop-closure graph (= the number of zero
+/// eigenvalues of its Laplacian), by union–find (W25).
+pub fn components(adjacent: &[Vec<bool>]) -> usize {
+    let n = adjacent.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for (i, row) in adjacent.iter().enumerate() {
+        for (j, _) in row.iter().enumerate().skip(i + 1).filter(|(_, a)| **a) {
+            let (a, b) = (find(&mut parent, i), find(&mut parent, j));
+            parent[a] = b;
+        }
+    }
+    (0..n).filter(|&i| find(&mut parent, i) == i).count()
+}
+
+/// The Laplacian `L = D − A` (000 eqs. 5–7) and its number of eigenvalues with `|λ| < tol`
+/// (nalgebra's symmetric eigen-decomposition).
+pub fn laplacian_zero_eigenvalues(adjacent: &[Vec<bool>], tol: f64) -> usize {
+    let n = adjacent.len();
+    let l = nalgebra::DMatrix::from_fn(n, n, |i, j| {
+        if i == j {
+            adjacent[i].iter().enumerate().filter(|&(k, &a)| a && k != i).count() as f64
+        } else if adjacent[i][j] {
+            -1.0
+        } else {
+            0.0
+        }
+    });
+    l.symmetric_eigenvalues().iter().filter(|v| v.abs() < tol).count()
+}
+
+/// Everything measured of one organism (one path per agent).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Evaluation {
+    /// `C_open`.
+    pub open: f64,
+    /// `C_walls`.
+    pub walls: f64,
+    /// `C` (eq. 2).
+    pub coverage: f64,
+    /// Total flight time (px-equivalents).
+    pub flight_time: f64,
+    /// Loop-closure matrix `C` (eq. 5): diagonal self closures, off-diagonal shared.
+    pub closures: Vec<Vec<usize>>,
+    /// Connected components of the agents' closure graph.
+    pub components: usize,
+}
+
+impl Evaluation {
+    /// Whether every agent has at least `lc_min` self loop closures.
+    pub fn loops_ok(&self, lc_min: usize) -> bool {
+        self.closures.iter().enumerate().all(|(i, row)| row[i] >= lc_min)
+    }
+    /// Whether the agents' closure graph is connected.
+    pub fn connected(&self) -> bool {
+        self.components == 1
+    }
+    /// Scaled, penalised objectives `(f1, f2)` at required coverage `c_req` (spec §12–13).
+    pub fn objectives(&self, p: &ObjectiveParams, c_req: f64) -> [f64; 2] {
+        let mut f1 = p.scale_coverage * self.coverage;
+        let mut f2 = p.scale_time * self.flight_time;
+        if !self.loops_ok(p.lc_min) || !self.connected() {
+            f1 += p.penalty;
+        }
+        if self.coverage < c_req {
+            f2 += p.penalty;
+        }
+        [f1, f2]
+    }
+    /// Number of violated constraint types at `c_req`.
+    pub fn violations(&self, p: &ObjectiveParams, c_req: f64) -> usize {
+        usize::from(!self.loops_ok(p.lc_min)) + usize::from(!self.connected()) + usize::from(self.coverage < c_req)
+    }
+}
+
+/// The fixed parts of an evaluation.
+pub struct Evaluator<'a> {
+    /// The graph.
+    pub graph: &'a Graph,
+    /// Traversal data.
+    pub traversals: &'a Traversals,
+    /// Bitset of the wall band `B`.
+    pub band: &'a [u64],
+    /// `|F|`.
+    pub free: u64,
+    /// `|B|`.
+    pub band_count: u64,
+    /// Parameters.
+    pub params: ObjectiveParams,
+}
+
+impl Evaluator<'_> {
+    /// Evaluates one organism (rows = agents' paths) using the scratch union.
+    pub fn evaluate(&self, rows: &[Vec<u32>], scratch: &mut Union) -> Evaluation {
+        scratch.clear();
+        for r in rows {
+            add_views(r, self.graph, self.traversals, scratch);
+        }
+        let (all, walls) = scratch.counts(self.band);
+        let open = all as f64 / self.free.max(1) as f64;
+        let walls = walls as f64 / self.band_count.max(1) as f64;
+        let n = rows.len();
+        let mut closures = vec![vec![0; n]; n];
+        for i in 0..n {
+            closures[i][i] = loop_closures(&rows[i], &rows[i], true, self.params.lc_separation);
+            for j in i + 1..n {
+                let c = loop_closures(&rows[i], &rows[j], false, 0);
+                closures[i][j] = c;
+                closures[j][i] = c;
+            }
+        }
+        let adjacent: Vec<Vec<bool>> =
+            (0..n).map(|i| (0..n).map(|j| i != j && closures[i][j] >= 1).collect()).collect();
+        let comps = components(&adjacent);
+        debug_assert_eq!(comps, laplacian_zero_eigenvalues(&adjacent, 1e-9));
+        Evaluation {
+            open,
+            walls,
+            coverage: blended_coverage(self.params.alpha_cov, open, walls),
+            flight_time: rows.iter().map(|r| flight_time(r, self.graph, self.traversals, self.params.rho)).sum(),
+            closures,
+            components: comps,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn loop_closure_counting_by_hand() {
+        // 0-1-2-3-0-1-2: edges 0→1 and 1→2 repeat 4 steps later: one run, one closure.
+        let p = [0, 1, 2, 3, 0, 1, 2];
+        assert_eq!(loop_closures(&p, &p, true, 4), 1);
+        assert_eq!(loop_closures(&p, &p, true, 5), 0, "separation below the threshold");
+        // Opposite direction does not count.
+        let q = [0, 1, 2, 3, 2, 1, 0];
+        assert_eq!(loop_closures(&q, &q, true, 1), 0);
+        // Two separate re-traversals count twice.
+        let r = [0, 1, 5, 6, 7, 0, 1, 8, 6, 7];
+        assert_eq!(loop_closures(&r, &r, true, 3), 2);
+        // Between agents, no separation threshold.
+        assert_eq!(loop_closures(&[4, 0, 1, 2], &[9, 0, 1, 2, 3], false, 0), 1);
+        assert_eq!(loop_closures(&[4, 0, 1], &[1, 0, 4], false, 0), 0);
+    }
+
+    #[test]
+    fn laplacian_zero_eigenvalues_count_components() {
+        let f = false;
+        let t = true;
+        let connected = vec![vec![f, t, f], vec![t, f, t], vec![f, t, f]];
+        let two = vec![vec![f, t, f, f], vec![t, f, f, f], vec![f, f, f, t], vec![f, f, t, f]];
+        let isolated = vec![vec![f, t, f], vec![t, f, f], vec![f, f, f]];
+        for (adj, expected) in [(connected, 1), (two, 2), (isolated, 2)] {
+            assert_eq!(components(&adj), expected);
+            assert_eq!(laplacian_zero_eigenvalues(&adj, 1e-9), expected);
+        }
+        assert_eq!(components(&[vec![false]]), 1);
+    }
+
+    #[test]
+    fn turning_cost_values_of_spec_6() {
+        use std::f64::consts::PI;
+        assert!((turn_cost(8.0, PI / 4.0) - 8.0 * 0.5f64.powi(8)).abs() < 1e-12);
+        assert!((turn_cost(8.0, PI / 2.0) - 8.0).abs() < 1e-12);
+        assert!((turn_cost(8.0, PI) - 2048.0).abs() < 1e-9);
+        assert!((turn_cost(8.0, -3.0 * PI / 2.0) - 8.0).abs() < 1e-9, "wrapped to 90°");
+    }
+
+    #[test]
+    fn ramp_and_blend() {
+        let p = ObjectiveParams {
+            alpha_cov: 0.1,
+            rho: 8.0,
+            scale_coverage: -1.0,
+            scale_time: 1e-4,
+            c_start: 0.3,
+            c_end: 0.8,
+            aging: 60,
+            lc_separation: 30,
+            lc_min: 2,
+            penalty: 1000.0,
+        };
+        assert_eq!(required_coverage(&p, 0), 0.3);
+        assert!((required_coverage(&p, 30) - 0.55).abs() < 1e-12);
+        assert_eq!(required_coverage(&p, 600), 0.8);
+        assert!((blended_coverage(0.1, 0.5, 1.0) - 0.95).abs() < 1e-12);
+        let e = Evaluation {
+            coverage: 0.5,
+            flight_time: 1000.0,
+            closures: vec![vec![1]],
+            components: 1,
+            ..Default::default()
+        };
+        assert_eq!(e.objectives(&p, 0.6), [-0.5 + 1000.0, 0.1 + 1000.0]);
+        assert_eq!(e.violations(&p, 0.4), 1);
+    }
+}

@@ -1,0 +1,158 @@
+//! Per-traversal precomputation (000 §II-D, spec §7): for every directed edge its length,
+//! heading, and the departure and arrival camera views as compact bitsets, so that evaluating a
+//! path is OR-ing masks and counting bits.
+
+use super::graph::Graph;
+use super::raster::WorkMap;
+use crate::coverage::camera::Camera;
+
+/// A bitset over the raster stored as the words between its first and last set bit.
+#[derive(Clone, Debug, Default)]
+pub struct Mask {
+    /// Index of the first word.
+    pub first: u32,
+    /// The words.
+    pub words: Vec<u64>,
+}
+
+impl Mask {
+    fn from_indices(idx: &mut [usize]) -> Self {
+        if idx.is_empty() {
+            return Self::default();
+        }
+        idx.sort_unstable();
+        let (lo, hi) = (idx[0] / 64, idx[idx.len() - 1] / 64);
+        let mut words = vec![0u64; hi - lo + 1];
+        for &i in idx.iter() {
+            words[i / 64 - lo] |= 1 << (i % 64);
+        }
+        Self { first: lo as u32, words }
+    }
+}
+
+/// Data of one directed traversal `i → j`.
+#[derive(Clone, Debug)]
+pub struct Traversal {
+    /// Length in px.
+    pub dist: f64,
+    /// Heading `ψ_ij` in radians.
+    pub heading: f64,
+    /// View at `i` facing `j`.
+    pub depart: Mask,
+    /// View at `j` facing along `i → j`.
+    pub arrive: Mask,
+}
+
+/// All traversals of a graph, indexed like the adjacency lists: `edges[i][k]` is `i → adj[i][k]`.
+pub struct Traversals {
+    /// Per waypoint, per neighbour.
+    pub edges: Vec<Vec<Traversal>>,
+    /// Words in a full raster bitset.
+    pub words: usize,
+}
+
+impl Traversals {
+    /// Computes every traversal's data.
+    pub fn compute(map: &WorkMap, graph: &Graph, camera: &Camera) -> Self {
+        use rayon::prelude::*;
+        let occ = |c: i64, r: i64| map.is_occluded(c, r);
+        let view = |p: (f64, f64), psi: f64| {
+            let mut idx = Vec::new();
+            camera.view(map.width, map.height, occ, p, psi, |i| idx.push(i));
+            Mask::from_indices(&mut idx)
+        };
+        let edges = (0..graph.points.len())
+            .into_par_iter()
+            .map(|i| {
+                graph.adj[i]
+                    .iter()
+                    .map(|&j| {
+                        let (a, b) = (graph.points[i], graph.points[j as usize]);
+                        let heading = (b.1 - a.1).atan2(b.0 - a.0);
+                        Traversal {
+                            dist: (b.0 - a.0).hypot(b.1 - a.1),
+                            heading,
+                            depart: view(a, heading),
+                            arrive: view(b, heading),
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        Self { edges, words: (map.width * map.height).div_ceil(64) }
+    }
+
+    /// The traversal `i → j` (must be an edge).
+    pub fn get(&self, graph: &Graph, i: usize, j: usize) -> &Traversal {
+        let k = graph.adj[i].binary_search(&(j as u32)).expect("consecutive waypoints are joined by an edge");
+        &self.edges[i][k]
+    }
+
+    /// Bytes held by the masks.
+    pub fn mask_bytes(&self) -> usize {
+        self.edges.iter().flatten().map(|t| 8 * (t.depart.words.len() + t.arrive.words.len())).sum()
+    }
+}
+
+/// A full-raster bitset used to accumulate views, cleared over the touched range only.
+#[derive(Clone, Debug)]
+pub struct Union {
+    words: Vec<u64>,
+    lo: usize,
+    hi: usize,
+}
+
+impl Union {
+    /// An empty union over `words` words.
+    pub fn new(words: usize) -> Self {
+        Self { words: vec![0; words], lo: usize::MAX, hi: 0 }
+    }
+    /// Clears the touched range.
+    pub fn clear(&mut self) {
+        if self.lo <= self.hi {
+            self.words[self.lo..=self.hi].iter_mut().for_each(|w| *w = 0);
+        }
+        self.lo = usize::MAX;
+        self.hi = 0;
+    }
+    /// ORs a mask in.
+    pub fn add(&mut self, m: &Mask) {
+        if m.words.is_empty() {
+            return;
+        }
+        let f = m.first as usize;
+        for (w, &x) in self.words[f..f + m.words.len()].iter_mut().zip(&m.words) {
+            *w |= x;
+        }
+        self.lo = self.lo.min(f);
+        self.hi = self.hi.max(f + m.words.len() - 1);
+    }
+    /// `(|U|, |U ∩ band|)`.
+    pub fn counts(&self, band: &[u64]) -> (u64, u64) {
+        if self.lo > self.hi {
+            return (0, 0);
+        }
+        let mut all = 0u64;
+        let mut walls = 0u64;
+        for (w, b) in self.words[self.lo..=self.hi].iter().zip(&band[self.lo..=self.hi]) {
+            all += u64::from(w.count_ones());
+            walls += u64::from((w & b).count_ones());
+        }
+        (all, walls)
+    }
+    /// Whether pixel `i` is in the union.
+    pub fn contains(&self, i: usize) -> bool {
+        self.words[i / 64] >> (i % 64) & 1 == 1
+    }
+}
+
+/// A full bitset of a boolean raster.
+pub fn bitset(flags: &[bool]) -> Vec<u64> {
+    let mut w = vec![0u64; flags.len().div_ceil(64)];
+    for (i, &f) in flags.iter().enumerate() {
+        if f {
+            w[i / 64] |= 1 << (i % 64);
+        }
+    }
+    w
+}

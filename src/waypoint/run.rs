@@ -1,0 +1,308 @@
+//! The maximin GA of 000 (§III, spec §10–17): initial population from feasible random paths,
+//! low-variance parent sampling with fitness pressure γ, row-wise crossover and mutations,
+//! penalised objectives with the coverage ramp, maximin fitness over parents ∪ children and
+//! elitism. Single and multi-agent (one row per agent).
+
+use super::evaluate::{Evaluation, Evaluator, ObjectiveParams, required_coverage};
+use super::operators::{OperatorParams, crossover, extend_random, mutation_a, mutation_b, repair};
+use super::precompute::Union;
+use super::world::World;
+use crate::ga::maximin::maximin;
+use crate::ga::rng::{Purpose, Rng, stream};
+use crate::ga::selection::low_variance_sample;
+use rand::Rng as _;
+use rand::seq::SliceRandom;
+use rayon::prelude::*;
+
+/// GA parameters (Table I, spec §18–19).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GaParams {
+    /// `N`.
+    pub population: usize,
+    /// Generations `G`.
+    pub generations: u32,
+    /// `p_c`.
+    pub p_c: f64,
+    /// `p_A`.
+    pub p_a: f64,
+    /// `p_B`.
+    pub p_b: f64,
+    /// `γ`, fitness pressure.
+    pub gamma: f64,
+    /// `l_init`.
+    pub l_init: usize,
+    /// Agents.
+    pub agents: usize,
+    /// Operators.
+    pub ops: OperatorParams,
+    /// Objectives and constraints.
+    pub objectives: ObjectiveParams,
+}
+
+/// One organism: a path per agent and its evaluation.
+#[derive(Clone, Debug)]
+pub struct Organism {
+    /// Waypoint ids per agent.
+    pub rows: Vec<Vec<u32>>,
+    /// Its evaluation.
+    pub eval: Evaluation,
+}
+
+/// Per-generation statistics (spec §17).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct WaypointStats {
+    /// Generation.
+    pub generation: u32,
+    /// `C_req`.
+    pub c_required: f64,
+    /// Mean / min / max of `C`.
+    pub mean_coverage: f64,
+    /// Minimum `C`.
+    pub min_coverage: f64,
+    /// Maximum `C`.
+    pub max_coverage: f64,
+    /// Mean `C_open`.
+    pub mean_open: f64,
+    /// Mean `C_walls`.
+    pub mean_walls: f64,
+    /// Mean flight time (px-equivalents).
+    pub mean_flight_time: f64,
+    /// Minimum flight time.
+    pub min_flight_time: f64,
+    /// Mean scaled, penalised `f1`.
+    pub mean_f1: f64,
+    /// Mean scaled, penalised `f2`.
+    pub mean_f2: f64,
+    /// Organisms meeting every constraint.
+    pub feasible: u32,
+    /// Mean path length (waypoints per agent).
+    pub mean_length: f64,
+    /// Mean self loop closures per agent.
+    pub mean_self_closures: f64,
+}
+
+/// Population `(C, flight time, feasible)` at one generation.
+pub type Snapshot = (u32, Vec<(f64, f64, bool)>);
+
+/// The result of a run.
+pub struct WaypointOutcome {
+    /// Final population.
+    pub population: Vec<Organism>,
+    /// Index of the selected organism: the feasible one with the highest coverage (else the
+    /// best maximin).
+    pub best: usize,
+    /// Population `(C, flight time, feasible)` at generation 0, ~G/3, ~2G/3 and G.
+    pub snapshots: Vec<Snapshot>,
+    /// Organisms accepted at generation 0 without violating a constraint.
+    pub initial_feasible: usize,
+}
+
+fn stats(g: u32, pop: &[Organism], p: &GaParams) -> WaypointStats {
+    let c_req = required_coverage(&p.objectives, g);
+    let n = pop.len() as f64;
+    let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
+    let sum = |f: &dyn Fn(&Organism) -> f64| pop.iter().map(f).sum::<f64>() / n;
+    WaypointStats {
+        generation: g,
+        c_required: c_req,
+        mean_coverage: sum(&|o| o.eval.coverage),
+        min_coverage: pop.iter().map(|o| o.eval.coverage).fold(f64::INFINITY, f64::min),
+        max_coverage: pop.iter().map(|o| o.eval.coverage).fold(f64::NEG_INFINITY, f64::max),
+        mean_open: sum(&|o| o.eval.open),
+        mean_walls: sum(&|o| o.eval.walls),
+        mean_flight_time: sum(&|o| o.eval.flight_time),
+        min_flight_time: pop.iter().map(|o| o.eval.flight_time).fold(f64::INFINITY, f64::min),
+        mean_f1: objs.iter().map(|o| o[0]).sum::<f64>() / n,
+        mean_f2: objs.iter().map(|o| o[1]).sum::<f64>() / n,
+        feasible: pop.iter().filter(|o| o.eval.violations(&p.objectives, c_req) == 0).count() as u32,
+        mean_length: sum(&|o| o.rows.iter().map(Vec::len).sum::<usize>() as f64 / o.rows.len() as f64),
+        mean_self_closures: sum(&|o| {
+            (0..o.rows.len()).map(|i| o.eval.closures[i][i]).sum::<usize>() as f64 / o.rows.len() as f64
+        }),
+    }
+}
+
+/// Selection weights from maximin values with pressure γ (spec §16, W28).
+pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
+    let (lo, hi) = (
+        fitness.iter().copied().fold(f64::INFINITY, f64::min),
+        fitness.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+    );
+    let s: Vec<f64> = fitness.iter().map(|&f| if hi > lo { (hi - f) / (hi - lo) } else { 1.0 }).collect();
+    let w: Vec<f64> = if gamma >= 1.0 {
+        s.iter().map(|&x| if x >= 1.0 { 1.0 } else { 0.0 }).collect()
+    } else {
+        let e = gamma / (1.0 - gamma);
+        s.iter().map(|&x| if e == 0.0 { 1.0 } else { x.powf(e) }).collect()
+    };
+    let total: f64 = w.iter().sum();
+    w.iter().map(|x| x / total).collect()
+}
+
+/// Runs the GA on a built world; `on_generation` receives each generation's statistics.
+pub fn run(world: &World, p: &GaParams, seed: u64, on_generation: &mut dyn FnMut(&WaypointStats)) -> WaypointOutcome {
+    let ev = Evaluator {
+        graph: &world.graph,
+        traversals: &world.traversals,
+        band: &world.band,
+        free: world.free,
+        band_count: world.band_count,
+        params: p.objectives,
+    };
+    let words = world.traversals.words;
+    let g = &world.graph;
+    let evaluate_all = |cands: Vec<Vec<Vec<u32>>>| -> Vec<Organism> {
+        cands
+            .into_par_iter()
+            .map_init(|| Union::new(words), |u, rows| Organism { eval: ev.evaluate(&rows, u), rows })
+            .collect()
+    };
+    // Initial population (spec §10, W16): feasible at generation-0 constraints, in attempt order.
+    let c0 = required_coverage(&p.objectives, 0);
+    let mut accepted: Vec<Organism> = Vec::new();
+    let mut rejected: Vec<Organism> = Vec::new();
+    let mut attempt = 0u64;
+    let cap = 200 * p.population as u64;
+    while accepted.len() < p.population && attempt < cap {
+        let batch = (p.population as u64).min(cap - attempt);
+        let cands: Vec<Vec<Vec<u32>>> = (attempt..attempt + batch)
+            .map(|k| {
+                let mut rng = stream(seed, Purpose::Individual, &[0, k]);
+                world
+                    .starts
+                    .iter()
+                    .take(p.agents)
+                    .map(|&s| {
+                        let mut r = vec![s];
+                        extend_random(&mut r, p.l_init, g, &p.ops, &mut rng);
+                        r
+                    })
+                    .collect()
+            })
+            .collect();
+        for o in evaluate_all(cands) {
+            if o.eval.violations(&p.objectives, c0) == 0 && accepted.len() < p.population {
+                accepted.push(o);
+            } else {
+                rejected.push(o);
+            }
+        }
+        attempt += batch;
+        // Keep only the least-violating rejects (fewest violations, then most coverage).
+        rejected.sort_by(|a, b| {
+            a.eval
+                .violations(&p.objectives, c0)
+                .cmp(&b.eval.violations(&p.objectives, c0))
+                .then(b.eval.coverage.total_cmp(&a.eval.coverage))
+        });
+        rejected.truncate(p.population);
+    }
+    let initial_feasible = accepted.len();
+    let mut pop = accepted;
+    pop.extend(rejected.into_iter().take(p.population - pop.len()));
+    let mut rng = stream(seed, Purpose::Main, &[]);
+    let snap_at = [0, p.generations / 3, 2 * p.generations / 3, p.generations];
+    let mut snapshots = Vec::new();
+    let snapshot = |g: u32, pop: &[Organism]| {
+        (
+            g,
+            pop.iter()
+                .map(|o| {
+                    (
+                        o.eval.coverage,
+                        o.eval.flight_time,
+                        o.eval.violations(&p.objectives, required_coverage(&p.objectives, g)) == 0,
+                    )
+                })
+                .collect::<Vec<_>>(),
+        )
+    };
+    on_generation(&stats(0, &pop, p));
+    snapshots.push(snapshot(0, &pop));
+    for gen_ in 1..=p.generations {
+        let c_req = required_coverage(&p.objectives, gen_);
+        let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
+        let probs = pressure_weights(&maximin(&objs), p.gamma);
+        let mut parents = low_variance_sample(&probs, p.population, &mut rng);
+        parents.shuffle(&mut rng);
+        let pop_ref = &pop;
+        let children: Vec<Vec<Vec<u32>>> = parents
+            .par_chunks(2)
+            .enumerate()
+            .flat_map_iter(|(k, pair)| {
+                let mut r: Rng = stream(seed, Purpose::Individual, &[u64::from(gen_), k as u64]);
+                let (a, b) = (&pop_ref[pair[0]], &pop_ref[*pair.last().expect("pair")]);
+                let mut c1 = Vec::with_capacity(a.rows.len());
+                let mut c2 = Vec::with_capacity(a.rows.len());
+                for row in 0..a.rows.len() {
+                    let crossed = if r.random_bool(p.p_c) {
+                        crossover(&a.rows[row], &b.rows[row], p.ops.crossover_threshold, &mut r)
+                    } else {
+                        None
+                    };
+                    let (x, y) = crossed.unwrap_or_else(|| (a.rows[row].clone(), b.rows[row].clone()));
+                    c1.push(x);
+                    c2.push(y);
+                }
+                for c in [&mut c1, &mut c2] {
+                    for row in c.iter_mut() {
+                        repair(row, g, &p.ops, &mut r);
+                        if r.random_bool(p.p_a) {
+                            mutation_a(row, g, &p.ops, &mut r);
+                        }
+                        if r.random_bool(p.p_b) {
+                            mutation_b(row, g, &p.ops, &mut r);
+                        }
+                        repair(row, g, &p.ops, &mut r);
+                    }
+                }
+                [c1, c2]
+            })
+            .collect();
+        let mut pool = std::mem::take(&mut pop);
+        pool.extend(evaluate_all(children));
+        let objs: Vec<[f64; 2]> = pool.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
+        let fit = maximin(&objs);
+        let ties: Vec<u64> = (0..pool.len()).map(|_| rng.random()).collect();
+        let mut order: Vec<usize> = (0..pool.len()).collect();
+        order.sort_by(|&x, &y| fit[x].total_cmp(&fit[y]).then(ties[x].cmp(&ties[y])));
+        let mut slots: Vec<Option<Organism>> = pool.into_iter().map(Some).collect();
+        pop = order.iter().take(p.population).map(|&i| slots[i].take().expect("kept once")).collect();
+        on_generation(&stats(gen_, &pop, p));
+        if snap_at[1..].contains(&gen_) && snapshots.last().is_none_or(|s| s.0 != gen_) {
+            snapshots.push(snapshot(gen_, &pop));
+        }
+    }
+    let c_end = required_coverage(&p.objectives, p.generations);
+    let feasible: Vec<usize> = (0..pop.len()).filter(|&i| pop[i].eval.violations(&p.objectives, c_end) == 0).collect();
+    let best = if let Some(&b) = feasible.iter().max_by(|&&a, &&b| {
+        pop[a]
+            .eval
+            .coverage
+            .total_cmp(&pop[b].eval.coverage)
+            .then(pop[b].eval.flight_time.total_cmp(&pop[a].eval.flight_time))
+    }) {
+        b
+    } else {
+        let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_end)).collect();
+        let fit = maximin(&objs);
+        (0..pop.len()).min_by(|&a, &b| fit[a].total_cmp(&fit[b])).unwrap_or(0)
+    };
+    WaypointOutcome { population: pop, best, snapshots, initial_feasible }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pressure_limits() {
+        let f = [-2.0, -1.0, 0.0, 1.0];
+        let uniform = pressure_weights(&f, 0.0);
+        assert!(uniform.iter().all(|&p| (p - 0.25).abs() < 1e-12));
+        let prop = pressure_weights(&f, 0.5);
+        assert!((prop[0] - 1.0 / 2.0).abs() < 1e-12 && prop[3] == 0.0);
+        let greedy = pressure_weights(&f, 1.0);
+        assert_eq!(greedy, vec![1.0, 0.0, 0.0, 0.0]);
+    }
+}

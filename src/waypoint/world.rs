@@ -1,0 +1,180 @@
+//! The precomputed world of the waypoint planner (spec §2–§7): raster, waypoints, graph,
+//! traversal views, wall band and start waypoints, built once per map and parameter set.
+
+use super::graph::Graph;
+use super::precompute::{Traversals, bitset};
+use super::raster::WorkMap;
+use super::waypoints;
+use crate::coverage::camera::Camera;
+use crate::map::GridMap;
+
+/// Which waypoints are used (spec §3.5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum WaypointSet {
+    /// All waypoints.
+    Full,
+    /// Only waypoints within one grid step of the buffer band (plus what connectivity needs).
+    NearWall,
+}
+
+/// Geometry parameters in metres and degrees.
+#[derive(Clone, Debug, PartialEq)]
+pub struct WorldParams {
+    /// Pixel scale `s` (m/px).
+    pub scale: f64,
+    /// UAV width (m).
+    pub uav_width: f64,
+    /// Narrowest accessible hallway `h_min` (m).
+    pub hallway: f64,
+    /// Maximum traverse distance of a graph edge (m).
+    pub max_traverse: f64,
+    /// `d_min` (m).
+    pub d_min: f64,
+    /// `d_max` (m).
+    pub d_max: f64,
+    /// `θ_fov` (degrees).
+    pub fov_deg: f64,
+    /// `m` sections.
+    pub sections: usize,
+    /// Waypoint set.
+    pub set: WaypointSet,
+    /// Entry positions (m), one shared or one per agent.
+    pub starts: Vec<(f64, f64)>,
+}
+
+/// Errors building the world.
+#[derive(Debug, thiserror::Error)]
+pub enum WorldError {
+    /// No waypoint could be placed.
+    #[error("no waypoint fits on the map with hallway width {0} m and the safety buffer")]
+    NoWaypoints(f64),
+    /// The start cannot reach most of the map.
+    #[error(
+        "the start at ({x:.2}, {y:.2}) m reaches only {reached} of {total} waypoints: check the map's doors, `hallway` and `max_traverse`"
+    )]
+    Unreachable {
+        /// Start x.
+        x: f64,
+        /// Start y.
+        y: f64,
+        /// Waypoints reached.
+        reached: usize,
+        /// Waypoints placed.
+        total: usize,
+    },
+}
+
+/// Everything precomputed.
+pub struct World {
+    /// The working raster.
+    pub map: WorkMap,
+    /// The graph (restricted to the starts' component).
+    pub graph: Graph,
+    /// Per-traversal data.
+    pub traversals: Traversals,
+    /// Wall band `B` as a bitset.
+    pub band: Vec<u64>,
+    /// `|F|`.
+    pub free: u64,
+    /// `|B|`.
+    pub band_count: u64,
+    /// Start waypoint per agent.
+    pub starts: Vec<u32>,
+    /// Safety buffer `b` (px).
+    pub buffer: f64,
+    /// Waypoints dropped because the start could not reach them.
+    pub dropped: usize,
+}
+
+impl World {
+    /// Builds the world for `agents` agents.
+    pub fn build(map: &GridMap, p: &WorldParams, agents: usize) -> Result<Self, WorldError> {
+        let wm = WorkMap::new(map, p.scale);
+        let b = (p.uav_width / (2.0 * p.scale)).floor() + 1.0;
+        let g = p.hallway / (2.0 * p.scale);
+        let mut pts = waypoints::place(&wm, g, b, p.uav_width / (2.0 * p.scale));
+        if pts.is_empty() {
+            return Err(WorldError::NoWaypoints(p.hallway));
+        }
+        let starts_px: Vec<(f64, f64)> = p.starts.iter().map(|&(x, y)| wm.to_px(x, y)).collect();
+        let max_len = p.max_traverse / p.scale;
+        let mut graph = Graph::build(&wm, pts.clone(), max_len);
+        if p.set == WaypointSet::NearWall {
+            let start_ids: Vec<usize> = starts_px.iter().map(|&s| graph.nearest(s)).collect();
+            let keep: Vec<bool> =
+                (0..pts.len()).map(|i| wm.clearance(pts[i]) <= b + g || start_ids.contains(&i)).collect();
+            let kept = connect_subset(&graph, keep, start_ids[0]);
+            pts = (0..pts.len()).filter(|&i| kept[i]).map(|i| pts[i]).collect();
+            graph = Graph::build(&wm, pts.clone(), max_len);
+        }
+        let first = graph.nearest(starts_px[0]);
+        let comp = graph.component(first);
+        let reached = comp.iter().filter(|c| **c).count();
+        if reached < 2 || reached * 2 < graph.points.len() {
+            let (x, y) = p.starts[0];
+            return Err(WorldError::Unreachable { x, y, reached, total: graph.points.len() });
+        }
+        let (graph, _) = graph.restrict(&comp);
+        let starts: Vec<u32> =
+            (0..agents).map(|a| graph.nearest(starts_px[a.min(starts_px.len() - 1)]) as u32).collect();
+        let camera = Camera {
+            d_min: p.d_min / p.scale,
+            d_max: p.d_max / p.scale,
+            fov: p.fov_deg.to_radians(),
+            sections: p.sections,
+        };
+        let traversals = Traversals::compute(&wm, &graph, &camera);
+        let band_flags = wm.band(b);
+        let band_count = band_flags.iter().filter(|x| **x).count() as u64;
+        Ok(Self {
+            free: wm.free_count() as u64,
+            band: bitset(&band_flags),
+            band_count,
+            dropped: pts.len().saturating_sub(graph.points.len()),
+            map: wm,
+            graph,
+            traversals,
+            starts,
+            buffer: b,
+        })
+    }
+}
+
+/// Adds back removed waypoints on shortest paths of the full graph until `keep` is connected
+/// from `start` (W5).
+fn connect_subset(full: &Graph, mut keep: Vec<bool>, start: usize) -> Vec<bool> {
+    loop {
+        let (sub, map) = full.restrict(&keep);
+        let Some(s) = map[start] else { return keep };
+        let comp = sub.component(s as usize);
+        let in_comp: Vec<bool> = (0..keep.len()).map(|i| map[i].is_some_and(|k| comp[k as usize])).collect();
+        let Some(target) = (0..keep.len()).find(|&i| keep[i] && !in_comp[i]) else { return keep };
+        // BFS in the full graph from the start's component to the target.
+        let mut prev = vec![usize::MAX; keep.len()];
+        let mut queue: std::collections::VecDeque<usize> = (0..keep.len()).filter(|&i| in_comp[i]).collect();
+        for &q in &queue {
+            prev[q] = q;
+        }
+        while let Some(i) = queue.pop_front() {
+            if i == target {
+                break;
+            }
+            for &j in &full.adj[i] {
+                if prev[j as usize] == usize::MAX {
+                    prev[j as usize] = i;
+                    queue.push_back(j as usize);
+                }
+            }
+        }
+        if prev[target] == usize::MAX {
+            keep[target] = false; // unreachable even in the full graph
+            continue;
+        }
+        let mut k = target;
+        while prev[k] != k {
+            keep[k] = true;
+            k = prev[k];
+        }
+    }
+}

@@ -1,0 +1,108 @@
+//! End-to-end tests of the waypoint planner through `covga run`: improvement, determinism
+//! across thread counts, outputs, and bad input.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn covga(args: &[&str], threads: &str) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).env("RAYON_NUM_THREADS", threads).output().expect("covga runs")
+}
+
+/// A small single-agent run on the office preset.
+fn small(extra: &str) -> String {
+    format!(
+        "seed = 3\nplanner = \"waypoint\"\n[map]\nsource = \"office\"\n[stations]\nstart = [2.0, 2.0]\n[waypoint]\npopulation = 20\ngenerations = 25\n{extra}\n"
+    )
+}
+
+fn write(dir: &Path, text: &str) -> std::path::PathBuf {
+    let p = dir.join("w.toml");
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn summary_without_time(dir: &Path) -> serde_json::Value {
+    let mut v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let o = v.as_object_mut().unwrap();
+    o.remove("wall_s");
+    o.remove("precompute_s");
+    v
+}
+
+#[test]
+fn single_agent_run_improves_and_is_deterministic() {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), &small("l_init = 120"));
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    for (out, threads) in [(&a, "1"), (&b, "2")] {
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], threads);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    }
+    for f in ["config.toml", "history.csv", "best_path.csv"] {
+        assert_eq!(
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+            "{f} differs between 1 and 2 threads"
+        );
+    }
+    assert_eq!(summary_without_time(&a), summary_without_time(&b));
+    for f in ["paths.png", "paths.svg", "coverage.png", "pareto_snapshots.png", "objectives.png"] {
+        assert!(a.join(f).metadata().map(|m| m.len() > 1000).unwrap_or(false), "{f}");
+    }
+    let s = summary_without_time(&a);
+    for key in ["wall_coverage", "open_coverage", "flight_time", "loop_closures_ok", "connected", "agents", "seed"] {
+        assert!(s.get(key).is_some(), "{key}");
+    }
+    // Mean coverage rises over the first generations (the ramp forces it up from 0.3).
+    let hist = std::fs::read_to_string(a.join("history.csv")).unwrap();
+    let mean: Vec<f64> = hist.lines().skip(1).map(|l| l.split(',').nth(2).unwrap().parse().unwrap()).collect();
+    assert_eq!(mean.len(), 26);
+    assert!(mean[25] > mean[0] + 0.05, "mean coverage {} -> {}", mean[0], mean[25]);
+    // The best path CSV has an agent column and starts at the entry waypoint region.
+    let path = std::fs::read_to_string(a.join("best_path.csv")).unwrap();
+    assert!(path.starts_with("agent,index,x_m,y_m"));
+}
+
+#[test]
+fn three_agents_share_loop_closures() {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), &small("agents = 3\nl_init = 80\nlc_separation = 15"));
+    let out = dir.path().join("o");
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let s = summary_without_time(&out);
+    assert_eq!(s["agents"], 3);
+    assert_eq!(s["closures"].as_array().unwrap().len(), 3);
+    let paths = std::fs::read_to_string(out.join("best_path.csv")).unwrap();
+    let agents: std::collections::BTreeSet<&str> =
+        paths.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
+    assert_eq!(agents.len(), 3);
+}
+
+#[test]
+fn bad_waypoint_settings_are_rejected() {
+    for (extra, needle) in [
+        ("d_min = 8.0", "`waypoint.d_max` = 7 must exceed d_min"),
+        ("fov_deg = 0.0", "`waypoint.fov_deg` = 0 is out of range (0, 360]"),
+        ("fov_deg = 400.0", "`waypoint.fov_deg` = 400"),
+        ("hallway = 0.1", "below the cell size"),
+        ("agents = 0", "`waypoint.agents` = 0 is out of range"),
+        ("starts = [[0.1, 0.1]]", "inside an obstacle"),
+        ("l_init = 10", "l_min"),
+    ] {
+        let dir = tempfile::tempdir().unwrap();
+        let exp = write(dir.path(), &small(extra));
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], "1");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{extra}: {err}");
+        assert!(err.contains(needle) && err.contains("w.toml"), "{extra}: expected `{needle}` in {err}");
+        assert_eq!(err.trim().lines().count(), 1, "{err}");
+    }
+    // A start inside an obstacle through [stations].
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), &small("l_init = 120").replace("start = [2.0, 2.0]", "start = [15.0, 9.7]"));
+    let o = covga(&["run", exp.to_str().unwrap()], "1");
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("inside an obstacle"));
+}
