@@ -155,3 +155,34 @@ fn missing_experiment_file_is_an_input_error() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("no/such/experiment.toml"));
 }
+
+#[test]
+fn parameter_control_schedules_show_in_the_history() {
+    let dir = tempfile::tempdir().unwrap();
+    let column = |hist: &str, name: &str| -> Vec<f64> {
+        let mut lines = hist.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let k = header.iter().position(|h| *h == name).unwrap();
+        lines.map(|l| l.split(',').nth(k).unwrap().parse().unwrap()).collect()
+    };
+    // Tournament size ramps from 1 to 7 (eq. 3.25).
+    let ramp = small(
+        "selection = \"tournament\"\ninit_individuals = 60\nkeep = 2\nselect = 10\n[thesis.control]\nkind = \"ramp\"\nmin = 1.0\nmax = 7.0\n",
+    );
+    let exp = write(dir.path(), "ramp.toml", &ramp);
+    let out = dir.path().join("ramp");
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let sp = column(&read(&out.join("history.csv")), "sp");
+    assert_eq!(sp[1], 1.0);
+    assert_eq!(*sp.last().unwrap(), 7.0);
+    assert!(sp.windows(2).skip(1).all(|w| w[1] >= w[0]));
+    // Mühlenbein: P_mA rises from ~0 to 1 while P_c falls (eqs. 2.1–2.2).
+    let exp = write(dir.path(), "mu.toml", &small("[thesis.control]\nkind = \"muhlenbein\"\n"));
+    let out = dir.path().join("mu");
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let hist = read(&out.join("history.csv"));
+    let (pm, pc) = (column(&hist, "p_ma"), column(&hist, "p_c"));
+    assert!(pm[1] < 0.001 && (pm[200] - 1.0).abs() < 1e-12 && pc[200].abs() < 1e-12);
+}

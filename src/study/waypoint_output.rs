@@ -30,6 +30,8 @@ pub struct WaypointSummary {
     pub connected: bool,
     /// The loop-closure matrix (eq. 5).
     pub closures: Vec<Vec<usize>>,
+    /// Zero eigenvalues (|λ| < 1e-9) of the agents' Laplacian `L = D − A` (000 eq. 7).
+    pub laplacian_zero_eigenvalues: usize,
     /// Agents.
     pub agents: usize,
     /// Waypoints per agent path.
@@ -122,6 +124,14 @@ pub fn run_waypoint(
         loop_closures_ok: e.loops_ok(plan.ga.objectives.lc_min),
         connected: e.connected(),
         closures: e.closures.clone(),
+        laplacian_zero_eigenvalues: crate::waypoint::evaluate::laplacian_zero_eigenvalues(
+            &e.closures
+                .iter()
+                .enumerate()
+                .map(|(i, r)| r.iter().enumerate().map(|(j, &c)| i != j && c >= 1).collect())
+                .collect::<Vec<Vec<bool>>>(),
+            1e-9,
+        ),
         agents: best.rows.len(),
         path_lengths: best.rows.iter().map(Vec::len).collect(),
         seed: exp.file.seed,

@@ -178,3 +178,45 @@ fn connect_subset(full: &Graph, mut keep: Vec<bool>, start: usize) -> Vec<bool> 
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+
+    fn params(set: WaypointSet) -> WorldParams {
+        WorldParams {
+            scale: 0.15,
+            uav_width: 0.5,
+            hallway: 1.5,
+            max_traverse: 4.0,
+            d_min: 0.2,
+            d_max: 7.0,
+            fov_deg: 69.4,
+            sections: 15,
+            set,
+            starts: vec![(2.0, 2.0)],
+        }
+    }
+
+    #[test]
+    fn near_wall_set_is_smaller_and_stays_connected() {
+        let map = preset("office").unwrap();
+        let full = World::build(&map, &params(WaypointSet::Full), 1).unwrap();
+        let near = World::build(&map, &params(WaypointSet::NearWall), 1).unwrap();
+        assert!(near.graph.points.len() < full.graph.points.len());
+        let comp = near.graph.component(near.starts[0] as usize);
+        assert!(comp.iter().all(|c| *c), "every kept waypoint is reachable from the start");
+        // Safety buffer b = floor(0.5 / 0.3) + 1 = 2 px (W2).
+        assert_eq!(full.buffer, 2.0);
+    }
+
+    #[test]
+    fn an_isolated_start_is_a_clear_error() {
+        // A start in the thesis map 2 corner with a hallway so wide that only a few waypoints fit.
+        let map = preset("thesis-1").unwrap();
+        let p = WorldParams { max_traverse: 0.1, scale: 0.2, starts: vec![(1.5, 1.5)], ..params(WaypointSet::Full) };
+        let e = World::build(&map, &p, 1).err().expect("edges longer than 0.1 m are removed");
+        assert!(e.to_string().contains("reaches only"), "{e}");
+    }
+}
