@@ -82,14 +82,7 @@ impl HistoryFigure<'_> {
                 .label("environment change")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], SWITCH.stroke_width(3)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(text(13.0))
-            .draw()
-            .map_err(err)
+        super::series_legend(&mut chart, SeriesLabelPosition::LowerRight)
     }
 }
 

@@ -97,3 +97,40 @@ pub fn legend<DB: DrawingBackend>(
     }
     Ok(())
 }
+
+/// The standard series-label box of every chart: white, framed, at `position`.
+pub fn series_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTranslate>(
+    chart: &mut ChartContext<'a, DB, CT>,
+    position: SeriesLabelPosition,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK)
+        .label_font(text(13.0))
+        .draw()
+        .map_err(err)
+}
+
+/// Runs of equal classes along each row of a `width × height` raster (row 0 at the bottom):
+/// `(row, first column, end column, class)`. Drawing runs instead of cells keeps SVGs small.
+pub fn cell_runs<C: PartialEq + Copy>(
+    width: usize,
+    height: usize,
+    class: impl Fn(usize) -> C,
+) -> Vec<(usize, usize, usize, C)> {
+    let mut out = Vec::new();
+    for r in 0..height {
+        let mut c = 0;
+        while c < width {
+            let k = class(r * width + c);
+            let start = c;
+            while c < width && class(r * width + c) == k {
+                c += 1;
+            }
+            out.push((r, start, c, k));
+        }
+    }
+    out
+}

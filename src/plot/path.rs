@@ -118,20 +118,10 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     // Cells, merged into runs of one class per row to keep the SVG small.
     let classes = fig.classes();
     let res = map.resolution();
-    let cols = map.cols();
-    let mut rects = Vec::new();
-    for r in 0..map.rows() {
-        let mut c = 0;
-        while c < cols {
-            let class = classes[r * cols + c];
-            let start = c;
-            while c < cols && classes[r * cols + c] == class {
-                c += 1;
-            }
-            let (xa, ya) = (ox + start as f64 * res, oy + r as f64 * res);
-            rects.push(Rectangle::new([(xa, ya), (ox + c as f64 * res, ya + res)], class.colour().filled()));
-        }
-    }
+    let rects = super::cell_runs(map.cols(), map.rows(), |i| classes[i]).into_iter().map(|(r, c0, c1, class)| {
+        let (xa, ya) = (ox + c0 as f64 * res, oy + r as f64 * res);
+        Rectangle::new([(xa, ya), (ox + c1 as f64 * res, ya + res)], class.colour().filled())
+    });
     chart.draw_series(rects).map_err(err)?;
     let dot = if small { 1 } else { 2 };
     for path in &fig.paths {

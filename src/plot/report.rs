@@ -80,14 +80,7 @@ impl Figure for ParetoFigure {
                 .map_err(err)?
                 .label(format!("non-dominated ({})", front.len()))
                 .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerLeft)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(text(13.0))
-                .draw()
-                .map_err(err)?;
+            super::series_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
         }
         Ok(())
     }
@@ -144,14 +137,7 @@ impl Figure for DiversityFigure {
                 .label(format!("{} ({} runs)", g.label, g.runs))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK)
-            .label_font(text(13.0))
-            .draw()
-            .map_err(err)
+        super::series_legend(&mut chart, SeriesLabelPosition::UpperRight)
     }
 }
 

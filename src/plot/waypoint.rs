@@ -50,19 +50,10 @@ fn raster_chart<'a, DB: DrawingBackend>(
         .axis_desc_style(text(15.0))
         .draw()
         .map_err(err)?;
-    let mut rects = Vec::new();
-    for r in 0..map.height {
-        let mut c = 0;
-        while c < map.width {
-            let colour = class(r * map.width + c);
-            let s = c;
-            while c < map.width && class(r * map.width + c) == colour {
-                c += 1;
-            }
-            let (x0, y0) = (ox + s as f64 * map.scale, oy + r as f64 * map.scale);
-            rects.push(Rectangle::new([(x0, y0), (ox + c as f64 * map.scale, y0 + map.scale)], colour.filled()));
-        }
-    }
+    let rects = super::cell_runs(map.width, map.height, class).into_iter().map(|(r, c0, c1, colour)| {
+        let (x0, y0) = (ox + c0 as f64 * map.scale, oy + r as f64 * map.scale);
+        Rectangle::new([(x0, y0), (ox + c1 as f64 * map.scale, y0 + map.scale)], colour.filled())
+    });
     chart.draw_series(rects).map_err(err)?;
     Ok(chart)
 }
@@ -273,14 +264,7 @@ impl Figure for ObjectivesFigure<'_> {
                     .label(name)
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(text(13.0))
-                .draw()
-                .map_err(err)?;
+            super::series_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
         }
         Ok(())
     }
