@@ -56,4 +56,5 @@ if ! diff <(strip "$study/runs.csv") <(strip "$local_study/runs.csv") >/dev/null
   exit 1
 fi
 n=$(($(wc -l < "$study/runs.csv") - 1))
-echo "slurm: 1 passed, 0 failed ($n runs via a 4-task array equal the local run)"
+echo "slurm array job: $n runs via a 4-task array equal the local run"
+echo "slurm: 1 passed, 0 failed"
