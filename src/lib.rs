@@ -1,3 +1,4 @@
+#![warn(missing_docs)]
 //! covga: coverage path planning with genetic algorithms.
 //!
 //! The crate implements the action-encoded GA of 003 ([`thesis`]), pattern baselines
