@@ -67,18 +67,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
         return write_slurm(&a, &out, &stem);
     }
     let terminal = std::io::stderr().is_terminal();
-    let bar = indicatif::ProgressBar::new(0);
-    if terminal {
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:30}] {pos}/{len} runs {per_sec} eta {eta} {msg}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-    } else {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
+    let bar = super::progress_bar(0, "runs", terminal);
     let on_done = |d: RunDone| {
         if terminal {
             bar.set_length(d.total as u64);

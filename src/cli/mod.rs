@@ -96,3 +96,18 @@ pub(crate) fn parse_point(s: &str) -> Result<crate::geom::Point, String> {
         _ => Err(format!("`{s}` is not X,Y in metres (two numbers separated by a comma)")),
     }
 }
+
+/// A progress bar on stderr counting `unit` (runs, iterations), drawn only when `show`.
+pub(crate) fn progress_bar(len: u64, unit: &str, show: bool) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(len);
+    if show {
+        let template =
+            format!("{{elapsed_precise}} [{{bar:30}}] {{pos}}/{{len}} {unit} {{per_sec}} eta {{eta}} {{msg}}");
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(&template).expect("valid template").progress_chars("=> "),
+        );
+    } else {
+        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
+    }
+    bar
+}

@@ -63,18 +63,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     let exp = file.validate(&origin, &base, &stem).map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
     let show = !a.quiet && std::io::stderr().is_terminal();
-    let bar = indicatif::ProgressBar::new(u64::from(exp.budget.iterations));
-    if show {
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:30}] {pos}/{len} it {per_sec} eta {eta} {msg}",
-            )
-            .expect("valid template")
-            .progress_chars("=> "),
-        );
-    } else {
-        bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
-    }
+    let bar = super::progress_bar(u64::from(exp.budget.iterations), "it", show);
     if exp.waypoint.is_some() {
         bar.set_length(u64::from(exp.file.waypoint.generations));
         let summary = crate::study::waypoint_output::run_waypoint(&exp, &dir, &mut |s| {
