@@ -28,12 +28,26 @@ fn evaluate(c: &mut Criterion) {
         b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
     });
     let start = Point::new(1.3, 1.3);
-    let lanes =
-        covga::patterns::plan(&map, covga::patterns::Pattern::Boustrophedon { angle_deg: 0.0 }, 0.6, start, start)
-            .expect("pattern");
-    let tilted =
-        covga::patterns::plan(&map, covga::patterns::Pattern::Boustrophedon { angle_deg: 30.0 }, 0.6, start, start)
-            .expect("pattern");
+    let lanes = covga::patterns::plan(
+        &map,
+        covga::patterns::Pattern::Boustrophedon { angle_deg: 0.0 },
+        0.6,
+        start,
+        start,
+        false,
+    )
+    .expect("pattern")
+    .points;
+    let tilted = covga::patterns::plan(
+        &map,
+        covga::patterns::Pattern::Boustrophedon { angle_deg: 30.0 },
+        0.6,
+        start,
+        start,
+        false,
+    )
+    .expect("pattern")
+    .points;
     for (name, p) in [("boustrophedon_0deg", &lanes), ("boustrophedon_30deg", &tilted)] {
         let m = robot.measure(&grid, &mut scratch, p);
         group.throughput(Throughput::Elements(m.cells_swept + m.obstacle_cells));

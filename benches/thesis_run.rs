@@ -20,7 +20,7 @@ fn run(params: ThesisParams, iterations: u32) -> f64 {
     let s = Point::new(1.3, 1.3);
     let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
     let mut ga = ThesisGa { scenario, params, seed: 1 };
-    let budget = Budget { iterations, wall_clock: None, stall_iterations: None };
+    let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
     ga.run(&budget, None, &mut []).expect("run").best.fitness()
 }
 

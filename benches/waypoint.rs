@@ -4,8 +4,9 @@
 //! `cargo bench --bench waypoint`
 
 use covga::map::presets::preset;
-use covga::study::experiment::{ExperimentFile, PlannerKind};
-use covga::waypoint::run::run;
+use covga::planner::{PlannerConfig, PlannerKind};
+use covga::study::experiment::ExperimentFile;
+use covga::waypoint::run::{Limits, run};
 use covga::waypoint::world::World;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::Path;
@@ -18,7 +19,7 @@ fn bench(c: &mut Criterion) {
     file.stations.start = [2.0, 2.0];
     file.waypoint.l_init = 200;
     let exp = file.validate("bench", Path::new("."), "bench").expect("valid");
-    let plan = exp.waypoint.clone().expect("waypoint plan");
+    let PlannerConfig::Waypoint(plan) = exp.planner else { panic!("a waypoint experiment") };
     let map = preset("office").expect("preset");
     let mut group = c.benchmark_group("waypoint");
     group.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(20));
@@ -27,8 +28,9 @@ fn bench(c: &mut Criterion) {
     });
     let world = World::build(&map, &plan.world, 1).expect("world");
     group.measurement_time(Duration::from_secs(60));
-    group
-        .bench_function("ga_1000_generations_100_organisms", |b| b.iter(|| run(&world, &plan.ga, 1, &mut |_| {}).best));
+    group.bench_function("ga_1000_generations_100_organisms", |b| {
+        b.iter(|| run(&world, &plan.ga, 1, &Limits::default(), &mut |_, _, _, _| {}).best)
+    });
     group.finish();
 }
 

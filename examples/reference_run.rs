@@ -36,8 +36,9 @@ fn main() {
     }
     let mut ga = ThesisGa { scenario, params, seed };
     let mut rec = Recorder::default();
-    let out =
-        ga.run(&Budget { iterations, wall_clock: None, stall_iterations: None }, None, &mut [&mut rec]).expect("run");
+    let out = ga
+        .run(&Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None }, None, &mut [&mut rec])
+        .expect("run");
     let b = &out.best.score;
     println!(
         "iterations {} evaluations {} wall {:.3} s cov_final {:.4} t_final {:.4} f {:.4} len {} div {:.0}",
@@ -48,6 +49,6 @@ fn main() {
         b.t_final,
         b.fitness,
         out.best.len(),
-        rec.history.last().map(|h| h.diversity).unwrap_or(0.0)
+        rec.history.last().and_then(|h| h.diversity).unwrap_or(0.0)
     );
 }

@@ -14,6 +14,7 @@ pub mod geom;
 pub mod io;
 pub mod map;
 pub mod patterns;
+pub mod planner;
 pub mod plot;
 pub mod study;
 pub mod thesis;

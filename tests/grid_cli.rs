@@ -148,7 +148,7 @@ fn shards_merge_to_the_full_study() {
     let text = std::fs::read_to_string(&shard0).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
     let header: Vec<&str> = lines[0].split(',').collect();
-    let cov = header.iter().position(|h| *h == "cov_final").unwrap();
+    let cov = header.iter().position(|h| *h == "cov_final_free").unwrap();
     let mut fields: Vec<String> = lines[1].split(',').map(str::to_string).collect();
     fields[cov] = "0.123".into();
     lines[1] = fields.join(",");

@@ -2,6 +2,7 @@
 //! fitness, print every metric and draw the path.
 
 use super::{CliError, parse_point};
+use crate::coverage::score::{Score, Scorer};
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
 use crate::map::ros::load_map;
 use crate::patterns::{self, Pattern};
@@ -36,6 +37,9 @@ pub struct EvalArgs {
     /// Lane direction of the boustrophedon in degrees from +x.
     #[arg(long, default_value_t = 0.0)]
     angle: f64,
+    /// Plan the pattern alone, without visiting the strips it leaves uncovered afterwards.
+    #[arg(long)]
+    no_complete: bool,
     /// Score this path file instead: CSV with header x_m,y_m (optional agent column).
     #[arg(long)]
     path: Option<PathBuf>,
@@ -100,6 +104,14 @@ struct Report<'a> {
     #[serde(flatten)]
     score: ThesisScore,
     f_obstacle: f64,
+    /// The common scorer's metrics (both denominators, camera, time).
+    common: Score,
+    /// Free pockets a pattern could not reach (patterns only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pockets: Option<usize>,
+    /// Their area in m².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pocket_area_m2: Option<f64>,
 }
 
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
@@ -114,6 +126,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         ProjectionName::F1 => Projection::F1,
         ProjectionName::F2 => Projection::F2,
     };
+    let mut pockets = None;
     let (paths, source) = match &a.path {
         Some(file) => {
             let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;
@@ -136,7 +149,10 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
                 PatternName::Boustrophedon => Pattern::Boustrophedon { angle_deg: a.angle },
                 PatternName::Spiral => Pattern::Spiral,
             };
-            let path = patterns::plan(&map, pattern, robot.width, start, end).map_err(CliError::input)?;
+            let planned =
+                patterns::plan(&map, pattern, robot.width, start, end, !a.no_complete).map_err(CliError::input)?;
+            pockets = Some((planned.pockets, planned.pocket_area_m2));
+            let path = planned.points;
             let name = match pattern {
                 Pattern::Boustrophedon { angle_deg } => format!("boustrophedon {angle_deg}°"),
                 Pattern::Spiral => "spiral".into(),
@@ -147,6 +163,10 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let grid = CoverageGrid::new(&map);
     let metrics = robot.measure_plan(&grid, &mut SweepScratch::new(&grid), &paths);
     let sc = score(&metrics, &robot, map.resolution(), projection);
+    let camera =
+        crate::waypoint::config::camera_spec(&Default::default(), "default camera", &map).map_err(CliError::input)?;
+    let stations: Vec<crate::geom::Point> = paths.iter().filter_map(|p| p.first().copied()).collect();
+    let common = Scorer::new(&map, robot, projection, &camera, &stations).score(&paths);
     let report = Report {
         map: map.name(),
         source,
@@ -156,6 +176,9 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         metrics,
         score: sc,
         f_obstacle: sc.fitness,
+        common,
+        pockets: pockets.map(|p| p.0),
+        pocket_area_m2: pockets.map(|p| p.1),
     };
     let json = serde_json::to_string_pretty(&report).map_err(CliError::internal)?;
     std::fs::create_dir_all(&a.out).map_err(|e| CliError::Internal(format!("{}: {e}", a.out.display())))?;
@@ -180,7 +203,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
 
 fn print_table(r: &Report) {
     let m = &r.metrics;
-    let rows: [(&str, String); 16] = [
+    let c = &r.common;
+    let rows: [(&str, String); 22] = [
         ("map", r.map.to_string()),
         ("path", r.source.clone()),
         ("agents", r.agents.to_string()),
@@ -197,6 +221,15 @@ fn print_table(r: &Report) {
         ("f1", format!("{:.6}", r.score.f1)),
         ("f2", format!("{:.6}", r.score.f2)),
         ("f_obstacle", format!("{:.6} ({:?})", r.f_obstacle, r.projection)),
+        ("reachable cells", format!("{} of {} free", c.reachable_cells, c.free_cells)),
+        ("cov_final over reachable", format!("{:.6}", c.cov_final_reach)),
+        ("camera walls / open", format!("{:.4} / {:.4}", c.cam_walls_free, c.cam_open_free)),
+        ("time [s]", format!("{:.1}", c.time_s)),
+        (
+            "unreachable pockets",
+            r.pockets.map_or("-".into(), |n| format!("{n} ({:.2} m²)", r.pocket_area_m2.unwrap_or(0.0))),
+        ),
+        ("turns", c.turns.to_string()),
     ];
     for (k, v) in rows {
         println!("{k:<26} {v}");

@@ -89,7 +89,9 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     let opts = RunnerOptions { jobs: a.jobs, shard, out: out.clone(), on_done: &on_done };
     let outcome = run_study(&study, &opts).map_err(|e| match e {
         crate::study::runner::StudyError::Config(c) => CliError::input(c),
-        crate::study::runner::StudyError::Mismatch { .. } => CliError::input(e),
+        crate::study::runner::StudyError::Mismatch { .. } | crate::study::runner::StudyError::Planner { .. } => {
+            CliError::input(e)
+        }
         other => CliError::internal(other),
     })?;
     bar.finish_and_clear();

@@ -1,9 +1,10 @@
 //! `covga run`: one experiment, with a progress bar on a terminal.
 
 use super::CliError;
-use crate::ga::observer::{GenerationStats, Observer};
+use crate::ga::observer::{GenerationRecord, Observer};
+use crate::planner::PlannerKind;
 use crate::study::experiment::ExperimentFile;
-use crate::study::output::run_experiment;
+use crate::study::output::{OutputError, run_experiment};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -30,10 +31,10 @@ pub struct RunArgs {
 struct Progress(indicatif::ProgressBar);
 
 impl Observer for Progress {
-    fn generation(&mut self, s: &GenerationStats) -> std::io::Result<()> {
-        self.0.set_position(u64::from(s.iteration));
-        if s.iteration.is_multiple_of(25) {
-            self.0.set_message(format!("cov {:.3} t {:.3} f {:.4}", s.best_cov_final, s.best_t_final, s.best_fitness));
+    fn generation(&mut self, r: &GenerationRecord) -> std::io::Result<()> {
+        self.0.set_position(u64::from(r.iteration));
+        if r.iteration.is_multiple_of(25) {
+            self.0.set_message(format!("coverage {:.3} best {:.4}", r.best_coverage, r.best_fitness));
         }
         Ok(())
     }
@@ -63,49 +64,33 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     let exp = file.validate(&origin, &base, &stem).map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
     let show = !a.quiet && std::io::stderr().is_terminal();
-    let bar = super::progress_bar(u64::from(exp.budget.iterations), "it", show);
-    if exp.waypoint.is_some() {
-        bar.set_length(u64::from(exp.file.waypoint.generations));
-        let summary = crate::study::waypoint_output::run_waypoint(&exp, &dir, &mut |s| {
-            bar.set_position(u64::from(s.generation));
-            bar.set_message(format!("C {:.3} walls {:.3} feasible {}", s.max_coverage, s.mean_walls, s.feasible));
-        })
-        .map_err(CliError::internal)?;
-        bar.finish_and_clear();
-        if !a.quiet {
-            println!(
-                "{origin}: seed {}, {} agent(s), {} generations, {} waypoints, {:.2} s (precompute {:.2} s)",
-                summary.seed,
-                summary.agents,
-                summary.generations,
-                summary.waypoints,
-                summary.wall_s,
-                summary.precompute_s
-            );
-            println!(
-                "best: wall coverage {:.4}  open {:.4}  flight time {:.0}  loop closures ok {}  connected {}",
-                summary.wall_coverage,
-                summary.open_coverage,
-                summary.flight_time,
-                summary.loop_closures_ok,
-                summary.connected
-            );
-            println!("wrote {}", dir.display());
-        }
-        return Ok(());
-    }
-    let mut progress = Progress(bar);
-    let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(CliError::internal)?;
+    let length = match exp.file.planner {
+        PlannerKind::Waypoint => exp.file.waypoint.generations,
+        _ => exp.budget.iterations,
+    };
+    let mut progress = Progress(super::progress_bar(u64::from(length), "it", show));
+    let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| match e {
+        OutputError::Planner(m) => CliError::Input(m),
+        other => CliError::internal(other),
+    })?;
     progress.0.finish_and_clear();
     if !a.quiet {
+        let s = &summary.score;
         println!(
-            "{origin}: seed {}, {} iterations, {} evaluations, {:.2} s",
-            summary.seed, summary.iterations, summary.evaluations, summary.wall_s
+            "{origin}: {} on {}, seed {}, {} iterations, {} evaluations, {:.2} s",
+            summary.planner, summary.map, summary.seed, summary.iterations, summary.evaluations, summary.wall_s
         );
+        let own: Vec<String> = summary.objectives.iter().map(|(k, v)| format!("{k} {v:.4}")).collect();
+        println!("planner's objectives: {}", own.join("  "));
         println!(
-            "best: cov_final {:.4}  t_final {:.4}  f_obstacle {:.4}  G_len {}",
-            summary.cov_final, summary.t_final, summary.fitness, summary.genome_len
+            "common score: cov_final {:.4} (reachable {:.4})  t_final {:.4}  camera walls {:.4}  length {:.1} m  time {:.0} s",
+            s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
         );
+        if summary.feasible {
+            println!("feasible: yes");
+        } else {
+            println!("feasible: NO ({})", summary.violations.join("; "));
+        }
         println!("wrote {}", dir.display());
     }
     Ok(())

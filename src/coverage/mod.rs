@@ -4,6 +4,7 @@
 pub mod camera;
 pub mod motion;
 pub mod raster;
+pub mod score;
 pub mod sweep;
 
 pub use sweep::{CoverageGrid, SweepCounts, SweepScratch};

@@ -1,9 +1,61 @@
-//! Per-generation statistics and the observers that receive them (history writer, progress
-//! bar, …). Algorithm code hands statistics to observers and never prints.
+//! Per-generation records and the observers that receive them (history writer, progress
+//! bar, …). Every planner hands the same planner-neutral [`GenerationRecord`] (with named
+//! extras of its own) to observers; algorithm code never prints.
 
 use serde::Serialize;
 
-/// The statistics of one generation (003 §4.1.2, spec §17).
+/// One generation of any planner: planner-neutral columns, then the planner's named extras.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GenerationRecord {
+    /// Iteration (generation) number; 0 is the initial population.
+    pub iteration: u32,
+    /// Fitness evaluations so far.
+    pub evaluations: u64,
+    /// The planner's own scalar objective of its currently reported plan (higher is better).
+    pub best_fitness: f64,
+    /// Its population mean.
+    pub mean_fitness: f64,
+    /// Footprint coverage (`cov_final` over the scenario's free cells) of the reported plan.
+    pub best_coverage: f64,
+    /// Members meeting every constraint, for planners with constraints.
+    pub feasible: Option<u32>,
+    /// Population diversity, for planners that measure it.
+    pub diversity: Option<f64>,
+    /// Planner-specific columns, the same names in every record of a run.
+    pub extras: Vec<(&'static str, f64)>,
+}
+
+/// Column names of the planner-neutral part of a [`GenerationRecord`].
+pub const NEUTRAL_COLUMNS: [&str; 7] =
+    ["iteration", "evaluations", "best_fitness", "mean_fitness", "best_coverage", "feasible", "diversity"];
+
+impl GenerationRecord {
+    /// The CSV header for records with these extras.
+    pub fn header(&self) -> String {
+        NEUTRAL_COLUMNS.iter().copied().chain(self.extras.iter().map(|(k, _)| *k)).collect::<Vec<_>>().join(",")
+    }
+    /// The record as one CSV line (without newline); absent optional values are empty cells.
+    pub fn csv_row(&self) -> String {
+        let opt = |v: Option<String>| v.unwrap_or_default();
+        let mut cells = vec![
+            self.iteration.to_string(),
+            self.evaluations.to_string(),
+            self.best_fitness.to_string(),
+            self.mean_fitness.to_string(),
+            self.best_coverage.to_string(),
+            opt(self.feasible.map(|f| f.to_string())),
+            opt(self.diversity.map(|d| d.to_string())),
+        ];
+        cells.extend(self.extras.iter().map(|(_, v)| v.to_string()));
+        cells.join(",")
+    }
+    /// An extra column's value.
+    pub fn extra(&self, name: &str) -> Option<f64> {
+        self.extras.iter().find(|(k, _)| *k == name).map(|(_, v)| *v)
+    }
+}
+
+/// The statistics of one generation of the thesis GA (003 §4.1.2, spec §17).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct GenerationStats {
     /// Iteration number (0 = the initial population).
@@ -58,28 +110,60 @@ pub enum RunEvent {
     },
 }
 
-/// Receives statistics during a run.
+impl GenerationStats {
+    /// The planner-neutral record, the thesis's own statistics as extras.
+    pub fn record(&self) -> GenerationRecord {
+        GenerationRecord {
+            iteration: self.iteration,
+            evaluations: self.evaluations,
+            best_fitness: self.best_fitness,
+            mean_fitness: self.mean_fitness,
+            best_coverage: self.best_cov_final,
+            feasible: None,
+            diversity: Some(self.diversity),
+            extras: vec![
+                ("best_cov_final", self.best_cov_final),
+                ("best_t_final", self.best_t_final),
+                ("mean_cov_final", self.mean_cov_final),
+                ("min_cov_final", self.min_cov_final),
+                ("max_cov_final", self.max_cov_final),
+                ("mean_t_final", self.mean_t_final),
+                ("min_t_final", self.min_t_final),
+                ("max_t_final", self.max_t_final),
+                ("mean_genome_len", self.mean_genome_len),
+                ("min_genome_len", f64::from(self.min_genome_len)),
+                ("max_genome_len", f64::from(self.max_genome_len)),
+                ("p_c", self.p_c),
+                ("p_ma", self.p_ma),
+                ("sp", self.sp),
+                ("population", f64::from(self.population)),
+            ],
+        }
+    }
+}
+
+/// Receives records during a run.
 pub trait Observer {
     /// Called after the initial population (iteration 0) and after every iteration.
-    fn generation(&mut self, stats: &GenerationStats) -> std::io::Result<()>;
+    fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()>;
     /// Called on other run events.
     fn event(&mut self, _event: RunEvent) -> std::io::Result<()> {
         Ok(())
     }
 }
 
-/// Keeps every generation's statistics in memory (for figures and tests).
+/// Keeps every generation's record in memory (for figures and tests).
 #[derive(Default, Debug)]
 pub struct Recorder {
-    /// The statistics, in order.
-    pub history: Vec<GenerationStats>,
+    /// The records, in order.
+    pub history: Vec<GenerationRecord>,
     /// Iterations at which the environment changed.
     pub changes: Vec<u32>,
 }
 
 impl Observer for Recorder {
-    fn generation(&mut self, stats: &GenerationStats) -> std::io::Result<()> {
-        self.history.push(*stats);
+    fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()> {
+        self.history.push(record.clone());
         Ok(())
     }
     fn event(&mut self, event: RunEvent) -> std::io::Result<()> {

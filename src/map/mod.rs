@@ -5,7 +5,9 @@
 //! (spec thesis-ga §0), so row 0 is the bottom row; image row 0 is the top row and is flipped
 //! on load and save. Unknown cells are not free.
 
+pub mod clearance;
 pub mod presets;
+pub mod reach;
 pub mod ros;
 
 use crate::geom::Point;

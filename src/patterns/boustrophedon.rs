@@ -2,7 +2,8 @@
 //! parallel lanes one robot width apart at any angle, split where the robot does not fit,
 //! grouped into cells of one-to-one overlapping lane pieces, each cell mowed back and forth,
 //! cells visited greedily by distance and joined by collision-free connecting moves
-//! (the hand-made pattern of 003 Table 3.1, generalised).
+//! (the hand-made pattern of 003 Table 3.1, generalised). Pieces only exist where the robot
+//! fits and can get to from the start (the clearance is restricted to the reachable part).
 
 use super::clearance::Clearance;
 use super::{PatternError, Route};
@@ -10,16 +11,19 @@ use crate::geom::{Point, Vector};
 
 /// One fitting piece of a lane: its two ends.
 #[derive(Clone, Copy, Debug)]
-struct Piece {
-    a: Point,
-    b: Point,
+pub(super) struct Piece {
+    /// The end at the low lane coordinate.
+    pub a: Point,
+    /// The end at the high lane coordinate.
+    pub b: Point,
     /// Extent along the lane direction (for overlap tests).
-    lo: f64,
-    hi: f64,
+    pub lo: f64,
+    /// Upper end of the extent.
+    pub hi: f64,
 }
 
 /// The lane pieces of the map at `angle_deg`, one robot width apart.
-fn lane_pieces(clear: &Clearance, width: f64, angle_deg: f64) -> Vec<Vec<Piece>> {
+pub(super) fn lane_pieces(clear: &Clearance, width: f64, angle_deg: f64) -> Vec<Vec<Piece>> {
     let map = clear.map();
     let u = Vector::new(angle_deg.to_radians().cos(), angle_deg.to_radians().sin());
     let n = Vector::new(-u.y, u.x);
@@ -73,7 +77,7 @@ fn lane_pieces(clear: &Clearance, width: f64, angle_deg: f64) -> Vec<Vec<Piece>>
 
 /// Groups lane pieces into boustrophedon cells: a cell grows while its last piece overlaps
 /// exactly one piece of the next lane and that piece overlaps only it.
-fn decompose(lanes: &[Vec<Piece>]) -> Vec<Vec<Piece>> {
+pub(super) fn decompose(lanes: &[Vec<Piece>]) -> Vec<Vec<Piece>> {
     let overlaps = |p: &Piece, q: &Piece| p.lo < q.hi && q.lo < p.hi;
     let mut done: Vec<Vec<Piece>> = Vec::new();
     let mut open: Vec<Vec<Piece>> = Vec::new();
@@ -102,8 +106,8 @@ fn decompose(lanes: &[Vec<Piece>]) -> Vec<Vec<Piece>> {
     done
 }
 
-/// Plans a boustrophedon route from `start` over all cells, ending at `end`.
-pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point, end: Point) -> Result<Route, PatternError> {
+/// Plans a boustrophedon route from `start` over all cells (the caller returns it to the end).
+pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Result<Route, PatternError> {
     let cells = decompose(&lane_pieces(clear, width, angle_deg));
     if cells.is_empty() {
         return Err(PatternError::NoRoom { width });
@@ -130,11 +134,10 @@ pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point, end: Po
         let order: Vec<&Piece> = if from_first { cells[k].iter().collect() } else { cells[k].iter().rev().collect() };
         for piece in order {
             let (a, b) = if flip { (piece.b, piece.a) } else { (piece.a, piece.b) };
-            route.go(clear, a)?;
-            route.go(clear, b)?;
+            route.go(clear, a);
+            route.go(clear, b);
             flip = !flip;
         }
     }
-    route.go(clear, end)?;
     Ok(route)
 }

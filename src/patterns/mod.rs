@@ -2,29 +2,24 @@
 //! inward spiral ([`spiral`]), both built on collision-free connections ([`clearance`]).
 
 pub mod boustrophedon;
-pub mod clearance;
+mod complete;
+pub mod planner;
+pub mod random_search;
+
 pub mod spiral;
 
 use crate::geom::Point;
 use crate::map::GridMap;
-use clearance::Clearance;
+pub use crate::map::clearance::{self, Clearance};
 
 /// Why a pattern could not be planned.
 #[derive(Debug, thiserror::Error)]
 pub enum PatternError {
-    /// No place on the map fits the robot.
-    #[error("no free area on the map fits a robot {width} m wide")]
+    /// No place reachable from the start fits the robot.
+    #[error("no free area reachable from the start fits a robot {width} m wide")]
     NoRoom {
         /// The robot width.
         width: f64,
-    },
-    /// A point cannot be reached from the route.
-    #[error("cannot reach ({x:.2}, {y:.2}) m from the route without hitting an obstacle")]
-    Unreachable {
-        /// Target x.
-        x: f64,
-        /// Target y.
-        y: f64,
     },
 }
 
@@ -36,47 +31,102 @@ pub enum Pattern {
         /// Lane direction in degrees.
         angle_deg: f64,
     },
-    /// Inward rectangular spiral.
+    /// Inward contour-parallel spiral in each boustrophedon cell.
     Spiral,
 }
 
-/// A growing polyline that starts at a station.
+/// A planned pattern: the path and what it had to leave out.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PatternPlan {
+    /// The path from the start station to the end station.
+    pub points: Vec<Point>,
+    /// Free pockets the robot cannot reach or sweep from the start.
+    pub pockets: usize,
+    /// Their area in m².
+    pub pocket_area_m2: f64,
+    /// Lane ends the route could not reach without a collision and skipped.
+    pub skipped_targets: usize,
+}
+
+/// A growing polyline that starts at a station; targets it cannot reach are skipped.
 #[derive(Clone, Debug)]
 pub struct Route {
     points: Vec<Point>,
+    skipped: usize,
 }
 
 impl Route {
     fn new(start: Point) -> Self {
-        Self { points: vec![start] }
+        Self { points: vec![start], skipped: 0 }
     }
     fn last(&self) -> Point {
         *self.points.last().expect("a route has a start")
     }
-    /// Moves to `p` along a collision-free connection; repeated points are dropped.
-    fn go(&mut self, clear: &Clearance, p: Point) -> Result<(), PatternError> {
+    /// Moves to `p` along a collision-free connection (repeated points are dropped); a target
+    /// that cannot be reached is skipped and counted, and the route stays where it is.
+    fn go(&mut self, clear: &Clearance, p: Point) -> bool {
         let here = self.last();
         if (p - here).norm() < 1e-9 {
-            return Ok(());
+            return true;
         }
-        let hops = clear.connect(here, p).ok_or(PatternError::Unreachable { x: p.x, y: p.y })?;
-        self.points.extend(hops);
-        Ok(())
+        match clear.connect(here, p) {
+            Some(hops) => {
+                self.points.extend(hops);
+                true
+            }
+            None => {
+                self.skipped += 1;
+                false
+            }
+        }
     }
-    /// The points.
-    pub fn into_points(self) -> Vec<Point> {
-        self.points
+    /// Returns to the end station: through the fitting cell nearest to it when the station
+    /// itself is too close to a wall for the disc (stations are free cells, checked at load).
+    fn finish(&mut self, clear: &Clearance, end: Point) {
+        if self.go(clear, end) {
+            return;
+        }
+        self.skipped -= 1;
+        if let Some(i) = clear.snap(end) {
+            let cols = clear.map().cols();
+            self.go(clear, clear.map().cell_centre(i / cols, i % cols));
+        }
+        self.points.push(end);
     }
 }
 
-/// Plans `pattern` on `map` for a robot `width` metres wide, from `start` back to `end`.
-pub fn plan(map: &GridMap, pattern: Pattern, width: f64, start: Point, end: Point) -> Result<Vec<Point>, PatternError> {
-    let clear = Clearance::new(map, width);
+/// Plans `pattern` on `map` for a robot `width` metres wide, from `start` back to `end`, over
+/// the part of the map the robot can reach from `start` ([`crate::map::reach::Reach`]); with
+/// `complete`, the strips the pattern left are visited afterwards (coverage completion).
+pub fn plan(
+    map: &GridMap,
+    pattern: Pattern,
+    width: f64,
+    start: Point,
+    end: Point,
+    complete: bool,
+) -> Result<PatternPlan, PatternError> {
+    let mut clear = Clearance::new(map, width);
+    let reach = crate::map::reach::Reach::new(&clear, &[start]);
+    if reach.centres().iter().all(|c| !c) {
+        return Err(PatternError::NoRoom { width });
+    }
+    clear.restrict(reach.centres().to_vec());
     let route = match pattern {
-        Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&clear, width, angle_deg, start, end)?,
-        Pattern::Spiral => spiral::plan(&clear, width, start, end)?,
+        Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&clear, width, angle_deg, start)?,
+        Pattern::Spiral => spiral::plan(&clear, width, start)?,
     };
-    Ok(route.into_points())
+    let mut route = route;
+    if complete {
+        self::complete::complete(&clear, &reach, width, &mut route);
+    }
+    route.finish(&clear, end);
+    Ok(PatternPlan {
+        skipped_targets: route.skipped,
+        points: route.points,
+        pockets: reach.pocket_count(),
+        pocket_area_m2: reach.pocket_area_m2(),
+    })
 }
 
 #[cfg(test)]
@@ -89,7 +139,7 @@ mod tests {
     fn scored(map: &str, pattern: Pattern) -> (f64, f64, u64) {
         let m = preset(map).unwrap();
         let s = Point::new(1.3, 1.3);
-        let path = plan(&m, pattern, 0.6, s, s).unwrap();
+        let path = plan(&m, pattern, 0.6, s, s, false).unwrap().points;
         assert_eq!(path[0], s);
         assert_eq!(*path.last().unwrap(), s);
         let g = CoverageGrid::new(&m);

@@ -5,8 +5,6 @@
 use super::grid::Study;
 use super::records::RunsTable;
 use super::runner::{MapCache, StudyError, experiment_of};
-use crate::thesis::individual::Scenario;
-use crate::thesis::run::ThesisGa;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::time::Instant;
@@ -86,14 +84,14 @@ pub fn calibrate(study: &Study) -> Result<Vec<BranchTime>, StudyError> {
             let exp = experiment_of(study, run, &maps)?;
             let full = exp.budget.iterations;
             let short = (full / 10).clamp(1, 200).min(full.max(1));
+            let planner = exp.planner.planner();
             let time = |iterations: u32| {
-                let scenario = Scenario::new(exp.map.clone(), exp.robot, exp.start, exp.end, exp.projection);
-                let mut ga = ThesisGa { scenario, params: exp.params, seed: exp.file.seed };
-                let budget = crate::thesis::params::Budget { iterations, ..exp.budget };
+                let budget = crate::planner::Budget { iterations, ..exp.budget };
                 let t = Instant::now();
-                pool.install(|| ga.run(&budget, None, &mut [])).map(|_| t.elapsed().as_secs_f64())
+                pool.install(|| planner.run(&exp.scenario, exp.seed, &budget, &mut []))
+                    .map(|_| t.elapsed().as_secs_f64())
             };
-            let io = |e: std::io::Error| StudyError::Run { id: run.id.clone(), message: e.to_string() };
+            let io = |e: crate::planner::PlannerError| StudyError::Run { id: run.id.clone(), message: e.to_string() };
             let t_init = time(0).map_err(io)?;
             let t_short = time(short).map_err(io)?;
             total += t_init + (t_short - t_init).max(0.0) * f64::from(full) / f64::from(short);

@@ -326,7 +326,9 @@ fn self_runs(
     let config_text = toml::to_string(&file).expect("experiment files serialise");
     let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
     let branch = if branch.is_empty() { "no conditional axes".to_string() } else { branch.join(" & ") };
-    for replicate in 0..grid.seeds {
+    // A deterministic planner gives the same plan for every seed: it runs once.
+    let replicates = if file.planner.is_deterministic() { 1 } else { grid.seeds };
+    for replicate in 0..replicates {
         let mut f = file.clone();
         // TOML integers are signed 64-bit: keep run seeds below 2^63.
         f.seed = derive(grid.seed, &[Purpose::Run as u64, u64::from(replicate)]) >> 1;

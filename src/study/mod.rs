@@ -11,4 +11,3 @@ pub mod report;
 pub mod runner;
 pub mod slurm;
 pub mod stats;
-pub mod waypoint_output;

@@ -1,14 +1,14 @@
-//! Running one experiment and writing its results folder: `config.toml`, `history.csv`
-//! (streamed), `best_path.csv`, `best_genome.csv`, `summary.json`, `path.png/.svg`,
-//! `history.png/.svg` (and `path_before_retrain.png/.svg` after a retrain). Every file is
-//! written to a temporary name and renamed when complete.
+//! Running one experiment of any planner and writing its results folder: `config.toml`,
+//! `history.csv` (streamed: planner-neutral columns, then the planner's extras),
+//! `best_path.csv`, the planner's own files, `summary.json` (the run, the planner's objectives
+//! and details, and the common [`Score`]), `path.png/.svg` and the planner's own figures.
+//! Every file is written to a temporary name and renamed when complete.
 
 use super::experiment::Experiment;
-use crate::ga::observer::{GenerationStats, Observer, Recorder};
-use crate::plot::history::HistoryFigure;
+use crate::coverage::score::{Score, Scorer};
+use crate::ga::observer::{GenerationRecord, Observer};
+use crate::planner::{PlannerError, RunOutcome, StopReason};
 use crate::plot::path::PathFigure;
-use crate::thesis::individual::{Individual, Scenario};
-use crate::thesis::run::{RunOutcome, ThesisGa};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -23,6 +23,9 @@ pub enum OutputError {
         /// The cause.
         source: std::io::Error,
     },
+    /// The planner cannot plan this configuration (the user's input).
+    #[error("{0}")]
+    Planner(String),
     /// A figure could not be drawn.
     #[error(transparent)]
     Plot(#[from] crate::plot::PlotError),
@@ -32,41 +35,13 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
     move |source| OutputError::Io { path: path.to_path_buf(), source }
 }
 
-/// Column names of `history.csv`.
-pub const HISTORY_HEADER: &str = "iteration,evaluations,best_fitness,best_cov_final,best_t_final,mean_cov_final,min_cov_final,max_cov_final,mean_t_final,min_t_final,max_t_final,mean_fitness,mean_genome_len,min_genome_len,max_genome_len,diversity,p_c,p_ma,sp,population";
-
-/// One `history.csv` row.
-pub fn history_row(s: &GenerationStats) -> String {
-    format!(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-        s.iteration,
-        s.evaluations,
-        s.best_fitness,
-        s.best_cov_final,
-        s.best_t_final,
-        s.mean_cov_final,
-        s.min_cov_final,
-        s.max_cov_final,
-        s.mean_t_final,
-        s.min_t_final,
-        s.max_t_final,
-        s.mean_fitness,
-        s.mean_genome_len,
-        s.min_genome_len,
-        s.max_genome_len,
-        s.diversity,
-        s.p_c,
-        s.p_ma,
-        s.sp,
-        s.population
-    )
-}
-
-/// Streams `history.csv` row by row into a temporary file, renamed by [`HistoryCsv::finish`].
+/// Streams `history.csv` row by row into a temporary file, renamed by [`HistoryCsv::finish`];
+/// the header comes from the first record (neutral columns, then that planner's extras).
 pub struct HistoryCsv {
     tmp: PathBuf,
     path: PathBuf,
     out: std::io::BufWriter<std::fs::File>,
+    header_written: bool,
 }
 
 impl HistoryCsv {
@@ -74,12 +49,14 @@ impl HistoryCsv {
     pub fn create(dir: &Path) -> std::io::Result<Self> {
         let path = dir.join("history.csv");
         let tmp = dir.join(".history.csv.partial");
-        let mut out = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
-        writeln!(out, "{HISTORY_HEADER}")?;
-        Ok(Self { tmp, path, out })
+        let out = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
+        Ok(Self { tmp, path, out, header_written: false })
     }
     /// Flushes, syncs and renames into place.
     pub fn finish(mut self) -> std::io::Result<()> {
+        if !self.header_written {
+            writeln!(self.out, "{}", GenerationRecord::default().header())?;
+        }
         self.out.flush()?;
         self.out.get_ref().sync_all()?;
         std::fs::rename(&self.tmp, &self.path)
@@ -87,57 +64,52 @@ impl HistoryCsv {
 }
 
 impl Observer for HistoryCsv {
-    fn generation(&mut self, stats: &GenerationStats) -> std::io::Result<()> {
-        writeln!(self.out, "{}", history_row(stats))
+    fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()> {
+        if !self.header_written {
+            writeln!(self.out, "{}", record.header())?;
+            self.header_written = true;
+        }
+        writeln!(self.out, "{}", record.csv_row())
     }
 }
 
-/// `best_genome.csv`: one row per action with its role, move and viewpoint.
-pub fn genome_csv(ind: &Individual) -> Vec<u8> {
-    let n = ind.genome.len();
-    let mut s = String::from("index,role,alpha_deg,dist_m,x_m,y_m\n");
-    for (i, (a, p)) in ind.genome.iter().zip(&ind.points).enumerate() {
-        let role = match i {
-            0 => "start",
-            _ if i == n - 1 => "end",
-            _ if i == n - 2 => "connector",
-            _ => "action",
-        };
-        s.push_str(&format!("{i},{role},{},{},{},{}\n", a.alpha_deg, a.dist_m, p.x, p.y));
-    }
-    s.into_bytes()
-}
-
-/// What a finished run reports.
-#[derive(serde::Serialize)]
+/// What a finished run reports (`summary.json`).
+#[derive(Clone, Debug, serde::Serialize)]
 pub struct Summary {
-    /// Best individual's `cov_final`.
-    pub cov_final: f64,
-    /// Best individual's `t_final`.
-    pub t_final: f64,
-    /// Best individual's `f_obstacle`.
-    pub fitness: f64,
-    /// `f1` of the best individual.
-    pub f1: f64,
-    /// `f2` of the best individual.
-    pub f2: f64,
-    /// Evaluations spent.
-    pub evaluations: u64,
-    /// Iterations completed.
-    pub iterations: u32,
+    /// The planner's name.
+    pub planner: &'static str,
+    /// The map's name.
+    pub map: String,
     /// The seed.
     pub seed: u64,
+    /// Fitness evaluations spent.
+    pub evaluations: u64,
+    /// Iterations (generations) completed.
+    pub iterations: u32,
     /// Why the run stopped.
-    pub stop: crate::thesis::run::StopReason,
-    /// Genome length of the best individual.
-    pub genome_len: usize,
-    /// Footprint metrics of the best path.
-    pub metrics: crate::coverage::PathMetrics,
-    /// Best before the environment changed, if it did: `[cov_final, t_final, fitness]`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub before_retrain: Option<[f64; 3]>,
+    pub stop: StopReason,
+    /// Whether the plan meets the planner's constraints.
+    pub feasible: bool,
+    /// The constraints it violates, in words.
+    pub violations: Vec<String>,
+    /// The planner's own objectives of the plan.
+    pub objectives: std::collections::BTreeMap<String, f64>,
+    /// The common scorer's metrics of the plan.
+    pub score: Score,
+    /// Planner-specific fields.
+    #[serde(flatten)]
+    pub details: serde_json::Map<String, serde_json::Value>,
     /// Wall time in seconds (the only field that differs between identical runs).
     pub wall_s: f64,
+}
+
+/// The common scorer of an experiment: its map, robot, projection and camera, with the
+/// stations and every agent's start as the places reachability is measured from.
+pub fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Scorer {
+    let s = &exp.scenario;
+    let mut stations = vec![s.start];
+    stations.extend(plan.iter().filter_map(|p| p.first().copied()));
+    Scorer::new(&s.map, s.robot, s.projection, &s.camera, &stations)
 }
 
 /// Runs the experiment, streaming history to `dir`, and writes every result file; `figures`
@@ -151,78 +123,57 @@ pub fn run_experiment(
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
     let config = toml::to_string_pretty(&exp.file).expect("experiment files serialise");
     crate::io::write_atomic(&dir.join("config.toml"), config.as_bytes()).map_err(io_err(dir))?;
-    let scenario = Scenario::new(exp.map.clone(), exp.robot, exp.start, exp.end, exp.projection);
-    let mut ga = ThesisGa { scenario, params: exp.params, seed: exp.file.seed };
     let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
-    let mut recorder = Recorder::default();
+    let planner = exp.planner.planner();
     let outcome = {
         let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
-        if figures {
-            observers.push(&mut recorder);
-        }
         observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
-        ga.run(&exp.budget, exp.retrain.as_ref(), &mut observers).map_err(io_err(dir))?
+        planner.run(&exp.scenario, exp.seed, &exp.budget, &mut observers).map_err(|e| match e {
+            PlannerError::Input(m) => OutputError::Planner(m),
+            PlannerError::Io(e) => OutputError::Io { path: dir.join("history.csv"), source: e },
+        })?
     };
     history.finish().map_err(io_err(dir))?;
-    let best = &outcome.best;
     let write = |name: &str, bytes: &[u8]| crate::io::write_atomic(&dir.join(name), bytes).map_err(io_err(dir));
-    write("best_path.csv", &crate::io::path_csv(std::slice::from_ref(&best.points)))?;
-    write("best_genome.csv", &genome_csv(best))?;
+    write("best_path.csv", &crate::io::path_csv(&outcome.plan))?;
+    for (name, bytes) in &outcome.files {
+        write(name, bytes)?;
+    }
+    let scorer = scorer_of(exp, &outcome.plan);
+    let score = scorer.score(&outcome.plan);
     let summary = Summary {
-        cov_final: best.score.cov_final,
-        t_final: best.score.t_final,
-        fitness: best.score.fitness,
-        f1: best.score.f1,
-        f2: best.score.f2,
+        planner: planner.name(),
+        map: exp.scenario.map.name().to_string(),
+        seed: exp.seed,
         evaluations: outcome.evaluations,
         iterations: outcome.iterations,
-        seed: exp.file.seed,
         stop: outcome.stop,
-        genome_len: best.len(),
-        metrics: best.metrics,
-        before_retrain: outcome
-            .best_before_retrain
-            .as_ref()
-            .map(|b| [b.score.cov_final, b.score.t_final, b.score.fitness]),
+        feasible: outcome.feasible,
+        violations: outcome.violations.clone(),
+        objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
+        score,
+        details: outcome.details.clone(),
         wall_s: outcome.wall_s,
     };
     write("summary.json", serde_json::to_string_pretty(&summary).expect("summary serialises").as_bytes())?;
-    if !figures {
-        return Ok((outcome, summary));
-    }
-    let title = |ind: &Individual, what: &str| {
-        format!(
-            "{what} on {}: cov_final {:.3}, t_final {:.3}, G_len {}",
-            exp.map.name(),
-            ind.score.cov_final,
-            ind.score.t_final,
-            ind.len()
-        )
-    };
-    let figure = PathFigure {
-        map: &exp.map,
-        grid: &ga.scenario.grid,
-        paths: vec![best.points.clone()],
-        width: exp.robot.width,
-        title: title(best, "best path"),
-    };
-    crate::plot::save(&figure, &dir.join("path"))?;
-    if let Some(before) = &outcome.best_before_retrain {
-        let plain = crate::coverage::CoverageGrid::new(&exp.map);
+    if figures {
+        let s = &summary.score;
         let figure = PathFigure {
-            grid: &plain,
-            paths: vec![before.points.clone()],
-            title: title(before, "best before retrain"),
-            ..figure
+            map: &exp.scenario.map,
+            grid: scorer.grid(),
+            paths: outcome.plan.clone(),
+            width: exp.scenario.robot.width,
+            title: format!(
+                "{} on {}: cov_final {:.3} (reachable {:.3}), t_final {:.3}",
+                planner.name(),
+                exp.scenario.map.name(),
+                s.cov_final_free,
+                s.cov_final_reach,
+                s.t_final
+            ),
         };
-        crate::plot::save(&figure, &dir.join("path_before_retrain"))?;
+        crate::plot::save(&figure, &dir.join("path"))?;
+        planner.write_figures(&exp.scenario, &outcome, dir)?;
     }
-    let changes: Vec<u32> = recorder.changes.clone();
-    let hist = HistoryFigure {
-        history: &recorder.history,
-        changes: &changes,
-        title: format!("{} on {}, seed {}", exp.params.selection.name(), exp.map.name(), exp.file.seed),
-    };
-    crate::plot::save(&hist, &dir.join("history"))?;
     Ok((outcome, summary))
 }

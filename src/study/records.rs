@@ -7,73 +7,47 @@ use std::collections::BTreeMap;
 
 /// Columns before the swept parameters.
 pub const ID_COLUMNS: [&str; 4] = ["run_id", "config_id", "replicate", "seed"];
-/// Columns after the swept parameters.
-pub const METRIC_COLUMNS: [&str; 21] = [
-    "planner",
-    "map",
-    "selection",
-    "cov_final",
-    "t_final",
-    "fitness",
-    "f1",
-    "f2",
-    "unique_cells",
-    "cells_swept",
-    "crossings",
-    "obstacle_cells",
-    "area_cells",
-    "length_m",
-    "turns",
-    "total_turn_rad",
-    "t_rot_s",
-    "genome_len",
-    "evaluations",
-    "iterations",
-    "wall_s",
-];
+/// Columns after the swept parameters and before the scorer's: which planner on which map,
+/// and whether its plan meets the planner's constraints.
+pub const RUN_COLUMNS: [&str; 4] = ["planner", "map", "feasible", "violations"];
+/// Columns after the scorer's: effort and timing.
+pub const EFFORT_COLUMNS: [&str; 4] = ["evaluations", "iterations", "stop", "wall_s"];
 /// Columns that measure time and so differ between otherwise identical runs.
 pub const TIMING_COLUMNS: [&str; 1] = ["wall_s"];
 
+/// The metric columns of every run, whatever its planner: run columns, the common scorer's
+/// ([`crate::coverage::score::Score::columns`]), effort.
+pub fn metric_columns() -> Vec<String> {
+    RUN_COLUMNS
+        .iter()
+        .copied()
+        .chain(crate::coverage::score::Score::column_names())
+        .chain(EFFORT_COLUMNS.iter().copied())
+        .map(str::to_string)
+        .collect()
+}
+
 /// The header for a study with `params` swept keys.
 pub fn header(params: &[String]) -> Vec<String> {
-    ID_COLUMNS
-        .iter()
-        .map(|s| s.to_string())
-        .chain(params.iter().cloned())
-        .chain(METRIC_COLUMNS.iter().map(|s| s.to_string()))
-        .collect()
+    ID_COLUMNS.iter().map(|s| s.to_string()).chain(params.iter().cloned()).chain(metric_columns()).collect()
 }
 
 /// The row of a finished run.
 pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
-    let m = &summary.metrics;
     let mut out = vec![run.id.clone(), run.config_id.clone(), run.replicate.to_string(), run.file.seed.to_string()];
     out.extend(run.params.iter().map(|v| v.clone().unwrap_or_default()));
-    let sel = serde_json::to_value(run.file.thesis.selection)
-        .ok()
-        .and_then(|v| v.as_str().map(str::to_string))
-        .unwrap_or_default();
     out.extend([
-        "thesis".to_string(),
+        summary.planner.to_string(),
         run.file.map.source.clone(),
-        sel,
-        summary.cov_final.to_string(),
-        summary.t_final.to_string(),
-        summary.fitness.to_string(),
-        summary.f1.to_string(),
-        summary.f2.to_string(),
-        m.unique_cells.to_string(),
-        m.cells_swept.to_string(),
-        m.crossings.to_string(),
-        m.obstacle_cells.to_string(),
-        m.area_cells.to_string(),
-        m.length_m.to_string(),
-        m.turns.to_string(),
-        m.total_turn_rad.to_string(),
-        m.t_rot_s.to_string(),
-        summary.genome_len.to_string(),
+        summary.feasible.to_string(),
+        summary.violations.join("; "),
+    ]);
+    out.extend(summary.score.columns().into_iter().map(|(_, v)| v));
+    let stop = serde_json::to_value(summary.stop).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
+    out.extend([
         summary.evaluations.to_string(),
         summary.iterations.to_string(),
+        stop,
         format!("{:.3}", summary.wall_s),
     ]);
     out

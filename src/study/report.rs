@@ -100,7 +100,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
         groups.entry(label).or_default().push(r);
     }
     let groups: Vec<Group> = groups.into_iter().map(|(label, rows)| Group { label, rows }).collect();
-    let point = |r: usize| (num(r, "t_final"), num(r, "cov_final"));
+    let point = |r: usize| (num(r, "t_final"), num(r, "cov_final_free"));
     // Pareto facets.
     let facets: Vec<ParetoFacet> = groups
         .iter()
@@ -152,7 +152,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
     let best: Vec<usize> = groups
         .iter()
         .map(|g| {
-            *g.rows.iter().max_by(|&&a, &&b| num(a, "fitness").total_cmp(&num(b, "fitness"))).expect("non-empty group")
+            *g.rows.iter().max_by(|&&a, &&b| num(a, "f_free").total_cmp(&num(b, "f_free"))).expect("non-empty group")
         })
         .collect();
     let mut loaded = Vec::new();
@@ -166,7 +166,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             let [x0, y0, x1, y1] = rt.region;
             grid.premark_rect(x0, y0, x1, y1);
         }
-        let title = format!("{}: cov {:.3}, t {:.3}", g.label, num(r, "cov_final"), num(r, "t_final"));
+        let title = format!("{}: cov {:.3}, t {:.3}", g.label, num(r, "cov_final_free"), num(r, "t_final"));
         loaded.push((map, grid, paths, cfg.robot.width, title));
     }
     if !loaded.is_empty() {
@@ -191,9 +191,9 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
     let mut conf_rows: Vec<ConfigRow> = configs
         .into_iter()
         .map(|(id, rows)| {
-            let cov: Vec<f64> = rows.iter().map(|&r| num(r, "cov_final")).collect();
+            let cov: Vec<f64> = rows.iter().map(|&r| num(r, "cov_final_free")).collect();
             let tf: Vec<f64> = rows.iter().map(|&r| num(r, "t_final")).collect();
-            let f = rows.iter().map(|&r| num(r, "fitness")).sum::<f64>() / rows.len() as f64;
+            let f = rows.iter().map(|&r| num(r, "f_free")).sum::<f64>() / rows.len() as f64;
             (id, rows, mean_ci95(&cov), mean_ci95(&tf), f)
         })
         .collect();
@@ -241,9 +241,9 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             g.label,
             get(r, "run_id"),
             vals.join(" | "),
-            num(r, "cov_final"),
+            num(r, "cov_final_free"),
             num(r, "t_final"),
-            num(r, "fitness")
+            num(r, "f_free")
         );
     }
     let _ = writeln!(md, "\n## Fronts, hypervolume (reference point (0, 0)) and run durations per group\n");
@@ -297,7 +297,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
     );
     let _ = writeln!(md, "| parameter | metric | groups | H | df | p | ε² |\n|---|---|---|---|---|---|---|");
     for p in &params {
-        for metric in ["cov_final", "t_final"] {
+        for metric in ["cov_final_free", "t_final"] {
             let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
             for r in 0..t.rows.len() {
                 let v = get(r, p);

@@ -36,6 +36,14 @@ pub enum StudyError {
         /// The cause.
         source: std::io::Error,
     },
+    /// A run's planner cannot plan its configuration (the user's input).
+    #[error("run {id}: {message}")]
+    Planner {
+        /// The run id.
+        id: String,
+        /// Why.
+        message: String,
+    },
     /// A run failed.
     #[error("run {id}: {message}")]
     Run {
@@ -85,7 +93,7 @@ pub struct RunDone<'a> {
     pub total: usize,
     /// Already recorded before this invocation.
     pub skipped: usize,
-    /// `cov_final`, `t_final`, wall seconds.
+    /// `cov_final_reach`, `t_final`, wall seconds.
     pub result: (f64, f64, f64),
 }
 
@@ -132,13 +140,6 @@ impl MapCache {
 /// Validates a run's experiment.
 pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Experiment, ConfigError> {
     let origin = format!("{} (run {})", study.path.display(), run.id);
-    if run.file.planner != super::experiment::PlannerKind::Thesis {
-        return Err(ConfigError::new(
-            &origin,
-            "planner",
-            "grid studies run the thesis planner; run waypoint experiments with `covga run`",
-        ));
-    }
     run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r))
 }
 
@@ -201,14 +202,16 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
             let result = (|| -> Result<(f64, f64, f64), StudyError> {
                 let dir = opts.out.join("runs").join(&run.id);
                 let exp = experiment_of(study, run, &maps)?;
-                let (_, summary) = super::output::run_experiment(&exp, &dir, false, &mut [])
-                    .map_err(|e| StudyError::Run { id: run.id.clone(), message: e.to_string() })?;
+                let (_, summary) = super::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
+                    super::output::OutputError::Planner(message) => StudyError::Planner { id: run.id.clone(), message },
+                    other => StudyError::Run { id: run.id.clone(), message: other.to_string() },
+                })?;
                 let line = csv_line(&row(run, &summary));
                 let mut w = writer.lock().expect("writer");
                 w.write_all(&line).map_err(io(&file))?;
                 w.flush().map_err(io(&file))?;
                 w.sync_data().map_err(io(&file))?;
-                Ok((summary.cov_final, summary.t_final, summary.wall_s))
+                Ok((summary.score.cov_final_reach, summary.score.t_final, summary.wall_s))
             })();
             match result {
                 Ok(r) => {

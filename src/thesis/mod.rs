@@ -3,6 +3,7 @@
 //! run loop with retraining.
 
 pub mod architecture;
+pub mod config;
 pub mod crossover;
 pub mod diversity;
 pub mod fitness;
@@ -10,4 +11,5 @@ pub mod genome;
 pub mod individual;
 pub mod mutation;
 pub mod params;
+pub mod planner;
 pub mod run;

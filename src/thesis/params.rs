@@ -129,11 +129,13 @@ impl ThesisParams {
     }
 }
 
-/// When a run stops.
+/// When a run stops (any planner: iterations are generations for the GAs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Budget {
     /// `Iter_max`.
     pub iterations: u32,
+    /// Optional limit on fitness evaluations (equal budgets across planners).
+    pub evaluations: Option<u64>,
     /// Optional wall-clock limit (the thesis used 20 minutes).
     pub wall_clock: Option<Duration>,
     /// Optional stall limit: stop after this many iterations without a better best.

@@ -11,6 +11,7 @@ use crate::coverage::SweepScratch;
 use crate::ga::control;
 use crate::ga::observer::{GenerationStats, Observer, RunEvent};
 use crate::ga::rng::{Purpose, Rng, stream};
+pub use crate::planner::StopReason;
 use std::time::Instant;
 
 /// The algorithm: what stays fixed during a run.
@@ -38,20 +39,8 @@ pub struct GaState {
     rng: Rng,
 }
 
-/// Why a run ended.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum StopReason {
-    /// `Iter_max` reached.
-    Iterations,
-    /// The wall-clock limit.
-    WallClock,
-    /// No better best individual for the stall limit.
-    Stall,
-}
-
-/// The result of a run.
-pub struct RunOutcome {
+/// The result of a run of the thesis GA.
+pub struct ThesisOutcome {
     /// Best individual of the final population (R30).
     pub best: Individual,
     /// Best individual just before the environment changed, if it did.
@@ -64,6 +53,10 @@ pub struct RunOutcome {
     pub stop: StopReason,
     /// Wall time in seconds (not part of the deterministic outputs).
     pub wall_s: f64,
+    /// Every iteration's statistics (for the history figure).
+    pub history: Vec<GenerationStats>,
+    /// Iterations at which the environment changed.
+    pub changes: Vec<u32>,
 }
 
 /// Index of the fittest individual (first on ties).
@@ -188,15 +181,19 @@ impl ThesisGa {
         budget: &Budget,
         retrain: Option<&Retrain>,
         observers: &mut [&mut dyn Observer],
-    ) -> std::io::Result<RunOutcome> {
+    ) -> std::io::Result<ThesisOutcome> {
         let started = Instant::now();
+        let mut history = Vec::new();
+        let mut changes = Vec::new();
         let mut state = self.init();
         let mut scratches = self.scratches();
         let mut div = DiversityScratch::default();
         let fixed = self.fixed_effective();
+        let first = stats(&state, &fixed);
         for o in observers.iter_mut() {
-            o.generation(&stats(&state, &fixed))?;
+            o.generation(&first.record())?;
         }
+        history.push(first);
         let mut best_seen = state.population[best_index(&state.population)].fitness();
         let mut stalled = 0u32;
         let mut best_before_retrain = None;
@@ -206,6 +203,10 @@ impl ThesisGa {
                 stop = StopReason::WallClock;
                 break;
             }
+            if budget.evaluations.is_some_and(|limit| state.evaluations >= limit) {
+                stop = StopReason::Evaluations;
+                break;
+            }
             if let Some(r) = retrain.filter(|r| r.at_iteration == state.iteration) {
                 best_before_retrain = Some(state.population[best_index(&state.population)].clone());
                 self.change_environment(&mut state, r.region);
@@ -213,13 +214,16 @@ impl ThesisGa {
                 for o in observers.iter_mut() {
                     o.event(RunEvent::EnvironmentChanged { iteration: state.iteration + 1 })?;
                 }
+                changes.push(state.iteration + 1);
                 best_seen = f64::NEG_INFINITY;
             }
             let effective = self.effective(&state, state.iteration + 1, budget.iterations);
             self.step(&mut state, effective, &mut scratches, &mut div);
+            let now = stats(&state, &effective);
             for o in observers.iter_mut() {
-                o.generation(&stats(&state, &effective))?;
+                o.generation(&now.record())?;
             }
+            history.push(now);
             let best = state.population[best_index(&state.population)].fitness();
             if best > best_seen {
                 best_seen = best;
@@ -233,7 +237,9 @@ impl ThesisGa {
             }
         }
         let best = state.population[best_index(&state.population)].clone();
-        Ok(RunOutcome {
+        Ok(ThesisOutcome {
+            history,
+            changes,
             best,
             best_before_retrain,
             iterations: state.iteration,

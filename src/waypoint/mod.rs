@@ -3,9 +3,11 @@
 //! per-traversal camera views ([`precompute`]), objectives and constraints ([`evaluate`]),
 //! path operators ([`operators`]) and the maximin GA ([`run`]).
 
+pub mod config;
 pub mod evaluate;
 pub mod graph;
 pub mod operators;
+pub mod planner;
 pub mod precompute;
 pub mod raster;
 pub mod run;

@@ -88,13 +88,53 @@ pub type Snapshot = (u32, Vec<(f64, f64, bool)>);
 pub struct WaypointOutcome {
     /// Final population.
     pub population: Vec<Organism>,
-    /// Index of the selected organism: the feasible one with the highest coverage (else the
-    /// best maximin).
+    /// Index of the reported organism ([`reported`] at the last generation run).
     pub best: usize,
+    /// Generations completed.
+    pub generations: u32,
+    /// Evaluations spent (every organism evaluated, initial attempts included).
+    pub evaluations: u64,
+    /// Why the run ended.
+    pub stop: crate::planner::StopReason,
     /// Population `(C, flight time, feasible)` at generation 0, ~G/3, ~2G/3 and G.
     pub snapshots: Vec<Snapshot>,
     /// Organisms accepted at generation 0 without violating a constraint.
     pub initial_feasible: usize,
+}
+
+/// Receives each generation's statistics, the population, the reported organism's index and
+/// the evaluations so far.
+pub type GenerationCallback<'a> = dyn FnMut(&WaypointStats, &[Organism], usize, u64) + 'a;
+
+/// Limits beyond the generation count: an evaluation budget and a wall-clock limit.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Limits {
+    /// Stop before a generation that would start at or beyond this many evaluations.
+    pub evaluations: Option<u64>,
+    /// Stop once this much time has passed.
+    pub wall_clock: Option<std::time::Duration>,
+}
+
+/// The organism a run reports at generation `g`: the feasible one with the highest coverage
+/// `C` (ties: shorter flight time, then lower index); when none is feasible, the one with the
+/// fewest violated constraint types, then the highest coverage. History and summary use this
+/// same choice.
+pub fn reported(pop: &[Organism], p: &GaParams, g: u32) -> usize {
+    let c_req = required_coverage(&p.objectives, g);
+    let key = |o: &Organism| o.eval.violations(&p.objectives, c_req);
+    let mut best = 0;
+    for i in 1..pop.len() {
+        let (a, b) = (&pop[i], &pop[best]);
+        let better = key(a).cmp(&key(b)).then(b.eval.coverage.total_cmp(&a.eval.coverage)).then(if key(a) == 0 {
+            a.eval.flight_time.total_cmp(&b.eval.flight_time)
+        } else {
+            std::cmp::Ordering::Equal
+        });
+        if better == std::cmp::Ordering::Less {
+            best = i;
+        }
+    }
+    best
 }
 
 fn stats(g: u32, pop: &[Organism], p: &GaParams) -> WaypointStats {
@@ -139,8 +179,16 @@ pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
     w.iter().map(|x| x / total).collect()
 }
 
-/// Runs the GA on a built world; `on_generation` receives each generation's statistics.
-pub fn run(world: &World, p: &GaParams, seed: u64, on_generation: &mut dyn FnMut(&WaypointStats)) -> WaypointOutcome {
+/// Runs the GA on a built world; `on_generation` receives each generation's statistics, the
+/// population, the index of the reported organism and the evaluations so far.
+pub fn run(
+    world: &World,
+    p: &GaParams,
+    seed: u64,
+    limits: &Limits,
+    on_generation: &mut GenerationCallback<'_>,
+) -> WaypointOutcome {
+    let started = std::time::Instant::now();
     let ev = Evaluator {
         graph: &world.graph,
         traversals: &world.traversals,
@@ -217,9 +265,20 @@ pub fn run(world: &World, p: &GaParams, seed: u64, on_generation: &mut dyn FnMut
                 .collect::<Vec<_>>(),
         )
     };
-    on_generation(&stats(0, &pop, p));
+    on_generation(&stats(0, &pop, p), &pop, reported(&pop, p, 0), attempt);
     snapshots.push(snapshot(0, &pop));
+    let mut evaluations = attempt;
+    let mut generations = 0;
+    let mut stop = crate::planner::StopReason::Iterations;
     for gen_ in 1..=p.generations {
+        if limits.evaluations.is_some_and(|e| evaluations >= e) {
+            stop = crate::planner::StopReason::Evaluations;
+            break;
+        }
+        if limits.wall_clock.is_some_and(|w| started.elapsed() >= w) {
+            stop = crate::planner::StopReason::WallClock;
+            break;
+        }
         let c_req = required_coverage(&p.objectives, gen_);
         let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
         let probs = pressure_weights(&maximin(&objs), p.gamma);
@@ -260,6 +319,7 @@ pub fn run(world: &World, p: &GaParams, seed: u64, on_generation: &mut dyn FnMut
             })
             .collect();
         let mut pool = std::mem::take(&mut pop);
+        evaluations += children.len() as u64;
         pool.extend(evaluate_all(children));
         let objs: Vec<[f64; 2]> = pool.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
         let fit = maximin(&objs);
@@ -268,27 +328,17 @@ pub fn run(world: &World, p: &GaParams, seed: u64, on_generation: &mut dyn FnMut
         order.sort_by(|&x, &y| fit[x].total_cmp(&fit[y]).then(ties[x].cmp(&ties[y])));
         let mut slots: Vec<Option<Organism>> = pool.into_iter().map(Some).collect();
         pop = order.iter().take(p.population).map(|&i| slots[i].take().expect("kept once")).collect();
-        on_generation(&stats(gen_, &pop, p));
+        generations = gen_;
+        on_generation(&stats(gen_, &pop, p), &pop, reported(&pop, p, gen_), evaluations);
         if snap_at[1..].contains(&gen_) && snapshots.last().is_none_or(|s| s.0 != gen_) {
             snapshots.push(snapshot(gen_, &pop));
         }
     }
-    let c_end = required_coverage(&p.objectives, p.generations);
-    let feasible: Vec<usize> = (0..pop.len()).filter(|&i| pop[i].eval.violations(&p.objectives, c_end) == 0).collect();
-    let best = if let Some(&b) = feasible.iter().max_by(|&&a, &&b| {
-        pop[a]
-            .eval
-            .coverage
-            .total_cmp(&pop[b].eval.coverage)
-            .then(pop[b].eval.flight_time.total_cmp(&pop[a].eval.flight_time))
-    }) {
-        b
-    } else {
-        let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_end)).collect();
-        let fit = maximin(&objs);
-        (0..pop.len()).min_by(|&a, &b| fit[a].total_cmp(&fit[b])).unwrap_or(0)
-    };
-    WaypointOutcome { population: pop, best, snapshots, initial_feasible }
+    if generations > 0 && snapshots.last().is_none_or(|s| s.0 != generations) {
+        snapshots.push(snapshot(generations, &pop));
+    }
+    let best = reported(&pop, p, generations);
+    WaypointOutcome { population: pop, best, generations, evaluations, stop, snapshots, initial_feasible }
 }
 
 #[cfg(test)]

@@ -1,5 +1,7 @@
 //! Where a disc-shaped robot of a given width fits, and collision-free connecting moves
 //! (8-connected A* over cell centres, shortened by line of sight) for the pattern planners.
+//! A clearance can be restricted to the part of the map reachable from the stations
+//! ([`super::reach::Reach`]), so that planners never aim at pockets the robot cannot enter.
 
 use crate::geom::Point;
 use crate::map::GridMap;
@@ -15,6 +17,8 @@ pub struct Clearance<'m> {
     radius: f64,
     window: isize,
     centre_ok: Vec<bool>,
+    /// Cell centres reachable from the stations, once restricted.
+    reachable: Option<Vec<bool>>,
 }
 
 impl<'m> Clearance<'m> {
@@ -22,12 +26,55 @@ impl<'m> Clearance<'m> {
     pub fn new(map: &'m GridMap, width: f64) -> Self {
         let radius = 0.5 * width;
         let window = (radius / map.resolution()).ceil() as isize + 1;
-        let mut c = Self { map, radius, window, centre_ok: Vec::new() };
+        let mut c = Self { map, radius, window, centre_ok: Vec::new(), reachable: None };
         c.centre_ok = (0..map.rows())
             .flat_map(|r| (0..map.cols()).map(move |col| (r, col)))
-            .map(|(r, col)| c.fits(map.cell_centre(r, col)))
+            .map(|(r, col)| c.fits_geometry(map.cell_centre(r, col)))
             .collect();
         c
+    }
+
+    /// Restricts every later query to the cell centres marked in `reachable` (one flag per
+    /// cell, row-major): pieces and connections then stay in the stations' component.
+    pub fn restrict(&mut self, reachable: Vec<bool>) {
+        for (ok, r) in self.centre_ok.iter_mut().zip(&reachable) {
+            *ok &= *r;
+        }
+        self.reachable = Some(reachable);
+    }
+
+    /// Whether the robot centred on cell `index` (row-major) fits (and is reachable, once
+    /// restricted).
+    pub fn centre_fits(&self, index: usize) -> bool {
+        self.centre_ok[index]
+    }
+
+    /// The robot's radius in metres.
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+
+    /// Whether the robot disc centred at `p` stays on the map and off every non-free cell and,
+    /// once restricted, lies in or next to a reachable cell.
+    pub fn fits(&self, p: Point) -> bool {
+        self.fits_geometry(p) && self.near_reachable(p)
+    }
+
+    fn near_reachable(&self, p: Point) -> bool {
+        let Some(reach) = &self.reachable else { return true };
+        let m = self.map;
+        let Some((r, c)) = m.cell_at(p) else { return false };
+        let (r, c) = (r as isize, c as isize);
+        (-1..=1).any(|dr| {
+            (-1..=1).any(|dc| {
+                let (nr, nc) = (r + dr, c + dc);
+                nr >= 0
+                    && nc >= 0
+                    && (nr as usize) < m.rows()
+                    && (nc as usize) < m.cols()
+                    && reach[m.index(nr as usize, nc as usize)]
+            })
+        })
     }
 
     /// The map.
@@ -36,7 +83,7 @@ impl<'m> Clearance<'m> {
     }
 
     /// Whether the robot disc centred at `p` stays on the map and off every non-free cell.
-    pub fn fits(&self, p: Point) -> bool {
+    pub fn fits_geometry(&self, p: Point) -> bool {
         let m = self.map;
         let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
         let lim = self.radius - CLEARANCE_EPS;
@@ -105,7 +152,8 @@ impl<'m> Clearance<'m> {
         out
     }
 
-    fn snap(&self, p: Point) -> Option<usize> {
+    /// The fitting cell centre (row-major index) nearest to `p`, if any cell fits.
+    pub fn snap(&self, p: Point) -> Option<usize> {
         let m = self.map;
         let (r0, c0) = m.cell_at(m.clamp(p)).unwrap_or((0, 0));
         // Nearest fitting cell centre by growing square rings.
@@ -161,12 +209,45 @@ impl<'m> Clearance<'m> {
             out.push(raw[next]);
             anchor = next;
         }
+        // Every hop after the first must fit: the first may leave a start that the disc does
+        // not fit (a station next to a wall), the others must not cut through obstacles.
+        let mut prev = out[0];
+        for &p in &out[1..] {
+            if !self.segment_fits(prev, p) {
+                return None;
+            }
+            prev = p;
+        }
         Some(out)
+    }
+
+    /// The 8 neighbours of cell `i` that a robot centred on `i` can step to: fitting centres,
+    /// and for diagonal steps both orthogonal neighbours fitting too (no corner cutting).
+    pub fn steps(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
+        let m = self.map;
+        let cols = m.cols() as isize;
+        let (r, c) = ((i / m.cols()) as isize, (i % m.cols()) as isize);
+        [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)].into_iter().filter_map(
+            move |(dr, dc)| {
+                let (nr, nc) = (r + dr, c + dc);
+                if nr < 0 || nc < 0 || nr >= m.rows() as isize || nc >= cols {
+                    return None;
+                }
+                let j = (nr * cols + nc) as usize;
+                let diagonal = dr != 0 && dc != 0;
+                if !self.centre_ok[j]
+                    || (diagonal
+                        && !(self.centre_ok[(r * cols + nc) as usize] && self.centre_ok[(nr * cols + c) as usize]))
+                {
+                    return None;
+                }
+                Some((j, if diagonal { std::f64::consts::SQRT_2 } else { 1.0 }))
+            },
+        )
     }
 
     fn astar(&self, from: usize, to: usize) -> Option<Vec<usize>> {
         let m = self.map;
-        let cols = m.cols() as isize;
         let n = self.centre_ok.len();
         let h = |i: usize| {
             let (dr, dc) =
@@ -191,22 +272,7 @@ impl<'m> Clearance<'m> {
                 path.reverse();
                 return Some(path);
             }
-            let (r, c) = ((i / m.cols()) as isize, (i % m.cols()) as isize);
-            for (dr, dc) in [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)] {
-                let (nr, nc) = (r + dr, c + dc);
-                if nr < 0 || nc < 0 || nr >= m.rows() as isize || nc >= cols {
-                    continue;
-                }
-                let j = (nr * cols + nc) as usize;
-                // Diagonal steps need both orthogonal neighbours, so corners are not cut.
-                if !self.centre_ok[j]
-                    || (dr != 0
-                        && dc != 0
-                        && !(self.centre_ok[(r * cols + nc) as usize] && self.centre_ok[(nr * cols + c) as usize]))
-                {
-                    continue;
-                }
-                let step = if dr != 0 && dc != 0 { std::f64::consts::SQRT_2 } else { 1.0 };
+            for (j, step) in self.steps(i) {
                 let cand = g[i] + step;
                 if cand < g[j] - 1e-12 {
                     g[j] = cand;

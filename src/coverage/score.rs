@@ -1,0 +1,358 @@
+//! The common scorer: every plan of every planner measured the same way, so that studies
+//! compare planners only through these numbers (the ablation is fair by construction).
+//!
+//! - Footprint model (003 §3.1, Listing 3.1): the robot's swept rectangles on one shared visit
+//!   map, `cov_final` (eq. 3.6), `t_final` (eqs. 3.7–3.10), `f` (eqs. 3.14–3.16).
+//! - Camera model (000 §II-C.1, eq. 1): 000's forward camera posed every [`CAMERA_STEP_M`]
+//!   metres along each path and at its vertices, looking along the path; coverage of the
+//!   wall band and of the open space of the working raster.
+//! - Motion: length, turns, total turn, time at the robot's speed with rotation (eqs. 3.1–3.3)
+//!   per agent, their sum and the makespan (the slowest agent).
+//!
+//! Coverage is reported over two denominators, named in every field: `_free`, all free cells
+//! (the thesis's `A_pix`), and `_reach`, the cells the footprint can sweep from the stations
+//! ([`crate::map::reach::Reach`]; for the camera, the free pixels connected to the stations).
+
+use super::camera::Camera;
+use super::{CoverageGrid, Footprint, SweepScratch, motion};
+use crate::geom::Point;
+use crate::map::GridMap;
+use crate::map::clearance::Clearance;
+use crate::map::reach::Reach;
+use crate::thesis::fitness::{Projection, f_obstacle};
+use crate::waypoint::raster::WorkMap;
+
+/// Spacing of camera poses along a path in metres.
+pub const CAMERA_STEP_M: f64 = 1.0;
+
+/// 000's camera as the scorer uses it (metres and degrees), with the working raster's scale
+/// and the width of the wall band whose coverage is reported.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct CameraSpec {
+    /// Pixel scale of the working raster (m/px).
+    pub scale: f64,
+    /// `d_min` (m).
+    pub d_min: f64,
+    /// `d_max` (m).
+    pub d_max: f64,
+    /// `θ_fov` (degrees).
+    pub fov_deg: f64,
+    /// `m` sections.
+    pub sections: usize,
+    /// Width of the wall band `B` (m): free pixels this close to an obstacle.
+    pub band_m: f64,
+}
+
+/// Everything the scorer measures of one plan. Field names say which denominator a coverage
+/// uses (`_free` or `_reach`).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Score {
+    /// Paths in the plan.
+    pub agents: usize,
+    /// `cov_final` over all free cells (003 eq. 3.6 with `A_pix` = free cells).
+    pub cov_final_free: f64,
+    /// `cov_final` over the cells the footprint can reach.
+    pub cov_final_reach: f64,
+    /// `t_final` (003 eq. 3.10; it does not depend on the denominator).
+    pub t_final: f64,
+    /// `f_obstacle` of (t_final, cov_final_free) with the experiment's projection.
+    pub f_free: f64,
+    /// `f_obstacle` of (t_final, cov_final_reach).
+    pub f_reach: f64,
+    /// Distinct free cells swept.
+    pub unique_cells: u64,
+    /// Distinct reachable cells swept.
+    pub unique_reach_cells: u64,
+    /// `cov_pix`: free-cell sweeps.
+    pub cells_swept: u64,
+    /// `cross_pix`: sweeps of cells already swept.
+    pub crossings: u64,
+    /// `obj_pix`: sweeps of obstacle cells.
+    pub obstacle_cells: u64,
+    /// Free cells (`A_pix`).
+    pub free_cells: u64,
+    /// Cells the footprint can sweep from the stations.
+    pub reachable_cells: u64,
+    /// Free cells the footprint cannot reach, in pockets.
+    pub pocket_cells: u64,
+    /// Camera coverage of the wall band, all of it.
+    pub cam_walls_free: f64,
+    /// Camera coverage of the open (free) space, all of it.
+    pub cam_open_free: f64,
+    /// Camera coverage of the wall band connected to the stations.
+    pub cam_walls_reach: f64,
+    /// Camera coverage of the free space connected to the stations.
+    pub cam_open_reach: f64,
+    /// Total path length in metres.
+    pub length_m: f64,
+    /// Non-zero turns.
+    pub turns: u64,
+    /// Total absolute turn in radians.
+    pub total_turn_rad: f64,
+    /// Sum over agents of length / speed + turn / rotation speed, in seconds.
+    pub time_s: f64,
+    /// The slowest agent's time in seconds.
+    pub makespan_s: f64,
+    /// Each agent's path length in metres.
+    pub agent_length_m: Vec<f64>,
+    /// Each agent's time in seconds.
+    pub agent_time_s: Vec<f64>,
+}
+
+impl Score {
+    /// The scalar metrics as `(column, value)` pairs, in a fixed order (the common columns of
+    /// `runs.csv`).
+    pub fn columns(&self) -> Vec<(&'static str, String)> {
+        vec![
+            ("agents", self.agents.to_string()),
+            ("cov_final_free", self.cov_final_free.to_string()),
+            ("cov_final_reach", self.cov_final_reach.to_string()),
+            ("t_final", self.t_final.to_string()),
+            ("f_free", self.f_free.to_string()),
+            ("f_reach", self.f_reach.to_string()),
+            ("unique_cells", self.unique_cells.to_string()),
+            ("unique_reach_cells", self.unique_reach_cells.to_string()),
+            ("cells_swept", self.cells_swept.to_string()),
+            ("crossings", self.crossings.to_string()),
+            ("obstacle_cells", self.obstacle_cells.to_string()),
+            ("free_cells", self.free_cells.to_string()),
+            ("reachable_cells", self.reachable_cells.to_string()),
+            ("pocket_cells", self.pocket_cells.to_string()),
+            ("cam_walls_free", self.cam_walls_free.to_string()),
+            ("cam_open_free", self.cam_open_free.to_string()),
+            ("cam_walls_reach", self.cam_walls_reach.to_string()),
+            ("cam_open_reach", self.cam_open_reach.to_string()),
+            ("length_m", self.length_m.to_string()),
+            ("turns", self.turns.to_string()),
+            ("total_turn_rad", self.total_turn_rad.to_string()),
+            ("time_s", self.time_s.to_string()),
+            ("makespan_s", self.makespan_s.to_string()),
+        ]
+    }
+    /// The column names of [`Score::columns`].
+    pub fn column_names() -> Vec<&'static str> {
+        Score::default().columns().into_iter().map(|(k, _)| k).collect()
+    }
+}
+
+/// The camera side of the scorer: working raster, wall band, connected free pixels.
+struct CameraLayer {
+    map: WorkMap,
+    camera: Camera,
+    band: Vec<bool>,
+    reach: Vec<bool>,
+    counts: [usize; 4],
+}
+
+impl CameraLayer {
+    fn new(map: &GridMap, spec: &CameraSpec, stations: &[Point]) -> Self {
+        let wm = WorkMap::new(map, spec.scale);
+        let band = wm.band(spec.band_m / spec.scale);
+        let mut reach = vec![false; wm.occluded.len()];
+        let mut stack: Vec<usize> = Vec::new();
+        for s in stations {
+            let (c, r) = wm.pixel_of(wm.to_px(s.x, s.y));
+            if !wm.is_occluded(c, r) {
+                let i = wm.index(c as usize, r as usize);
+                reach[i] = true;
+                stack.push(i);
+            }
+        }
+        while let Some(i) = stack.pop() {
+            let (c, r) = ((i % wm.width) as i64, (i / wm.width) as i64);
+            for (dc, dr) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)] {
+                let (nc, nr) = (c + dc, r + dr);
+                if !wm.is_occluded(nc, nr) {
+                    let j = wm.index(nc as usize, nr as usize);
+                    if !reach[j] {
+                        reach[j] = true;
+                        stack.push(j);
+                    }
+                }
+            }
+        }
+        let free = wm.occluded.iter().filter(|o| !**o).count();
+        let counts = [
+            band.iter().filter(|b| **b).count(),
+            free,
+            band.iter().zip(&reach).filter(|(b, r)| **b && **r).count(),
+            reach.iter().filter(|r| **r).count(),
+        ];
+        let camera = Camera {
+            d_min: spec.d_min / spec.scale,
+            d_max: spec.d_max / spec.scale,
+            fov: spec.fov_deg.to_radians(),
+            sections: spec.sections,
+        };
+        Self { map: wm, camera, band, reach, counts }
+    }
+
+    /// `[walls_free, open_free, walls_reach, open_reach]` of a plan.
+    fn coverage(&self, paths: &[Vec<Point>]) -> [f64; 4] {
+        let wm = &self.map;
+        let mut seen = vec![false; wm.occluded.len()];
+        for path in paths {
+            for w in path.windows(2) {
+                let d = w[1] - w[0];
+                let len = d.norm();
+                if len < 1e-9 {
+                    continue;
+                }
+                let psi = d.y.atan2(d.x);
+                let steps = (len / CAMERA_STEP_M).ceil() as usize;
+                for k in 0..=steps {
+                    let p = w[0] + d * (k as f64 / steps as f64);
+                    let pos = wm.to_px(p.x, p.y);
+                    self.camera.view(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, psi, |i| seen[i] = true);
+                }
+            }
+        }
+        let mut hit = [0usize; 4];
+        for (i, s) in seen.iter().enumerate().filter(|(_, s)| **s) {
+            let _ = s;
+            hit[0] += usize::from(self.band[i]);
+            hit[1] += 1;
+            hit[2] += usize::from(self.band[i] && self.reach[i]);
+            hit[3] += usize::from(self.reach[i]);
+        }
+        std::array::from_fn(|k| if self.counts[k] > 0 { hit[k] as f64 / self.counts[k] as f64 } else { 0.0 })
+    }
+}
+
+/// Scores plans on one map for one robot, camera and set of stations.
+pub struct Scorer {
+    grid: CoverageGrid,
+    robot: Footprint,
+    resolution: f64,
+    projection: Projection,
+    reach: Reach,
+    camera: CameraLayer,
+}
+
+impl Scorer {
+    /// Prepares the layers: visit grid, reachable cells from `stations`, camera raster.
+    pub fn new(
+        map: &GridMap,
+        robot: Footprint,
+        projection: Projection,
+        camera: &CameraSpec,
+        stations: &[Point],
+    ) -> Self {
+        let reach = Reach::new(&Clearance::new(map, robot.width), stations);
+        Self {
+            grid: CoverageGrid::new(map),
+            robot,
+            resolution: map.resolution(),
+            projection,
+            reach,
+            camera: CameraLayer::new(map, camera, stations),
+        }
+    }
+
+    /// The visit grid plans are swept on.
+    pub fn grid(&self) -> &CoverageGrid {
+        &self.grid
+    }
+
+    /// The reachable part of the map.
+    pub fn reach(&self) -> &Reach {
+        &self.reach
+    }
+
+    /// `cov_final` over all free cells only (cheap: one sweep; for per-generation records).
+    pub fn footprint_coverage(&self, scratch: &mut SweepScratch, paths: &[Vec<Point>]) -> f64 {
+        let counts = scratch.sweep_all(&self.grid, paths, self.robot.width);
+        counts.unique() as f64 / self.grid.area_cells().max(1) as f64
+    }
+
+    /// Every metric of a plan (one path per agent).
+    pub fn score(&self, paths: &[Vec<Point>]) -> Score {
+        let mut scratch = SweepScratch::new(&self.grid);
+        let m = self.robot.measure_plan(&self.grid, &mut scratch, paths);
+        let unique_reach = scratch.visit_counts().filter(|&(i, _)| self.reach.is_coverable(i as usize)).count() as u64;
+        let th = crate::thesis::fitness::score(&m, &self.robot, self.resolution, self.projection);
+        let reachable = self.reach.coverable_count() as u64;
+        let cov_reach = unique_reach as f64 / reachable.max(1) as f64;
+        let f_reach = f_obstacle(self.projection.apply(th.t_final, cov_reach), m.obstacle_cells);
+        let (mut lengths, mut times) = (Vec::new(), Vec::new());
+        for p in paths {
+            let len = motion::path_length(p);
+            let (turn, _) = motion::turning(p);
+            lengths.push(len);
+            times.push(len / self.robot.speed + motion::rotation_time(turn, self.robot.rot_speed));
+        }
+        let [cam_walls_free, cam_open_free, cam_walls_reach, cam_open_reach] = self.camera.coverage(paths);
+        Score {
+            agents: paths.len(),
+            cov_final_free: th.cov_final,
+            cov_final_reach: cov_reach,
+            t_final: th.t_final,
+            f_free: th.fitness,
+            f_reach,
+            unique_cells: m.unique_cells,
+            unique_reach_cells: unique_reach,
+            cells_swept: m.cells_swept,
+            crossings: m.crossings,
+            obstacle_cells: m.obstacle_cells,
+            free_cells: m.area_cells,
+            reachable_cells: reachable,
+            pocket_cells: self.reach.pocket_cells() as u64,
+            cam_walls_free,
+            cam_open_free,
+            cam_walls_reach,
+            cam_open_reach,
+            length_m: m.length_m,
+            turns: m.turns,
+            total_turn_rad: m.total_turn_rad,
+            time_s: times.iter().sum(),
+            makespan_s: times.iter().copied().fold(0.0, f64::max),
+            agent_length_m: lengths,
+            agent_time_s: times,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+
+    fn camera() -> CameraSpec {
+        CameraSpec { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 }
+    }
+
+    #[test]
+    fn a_lane_on_map_1_by_hand() {
+        // spec §3.3 case 1: (1.3, 1.3) → (4.3, 1.3) sweeps 45 free cells, no crossing.
+        let map = preset("thesis-1").unwrap();
+        let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
+        let s = Scorer::new(&map, robot, Projection::F2, &camera(), &[Point::new(1.3, 1.3)]);
+        let sc = s.score(&[vec![Point::new(1.3, 1.3), Point::new(4.3, 1.3)]]);
+        assert_eq!((sc.unique_cells, sc.cells_swept, sc.crossings, sc.obstacle_cells), (45, 45, 0, 0));
+        assert_eq!(sc.free_cells, 2025);
+        // Map 1 is a 45 x 45-cell open room: every free cell is reachable by a 0.6 m disc.
+        assert_eq!(sc.reachable_cells, 2025);
+        assert_eq!(sc.unique_reach_cells, 45);
+        assert!((sc.cov_final_free - 45.0 / 2025.0).abs() < 1e-15);
+        assert_eq!(sc.cov_final_free, sc.cov_final_reach);
+        assert!((sc.length_m - 3.0).abs() < 1e-12 && (sc.time_s - 15.0).abs() < 1e-12);
+        assert_eq!(sc.makespan_s, sc.time_s);
+        assert!(sc.cam_walls_free > 0.0 && sc.cam_walls_free < 1.0 && sc.cam_open_free > 0.0);
+    }
+
+    #[test]
+    fn makespan_is_the_slowest_agent_and_agents_share_one_visit_map() {
+        let map = preset("thesis-1").unwrap();
+        let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
+        let s = Scorer::new(&map, robot, Projection::F2, &camera(), &[Point::new(1.3, 1.3)]);
+        let a = vec![Point::new(1.3, 1.3), Point::new(4.3, 1.3)];
+        let b = vec![Point::new(1.3, 1.3), Point::new(2.3, 1.3)];
+        let sc = s.score(&[a.clone(), b]);
+        assert_eq!(sc.agents, 2);
+        assert!((sc.makespan_s - 15.0).abs() < 1e-12 && (sc.time_s - 20.0).abs() < 1e-12);
+        // The second agent re-sweeps cells of the first: crossings, no new unique cells.
+        assert_eq!(sc.unique_cells, 45);
+        assert!(sc.crossings > 0);
+        assert!((sc.agent_length_m[0] - 3.0).abs() < 1e-12 && (sc.agent_length_m[1] - 1.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,177 @@
+//! What a robot of a given width can reach and cover from its stations: the cell centres its
+//! disc can occupy in the stations' connected component, the free cells its footprint can
+//! sweep from there, and the free pockets it cannot (SLAM maps have many: gaps behind pillars,
+//! specks of free space inside walls, rooms behind doors narrower than the robot).
+//!
+//! This is the fair denominator for coverage on real maps: a path cannot sweep a cell that no
+//! reachable pose of the footprint touches. A cell counts as coverable when its centre lies
+//! within the robot's half width of a reachable centre (a pose exists, in some heading, whose
+//! swept rectangle of 003 §3.1 contains the cell centre).
+
+use super::clearance::Clearance;
+use crate::geom::Point;
+
+/// The reachable and coverable parts of a map for one robot width and a set of stations.
+#[derive(Clone, Debug)]
+pub struct Reach {
+    centres: Vec<bool>,
+    coverable: Vec<bool>,
+    coverable_count: usize,
+    pockets: Vec<usize>,
+    cell_area_m2: f64,
+}
+
+impl Reach {
+    /// Flood-fills the fitting cell centres from each station (8-connected, no corner cutting,
+    /// as the connecting moves of the patterns), then marks the coverable free cells and groups
+    /// the free cells left over into pockets (8-connected).
+    pub fn new(clear: &Clearance, stations: &[Point]) -> Self {
+        let map = clear.map();
+        let n = map.rows() * map.cols();
+        let mut centres = vec![false; n];
+        let mut stack: Vec<usize> = stations.iter().filter_map(|&p| clear.snap(p)).collect();
+        for &s in &stack {
+            centres[s] = true;
+        }
+        while let Some(i) = stack.pop() {
+            for (j, _) in clear.steps(i) {
+                if !centres[j] {
+                    centres[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        let res = map.resolution();
+        let r_cells = clear.radius() / res;
+        let k = r_cells.floor() as isize;
+        let offsets: Vec<(isize, isize)> = (-k..=k)
+            .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
+            .filter(|&(dr, dc)| ((dr * dr + dc * dc) as f64) <= r_cells * r_cells + 1e-9)
+            .collect();
+        let (rows, cols) = (map.rows() as isize, map.cols() as isize);
+        let mut coverable = vec![false; n];
+        for (i, _) in centres.iter().enumerate().filter(|(_, c)| **c) {
+            let (r, c) = ((i / map.cols()) as isize, (i % map.cols()) as isize);
+            for &(dr, dc) in &offsets {
+                let (nr, nc) = (r + dr, c + dc);
+                if nr >= 0 && nc >= 0 && nr < rows && nc < cols {
+                    let j = (nr * cols + nc) as usize;
+                    coverable[j] |= map.is_free(nr as usize, nc as usize);
+                }
+            }
+        }
+        let coverable_count = coverable.iter().filter(|c| **c).count();
+        // Pockets: connected groups of free cells that are not coverable.
+        let mut seen = coverable.clone();
+        let mut pockets = Vec::new();
+        for start in 0..n {
+            if seen[start] || !map.state_at(start).eq(&super::CellState::Free) {
+                continue;
+            }
+            seen[start] = true;
+            let mut stack = vec![start];
+            let mut size = 0;
+            while let Some(i) = stack.pop() {
+                size += 1;
+                let (r, c) = ((i / map.cols()) as isize, (i % map.cols()) as isize);
+                for dr in -1..=1 {
+                    for dc in -1..=1 {
+                        let (nr, nc) = (r + dr, c + dc);
+                        if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                            continue;
+                        }
+                        let j = (nr * cols + nc) as usize;
+                        if !seen[j] && map.is_free(nr as usize, nc as usize) {
+                            seen[j] = true;
+                            stack.push(j);
+                        }
+                    }
+                }
+            }
+            pockets.push(size);
+        }
+        Self { centres, coverable, coverable_count, pockets, cell_area_m2: res * res }
+    }
+
+    /// Reachable robot centres, one flag per cell (row-major).
+    pub fn centres(&self) -> &[bool] {
+        &self.centres
+    }
+    /// Whether the footprint can sweep cell `index` from a reachable pose.
+    pub fn is_coverable(&self, index: usize) -> bool {
+        self.coverable[index]
+    }
+    /// Coverable free cells (the reachable `A_pix`).
+    pub fn coverable_count(&self) -> usize {
+        self.coverable_count
+    }
+    /// Coverable flags, one per cell (row-major).
+    pub fn coverable(&self) -> &[bool] {
+        &self.coverable
+    }
+    /// Number of free pockets the footprint cannot sweep.
+    pub fn pocket_count(&self) -> usize {
+        self.pockets.len()
+    }
+    /// Free cells in those pockets.
+    pub fn pocket_cells(&self) -> usize {
+        self.pockets.iter().sum()
+    }
+    /// Their area in m².
+    pub fn pocket_area_m2(&self) -> f64 {
+        self.pocket_cells() as f64 * self.cell_area_m2
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::{CellState, GridMap};
+
+    /// 12 × 7 cells of 0.1 m: a room (columns 1–6) and, behind a wall with a 0.2 m slot, a
+    /// 0.4 m wide pocket (columns 8–10); a 0.3 m robot fits in the room but not the slot.
+    fn room_and_pocket() -> GridMap {
+        let (cols, rows) = (12, 7);
+        let mut cells = vec![CellState::Occupied; cols * rows];
+        for r in 1..6 {
+            for c in 1..7 {
+                cells[r * cols + c] = CellState::Free;
+            }
+            for c in 8..11 {
+                cells[r * cols + c] = CellState::Free;
+            }
+        }
+        cells[3 * cols + 7] = CellState::Free;
+        GridMap::new("pocket", cols, rows, 0.1, Point::origin(), cells).unwrap()
+    }
+
+    #[test]
+    fn the_pocket_behind_a_narrow_slot_is_unreachable() {
+        let map = room_and_pocket();
+        let clear = Clearance::new(&map, 0.3);
+        let reach = Reach::new(&clear, &[Point::new(0.35, 0.35)]);
+        // The 0.15 m disc fits with its centre in columns 2–5, rows 2–4 of the room.
+        let reachable: Vec<usize> = (0..reach.centres().len()).filter(|&i| reach.centres()[i]).collect();
+        assert_eq!(reachable.len(), 12);
+        assert!(reachable.iter().all(|&i| (2..=5).contains(&(i % 12)) && (2..=4).contains(&(i / 12))));
+        // Every room cell is within 0.15 m of such a centre only along the orthogonal
+        // neighbours: corners of the room (distance √2·0.1 > 0.15? no: 0.141 < 0.15) are in.
+        assert_eq!(reach.coverable_count(), 30, "the whole 6 x 5 room");
+        // The slot cell and the 3 x 5 pocket form one unreachable pocket of 16 cells.
+        assert_eq!(reach.pocket_count(), 1);
+        assert_eq!(reach.pocket_cells(), 16);
+        assert!((reach.pocket_area_m2() - 0.16).abs() < 1e-12);
+    }
+
+    #[test]
+    fn restricted_clearance_stays_in_the_stations_component() {
+        let map = room_and_pocket();
+        let mut clear = Clearance::new(&map, 0.2);
+        // A 0.2 m robot fits in the pocket (its 0.1 m radius) but not through the slot corner.
+        assert!(clear.fits(Point::new(0.95, 0.35)));
+        let reach = Reach::new(&clear, &[Point::new(0.35, 0.35)]);
+        clear.restrict(reach.centres().to_vec());
+        assert!(!clear.fits(Point::new(0.95, 0.35)));
+        assert!(clear.connect(Point::new(0.35, 0.35), Point::new(0.95, 0.35)).is_none());
+    }
+}

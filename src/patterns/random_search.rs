@@ -1,0 +1,124 @@
+//! Random search: the control that tells whether a GA's machinery helps at all. It draws
+//! random action genomes exactly as the thesis GA draws its initial population (003 §3.3.1,
+//! spec §6: `Init_AC` actions, moves up to `init_dist_max`, corrected and evaluated as in R17)
+//! in batches of `Pop_min`, until the evaluation budget is spent, and keeps the fittest by the
+//! thesis fitness `f_obstacle`. Budget-matched to the GAs through `budget.evaluations`.
+
+use crate::coverage::SweepScratch;
+use crate::ga::observer::{GenerationRecord, Observer};
+use crate::ga::rng::{Purpose, stream};
+use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
+use crate::study::config::ConfigError;
+use crate::study::experiment::ExperimentFile;
+use crate::thesis::genome::random_genome;
+use crate::thesis::individual::{Individual, InitParams, correct_and_evaluate};
+use crate::thesis::planner::{genome_csv, obstacle_violations, thesis_scenario};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Random search over thesis genomes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RandomSearch {
+    /// How genomes are drawn (`thesis.init_actions`, `thesis.init_dist_max`).
+    pub init: InitParams,
+    /// Genomes per batch (`thesis.pop_min`); one batch is one iteration in the history.
+    pub batch: usize,
+}
+
+impl RandomSearch {
+    /// Reads the draw from `[thesis]`; the evaluation budget is required.
+    pub fn from_file(file: &ExperimentFile, origin: &str) -> Result<Self, ConfigError> {
+        let t = crate::thesis::config::validate_params(&file.thesis, origin)?;
+        if file.budget.evaluations == 0 {
+            return Err(ConfigError::new(
+                origin,
+                "budget.evaluations",
+                "= 0: random search needs an evaluation budget (the GAs' budget, for a fair comparison)",
+            ));
+        }
+        Ok(Self { init: t.init, batch: t.pop_min })
+    }
+}
+
+impl Planner for RandomSearch {
+    fn name(&self) -> &'static str {
+        "random_search"
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let started = Instant::now();
+        let th = thesis_scenario(scenario);
+        let limit = budget.evaluations.unwrap_or(self.batch as u64);
+        let mut best: Option<Individual> = None;
+        let (mut evaluations, mut iteration) = (0u64, 0u32);
+        let stop = loop {
+            if evaluations >= limit {
+                break StopReason::Evaluations;
+            }
+            if budget.wall_clock.is_some_and(|w| started.elapsed() >= w) {
+                break StopReason::WallClock;
+            }
+            let batch: Vec<(Individual, u64)> = (0..self.batch)
+                .into_par_iter()
+                .map_init(
+                    || SweepScratch::new(&th.grid),
+                    |scratch, slot| {
+                        let mut rng = stream(seed, Purpose::Individual, &[u64::from(iteration), slot as u64]);
+                        let mut ind = Individual::default();
+                        random_genome(&mut rng, self.init.actions, self.init.dist_max, &mut ind.genome);
+                        let e = correct_and_evaluate(&mut ind, &th, scratch, &self.init, &mut rng);
+                        (ind, e)
+                    },
+                )
+                .collect();
+            let mean = batch.iter().map(|(i, _)| i.fitness()).sum::<f64>() / batch.len() as f64;
+            for (ind, e) in batch {
+                evaluations += e;
+                if best.as_ref().is_none_or(|b| ind.fitness() > b.fitness()) {
+                    best = Some(ind);
+                }
+            }
+            let b = best.as_ref().expect("a batch was drawn");
+            let record = GenerationRecord {
+                iteration,
+                evaluations,
+                best_fitness: b.fitness(),
+                mean_fitness: mean,
+                best_coverage: b.score.cov_final,
+                feasible: None,
+                diversity: None,
+                extras: vec![("best_t_final", b.score.t_final), ("best_genome_len", b.len() as f64)],
+            };
+            for o in observers.iter_mut() {
+                o.generation(&record)?;
+            }
+            iteration += 1;
+        };
+        let best = best.ok_or_else(|| PlannerError::Input("random search: the evaluation budget is 0".into()))?;
+        let sc = best.score;
+        let mut details = serde_json::Map::new();
+        details.insert("cov_final".into(), sc.cov_final.into());
+        details.insert("t_final".into(), sc.t_final.into());
+        details.insert("fitness".into(), sc.fitness.into());
+        details.insert("genome_len".into(), best.len().into());
+        Ok(RunOutcome {
+            plan: vec![best.points.clone()],
+            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
+            feasible: best.metrics.obstacle_cells == 0,
+            violations: obstacle_violations(best.metrics.obstacle_cells),
+            evaluations,
+            iterations: iteration,
+            stop,
+            wall_s: started.elapsed().as_secs_f64(),
+            details,
+            files: vec![("best_genome.csv".into(), genome_csv(&best))],
+            artifacts: Box::new(()),
+        })
+    }
+}

@@ -1,0 +1,263 @@
+//! The `[thesis]` and `[retrain]` sections of an experiment file and their validation into the
+//! thesis GA's typed parameters (003 Tables 4.1–4.3 ranges, spec §14.2). Library users get the
+//! same checks through [`ThesisConfig::from_file`].
+
+use super::crossover::ChildMode;
+use super::fitness::Projection;
+use super::individual::InitParams;
+use super::params::{Control, Retrain, Selection, ThesisParams};
+use crate::ga::control::AdaptiveConstants;
+use crate::study::config::{ConfigError, check_range, check_unit};
+use crate::study::experiment::ExperimentFile;
+use serde::{Deserialize, Serialize};
+
+/// `[thesis]`: the parameters of 003 Tables 4.1–4.3.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ThesisSection {
+    /// `f1` or `f2`.
+    pub projection: Projection,
+    /// `elite`, `tournament`, `prws` or `rrws`.
+    pub selection: SelectionName,
+    /// `Pop_min`.
+    pub pop_min: usize,
+    /// `Init_I`.
+    pub init_individuals: usize,
+    /// `Init_AC`.
+    pub init_actions: usize,
+    /// Upper bound of initial `AC_dist` in metres (R2).
+    pub init_dist_max: f64,
+    /// Longest genome.
+    pub max_genome_len: usize,
+    /// `P_c`.
+    pub p_c: f64,
+    /// `C_len`.
+    pub c_len: f64,
+    /// `C_child` (0 changing, 1 preserving, 2 both).
+    pub c_child: u8,
+    /// `P_mA`.
+    pub p_ma: f64,
+    /// `P_mI`.
+    pub p_mi: f64,
+    /// `keep` (tournament, PRWS, RRWS).
+    pub keep: usize,
+    /// `select` (tournament, PRWS, RRWS).
+    pub select: usize,
+    /// `TS` (tournament).
+    pub tournament_size: usize,
+    /// `SP` (RRWS).
+    pub selection_pressure: f64,
+    /// Parameter control.
+    pub control: ControlSection,
+}
+
+/// Selection scheme names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SelectionName {
+    /// Elite families.
+    Elite,
+    /// Tournament ("Turn").
+    Tournament,
+    /// Proportionate roulette wheel.
+    Prws,
+    /// Rank-based roulette wheel.
+    Rrws,
+}
+
+/// `[thesis.control]`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
+pub enum ControlSection {
+    /// Fixed parameters.
+    None,
+    /// eq. 3.25 ramp of SP (RRWS) or TS (tournament).
+    Ramp {
+        /// Start value.
+        min: f64,
+        /// End value.
+        max: f64,
+    },
+    /// eqs. 2.3–2.6.
+    Adaptive {
+        /// `K_1`.
+        #[serde(default = "k1")]
+        k1: f64,
+        /// `K_2`.
+        #[serde(default = "k2")]
+        k2: f64,
+        /// `K`.
+        #[serde(default = "k")]
+        k: f64,
+    },
+    /// eqs. 2.1–2.2.
+    Muhlenbein,
+}
+
+fn k1() -> f64 {
+    AdaptiveConstants::default().k1
+}
+fn k2() -> f64 {
+    AdaptiveConstants::default().k2
+}
+fn k() -> f64 {
+    AdaptiveConstants::default().k
+}
+
+/// `[retrain]` (spec §13).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RetrainSection {
+    /// Iterations before the switch.
+    pub at_iteration: u32,
+    /// `[x0, y0, x1, y1]` in metres, marked as covered (default: the 5 m corner of R25).
+    #[serde(default = "retrain_region")]
+    pub region: [f64; 4],
+}
+
+fn retrain_region() -> [f64; 4] {
+    [5.0, 5.0, 10.0, 10.0]
+}
+
+impl Default for ThesisSection {
+    fn default() -> Self {
+        let p = ThesisParams::thesis_elite();
+        Self {
+            projection: Projection::F2,
+            selection: SelectionName::Elite,
+            pop_min: p.pop_min,
+            init_individuals: p.init_individuals,
+            init_actions: p.init.actions,
+            init_dist_max: p.init.dist_max,
+            max_genome_len: p.max_genome_len,
+            p_c: p.p_c,
+            c_len: p.c_len,
+            c_child: p.c_child.index(),
+            p_ma: p.p_ma,
+            p_mi: p.p_mi,
+            keep: 10,
+            select: 20,
+            tournament_size: 3,
+            selection_pressure: 2.0,
+            control: ControlSection::None,
+        }
+    }
+}
+/// The validated thesis GA: its parameters and the optional retrain.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ThesisConfig {
+    /// Operator and population parameters.
+    pub params: ThesisParams,
+    /// The changing-environment retrain, if any.
+    pub retrain: Option<Retrain>,
+}
+
+impl ThesisConfig {
+    /// Validates `[thesis]` and `[retrain]` of `file`; `origin` names the file in messages.
+    pub fn from_file(
+        file: &ExperimentFile,
+        origin: &str,
+        _scenario: &crate::planner::Scenario,
+    ) -> Result<Self, ConfigError> {
+        let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+        let params = validate_params(&file.thesis, origin)?;
+        let b = file.budget;
+        let retrain = match file.retrain {
+            None => None,
+            Some(rt) => {
+                if rt.at_iteration >= b.iterations {
+                    return Err(err(
+                        "retrain.at_iteration",
+                        format!("= {} must be below budget.iterations = {}", rt.at_iteration, b.iterations),
+                    ));
+                }
+                let [x0, y0, x1, y1] = rt.region;
+                if !rt.region.iter().all(|v| v.is_finite()) || x0 >= x1 || y0 >= y1 {
+                    return Err(err(
+                        "retrain.region",
+                        format!("= {:?} must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1", rt.region),
+                    ));
+                }
+                Some(Retrain { at_iteration: rt.at_iteration, region: rt.region })
+            }
+        };
+        Ok(Self { params, retrain })
+    }
+}
+
+/// Validates a `[thesis]` section into [`ThesisParams`].
+pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+    let t = *t;
+    for (key, v) in [("thesis.p_c", t.p_c), ("thesis.c_len", t.c_len), ("thesis.p_ma", t.p_ma), ("thesis.p_mi", t.p_mi)]
+    {
+        check_unit(origin, key, v)?;
+    }
+    let count = |key: &str, v: usize, lo: usize, hi: usize| {
+        if v < lo || v > hi { Err(err(key, format!("= {v} is out of range [{lo}, {hi}]"))) } else { Ok(()) }
+    };
+    count("thesis.pop_min", t.pop_min, 1, 1_000_000)?;
+    count("thesis.init_actions", t.init_actions, 1, 100_000)?;
+    count("thesis.max_genome_len", t.max_genome_len, t.init_actions + 2, 1_000_000)?;
+    check_range(origin, "thesis.init_dist_max", t.init_dist_max, 1e-9, 1e6, "> 0 metres")?;
+    let child = ChildMode::from_index(t.c_child)
+        .ok_or_else(|| err("thesis.c_child", format!("= {} is out of range {{0, 1, 2}}", t.c_child)))?;
+    let selection = match t.selection {
+        SelectionName::Elite => Selection::Elite,
+        SelectionName::Tournament => {
+            count("thesis.tournament_size", t.tournament_size, 1, t.pop_min)?;
+            Selection::Tournament { size: t.tournament_size }
+        }
+        SelectionName::Prws => Selection::Prws,
+        SelectionName::Rrws => {
+            check_range(origin, "thesis.selection_pressure", t.selection_pressure, 1.0, 2.0, "[1, 2]")?;
+            Selection::Rrws { pressure: t.selection_pressure }
+        }
+    };
+    if selection != Selection::Elite {
+        count("thesis.init_individuals", t.init_individuals, t.pop_min, 10_000_000)?;
+        count("thesis.keep", t.keep, 0, t.pop_min)?;
+        count("thesis.select", t.select, 1, t.pop_min)?;
+    }
+    let control = match t.control {
+        ControlSection::None => Control::None,
+        ControlSection::Ramp { min, max } => {
+            let (lo, hi, what) = match selection {
+                Selection::Rrws { .. } => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
+                Selection::Tournament { .. } => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
+                _ => {
+                    return Err(err(
+                        "thesis.control.kind",
+                        "= \"ramp\" needs selection \"rrws\" or \"tournament\"".into(),
+                    ));
+                }
+            };
+            check_range(origin, "thesis.control.min", min, lo, hi, what)?;
+            check_range(origin, "thesis.control.max", max, lo, hi, what)?;
+            Control::Ramp { min, max }
+        }
+        ControlSection::Adaptive { k1, k2, k } => {
+            for (key, v) in [("thesis.control.k1", k1), ("thesis.control.k2", k2), ("thesis.control.k", k)] {
+                check_unit(origin, key, v)?;
+            }
+            Control::Adaptive(AdaptiveConstants { k1, k2, k })
+        }
+        ControlSection::Muhlenbein => Control::Muhlenbein,
+    };
+    let params = ThesisParams {
+        selection,
+        pop_min: t.pop_min,
+        init_individuals: t.init_individuals,
+        init: InitParams { actions: t.init_actions, dist_max: t.init_dist_max },
+        max_genome_len: t.max_genome_len,
+        p_c: t.p_c,
+        c_len: t.c_len,
+        c_child: child,
+        p_ma: t.p_ma,
+        p_mi: t.p_mi,
+        keep: t.keep,
+        select: t.select,
+        control,
+    };
+    Ok(params)
+}

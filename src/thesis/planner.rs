@@ -1,0 +1,135 @@
+//! The thesis GA behind the common [`Planner`] interface: the run loop of [`super::run`] on
+//! the scenario, its best individual as the plan, `best_genome.csv` as an extra file, and the
+//! history figure of 003 Fig. 4.8 (plus the path before a retrain) as its own figures.
+
+use super::config::ThesisConfig;
+use super::individual::{Individual, Scenario as ThesisScenario};
+use super::run::{ThesisGa, ThesisOutcome};
+use crate::coverage::CoverageGrid;
+use crate::ga::observer::Observer;
+use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario};
+use crate::plot::history::HistoryFigure;
+use crate::plot::path::PathFigure;
+use std::path::Path;
+
+/// `best_genome.csv`: one row per action with its role, move and viewpoint.
+pub fn genome_csv(ind: &Individual) -> Vec<u8> {
+    let n = ind.genome.len();
+    let mut s = String::from("index,role,alpha_deg,dist_m,x_m,y_m\n");
+    for (i, (a, p)) in ind.genome.iter().zip(&ind.points).enumerate() {
+        let role = match i {
+            0 => "start",
+            _ if i == n - 1 => "end",
+            _ if i == n - 2 => "connector",
+            _ => "action",
+        };
+        s.push_str(&format!("{i},{role},{},{},{},{}\n", a.alpha_deg, a.dist_m, p.x, p.y));
+    }
+    s.into_bytes()
+}
+
+/// A path that sweeps obstacle cells is not drivable: the thesis's only hard constraint.
+pub fn obstacle_violations(obstacle_cells: u64) -> Vec<String> {
+    if obstacle_cells == 0 { Vec::new() } else { vec![format!("the path sweeps {obstacle_cells} obstacle cells")] }
+}
+
+/// The thesis scenario (visit grid, clamping frame) of a common scenario.
+pub fn thesis_scenario(s: &Scenario) -> ThesisScenario {
+    ThesisScenario::new(s.map.clone(), s.robot, s.start, s.end, s.projection)
+}
+
+impl Planner for ThesisConfig {
+    fn name(&self) -> &'static str {
+        "thesis"
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let mut ga = ThesisGa { scenario: thesis_scenario(scenario), params: self.params, seed };
+        let out = ga.run(budget, self.retrain.as_ref(), observers)?;
+        let best = &out.best;
+        let sc = best.score;
+        let mut details = serde_json::Map::new();
+        let mut put = |k: &str, v: serde_json::Value| {
+            details.insert(k.to_string(), v);
+        };
+        put("cov_final", sc.cov_final.into());
+        put("t_final", sc.t_final.into());
+        put("fitness", sc.fitness.into());
+        put("f1", sc.f1.into());
+        put("f2", sc.f2.into());
+        put("genome_len", best.len().into());
+        put("metrics", serde_json::to_value(best.metrics).expect("metrics serialise"));
+        if let Some(b) = &out.best_before_retrain {
+            put("before_retrain", serde_json::json!([b.score.cov_final, b.score.t_final, b.score.fitness]));
+        }
+        Ok(RunOutcome {
+            plan: vec![best.points.clone()],
+            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
+            feasible: best.metrics.obstacle_cells == 0,
+            violations: obstacle_violations(best.metrics.obstacle_cells),
+            evaluations: out.evaluations,
+            iterations: out.iterations,
+            stop: out.stop,
+            wall_s: out.wall_s,
+            details,
+            files: vec![("best_genome.csv".into(), genome_csv(best))],
+            artifacts: Box::new((out, seed)),
+        })
+    }
+
+    fn write_figures(
+        &self,
+        scenario: &Scenario,
+        outcome: &RunOutcome,
+        dir: &Path,
+    ) -> Result<(), crate::plot::PlotError> {
+        let Some((out, seed)) = outcome.artifacts.downcast_ref::<(ThesisOutcome, u64)>() else { return Ok(()) };
+        let map = &scenario.map;
+        let title = |ind: &Individual, what: &str| {
+            format!(
+                "{what} on {}: cov_final {:.3}, t_final {:.3}, G_len {}",
+                map.name(),
+                ind.score.cov_final,
+                ind.score.t_final,
+                ind.len()
+            )
+        };
+        let mut grid = CoverageGrid::new(map);
+        if let Some(r) = &self.retrain {
+            let [x0, y0, x1, y1] = r.region;
+            grid.premark_rect(x0, y0, x1, y1);
+            // The best path on the changed map, with the marked region shown.
+            let figure = PathFigure {
+                map,
+                grid: &grid,
+                paths: vec![out.best.points.clone()],
+                width: scenario.robot.width,
+                title: title(&out.best, "best path"),
+            };
+            crate::plot::save(&figure, &dir.join("path"))?;
+        }
+        if let Some(before) = &out.best_before_retrain {
+            let plain = CoverageGrid::new(map);
+            let figure = PathFigure {
+                map,
+                grid: &plain,
+                paths: vec![before.points.clone()],
+                width: scenario.robot.width,
+                title: title(before, "best before retrain"),
+            };
+            crate::plot::save(&figure, &dir.join("path_before_retrain"))?;
+        }
+        let hist = HistoryFigure {
+            history: &out.history,
+            changes: &out.changes,
+            title: format!("{} on {}, seed {}", self.params.selection.name(), map.name(), seed),
+        };
+        crate::plot::save(&hist, &dir.join("history"))
+    }
+}

@@ -1,0 +1,304 @@
+//! The `[waypoint]` section of an experiment file (000 Table I as reconciled, spec §18–19) and
+//! its validation into the waypoint planner's typed parameters.
+
+use crate::geom::Point;
+use crate::map::GridMap;
+use crate::study::config::{ConfigError, check_range, check_unit};
+use crate::study::experiment::ExperimentFile;
+use serde::{Deserialize, Serialize};
+
+/// `[waypoint]`: 000 Table I as reconciled (spec §18–19); metres, degrees.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WaypointSection {
+    /// Pixel scale `s` (m/px).
+    pub scale: f64,
+    /// UAV width (m).
+    pub uav_width: f64,
+    /// Narrowest accessible hallway (m).
+    pub hallway: f64,
+    /// Maximum traverse distance of an edge (m).
+    pub max_traverse: f64,
+    /// Camera `d_min` (m).
+    pub d_min: f64,
+    /// Camera `d_max` (m).
+    pub d_max: f64,
+    /// Camera field of view (degrees).
+    pub fov_deg: f64,
+    /// Coverage sections `m`.
+    pub sections: usize,
+    /// `full` or `near_wall`.
+    pub waypoint_set: super::world::WaypointSet,
+    /// Number of agents.
+    pub agents: usize,
+    /// Per-agent entry positions (m); empty = all start at `stations.start`.
+    pub starts: Vec<[f64; 2]>,
+    /// `N`.
+    pub population: usize,
+    /// Generations.
+    pub generations: u32,
+    /// `p_c`.
+    pub p_c: f64,
+    /// `p_A`.
+    pub p_a: f64,
+    /// `p_B`.
+    pub p_b: f64,
+    /// `γ`.
+    pub gamma: f64,
+    /// `l_init`.
+    pub l_init: usize,
+    /// `l_min`.
+    pub l_min: usize,
+    /// `l_max`.
+    pub l_max: usize,
+    /// `T_x`.
+    pub crossover_threshold: usize,
+    /// `n_B`.
+    pub b_instances: usize,
+    /// `D`.
+    pub b_distance: usize,
+    /// `p_acc`.
+    pub b_accept: f64,
+    /// `M`.
+    pub memory: usize,
+    /// `λ`.
+    pub lambda: f64,
+    /// `ρ`.
+    pub rho: f64,
+    /// `α_cov`.
+    pub alpha_cov: f64,
+    /// `C_start`.
+    pub c_start: f64,
+    /// `C_end`.
+    pub c_end: f64,
+    /// `G_age`.
+    pub aging: u32,
+    /// `T_sep`.
+    pub lc_separation: usize,
+    /// Minimum self loop closures.
+    pub lc_min: usize,
+    /// Penalty per violated constraint type (scaled units).
+    pub penalty: f64,
+}
+
+impl Default for WaypointSection {
+    fn default() -> Self {
+        Self {
+            scale: 0.15,
+            uav_width: 0.5,
+            hallway: 1.5,
+            max_traverse: 4.0,
+            d_min: 0.2,
+            d_max: 7.0,
+            fov_deg: 69.4,
+            sections: 15,
+            waypoint_set: super::world::WaypointSet::Full,
+            agents: 1,
+            starts: Vec::new(),
+            population: 100,
+            generations: 1000,
+            p_c: 0.7,
+            p_a: 0.3,
+            p_b: 0.3,
+            gamma: 0.5,
+            l_init: 150,
+            l_min: 75,
+            l_max: 250,
+            crossover_threshold: 70,
+            b_instances: 20,
+            b_distance: 5,
+            b_accept: 0.8,
+            memory: 10,
+            lambda: 0.7,
+            rho: 8.0,
+            alpha_cov: 0.1,
+            c_start: 0.3,
+            c_end: 0.8,
+            aging: 60,
+            lc_separation: 30,
+            lc_min: 2,
+            penalty: 1000.0,
+        }
+    }
+}
+
+/// The validated waypoint planner: world geometry and GA parameters.
+#[derive(Clone, Debug)]
+pub struct WaypointConfig {
+    /// Geometry.
+    pub world: super::world::WorldParams,
+    /// GA.
+    pub ga: super::run::GaParams,
+}
+
+/// The camera of `[waypoint]` as the common scorer uses it (checked for every planner, since
+/// every run is scored with it): scale, depth range, field of view, sections, and the wall band
+/// of width `b·s` with the planner's safety buffer `b = floor(w / 2s) + 1` px (spec §2, W2).
+pub fn camera_spec(
+    w: &WaypointSection,
+    origin: &str,
+    map: &GridMap,
+) -> Result<crate::coverage::score::CameraSpec, ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+    check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
+    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "> 0 metres")?;
+    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, ">= 0 metres")?;
+    if !(w.d_max.is_finite() && w.d_max > w.d_min) {
+        return Err(err(
+            "waypoint.d_max",
+            format!("= {} must exceed d_min = {} (camera depth range)", w.d_max, w.d_min),
+        ));
+    }
+    if !(w.fov_deg > 0.0 && w.fov_deg <= 360.0) {
+        return Err(err("waypoint.fov_deg", format!("= {} is out of range (0, 360] degrees", w.fov_deg)));
+    }
+    if w.sections == 0 || w.sections > 3600 {
+        return Err(err("waypoint.sections", format!("= {} is out of range [1, 3600]", w.sections)));
+    }
+    let pixels = (map.width_m() / w.scale) * (map.height_m() / w.scale);
+    if pixels > 4.0e8 {
+        return Err(err(
+            "waypoint.scale",
+            format!("= {} m gives a working raster of {pixels:.3e} pixels for this map (at most 4e8)", w.scale),
+        ));
+    }
+    let buffer_px = (w.uav_width / (2.0 * w.scale)).floor() + 1.0;
+    Ok(crate::coverage::score::CameraSpec {
+        scale: w.scale,
+        d_min: w.d_min,
+        d_max: w.d_max,
+        fov_deg: w.fov_deg,
+        sections: w.sections,
+        band_m: buffer_px * w.scale,
+    })
+}
+
+impl WaypointConfig {
+    /// Validates `[waypoint]` of `file` against the scenario's map and start.
+    pub fn from_file(
+        file: &ExperimentFile,
+        origin: &str,
+        scenario: &crate::planner::Scenario,
+    ) -> Result<Self, ConfigError> {
+        validate(&file.waypoint, origin, &scenario.map, scenario.start)
+    }
+}
+
+/// Range checks of `[waypoint]` and the conversion into planner parameters.
+fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> Result<WaypointConfig, ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+    check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
+    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "> 0 metres")?;
+    if !(w.hallway.is_finite() && w.hallway >= 2.0 * w.scale && w.hallway >= map.resolution()) {
+        return Err(err(
+            "waypoint.hallway",
+            format!(
+                "= {} m is below the cell size: the narrowest hallway must be at least 2 x scale = {} m and the map resolution {} m",
+                w.hallway,
+                2.0 * w.scale,
+                map.resolution()
+            ),
+        ));
+    }
+    check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "> 0 metres")?;
+    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, ">= 0 metres")?;
+    if !(w.d_max.is_finite() && w.d_max > w.d_min) {
+        return Err(err(
+            "waypoint.d_max",
+            format!("= {} must exceed d_min = {} (camera depth range)", w.d_max, w.d_min),
+        ));
+    }
+    if !(w.fov_deg > 0.0 && w.fov_deg <= 360.0) {
+        return Err(err("waypoint.fov_deg", format!("= {} is out of range (0, 360] degrees", w.fov_deg)));
+    }
+    if w.sections == 0 {
+        return Err(err("waypoint.sections", "= 0 is out of range: at least 1".into()));
+    }
+    if w.agents == 0 || w.agents > 64 {
+        return Err(err("waypoint.agents", format!("= {} is out of range [1, 64]", w.agents)));
+    }
+    if !(w.starts.is_empty() || w.starts.len() == 1 || w.starts.len() == w.agents) {
+        return Err(err(
+            "waypoint.starts",
+            format!("has {} entries: give none, one shared, or one per agent ({})", w.starts.len(), w.agents),
+        ));
+    }
+    for (k, s) in w.starts.iter().enumerate() {
+        map.check_station(Point::new(s[0], s[1]), &format!("start of agent {k}"))
+            .map_err(|m| err("waypoint.starts", m))?;
+    }
+    for (key, v) in [
+        ("waypoint.p_c", w.p_c),
+        ("waypoint.p_a", w.p_a),
+        ("waypoint.p_b", w.p_b),
+        ("waypoint.gamma", w.gamma),
+        ("waypoint.b_accept", w.b_accept),
+        ("waypoint.alpha_cov", w.alpha_cov),
+        ("waypoint.c_start", w.c_start),
+        ("waypoint.c_end", w.c_end),
+    ] {
+        check_unit(origin, key, v)?;
+    }
+    if w.population < 2 {
+        return Err(err("waypoint.population", format!("= {} is out of range: at least 2", w.population)));
+    }
+    if !(2 <= w.l_min && w.l_min <= w.l_init && w.l_init <= w.l_max) {
+        return Err(err(
+            "waypoint.l_init",
+            format!("needs 2 <= l_min ({}) <= l_init ({}) <= l_max ({})", w.l_min, w.l_init, w.l_max),
+        ));
+    }
+    check_range(origin, "waypoint.lambda", w.lambda, 0.0, 100.0, "[0, 100]")?;
+    check_range(origin, "waypoint.rho", w.rho, 0.0, 100.0, "[0, 100]")?;
+    check_range(origin, "waypoint.penalty", w.penalty, 0.0, 1e12, ">= 0")?;
+    let starts: Vec<(f64, f64)> =
+        if w.starts.is_empty() { vec![(start.x, start.y)] } else { w.starts.iter().map(|s| (s[0], s[1])).collect() };
+    use super::evaluate::ObjectiveParams;
+    use super::operators::OperatorParams;
+    Ok(WaypointConfig {
+        world: super::world::WorldParams {
+            scale: w.scale,
+            uav_width: w.uav_width,
+            hallway: w.hallway,
+            max_traverse: w.max_traverse,
+            d_min: w.d_min,
+            d_max: w.d_max,
+            fov_deg: w.fov_deg,
+            sections: w.sections,
+            set: w.waypoint_set,
+            starts,
+        },
+        ga: super::run::GaParams {
+            population: w.population,
+            generations: w.generations,
+            p_c: w.p_c,
+            p_a: w.p_a,
+            p_b: w.p_b,
+            gamma: w.gamma,
+            l_init: w.l_init,
+            agents: w.agents,
+            ops: OperatorParams {
+                lambda: w.lambda,
+                memory: w.memory,
+                l_min: w.l_min,
+                l_max: w.l_max,
+                crossover_threshold: w.crossover_threshold,
+                b_instances: w.b_instances,
+                b_distance: w.b_distance,
+                b_accept: w.b_accept,
+            },
+            objectives: ObjectiveParams {
+                alpha_cov: w.alpha_cov,
+                rho: w.rho,
+                scale_coverage: -1.0,
+                scale_time: 1e-4,
+                c_start: w.c_start,
+                c_end: w.c_end,
+                aging: w.aging,
+                lc_separation: w.lc_separation,
+                lc_min: w.lc_min,
+                penalty: w.penalty,
+            },
+        },
+    })
+}

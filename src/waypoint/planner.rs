@@ -1,0 +1,258 @@
+//! The waypoint-graph maximin planner of 000 behind the common [`Planner`] interface: builds
+//! the world (raster, waypoints, graph, traversal views), runs the maximin GA within the
+//! budget, reports the organism chosen by [`reported`] with its constraint violations, and
+//! draws its own figures (paths with loop closures, camera coverage, Pareto snapshots,
+//! population objectives).
+
+use super::config::WaypointConfig;
+use super::evaluate::{add_views, laplacian_zero_eigenvalues, required_coverage};
+use super::precompute::Union;
+use super::run::{Limits, Organism, WaypointOutcome, WaypointStats, run};
+use super::world::World;
+use crate::coverage::{CoverageGrid, SweepScratch};
+use crate::ga::observer::{GenerationRecord, Observer};
+use crate::geom::Point;
+use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario};
+use crate::plot::waypoint::{CoverageFigure, ObjectivesFigure, PathsFigure, SnapshotsFigure};
+use std::path::Path;
+use std::time::Instant;
+
+/// What the figures need after a run.
+struct Artifacts {
+    world: World,
+    outcome: WaypointOutcome,
+    history: Vec<WaypointStats>,
+}
+
+/// An organism's paths in metres.
+fn paths_m(world: &World, o: &Organism) -> Vec<Vec<Point>> {
+    o.rows
+        .iter()
+        .map(|r| {
+            r.iter()
+                .map(|&i| {
+                    let (x, y) = world.map.to_world(world.graph.points[i as usize]);
+                    Point::new(x, y)
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// The constraints an organism violates at generation `g`, in words.
+fn violations(cfg: &WaypointConfig, o: &Organism, g: u32) -> Vec<String> {
+    let p = &cfg.ga.objectives;
+    let mut out = Vec::new();
+    for (k, row) in o.eval.closures.iter().enumerate() {
+        if row[k] < p.lc_min {
+            out.push(format!("agent {k} has {} self loop closures, fewer than lc_min = {}", row[k], p.lc_min));
+        }
+    }
+    if !o.eval.connected() {
+        out.push(format!("the agents' loop-closure graph has {} components, not 1", o.eval.components));
+    }
+    let c_req = required_coverage(p, g);
+    if o.eval.coverage < c_req {
+        out.push(format!("coverage C = {:.4} is below the required {:.4}", o.eval.coverage, c_req));
+    }
+    out
+}
+
+impl Planner for WaypointConfig {
+    fn name(&self) -> &'static str {
+        "waypoint"
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let started = Instant::now();
+        let world = World::build(&scenario.map, &self.world, self.ga.agents)
+            .map_err(|e| PlannerError::Input(format!("waypoint planner on map `{}`: {e}", scenario.map.name())))?;
+        let precompute_s = started.elapsed().as_secs_f64();
+        let grid = CoverageGrid::new(&scenario.map);
+        let mut scratch = SweepScratch::new(&grid);
+        let mut history = Vec::new();
+        let mut failed: Option<std::io::Error> = None;
+        let limits = Limits { evaluations: budget.evaluations, wall_clock: budget.wall_clock };
+        let outcome =
+            run(&world, &self.ga, seed, &limits, &mut |s: &WaypointStats, pop: &[Organism], best, evaluations| {
+                history.push(*s);
+                if failed.is_some() || observers.is_empty() {
+                    return;
+                }
+                let b = &pop[best];
+                let counts = scratch.sweep_all(&grid, &paths_m(&world, b), scenario.robot.width);
+                let record = GenerationRecord {
+                    iteration: s.generation,
+                    evaluations,
+                    best_fitness: b.eval.coverage,
+                    mean_fitness: s.mean_coverage,
+                    best_coverage: counts.unique() as f64 / grid.area_cells().max(1) as f64,
+                    feasible: Some(s.feasible),
+                    diversity: None,
+                    extras: vec![
+                        ("best_walls", b.eval.walls),
+                        ("best_open", b.eval.open),
+                        ("best_flight_time", b.eval.flight_time),
+                        ("c_required", s.c_required),
+                        ("mean_coverage", s.mean_coverage),
+                        ("min_coverage", s.min_coverage),
+                        ("max_coverage", s.max_coverage),
+                        ("mean_open", s.mean_open),
+                        ("mean_walls", s.mean_walls),
+                        ("mean_flight_time", s.mean_flight_time),
+                        ("min_flight_time", s.min_flight_time),
+                        ("mean_f1", s.mean_f1),
+                        ("mean_f2", s.mean_f2),
+                        ("mean_length", s.mean_length),
+                        ("mean_self_closures", s.mean_self_closures),
+                    ],
+                };
+                for o in observers.iter_mut() {
+                    if let Err(e) = o.generation(&record) {
+                        failed.get_or_insert(e);
+                    }
+                }
+            });
+        if let Some(e) = failed {
+            return Err(e.into());
+        }
+        let best = &outcome.population[outcome.best];
+        let e = &best.eval;
+        let adjacent: Vec<Vec<bool>> = e
+            .closures
+            .iter()
+            .enumerate()
+            .map(|(i, r)| r.iter().enumerate().map(|(j, &c)| i != j && c >= 1).collect())
+            .collect();
+        let viol = violations(self, best, outcome.generations);
+        let mut details = serde_json::Map::new();
+        let mut put = |k: &str, v: serde_json::Value| {
+            details.insert(k.to_string(), v);
+        };
+        put("wall_coverage", e.walls.into());
+        put("open_coverage", e.open.into());
+        put("coverage", e.coverage.into());
+        put("flight_time", e.flight_time.into());
+        put("loop_closures_ok", e.loops_ok(self.ga.objectives.lc_min).into());
+        put("connected", e.connected().into());
+        put("closures", serde_json::to_value(&e.closures).expect("matrix"));
+        put("laplacian_zero_eigenvalues", laplacian_zero_eigenvalues(&adjacent, 1e-9).into());
+        put("agents", best.rows.len().into());
+        put("path_lengths", serde_json::to_value(best.rows.iter().map(Vec::len).collect::<Vec<_>>()).expect("list"));
+        put("generations", outcome.generations.into());
+        put("waypoints", world.graph.points.len().into());
+        put("edges", world.graph.edge_count().into());
+        put("initial_feasible", outcome.initial_feasible.into());
+        put("precompute_s", precompute_s.into());
+        Ok(RunOutcome {
+            plan: paths_m(&world, best),
+            objectives: vec![
+                ("coverage", e.coverage),
+                ("wall_coverage", e.walls),
+                ("open_coverage", e.open),
+                ("flight_time", e.flight_time),
+            ],
+            feasible: viol.is_empty(),
+            violations: viol,
+            evaluations: outcome.evaluations,
+            iterations: outcome.generations,
+            stop: outcome.stop,
+            wall_s: started.elapsed().as_secs_f64(),
+            details,
+            files: Vec::new(),
+            artifacts: Box::new(Artifacts { world, outcome, history }),
+        })
+    }
+
+    fn write_figures(
+        &self,
+        scenario: &Scenario,
+        outcome: &RunOutcome,
+        dir: &Path,
+    ) -> Result<(), crate::plot::PlotError> {
+        let Some(a) = outcome.artifacts.downcast_ref::<Artifacts>() else { return Ok(()) };
+        let (world, out) = (&a.world, &a.outcome);
+        let best = &out.population[out.best];
+        let e = &best.eval;
+        let to_m = |id: u32| world.map.to_world(world.graph.points[id as usize]);
+        let paths: Vec<Vec<(f64, f64)>> = best.rows.iter().map(|r| r.iter().map(|&i| to_m(i)).collect()).collect();
+        let (self_cl, shared_cl) = closure_edges(&best.rows, self.ga.objectives.lc_separation);
+        let seg = |(a, b): (u32, u32)| (to_m(a), to_m(b));
+        let title = format!(
+            "{} agent(s) on {}: walls {:.1} %, open {:.1} %",
+            best.rows.len(),
+            scenario.map.name(),
+            100.0 * e.walls,
+            100.0 * e.open
+        );
+        crate::plot::save(
+            &PathsFigure {
+                map: &world.map,
+                paths,
+                self_closures: self_cl.into_iter().map(seg).collect(),
+                shared_closures: shared_cl.into_iter().map(seg).collect(),
+                title: title.clone(),
+            },
+            &dir.join("paths"),
+        )?;
+        let mut u = Union::new(world.traversals.words);
+        for r in &best.rows {
+            add_views(r, &world.graph, &world.traversals, &mut u);
+        }
+        let seen = (0..world.map.occluded.len()).map(|i| u.contains(i)).collect();
+        crate::plot::save(
+            &CoverageFigure { map: &world.map, seen, band: world.map.band(world.buffer), title },
+            &dir.join("coverage"),
+        )?;
+        crate::plot::save(&SnapshotsFigure { snapshots: &out.snapshots }, &dir.join("pareto_snapshots"))?;
+        crate::plot::save(&ObjectivesFigure { history: &a.history }, &dir.join("objectives"))
+    }
+}
+
+/// Directed edges as waypoint id pairs.
+type EdgeList = Vec<(u32, u32)>;
+
+/// Directed edges that close loops: re-traversals within an agent's path (separated by at
+/// least `separation`), and edges shared between agents.
+fn closure_edges(rows: &[Vec<u32>], separation: usize) -> (EdgeList, EdgeList) {
+    let edges = |r: &Vec<u32>| r.windows(2).map(|w| (w[0], w[1])).collect::<Vec<_>>();
+    let mut own = std::collections::BTreeSet::new();
+    let mut shared = std::collections::BTreeSet::new();
+    for (i, ri) in rows.iter().enumerate() {
+        let ei = edges(ri);
+        for a in 0..ei.len() {
+            if ei.get(a + separation.max(1)..).is_some_and(|rest| rest.contains(&ei[a])) {
+                own.insert(ei[a]);
+            }
+        }
+        for rj in &rows[i + 1..] {
+            for e in edges(rj) {
+                if ei.contains(&e) {
+                    shared.insert(e);
+                }
+            }
+        }
+    }
+    (own.into_iter().collect(), shared.into_iter().collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn closure_edges_by_hand() {
+        // Agent 0 re-flies 0→1 four steps later; agent 1 shares 2→3 with agent 0.
+        let rows = vec![vec![0, 1, 2, 3, 0, 1], vec![5, 2, 3]];
+        let (own, shared) = closure_edges(&rows, 4);
+        assert_eq!(own, vec![(0, 1)]);
+        assert_eq!(shared, vec![(2, 3)]);
+        assert!(closure_edges(&rows, 5).0.is_empty());
+    }
+}
