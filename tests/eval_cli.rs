@@ -168,3 +168,37 @@ fn bad_input_gives_one_clear_error_and_exit_2() {
     let ok = covga(&["eval", "--map", &d("ok.yaml"), "--start", "1,1", "--width", "0.5", "--json", "--out", &out]);
     assert!(ok.status.success(), "{}", String::from_utf8_lossy(&ok.stderr));
 }
+
+/// The real SLAM map beside the project (`../shared/maps/basement.yaml`, Apache-2.0; read in
+/// place, never copied): both patterns finish, report the pockets a 0.6 m robot cannot reach,
+/// and cover at least 90 % of the cells it can.
+#[test]
+fn patterns_finish_on_a_slam_map_and_report_its_pockets() {
+    let map = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/maps/basement.yaml");
+    if !map.exists() {
+        eprintln!("skipped: {} is not beside this checkout", map.display());
+        return;
+    }
+    let dir = tempfile::tempdir().unwrap();
+    for pattern in ["boustrophedon", "spiral"] {
+        let out = covga(&[
+            "eval",
+            "--map",
+            map.to_str().unwrap(),
+            "--pattern",
+            pattern,
+            "--start",
+            "0,0",
+            "--json",
+            "--out",
+            dir.path().join(pattern).to_str().unwrap(),
+        ]);
+        let v = json_of(&out);
+        assert!(v["pockets"].as_u64().unwrap() > 0, "{pattern}: {v}");
+        assert!(v["pocket_area_m2"].as_f64().unwrap() > 1.0);
+        let reach = v["common"]["cov_final_reach"].as_f64().unwrap();
+        assert!(reach >= 0.90, "{pattern}: cov_final over reachable cells {reach}");
+        assert_eq!(v["obstacle_cells"], 0, "{pattern}");
+        assert!(v["common"]["reachable_cells"].as_u64().unwrap() < v["common"]["free_cells"].as_u64().unwrap());
+    }
+}

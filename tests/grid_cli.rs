@@ -223,3 +223,99 @@ fn bad_grid_files_are_rejected() {
     expect_grid_error("[axes]\n\"thesis.c_len\" = [0.1]\n", "missing field `base`");
     expect_grid_error(&format!("{base}[axes]\n\"thesis.p_c\" = [1.5]\n"), "`thesis.p_c` = 1.5 is out of range");
 }
+
+#[test]
+fn ablation_smoke_runs_every_planner_with_the_same_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("grids/ablation-smoke.toml");
+    let out = dir.path().join("abl");
+    let dry = covga(&["grid", grid.to_str().unwrap(), "--dry-run"]);
+    ok(&dry);
+    // 3 seeded planners x 2 seeds + 2 deterministic patterns once each.
+    assert!(
+        String::from_utf8_lossy(&dry.stdout).contains("8 runs (5 configurations"),
+        "{}",
+        String::from_utf8_lossy(&dry.stdout)
+    );
+    ok(&covga(&["grid", grid.to_str().unwrap(), "--jobs", "2", "--out", out.to_str().unwrap()]));
+    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
+    assert_eq!(rows.len(), 8);
+    let col = |name: &str| header.iter().rposition(|h| *h == name).unwrap_or_else(|| panic!("{name}"));
+    let planners: std::collections::BTreeSet<&str> = rows.iter().map(|r| r[col("planner")].as_str()).collect();
+    assert_eq!(planners.len(), 5, "{planners:?}");
+    for metric in [
+        "cov_final_free",
+        "cov_final_reach",
+        "t_final",
+        "f_reach",
+        "cam_walls_free",
+        "length_m",
+        "time_s",
+        "makespan_s",
+        "evaluations",
+        "feasible",
+    ] {
+        for r in &rows {
+            assert!(!r[col(metric)].is_empty(), "{metric} empty for {}", r[col("planner")]);
+        }
+    }
+    // The GAs respect the evaluation budget (they stop at the first iteration past it).
+    for r in rows.iter().filter(|r| ["thesis", "random_search", "waypoint"].contains(&r[col("planner")].as_str())) {
+        let e: u64 = r[col("evaluations")].parse().unwrap();
+        assert!((3000..3000 + 1200).contains(&e), "{}: {e} evaluations", r[col("planner")]);
+        assert_eq!(r[col("stop")], "evaluations");
+    }
+    // The common scorer gives a plan the same metrics whoever scores it: `covga eval` on a
+    // waypoint plan agrees with the study's row.
+    let wp = rows.iter().find(|r| r[col("planner")] == "waypoint").unwrap();
+    let ev = covga(&[
+        "eval",
+        "--map",
+        "thesis-1",
+        "--projection",
+        "f2",
+        "--path",
+        out.join("runs").join(&wp[0]).join("best_path.csv").to_str().unwrap(),
+        "--json",
+        "--out",
+        dir.path().join("ev").to_str().unwrap(),
+    ]);
+    ok(&ev);
+    let v: serde_json::Value = serde_json::from_slice(&ev.stdout).unwrap();
+    for metric in ["cov_final_free", "cov_final_reach", "t_final", "f_reach", "cam_walls_free", "time_s"] {
+        let a = v["common"][metric].as_f64().unwrap();
+        let b: f64 = wp[col(metric)].parse().unwrap();
+        assert!((a - b).abs() < 1e-12, "{metric}: eval {a} vs study {b}");
+    }
+    let rep = covga(&["report", out.to_str().unwrap()]);
+    ok(&rep);
+    let md = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    for section in ["## Planner comparison", "Mann–Whitney", "## Findings", "thesis", "random_search", "spiral"] {
+        assert!(md.contains(section), "{section}");
+    }
+    for f in ["boxplots_cov.png", "convergence.png", "planner_paths.png", "planners.csv", "pairwise.csv"] {
+        assert!(out.join("report").join(f).metadata().map(|m| m.len() > 100).unwrap_or(false), "{f}");
+    }
+}
+
+#[test]
+fn bad_planner_sections_are_rejected_with_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    for (text, needle) in [
+        ("planner = \"random_search\"\n", "`budget.evaluations`"),
+        ("planner = \"spiral\"\n[pattern]\nangle_deg = 1e9\n", "`pattern.angle_deg`"),
+        ("planner = \"boustrophedon\"\n[pattern]\nlanes = 3\n", "lanes"),
+        ("planner = \"genetic\"\n", "unknown variant `genetic`"),
+        ("planner = \"waypoint\"\n[waypoint]\nsections = 0\n", "`waypoint.sections`"),
+    ] {
+        let p = dir.path().join("bad.toml");
+        std::fs::write(&p, text).unwrap();
+        let o = covga(&["run", p.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{text}: {err}");
+        assert!(err.contains(needle) && err.contains("bad.toml"), "{text}: expected `{needle}` in {err}");
+    }
+}

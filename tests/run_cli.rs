@@ -25,6 +25,14 @@ fn read(p: &Path) -> String {
     std::fs::read_to_string(p).unwrap_or_else(|e| panic!("{}: {e}", p.display()))
 }
 
+/// A numeric column of history.csv by name.
+fn column(hist: &str, name: &str) -> Vec<f64> {
+    let mut lines = hist.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let k = header.iter().position(|h| *h == name).unwrap_or_else(|| panic!("no column {name} in {header:?}"));
+    lines.map(|l| l.split(',').nth(k).unwrap().parse().unwrap()).collect()
+}
+
 /// summary.json without its timing field.
 fn summary_without_time(dir: &Path) -> serde_json::Value {
     let mut v: serde_json::Value = serde_json::from_str(&read(&dir.join("summary.json"))).unwrap();
@@ -60,10 +68,11 @@ fn run_writes_every_result_file_and_improves() {
     assert_eq!(s["seed"], 7);
     // history.csv: header + iteration 0 + 200 iterations; the best at the end beats the start.
     let hist = read(&out.join("history.csv"));
-    let rows: Vec<Vec<f64>> =
-        hist.lines().skip(1).map(|l| l.split(',').map(|x| x.parse().unwrap()).collect()).collect();
-    assert_eq!(rows.len(), 201);
-    assert!(rows[200][2] > rows[0][2], "best f {} should beat the initial best {}", rows[200][2], rows[0][2]);
+    let best_f = column(&hist, "best_fitness");
+    assert_eq!(best_f.len(), 201);
+    assert!(best_f[200] > best_f[0], "best f {} should beat the initial best {}", best_f[200], best_f[0]);
+    assert_eq!(s["planner"], "thesis");
+    assert_eq!(s["score"]["cov_final_free"], s["cov_final"], "the common scorer agrees with the GA on map 1");
     // The best path is scored identically by `covga eval`.
     let ev = covga(
         &[
@@ -119,7 +128,7 @@ fn retrain_marks_the_region_and_recovers() {
     let s: serde_json::Value = serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
     assert_eq!(s["metrics"]["area_cells"], 1400, "A_pix after marking the 5 m corner (spec §16.4)");
     let hist = read(&out.join("history.csv"));
-    let best_t: Vec<f64> = hist.lines().skip(1).map(|l| l.split(',').nth(4).unwrap().parse().unwrap()).collect();
+    let best_t = column(&hist, "best_t_final");
     // The switch after iteration 100 turns covered cells into crossings: t_final drops.
     assert!(best_t[101] < best_t[100], "t_final should drop at the switch: {} -> {}", best_t[100], best_t[101]);
 }
@@ -159,12 +168,6 @@ fn missing_experiment_file_is_an_input_error() {
 #[test]
 fn parameter_control_schedules_show_in_the_history() {
     let dir = tempfile::tempdir().unwrap();
-    let column = |hist: &str, name: &str| -> Vec<f64> {
-        let mut lines = hist.lines();
-        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-        let k = header.iter().position(|h| *h == name).unwrap();
-        lines.map(|l| l.split(',').nth(k).unwrap().parse().unwrap()).collect()
-    };
     // Tournament size ramps from 1 to 7 (eq. 3.25).
     let ramp = small(
         "selection = \"tournament\"\ninit_individuals = 60\nkeep = 2\nselect = 10\n[thesis.control]\nkind = \"ramp\"\nmin = 1.0\nmax = 7.0\n",

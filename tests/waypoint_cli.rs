@@ -56,7 +56,9 @@ fn single_agent_run_improves_and_is_deterministic() {
     }
     // Mean coverage rises over the first generations (the ramp forces it up from 0.3).
     let hist = std::fs::read_to_string(a.join("history.csv")).unwrap();
-    let mean: Vec<f64> = hist.lines().skip(1).map(|l| l.split(',').nth(2).unwrap().parse().unwrap()).collect();
+    let header: Vec<&str> = hist.lines().next().unwrap().split(',').collect();
+    let k = header.iter().position(|h| *h == "mean_coverage").unwrap();
+    let mean: Vec<f64> = hist.lines().skip(1).map(|l| l.split(',').nth(k).unwrap().parse().unwrap()).collect();
     assert_eq!(mean.len(), 26);
     assert!(mean[25] > mean[0] + 0.05, "mean coverage {} -> {}", mean[0], mean[25]);
     // The best path CSV has an agent column and starts at the entry waypoint region.

@@ -164,4 +164,34 @@ mod tests {
             assert!(cov >= 0.85 && obj == 0, "angle {angle_deg}: cov {cov}, obj {obj}");
         }
     }
+
+    #[test]
+    fn a_pocket_behind_a_narrow_door_is_skipped_and_reported() {
+        use crate::map::CellState;
+        // A 2 x 1.5 m room and, behind a 0.3 m door, a 1 x 1.5 m pocket; a 0.6 m robot.
+        let (cols, rows) = (34, 17);
+        let mut cells = vec![CellState::Occupied; cols * rows];
+        for r in 1..16 {
+            for c in 1..21 {
+                cells[r * cols + c] = CellState::Free;
+            }
+            for c in 22..32 {
+                cells[r * cols + c] = CellState::Free;
+            }
+        }
+        for r in 7..10 {
+            cells[r * cols + 21] = CellState::Free;
+        }
+        let m = GridMap::new("pocket", cols, rows, 0.1, Point::origin(), cells).unwrap();
+        let s = Point::new(0.5, 0.5);
+        for pattern in [Pattern::Boustrophedon { angle_deg: 0.0 }, Pattern::Spiral] {
+            let p = plan(&m, pattern, 0.6, s, s, true).unwrap();
+            // The pocket (150 cells) and the door (3 cells) at least; the room's corners,
+            // which no disc pose reaches, are pockets too.
+            assert!(p.pockets >= 1, "{pattern:?}");
+            assert!(p.pocket_area_m2 >= 1.53 - 1e-9 && p.pocket_area_m2 < 3.0, "{pattern:?}: {}", p.pocket_area_m2);
+            assert!(p.points.iter().all(|q| q.x < 2.1), "{pattern:?} never enters the pocket");
+            assert_eq!((p.points[0], *p.points.last().unwrap()), (s, s));
+        }
+    }
 }

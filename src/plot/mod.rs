@@ -3,6 +3,7 @@
 //! Text uses DejaVu Sans embedded in the binary (plotters' `ab_glyph` backend), so building
 //! needs no system font libraries (DESIGN "Plots and fonts"). Files are written atomically.
 
+pub mod ablation;
 pub mod history;
 pub mod path;
 pub mod report;

@@ -1,5 +1,6 @@
 //! Experiment files, their validation and running one experiment with all its outputs.
 
+pub mod ablation;
 pub mod config;
 pub mod estimate;
 pub mod experiment;

@@ -35,10 +35,13 @@ struct Group {
     rows: Vec<usize>,
 }
 
-/// The swept-parameter columns of a runs table (between `seed` and `planner`).
+/// The swept-parameter columns of a runs table: between `seed` and the metric columns (a swept
+/// `planner` key has the same name as the metric column `planner`, so the metric block is found
+/// by its length).
 pub fn param_columns(t: &RunsTable) -> Vec<String> {
-    match (t.col("seed"), t.col("planner")) {
-        (Some(a), Some(b)) if b > a => t.header[a + 1..b].to_vec(),
+    let metrics = super::records::metric_columns().len();
+    match t.col("seed") {
+        Some(a) if t.header.len() >= a + 1 + metrics => t.header[a + 1..t.header.len() - metrics].to_vec(),
         _ => Vec::new(),
     }
 }
@@ -230,7 +233,10 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
         md,
         "![Pareto fronts](pareto.png)\n\n![Diversity of the front runs](diversity.png)\n\n![Best path per group](best_paths.png)\n"
     );
-    let _ = writeln!(md, "## Best configuration per group (highest f_obstacle)\n");
+    if super::ablation::applies(&t) {
+        md.push_str(&super::ablation::compare(dir, &t, &out)?.markdown);
+    }
+    let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
     let _ = writeln!(md, "| group | run | {} | cov_final | t_final | f |", params.join(" | "));
     let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
     for (g, &r) in groups.iter().zip(&best) {

@@ -1,7 +1,7 @@
 //! Statistics across runs (what 003 §5.3 says was missing): mean and 95 % confidence interval
 //! over seeds, and the Kruskal–Wallis test with its effect size.
 
-use statrs::distribution::{ChiSquared, ContinuousCDF, StudentsT};
+use statrs::distribution::{ChiSquared, ContinuousCDF, Normal, StudentsT};
 
 /// Mean and the half-width of its 95 % confidence interval (Student's t, `n − 1` degrees of
 /// freedom); the half-width is `NaN` for fewer than two values.
@@ -83,9 +83,140 @@ pub fn kruskal_wallis(groups: &[Vec<f64>]) -> Option<KruskalWallis> {
     Some(KruskalWallis { h, df, p_value, epsilon_squared: h / (n - 1.0) })
 }
 
+/// Quartiles `(q1, median, q3)` by linear interpolation between order statistics (the
+/// usual "type 7" definition); `NaN` for no values.
+pub fn quartiles(values: &[f64]) -> (f64, f64, f64) {
+    if values.is_empty() {
+        return (f64::NAN, f64::NAN, f64::NAN);
+    }
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    let q = |p: f64| {
+        let h = (v.len() - 1) as f64 * p;
+        let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
+        v[lo] + (h - lo as f64) * (v[hi] - v[lo])
+    };
+    (q(0.25), q(0.5), q(0.75))
+}
+
+/// Result of a two-sided Mann–Whitney U test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MannWhitney {
+    /// `U` of the first sample: `R_1 − n_1(n_1+1)/2`.
+    pub u: f64,
+    /// The standardised statistic (continuity- and tie-corrected).
+    pub z: f64,
+    /// Two-sided p-value from the normal approximation.
+    pub p_value: f64,
+}
+
+/// Two-sided Mann–Whitney U test of whether `a` and `b` come from one distribution, with the
+/// normal approximation `z = (|U − n₁n₂/2| − ½) / σ`,
+/// `σ² = n₁n₂/12 · ((N+1) − Σ(t³−t)/(N(N−1)))`. `None` when a sample has fewer than two
+/// values or every value is tied.
+pub fn mann_whitney_u(a: &[f64], b: &[f64]) -> Option<MannWhitney> {
+    if a.len() < 2 || b.len() < 2 {
+        return None;
+    }
+    let all: Vec<f64> = a.iter().chain(b).copied().collect();
+    let (r, ties) = ranks(&all);
+    let (n1, n2) = (a.len() as f64, b.len() as f64);
+    let n = n1 + n2;
+    let r1: f64 = r[..a.len()].iter().sum();
+    let u = r1 - n1 * (n1 + 1.0) / 2.0;
+    let var = n1 * n2 / 12.0 * ((n + 1.0) - ties / (n * (n - 1.0)));
+    if var <= 0.0 {
+        return None;
+    }
+    let z = ((u - n1 * n2 / 2.0).abs() - 0.5).max(0.0) / var.sqrt();
+    let p_value = (2.0 * (1.0 - Normal::new(0.0, 1.0).expect("standard normal").cdf(z))).min(1.0);
+    Some(MannWhitney { u, z, p_value })
+}
+
+/// Holm's step-down adjustment of p-values (family-wise error), in the input order.
+pub fn holm(p: &[f64]) -> Vec<f64> {
+    let m = p.len();
+    let mut order: Vec<usize> = (0..m).collect();
+    order.sort_by(|&x, &y| p[x].total_cmp(&p[y]));
+    let mut adjusted = vec![0.0; m];
+    let mut running: f64 = 0.0;
+    for (k, &i) in order.iter().enumerate() {
+        running = running.max(((m - k) as f64 * p[i]).min(1.0));
+        adjusted[i] = running;
+    }
+    adjusted
+}
+
+/// Vargha–Delaney `A₁₂`: the probability that a value of `a` exceeds one of `b`, ties counting
+/// half (0.5 = no effect; 0.56 / 0.64 / 0.71 are the usual small / medium / large thresholds).
+pub fn vargha_delaney_a12(a: &[f64], b: &[f64]) -> f64 {
+    let mut wins = 0.0;
+    for &x in a {
+        for &y in b {
+            wins += if x > y {
+                1.0
+            } else if x == y {
+                0.5
+            } else {
+                0.0
+            };
+        }
+    }
+    wins / (a.len() * b.len()) as f64
+}
+
+/// The usual words for an `A₁₂` (symmetric around 0.5).
+pub fn a12_magnitude(a12: f64) -> &'static str {
+    let d = (a12 - 0.5).abs();
+    if d < 0.06 {
+        "negligible"
+    } else if d < 0.14 {
+        "small"
+    } else if d < 0.21 {
+        "medium"
+    } else {
+        "large"
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn quartiles_by_hand() {
+        assert_eq!(quartiles(&[4.0, 1.0, 3.0, 2.0, 5.0]), (2.0, 3.0, 4.0));
+        // n = 4: positions 0.75, 1.5, 2.25.
+        assert_eq!(quartiles(&[1.0, 2.0, 3.0, 4.0]), (1.75, 2.5, 3.25));
+    }
+
+    #[test]
+    fn mann_whitney_by_hand() {
+        // a = {1,2,3}, b = {4,5,6}: R1 = 6, U = 0, σ² = 9/12·7 = 5.25, z = (4.5 − 0.5)/√5.25.
+        let t = mann_whitney_u(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0]).unwrap();
+        assert_eq!(t.u, 0.0);
+        assert!((t.z - 4.0 / 5.25f64.sqrt()).abs() < 1e-12);
+        assert!((t.p_value - 0.080_855_598).abs() < 1e-8, "{}", t.p_value);
+        // Symmetric in the p-value; U of the other side is n1 n2 − U.
+        let back = mann_whitney_u(&[4.0, 5.0, 6.0], &[1.0, 2.0, 3.0]).unwrap();
+        assert_eq!(back.u, 9.0);
+        assert!((back.p_value - t.p_value).abs() < 1e-15);
+        assert!(mann_whitney_u(&[1.0], &[2.0, 3.0]).is_none());
+        assert!(mann_whitney_u(&[1.0, 1.0], &[1.0, 1.0]).is_none());
+    }
+
+    #[test]
+    fn holm_and_a12_by_hand() {
+        // Sorted 0.01, 0.02, 0.04 → ×3, ×2, ×1 = 0.03, 0.04, 0.04 (monotone).
+        let adj = holm(&[0.04, 0.01, 0.02]);
+        assert!((adj[0] - 0.04).abs() < 1e-15 && (adj[1] - 0.03).abs() < 1e-15 && (adj[2] - 0.04).abs() < 1e-15);
+        assert_eq!(holm(&[0.6, 0.5]), vec![1.0, 1.0]);
+        assert_eq!(vargha_delaney_a12(&[3.0, 4.0], &[1.0, 3.0]), 3.5 / 4.0);
+        assert_eq!(vargha_delaney_a12(&[1.0], &[2.0]), 0.0);
+        assert_eq!(a12_magnitude(0.5), "negligible");
+        assert_eq!(a12_magnitude(0.8), "large");
+        assert_eq!(a12_magnitude(0.38), "small");
+    }
 
     #[test]
     fn confidence_interval_by_hand() {

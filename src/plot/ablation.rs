@@ -1,0 +1,203 @@
+//! Figures of a planner comparison: box plots of a metric per planner and map, convergence
+//! curves (best footprint coverage against fitness evaluations, median and interquartile band
+//! over seeds), and the best path of every planner on every map side by side.
+
+use super::path::{PathFigure, draw_map_paths};
+use super::{Figure, err, text};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+/// One box: a planner's values on one map.
+pub struct BoxSeries {
+    /// Planner label.
+    pub label: String,
+    /// The values (one per run).
+    pub values: Vec<f64>,
+}
+
+/// Box plots of one metric: one panel per map, one box per planner.
+pub struct BoxFigure {
+    /// Metric name with unit, for the y axis.
+    pub metric: String,
+    /// `(map, boxes)` per panel.
+    pub panels: Vec<(String, Vec<BoxSeries>)>,
+}
+
+/// Rows and columns of a panel grid: two columns from three panels on.
+fn shape(n: usize) -> (usize, usize) {
+    if n <= 2 { (1, n.max(1)) } else { (n.div_ceil(2), 2) }
+}
+
+fn colour(k: usize) -> RGBColor {
+    let c = Palette99::pick(k).to_rgba();
+    RGBColor(c.0, c.1, c.2)
+}
+
+impl Figure for BoxFigure {
+    fn size(&self) -> (u32, u32) {
+        let (r, c) = shape(self.panels.len());
+        (c as u32 * 720, r as u32 * 420 + 40)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root
+            .titled(&format!("{} per planner (box = IQR, line = median, whiskers = min..max)", self.metric), text(16.0))
+            .map_err(err)?;
+        for (area, (map, boxes)) in root.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
+            let all: Vec<f64> = boxes.iter().flat_map(|b| b.values.iter().copied()).filter(|v| v.is_finite()).collect();
+            let (lo, hi) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+            let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (0.0, 1.0) };
+            let pad = ((hi - lo) * 0.08).max(1e-3);
+            let n = boxes.len().max(1);
+            let mut chart = ChartBuilder::on(area)
+                .caption(map, text(15.0))
+                .margin(8)
+                .x_label_area_size(40)
+                .y_label_area_size(60)
+                .build_cartesian_2d(0.0..n as f64, (lo - pad)..(hi + pad))
+                .map_err(err)?;
+            let labels: Vec<String> = boxes.iter().map(|b| b.label.clone()).collect();
+            chart
+                .configure_mesh()
+                .disable_x_mesh()
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_labels(n * 2 + 1)
+                .x_label_formatter(&|x| {
+                    let k = (*x - 0.5).round();
+                    if (x - 0.5 - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < labels.len() {
+                        labels[k as usize].clone()
+                    } else {
+                        String::new()
+                    }
+                })
+                .x_label_style(text(12.0))
+                .y_desc(&self.metric)
+                .label_style(text(12.0))
+                .axis_desc_style(text(13.0))
+                .draw()
+                .map_err(err)?;
+            for (k, b) in boxes.iter().enumerate() {
+                if b.values.is_empty() {
+                    continue;
+                }
+                let (q1, med, q3) = crate::study::stats::quartiles(&b.values);
+                let min = b.values.iter().copied().fold(f64::INFINITY, f64::min);
+                let max = b.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                let (x0, x1, xc) = (k as f64 + 0.2, k as f64 + 0.8, k as f64 + 0.5);
+                let c = colour(k);
+                let series: Vec<PathElement<(f64, f64)>> = vec![
+                    PathElement::new(vec![(xc, min), (xc, q1)], BLACK.stroke_width(1)),
+                    PathElement::new(vec![(xc, q3), (xc, max)], BLACK.stroke_width(1)),
+                    PathElement::new(vec![(x0 + 0.15, min), (x1 - 0.15, min)], BLACK.stroke_width(1)),
+                    PathElement::new(vec![(x0 + 0.15, max), (x1 - 0.15, max)], BLACK.stroke_width(1)),
+                ];
+                chart.draw_series(series).map_err(err)?;
+                chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], c.mix(0.45).filled())]).map_err(err)?;
+                chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], BLACK.stroke_width(1))]).map_err(err)?;
+                chart
+                    .draw_series([PathElement::new(vec![(x0, med), (x1, med)], BLACK.stroke_width(3))])
+                    .map_err(err)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// One convergence curve: `(evaluations, q1, median, q3)` of the best coverage over seeds.
+pub struct Curve {
+    /// Planner label.
+    pub label: String,
+    /// Runs behind it.
+    pub runs: usize,
+    /// The points.
+    pub points: Vec<(f64, f64, f64, f64)>,
+}
+
+/// Convergence of the GAs: one panel per map.
+pub struct ConvergenceFigure {
+    /// `(map, curves)` per panel.
+    pub panels: Vec<(String, Vec<Curve>)>,
+}
+
+impl Figure for ConvergenceFigure {
+    fn size(&self) -> (u32, u32) {
+        let (r, c) = shape(self.panels.len());
+        (c as u32 * 620, r as u32 * 400 + 40)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root
+            .titled(
+                "Best footprint coverage (all free cells) vs fitness evaluations: median, band = IQR over seeds",
+                text(16.0),
+            )
+            .map_err(err)?;
+        for (area, (map, curves)) in root.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
+            let x_max = curves.iter().flat_map(|c| c.points.last().map(|p| p.0)).fold(1.0f64, f64::max);
+            let mut chart = ChartBuilder::on(area)
+                .caption(map, text(15.0))
+                .margin(10)
+                .x_label_area_size(45)
+                .y_label_area_size(55)
+                .build_cartesian_2d(0.0..x_max, 0.0..1.0)
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_desc("fitness evaluations")
+                .y_desc("cov_final (free cells)")
+                .x_label_formatter(&|x| {
+                    if x_max >= 20_000.0 { format!("{:.0}k", x / 1000.0) } else { format!("{x:.0}") }
+                })
+                .label_style(text(12.0))
+                .axis_desc_style(text(13.0))
+                .draw()
+                .map_err(err)?;
+            for (k, c) in curves.iter().enumerate() {
+                let col = colour(k);
+                let band: Vec<(f64, f64)> =
+                    c.points.iter().map(|p| (p.0, p.3)).chain(c.points.iter().rev().map(|p| (p.0, p.1))).collect();
+                chart.draw_series([Polygon::new(band, col.mix(0.2).filled())]).map_err(err)?;
+                chart
+                    .draw_series(LineSeries::new(c.points.iter().map(|p| (p.0, p.2)), col.stroke_width(2)))
+                    .map_err(err)?
+                    .label(format!("{} ({} runs)", c.label, c.runs))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
+            }
+            super::series_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
+        }
+        Ok(())
+    }
+}
+
+/// The best path of each planner (columns) on each map (rows).
+pub struct PlannerPathsFigure<'a> {
+    /// Rows of panels; a `None` cell is left empty.
+    pub rows: Vec<Vec<Option<PathFigure<'a>>>>,
+}
+
+impl Figure for PlannerPathsFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        let cols = self.rows.iter().map(Vec::len).max().unwrap_or(1).max(1);
+        (cols as u32 * 330, self.rows.len().max(1) as u32 * 350 + 40)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let root = root
+            .titled(
+                "Best run of each planner on each map (green once, orange 2+ times, red obstacle swept)",
+                text(18.0),
+            )
+            .map_err(err)?;
+        let cols = self.rows.iter().map(Vec::len).max().unwrap_or(1).max(1);
+        let areas = root.split_evenly((self.rows.len().max(1), cols));
+        for (r, row) in self.rows.iter().enumerate() {
+            for (c, panel) in row.iter().enumerate() {
+                if let Some(p) = panel {
+                    draw_map_paths(&areas[r * cols + c], p, (11.0, 10.0), false)?;
+                }
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,322 @@
+//! The planner comparison of a study with several planners (the ablation): per map, the
+//! median [IQR] of every common metric per planner, pairwise Mann–Whitney U tests with Holm's
+//! correction and Vargha–Delaney `A₁₂` effect sizes, box plots, convergence curves of the GAs,
+//! the best path of each planner on each map, and findings in plain words derived from those
+//! numbers. Planners are compared only through the common scorer's columns.
+
+use super::records::RunsTable;
+use super::report::{ReportError, param_columns};
+use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
+use crate::coverage::CoverageGrid;
+use crate::plot::ablation::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
+use crate::plot::path::PathFigure;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The metrics tabulated per planner: column, heading, decimals.
+const TABLE: [(&str, &str, usize); 10] = [
+    ("cov_final_reach", "cov_final (reachable)", 3),
+    ("cov_final_free", "cov_final (all free)", 3),
+    ("t_final", "t_final", 3),
+    ("f_reach", "f (reachable)", 3),
+    ("cam_walls_free", "camera walls", 3),
+    ("cam_open_free", "camera open", 3),
+    ("length_m", "length [m]", 0),
+    ("time_s", "time [s]", 0),
+    ("turns", "turns", 0),
+    ("obstacle_cells", "obstacle cells", 0),
+];
+
+/// A best run loaded for its panel: map, visit grid, plan, robot width, title.
+type LoadedPanel = (crate::map::GridMap, CoverageGrid, Vec<Vec<crate::geom::Point>>, f64, String);
+
+/// The metrics tested pairwise.
+const TESTED: [&str; 4] = ["cov_final_reach", "t_final", "f_reach", "cam_walls_free"];
+
+/// Where the comparison's figures and tables go, and what it found.
+pub struct Comparison {
+    /// The markdown section.
+    pub markdown: String,
+}
+
+fn short_map(source: &str) -> String {
+    Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| source.to_string())
+}
+
+/// Whether the runs table holds several planners.
+pub fn applies(t: &RunsTable) -> bool {
+    let Some(c) = t.col("planner") else { return false };
+    t.rows.iter().map(|r| &r[c]).collect::<std::collections::BTreeSet<_>>().len() > 1
+}
+
+/// A planner's label: its name plus the text values of the swept keys that tell its variants
+/// apart on one map (e.g. `thesis-prws`); numeric values and map-wide settings are left out.
+fn labels(t: &RunsTable) -> Vec<String> {
+    let params: Vec<String> = param_columns(t).into_iter().filter(|p| p != "map.source" && p != "planner").collect();
+    let (pc, mc) = (t.col("planner").unwrap_or(0), t.col("map").unwrap_or(0));
+    let varying: Vec<usize> = params
+        .iter()
+        .filter_map(|p| t.col(p))
+        .filter(|&c| {
+            let mut by_map: BTreeMap<&str, std::collections::BTreeSet<&str>> = BTreeMap::new();
+            for r in &t.rows {
+                by_map.entry(&r[mc]).or_default().insert(&r[c]);
+            }
+            by_map.values().any(|v| v.len() > 1)
+        })
+        .collect();
+    t.rows
+        .iter()
+        .map(|r| {
+            let mut l = r[pc].clone();
+            for &c in &varying {
+                let v = &r[c];
+                if !v.is_empty() && v.parse::<f64>().is_err() && *v != r[pc] {
+                    l.push('-');
+                    l.push_str(v);
+                }
+            }
+            l
+        })
+        .collect()
+}
+
+/// The best coverage at evaluation `e` of a history (a step function of the evaluations).
+fn at(curve: &[(f64, f64)], e: f64) -> Option<f64> {
+    curve.iter().take_while(|(x, _)| *x <= e).last().map(|(_, y)| *y)
+}
+
+fn history(path: &Path) -> Option<Vec<(f64, f64)>> {
+    let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
+    let (e, c) = (t.col("evaluations")?, t.col("best_coverage")?);
+    let v: Option<Vec<(f64, f64)>> = t.rows.iter().map(|r| Some((r[e].parse().ok()?, r[c].parse().ok()?))).collect();
+    v.filter(|v| v.len() > 1)
+}
+
+/// Writes the comparison's files into `out` and returns its markdown section.
+pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, ReportError> {
+    let label = labels(t);
+    let mc = t.col("map").ok_or_else(|| ReportError::Input("runs.csv has no `map` column".into()))?;
+    let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
+    // Maps in order of first appearance, planners in a fixed order of their names.
+    let mut maps: Vec<String> = Vec::new();
+    for r in &t.rows {
+        if !maps.contains(&r[mc]) {
+            maps.push(r[mc].clone());
+        }
+    }
+    let order = ["thesis", "waypoint", "random_search", "boustrophedon", "spiral"];
+    let mut variants: Vec<String> = label.clone();
+    variants.sort_by_key(|l| (order.iter().position(|o| l.starts_with(o)).unwrap_or(order.len()), l.clone()));
+    variants.dedup();
+    let rows_of = |map: &str, v: &str| -> Vec<usize> {
+        (0..t.rows.len()).filter(|&r| t.rows[r][mc] == map && label[r] == v).collect()
+    };
+    let mut md = String::new();
+    let mut csv = String::from("map,planner,metric,n,median,q1,q3,mean\n");
+    let mut pair_csv = String::from("map,metric,a,b,n_a,n_b,u,p,p_holm,a12\n");
+    let _ = writeln!(md, "## Planner comparison\n");
+    let _ = writeln!(
+        md,
+        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. Values are median [q1, q3] over the replicates (deterministic planners run once). All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
+    );
+    let _ = writeln!(
+        md,
+        "![Box plots](boxplots_cov.png)\n\n![Box plots](boxplots_time.png)\n\n![Convergence](convergence.png)\n\n![Best paths](planner_paths.png)\n"
+    );
+    let mut findings = Vec::new();
+    for map in &maps {
+        let name = short_map(map);
+        let present: Vec<&String> = variants.iter().filter(|v| !rows_of(map, v).is_empty()).collect();
+        let _ = writeln!(md, "### {name}\n");
+        let _ = writeln!(
+            md,
+            "| planner | runs | feasible | {} |",
+            TABLE.iter().map(|(_, h, _)| *h).collect::<Vec<_>>().join(" | ")
+        );
+        let _ = writeln!(md, "|---|---|---|{}", "---|".repeat(TABLE.len()));
+        for v in &present {
+            let rows = rows_of(map, v);
+            let feasible = rows.iter().filter(|&&r| t.rows[r][t.col("feasible").unwrap_or(0)] == "true").count();
+            let mut cells = Vec::new();
+            for (c, _, d) in TABLE {
+                let vals: Vec<f64> = rows.iter().map(|&r| num(r, c)).collect();
+                let (q1, med, q3) = quartiles(&vals);
+                let mean = vals.iter().sum::<f64>() / vals.len() as f64;
+                let _ = writeln!(csv, "{name},{v},{c},{},{med},{q1},{q3},{mean}", vals.len());
+                cells.push(if vals.len() > 1 {
+                    format!("{med:.d$} [{q1:.d$}, {q3:.d$}]")
+                } else {
+                    format!("{med:.d$}")
+                });
+            }
+            let _ = writeln!(md, "| {v} | {} | {feasible}/{} | {} |", rows.len(), rows.len(), cells.join(" | "));
+        }
+        // Pairwise tests.
+        let _ = writeln!(
+            md,
+            "\nPairwise two-sided Mann–Whitney U tests (Holm-corrected over the pairs of a metric), A₁₂ = P(first > second):\n"
+        );
+        let _ = writeln!(md, "| metric | first | second | p (Holm) | A₁₂ | effect |\n|---|---|---|---|---|---|");
+        let samples: Vec<(&String, Vec<usize>)> =
+            present.iter().map(|v| (*v, rows_of(map, v))).filter(|(_, r)| r.len() >= 2).collect();
+        for metric in TESTED {
+            let mut pairs = Vec::new();
+            for i in 0..samples.len() {
+                for j in i + 1..samples.len() {
+                    let a: Vec<f64> = samples[i].1.iter().map(|&r| num(r, metric)).collect();
+                    let b: Vec<f64> = samples[j].1.iter().map(|&r| num(r, metric)).collect();
+                    let a12 = vargha_delaney_a12(&a, &b);
+                    let test = mann_whitney_u(&a, &b);
+                    pairs.push((samples[i].0, samples[j].0, a.len(), b.len(), test, a12));
+                }
+            }
+            let raw: Vec<f64> = pairs.iter().map(|p| p.4.map_or(1.0, |t| t.p_value)).collect();
+            let adjusted = holm(&raw);
+            for (k, (a, b, na, nb, test, a12)) in pairs.iter().enumerate() {
+                let u = test.map_or(f64::NAN, |t| t.u);
+                let _ = writeln!(pair_csv, "{name},{metric},{a},{b},{na},{nb},{u},{},{},{a12}", raw[k], adjusted[k]);
+                let _ =
+                    writeln!(md, "| {metric} | {a} | {b} | {:.2e} | {a12:.2} | {} |", adjusted[k], a12_magnitude(*a12));
+                if metric == "cov_final_reach" && b.as_str() == "random_search" && a.starts_with("thesis") {
+                    findings.push(format!(
+                        "On {name}, {a} against random search with the same evaluations: A₁₂ = {a12:.2} ({}), Holm-corrected p = {:.1e}: the GA's machinery {} coverage here.",
+                        a12_magnitude(*a12),
+                        adjusted[k],
+                        if adjusted[k] < 0.05 && *a12 > 0.5 { "improves" } else if adjusted[k] < 0.05 { "worsens" } else { "does not detectably change" }
+                    ));
+                }
+            }
+        }
+        let _ = writeln!(md);
+        // Findings per map: coverage and time leaders.
+        let med = |v: &String, c: &str| quartiles(&rows_of(map, v).iter().map(|&r| num(r, c)).collect::<Vec<_>>()).1;
+        let mut by_cov: Vec<&String> = present.clone();
+        by_cov.sort_by(|a, b| med(b, "cov_final_reach").total_cmp(&med(a, "cov_final_reach")));
+        let mut by_time: Vec<&String> = present.clone();
+        by_time.sort_by(|a, b| med(a, "time_s").total_cmp(&med(b, "time_s")));
+        if let (Some(first), Some(fast)) = (by_cov.first(), by_time.first()) {
+            let ranking: Vec<String> = by_cov.iter().map(|v| format!("{v} {:.3}", med(v, "cov_final_reach"))).collect();
+            findings.push(format!(
+                "On {name}, median coverage of the reachable cells ranks {}; {first} covers most, {fast} has the shortest median time ({:.0} s, against {:.0} s for {first}).",
+                ranking.join(" > "),
+                med(fast, "time_s"),
+                med(first, "time_s"),
+            ));
+        }
+        let infeasible: Vec<String> = present
+            .iter()
+            .filter_map(|v| {
+                let rows = rows_of(map, v);
+                let bad = rows.iter().filter(|&&r| t.rows[r][t.col("feasible").unwrap_or(0)] != "true").count();
+                (bad > 0).then(|| format!("{v} {bad}/{}", rows.len()))
+            })
+            .collect();
+        if !infeasible.is_empty() {
+            findings.push(format!(
+                "On {name}, plans that break their planner's own constraints (obstacle cells swept for the thesis GA and random search; loop closures, connectivity or the coverage ramp for the waypoint planner): {}.",
+                infeasible.join(", ")
+            ));
+        }
+    }
+    let write = |name: &str, text: &str| {
+        crate::io::write_atomic(&out.join(name), text.as_bytes()).map_err(|e| ReportError::Io(format!("{name}: {e}")))
+    };
+    write("planners.csv", &csv)?;
+    write("pairwise.csv", &pair_csv)?;
+    // Box plots.
+    let boxes = |metric: &str| -> Vec<(String, Vec<BoxSeries>)> {
+        maps.iter()
+            .map(|map| {
+                let series = variants
+                    .iter()
+                    .map(|v| BoxSeries {
+                        label: v.clone(),
+                        values: rows_of(map, v).iter().map(|&r| num(r, metric)).collect(),
+                    })
+                    .filter(|b| !b.values.is_empty())
+                    .collect();
+                (short_map(map), series)
+            })
+            .collect()
+    };
+    crate::plot::save(
+        &BoxFigure { metric: "cov_final over reachable cells".into(), panels: boxes("cov_final_reach") },
+        &out.join("boxplots_cov"),
+    )?;
+    crate::plot::save(&BoxFigure { metric: "time [s]".into(), panels: boxes("time_s") }, &out.join("boxplots_time"))?;
+    // Convergence curves of the planners with a history.
+    let mut panels = Vec::new();
+    for map in &maps {
+        let mut curves = Vec::new();
+        for v in &variants {
+            let hs: Vec<Vec<(f64, f64)>> = rows_of(map, v)
+                .iter()
+                .filter_map(|&r| history(&dir.join("runs").join(&t.rows[r][0]).join("history.csv")))
+                .collect();
+            if hs.is_empty() {
+                continue;
+            }
+            let x_max = hs.iter().flat_map(|h| h.last().map(|p| p.0)).fold(0.0, f64::max);
+            let points = (0..=60)
+                .map(|k| {
+                    let e = x_max * k as f64 / 60.0;
+                    let vals: Vec<f64> = hs.iter().filter_map(|h| at(h, e)).collect();
+                    let (q1, m, q3) = quartiles(&vals);
+                    (e, q1, m, q3)
+                })
+                .filter(|p| p.2.is_finite())
+                .collect();
+            curves.push(Curve { label: v.clone(), runs: hs.len(), points });
+        }
+        panels.push((short_map(map), curves));
+    }
+    crate::plot::save(&ConvergenceFigure { panels }, &out.join("convergence"))?;
+    // Best path of each planner on each map.
+    let mut loaded: Vec<Vec<Option<LoadedPanel>>> = Vec::new();
+    for map in &maps {
+        let mut row = Vec::new();
+        for v in &variants {
+            let rows = rows_of(map, v);
+            let Some(&best) = rows.iter().max_by(|&&a, &&b| num(a, "f_reach").total_cmp(&num(b, "f_reach"))) else {
+                row.push(None);
+                continue;
+            };
+            let run_dir = dir.join("runs").join(&t.rows[best][0]);
+            let cfg = super::experiment::ExperimentFile::read(&run_dir.join("config.toml")).ok();
+            let paths = crate::io::read_path_csv(&run_dir.join("best_path.csv")).ok();
+            let panel = cfg.zip(paths).and_then(|(cfg, paths)| {
+                let m = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution).ok()?;
+                let g = CoverageGrid::new(&m);
+                let title = format!("{v}: cov {:.3}, t {:.3}", num(best, "cov_final_reach"), num(best, "t_final"));
+                Some((m, g, paths, cfg.robot.width, title))
+            });
+            row.push(panel);
+        }
+        loaded.push(row);
+    }
+    let rows: Vec<Vec<Option<PathFigure>>> = loaded
+        .iter()
+        .map(|row| {
+            row.iter()
+                .map(|p| {
+                    p.as_ref().map(|(m, g, paths, w, title)| PathFigure {
+                        map: m,
+                        grid: g,
+                        paths: paths.clone(),
+                        width: *w,
+                        title: title.clone(),
+                    })
+                })
+                .collect()
+        })
+        .collect();
+    crate::plot::save(&PlannerPathsFigure { rows }, &out.join("planner_paths"))?;
+    let _ = writeln!(md, "## Findings\n");
+    for f in &findings {
+        let _ = writeln!(md, "- {f}");
+    }
+    let _ = writeln!(md);
+    Ok(Comparison { markdown: md })
+}
