@@ -29,6 +29,9 @@ pub struct WaypointSection {
     pub sections: usize,
     /// `full` or `near_wall`.
     pub waypoint_set: super::world::WaypointSet,
+    /// `camera` (000) or `footprint`: what the coverage objective measures; the footprint is
+    /// the experiment's robot width swept along each edge.
+    pub objective: super::world::ObjectiveKind,
     /// Number of agents.
     pub agents: usize,
     /// Per-agent entry positions (m); empty = all start at `stations.start`.
@@ -93,6 +96,7 @@ impl Default for WaypointSection {
             fov_deg: 69.4,
             sections: 15,
             waypoint_set: super::world::WaypointSet::Full,
+            objective: super::world::ObjectiveKind::Camera,
             agents: 1,
             starts: Vec::new(),
             population: 100,
@@ -180,7 +184,11 @@ impl WaypointConfig {
         origin: &str,
         scenario: &crate::planner::Scenario,
     ) -> Result<Self, ConfigError> {
-        validate(&file.waypoint, origin, &scenario.map, scenario.start)
+        let mut c = validate(&file.waypoint, origin, &scenario.map, scenario.start)?;
+        if file.waypoint.objective == super::world::ObjectiveKind::Footprint {
+            c.world.objective = super::world::Objective::Footprint { width: scenario.robot.width };
+        }
+        Ok(c)
     }
 }
 
@@ -267,6 +275,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
             sections: w.sections,
             set: w.waypoint_set,
             starts,
+            objective: super::world::Objective::Camera,
         },
         ga: super::run::GaParams {
             population: w.population,

@@ -1,6 +1,8 @@
 //! Per-traversal precomputation (000 §II-D, spec §7): for every directed edge its length,
 //! heading, and the departure and arrival camera views as compact bitsets, so that evaluating a
-//! path is OR-ing masks and counting bits.
+//! path is OR-ing masks and counting bits. With [`Sensing::Footprint`] (an option beyond 000,
+//! for the ablation's search-versus-objective comparison) a traversal's mask is instead the
+//! free pixels the ground robot's footprint sweeps along the edge (003 §3.1's swept rectangle).
 
 use super::graph::Graph;
 use super::raster::WorkMap;
@@ -43,6 +45,18 @@ pub struct Traversal {
     pub arrive: Mask,
 }
 
+/// What a traversal covers.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Sensing {
+    /// 000's camera views at departure and arrival.
+    Camera(Camera),
+    /// The free pixels swept by a footprint this many pixels wide.
+    Footprint {
+        /// Footprint width in px.
+        width_px: f64,
+    },
+}
+
 /// All traversals of a graph, indexed like the adjacency lists: `edges[i][k]` is `i → adj[i][k]`.
 pub struct Traversals {
     /// Per waypoint, per neighbour.
@@ -53,13 +67,31 @@ pub struct Traversals {
 
 impl Traversals {
     /// Computes every traversal's data.
-    pub fn compute(map: &WorkMap, graph: &Graph, camera: &Camera) -> Self {
+    pub fn compute(map: &WorkMap, graph: &Graph, sensing: &Sensing) -> Self {
+        use crate::coverage::raster::{RasterGrid, for_each_swept_cell};
+        use crate::geom::Point;
         use rayon::prelude::*;
         let occ = |c: i64, r: i64| map.is_occluded(c, r);
-        let view = |p: (f64, f64), psi: f64| {
-            let mut idx = Vec::new();
-            camera.view(map.width, map.height, occ, p, psi, |i| idx.push(i));
-            Mask::from_indices(&mut idx)
+        let raster = RasterGrid { cols: map.width, rows: map.height, resolution: 1.0, origin_x: 0.0, origin_y: 0.0 };
+        let view = |p: (f64, f64), psi: f64| match sensing {
+            Sensing::Camera(camera) => {
+                let mut idx = Vec::new();
+                camera.view(map.width, map.height, occ, p, psi, |i| idx.push(i));
+                Mask::from_indices(&mut idx)
+            }
+            Sensing::Footprint { .. } => Mask::default(),
+        };
+        let swept = |a: (f64, f64), b: (f64, f64)| match sensing {
+            Sensing::Footprint { width_px } => {
+                let mut idx = Vec::new();
+                for_each_swept_cell(&raster, Point::new(a.0, a.1), Point::new(b.0, b.1), *width_px, |i| {
+                    if !map.occluded[i] {
+                        idx.push(i);
+                    }
+                });
+                Mask::from_indices(&mut idx)
+            }
+            Sensing::Camera(_) => Mask::default(),
         };
         let edges = (0..graph.points.len())
             .into_par_iter()
@@ -72,7 +104,10 @@ impl Traversals {
                         Traversal {
                             dist: (b.0 - a.0).hypot(b.1 - a.1),
                             heading,
-                            depart: view(a, heading),
+                            depart: match sensing {
+                                Sensing::Camera(_) => view(a, heading),
+                                Sensing::Footprint { .. } => swept(a, b),
+                            },
                             arrive: view(b, heading),
                         }
                     })

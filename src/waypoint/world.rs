@@ -2,7 +2,7 @@
 //! traversal views, wall band and start waypoints, built once per map and parameter set.
 
 use super::graph::Graph;
-use super::precompute::{Traversals, bitset};
+use super::precompute::{Sensing, Traversals, bitset};
 use super::raster::WorkMap;
 use super::waypoints;
 use crate::coverage::camera::Camera;
@@ -41,6 +41,32 @@ pub struct WorldParams {
     pub set: WaypointSet,
     /// Entry positions (m), one shared or one per agent.
     pub starts: Vec<(f64, f64)>,
+    /// What the planner optimises coverage of.
+    pub objective: Objective,
+}
+
+/// What the waypoint planner's coverage objective measures (000 optimises the camera; the
+/// footprint is an option for the ablation).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum ObjectiveKind {
+    /// 000's camera views (eq. 2 on the camera's coverage).
+    #[default]
+    Camera,
+    /// The ground robot's swept footprint along each edge (eq. 2 on the swept pixels).
+    Footprint,
+}
+
+/// The objective with its parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Objective {
+    /// Camera views.
+    Camera,
+    /// Swept footprint of this width in metres.
+    Footprint {
+        /// Width in metres.
+        width: f64,
+    },
 }
 
 /// Errors building the world.
@@ -124,7 +150,11 @@ impl World {
             fov: p.fov_deg.to_radians(),
             sections: p.sections,
         };
-        let traversals = Traversals::compute(&wm, &graph, &camera);
+        let sensing = match p.objective {
+            Objective::Camera => Sensing::Camera(camera),
+            Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
+        };
+        let traversals = Traversals::compute(&wm, &graph, &sensing);
         let band_flags = wm.band(b);
         let band_count = band_flags.iter().filter(|x| **x).count() as u64;
         Ok(Self {
@@ -196,7 +226,31 @@ mod tests {
             sections: 15,
             set,
             starts: vec![(2.0, 2.0)],
+            objective: Objective::Camera,
         }
+    }
+
+    #[test]
+    fn footprint_objective_sweeps_free_pixels_along_each_edge() {
+        let map = preset("office").unwrap();
+        let p = WorldParams { objective: Objective::Footprint { width: 0.6 }, ..params(WaypointSet::Full) };
+        let w = World::build(&map, &p, 1).unwrap();
+        let (i, k) = (0, 0);
+        let t = &w.traversals.edges[i][k];
+        assert!(t.arrive.words.is_empty(), "no arrival view with a footprint");
+        let bits: Vec<usize> = t
+            .depart
+            .words
+            .iter()
+            .enumerate()
+            .flat_map(|(n, word)| {
+                (0..64).filter(move |b| word >> b & 1 == 1).map(move |b| (t.depart.first as usize + n) * 64 + b)
+            })
+            .collect();
+        // A 0.6 m footprint (4 px) along an edge of at least one grid step sweeps at least
+        // 4 px x the edge's length in pixels (less the half-open end), all of them free.
+        assert!(bits.len() as f64 >= 3.0 * t.dist, "{} pixels for {} px", bits.len(), t.dist);
+        assert!(bits.iter().all(|&b| !w.map.occluded[b]));
     }
 
     #[test]
