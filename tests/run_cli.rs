@@ -189,3 +189,40 @@ fn parameter_control_schedules_show_in_the_history() {
     let (pm, pc) = (column(&hist, "p_ma"), column(&hist, "p_c"));
     assert!(pm[1] < 0.001 && (pm[200] - 1.0).abs() < 1e-12 && pc[200].abs() < 1e-12);
 }
+
+#[test]
+fn every_planner_runs_alone_and_random_search_is_deterministic() {
+    let dir = tempfile::tempdir().unwrap();
+    for (planner, extra) in [
+        ("random_search", "evaluations = 2000\n"),
+        ("spiral", ""),
+        ("boustrophedon", ""),
+    ] {
+        let text = format!(
+            "seed = 3\nplanner = \"{planner}\"\n[map]\nsource = \"thesis-2\"\n[thesis]\npop_min = 40\ninit_actions = 30\n[budget]\n{extra}"
+        );
+        let exp = write(dir.path(), &format!("{planner}.toml"), &text);
+        let (a, b) = (dir.path().join(format!("{planner}-1")), dir.path().join(format!("{planner}-2")));
+        for (out, threads) in [(&a, "1"), (&b, "2")] {
+            let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], threads);
+            assert!(o.status.success(), "{planner}: {}", String::from_utf8_lossy(&o.stderr));
+        }
+        for f in ["config.toml", "best_path.csv", "history.csv", "path.svg"] {
+            assert_eq!(read(&a.join(f)), read(&b.join(f)), "{planner}: {f} differs between 1 and 2 threads");
+        }
+        assert_eq!(summary_without_time(&a), summary_without_time(&b), "{planner}");
+        let s = summary_without_time(&a);
+        assert_eq!(s["planner"], planner);
+        assert!(s["score"]["cov_final_reach"].as_f64().unwrap() > 0.1, "{planner}: {s}");
+    }
+    // Random search spends its evaluation budget and no more than one batch beyond it.
+    let s = summary_without_time(&dir.path().join("random_search-1"));
+    let e = s["evaluations"].as_u64().unwrap();
+    assert!((2000..2000 + 80).contains(&e), "{e}");
+    assert_eq!(s["stop"], "evaluations");
+    // Patterns on thesis-2 report their pockets (none: the disc leaves no pocket a 0.6 m robot
+    // cannot reach) and are feasible.
+    let s = summary_without_time(&dir.path().join("spiral-1"));
+    assert_eq!(s["pockets"], 0);
+    assert_eq!(s["feasible"], true);
+}

@@ -1,6 +1,8 @@
 //! Run-time estimates for `covga grid --dry-run`: from runs already recorded in the study
 //! folder, or from a calibration of three short runs per branch, timed on one thread and
-//! extrapolated as `t_init + (t_short − t_init)·Iter_max / short`.
+//! extrapolated as `t_init + (t_short − t_init)·full / short`, where `full / short` is the
+//! ratio of evaluation budgets when the study fixes evaluations, else of iterations
+//! (deterministic planners are timed whole).
 
 use super::grid::Study;
 use super::records::RunsTable;
@@ -82,19 +84,35 @@ pub fn calibrate(study: &Study) -> Result<Vec<BranchTime>, StudyError> {
         for &k in &picks {
             let run = members[k.min(members.len() - 1)];
             let exp = experiment_of(study, run, &maps)?;
-            let full = exp.budget.iterations;
-            let short = (full / 10).clamp(1, 200).min(full.max(1));
             let planner = exp.planner.planner();
-            let time = |iterations: u32| {
-                let budget = crate::planner::Budget { iterations, ..exp.budget };
+            let time = |budget: crate::planner::Budget| {
                 let t = Instant::now();
                 pool.install(|| planner.run(&exp.scenario, exp.seed, &budget, &mut []))
                     .map(|_| t.elapsed().as_secs_f64())
             };
             let io = |e: crate::planner::PlannerError| StudyError::Run { id: run.id.clone(), message: e.to_string() };
-            let t_init = time(0).map_err(io)?;
+            if planner.deterministic() {
+                total += time(exp.budget).map_err(io)?;
+                continue;
+            }
+            // Set-up and initial population: a budget of one evaluation stops every GA there.
+            let init = crate::planner::Budget { iterations: 0, evaluations: Some(1), ..exp.budget };
+            let t_init = time(init).map_err(io)?;
+            // A tenth of the budget (evaluations when the study fixes them, else iterations),
+            // extrapolated linearly beyond the set-up.
+            let (short, scale) = match exp.budget.evaluations {
+                Some(e) => {
+                    let short = (e / 10).max(1);
+                    (crate::planner::Budget { evaluations: Some(short), ..exp.budget }, e as f64 / short as f64)
+                }
+                None => {
+                    let full = exp.budget.iterations;
+                    let short = (full / 10).clamp(1, 200).min(full.max(1));
+                    (crate::planner::Budget { iterations: short, ..exp.budget }, f64::from(full) / f64::from(short))
+                }
+            };
             let t_short = time(short).map_err(io)?;
-            total += t_init + (t_short - t_init).max(0.0) * f64::from(full) / f64::from(short);
+            total += t_init + (t_short - t_init).max(0.0) * scale;
         }
         out.push(BranchTime { branch, runs, seconds_per_run: total / picks.len() as f64, samples: picks.len() });
     }

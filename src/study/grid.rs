@@ -214,6 +214,15 @@ impl Study {
             let cax = values_of(&c.axes, &origin, &section)?;
             for (k, v) in &cax {
                 check_key(&base, k, &v[0], &origin, &section)?;
+                // Overriding an unconditional axis would fold its values into one
+                // configuration: several runs with one id. Say so instead.
+                if axes.iter().any(|(a, _)| a == k) {
+                    return Err(ConfigError::new(
+                        &origin,
+                        &format!("{section}.\"{k}\""),
+                        "is also an unconditional axis; a conditional axis may not override it (move its values into the conditional, or split the axis into conditionals)",
+                    ));
+                }
                 if !columns.contains(k) {
                     columns.push(k.clone());
                 }
@@ -284,6 +293,20 @@ impl Study {
                 }
             }
         }
+        // Two conditionals setting one key can still fold configurations together.
+        let mut seen: std::collections::HashMap<&str, &RunSpec> = std::collections::HashMap::new();
+        for r in &runs {
+            if let Some(first) = seen.insert(&r.id, r) {
+                return Err(ConfigError::new(
+                    &origin,
+                    "conditional",
+                    format!(
+                        "two runs resolve to one configuration (run id {}: branches `{}` and `{}`); conditional axes that set the same key must not both apply",
+                        r.id, first.branch, r.branch
+                    ),
+                ));
+            }
+        }
         Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs })
     }
 
@@ -350,4 +373,57 @@ fn self_runs(
 fn default_has(key: &str) -> bool {
     let t = Table::try_from(ExperimentFile::default()).expect("experiment files serialise");
     get(&t, key).is_some()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> Result<Study, ConfigError> {
+        Study::parse(text, Path::new("g.toml"))
+    }
+
+    const BASE: &str = "[base]\n[base.budget]\niterations = 10\n";
+
+    #[test]
+    fn a_conditional_may_not_override_an_unconditional_axis() {
+        let text = format!(
+            "{BASE}[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n\"thesis.selection\" = [\"elite\", \"tournament\"]\n[[conditional]]\nwhen = {{ \"thesis.selection\" = \"tournament\" }}\naxes = {{ \"thesis.c_len\" = [0.8] }}\n"
+        );
+        let e = parse(&text).unwrap_err();
+        assert!(e.key.contains("thesis.c_len") && e.message.contains("unconditional axis"), "{e}");
+    }
+
+    #[test]
+    fn two_conditionals_folding_configurations_are_refused() {
+        let text = format!(
+            "{BASE}[axes]\n\"thesis.selection\" = [\"elite\", \"prws\"]\n[[conditional]]\nwhen = {{ \"thesis.selection\" = \"prws\" }}\naxes = {{ \"thesis.p_mi\" = [0.1, 0.2] }}\n[[conditional]]\nwhen = {{ \"thesis.selection\" = \"prws\" }}\naxes = {{ \"thesis.p_mi\" = [0.3] }}\n"
+        );
+        let e = parse(&text).unwrap_err();
+        assert!(e.message.contains("one configuration"), "{e}");
+    }
+
+    #[test]
+    fn chained_and_numeric_conditionals_expand_with_distinct_ids() {
+        // c_len 0.4 (numeric `when`) gets two C_child values; C_child 2 (set by that
+        // conditional) gets two P_mA values: 1 + (1 + 2) = 4 configurations, 2 seeds each.
+        let text = format!(
+            "seeds = 2\n{BASE}[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n[[conditional]]\nwhen = {{ \"thesis.c_len\" = 0.4 }}\naxes = {{ \"thesis.c_child\" = [0, 2] }}\n[[conditional]]\nwhen = {{ \"thesis.c_child\" = 2, \"thesis.c_len\" = 0.4 }}\naxes = {{ \"thesis.p_ma\" = [0.0, 0.1] }}\n"
+        );
+        let s = parse(&text).unwrap();
+        assert_eq!(s.runs.len(), 2 * (1 + 1 + 2), "{:?}", s.branches());
+        let ids: std::collections::BTreeSet<&str> = s.runs.iter().map(|r| r.id.as_str()).collect();
+        assert_eq!(ids.len(), s.runs.len());
+        // The default C_child is 2: with c_len 0.1 the second conditional does not apply
+        // (c_len differs), so the 0.1 configuration keeps its defaults.
+        assert_eq!(s.runs.iter().filter(|r| r.file.thesis.c_len == 0.1).count(), 2);
+    }
+
+    #[test]
+    fn deterministic_planners_run_once_whatever_the_seeds() {
+        let text = format!("seeds = 3\n{BASE}[axes]\n\"planner\" = [\"thesis\", \"spiral\", \"boustrophedon\"]\n");
+        let s = parse(&text).unwrap();
+        assert_eq!(s.runs.len(), 3 + 1 + 1);
+        assert!(s.runs.iter().filter(|r| r.file.planner.is_deterministic()).all(|r| r.replicate == 0));
+    }
 }
