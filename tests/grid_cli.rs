@@ -319,3 +319,53 @@ fn bad_planner_sections_are_rejected_with_the_key() {
         assert!(err.contains(needle) && err.contains("bad.toml"), "{text}: expected `{needle}` in {err}");
     }
 }
+
+#[test]
+fn a_study_folder_keeps_its_identity_and_one_writer() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = grid_file(dir.path());
+    let out = dir.path().join("s");
+    ok(&covga(&["grid", g.to_str().unwrap(), "--out", out.to_str().unwrap(), "--jobs", "2"]));
+    // Another grid (fewer iterations) into the same folder is refused and nothing changes.
+    let other = dir.path().join("other.toml");
+    std::fs::write(&other, GRID.replace("iterations = 60", "iterations = 30")).unwrap();
+    let before = std::fs::read(out.join("runs.csv")).unwrap();
+    let o = covga(&["grid", other.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("another study") && err.contains("g.toml") && err.contains("other.toml"), "{err}");
+    assert_eq!(std::fs::read(out.join("runs.csv")).unwrap(), before);
+    assert!(std::fs::read_to_string(out.join("grid.toml")).unwrap().contains("iterations = 60"));
+    // While another process holds the study's lock, a second runner is refused.
+    let fresh = dir.path().join("locked");
+    std::fs::create_dir_all(&fresh).unwrap();
+    let lock = covga::study::runner::StudyLock::take(&fresh.join("runs.csv")).unwrap();
+    let o = covga(&["grid", g.to_str().unwrap(), "--out", fresh.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("another covga process"));
+    assert!(!fresh.join("runs.csv").exists(), "nothing written while locked");
+    drop(lock);
+    ok(&covga(&["grid", g.to_str().unwrap(), "--out", fresh.to_str().unwrap()]));
+    // A report of a folder that is not a study is refused.
+    let o = covga(&["report", dir.path().to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("not a study folder"));
+}
+
+#[test]
+fn merge_refuses_missing_shards_unless_partial() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = grid_file(dir.path());
+    let out = dir.path().join("sh");
+    for k in [0, 2] {
+        ok(&covga(&["grid", g.to_str().unwrap(), "--shard", &format!("{k}/3"), "--out", out.to_str().unwrap()]));
+    }
+    let m = covga(&["merge", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&m.stderr);
+    assert_eq!(m.status.code(), Some(2), "{err}");
+    assert!(err.contains("runs-shard-1-of-3.csv") && err.contains("of 12 runs"), "{err}");
+    assert!(!out.join("runs.csv").exists(), "nothing merged");
+    let m = covga(&["merge", out.to_str().unwrap(), "--allow-partial"]);
+    ok(&m);
+    assert!(String::from_utf8_lossy(&m.stderr).contains("partial merge, missing runs-shard-1-of-3.csv"));
+}

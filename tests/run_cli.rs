@@ -193,11 +193,7 @@ fn parameter_control_schedules_show_in_the_history() {
 #[test]
 fn every_planner_runs_alone_and_random_search_is_deterministic() {
     let dir = tempfile::tempdir().unwrap();
-    for (planner, extra) in [
-        ("random_search", "evaluations = 2000\n"),
-        ("spiral", ""),
-        ("boustrophedon", ""),
-    ] {
+    for (planner, extra) in [("random_search", "evaluations = 2000\n"), ("spiral", ""), ("boustrophedon", "")] {
         let text = format!(
             "seed = 3\nplanner = \"{planner}\"\n[map]\nsource = \"thesis-2\"\n[thesis]\npop_min = 40\ninit_actions = 30\n[budget]\n{extra}"
         );

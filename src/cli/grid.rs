@@ -47,6 +47,9 @@ pub struct GridArgs {
 pub struct MergeArgs {
     /// Study folder holding runs-shard-*.csv files.
     dir: PathBuf,
+    /// Merge what is there even when shards or runs are missing (and say what is missing).
+    #[arg(long)]
+    allow_partial: bool,
 }
 
 pub fn run(a: GridArgs) -> Result<(), CliError> {
@@ -158,11 +161,11 @@ fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str) -> Result<(), Cl
 }
 
 pub fn merge(a: MergeArgs) -> Result<(), CliError> {
-    let (files, runs) = crate::study::merge::merge(&a.dir).map_err(|e| match e {
-        crate::study::merge::MergeError::File { .. } => CliError::internal(e),
-        other => CliError::input(other),
-    })?;
+    let (files, runs, missing) = crate::study::merge::merge(&a.dir, a.allow_partial).map_err(CliError::input)?;
     println!("merged {files} files into {} ({runs} runs)", a.dir.join("runs.csv").display());
+    if !missing.is_empty() {
+        eprintln!("warning: partial merge, missing {}", missing.join(", "));
+    }
     Ok(())
 }
 

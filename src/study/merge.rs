@@ -23,10 +23,32 @@ pub enum MergeError {
     /// The same run id with different results.
     #[error("{0}")]
     Conflict(String),
+    /// Shards or runs are missing.
+    #[error("{0}")]
+    Incomplete(String),
 }
 
-/// Merges the runs files of `dir` into `dir/runs.csv`; returns (files, runs).
-pub fn merge(dir: &Path) -> Result<(usize, usize), MergeError> {
+/// Shard files `runs-shard-K-of-N.csv` that should be there but are not.
+fn missing_shards(names: &[String]) -> Vec<String> {
+    let mut counts: BTreeMap<usize, std::collections::BTreeSet<usize>> = BTreeMap::new();
+    for n in names {
+        let Some(rest) = n.strip_prefix("runs-shard-").and_then(|r| r.strip_suffix(".csv")) else { continue };
+        if let Some((k, n)) = rest.split_once("-of-")
+            && let (Ok(k), Ok(n)) = (k.parse::<usize>(), n.parse::<usize>())
+        {
+            counts.entry(n).or_default().insert(k);
+        }
+    }
+    counts
+        .iter()
+        .flat_map(|(&n, have)| (0..n).filter(|k| !have.contains(k)).map(move |k| format!("runs-shard-{k}-of-{n}.csv")))
+        .collect()
+}
+
+/// Merges the runs files of `dir` into `dir/runs.csv`; returns (files, runs, what is missing).
+/// A missing shard file, or fewer runs than `study.json` records, is an error unless
+/// `allow_partial`, when it is reported in the third value instead.
+pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<String>), MergeError> {
     let mut files: Vec<_> = std::fs::read_dir(dir)
         .map_err(|e| MergeError::File { path: dir.display().to_string(), message: e.to_string() })?
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -76,8 +98,40 @@ pub fn merge(dir: &Path) -> Result<(usize, usize), MergeError> {
         }
     }
     table.rows = merged.into_values().map(|(r, _)| r).collect();
+    let names: Vec<String> =
+        files.iter().filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
+    let mut missing = missing_shards(&names);
+    let expected = std::fs::read_to_string(dir.join("study.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .and_then(|v| v["runs"].as_u64());
+    if let Some(n) = expected
+        && (table.rows.len() as u64) < n
+    {
+        missing.push(format!("{} of {n} runs", n - table.rows.len() as u64));
+    }
+    if !missing.is_empty() && !allow_partial {
+        return Err(MergeError::Incomplete(format!(
+            "{}: the study is incomplete, missing {}; rerun the missing shards (or merge with --allow-partial)",
+            dir.display(),
+            missing.join(", ")
+        )));
+    }
     let out = dir.join("runs.csv");
     crate::io::write_atomic(&out, &table.to_csv_sorted())
         .map_err(|e| MergeError::File { path: out.display().to_string(), message: e.to_string() })?;
-    Ok((files.len(), table.rows.len()))
+    Ok((files.len(), table.rows.len(), missing))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn missing_shards_are_named() {
+        let names: Vec<String> =
+            ["runs-shard-0-of-3.csv", "runs-shard-2-of-3.csv", "runs.csv"].iter().map(|s| s.to_string()).collect();
+        assert_eq!(missing_shards(&names), vec!["runs-shard-1-of-3.csv".to_string()]);
+        assert!(missing_shards(&["runs.csv".to_string()]).is_empty());
+    }
 }

@@ -60,6 +60,12 @@ fn median(v: &mut [f64]) -> f64 {
 
 /// Writes `<dir>/report/` and returns the path of `summary.md`.
 pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, ReportError> {
+    if !dir.join("study.json").is_file() {
+        return Err(ReportError::Input(format!(
+            "{}: not a study folder (no study.json); run `covga grid` into it first",
+            dir.display()
+        )));
+    }
     let runs_file = dir.join("runs.csv");
     let text = std::fs::read_to_string(&runs_file).map_err(|e| {
         let shards = std::fs::read_dir(dir)
@@ -148,7 +154,8 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             .collect();
         div_groups.push(DiversityGroup { label: g.label.clone(), runs: curves.len(), curve });
     }
-    if !div_groups.is_empty() {
+    let wrote_diversity = !div_groups.is_empty();
+    if wrote_diversity {
         crate::plot::save(&DiversityFigure { groups: div_groups }, &out.join("diversity"))?;
     }
     // Best run per group, its path.
@@ -172,7 +179,8 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
         let title = format!("{}: cov {:.3}, t {:.3}", g.label, num(r, "cov_final_free"), num(r, "t_final"));
         loaded.push((map, grid, paths, cfg.robot.width, title));
     }
-    if !loaded.is_empty() {
+    let wrote_paths = !loaded.is_empty();
+    if wrote_paths {
         let panels = loaded
             .iter()
             .map(|(map, grid, paths, width, title)| PathFigure {
@@ -229,10 +237,13 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
         replicates,
         if by.is_empty() { "nothing (one group)".to_string() } else { by.join(", ") }
     );
-    let _ = writeln!(
-        md,
-        "![Pareto fronts](pareto.png)\n\n![Diversity of the front runs](diversity.png)\n\n![Best path per group](best_paths.png)\n"
-    );
+    let _ = writeln!(md, "![Pareto fronts](pareto.png)\n");
+    if wrote_diversity {
+        let _ = writeln!(md, "![Diversity of the front runs](diversity.png)\n");
+    }
+    if wrote_paths {
+        let _ = writeln!(md, "![Best path per group](best_paths.png)\n");
+    }
     if super::ablation::applies(&t) {
         md.push_str(&super::ablation::compare(dir, &t, &out)?.markdown);
     }

@@ -148,12 +148,74 @@ pub fn validate_runs(study: &Study, runs: &[&RunSpec], maps: &MapCache) -> Resul
     runs.iter().try_for_each(|run| experiment_of(study, run, maps).map(|_| ()))
 }
 
-/// Writes `grid.toml` and `study.json` (version, commit, counts) into the study folder.
+/// The identity of a study: a hash of its sorted run ids (each the hash of a fully resolved
+/// configuration and replicate), so two grids that expand to the same runs are one study.
+pub fn grid_hash(study: &Study) -> String {
+    let mut ids: Vec<&str> = study.runs.iter().map(|r| r.id.as_str()).collect();
+    ids.sort_unstable();
+    format!("{:016x}", super::grid::fnv1a(ids.join("\n").as_bytes()))
+}
+
+/// Refuses a folder that holds another study (a different `grid_hash` in its `study.json`).
+pub fn check_identity(study: &Study, out: &Path) -> Result<(), StudyError> {
+    let path = out.join("study.json");
+    let Ok(text) = std::fs::read_to_string(&path) else { return Ok(()) };
+    let meta: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| StudyError::Mismatch { path: path.clone(), message: format!("not a study description: {e}") })?;
+    let recorded = meta["grid_hash"].as_str().unwrap_or_default();
+    let ours = grid_hash(study);
+    if !recorded.is_empty() && recorded != ours {
+        return Err(StudyError::Mismatch {
+            path,
+            message: format!(
+                "this folder holds another study (grid {}, {} runs, hash {recorded}); {} expands to {} runs with hash {ours}: use another --out folder",
+                meta["grid_file"].as_str().unwrap_or("?"),
+                meta["runs"],
+                study.path.display(),
+                study.runs.len()
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// An advisory lock on a study's runs file, held while a process writes it and released by
+/// the operating system when the process ends, however it ends.
+pub struct StudyLock {
+    _file: std::fs::File,
+}
+
+impl StudyLock {
+    /// Takes the lock of `runs_file` (a `.lock` file beside it), or says who holds it.
+    pub fn take(runs_file: &Path) -> Result<Self, StudyError> {
+        let name = runs_file.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+        let path = runs_file.with_file_name(format!(".{name}.lock"));
+        let file =
+            std::fs::OpenOptions::new().create(true).truncate(false).write(true).open(&path).map_err(io(&path))?;
+        #[cfg(unix)]
+        {
+            use std::os::fd::AsRawFd;
+            // SAFETY: flock on a file descriptor this function owns; no memory is shared.
+            let rc = unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) };
+            if rc != 0 {
+                return Err(StudyError::Mismatch {
+                    path: runs_file.to_path_buf(),
+                    message: "another covga process is running this study (or shard) in this folder now; wait for it to finish".into(),
+                });
+            }
+        }
+        Ok(Self { _file: file })
+    }
+}
+
+/// Writes `grid.toml` and `study.json` (version, commit, counts, identity) into the study
+/// folder.
 pub fn write_study_files(study: &Study, out: &Path) -> Result<(), StudyError> {
     std::fs::create_dir_all(out).map_err(io(out))?;
     crate::io::write_atomic(&out.join("grid.toml"), study.text.as_bytes()).map_err(io(out))?;
     let meta = serde_json::json!({
         "grid_file": study.path.display().to_string(),
+        "grid_hash": grid_hash(study),
         "covga_version": env!("CARGO_PKG_VERSION"),
         "git_commit": env!("COVGA_GIT_COMMIT"),
         "runs": study.runs.len(),
@@ -173,8 +235,11 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     // experiments are not kept (memory stays flat); each worker validates its run again.
     let maps = MapCache::default();
     validate_runs(study, &selected, &maps)?;
-    write_study_files(study, &opts.out)?;
+    check_identity(study, &opts.out)?;
+    std::fs::create_dir_all(&opts.out).map_err(io(&opts.out))?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
+    let _lock = StudyLock::take(&file)?;
+    write_study_files(study, &opts.out)?;
     let head = header(&study.columns);
     let done_ids = recorded_ids(&file, &head)?;
     let pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
