@@ -52,11 +52,11 @@ pub struct EvalArgs {
     /// Rotation speed R_rot in rad/s (0 = no rotation cost).
     #[arg(long = "rot-speed", default_value_t = 0.0)]
     rot_speed: f64,
-    /// Start station X,Y in metres (patterns only).
-    #[arg(long, default_value = "1.3,1.3")]
+    /// Start station X,Y in metres (patterns only); negative values as typed (`-17.4,-1.55`).
+    #[arg(long, default_value = "1.3,1.3", allow_hyphen_values = true)]
     start: String,
     /// End station X,Y in metres (default: the start).
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true)]
     end: Option<String>,
     /// Projection f of the fitness (003 eqs. 3.14–3.15).
     #[arg(long, value_enum, default_value = "f1")]
@@ -181,7 +181,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         pocket_area_m2: pockets.map(|p| p.1),
     };
     let json = serde_json::to_string_pretty(&report).map_err(CliError::internal)?;
-    std::fs::create_dir_all(&a.out).map_err(|e| CliError::Internal(format!("{}: {e}", a.out.display())))?;
+    std::fs::create_dir_all(&a.out)
+        .map_err(|e| CliError::Input(format!("{}: cannot create the output folder: {e}", a.out.display())))?;
     crate::io::write_atomic(&a.out.join("metrics.json"), json.as_bytes()).map_err(CliError::internal)?;
     crate::io::write_atomic(&a.out.join("path.csv"), &crate::io::path_csv(&paths)).map_err(CliError::internal)?;
     let figure = PathFigure {

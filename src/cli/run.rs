@@ -63,6 +63,8 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     }
     let exp = file.validate(&origin, &base, &stem).map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| CliError::Input(format!("{}: cannot create the results folder: {e}", dir.display())))?;
     let show = !a.quiet && std::io::stderr().is_terminal();
     let length = match exp.file.planner {
         PlannerKind::Waypoint => exp.file.waypoint.generations,

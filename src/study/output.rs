@@ -52,6 +52,10 @@ impl HistoryCsv {
         let out = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
         Ok(Self { tmp, path, out, header_written: false })
     }
+    /// Removes the temporary file (the run was refused).
+    pub fn discard(self) {
+        let _ = std::fs::remove_file(&self.tmp);
+    }
     /// Flushes, syncs and renames into place.
     pub fn finish(mut self) -> std::io::Result<()> {
         if !self.header_written {
@@ -121,19 +125,27 @@ pub fn run_experiment(
     extra: &mut [&mut dyn Observer],
 ) -> Result<(RunOutcome, Summary), OutputError> {
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
-    let config = toml::to_string_pretty(&exp.file).expect("experiment files serialise");
-    crate::io::write_atomic(&dir.join("config.toml"), config.as_bytes()).map_err(io_err(dir))?;
     let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
     let planner = exp.planner.planner();
     let outcome = {
         let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
         observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
-        planner.run(&exp.scenario, exp.seed, &exp.budget, &mut observers).map_err(|e| match e {
-            PlannerError::Input(m) => OutputError::Planner(m),
-            PlannerError::Io(e) => OutputError::Io { path: dir.join("history.csv"), source: e },
-        })?
+        planner.run(&exp.scenario, exp.seed, &exp.budget, &mut observers)
+    };
+    let outcome = match outcome {
+        Ok(o) => o,
+        Err(e) => {
+            // A refused run leaves nothing behind: not even its partial history.
+            history.discard();
+            return Err(match e {
+                PlannerError::Input(m) => OutputError::Planner(m),
+                PlannerError::Io(e) => OutputError::Io { path: dir.join("history.csv"), source: e },
+            });
+        }
     };
     history.finish().map_err(io_err(dir))?;
+    let config = toml::to_string_pretty(&exp.file).expect("experiment files serialise");
+    crate::io::write_atomic(&dir.join("config.toml"), config.as_bytes()).map_err(io_err(dir))?;
     let write = |name: &str, bytes: &[u8]| crate::io::write_atomic(&dir.join(name), bytes).map_err(io_err(dir));
     write("best_path.csv", &crate::io::path_csv(&outcome.plan))?;
     for (name, bytes) in &outcome.files {
