@@ -127,9 +127,12 @@ mod tests {
         for (i, (path, cov, cross, obj, turn_deg)) in cases.into_iter().enumerate() {
             let m = fp.measure(&grid, &mut scratch, path);
             assert_eq!((m.cells_swept, m.crossings, m.obstacle_cells), (cov, cross, obj), "case {i}");
+            assert_eq!(m.unique_cells, cov - cross, "case {i}: unique = cov_pix − cross_pix");
             assert!((m.total_turn_rad.to_degrees() - turn_deg).abs() < 1e-9, "case {i}");
         }
         let m = fp.measure(&grid, &mut scratch, cases[3].0);
         assert!((m.t_rot_s - 0.625).abs() < 1e-12);
+        // Out and back along one lane: 45 cells, then 42 of the return's 45 already swept.
+        assert_eq!(fp.measure(&grid, &mut scratch, cases[2].0).unique_cells, 48);
     }
 }
