@@ -164,29 +164,34 @@ fn killed_study_resumes_to_the_same_results() {
     let g = grid_file(dir.path());
     let (reference, killed) = (dir.path().join("reference"), dir.path().join("killed"));
     ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", reference.to_str().unwrap()]));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_covga"))
+    // Killed deterministically after 4 recorded runs (the runner's fault-injection switch aborts
+    // the process like SIGKILL would: no clean-up, the lock released by the OS).
+    let killed_run = Command::new(env!("CARGO_BIN_EXE_covga"))
         .args(["grid", g.to_str().unwrap(), "--jobs", "1", "--out", killed.to_str().unwrap()])
+        .env(covga::study::runner::ABORT_AFTER_ENV, "4")
         .stdout(Stdio::null())
         .stderr(Stdio::null())
-        .spawn()
+        .status()
         .unwrap();
+    assert!(!killed_run.success());
     let runs = killed.join("runs.csv");
-    let start = std::time::Instant::now();
-    loop {
-        let n = std::fs::read_to_string(&runs).map(|t| t.lines().count()).unwrap_or(0);
-        if n >= 4 || start.elapsed().as_secs() > 60 {
-            break;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    child.kill().unwrap(); // SIGKILL
-    child.wait().unwrap();
     let recorded = std::fs::read_to_string(&runs).unwrap().lines().count() - 1;
-    assert!(recorded < 12, "the study should have been killed mid-way ({recorded} runs)");
+    assert_eq!(recorded, 4, "the study stopped after its fourth run");
     // Simulate a torn write of the next row.
     let mut f = std::fs::OpenOptions::new().append(true).open(&runs).unwrap();
     std::io::Write::write_all(&mut f, b"deadbeef00000000,half").unwrap();
     drop(f);
+    // Killed again after 3 more runs (with two jobs), then resumed to the end.
+    let again = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["grid", g.to_str().unwrap(), "--jobs", "2", "--out", killed.to_str().unwrap()])
+        .env(covga::study::runner::ABORT_AFTER_ENV, "3")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .unwrap();
+    assert!(!again.success());
+    let recorded = std::fs::read_to_string(&runs).unwrap().lines().count() - 1;
+    assert!((7..12).contains(&recorded), "{recorded} runs after the second kill");
     let resumed = covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", killed.to_str().unwrap()]);
     ok(&resumed);
     assert!(String::from_utf8_lossy(&resumed.stdout).contains(&format!("{recorded} already recorded")));

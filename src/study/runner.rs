@@ -83,6 +83,10 @@ impl Shard {
     }
 }
 
+/// Environment variable for crash tests: abort the process (as if killed) right after this
+/// many runs were recorded by this invocation.
+pub const ABORT_AFTER_ENV: &str = "COVGA_ABORT_AFTER_RUNS";
+
 /// Progress of a study, handed to the caller after every run.
 pub struct RunDone<'a> {
     /// The run.
@@ -254,6 +258,8 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let failed = AtomicBool::new(false);
     let first_error: Mutex<Option<StudyError>> = Mutex::new(None);
     let counter = AtomicUsize::new(0);
+    let written = AtomicUsize::new(0);
+    let abort_after: Option<usize> = std::env::var(ABORT_AFTER_ENV).ok().and_then(|v| v.parse().ok());
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(opts.jobs.max(1))
         .build()
@@ -276,6 +282,12 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
                 w.write_all(&line).map_err(io(&file))?;
                 w.flush().map_err(io(&file))?;
                 w.sync_data().map_err(io(&file))?;
+                let recorded = written.fetch_add(1, Ordering::SeqCst) + 1;
+                if abort_after == Some(recorded) {
+                    // Fault injection for crash-and-resume tests: die like a killed process,
+                    // with this run's row on disk and nothing cleaned up.
+                    std::process::abort();
+                }
                 Ok((summary.score.cov_final_reach, summary.score.t_final, summary.wall_s))
             })();
             match result {
