@@ -126,6 +126,8 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         "![Box plots](boxplots_cov.png)\n\n![Box plots](boxplots_time.png)\n\n![Convergence](convergence.png)\n\n![Best paths](planner_paths.png)\n"
     );
     let mut findings = Vec::new();
+    // (map, metric, first, second) -> (Holm p, A12), for the sentences below.
+    let mut tested: BTreeMap<(String, &str, String, String), (f64, f64)> = BTreeMap::new();
     for map in &maps {
         let name = short_map(map);
         let present: Vec<&String> = variants.iter().filter(|v| !rows_of(map, v).is_empty()).collect();
@@ -177,6 +179,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             for (k, (a, b, na, nb, test, a12)) in pairs.iter().enumerate() {
                 let u = test.map_or(f64::NAN, |t| t.u);
                 let _ = writeln!(pair_csv, "{name},{metric},{a},{b},{na},{nb},{u},{},{},{a12}", raw[k], adjusted[k]);
+                tested.insert((name.clone(), metric, a.to_string(), b.to_string()), (adjusted[k], *a12));
                 let _ =
                     writeln!(md, "| {metric} | {a} | {b} | {:.2e} | {a12:.2} | {} |", adjusted[k], a12_magnitude(*a12));
                 if metric == "cov_final_reach" && b.as_str() == "random_search" && a.starts_with("thesis") {
@@ -190,6 +193,33 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             }
         }
         let _ = writeln!(md);
+        // Search versus objective: the same search with two objectives, and two searches with
+        // the footprint objective.
+        let pair = |a: &str, b: &str, metric: &'static str| {
+            tested
+                .get(&(name.clone(), metric, a.to_string(), b.to_string()))
+                .copied()
+                .or_else(|| tested.get(&(name.clone(), metric, b.to_string(), a.to_string())).map(|&(p, x)| (p, 1.0 - x)))
+        };
+        if let Some((p, a12)) = pair("waypoint-footprint", "waypoint-camera", "cov_final_reach") {
+            let cam = pair("waypoint-footprint", "waypoint-camera", "cam_walls_free");
+            findings.push(format!(
+                "On {name}, the waypoint search optimising the footprint instead of the camera: footprint coverage A₁₂ = {a12:.2} ({}, p = {p:.1e}){}.",
+                a12_magnitude(a12),
+                cam.map_or(String::new(), |(p, x)| format!(
+                    ", camera wall coverage A₁₂ = {x:.2} ({}, p = {p:.1e})",
+                    a12_magnitude(x)
+                ))
+            ));
+        }
+        if let Some((p, a12)) = pair("waypoint-footprint", "thesis-elite", "cov_final_reach") {
+            findings.push(format!(
+                "On {name}, with the footprint objective for both, the waypoint-graph search against the thesis GA (Elite): A₁₂ = {a12:.2} ({}, p = {p:.1e}) for footprint coverage; t_final medians {:.3} and {:.3}.",
+                a12_magnitude(a12),
+                quartiles(&rows_of(map, "waypoint-footprint").iter().map(|&r| num(r, "t_final")).collect::<Vec<_>>()).1,
+                quartiles(&rows_of(map, "thesis-elite").iter().map(|&r| num(r, "t_final")).collect::<Vec<_>>()).1,
+            ));
+        }
         // Findings per map: coverage and time leaders.
         let med = |v: &String, c: &str| quartiles(&rows_of(map, v).iter().map(|&r| num(r, c)).collect::<Vec<_>>()).1;
         let mut by_cov: Vec<&String> = present.clone();
