@@ -196,10 +196,9 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         // Search versus objective: the same search with two objectives, and two searches with
         // the footprint objective.
         let pair = |a: &str, b: &str, metric: &'static str| {
-            tested
-                .get(&(name.clone(), metric, a.to_string(), b.to_string()))
-                .copied()
-                .or_else(|| tested.get(&(name.clone(), metric, b.to_string(), a.to_string())).map(|&(p, x)| (p, 1.0 - x)))
+            tested.get(&(name.clone(), metric, a.to_string(), b.to_string())).copied().or_else(|| {
+                tested.get(&(name.clone(), metric, b.to_string(), a.to_string())).map(|&(p, x)| (p, 1.0 - x))
+            })
         };
         if let Some((p, a12)) = pair("waypoint-footprint", "waypoint-camera", "cov_final_reach") {
             let cam = pair("waypoint-footprint", "waypoint-camera", "cam_walls_free");
