@@ -10,6 +10,7 @@ pub mod report;
 pub mod waypoint;
 
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::path::Path;
 use std::sync::Once;
@@ -77,6 +78,60 @@ pub fn save<F: Figure>(figure: &F, stem: &Path) -> Result<(), PlotError> {
         root.present().map_err(|e| fail("svg", err(e)))?;
     }
     crate::io::write_atomic(&stem.with_extension("svg"), svg.as_bytes()).map_err(|e| fail("svg", e.to_string()))
+}
+
+/// Margins `(top, bottom, left, right)` in pixels that make a chart's plotting area show
+/// `extent_m = (width, height)` metres at one scale on both axes, in an area of `area_px`
+/// pixels with the given label-area sizes and base margin.
+pub fn equal_scale_margins(
+    area_px: (u32, u32),
+    labels_px: (u32, u32),
+    margin: u32,
+    extent_m: (f64, f64),
+) -> (u32, u32, u32, u32) {
+    let (x_label, y_label) = labels_px;
+    let pw = area_px.0.saturating_sub(y_label + 2 * margin) as f64;
+    let ph = area_px.1.saturating_sub(x_label + 2 * margin) as f64;
+    let aspect = extent_m.1 / extent_m.0;
+    if pw <= 0.0 || ph <= 0.0 || !aspect.is_finite() {
+        return (margin, margin, margin, margin);
+    }
+    if ph > pw * aspect {
+        let extra = (ph - pw * aspect).round() as u32;
+        (margin + extra / 2, margin + extra - extra / 2, margin, margin)
+    } else {
+        let extra = (pw - ph / aspect).round() as u32;
+        (margin, margin, margin + extra / 2, margin + extra - extra / 2)
+    }
+}
+
+/// Builds a chart of `x` × `y` metres in `area` at one scale on both axes: the title is drawn
+/// above, and the plotting area is padded to the map's aspect ratio.
+pub fn equal_scale_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    title: &str,
+    title_font: f64,
+    labels_px: (u32, u32),
+    margin: u32,
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
+) -> Result<ChartContext<'a, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>, String> {
+    // The caption takes its text height plus padding (plotters' `titled`).
+    let (_, text_h) = area.estimate_text_size(title, &text(title_font)).map_err(err)?;
+    let caption = text_h + 2 * (text_h / 2).min(5);
+    let (w, h) = area.dim_in_pixel();
+    let (top, bottom, left, right) =
+        equal_scale_margins((w, h.saturating_sub(caption)), labels_px, margin, (x.end - x.start, y.end - y.start));
+    ChartBuilder::on(area)
+        .caption(title, text(title_font))
+        .margin_top(top)
+        .margin_bottom(bottom)
+        .margin_left(left)
+        .margin_right(right)
+        .x_label_area_size(labels_px.0)
+        .y_label_area_size(labels_px.1)
+        .build_cartesian_2d(x, y)
+        .map_err(err)
 }
 
 /// A text style of the embedded font.

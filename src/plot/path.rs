@@ -85,25 +85,22 @@ impl PathFigure<'_> {
     }
 }
 
-/// Draws the map, coverage classes and paths of `fig` into `area`, with axes in metres;
-/// `(title, labels)` are font sizes; `scale_bar` adds a metre bar.
+/// Draws the map, coverage classes and paths of `fig` into `area` at one scale on both axes
+/// (metres); `(title, labels)` are font sizes; `scale_bar` is kept for callers that draw a bar
+/// beside the map. Returns the pixels per metre, for such a bar.
 pub fn draw_map_paths<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     fig: &PathFigure,
     fonts: (f64, f64),
     scale_bar: bool,
-) -> Result<(), String> {
+) -> Result<f64, String> {
     let map = fig.map;
     let (ox, oy) = (map.origin().x, map.origin().y);
     let (x1, y1) = (ox + map.width_m(), oy + map.height_m());
     let small = fonts.1 < 14.0;
-    let mut chart = ChartBuilder::on(area)
-        .caption(&fig.title, text(fonts.0))
-        .margin(if small { 4 } else { 10 })
-        .x_label_area_size(if small { 28 } else { 45 })
-        .y_label_area_size(if small { 36 } else { 55 })
-        .build_cartesian_2d(ox..x1, oy..y1)
-        .map_err(err)?;
+    let labels = if small { (28, 36) } else { (45, 55) };
+    let mut chart =
+        super::equal_scale_chart(area, &fig.title, fonts.0, labels, if small { 4 } else { 10 }, ox..x1, oy..y1)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -130,19 +127,14 @@ pub fn draw_map_paths<DB: DrawingBackend>(
             .map_err(err)?;
         chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), dot, PATH.filled()))).map_err(err)?;
         if let (Some(s), Some(e)) = (path.first(), path.last()) {
-            chart.draw_series([TriangleMarker::new((s.x, s.y), 9, GREEN.filled())]).map_err(err)?;
-            chart.draw_series([Cross::new((e.x, e.y), 8, RED.stroke_width(3))]).map_err(err)?;
+            // The end first, the start on top: both stay visible where they coincide.
+            chart.draw_series([Cross::new((e.x, e.y), 9, RED.stroke_width(3))]).map_err(err)?;
+            chart.draw_series([TriangleMarker::new((s.x, s.y), 6, GREEN.filled())]).map_err(err)?;
         }
     }
-    if scale_bar {
-        let len = scale_length(map.width_m());
-        let (bx, by) = (ox + 0.04 * map.width_m(), oy + 0.04 * map.height_m());
-        chart.draw_series([PathElement::new(vec![(bx, by), (bx + len, by)], BLACK.stroke_width(4))]).map_err(err)?;
-        chart
-            .draw_series([Text::new(format!("{len} m"), (bx, by + 0.02 * map.height_m()), text(16.0))])
-            .map_err(err)?;
-    }
-    Ok(())
+    let _ = scale_bar;
+    let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
+    Ok(f64::from(b.0 - a.0))
 }
 
 /// A round scale-bar length (1, 2 or 5 × 10^k m) near a fifth of `extent`.
@@ -162,7 +154,7 @@ impl Figure for PathFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let (w, _) = self.size();
         let (plot_area, side) = root.split_horizontally(w - 260);
-        draw_map_paths(&plot_area, self, (20.0, 15.0), true)?;
+        let px_per_m = draw_map_paths(&plot_area, self, (20.0, 15.0), true)?;
         // Legend on the side.
         let entries = [
             (NEVER, "free, not covered"),
@@ -180,6 +172,12 @@ impl Figure for PathFigure<'_> {
         side.draw(&Text::new("start", (34, 60 + 26 * 8), text(17.0))).map_err(err)?;
         side.draw(&Cross::new((17, 60 + 26 * 9 + 9), 8, RED.stroke_width(3))).map_err(err)?;
         side.draw(&Text::new("end", (34, 60 + 26 * 9), text(17.0))).map_err(err)?;
+        // The scale bar beside the map, not over it.
+        let len = scale_length(self.map.width_m().max(self.map.height_m()));
+        let bar = (len * px_per_m).round() as i32;
+        let y = 60 + 26 * 11;
+        side.draw(&PathElement::new(vec![(8, y), (8 + bar, y)], BLACK.stroke_width(4))).map_err(err)?;
+        side.draw(&Text::new(format!("{len} m"), (8, y + 8), text(16.0))).map_err(err)?;
         Ok(())
     }
 }
@@ -187,6 +185,19 @@ impl Figure for PathFigure<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// One metre is the same number of pixels on both axes of a map figure.
+    #[test]
+    fn map_figures_have_equal_scale() {
+        for (area, extent) in [((1080, 700), (11.0, 11.0)), ((400, 420), (30.0, 20.0)), ((820, 300), (30.0, 30.0))] {
+            let (labels, margin) = ((45, 55), 10);
+            let (t, b, l, r) = crate::plot::equal_scale_margins(area, labels, margin, extent);
+            let pw = (area.0 - labels.1 - l - r) as f64;
+            let ph = (area.1 - labels.0 - t - b) as f64;
+            let (sx, sy) = (pw / extent.0, ph / extent.1);
+            assert!((sx - sy).abs() / sx < 0.01, "{area:?} {extent:?}: {sx} vs {sy} px per metre");
+        }
+    }
 
     #[test]
     fn scale_bar_lengths_are_round() {

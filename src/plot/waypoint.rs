@@ -34,13 +34,7 @@ fn raster_chart<'a, DB: DrawingBackend>(
 > {
     let (ox, oy) = map.origin;
     let (w, h) = (map.width as f64 * map.scale, map.height as f64 * map.scale);
-    let mut chart = ChartBuilder::on(area)
-        .caption(title, text(18.0))
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(50)
-        .build_cartesian_2d(ox..ox + w, oy..oy + h)
-        .map_err(err)?;
+    let mut chart = super::equal_scale_chart(area, title, 18.0, (40, 50), 10, ox..ox + w, oy..oy + h)?;
     chart
         .configure_mesh()
         .disable_mesh()

@@ -318,7 +318,12 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             let panel = cfg.zip(paths).and_then(|(cfg, paths)| {
                 let m = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution).ok()?;
                 let g = CoverageGrid::new(&m);
-                let title = format!("{v}: cov {:.3}, t {:.3}", num(best, "cov_final_reach"), num(best, "t_final"));
+                let title = format!(
+                    "{v}, {}: cov {:.3}, t {:.3}",
+                    short_map(map),
+                    num(best, "cov_final_reach"),
+                    num(best, "t_final")
+                );
                 Some((m, g, paths, cfg.robot.width, title))
             });
             row.push(panel);

@@ -89,6 +89,10 @@ pub struct Study {
     pub runs: Vec<RunSpec>,
 }
 
+/// The most runs one study may hold (the largest published grid, 003's Table 4.3 with its
+/// extension, is 27 216 configurations).
+pub const MAX_RUNS: usize = 5_000_000;
+
 /// FNV-1a, 64 bit: a stable hash for ids.
 pub fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
@@ -246,6 +250,22 @@ impl Study {
         // conditionals and becomes runs at once, so only the runs stay in memory.
         let mut runs = Vec::new();
         let radix: Vec<usize> = axes.iter().map(|(_, v)| v.len()).collect();
+        // Count before enumerating: an upper bound (every conditional applying everywhere),
+        // refused above the limit without allocating anything for the runs.
+        let bound = radix
+            .iter()
+            .copied()
+            .chain(conds.iter().flat_map(|(_, cax)| cax.iter().map(|(_, v)| v.len())))
+            .fold(f64::from(grid.seeds), |acc, n| acc * n as f64);
+        if bound > MAX_RUNS as f64 {
+            return Err(ConfigError::new(
+                &origin,
+                "axes",
+                format!(
+                    "expands to up to {bound:.3e} runs; a study may hold at most {MAX_RUNS} (split it into several grids)"
+                ),
+            ));
+        }
         let combos: usize = radix.iter().product();
         for mut index in 0..combos {
             let mut table = base.clone();
@@ -417,6 +437,19 @@ mod tests {
         // The default C_child is 2: with c_len 0.1 the second conditional does not apply
         // (c_len differs), so the 0.1 configuration keeps its defaults.
         assert_eq!(s.runs.iter().filter(|r| r.file.thesis.c_len == 0.1).count(), 2);
+    }
+
+    #[test]
+    fn a_huge_grid_is_refused_before_it_is_enumerated() {
+        let values: Vec<String> = (0..1000).map(|k| format!("{}", 0.0005 * k as f64)).collect();
+        let list = values.join(", ");
+        let text = format!(
+            "seeds = 1000\n{BASE}[axes]\n\"thesis.c_len\" = [{list}]\n\"thesis.p_c\" = [{list}]\n\"thesis.p_ma\" = [{list}]\n"
+        );
+        let started = std::time::Instant::now();
+        let e = parse(&text).unwrap_err();
+        assert!(e.message.contains("1.000e12 runs"), "{e}");
+        assert!(started.elapsed().as_secs() < 5);
     }
 
     #[test]
