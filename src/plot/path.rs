@@ -125,6 +125,11 @@ pub fn draw_map_paths<DB: DrawingBackend>(
         chart
             .draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(if small { 1 } else { 2 })))
             .map_err(err)?;
+        if !small {
+            // The bitmap backend leaves gaps in some thick diagonal strokes; a 1-px line on
+            // top keeps every segment continuous.
+            chart.draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(1))).map_err(err)?;
+        }
         chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), dot, PATH.filled()))).map_err(err)?;
         if let (Some(s), Some(e)) = (path.first(), path.last()) {
             // The end first, the start on top: both stay visible where they coincide.

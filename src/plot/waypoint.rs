@@ -77,6 +77,9 @@ impl Figure for PathsFigure<'_> {
             raster_chart(&area, self.map, &self.title, |i| if self.map.occluded[i] { OBSTACLE } else { FREE })?;
         for (k, p) in self.paths.iter().enumerate() {
             chart.draw_series(LineSeries::new(p.iter().copied(), agent_colour(k).stroke_width(2))).map_err(err)?;
+            // The bitmap backend leaves gaps in some thick diagonal strokes; a 1-px line on top
+            // keeps every segment continuous.
+            chart.draw_series(LineSeries::new(p.iter().copied(), agent_colour(k).stroke_width(1))).map_err(err)?;
             if let Some(&s) = p.first() {
                 chart.draw_series([TriangleMarker::new(s, 9, agent_colour(k).filled())]).map_err(err)?;
             }
