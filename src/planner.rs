@@ -89,6 +89,14 @@ pub struct RunOutcome {
     pub artifacts: Box<dyn Any + Send>,
 }
 
+/// The fields of a JSON object literal as `details` of a [`RunOutcome`].
+pub fn details(value: serde_json::Value) -> serde_json::Map<String, serde_json::Value> {
+    match value {
+        serde_json::Value::Object(map) => map,
+        _ => serde_json::Map::new(),
+    }
+}
+
 /// A planner could not run.
 #[derive(Debug, thiserror::Error)]
 pub enum PlannerError {

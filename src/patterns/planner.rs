@@ -86,10 +86,11 @@ impl Planner for PatternConfig {
         for o in observers.iter_mut() {
             o.generation(&record)?;
         }
-        let mut details = serde_json::Map::new();
-        details.insert("pockets".into(), planned.pockets.into());
-        details.insert("pocket_area_m2".into(), planned.pocket_area_m2.into());
-        details.insert("skipped_targets".into(), planned.skipped_targets.into());
+        let mut details = crate::planner::details(serde_json::json!({
+            "pockets": planned.pockets,
+            "pocket_area_m2": planned.pocket_area_m2,
+            "skipped_targets": planned.skipped_targets,
+        }));
         if let Pattern::Boustrophedon { angle_deg } = self.pattern {
             details.insert("angle_deg".into(), angle_deg.into());
         }

@@ -102,11 +102,12 @@ impl Planner for RandomSearch {
         };
         let best = best.ok_or_else(|| PlannerError::Input("random search: the evaluation budget is 0".into()))?;
         let sc = best.score;
-        let mut details = serde_json::Map::new();
-        details.insert("cov_final".into(), sc.cov_final.into());
-        details.insert("t_final".into(), sc.t_final.into());
-        details.insert("fitness".into(), sc.fitness.into());
-        details.insert("genome_len".into(), best.len().into());
+        let details = crate::planner::details(serde_json::json!({
+            "cov_final": sc.cov_final,
+            "t_final": sc.t_final,
+            "fitness": sc.fitness,
+            "genome_len": best.len(),
+        }));
         Ok(RunOutcome {
             plan: vec![best.points.clone()],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],

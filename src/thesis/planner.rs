@@ -54,19 +54,20 @@ impl Planner for ThesisConfig {
         let out = ga.run(budget, self.retrain.as_ref(), observers)?;
         let best = &out.best;
         let sc = best.score;
-        let mut details = serde_json::Map::new();
-        let mut put = |k: &str, v: serde_json::Value| {
-            details.insert(k.to_string(), v);
-        };
-        put("cov_final", sc.cov_final.into());
-        put("t_final", sc.t_final.into());
-        put("fitness", sc.fitness.into());
-        put("f1", sc.f1.into());
-        put("f2", sc.f2.into());
-        put("genome_len", best.len().into());
-        put("metrics", serde_json::to_value(best.metrics).expect("metrics serialise"));
+        let mut details = crate::planner::details(serde_json::json!({
+            "cov_final": sc.cov_final,
+            "t_final": sc.t_final,
+            "fitness": sc.fitness,
+            "f1": sc.f1,
+            "f2": sc.f2,
+            "genome_len": best.len(),
+            "metrics": best.metrics,
+        }));
         if let Some(b) = &out.best_before_retrain {
-            put("before_retrain", serde_json::json!([b.score.cov_final, b.score.t_final, b.score.fitness]));
+            details.insert(
+                "before_retrain".into(),
+                serde_json::json!([b.score.cov_final, b.score.t_final, b.score.fitness]),
+            );
         }
         Ok(RunOutcome {
             plan: vec![best.points.clone()],

@@ -195,8 +195,8 @@ impl WaypointConfig {
 /// Range checks of `[waypoint]` and the conversion into planner parameters.
 fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> Result<WaypointConfig, ConfigError> {
     let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-    check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
-    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "> 0 metres")?;
+    // Scale, UAV width and the camera: the same checks as the scorer's camera.
+    camera_spec(w, origin, map)?;
     if !(w.hallway.is_finite() && w.hallway >= 2.0 * w.scale && w.hallway >= map.resolution()) {
         return Err(err(
             "waypoint.hallway",
@@ -209,19 +209,6 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
         ));
     }
     check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "> 0 metres")?;
-    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, ">= 0 metres")?;
-    if !(w.d_max.is_finite() && w.d_max > w.d_min) {
-        return Err(err(
-            "waypoint.d_max",
-            format!("= {} must exceed d_min = {} (camera depth range)", w.d_max, w.d_min),
-        ));
-    }
-    if !(w.fov_deg > 0.0 && w.fov_deg <= 360.0) {
-        return Err(err("waypoint.fov_deg", format!("= {} is out of range (0, 360] degrees", w.fov_deg)));
-    }
-    if w.sections == 0 {
-        return Err(err("waypoint.sections", "= 0 is out of range: at least 1".into()));
-    }
     if w.agents == 0 || w.agents > 64 {
         return Err(err("waypoint.agents", format!("= {} is out of range [1, 64]", w.agents)));
     }

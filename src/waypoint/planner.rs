@@ -131,25 +131,23 @@ impl Planner for WaypointConfig {
             .map(|(i, r)| r.iter().enumerate().map(|(j, &c)| i != j && c >= 1).collect())
             .collect();
         let viol = violations(self, best, outcome.generations);
-        let mut details = serde_json::Map::new();
-        let mut put = |k: &str, v: serde_json::Value| {
-            details.insert(k.to_string(), v);
-        };
-        put("wall_coverage", e.walls.into());
-        put("open_coverage", e.open.into());
-        put("coverage", e.coverage.into());
-        put("flight_time", e.flight_time.into());
-        put("loop_closures_ok", e.loops_ok(self.ga.objectives.lc_min).into());
-        put("connected", e.connected().into());
-        put("closures", serde_json::to_value(&e.closures).expect("matrix"));
-        put("laplacian_zero_eigenvalues", laplacian_zero_eigenvalues(&adjacent, 1e-9).into());
-        put("agents", best.rows.len().into());
-        put("path_lengths", serde_json::to_value(best.rows.iter().map(Vec::len).collect::<Vec<_>>()).expect("list"));
-        put("generations", outcome.generations.into());
-        put("waypoints", world.graph.points.len().into());
-        put("edges", world.graph.edge_count().into());
-        put("initial_feasible", outcome.initial_feasible.into());
-        put("precompute_s", precompute_s.into());
+        let details = crate::planner::details(serde_json::json!({
+            "wall_coverage": e.walls,
+            "open_coverage": e.open,
+            "coverage": e.coverage,
+            "flight_time": e.flight_time,
+            "loop_closures_ok": e.loops_ok(self.ga.objectives.lc_min),
+            "connected": e.connected(),
+            "closures": e.closures,
+            "laplacian_zero_eigenvalues": laplacian_zero_eigenvalues(&adjacent, 1e-9),
+            "agents": best.rows.len(),
+            "path_lengths": best.rows.iter().map(Vec::len).collect::<Vec<_>>(),
+            "generations": outcome.generations,
+            "waypoints": world.graph.points.len(),
+            "edges": world.graph.edge_count(),
+            "initial_feasible": outcome.initial_feasible,
+            "precompute_s": precompute_s,
+        }));
         Ok(RunOutcome {
             plan: paths_m(&world, best),
             objectives: vec![
