@@ -96,9 +96,36 @@ pub fn path_csv(paths: &[Vec<Point>]) -> Vec<u8> {
     out.into_bytes()
 }
 
+/// Memory the operating system can still give this process, in bytes (`MemAvailable` of
+/// `/proc/meminfo`); `None` where that is not known.
+pub fn available_memory() -> Option<u64> {
+    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
+}
+
+/// A byte count for messages (`10.6 GB`).
+pub fn human_bytes(bytes: f64) -> String {
+    match bytes {
+        b if b >= 1e12 => format!("{:.3e} bytes", b),
+        b if b >= 1e9 => format!("{:.1} GB", b / 1e9),
+        b if b >= 1e6 => format!("{:.1} MB", b / 1e6),
+        b => format!("{:.0} kB", b / 1e3),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn byte_counts_read_as_people_write_them() {
+        assert_eq!(human_bytes(10.6e9), "10.6 GB");
+        assert_eq!(human_bytes(15.2e6), "15.2 MB");
+        assert_eq!(human_bytes(6.4e13), "6.400e13 bytes");
+        assert!(available_memory().is_none_or(|b| b > 0));
+    }
 
     #[test]
     fn path_csv_round_trip_and_errors() {

@@ -133,6 +133,14 @@ fn retrain_marks_the_region_and_recovers() {
     assert!(best_t[101] < best_t[100], "t_final should drop at the switch: {} -> {}", best_t[100], best_t[101]);
 }
 
+#[test]
+fn a_population_that_cannot_fit_is_refused_before_it_is_allocated() {
+    let text = "[thesis]\npop_min = 1000000\ninit_actions = 100000\nmax_genome_len = 1000000\n";
+    let started = std::time::Instant::now();
+    expect_error(text, "`thesis.pop_min` = 1000000 individuals of up to 1000000 actions need about");
+    assert!(started.elapsed().as_secs() < 10, "refused at once");
+}
+
 fn expect_error(text: &str, needle: &str) {
     let dir = tempfile::tempdir().unwrap();
     let exp = write(dir.path(), "bad.toml", text);

@@ -157,10 +157,28 @@ impl ThesisConfig {
     pub fn from_file(
         file: &ExperimentFile,
         origin: &str,
-        _scenario: &crate::planner::Scenario,
+        scenario: &crate::planner::Scenario,
     ) -> Result<Self, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let params = validate_params(&file.thesis, origin)?;
+        // Refuse before allocating what cannot fit: a population of genomes and viewpoints
+        // (32 bytes per action) with their visit counts (8 bytes per swept free cell), parents
+        // and offspring alive at once.
+        let bytes = memory_estimate(&params, scenario.map.free_count());
+        if let Some(available) = crate::io::available_memory()
+            && bytes > available as f64
+        {
+            return Err(err(
+                if params.initial_size() > params.pop_min { "thesis.init_individuals" } else { "thesis.pop_min" },
+                format!(
+                    "= {} individuals of up to {} actions need about {} on this map, more than the {} of memory available",
+                    params.initial_size(),
+                    params.max_genome_len,
+                    crate::io::human_bytes(bytes),
+                    crate::io::human_bytes(available as f64)
+                ),
+            ));
+        }
         let b = file.budget;
         let retrain = match file.retrain {
             None => None,
@@ -183,6 +201,15 @@ impl ThesisConfig {
         };
         Ok(Self { params, retrain })
     }
+}
+
+/// An upper estimate of a run's memory in bytes: twice the initial population (parents and
+/// offspring), each individual `32·max_genome_len` bytes of genome and viewpoints plus
+/// `8·min(free cells, 200·max_genome_len)` bytes of visit counts.
+pub fn memory_estimate(params: &ThesisParams, free_cells: usize) -> f64 {
+    let len = params.max_genome_len as f64;
+    let per = 32.0 * len + 8.0 * (free_cells as f64).min(200.0 * len);
+    2.0 * params.initial_size().max(params.pop_min) as f64 * per
 }
 
 /// Validates a `[thesis]` section into [`ThesisParams`].

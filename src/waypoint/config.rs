@@ -234,8 +234,8 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
     ] {
         check_unit(origin, key, v)?;
     }
-    if w.population < 2 {
-        return Err(err("waypoint.population", format!("= {} is out of range: at least 2", w.population)));
+    if w.population < 2 || w.population > 1_000_000 {
+        return Err(err("waypoint.population", format!("= {} is out of range [2, 1000000]", w.population)));
     }
     if !(2 <= w.l_min && w.l_min <= w.l_init && w.l_init <= w.l_max) {
         return Err(err(
