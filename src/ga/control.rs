@@ -16,7 +16,10 @@ pub fn ramp_tournament_size(iteration: u32, iter_max: u32, min: f64, max: f64) -
 }
 
 /// `P_m,i = Iter_i / Iter_max` with `Iter_n = Σ_{k=1..n} k` (003 eq. 2.1), i.e.
-/// `i(i+1) / (I_max(I_max+1))`.
+/// `i(i+1) / (I_max(I_max+1))`: both the numerator and the denominator are triangular sums
+/// (spec R23), so the schedule is normalised to reach exactly 1 at `i = I_max` and rises
+/// quadratically from `2 / (I_max(I_max+1))` at the first iteration. Iterations past `I_max`
+/// (none in a run) stay at 1.
 pub fn muhlenbein_p_m(iteration: u32, iter_max: u32) -> f64 {
     if iter_max == 0 {
         return 1.0;

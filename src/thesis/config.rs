@@ -126,7 +126,7 @@ impl Default for ThesisSection {
             projection: Projection::F2,
             selection: SelectionName::Elite,
             pop_min: p.pop_min,
-            init_individuals: p.init_individuals,
+            init_individuals: INIT_INDIVIDUALS,
             init_actions: p.init.actions,
             init_dist_max: p.init.dist_max,
             max_genome_len: p.max_genome_len,
@@ -143,6 +143,10 @@ impl Default for ThesisSection {
         }
     }
 }
+/// `Init_I` of 003 Table 4.2 for the non-Elite schemes, the default of
+/// `thesis.init_individuals` (Elite starts from `Pop_min` individuals and ignores it).
+pub const INIT_INDIVIDUALS: usize = 1000;
+
 /// The validated thesis GA: its parameters and the optional retrain.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ThesisConfig {
