@@ -62,9 +62,9 @@ impl Route {
     fn last(&self) -> Point {
         *self.points.last().expect("a route has a start")
     }
-    /// Moves to `p` along a collision-free connection (repeated points are dropped); a target
-    /// that cannot be reached is skipped and counted, and the route stays where it is.
-    fn go(&mut self, clear: &Clearance, p: Point) -> bool {
+    /// Moves to `p` along a collision-free connection (repeated points are dropped); `false`
+    /// when `p` cannot be reached, and the route stays where it is.
+    fn connect(&mut self, clear: &Clearance, p: Point) -> bool {
         let here = self.last();
         if (p - here).norm() < 1e-9 {
             return true;
@@ -74,19 +74,21 @@ impl Route {
                 self.points.extend(hops);
                 true
             }
-            None => {
-                self.skipped += 1;
-                false
-            }
+            None => false,
         }
+    }
+    /// [`Route::connect`], counting a target that cannot be reached as skipped.
+    fn go(&mut self, clear: &Clearance, p: Point) -> bool {
+        let reached = self.connect(clear, p);
+        self.skipped += usize::from(!reached);
+        reached
     }
     /// Returns to the end station: through the fitting cell nearest to it when the station
     /// itself is too close to a wall for the disc (stations are free cells, checked at load).
     fn finish(&mut self, clear: &Clearance, end: Point) {
-        if self.go(clear, end) {
+        if self.connect(clear, end) {
             return;
         }
-        self.skipped -= 1;
         if let Some(i) = clear.snap(end) {
             let cols = clear.map().cols();
             self.go(clear, clear.map().cell_centre(i / cols, i % cols));

@@ -36,7 +36,9 @@ fn colour(k: usize) -> RGBColor {
 impl Figure for BoxFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = shape(self.panels.len());
-        (c as u32 * 720, r as u32 * 420 + 40)
+        // Each box needs room for its label (up to ~18 characters at 12 pt).
+        let boxes = self.panels.iter().map(|(_, b)| b.len()).max().unwrap_or(1) as u32;
+        (c as u32 * (130 * boxes + 80).max(720), r as u32 * 420 + 40)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
@@ -194,7 +196,7 @@ impl Figure for PlannerPathsFigure<'_> {
         for (r, row) in self.rows.iter().enumerate() {
             for (c, panel) in row.iter().enumerate() {
                 if let Some(p) = panel {
-                    draw_map_paths(&areas[r * cols + c], p, (11.0, 10.0), false)?;
+                    draw_map_paths(&areas[r * cols + c], p, (11.0, 10.0))?;
                 }
             }
         }

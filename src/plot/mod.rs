@@ -134,6 +134,13 @@ pub fn equal_scale_chart<'a, DB: DrawingBackend>(
         .map_err(err)
 }
 
+/// A text style for `title` no larger than `size` that fits `width_px` (about 0.55 em per
+/// character in DejaVu Sans, with a margin).
+pub fn fitting_text(title: &str, width_px: u32, size: f64) -> TextStyle<'static> {
+    let fit = 0.92 * f64::from(width_px) / (0.55 * title.chars().count().max(1) as f64);
+    text(size.min(fit).max(8.0))
+}
+
 /// A text style of the embedded font.
 pub fn text(size: f64) -> TextStyle<'static> {
     (FAMILY, size).into_font().into()

@@ -86,13 +86,12 @@ impl PathFigure<'_> {
 }
 
 /// Draws the map, coverage classes and paths of `fig` into `area` at one scale on both axes
-/// (metres); `(title, labels)` are font sizes; `scale_bar` is kept for callers that draw a bar
-/// beside the map. Returns the pixels per metre, for such a bar.
+/// (metres); `(title, labels)` are font sizes. Returns the pixels per metre, for a scale bar
+/// beside the map.
 pub fn draw_map_paths<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     fig: &PathFigure,
     fonts: (f64, f64),
-    scale_bar: bool,
 ) -> Result<f64, String> {
     let map = fig.map;
     let (ox, oy) = (map.origin().x, map.origin().y);
@@ -137,7 +136,6 @@ pub fn draw_map_paths<DB: DrawingBackend>(
             chart.draw_series([TriangleMarker::new((s.x, s.y), 6, GREEN.filled())]).map_err(err)?;
         }
     }
-    let _ = scale_bar;
     let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
     Ok(f64::from(b.0 - a.0))
 }
@@ -159,7 +157,7 @@ impl Figure for PathFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let (w, _) = self.size();
         let (plot_area, side) = root.split_horizontally(w - 260);
-        let px_per_m = draw_map_paths(&plot_area, self, (20.0, 15.0), true)?;
+        let px_per_m = draw_map_paths(&plot_area, self, (20.0, 15.0))?;
         // Legend on the side.
         let entries = [
             (NEVER, "free, not covered"),

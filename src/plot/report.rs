@@ -28,6 +28,9 @@ fn grid_shape(n: usize) -> (usize, usize) {
     (n.div_ceil(cols).max(1), cols)
 }
 
+const PARETO_TITLE: &str = "Best individual per run: coverage vs time efficiency (front in red)";
+const PATHS_TITLE: &str = "Best path per group (green once, orange 2+ times, red obstacle swept)";
+
 const RUN: RGBColor = RGBColor(120, 150, 200);
 const FRONT: RGBColor = RGBColor(210, 40, 30);
 
@@ -38,9 +41,8 @@ impl Figure for ParetoFigure {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = root
-            .titled("Best individual per run: coverage vs time efficiency (front in red)", text(20.0))
-            .map_err(err)?;
+        let root =
+            root.titled(PARETO_TITLE, super::fitting_text(PARETO_TITLE, root.dim_in_pixel().0, 20.0)).map_err(err)?;
         let (r, c) = grid_shape(self.facets.len());
         let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
         for f in &self.facets {
@@ -154,12 +156,11 @@ impl Figure for PathsGridFigure<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = root
-            .titled("Best path per group (green once, orange 2+ times, red obstacle swept)", text(18.0))
-            .map_err(err)?;
+        let root =
+            root.titled(PATHS_TITLE, super::fitting_text(PATHS_TITLE, root.dim_in_pixel().0, 18.0)).map_err(err)?;
         let (r, c) = grid_shape(self.panels.len());
         for (area, panel) in root.split_evenly((r, c)).iter().zip(&self.panels) {
-            draw_map_paths(area, panel, (13.0, 11.0), false)?;
+            draw_map_paths(area, panel, (13.0, 11.0))?;
         }
         Ok(())
     }
