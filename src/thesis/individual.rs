@@ -29,7 +29,7 @@ impl Scenario {
         let min = map.origin();
         let max = Point::new(min.x + map.width_m(), min.y + map.height_m());
         let grid = CoverageGrid::new(&map);
-        Self { grid, robot, frame: Frame { start, end, min, max }, projection, map }
+        Self { grid, robot, frame: Frame::new(start, end, min, max), projection, map }
     }
 }
 
