@@ -23,6 +23,31 @@ fn evaluate(c: &mut Criterion) {
     group.bench_function("random_100_segments/evaluations", |b| {
         b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
     });
+    let layers = covga::coverage::bits::BitLayers::new(&grid);
+    let mut planes = covga::coverage::bits::VisitPlanes::default();
+    group.bench_function("random_100_segments/bit_rows", |b| {
+        b.iter(|| black_box(layers.sweep(&mut planes, black_box(&path), 0.6)))
+    });
+    let rows: usize = path
+        .windows(2)
+        .map(|w| {
+            let mut n = 0;
+            covga::coverage::rows::for_each_swept_row(&grid_raster(&grid), w[0], w[1], 0.6, |_, _, _| n += 1);
+            n
+        })
+        .sum();
+    eprintln!("random path: {cells} cells, {rows} row runs");
+    group.bench_function("random_100_segments/row_scan_only", |b| {
+        b.iter(|| {
+            let mut n = 0usize;
+            for w in black_box(&path).windows(2) {
+                covga::coverage::rows::for_each_swept_row(&grid_raster(&grid), w[0], w[1], 0.6, |r, lo, hi| {
+                    n += r + lo + hi
+                });
+            }
+            black_box(n)
+        })
+    });
     group.throughput(Throughput::Elements(cells));
     group.bench_function("random_100_segments/swept_cells", |b| {
         b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
@@ -56,6 +81,10 @@ fn evaluate(c: &mut Criterion) {
         });
     }
     group.finish();
+}
+
+fn grid_raster(g: &CoverageGrid) -> covga::coverage::raster::RasterGrid {
+    *g.raster()
 }
 
 criterion_group!(benches, evaluate);

@@ -116,6 +116,42 @@ fn same_seed_same_bytes_with_one_or_two_threads() {
     }
 }
 
+/// Incremental evaluation is a speed-up only: every result file is byte-identical with the
+/// full evaluation of every child, for both architectures, with mutations and
+/// re-initialisations, with the rotation cost, and across a retrain.
+#[test]
+fn incremental_and_full_evaluation_give_identical_files() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, extra, tail) in [
+        ("elite", "c_child = 2\np_ma = 0.3\n", ""),
+        (
+            "tournament",
+            "selection = \"tournament\"\ninit_individuals = 80\nkeep = 2\nselect = 10\np_mi = 0.05\np_ma = 0.3\nc_child = 1\n",
+            "",
+        ),
+        (
+            "prws-rot",
+            "selection = \"prws\"\ninit_individuals = 60\nkeep = 2\nselect = 10\np_ma = 0.2\n",
+            "[robot]\nrot_speed = 0.5\n",
+        ),
+        ("elite-retrain", "p_ma = 0.1\n", "[retrain]\nat_iteration = 60\n"),
+    ] {
+        let mut outs = Vec::new();
+        for mode in ["incremental", "full"] {
+            let text = small(&format!("{extra}evaluation = \"{mode}\"\n")) + tail;
+            let exp = write(dir.path(), &format!("{name}-{mode}.toml"), &text);
+            let out = dir.path().join(format!("{name}-{mode}"));
+            let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+            assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+            outs.push(out);
+        }
+        for f in ["best_path.csv", "best_genome.csv", "history.csv", "path.svg", "history.svg"] {
+            assert_eq!(read(&outs[0].join(f)), read(&outs[1].join(f)), "{name}: {f} differs between the evaluations");
+        }
+        assert_eq!(summary_without_time(&outs[0]), summary_without_time(&outs[1]), "{name}");
+    }
+}
+
 #[test]
 fn retrain_marks_the_region_and_recovers() {
     let dir = tempfile::tempdir().unwrap();

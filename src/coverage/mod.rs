@@ -1,9 +1,11 @@
 //! Coverage of a path on a grid map: the swept footprint of 003 §3.1 ([`raster`], [`sweep`])
 //! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`].
 
+pub mod bits;
 pub mod camera;
 pub mod motion;
 pub mod raster;
+pub mod rows;
 pub mod score;
 pub mod sweep;
 

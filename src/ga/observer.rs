@@ -88,8 +88,9 @@ pub struct GenerationStats {
     pub min_genome_len: u32,
     /// Longest genome.
     pub max_genome_len: u32,
-    /// Population diversity `Div` (spec §5).
-    pub diversity: f64,
+    /// Population diversity `Div` (spec §5), when it was measured (see
+    /// [`Observer::wants_diversity`]).
+    pub diversity: Option<f64>,
     /// Effective crossover probability `P_c`.
     pub p_c: f64,
     /// Effective action-mutation probability `P_mA` (mean over individuals when adaptive).
@@ -120,7 +121,7 @@ impl GenerationStats {
             mean_fitness: self.mean_fitness,
             best_coverage: self.best_cov_final,
             feasible: None,
-            diversity: Some(self.diversity),
+            diversity: self.diversity,
             extras: vec![
                 ("best_cov_final", self.best_cov_final),
                 ("best_t_final", self.best_t_final),
@@ -150,6 +151,12 @@ pub trait Observer {
     fn event(&mut self, _event: RunEvent) -> std::io::Result<()> {
         Ok(())
     }
+    /// Whether this observer reads the population diversity. Measuring it costs a pass over
+    /// every visit map each generation, so planners measure it only when someone reads it
+    /// (or their own parameter control does).
+    fn wants_diversity(&self) -> bool {
+        false
+    }
 }
 
 /// Keeps every generation's record in memory (for figures and tests).
@@ -165,6 +172,9 @@ impl Observer for Recorder {
     fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()> {
         self.history.push(record.clone());
         Ok(())
+    }
+    fn wants_diversity(&self) -> bool {
+        true
     }
     fn event(&mut self, event: RunEvent) -> std::io::Result<()> {
         let RunEvent::EnvironmentChanged { iteration } = event;

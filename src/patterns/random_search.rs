@@ -4,14 +4,13 @@
 //! in batches of `Pop_min`, until the evaluation budget is spent, and keeps the fittest by the
 //! thesis fitness `f_obstacle`. Budget-matched to the GAs through `budget.evaluations`.
 
-use crate::coverage::SweepScratch;
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::ga::rng::{Purpose, stream};
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use crate::study::config::ConfigError;
 use crate::study::experiment::ExperimentFile;
 use crate::thesis::genome::random_genome;
-use crate::thesis::individual::{Individual, InitParams, correct_and_evaluate};
+use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
 use crate::thesis::planner::{genome_csv, obstacle_violations, thesis_scenario};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -66,16 +65,21 @@ impl Planner for RandomSearch {
             }
             let batch: Vec<(Individual, u64)> = (0..self.batch)
                 .into_par_iter()
-                .map_init(
-                    || SweepScratch::new(&th.grid),
-                    |scratch, slot| {
-                        let mut rng = stream(seed, Purpose::Individual, &[u64::from(iteration), slot as u64]);
-                        let mut ind = Individual::default();
-                        random_genome(&mut rng, self.init.actions, self.init.dist_max, &mut ind.genome);
-                        let e = correct_and_evaluate(&mut ind, &th, scratch, &self.init, &mut rng);
-                        (ind, e)
-                    },
-                )
+                .map_init(EvalScratch::default, |scratch, slot| {
+                    let mut rng = stream(seed, Purpose::Individual, &[u64::from(iteration), slot as u64]);
+                    let mut ind = Individual::default();
+                    random_genome(&mut rng, self.init.actions, self.init.dist_max, &mut ind.genome);
+                    let e = correct_and_evaluate(
+                        &mut ind,
+                        &th,
+                        Base::None,
+                        EvaluationMode::Full,
+                        scratch,
+                        &self.init,
+                        &mut rng,
+                    );
+                    (ind, e)
+                })
                 .collect();
             let mean = batch.iter().map(|(i, _)| i.fitness()).sum::<f64>() / batch.len() as f64;
             for (ind, e) in batch {
@@ -111,8 +115,8 @@ impl Planner for RandomSearch {
         Ok(RunOutcome {
             plan: vec![best.points.clone()],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
-            feasible: best.metrics.obstacle_cells == 0,
-            violations: obstacle_violations(best.metrics.obstacle_cells),
+            feasible: best.sweep.obj_pix == 0,
+            violations: obstacle_violations(best.sweep.obj_pix),
             evaluations,
             iterations: iteration,
             stop,

@@ -70,7 +70,10 @@ impl HistoryFigure<'_> {
         }
         for (label, colour, f) in series {
             chart
-                .draw_series(LineSeries::new(h.iter().map(|s| (s.iteration, f(s))), colour.stroke_width(2)))
+                .draw_series(LineSeries::new(
+                    h.iter().map(|s| (s.iteration, f(s))).filter(|(_, v)| v.is_finite()),
+                    colour.stroke_width(2),
+                ))
                 .map_err(err)?
                 .label(label)
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
@@ -133,6 +136,6 @@ impl Figure for HistoryFigure<'_> {
             ],
             false,
         )?;
-        self.panel(&panels[4], "diversity Div [cells]", vec![s("Div", MEAN, |g| g.diversity)], true)
+        self.panel(&panels[4], "diversity Div [cells]", vec![s("Div", MEAN, |g| g.diversity.unwrap_or(f64::NAN))], true)
     }
 }

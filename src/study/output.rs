@@ -75,6 +75,9 @@ impl Observer for HistoryCsv {
         }
         writeln!(self.out, "{}", record.csv_row())
     }
+    fn wants_diversity(&self) -> bool {
+        true
+    }
 }
 
 /// What a finished run reports (`summary.json`).

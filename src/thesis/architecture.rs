@@ -8,10 +8,9 @@
 
 use super::crossover::{Parent, crossover};
 use super::genome::{Action, random_genome};
-use super::individual::{Individual, InitParams, Scenario, correct_and_evaluate};
-use super::mutation::{mutate, mutate_action};
+use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario, correct_and_evaluate};
+use super::mutation::{Mutation, mutate, mutate_action};
 use super::params::{Selection, ThesisParams};
-use crate::coverage::SweepScratch;
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
 use rand::Rng as _;
@@ -78,52 +77,77 @@ enum Op {
     Reinit,
 }
 
+/// What a job's genome was made from, for incremental evaluation.
+#[derive(Clone, Copy, Debug)]
+enum Origin {
+    /// A fresh genome.
+    New,
+    /// A copy of an evaluated individual (its own path is the base).
+    Copy,
+    /// A crossover child of this receiving parent (index into the population).
+    Child(usize),
+}
+
 /// An individual to be changed and evaluated, with its own random stream.
 pub(crate) struct Job {
     ind: Individual,
     rng: Rng,
     op: Op,
-    needs_eval: bool,
+    origin: Origin,
     evaluations: u64,
 }
 
 impl Job {
     fn fresh(genome: Vec<Action>, rng: Rng, op: Op) -> Self {
-        Self { ind: Individual { genome, ..Default::default() }, rng, op, needs_eval: true, evaluations: 0 }
+        Self { ind: Individual { genome, ..Default::default() }, rng, op, origin: Origin::New, evaluations: 0 }
+    }
+    fn child(genome: Vec<Action>, receiver: usize, rng: Rng, op: Op) -> Self {
+        Self { origin: Origin::Child(receiver), ..Self::fresh(genome, rng, op) }
     }
     fn copy(ind: Individual, rng: Rng, op: Op) -> Self {
-        Self { ind, rng, op, needs_eval: false, evaluations: 0 }
+        Self { ind, rng, op, origin: Origin::Copy, evaluations: 0 }
     }
-    fn execute(&mut self, scenario: &Scenario, init: &InitParams, scratch: &mut SweepScratch) {
-        let rng = &mut self.rng;
-        let changed = match self.op {
-            Op::Mutate { p_mi, p_ma } => {
-                mutate(&mut self.ind.genome, p_mi, p_ma, init, rng) != super::mutation::Mutation::None
-            }
+    fn execute(&mut self, pop: &[Individual], scenario: &Scenario, run: &JobContext, scratch: &mut EvalScratch) {
+        let (rng, init) = (&mut self.rng, &run.init);
+        let change = match self.op {
+            Op::Mutate { p_mi, p_ma } => mutate(&mut self.ind.genome, p_mi, p_ma, init, rng),
             Op::MutateAction { p_ma } => {
-                let fire = rng.random_bool(p_ma.clamp(0.0, 1.0));
-                if fire {
+                if rng.random_bool(p_ma.clamp(0.0, 1.0)) {
                     mutate_action(&mut self.ind.genome, rng);
+                    Mutation::Action
+                } else {
+                    Mutation::None
                 }
-                fire
             }
             Op::Reinit => {
                 random_genome(rng, init.actions, init.dist_max, &mut self.ind.genome);
-                true
+                Mutation::Reinit
             }
         };
-        if changed || self.needs_eval {
-            self.evaluations += correct_and_evaluate(&mut self.ind, scenario, scratch, init, rng);
-        }
+        let base = match (change, self.origin) {
+            (Mutation::Reinit, _) | (_, Origin::New) => Base::None,
+            (Mutation::None, Origin::Copy) => return,
+            (_, Origin::Copy) => Base::Own,
+            (_, Origin::Child(receiver)) => Base::Parent(&pop[receiver]),
+        };
+        self.evaluations += correct_and_evaluate(&mut self.ind, scenario, base, run.mode, scratch, init, rng);
     }
 }
 
-/// Runs jobs in parallel, one scratch grid per chunk. Returns the evaluations spent.
+/// What every job of a generation shares.
+pub(crate) struct JobContext {
+    pub init: InitParams,
+    pub mode: EvaluationMode,
+}
+
+/// Runs jobs in parallel, one scratch per chunk; `pop` holds the parents the jobs' children
+/// were made from. Returns the evaluations spent.
 pub(crate) fn run_jobs(
     jobs: &mut [Job],
+    pop: &[Individual],
     scenario: &Scenario,
-    init: &InitParams,
-    scratches: &mut [SweepScratch],
+    context: &JobContext,
+    scratches: &mut [EvalScratch],
 ) -> u64 {
     if jobs.is_empty() {
         return 0;
@@ -131,7 +155,7 @@ pub(crate) fn run_jobs(
     let chunk = jobs.len().div_ceil(scratches.len());
     jobs.par_chunks_mut(chunk).zip(scratches.par_iter_mut()).for_each(|(jobs, scratch)| {
         for job in jobs {
-            job.execute(scenario, init, scratch);
+            job.execute(pop, scenario, context, scratch);
         }
     });
     jobs.iter().map(|j| j.evaluations).sum()
@@ -159,6 +183,10 @@ impl Generation<'_> {
         stream(self.seed, Purpose::Individual, &[u64::from(self.iteration), slot as u64])
     }
 
+    fn context(&self) -> JobContext {
+        JobContext { init: self.params.init, mode: self.params.evaluation }
+    }
+
     fn parent<'p>(pop: &'p [Individual], i: usize) -> Parent<'p> {
         Parent { genome: &pop[i].genome, points: &pop[i].points }
     }
@@ -177,20 +205,15 @@ impl Generation<'_> {
     }
 
     /// Initial population of `size` random genomes, evaluated (spec §6).
-    pub fn initial(&self, size: usize, scratches: &mut [SweepScratch]) -> (Vec<Individual>, u64) {
+    pub fn initial(&self, size: usize, scratches: &mut [EvalScratch]) -> (Vec<Individual>, u64) {
         let mut jobs: Vec<Job> = (0..size).map(|s| Job::fresh(Vec::new(), self.stream(s), Op::Reinit)).collect();
-        let evaluations = run_jobs(&mut jobs, self.scenario, &self.params.init, scratches);
+        let evaluations = run_jobs(&mut jobs, &[], self.scenario, &self.context(), scratches);
         (jobs.into_iter().map(|j| j.ind).collect(), evaluations)
     }
 
     /// Architecture (a) (spec §11.1): `keep` elite copies, `select` pairs by the scheme,
     /// crossover with `P_c`, mutation of offspring and rest, refill to `Pop_min` (R22).
-    pub fn step_a(
-        &self,
-        pop: Vec<Individual>,
-        rng: &mut Rng,
-        scratches: &mut [SweepScratch],
-    ) -> (Vec<Individual>, u64) {
+    pub fn step_a(&self, pop: Vec<Individual>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<Individual>, u64) {
         let (p, e) = (self.params, self.effective);
         let n = pop.len();
         let fit: Vec<f64> = pop.iter().map(Individual::fitness).collect();
@@ -220,7 +243,7 @@ impl Generation<'_> {
                     for (k, genome) in kids.into_iter().enumerate() {
                         let receiver = if k % 2 == 0 { p1 } else { p2 };
                         let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
-                        jobs.push(Job::fresh(genome, self.stream(jobs.len()), op));
+                        jobs.push(Job::child(genome, receiver, self.stream(jobs.len()), op));
                     }
                 }
                 None => {
@@ -231,7 +254,7 @@ impl Generation<'_> {
                 }
             }
         }
-        let evaluations = run_jobs(&mut jobs, self.scenario, &p.init, scratches);
+        let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
         let mut old: Vec<Option<Individual>> = pop.into_iter().map(Some).collect();
         let mut next: Vec<Individual> = elite.iter().map(|&i| old[i].take().expect("distinct elite")).collect();
         next.extend(jobs.into_iter().map(|j| j.ind));
@@ -248,17 +271,12 @@ impl Generation<'_> {
     /// Architecture (b) (spec §11.2): random families of two; crossing families keep their two
     /// best of parents and children (ties to children, R20); the others pass on, each
     /// re-initialised with `P_mI`; an odd individual passes unchanged.
-    pub fn step_b(
-        &self,
-        pop: Vec<Individual>,
-        rng: &mut Rng,
-        scratches: &mut [SweepScratch],
-    ) -> (Vec<Individual>, u64) {
+    pub fn step_b(&self, pop: Vec<Individual>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<Individual>, u64) {
         enum Family {
             Cross { parents: [usize; 2], kids: std::ops::Range<usize> },
             Apart([Result<usize, usize>; 2]),
         }
-        let (p, e) = (self.params, self.effective);
+        let e = self.effective;
         let n = pop.len();
         let mut order: Vec<usize> = (0..n).collect();
         order.shuffle(rng);
@@ -273,7 +291,7 @@ impl Generation<'_> {
                 for (k, genome) in kids.into_iter().enumerate() {
                     let receiver = if k % 2 == 0 { a } else { b };
                     let op = Op::MutateAction { p_ma: e.p_ma.for_fitness(pop[receiver].fitness()) };
-                    jobs.push(Job::fresh(genome, self.stream(slot), op));
+                    jobs.push(Job::child(genome, receiver, self.stream(slot), op));
                     slot += 1;
                 }
                 families.push(Family::Cross { parents: [a, b], kids: start..jobs.len() });
@@ -293,7 +311,7 @@ impl Generation<'_> {
                 families.push(Family::Apart([ma, mb]));
             }
         }
-        let evaluations = run_jobs(&mut jobs, self.scenario, &p.init, scratches);
+        let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
         let mut old: Vec<Option<Individual>> = pop.into_iter().map(Some).collect();
         let mut new: Vec<Option<Individual>> = jobs.into_iter().map(|j| Some(j.ind)).collect();
         let mut next = Vec::with_capacity(n);

@@ -4,7 +4,7 @@
 
 use super::crossover::ChildMode;
 use super::fitness::Projection;
-use super::individual::InitParams;
+use super::individual::{EvaluationMode, InitParams};
 use super::params::{Control, Retrain, Selection, ThesisParams};
 use crate::ga::control::AdaptiveConstants;
 use crate::study::config::{ConfigError, check_range, check_unit};
@@ -49,6 +49,9 @@ pub struct ThesisSection {
     pub selection_pressure: f64,
     /// Parameter control.
     pub control: ControlSection,
+    /// `incremental` (default) or `full`: how children are evaluated. Both give identical
+    /// results; `full` sweeps every path whole and exists to check that.
+    pub evaluation: EvaluationMode,
 }
 
 /// Selection scheme names.
@@ -140,6 +143,7 @@ impl Default for ThesisSection {
             tournament_size: 3,
             selection_pressure: 2.0,
             control: ControlSection::None,
+            evaluation: EvaluationMode::Incremental,
         }
     }
 }
@@ -166,9 +170,8 @@ impl ThesisConfig {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let params = validate_params(&file.thesis, origin)?;
         // Refuse before allocating what cannot fit: a population of genomes and viewpoints
-        // (32 bytes per action) with their visit counts (8 bytes per swept free cell), parents
-        // and offspring alive at once.
-        let bytes = memory_estimate(&params, scenario.map.free_count());
+        // with their visit maps, parents and offspring alive at once.
+        let bytes = memory_estimate(&params, scenario.map.rows(), scenario.map.cols());
         if let Some(available) = crate::io::available_memory()
             && bytes > available as f64
         {
@@ -208,11 +211,14 @@ impl ThesisConfig {
 }
 
 /// An upper estimate of a run's memory in bytes: twice the initial population (parents and
-/// offspring), each individual `32·max_genome_len` bytes of genome and viewpoints plus
-/// `8·min(free cells, 200·max_genome_len)` bytes of visit counts.
-pub fn memory_estimate(params: &ThesisParams, free_cells: usize) -> f64 {
+/// offspring), each individual `32·max_genome_len` bytes of genome and viewpoints plus its
+/// bit-sliced visit map: one bit per cell (rows padded to 64 columns) for each bit of the
+/// largest possible count, which is below `max_genome_len`.
+pub fn memory_estimate(params: &ThesisParams, rows: usize, cols: usize) -> f64 {
     let len = params.max_genome_len as f64;
-    let per = 32.0 * len + 8.0 * (free_cells as f64).min(200.0 * len);
+    let planes = f64::from(usize::BITS - params.max_genome_len.leading_zeros());
+    let plane_bytes = 8.0 * rows as f64 * cols.div_ceil(64) as f64;
+    let per = 32.0 * len + plane_bytes * planes;
     2.0 * params.initial_size().max(params.pop_min) as f64 * per
 }
 
@@ -289,6 +295,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
         keep: t.keep,
         select: t.select,
         control,
+        evaluation: t.evaluation,
     };
     Ok(params)
 }

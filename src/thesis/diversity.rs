@@ -7,96 +7,129 @@
 //! visited cells.
 
 use super::individual::Individual;
+use crate::coverage::bits::VisitPlanes;
 use rayon::prelude::*;
 
-/// Reusable buffers for [`pair_distance_sum`].
+/// Reusable buffers for [`pair_distance_sum`]: bit-sliced counters of the cells of one word.
 #[derive(Default, Debug)]
 pub struct DiversityScratch {
-    /// `hist[k·cells + c]`: individuals that visited cell `c` exactly `k` times (row 0 unused).
-    hist: Vec<u32>,
-    /// Running `c_t` per cell while `t` descends.
-    at_least: Vec<u32>,
+    /// `counters[(t − 1)·bits + q]`: bit `q` of `c_t` for the 64 cells of the current word.
+    counters: Vec<u64>,
 }
 
-/// `Σ_{i<j} Dist(M^i, M^j)` over the population (eqs. 3.17–3.18). The histogram is laid out
-/// count-major, so the common small counts stay in a few compact rows.
-pub fn pair_distance_sum(pop: &[Individual], cells: usize, scratch: &mut DiversityScratch) -> u64 {
+/// `Σ_{i<j} Dist(M^i, M^j)` over the population (eqs. 3.17–3.18).
+///
+/// For one cell, `Σ_{i<j} |a_i − a_j| = Σ_{t≥1} c_t·(N − c_t)` with `c_t` the number of
+/// individuals that visited it at least `t` times. The visit maps are bit-sliced, so for 64
+/// cells at once each individual's masks "at least `t` visits" (`t = 1, 2, …` until one is
+/// empty) are added into bit-sliced counters of `c_t`, and `Σ c_t(N − c_t) = N·Σc_t − Σc_t²`
+/// is read off them by popcounts.
+pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> u64 {
     let n = pop.len() as u64;
-    let top = pop.iter().flat_map(|i| i.counts.iter().map(|&(_, k)| k)).max().unwrap_or(0) as usize;
-    if top == 0 || n < 2 {
+    let words = pop.iter().map(|i| i.visits.plane_words()).max().unwrap_or(0);
+    if n < 2 || words == 0 {
         return 0;
     }
-    let DiversityScratch { hist, at_least } = scratch;
-    hist.clear();
-    hist.resize((top + 1) * cells, 0);
-    at_least.clear();
-    at_least.resize(cells, 0);
-    for ind in pop {
-        for &(c, k) in &ind.counts {
-            hist[k as usize * cells + c as usize] += 1;
-        }
-    }
+    let bits = (u64::BITS - n.leading_zeros()) as usize;
+    let counters = &mut scratch.counters;
     let mut sum = 0u64;
-    for t in (1..=top).rev() {
-        let row = &hist[t * cells..(t + 1) * cells];
-        for (acc, &h) in at_least.iter_mut().zip(row) {
-            *acc += h;
-            let c = u64::from(*acc);
-            sum += c * (n - c);
+    for idx in 0..words {
+        let mut t_max = 0usize;
+        for ind in pop {
+            let v = &ind.visits;
+            if idx >= v.plane_words() {
+                continue;
+            }
+            let mut t = 1;
+            loop {
+                let mut carry = v.at_least(idx, t as u32);
+                if carry == 0 {
+                    break;
+                }
+                if t > t_max {
+                    t_max = t;
+                    if counters.len() < t * bits {
+                        counters.resize(t * bits, 0);
+                    }
+                }
+                let c = &mut counters[(t - 1) * bits..t * bits];
+                let mut q = 0;
+                while carry != 0 {
+                    let old = c[q];
+                    c[q] = old ^ carry;
+                    carry &= old;
+                    q += 1;
+                }
+                t += 1;
+            }
+        }
+        for c in counters[..t_max * bits].chunks_exact_mut(bits) {
+            let (mut s1, mut s2) = (0u64, 0u64);
+            for q in 0..bits {
+                s1 += u64::from(c[q].count_ones()) << q;
+                s2 += u64::from(c[q].count_ones()) << (2 * q);
+                for r in q + 1..bits {
+                    s2 += u64::from((c[q] & c[r]).count_ones()) << (q + r + 1);
+                }
+            }
+            sum += n * s1 - s2;
+            c.fill(0);
         }
     }
     sum
 }
 
+fn slots(pop: &[Individual]) -> usize {
+    pop.iter().map(|i| i.visits.cell_slots()).max().unwrap_or(0)
+}
+
 /// `Div = 2/(N(N−1)) Σ_{i<j} D_ij`: the mean distance over unordered pairs (R11).
-pub fn diversity(pop: &[Individual], cells: usize, scratch: &mut DiversityScratch) -> f64 {
+pub fn diversity(pop: &[Individual], scratch: &mut DiversityScratch) -> f64 {
     let n = pop.len() as f64;
     if pop.len() < 2 {
         return 0.0;
     }
-    2.0 * pair_distance_sum(pop, cells, scratch) as f64 / (n * (n - 1.0))
+    2.0 * pair_distance_sum(pop, scratch) as f64 / (n * (n - 1.0))
 }
 
 /// `Dist(M^a, M^b)` (eq. 3.17) with a dense buffer holding `a`'s counts.
-fn distance_to_dense(dense_a: &[u32], sum_a: u64, b: &Individual) -> u64 {
-    let sum_b: u64 = b.counts.iter().map(|&(_, k)| u64::from(k)).sum();
-    let common: u64 = b.counts.iter().map(|&(c, k)| u64::from(dense_a[c as usize].min(k))).sum();
+fn distance_to_dense(dense_a: &[u32], sum_a: u64, b: &VisitPlanes) -> u64 {
+    let (mut sum_b, mut common) = (0u64, 0u64);
+    b.for_each_count(|c, k| {
+        sum_b += u64::from(k);
+        common += u64::from(dense_a[c as usize].min(k));
+    });
     sum_a + sum_b - 2 * common
 }
 
 fn dense_of(ind: &Individual, dense: &mut [u32]) -> u64 {
     let mut s = 0;
-    for &(c, k) in &ind.counts {
+    ind.visits.for_each_count(|c, k| {
         dense[c as usize] = k;
         s += u64::from(k);
-    }
+    });
     s
 }
 
-fn clear_dense(ind: &Individual, dense: &mut [u32]) {
-    for &(c, _) in &ind.counts {
-        dense[c as usize] = 0;
-    }
-}
-
 /// `Dist` of one pair (eq. 3.17).
-pub fn distance(a: &Individual, b: &Individual, cells: usize) -> u64 {
-    let mut dense = vec![0u32; cells];
+pub fn distance(a: &Individual, b: &Individual) -> u64 {
+    let mut dense = vec![0u32; a.visits.cell_slots().max(b.visits.cell_slots())];
     let sa = dense_of(a, &mut dense);
-    distance_to_dense(&dense, sa, b)
+    distance_to_dense(&dense, sa, &b.visits)
 }
 
 /// `Div_max = max_{i,j} D_ij` over the population (spec §12.2); `O(N²)` sparse merges, in
 /// parallel. Only the adaptive parameter control needs it.
-pub fn max_distance(pop: &[Individual], cells: usize) -> u64 {
+pub fn max_distance(pop: &[Individual]) -> u64 {
+    let cells = slots(pop);
     (0..pop.len())
         .into_par_iter()
         .map_init(
             || vec![0u32; cells],
             |dense, i| {
                 let sa = dense_of(&pop[i], dense);
-                let m = pop[i + 1..].iter().map(|b| distance_to_dense(dense, sa, b)).max().unwrap_or(0);
-                clear_dense(&pop[i], dense);
+                let m = pop[i + 1..].iter().map(|b| distance_to_dense(dense, sa, &b.visits)).max().unwrap_or(0);
+                pop[i].visits.for_each_count(|c, _| dense[c as usize] = 0);
                 m
             },
         )
@@ -106,16 +139,16 @@ pub fn max_distance(pop: &[Individual], cells: usize) -> u64 {
 
 /// The printed eq. 3.19, `2/(N(N+1)) Σ_{i=1}^{N} Σ_{j=i}^{N−1} D_ij`, which counts the zero
 /// diagonal in the normaliser and leaves out the last column (kept for comparison, R11).
-pub fn diversity_literal(pop: &[Individual], cells: usize, scratch: &mut DiversityScratch) -> f64 {
+pub fn diversity_literal(pop: &[Individual], scratch: &mut DiversityScratch) -> f64 {
     let n = pop.len();
     if n < 2 {
         return 0.0;
     }
-    let all = pair_distance_sum(pop, cells, scratch);
-    let mut dense = vec![0u32; cells];
+    let all = pair_distance_sum(pop, scratch);
+    let mut dense = vec![0u32; slots(pop)];
     let last = &pop[n - 1];
     let s_last = dense_of(last, &mut dense);
-    let with_last: u64 = pop[..n - 1].iter().map(|b| distance_to_dense(&dense, s_last, b)).sum();
+    let with_last: u64 = pop[..n - 1].iter().map(|b| distance_to_dense(&dense, s_last, &b.visits)).sum();
     let nf = n as f64;
     2.0 * (all - with_last) as f64 / (nf * (nf + 1.0))
 }
@@ -124,8 +157,9 @@ pub fn diversity_literal(pop: &[Individual], cells: usize, scratch: &mut Diversi
 mod tests {
     use super::*;
 
+    /// An individual whose visit map over one 64-cell row holds `counts`.
     fn ind(counts: &[(u32, u32)]) -> Individual {
-        Individual { counts: counts.to_vec(), ..Default::default() }
+        Individual { visits: VisitPlanes::from_counts(1, counts), ..Default::default() }
     }
 
     #[test]
@@ -134,21 +168,60 @@ mod tests {
         let a = ind(&[(0, 1), (1, 2)]);
         let b = ind(&[(1, 1), (2, 3)]);
         let c = ind(&[(0, 1), (3, 1)]);
-        assert_eq!(distance(&a, &b, 4), 1 + 1 + 3);
-        assert_eq!(distance(&a, &c, 4), 2 + 1);
-        assert_eq!(distance(&b, &c, 4), 1 + 1 + 3 + 1);
+        assert_eq!(distance(&a, &b), 1 + 1 + 3);
+        assert_eq!(distance(&a, &c), 2 + 1);
+        assert_eq!(distance(&b, &c), 1 + 1 + 3 + 1);
         let pop = vec![a, b, c];
         let mut s = DiversityScratch::default();
-        assert_eq!(pair_distance_sum(&pop, 4, &mut s), 5 + 3 + 6);
-        assert!((diversity(&pop, 4, &mut s) - 14.0 / 3.0).abs() < 1e-12);
-        assert_eq!(max_distance(&pop, 4), 6);
+        assert_eq!(pair_distance_sum(&pop, &mut s), 5 + 3 + 6);
+        // The scratch is left clean: the same answer again.
+        assert_eq!(pair_distance_sum(&pop, &mut s), 5 + 3 + 6);
+        assert!((diversity(&pop, &mut s) - 14.0 / 3.0).abs() < 1e-12);
+        assert_eq!(max_distance(&pop), 6);
         // Literal eq. 3.19: pairs without the last individual: D_ab = 5; 2·5/(3·4).
-        assert!((diversity_literal(&pop, 4, &mut s) - 10.0 / 12.0).abs() < 1e-12);
+        assert!((diversity_literal(&pop, &mut s) - 10.0 / 12.0).abs() < 1e-12);
     }
 
     #[test]
     fn identical_maps_have_zero_diversity() {
         let pop = vec![ind(&[(0, 2), (5, 1)]); 4];
-        assert_eq!(diversity(&pop, 6, &mut DiversityScratch::default()), 0.0);
+        assert_eq!(diversity(&pop, &mut DiversityScratch::default()), 0.0);
+    }
+
+    /// The sum over cells of the histogram formula, cell by cell (the reference).
+    fn pair_sum_by_cells(pop: &[Individual]) -> u64 {
+        let n = pop.len() as u64;
+        let mut per_cell: std::collections::BTreeMap<u32, Vec<u32>> = Default::default();
+        for ind in pop {
+            ind.visits.for_each_count(|c, k| per_cell.entry(c).or_default().push(k));
+        }
+        per_cell
+            .values()
+            .map(|ks| {
+                let top = *ks.iter().max().unwrap_or(&0);
+                (1..=top).map(|t| ks.iter().filter(|&&k| k >= t).count() as u64).map(|c| c * (n - c)).sum::<u64>()
+            })
+            .sum()
+    }
+
+    proptest::proptest! {
+        /// The histogram sum equals the sum of pairwise distances by definition (eq. 3.17).
+        #[test]
+        fn pair_sum_equals_the_sum_of_pair_distances(maps in proptest::collection::vec(proptest::collection::vec(0u32..40, 64), 2..40)) {
+            let pop: Vec<Individual> = maps
+                .iter()
+                .map(|m| ind(&m.iter().enumerate().filter(|(_, k)| **k > 0).map(|(c, k)| (c as u32, *k)).collect::<Vec<_>>()))
+                .collect();
+            let mut by_pairs = 0;
+            for i in 0..pop.len() {
+                for j in i + 1..pop.len() {
+                    let d: u64 = maps[i].iter().zip(&maps[j]).map(|(a, b)| u64::from(a.abs_diff(*b))).sum();
+                    proptest::prop_assert_eq!(distance(&pop[i], &pop[j]), d);
+                    by_pairs += d;
+                }
+            }
+            proptest::prop_assert_eq!(pair_distance_sum(&pop, &mut DiversityScratch::default()), by_pairs);
+            proptest::prop_assert_eq!(pair_sum_by_cells(&pop), by_pairs);
+        }
     }
 }

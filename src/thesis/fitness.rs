@@ -3,7 +3,7 @@
 //! Areas are computed in square metres from cell counts (eqs. 3.4–3.6) so that the formulas
 //! read as in the thesis; `M_res`, `R_speed` and `R_width` enter exactly where it puts them.
 
-use crate::coverage::{Footprint, PathMetrics};
+use crate::coverage::{Footprint, PathMetrics, SweepCounts};
 use serde::{Deserialize, Serialize};
 
 /// The projection `f(x, y)` of the two objectives onto one number (003 eqs. 3.14–3.15).
@@ -90,21 +90,30 @@ pub struct ThesisScore {
 
 /// Scores measured path metrics (003 eqs. 3.4–3.16) with cell size `m_res`.
 pub fn score(metrics: &PathMetrics, robot: &Footprint, m_res: f64, projection: Projection) -> ThesisScore {
-    let cov_m2 = area_m2(metrics.cells_swept, m_res);
-    let cross_m2 = area_m2(metrics.crossings, m_res);
+    score_counts(&metrics.counts(), metrics.area_cells, metrics.t_rot_s, robot, m_res, projection)
+}
+
+/// Scores the counts of Listing 3.1 on `A_pix = area_cells` with rotation time `t_rot_s`
+/// (003 eqs. 3.4–3.16) with cell size `m_res`.
+pub fn score_counts(
+    counts: &SweepCounts,
+    area_cells: u64,
+    t_rot_s: f64,
+    robot: &Footprint,
+    m_res: f64,
+    projection: Projection,
+) -> ThesisScore {
+    let cov_m2 = area_m2(counts.cov_pix, m_res);
+    let cross_m2 = area_m2(counts.cross_pix, m_res);
     let actual = cov_actual(cov_m2, cross_m2);
-    let cov = cov_final(actual, area_m2(metrics.area_cells, m_res));
-    let t = t_final(
-        t_optimal(actual, robot.speed, robot.width),
-        t_actual(cov_m2, robot.speed, robot.width),
-        metrics.t_rot_s,
-    );
+    let cov = cov_final(actual, area_m2(area_cells, m_res));
+    let t = t_final(t_optimal(actual, robot.speed, robot.width), t_actual(cov_m2, robot.speed, robot.width), t_rot_s);
     let (f1v, f2v) = (f1(t, cov), f2(t, cov));
     let f = match projection {
         Projection::F1 => f1v,
         Projection::F2 => f2v,
     };
-    ThesisScore { cov_final: cov, t_final: t, f1: f1v, f2: f2v, fitness: f_obstacle(f, metrics.obstacle_cells) }
+    ThesisScore { cov_final: cov, t_final: t, f1: f1v, f2: f2v, fitness: f_obstacle(f, counts.obj_pix) }
 }
 
 #[cfg(test)]

@@ -6,20 +6,44 @@
 //! is always recomputed to end at the fixed end station E; E carries no move. Live genes are
 //! indices `0 ..= n − 3`.
 
-use crate::geom::{Point, ZERO_LENGTH, direction_deg, polar_deg};
+use crate::geom::{Point, Vector, ZERO_LENGTH, direction_deg, polar_deg};
 use rand::Rng;
 use serde::Serialize;
 
 /// One action: a move of `dist_m` metres in direction `alpha_deg` degrees from +x.
+///
+/// The unit vector of the heading is computed once, when the heading is set, so decoding a
+/// genome needs no trigonometry for genes it has decoded before; the fields are private to
+/// keep it in step with the heading.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Action {
-    /// `AC_α` in degrees, in [0, 360).
-    pub alpha_deg: f64,
-    /// `AC_dist` in metres, ≥ 0.
-    pub dist_m: f64,
+    alpha_deg: f64,
+    dist_m: f64,
+    #[serde(skip)]
+    direction: Vector,
 }
 
 impl Action {
+    /// The move of `dist_m` metres in direction `alpha_deg` (degrees, in [0, 360)).
+    pub fn new(alpha_deg: f64, dist_m: f64) -> Self {
+        Self { alpha_deg, dist_m, direction: direction_deg(alpha_deg) }
+    }
+    /// The same heading with another distance.
+    pub fn with_dist(self, dist_m: f64) -> Self {
+        Self { dist_m, ..self }
+    }
+    /// `AC_α` in degrees, in [0, 360).
+    pub fn alpha_deg(&self) -> f64 {
+        self.alpha_deg
+    }
+    /// `AC_dist` in metres, ≥ 0.
+    pub fn dist_m(&self) -> f64 {
+        self.dist_m
+    }
+    /// The unit vector of the heading (003 eq. 3.7), as [`direction_deg`] gives it.
+    pub fn direction(&self) -> Vector {
+        self.direction
+    }
     /// A zero action: `AC_dist < 1e-9` m (spec R18).
     pub fn is_zero(&self) -> bool {
         self.dist_m < ZERO_LENGTH
@@ -116,16 +140,12 @@ pub fn decode_prefix(genome: &mut [Action], frame: &Frame, upto: usize, points: 
     let mut prev_changed = false;
     for i in 0..upto {
         // A zero action (R18) does not move at all, so deleting it later cannot move the path.
-        let q = if genome[i].is_zero() {
-            q_prev
-        } else {
-            snap_point(q_prev + direction_deg(genome[i].alpha_deg) * genome[i].dist_m)
-        };
+        let q = if genome[i].is_zero() { q_prev } else { snap_point(q_prev + genome[i].direction * genome[i].dist_m) };
         let p = frame.clamp(q);
         let changed = p != q;
         if changed || prev_changed {
             let (alpha, dist) = polar_deg(p - points[i], genome[i].alpha_deg);
-            genome[i] = Action { alpha_deg: alpha, dist_m: dist };
+            genome[i] = Action::new(alpha, dist);
         }
         points.push(p);
         q_prev = q;
@@ -143,21 +163,22 @@ pub fn decode(genome: &mut [Action], frame: &Frame, points: &mut Vec<Point>) {
     decode_prefix(genome, frame, n - 2, points);
     let last = points[n - 2];
     let (alpha, dist) = polar_deg(frame.end - last, genome[n - 2].alpha_deg);
-    genome[n - 2] = Action { alpha_deg: alpha, dist_m: dist };
-    genome[n - 1] = Action { alpha_deg: genome[n - 1].alpha_deg, dist_m: 0.0 };
+    genome[n - 2] = Action::new(alpha, dist);
+    genome[n - 1] = genome[n - 1].with_dist(0.0);
     points.push(frame.end);
 }
 
 /// Sets the move of gene `i` so that it goes from `from` to `to` (used by crossover patches).
 pub fn set_move(genome: &mut [Action], i: usize, from: Point, to: Point) {
     let (alpha, dist) = polar_deg(to - from, genome[i].alpha_deg);
-    genome[i] = Action { alpha_deg: alpha, dist_m: dist };
+    genome[i] = Action::new(alpha, dist);
 }
 
 /// A random action: `α ~ U[0, 360)` degrees, `dist ~ U[0, dist_max]` metres (003 §3.3.1,
 /// spec §6, R2).
 pub fn random_action<R: Rng + ?Sized>(rng: &mut R, dist_max: f64) -> Action {
-    Action { alpha_deg: rng.random_range(0.0..360.0), dist_m: rng.random_range(0.0..=dist_max) }
+    let alpha_deg = rng.random_range(0.0..360.0);
+    Action::new(alpha_deg, rng.random_range(0.0..=dist_max))
 }
 
 /// A fresh random genome (`randInit`, spec §6): S, `init_actions` random actions (the last of
@@ -167,7 +188,7 @@ pub fn random_genome<R: Rng + ?Sized>(rng: &mut R, init_actions: usize, dist_max
     for _ in 0..=init_actions {
         out.push(random_action(rng, dist_max));
     }
-    out.push(Action { alpha_deg: 0.0, dist_m: 0.0 });
+    out.push(Action::new(0.0, 0.0));
 }
 
 #[cfg(test)]
@@ -184,7 +205,7 @@ mod tests {
     }
 
     fn a(alpha_deg: f64, dist_m: f64) -> Action {
-        Action { alpha_deg, dist_m }
+        Action::new(alpha_deg, dist_m)
     }
 
     #[test]
@@ -197,8 +218,8 @@ mod tests {
             assert!((p - e).norm() < 1e-10);
         }
         // The connector now points from (3.3, 4.3) back to E.
-        assert!((g[2].dist_m - 13f64.sqrt()).abs() < 1e-10);
-        assert_eq!(g[3].dist_m, 0.0);
+        assert!((g[2].dist_m() - 13f64.sqrt()).abs() < 1e-10);
+        assert_eq!(g[3].dist_m(), 0.0);
     }
 
     #[test]
@@ -212,8 +233,8 @@ mod tests {
         // Intended q2 = (13.3, 3.3) → clamped (11, 3.3); q3 = (8.3, 3.3) is inside: kept.
         assert!((pts[2] - Point::new(11.0, 3.3)).norm() < 1e-10);
         assert!((pts[3] - Point::new(8.3, 3.3)).norm() < 1e-10);
-        assert!((g[0].dist_m - 9.7).abs() < 1e-10);
-        assert!((g[2].dist_m - 2.7).abs() < 1e-10 && (g[2].alpha_deg - 180.0).abs() < 1e-9);
+        assert!((g[0].dist_m() - 9.7).abs() < 1e-10);
+        assert!((g[2].dist_m() - 2.7).abs() < 1e-10 && (g[2].alpha_deg() - 180.0).abs() < 1e-9);
         // Written back: decoding again changes nothing, bit for bit.
         let before = g.clone();
         let mut again = Vec::new();
@@ -265,7 +286,7 @@ mod tests {
         let mut g = Vec::new();
         random_genome(&mut rng, 50, 50.0, &mut g);
         assert_eq!(g.len(), 52);
-        assert!(g.iter().all(|x| (0.0..360.0).contains(&x.alpha_deg) && (0.0..=50.0).contains(&x.dist_m)));
+        assert!(g.iter().all(|x| (0.0..360.0).contains(&x.alpha_deg()) && (0.0..=50.0).contains(&x.dist_m())));
         assert_eq!(live(52), 0..50);
     }
 }

@@ -1,12 +1,14 @@
 //! Evaluated individuals, the scenario they are scored in, and the correction procedures that
 //! follow every creation or change of a genome (003 §3.3.4, spec §9, order of R17).
 
-use super::fitness::{Projection, ThesisScore, score};
+use super::fitness::{Projection, ThesisScore, score_counts};
 use super::genome::{Action, Frame, decode, live, random_genome};
-use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
+use crate::coverage::bits::{BitLayers, Tally, VisitPlanes};
+use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
 use crate::map::GridMap;
 use rand::Rng;
+use serde::{Deserialize, Serialize};
 
 /// Everything an evaluation reads: the map layers, the robot, the stations and the projection.
 #[derive(Clone, Debug)]
@@ -15,6 +17,8 @@ pub struct Scenario {
     pub map: GridMap,
     /// Obstacles and pre-marks as scored.
     pub grid: CoverageGrid,
+    /// The same layers as bit rows, for the evaluator.
+    pub layers: BitLayers,
     /// The robot.
     pub robot: Footprint,
     /// Stations and clamping rectangle.
@@ -29,8 +33,28 @@ impl Scenario {
         let min = map.origin();
         let max = Point::new(min.x + map.width_m(), min.y + map.height_m());
         let grid = CoverageGrid::new(&map);
-        Self { grid, robot, frame: Frame::new(start, end, min, max), projection, map }
+        let layers = BitLayers::new(&grid);
+        Self { grid, layers, robot, frame: Frame::new(start, end, min, max), projection, map }
     }
+
+    /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` as already covered
+    /// (the retrain region, spec R25). Individuals must be re-evaluated in full afterwards.
+    pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
+        self.grid.premark_rect(x0, y0, x1, y1);
+        self.layers = BitLayers::new(&self.grid);
+    }
+}
+
+/// How a changed genome is evaluated. Both give identical results; `Full` exists to prove it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum EvaluationMode {
+    /// A child is its parent's visit map minus the parent's segments it does not share plus
+    /// its own new segments (the counts of Listing 3.1 depend only on the final map).
+    #[default]
+    Incremental,
+    /// Every evaluation sweeps the whole path.
+    Full,
 }
 
 /// A decoded, evaluated genome with its visit-count map (the input of the diversity, §5).
@@ -40,15 +64,30 @@ pub struct Individual {
     pub genome: Vec<Action>,
     /// The viewpoints (`PA`), one per action.
     pub points: Vec<Point>,
-    /// Footprint metrics of the path.
-    pub metrics: PathMetrics,
+    /// The counts of Listing 3.1 of the path.
+    pub sweep: SweepCounts,
+    /// `T_rot` in seconds (0 when `R_rot` = 0).
+    pub t_rot_s: f64,
     /// Thesis objectives and fitness.
     pub score: ThesisScore,
-    /// `(cell, visits)` of every free cell the path swept.
-    pub counts: Vec<(u32, u32)>,
+    /// `M_traveled`: visits of every free cell the path swept (pre-marks not included).
+    pub visits: VisitPlanes,
 }
 
 impl Individual {
+    /// The complete footprint metrics of the path (length and turning included), measured
+    /// anew; the evaluation itself keeps only what the fitness reads.
+    pub fn path_metrics(&self, scenario: &Scenario) -> PathMetrics {
+        let grid = &scenario.grid;
+        let metrics = scenario.robot.measure(grid, &mut SweepScratch::new(grid), &self.points);
+        debug_assert_eq!(metrics.counts(), self.sweep, "the evaluator and the cell sweep agree");
+        metrics
+    }
+
+    fn tally(&self) -> Tally {
+        Tally { cov_pix: self.sweep.cov_pix, obj_pix: self.sweep.obj_pix, unique: self.sweep.unique() }
+    }
+
     /// `f_obstacle`.
     pub fn fitness(&self) -> f64 {
         self.score.fitness
@@ -72,13 +111,91 @@ pub struct InitParams {
     pub dist_max: f64,
 }
 
+/// What a changed genome is evaluated against.
+#[derive(Clone, Copy, Debug)]
+pub enum Base<'a> {
+    /// Nothing: sweep the whole path.
+    None,
+    /// The individual's own path and visit map before its genome changed.
+    Own,
+    /// The parent it was made from (the receiving parent of a crossover).
+    Parent(&'a Individual),
+}
+
+/// Reusable buffers of an evaluation.
+#[derive(Clone, Debug, Default)]
+pub struct EvalScratch {
+    points: Vec<Point>,
+}
+
 /// Decodes with correction (written back) and evaluates, in place (spec §9 steps 1–2).
-pub fn evaluate(ind: &mut Individual, scenario: &Scenario, scratch: &mut SweepScratch) {
-    decode(&mut ind.genome, &scenario.frame, &mut ind.points);
-    ind.metrics = scenario.robot.measure(&scenario.grid, scratch, &ind.points);
-    ind.score = score(&ind.metrics, &scenario.robot, scenario.map.resolution(), scenario.projection);
-    ind.counts.clear();
-    ind.counts.extend(scratch.visit_counts());
+///
+/// With [`EvaluationMode::Incremental`] and a base, only the segments the new path does not
+/// share with the base's path are swept: the longest common prefix and suffix of viewpoints
+/// (compared bit for bit) are kept, the base's segments between them are removed from its
+/// visit map and the new ones added. Shared segments have identical endpoints and hence
+/// identical cells, so the result equals a full evaluation exactly.
+pub fn evaluate(
+    ind: &mut Individual,
+    scenario: &Scenario,
+    base: Base,
+    mode: EvaluationMode,
+    scratch: &mut EvalScratch,
+) {
+    decode(&mut ind.genome, &scenario.frame, &mut scratch.points);
+    let (layers, width) = (&scenario.layers, scenario.robot.width);
+    let tally = match (mode, base) {
+        (EvaluationMode::Full, _) | (_, Base::None) => layers.sweep(&mut ind.visits, &scratch.points, width),
+        (EvaluationMode::Incremental, Base::Own) => {
+            let t = ind.tally();
+            edit(layers, &mut ind.visits, t, &ind.points, &scratch.points, width)
+        }
+        (EvaluationMode::Incremental, Base::Parent(p)) => {
+            ind.visits.copy_from(&p.visits);
+            edit(layers, &mut ind.visits, p.tally(), &p.points, &scratch.points, width)
+        }
+    };
+    std::mem::swap(&mut ind.points, &mut scratch.points);
+    ind.sweep = tally.counts();
+    let rot = scenario.robot.rot_speed;
+    ind.t_rot_s = if rot > 0.0 { motion::rotation_time(motion::turning(&ind.points).0, rot) } else { 0.0 };
+    let res = scenario.map.resolution();
+    ind.score = score_counts(
+        &ind.sweep,
+        scenario.grid.area_cells() as u64,
+        ind.t_rot_s,
+        &scenario.robot,
+        res,
+        scenario.projection,
+    );
+}
+
+/// Turns the visit map of path `old` (with counts `tally`) into that of path `new`.
+fn edit(
+    layers: &BitLayers,
+    visits: &mut VisitPlanes,
+    mut tally: Tally,
+    old: &[Point],
+    new: &[Point],
+    width: f64,
+) -> Tally {
+    let (so, sn) = (old.len().saturating_sub(1), new.len().saturating_sub(1));
+    let shared = so.min(sn);
+    let mut x = 0;
+    while x < shared && old[x] == new[x] && old[x + 1] == new[x + 1] {
+        x += 1;
+    }
+    let mut y = 0;
+    while x + y < shared && old[so - y] == new[sn - y] && old[so - y - 1] == new[sn - y - 1] {
+        y += 1;
+    }
+    for i in x..so - y {
+        layers.apply::<false>(visits, old[i], old[i + 1], width, &mut tally);
+    }
+    for i in x..sn - y {
+        layers.apply::<true>(visits, new[i], new[i + 1], width, &mut tally);
+    }
+    tally
 }
 
 /// Zero-action removal (003 §3.3.4, spec §9.2, R18): a free gene `1 ..= n − 3` that is a zero
@@ -116,23 +233,28 @@ pub fn is_dead(genome: &[Action]) -> bool {
 
 /// The full correction sequence of R17 after a genome was created or changed: decode with
 /// correction → evaluate → zero-action removal → dead check (re-initialise and start over).
-/// Returns the number of evaluations spent.
+/// Returns the number of evaluations spent. `base` is what the genome was made from.
 pub fn correct_and_evaluate<R: Rng + ?Sized>(
     ind: &mut Individual,
     scenario: &Scenario,
-    scratch: &mut SweepScratch,
+    mut base: Base,
+    mode: EvaluationMode,
+    scratch: &mut EvalScratch,
     init: &InitParams,
     rng: &mut R,
 ) -> u64 {
     let mut evaluations = 0;
     loop {
-        evaluate(ind, scenario, scratch);
+        evaluate(ind, scenario, base, mode, scratch);
         evaluations += 1;
+        // Zero actions move nothing (see `decode_prefix`), so deleting them leaves the
+        // segments, and hence the visit map, as they are.
         remove_zero_actions(ind);
         if !is_dead(&ind.genome) {
             return evaluations;
         }
         random_genome(rng, init.actions, init.dist_max, &mut ind.genome);
+        base = Base::None;
     }
 }
 
@@ -142,7 +264,7 @@ mod tests {
     use crate::map::presets::preset;
 
     fn a(dist_m: f64) -> Action {
-        Action { alpha_deg: 90.0, dist_m }
+        Action::new(90.0, dist_m)
     }
 
     #[test]
@@ -154,10 +276,65 @@ mod tests {
         };
         ind.points = (0..9).map(|i| Point::new(i as f64, 0.0)).collect();
         assert_eq!(remove_zero_actions(&mut ind), 2);
-        let d: Vec<f64> = ind.genome.iter().map(|x| x.dist_m).collect();
+        let d: Vec<f64> = ind.genome.iter().map(|x| x.dist_m()).collect();
         assert_eq!(d, vec![1.0, 0.0, 0.0, 1.0, 0.0, 2.0, 0.0]);
         assert_eq!(ind.points.len(), 7);
         assert_eq!(ind.points[2], Point::new(4.0, 0.0));
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
+        /// A crossover child, a mutated copy and a mutated child evaluated against their base
+        /// equal their full evaluation in every field, visit map included.
+        #[test]
+        fn incremental_evaluation_equals_full(seed in 0u64..1_000_000, na in 3usize..70, nb in 3usize..70, c_len in 0.0..0.6f64, mode in 0u8..3, map in 0usize..2, dist in 0.5..12.0f64) {
+            use crate::thesis::crossover::{ChildMode, Parent, crossover};
+            use crate::thesis::mutation::mutate_action;
+            let m = preset(["thesis-1", "thesis-2"][map]).unwrap();
+            let s = Point::new(1.3, 1.3);
+            let sc = Scenario::new(m, Footprint { rot_speed: 0.7, ..Footprint::default() }, s, Point::new(9.7, 1.3), Projection::F2);
+            let mut rng = crate::ga::rng::stream(seed, crate::ga::rng::Purpose::Main, &[]);
+            let mut scratch = EvalScratch::default();
+            let mut parents = Vec::new();
+            for n in [na, nb] {
+                let mut ind = Individual::default();
+                random_genome(&mut rng, n - 2, dist, &mut ind.genome);
+                evaluate(&mut ind, &sc, Base::None, EvaluationMode::Full, &mut scratch);
+                remove_zero_actions(&mut ind);
+                parents.push(ind);
+            }
+            let both = |ind: &Individual, base: Base, scratch: &mut EvalScratch| {
+                let (mut inc, mut full) = (ind.clone(), ind.clone());
+                evaluate(&mut inc, &sc, base, EvaluationMode::Incremental, scratch);
+                evaluate(&mut full, &sc, Base::None, EvaluationMode::Full, scratch);
+                (inc, full)
+            };
+            let same = |a: &Individual, b: &Individual| {
+                a.genome == b.genome && a.points == b.points && a.sweep == b.sweep && a.score == b.score && {
+                    let (mut x, mut y) = (Vec::new(), Vec::new());
+                    a.visits.for_each_count(|c, k| x.push((c, k)));
+                    b.visits.for_each_count(|c, k| y.push((c, k)));
+                    x == y
+                }
+            };
+            let pa = Parent { genome: &parents[0].genome, points: &parents[0].points };
+            let pb = Parent { genome: &parents[1].genome, points: &parents[1].points };
+            let kids = crossover(pa, pb, c_len, ChildMode::from_index(mode).unwrap(), 300, &sc.frame, &mut rng);
+            for (k, genome) in kids.into_iter().flatten().enumerate() {
+                let receiver = &parents[k % 2];
+                let mut child = Individual { genome, ..Default::default() };
+                if rng.random_bool(0.3) {
+                    mutate_action(&mut child.genome, &mut rng);
+                }
+                let (inc, full) = both(&child, Base::Parent(receiver), &mut scratch);
+                proptest::prop_assert!(same(&inc, &full), "child {k}");
+            }
+            // A copy whose genome was mutated, against its own former self.
+            let mut copy = parents[0].clone();
+            mutate_action(&mut copy.genome, &mut rng);
+            let (inc, full) = both(&copy, Base::Own, &mut scratch);
+            proptest::prop_assert!(same(&inc, &full), "mutated copy");
+        }
     }
 
     #[test]
@@ -165,12 +342,13 @@ mod tests {
         let map = preset("thesis-1").unwrap();
         let s = Point::new(1.3, 1.3);
         let sc = Scenario::new(map, Footprint::default(), s, s, Projection::F1);
-        let mut scratch = SweepScratch::new(&sc.grid);
+        let mut scratch = EvalScratch::default();
         let mut ind = Individual { genome: vec![a(0.0), a(0.0), a(0.0), a(0.0)], ..Default::default() };
         assert!(is_dead(&ind.genome));
         let mut rng = crate::ga::rng::stream(9, crate::ga::rng::Purpose::Main, &[]);
+        let init = InitParams { actions: 10, dist_max: 5.0 };
         let evals =
-            correct_and_evaluate(&mut ind, &sc, &mut scratch, &InitParams { actions: 10, dist_max: 5.0 }, &mut rng);
+            correct_and_evaluate(&mut ind, &sc, Base::None, EvaluationMode::Incremental, &mut scratch, &init, &mut rng);
         assert_eq!(evals, 2);
         assert!(!is_dead(&ind.genome));
         assert!(ind.score.cov_final > 0.0);

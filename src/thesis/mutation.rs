@@ -11,17 +11,17 @@ use rand::Rng;
 pub fn rand_scale<R: Rng + ?Sized>(genome: &[Action], gene: usize, rng: &mut R) -> Action {
     let g = genome[gene];
     if !g.is_zero() {
-        Action { dist_m: g.dist_m * rng.random_range(0.5..=1.5), ..g }
+        g.with_dist(g.dist_m() * rng.random_range(0.5..=1.5))
     } else {
         let genes = &genome[live(genome.len())];
-        let mean = genes.iter().map(|a| a.dist_m).sum::<f64>() / genes.len() as f64;
-        Action { dist_m: mean, ..g }
+        let mean = genes.iter().map(|a| a.dist_m()).sum::<f64>() / genes.len() as f64;
+        g.with_dist(mean)
     }
 }
 
 /// `randAngleOffset` (003 eq. 3.24): `α + r`, `r ~ U[0, 360]`, reduced modulo 360.
 pub fn rand_angle_offset<R: Rng + ?Sized>(gene: Action, rng: &mut R) -> Action {
-    Action { alpha_deg: normalise_deg(gene.alpha_deg + rng.random_range(0.0..=360.0)), ..gene }
+    Action::new(normalise_deg(gene.alpha_deg() + rng.random_range(0.0..=360.0)), gene.dist_m())
 }
 
 /// The action mutation: one live gene, uniformly chosen, gets `randScale` or
@@ -69,7 +69,7 @@ mod tests {
     use crate::ga::rng::{Purpose, stream};
 
     fn a(alpha_deg: f64, dist_m: f64) -> Action {
-        Action { alpha_deg, dist_m }
+        Action::new(alpha_deg, dist_m)
     }
 
     #[test]
@@ -78,10 +78,10 @@ mod tests {
         let mut rng = stream(1, Purpose::Main, &[]);
         for _ in 0..100 {
             let s = rand_scale(&g, 0, &mut rng);
-            assert!((1.0..=3.0).contains(&s.dist_m));
+            assert!((1.0..=3.0).contains(&s.dist_m()));
         }
         // Live genes 0..=2: mean of 2, 0, 4 = 2.
-        assert_eq!(rand_scale(&g, 1, &mut rng).dist_m, 2.0);
+        assert_eq!(rand_scale(&g, 1, &mut rng).dist_m(), 2.0);
     }
 
     #[test]
@@ -89,8 +89,8 @@ mod tests {
         let mut rng = stream(2, Purpose::Main, &[]);
         for _ in 0..100 {
             let m = rand_angle_offset(a(359.0, 1.0), &mut rng);
-            assert!((0.0..360.0).contains(&m.alpha_deg));
-            assert_eq!(m.dist_m, 1.0);
+            assert!((0.0..360.0).contains(&m.alpha_deg()));
+            assert_eq!(m.dist_m(), 1.0);
         }
     }
 
@@ -125,7 +125,7 @@ mod tests {
             for p in &pts {
                 proptest::prop_assert!(p.x >= 0.0 && p.x <= 11.0 && p.y >= 0.0 && p.y <= 11.0);
             }
-            proptest::prop_assert!(g.iter().all(|a| a.dist_m >= 0.0 && (0.0..360.0).contains(&a.alpha_deg)));
+            proptest::prop_assert!(g.iter().all(|a| a.dist_m() >= 0.0 && (0.0..360.0).contains(&a.alpha_deg())));
         }
     }
 

@@ -2,7 +2,7 @@
 //! experiment loader, which checks every range; the algorithm trusts them.
 
 use super::crossover::ChildMode;
-use super::individual::InitParams;
+use super::individual::{EvaluationMode, InitParams};
 use crate::ga::control::AdaptiveConstants;
 use std::time::Duration;
 
@@ -94,6 +94,8 @@ pub struct ThesisParams {
     pub select: usize,
     /// Parameter control.
     pub control: Control,
+    /// How children are evaluated (identical results either way).
+    pub evaluation: EvaluationMode,
 }
 
 impl ThesisParams {
@@ -117,6 +119,7 @@ impl ThesisParams {
             keep: 0,
             select: 0,
             control: Control::None,
+            evaluation: EvaluationMode::Incremental,
         }
     }
 

@@ -23,7 +23,7 @@ pub fn genome_csv(ind: &Individual) -> Vec<u8> {
             _ if i == n - 2 => "connector",
             _ => "action",
         };
-        s.push_str(&format!("{i},{role},{},{},{},{}\n", a.alpha_deg, a.dist_m, p.x, p.y));
+        s.push_str(&format!("{i},{role},{},{},{},{}\n", a.alpha_deg(), a.dist_m(), p.x, p.y));
     }
     s.into_bytes()
 }
@@ -61,7 +61,7 @@ impl Planner for ThesisConfig {
             "f1": sc.f1,
             "f2": sc.f2,
             "genome_len": best.len(),
-            "metrics": best.metrics,
+            "metrics": best.path_metrics(&ga.scenario),
         }));
         if let Some(b) = &out.best_before_retrain {
             details.insert(
@@ -72,8 +72,8 @@ impl Planner for ThesisConfig {
         Ok(RunOutcome {
             plan: vec![best.points.clone()],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
-            feasible: best.metrics.obstacle_cells == 0,
-            violations: obstacle_violations(best.metrics.obstacle_cells),
+            feasible: best.sweep.obj_pix == 0,
+            violations: obstacle_violations(best.sweep.obj_pix),
             evaluations: out.evaluations,
             iterations: out.iterations,
             stop: out.stop,

@@ -5,9 +5,8 @@
 
 use super::architecture::{Effective, Generation, MutationRate};
 use super::diversity::{DiversityScratch, diversity, max_distance};
-use super::individual::{Individual, Scenario, evaluate};
+use super::individual::{Base, EvalScratch, Individual, Scenario, evaluate};
 use super::params::{Budget, Control, Retrain, Selection, ThesisParams};
-use crate::coverage::SweepScratch;
 use crate::ga::control;
 use crate::ga::observer::{GenerationStats, Observer, RunEvent};
 use crate::ga::rng::{Purpose, Rng, stream};
@@ -32,8 +31,8 @@ pub struct GaState {
     pub iteration: u32,
     /// Evaluations so far.
     pub evaluations: u64,
-    /// `Div` of the current population.
-    pub diversity: f64,
+    /// `Div` of the current population, when measured.
+    pub diversity: Option<f64>,
     /// `Div_max` of the current population (adaptive control only, else 0).
     pub diversity_max: f64,
     rng: Rng,
@@ -71,8 +70,12 @@ pub fn best_index(pop: &[Individual]) -> usize {
 }
 
 impl ThesisGa {
-    fn scratches(&self) -> Vec<SweepScratch> {
-        (0..rayon::current_num_threads().max(1)).map(|_| SweepScratch::new(&self.scenario.grid)).collect()
+    fn scratches(&self) -> Vec<EvalScratch> {
+        (0..rayon::current_num_threads().max(1)).map(|_| EvalScratch::default()).collect()
+    }
+
+    fn adaptive(&self) -> bool {
+        matches!(self.params.control, Control::Adaptive(_))
     }
 
     fn generation(&self, iteration: u32, effective: Effective) -> Generation<'_> {
@@ -106,8 +109,9 @@ impl ThesisGa {
                 let fit = state.population.iter().map(Individual::fitness);
                 let f_min = fit.clone().fold(f64::INFINITY, f64::min);
                 let f_max = fit.fold(f64::NEG_INFINITY, f64::max);
-                e.p_c = control::adaptive_p_c(state.diversity, state.diversity_max, &c);
-                let diversity_part = control::adaptive_p_m_diversity(state.diversity, state.diversity_max, &c);
+                let div = state.diversity.expect("adaptive control measures the diversity");
+                e.p_c = control::adaptive_p_c(div, state.diversity_max, &c);
+                let diversity_part = control::adaptive_p_m_diversity(div, state.diversity_max, &c);
                 e.p_ma = MutationRate::Adaptive { diversity_part, k: c.k, f_min, f_max };
             }
             Control::Muhlenbein => {
@@ -118,8 +122,9 @@ impl ThesisGa {
         e
     }
 
-    /// Creates and evaluates the initial population (spec §6) — iteration 0.
-    pub fn init(&self) -> GaState {
+    /// Creates and evaluates the initial population (spec §6) — iteration 0. Measures the
+    /// diversity when `measure_diversity` or the parameter control needs it.
+    pub fn init(&self, measure_diversity: bool) -> GaState {
         let mut scratches = self.scratches();
         let size = self.params.initial_size();
         let (population, evaluations) = self.generation(0, self.fixed_effective()).initial(size, &mut scratches);
@@ -127,29 +132,29 @@ impl ThesisGa {
             population,
             iteration: 0,
             evaluations,
-            diversity: 0.0,
+            diversity: None,
             diversity_max: 0.0,
             rng: stream(self.seed, Purpose::Main, &[]),
         };
-        self.measure_diversity(&mut state, &mut DiversityScratch::default());
+        self.measure_diversity(&mut state, measure_diversity, &mut DiversityScratch::default());
         state
     }
 
-    fn measure_diversity(&self, state: &mut GaState, scratch: &mut DiversityScratch) {
-        let cells = self.scenario.grid.len();
-        state.diversity = diversity(&state.population, cells, scratch);
-        if matches!(self.params.control, Control::Adaptive(_)) {
-            state.diversity_max = max_distance(&state.population, cells) as f64;
+    fn measure_diversity(&self, state: &mut GaState, wanted: bool, scratch: &mut DiversityScratch) {
+        state.diversity = (wanted || self.adaptive()).then(|| diversity(&state.population, scratch));
+        if self.adaptive() {
+            state.diversity_max = max_distance(&state.population) as f64;
         }
     }
 
     /// One iteration: both architectures share the loop, selection decides which runs.
+    /// `div` is `Some` when the diversity is to be measured.
     pub fn step(
         &self,
         state: &mut GaState,
         effective: Effective,
-        scratches: &mut [SweepScratch],
-        div: &mut DiversityScratch,
+        scratches: &mut [EvalScratch],
+        div: Option<&mut DiversityScratch>,
     ) {
         state.iteration += 1;
         let generation = self.generation(state.iteration, effective);
@@ -160,19 +165,21 @@ impl ThesisGa {
         };
         state.population = next;
         state.evaluations += evaluations;
-        self.measure_diversity(state, div);
+        let wanted = div.is_some();
+        self.measure_diversity(state, wanted, div.unwrap_or(&mut DiversityScratch::default()));
     }
 
     /// Marks `region` as already covered and re-evaluates everyone (spec §13, R25).
     pub fn change_environment(&mut self, state: &mut GaState, region: [f64; 4]) {
         let [x0, y0, x1, y1] = region;
-        self.scenario.grid.premark_rect(x0, y0, x1, y1);
-        let mut scratch = SweepScratch::new(&self.scenario.grid);
+        self.scenario.premark_rect(x0, y0, x1, y1);
+        let mut scratch = EvalScratch::default();
         for ind in &mut state.population {
-            evaluate(ind, &self.scenario, &mut scratch);
+            evaluate(ind, &self.scenario, Base::None, self.params.evaluation, &mut scratch);
             state.evaluations += 1;
         }
-        self.measure_diversity(state, &mut DiversityScratch::default());
+        let wanted = state.diversity.is_some();
+        self.measure_diversity(state, wanted, &mut DiversityScratch::default());
     }
 
     /// Runs to the end of the budget, handing statistics to `observers`.
@@ -185,7 +192,8 @@ impl ThesisGa {
         let started = Instant::now();
         let mut history = Vec::new();
         let mut changes = Vec::new();
-        let mut state = self.init();
+        let wants_diversity = observers.iter().any(|o| o.wants_diversity());
+        let mut state = self.init(wants_diversity);
         let mut scratches = self.scratches();
         let mut div = DiversityScratch::default();
         let fixed = self.fixed_effective();
@@ -218,7 +226,7 @@ impl ThesisGa {
                 best_seen = f64::NEG_INFINITY;
             }
             let effective = self.effective(&state, state.iteration + 1, budget.iterations);
-            self.step(&mut state, effective, &mut scratches, &mut div);
+            self.step(&mut state, effective, &mut scratches, wants_diversity.then_some(&mut div));
             let now = stats(&state, &effective);
             for o in observers.iter_mut() {
                 o.generation(&now.record())?;

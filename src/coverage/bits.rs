@@ -1,0 +1,373 @@
+//! Listing 3.1 of 003 on bit rows: the counts of [`super::sweep`] with every row of the map
+//! held as 64-bit words and every visit-count map held bit-sliced.
+//!
+//! A row interval of a swept rectangle ([`super::rows`]) becomes one mask per word, so
+//! `cov_pix` and `obj_pix` are popcounts and a visit is a ripple-carry add across the count's
+//! bit planes. Because the counts of Listing 3.1 depend only on the final visit-count map
+//! (`cov_pix` and `obj_pix` are sums over segments, `unique` is the number of countable
+//! cells visited at least once), a map can also be edited: removing a segment is a
+//! ripple-borrow subtract. That is what lets a child be evaluated from its parent's map.
+
+use super::raster::RasterGrid;
+use super::rows::for_each_swept_row;
+use super::sweep::{CoverageGrid, SweepCounts};
+use crate::geom::Point;
+
+/// The map as bit rows: which cells are free, and which free cells still count towards
+/// `A_pix` (not pre-marked, spec R25).
+#[derive(Clone, Debug)]
+pub struct BitLayers {
+    raster: RasterGrid,
+    words: usize,
+    free: Vec<u64>,
+    countable: Vec<u64>,
+}
+
+impl BitLayers {
+    /// The layers of a coverage grid (obstacles and pre-marks as they stand).
+    pub fn new(grid: &CoverageGrid) -> Self {
+        let raster = *grid.raster();
+        let words = raster.cols.div_ceil(64).max(1);
+        let mut free = vec![0u64; raster.rows * words];
+        let mut countable = free.clone();
+        for r in 0..raster.rows {
+            for c in 0..raster.cols {
+                let i = r * raster.cols + c;
+                let (w, bit) = (r * words + c / 64, 1u64 << (c % 64));
+                if !grid.is_blocked(i) {
+                    free[w] |= bit;
+                    if !grid.is_premarked(i) {
+                        countable[w] |= bit;
+                    }
+                }
+            }
+        }
+        Self { raster, words, free, countable }
+    }
+
+    /// Words in one bit plane (rows × words per row).
+    pub fn plane_words(&self) -> usize {
+        self.free.len()
+    }
+
+    /// Adds (`ADD`) or removes the swept rectangle of `a → b` to or from `visits`, updating
+    /// `tally`. Removing is only meaningful for a segment that was added before.
+    #[inline]
+    pub fn apply<const ADD: bool>(&self, visits: &mut VisitPlanes, a: Point, b: Point, width: f64, tally: &mut Tally) {
+        let words = self.words;
+        let (mut cov, mut obj, mut changed) = (0u64, 0u64, 0u64);
+        for_each_swept_row(&self.raster, a, b, width, |row, lo, hi| {
+            let base = row * words;
+            let (w0, w1) = (lo / 64, hi / 64);
+            for w in w0..=w1 {
+                let mut mask = u64::MAX;
+                if w == w0 {
+                    mask &= u64::MAX << (lo % 64);
+                }
+                if w == w1 {
+                    mask &= u64::MAX >> (63 - hi % 64);
+                }
+                let idx = base + w;
+                let free = mask & self.free[idx];
+                let n_free = u64::from(free.count_ones());
+                cov += n_free;
+                obj += u64::from(mask.count_ones()) - n_free;
+                if free != 0 {
+                    let flipped = if ADD { visits.add(idx, free) } else { visits.remove(idx, free) };
+                    changed += u64::from((flipped & self.countable[idx]).count_ones());
+                }
+            }
+        });
+        if ADD {
+            tally.cov_pix += cov;
+            tally.obj_pix += obj;
+            tally.unique += changed;
+        } else {
+            tally.cov_pix -= cov;
+            tally.obj_pix -= obj;
+            tally.unique -= changed;
+        }
+    }
+
+    /// Sweeps a whole polyline into cleared `visits` and returns its tally.
+    pub fn sweep(&self, visits: &mut VisitPlanes, points: &[Point], width: f64) -> Tally {
+        visits.reset(self.plane_words());
+        let mut tally = Tally::default();
+        for w in points.windows(2) {
+            self.apply::<true>(visits, w[0], w[1], width, &mut tally);
+        }
+        tally
+    }
+}
+
+/// `cov_pix`, `obj_pix` and the number of distinct countable cells visited (`unique`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Tally {
+    /// `cov_pix`.
+    pub cov_pix: u64,
+    /// `obj_pix`.
+    pub obj_pix: u64,
+    /// `cov_pix − cross_pix`.
+    pub unique: u64,
+}
+
+impl Tally {
+    /// The counts of Listing 3.1.
+    pub fn counts(&self) -> SweepCounts {
+        SweepCounts { cov_pix: self.cov_pix, cross_pix: self.cov_pix - self.unique, obj_pix: self.obj_pix }
+    }
+}
+
+/// A visit-count map stored bit-sliced: plane `p` holds bit `p` of every free cell's count,
+/// laid out like [`BitLayers`]. Only the planes in use are stored.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct VisitPlanes {
+    words: usize,
+    planes: Vec<u64>,
+    top: usize,
+}
+
+impl VisitPlanes {
+    /// Empties the map for a grid of `words` words per plane (keeps the allocation).
+    pub fn reset(&mut self, words: usize) {
+        self.words = words;
+        self.planes.clear();
+        self.top = 0;
+    }
+
+    /// Becomes a copy of `other` (keeps the allocation).
+    pub fn copy_from(&mut self, other: &VisitPlanes) {
+        self.words = other.words;
+        self.top = other.top;
+        self.planes.clear();
+        self.planes.extend_from_slice(&other.planes[..other.top * other.words]);
+    }
+
+    /// Bit planes in use (counts are below `2^planes`).
+    pub fn planes(&self) -> usize {
+        self.top
+    }
+
+    /// Words per plane.
+    pub fn plane_words(&self) -> usize {
+        self.words
+    }
+
+    /// Word `idx` of plane `p` (zero above the planes in use).
+    #[inline(always)]
+    pub fn word(&self, p: usize, idx: usize) -> u64 {
+        if p < self.top { self.planes[p * self.words + idx] } else { 0 }
+    }
+
+    /// The cells of word `idx` visited at least `t` times (`t ≥ 1`), by a bit-sliced
+    /// comparison of the counts with `t` from the most significant plane down.
+    #[inline(always)]
+    pub fn at_least(&self, idx: usize, t: u32) -> u64 {
+        if t >= 1 << self.top.min(31) {
+            return 0;
+        }
+        let (mut below, mut equal) = (0u64, u64::MAX);
+        for p in (0..self.top).rev() {
+            let v = self.planes[p * self.words + idx];
+            if (t >> p) & 1 == 1 {
+                below |= equal & !v;
+                equal &= v;
+            } else {
+                equal &= !v;
+            }
+        }
+        !below
+    }
+
+    #[inline(always)]
+    fn occupied(&self, idx: usize) -> u64 {
+        let mut any = 0;
+        for p in 0..self.top {
+            any |= self.planes[p * self.words + idx];
+        }
+        any
+    }
+
+    /// Adds one visit to every cell of `mask` in word `idx`; returns the cells that were
+    /// unvisited before.
+    #[inline(always)]
+    fn add(&mut self, idx: usize, mask: u64) -> u64 {
+        let fresh = mask & !self.occupied(idx);
+        let mut carry = mask;
+        let mut p = 0;
+        while carry != 0 {
+            if p == self.top {
+                self.top += 1;
+                self.planes.resize(self.top * self.words, 0);
+            }
+            let w = &mut self.planes[p * self.words + idx];
+            let old = *w;
+            *w = old ^ carry;
+            carry &= old;
+            p += 1;
+        }
+        fresh
+    }
+
+    /// Removes one visit from every cell of `mask` in word `idx` (each must have one); returns
+    /// the cells left unvisited.
+    #[inline(always)]
+    fn remove(&mut self, idx: usize, mask: u64) -> u64 {
+        let mut borrow = mask;
+        let mut p = 0;
+        while borrow != 0 && p < self.top {
+            let w = &mut self.planes[p * self.words + idx];
+            let old = *w;
+            *w = old ^ borrow;
+            borrow &= !old;
+            p += 1;
+        }
+        debug_assert_eq!(borrow, 0, "removed a visit that was never added");
+        mask & !self.occupied(idx)
+    }
+
+    /// Calls `f(cell, visits)` for every visited cell, with cells numbered `word·64 + bit` in
+    /// the layout of [`BitLayers`] (row-major, rows padded to whole words).
+    pub fn for_each_count(&self, mut f: impl FnMut(u32, u32)) {
+        for idx in 0..self.words {
+            let mut nz = self.occupied(idx);
+            while nz != 0 {
+                let bit = nz.trailing_zeros();
+                let mut count = 0u32;
+                for p in 0..self.top {
+                    count |= (((self.planes[p * self.words + idx] >> bit) & 1) as u32) << p;
+                }
+                f(idx as u32 * 64 + bit, count);
+                nz &= nz - 1;
+            }
+        }
+    }
+
+    /// A map of `words` words per plane holding `counts` (`(cell, visits)` in the numbering of
+    /// [`Self::for_each_count`]).
+    pub fn from_counts(words: usize, counts: &[(u32, u32)]) -> Self {
+        let mut v = VisitPlanes::default();
+        v.reset(words);
+        for &(cell, k) in counts {
+            for _ in 0..k {
+                v.add(cell as usize / 64, 1u64 << (cell % 64));
+            }
+        }
+        v
+    }
+
+    /// Number of cells in the padded numbering of [`Self::for_each_count`].
+    pub fn cell_slots(&self) -> usize {
+        self.words * 64
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::SweepScratch;
+    use crate::map::presets::preset;
+    use proptest::prelude::*;
+
+    fn p(x: f64, y: f64) -> Point {
+        Point::new(x, y)
+    }
+
+    #[test]
+    fn spec_cases_on_bit_rows() {
+        // The hand-computed cases of spec §3.3 (see coverage::tests): cov, cross, obj.
+        let grid = CoverageGrid::new(&preset("thesis-1").unwrap());
+        let layers = BitLayers::new(&grid);
+        let mut v = VisitPlanes::default();
+        let cases: [(&[Point], u64, u64, u64); 5] = [
+            (&[p(1.3, 1.3), p(4.3, 1.3)], 45, 0, 0),
+            (&[p(1.3, 1.3), p(4.3, 1.3), p(4.3, 4.3)], 90, 2, 0),
+            (&[p(1.3, 1.3), p(4.3, 1.3), p(1.3, 1.3)], 90, 42, 0),
+            (&[p(1.3, 1.3), p(4.3, 1.3), p(4.3, 4.3), p(1.3, 1.3)], 165, 14, 0),
+            (&[p(1.3, 1.3), p(0.5, 1.3)], 6, 0, 6),
+        ];
+        for (i, (path, cov, cross, obj)) in cases.into_iter().enumerate() {
+            let c = layers.sweep(&mut v, path, 0.6).counts();
+            assert_eq!((c.cov_pix, c.cross_pix, c.obj_pix), (cov, cross, obj), "case {i}");
+        }
+        // Out and back: the return's 45 cells are 42 revisits, so 3 cells carry two visits.
+        let mut twos = 0;
+        v = VisitPlanes::default();
+        layers.sweep(&mut v, &[p(1.3, 1.3), p(4.3, 1.3), p(1.3, 1.3)], 0.6);
+        v.for_each_count(|_, k| twos += usize::from(k == 2));
+        assert_eq!(twos, 42);
+    }
+
+    #[test]
+    fn premarked_cells_are_revisits_on_bit_rows() {
+        let mut grid = CoverageGrid::new(&preset("thesis-1").unwrap());
+        grid.premark_rect(1.0, 1.0, 2.0, 2.0);
+        let layers = BitLayers::new(&grid);
+        let c = layers.sweep(&mut VisitPlanes::default(), &[p(1.3, 1.3), p(4.3, 1.3)], 0.6).counts();
+        assert_eq!(c, SweepCounts { cov_pix: 45, cross_pix: 12, obj_pix: 0 });
+    }
+
+    fn path(seed: u64, n: usize, lo: f64, hi: f64) -> Vec<Point> {
+        let mut rng = crate::ga::rng::stream(seed, crate::ga::rng::Purpose::Main, &[]);
+        use rand::Rng;
+        (0..n).map(|_| p(rng.random_range(lo..hi), rng.random_range(lo..hi))).collect()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+        /// Bit rows count exactly what the cell-by-cell sweep counts, visit map included, on
+        /// the map with obstacles, with pre-marks, and with paths leaving the grid.
+        #[test]
+        fn bit_rows_equal_the_cell_sweep(seed in 0u64..100_000, n in 2usize..60, w in 0.1..1.2f64, map in 0usize..3, premark in proptest::bool::ANY) {
+            let name = ["thesis-1", "thesis-2", "office"][map];
+            let m = preset(name).unwrap();
+            let mut grid = CoverageGrid::new(&m);
+            if premark {
+                grid.premark_rect(m.origin().x + 2.0, m.origin().y + 2.0, m.origin().x + 6.0, m.origin().y + 5.0);
+            }
+            let (lo, hi) = (m.origin().x - 1.0, m.origin().x + m.width_m().min(m.height_m()) + 1.0);
+            let pts = path(seed, n, lo, hi);
+            let mut scratch = SweepScratch::new(&grid);
+            let expected = scratch.sweep(&grid, &pts, w);
+            let layers = BitLayers::new(&grid);
+            let mut v = VisitPlanes::default();
+            prop_assert_eq!(layers.sweep(&mut v, &pts, w).counts(), expected);
+            let cols = m.cols();
+            let mut got: Vec<(u32, u32)> = Vec::new();
+            v.for_each_count(|slot, k| {
+                let (row, col) = (slot as usize / (v.cell_slots() / m.rows()), slot as usize % (v.cell_slots() / m.rows()));
+                got.push(((row * cols + col) as u32, k));
+            });
+            let mut want: Vec<(u32, u32)> = scratch.visit_counts().collect();
+            got.sort_unstable();
+            want.sort_unstable();
+            prop_assert_eq!(got, want);
+        }
+
+        /// Removing segments and adding others gives exactly the sweep of the edited path.
+        #[test]
+        fn edits_equal_a_fresh_sweep(seed in 0u64..100_000, n in 3usize..40, cut in 0usize..40, len in 0usize..6, ins in 0usize..6) {
+            let grid = CoverageGrid::new(&preset("thesis-2").unwrap());
+            let layers = BitLayers::new(&grid);
+            let old = path(seed, n, -0.5, 11.5);
+            let (c0, c1) = (cut % (n - 1), (cut % (n - 1) + len + 1).min(n - 1));
+            let mut new: Vec<Point> = old[..=c0].to_vec();
+            new.extend(path(seed + 1, ins, 0.0, 11.0));
+            new.extend_from_slice(&old[c1..]);
+            let mut v = VisitPlanes::default();
+            let mut tally = layers.sweep(&mut v, &old, 0.6);
+            for w in old[c0..=c1].windows(2) {
+                layers.apply::<false>(&mut v, w[0], w[1], 0.6, &mut tally);
+            }
+            for w in new[c0..=c0 + ins + 1].windows(2) {
+                layers.apply::<true>(&mut v, w[0], w[1], 0.6, &mut tally);
+            }
+            let mut fresh = VisitPlanes::default();
+            prop_assert_eq!(tally, layers.sweep(&mut fresh, &new, 0.6));
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            v.for_each_count(|c, k| a.push((c, k)));
+            fresh.for_each_count(|c, k| b.push((c, k)));
+            prop_assert_eq!(a, b);
+        }
+    }
+}
