@@ -25,7 +25,7 @@ pub struct GridArgs {
     /// Print the runs per branch and a time estimate; run nothing.
     #[arg(long)]
     dry_run: bool,
-    /// With --dry-run: time 3 short runs per branch for the estimate.
+    /// With --dry-run: time full-length runs sampled per branch until the mean run time is known to 8 %.
     #[arg(long, requires = "dry_run")]
     calibrate: bool,
     /// Write study.sbatch (a Slurm job array over shards) instead of running.
@@ -117,7 +117,10 @@ fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), Cli
         println!("  {n:>7} runs  {branch}");
     }
     let times = if a.calibrate {
-        Some((estimate::calibrate(study).map_err(CliError::internal)?, "calibrated on 3 short runs per branch"))
+        Some((
+            estimate::calibrate(study).map_err(CliError::internal)?,
+            "calibrated on full-length runs sampled at random per branch",
+        ))
     } else {
         estimate::from_records(study, out).map(|t| (t, "from runs recorded in the study folder"))
     };
@@ -126,7 +129,10 @@ fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), Cli
         Some((times, source)) => {
             println!("estimate ({source}, one core per run):");
             for b in &times {
-                println!("  {:>8.2} s per run  x {:>6}  {}", b.seconds_per_run, b.runs, b.branch);
+                println!(
+                    "  {:>8.2} s per run  x {:>6}  {}  ({} runs timed)",
+                    b.seconds_per_run, b.runs, b.branch, b.samples
+                );
             }
             println!(
                 "  CPU time {}; wall time with --jobs {}: {}",

@@ -1,8 +1,10 @@
 //! Run-time estimates for `covga grid --dry-run`: from runs already recorded in the study
-//! folder, or from a calibration of three short runs per branch, timed on one thread and
-//! extrapolated as `t_init + (t_short − t_init)·full / short`, where `full / short` is the
-//! ratio of evaluation budgets when the study fixes evaluations, else of iterations
-//! (deterministic planners are timed whole).
+//! folder, or from a calibration that runs a sample of each branch at full length, exactly as
+//! the study would (same output files, history and diversity included, no figures), one run
+//! at a time on one thread.
+//!
+//! Short runs extrapolated linearly under-predicted by half: a GA's cost per iteration is not
+//! constant over a run, and the per-generation work of the history writer was not timed.
 
 use super::grid::Study;
 use super::records::RunsTable;
@@ -69,54 +71,68 @@ pub fn from_records(study: &Study, dir: &Path) -> Option<Vec<BranchTime>> {
     )
 }
 
-/// Times three short runs per branch (one thread) and extrapolates to the full budget.
+/// Fewest runs [`calibrate`] times per branch.
+pub const CALIBRATION_MIN_RUNS: usize = 5;
+/// Most runs [`calibrate`] times per branch.
+pub const CALIBRATION_MAX_RUNS: usize = 30;
+/// [`calibrate`] stops sampling a branch once the standard error of its mean run time is at
+/// most this fraction of the mean (run times within a Table 4.3 grid spread by about half
+/// their mean, so a fixed sample of three missed by 30 %).
+pub const CALIBRATION_REL_ERROR: f64 = 0.08;
+/// …or once it has spent this many seconds on the branch.
+pub const CALIBRATION_BRANCH_SECONDS: f64 = 300.0;
+
+/// Times runs of every branch at full length, one at a time on one thread, exactly as the
+/// study runs them (outputs in a temporary folder that is removed). Runs are drawn at random
+/// with a fixed seed, so the sample spreads over the axes and is the same every time; each
+/// branch is sampled until the mean is known to [`CALIBRATION_REL_ERROR`] (at least
+/// [`CALIBRATION_MIN_RUNS`], at most [`CALIBRATION_MAX_RUNS`] runs or
+/// [`CALIBRATION_BRANCH_SECONDS`]).
 pub fn calibrate(study: &Study) -> Result<Vec<BranchTime>, StudyError> {
+    use rand::seq::SliceRandom;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .map_err(|e| StudyError::Run { id: String::new(), message: e.to_string() })?;
     let maps = MapCache::default();
+    let scratch = std::env::temp_dir().join(format!("covga-calibrate-{}", std::process::id()));
+    let mut rng = crate::ga::rng::stream(0xCA1B, crate::ga::rng::Purpose::Main, &[]);
     let mut out = Vec::new();
     for (branch, runs) in study.branches() {
-        let members: Vec<_> = study.runs.iter().filter(|r| r.branch == branch).collect();
-        let picks = [members.len() / 6, members.len() / 2, (5 * members.len()) / 6];
-        let mut total = 0.0;
-        for &k in &picks {
-            let run = members[k.min(members.len() - 1)];
+        let mut members: Vec<_> = study.runs.iter().filter(|r| r.branch == branch).collect();
+        members.shuffle(&mut rng);
+        let mut times: Vec<f64> = Vec::new();
+        for run in members.into_iter().take(CALIBRATION_MAX_RUNS) {
             let exp = experiment_of(study, run, &maps)?;
-            let planner = exp.planner.planner();
-            let time = |budget: crate::planner::Budget| {
-                let t = Instant::now();
-                pool.install(|| planner.run(&exp.scenario, exp.seed, &budget, &mut []))
-                    .map(|_| t.elapsed().as_secs_f64())
-            };
-            let io = |e: crate::planner::PlannerError| StudyError::Run { id: run.id.clone(), message: e.to_string() };
-            if planner.deterministic() {
-                total += time(exp.budget).map_err(io)?;
-                continue;
+            let dir = scratch.join(&run.id);
+            let started = Instant::now();
+            let result = pool.install(|| super::output::run_experiment(&exp, &dir, false, &mut []));
+            times.push(started.elapsed().as_secs_f64());
+            let _ = std::fs::remove_dir_all(&dir);
+            result.map_err(|e| StudyError::Run { id: run.id.clone(), message: e.to_string() })?;
+            if times.len() >= CALIBRATION_MIN_RUNS
+                && (relative_standard_error(&times) <= CALIBRATION_REL_ERROR
+                    || times.iter().sum::<f64>() >= CALIBRATION_BRANCH_SECONDS)
+            {
+                break;
             }
-            // Set-up and initial population: a budget of one evaluation stops every GA there.
-            let init = crate::planner::Budget { iterations: 0, evaluations: Some(1), ..exp.budget };
-            let t_init = time(init).map_err(io)?;
-            // A tenth of the budget (evaluations when the study fixes them, else iterations),
-            // extrapolated linearly beyond the set-up.
-            let (short, scale) = match exp.budget.evaluations {
-                Some(e) => {
-                    let short = (e / 10).max(1);
-                    (crate::planner::Budget { evaluations: Some(short), ..exp.budget }, e as f64 / short as f64)
-                }
-                None => {
-                    let full = exp.budget.iterations;
-                    let short = (full / 10).clamp(1, 200).min(full.max(1));
-                    (crate::planner::Budget { iterations: short, ..exp.budget }, f64::from(full) / f64::from(short))
-                }
-            };
-            let t_short = time(short).map_err(io)?;
-            total += t_init + (t_short - t_init).max(0.0) * scale;
         }
-        out.push(BranchTime { branch, runs, seconds_per_run: total / picks.len() as f64, samples: picks.len() });
+        let mean = times.iter().sum::<f64>() / times.len() as f64;
+        out.push(BranchTime { branch, runs, seconds_per_run: mean, samples: times.len() });
     }
+    let _ = std::fs::remove_dir_all(&scratch);
     Ok(out)
+}
+
+/// Standard error of the mean over the mean (0 for fewer than two values or a zero mean).
+fn relative_standard_error(x: &[f64]) -> f64 {
+    let n = x.len() as f64;
+    let mean = x.iter().sum::<f64>() / n;
+    if x.len() < 2 || mean <= 0.0 {
+        return 0.0;
+    }
+    let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    (var / n).sqrt() / mean
 }
 
 /// Human-readable duration.
@@ -127,5 +143,18 @@ pub fn human(seconds: f64) -> String {
         format!("{:.1} min", seconds / 60.0)
     } else {
         format!("{:.2} h", seconds / 3600.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn relative_standard_error_by_hand() {
+        // mean 2, sample sd 1, n 4: se = 0.5, relative 0.25.
+        assert!((relative_standard_error(&[1.0, 2.0, 3.0, 2.0]) - (2.0f64 / 3.0).sqrt() / 2.0 / 2.0).abs() < 1e-12);
+        assert_eq!(relative_standard_error(&[5.0]), 0.0);
+        assert_eq!(relative_standard_error(&[3.0, 3.0, 3.0]), 0.0);
     }
 }
