@@ -105,6 +105,12 @@ pub fn available_memory() -> Option<u64> {
     Some(kib * 1024)
 }
 
+/// A number for messages: as typed when ordinary, in scientific notation when huge or tiny
+/// (`1e300`, not three hundred digits).
+pub fn short_number(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e6).contains(&v.abs()) { format!("{v:e}") } else { format!("{v}") }
+}
+
 /// A byte count for messages (`10.6 GB`).
 pub fn human_bytes(bytes: f64) -> String {
     match bytes {
@@ -118,6 +124,15 @@ pub fn human_bytes(bytes: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn short_numbers_stay_short() {
+        assert_eq!(short_number(60.0), "60");
+        assert_eq!(short_number(0.6), "0.6");
+        assert_eq!(short_number(1e300), "1e300");
+        assert_eq!(short_number(-2.5e-7), "-2.5e-7");
+        assert_eq!(short_number(0.0), "0");
+    }
 
     #[test]
     fn byte_counts_read_as_people_write_them() {

@@ -158,6 +158,8 @@ fn bad_input_gives_one_clear_error_and_exit_2() {
         (vec!["--path".into(), d("inwall.csv")], "inside an obstacle"),
         (vec!["--path".into(), d("absent.csv")], "absent.csv"),
         (vec!["--width=-1".into()], "--width"),
+        (vec!["--width".into(), "60".into()], "--width = 60 m is wider than the map's shorter side (11 m)"),
+        (vec!["--width".into(), "1e300".into()], "--width = 1e300 m is wider"),
     ];
     for (args, needle) in cases {
         let mut all = vec!["eval".to_string(), "--out".into(), out.clone()];

@@ -196,6 +196,10 @@ fn expect_error(text: &str, needle: &str) {
 fn bad_experiment_files_are_rejected_with_exit_2() {
     expect_error(&small("colour = 3"), "unknown field `colour`");
     expect_error(&small("p_c = 1.5"), "`thesis.p_c` = 1.5 is out of range");
+    // One robot rule in run and eval: it must fit on the map; huge numbers stay short.
+    let robot = |w: &str| small("").replacen("[thesis]", &format!("[robot]\nwidth = {w}\n[thesis]"), 1);
+    expect_error(&robot("60.0"), "`robot.width` = 60 m is wider than the map's shorter side (11 m)");
+    expect_error(&robot("1e300"), "`robot.width` = 1e300 m is wider than the map's shorter side");
     expect_error(
         &small("selection = \"tournament\"\ntournament_size = 500\ninit_individuals = 100\nselect = 5"),
         "`thesis.tournament_size` = 500 is out of range [1, 40]",

@@ -74,7 +74,10 @@ fn check_robot(a: &EvalArgs) -> Result<Footprint, CliError> {
         if v.is_finite() && v > 0.0 {
             Ok(())
         } else {
-            Err(CliError::Input(format!("--{name} = {v} is out of range: expected a finite number > 0")))
+            Err(CliError::Input(format!(
+                "--{name} = {} is out of range: expected a finite number > 0",
+                crate::io::short_number(v)
+            )))
         }
     };
     positive("width", a.width)?;
@@ -122,6 +125,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
     }
     let map = load_map(&a.map, a.resolution).map_err(CliError::input)?;
+    robot.check_fits(&map).map_err(|m| CliError::Input(format!("--width {m}")))?;
     let projection = match a.projection {
         ProjectionName::F1 => Projection::F1,
         ProjectionName::F2 => Projection::F2,

@@ -62,6 +62,19 @@ impl PathMetrics {
 }
 
 impl Footprint {
+    /// The one check of a robot against the map it is to cover, shared by `run`, `grid` and
+    /// `eval`: it must fit on the map. Returns the message for the offending width.
+    pub fn check_fits(&self, map: &crate::map::GridMap) -> Result<(), String> {
+        let side = map.width_m().min(map.height_m());
+        if self.width > side {
+            return Err(format!(
+                "= {} m is wider than the map's shorter side ({side} m): the robot must fit on the map",
+                crate::io::short_number(self.width)
+            ));
+        }
+        Ok(())
+    }
+
     /// Measures a path: sweeps it on `grid` with `scratch` (no allocation once the scratch has
     /// grown) and adds length, turning and rotation time.
     pub fn measure(&self, grid: &CoverageGrid, scratch: &mut SweepScratch, points: &[Point]) -> PathMetrics {

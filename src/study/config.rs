@@ -36,7 +36,7 @@ pub fn check_range(file: &str, key: &str, v: f64, lo: f64, hi: f64, allowed: &st
     if v.is_finite() && v >= lo && v <= hi {
         Ok(())
     } else {
-        Err(ConfigError::new(file, key, format!("= {v} is out of range: allowed {allowed}")))
+        Err(ConfigError::new(file, key, format!("= {} is out of range: allowed {allowed}", crate::io::short_number(v))))
     }
 }
 

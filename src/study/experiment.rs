@@ -227,15 +227,10 @@ impl ExperimentFile {
         let end = self.stations.end.map_or(start, |e| Point::new(e[0], e[1]));
         map.check_station(start, "start").map_err(|m| err("stations.start", m))?;
         map.check_station(end, "end").map_err(|m| err("stations.end", m))?;
+        let robot = Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed };
+        robot.check_fits(&map).map_err(|m| err("robot.width", m))?;
         let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
-        let scenario = Scenario {
-            map,
-            robot: Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed },
-            start,
-            end,
-            projection: self.thesis.projection,
-            camera,
-        };
+        let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
         let planner = PlannerConfig::from_file(&self, origin, &scenario)?;
         let budget = Budget {
             iterations: b.iterations,
