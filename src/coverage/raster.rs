@@ -45,14 +45,52 @@ impl RasterGrid {
 
 /// `floor` without a libm call (the default x86-64 target has no rounding instruction).
 #[inline(always)]
-fn floor_i(x: f64) -> i64 {
+pub(super) fn floor_i(x: f64) -> i64 {
     let i = x as i64;
     if (i as f64) > x { i - 1 } else { i }
 }
 
 /// A cell centre closer than this (metres) to an interval end is settled with the exact test;
 /// farther ones are decided by the interval, whose rounding error is many orders smaller.
-const SETTLE_MARGIN: f64 = 1e-6;
+pub(super) const SETTLE_MARGIN: f64 = 1e-6;
+
+/// The members of one scan line: the cells `lo ..= hi` (of `0 ..= last`) whose centres lie in
+/// the fractional interval `[f0, f1]`, where an end within `margin` of a centre (or every end,
+/// with `always`) is settled with the exact membership test `inside`. `None` when empty.
+#[inline(always)]
+pub(super) fn settle_interval(
+    f0: f64,
+    f1: f64,
+    last: i64,
+    margin: f64,
+    always: bool,
+    inside: impl Fn(i64) -> bool,
+) -> Option<(i64, i64)> {
+    // First centre at or after f0, last at or before f1 (the ends kept finite).
+    let mut lo = -floor_i(-f0.max(-1.0));
+    let mut hi = floor_i(f1.min(last as f64 + 1.0));
+    let lo_near = always || (lo as f64 - f0) < margin || (f0 - (lo - 1) as f64) < margin;
+    let hi_near = always || (f1 - hi as f64) < margin || ((hi + 1) as f64 - f1) < margin;
+    lo = lo.clamp(0, last + 1);
+    hi = hi.clamp(-1, last);
+    if lo_near {
+        while lo > 0 && inside(lo - 1) {
+            lo -= 1;
+        }
+        while lo <= hi && !inside(lo) {
+            lo += 1;
+        }
+    }
+    if hi_near {
+        while hi < last && inside(hi + 1) {
+            hi += 1;
+        }
+        while hi >= lo && !inside(hi) {
+            hi -= 1;
+        }
+    }
+    (lo <= hi).then_some((lo, hi))
+}
 
 /// Calls `visit(row-major index)` once for every cell of the swept rectangle of `a → b` with
 /// robot width `width` (spec §3.3). Cells off the grid are ignored; a zero-length segment
@@ -177,32 +215,9 @@ fn scan<const STEEP: bool>(
         if f0 > f1 + 1.0 || f1 < -1.0 || f0 > last as f64 + 1.0 {
             continue;
         }
-        // First centre at or after f0, last at or before f1.
-        let mut lo = -floor_i(-f0);
-        let mut hi = floor_i(f1);
-        let lo_near = s_tiny || (lo as f64 - f0) < margin || (f0 - (lo - 1) as f64) < margin;
-        let hi_near = s_tiny || (f1 - hi as f64) < margin || ((hi + 1) as f64 - f1) < margin;
-        lo = lo.clamp(0, last + 1);
-        hi = hi.clamp(-1, last);
-        if lo_near {
-            while lo > 0 && inside(lo - 1) {
-                lo -= 1;
-            }
-            while lo <= hi && !inside(lo) {
-                lo += 1;
-            }
-        }
-        if hi_near {
-            while hi < last && inside(hi + 1) {
-                hi += 1;
-            }
-            while hi >= lo && !inside(hi) {
-                hi -= 1;
-            }
-        }
-        if lo > hi {
+        let Some((lo, hi)) = settle_interval(f0, f1, last, margin, s_tiny, inside) else {
             continue;
-        }
+        };
         let count = (hi - lo + 1) as usize;
         if STEEP {
             run(lo as usize * cols + line, count, cols);

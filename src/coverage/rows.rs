@@ -9,21 +9,12 @@
 //! parallel to the rows) it is decided once per row instead, and interval ends that come
 //! within a small margin of a cell centre are settled with the exact membership test.
 
-use super::raster::{RASTER_EPS, RasterGrid};
+use super::raster::{RASTER_EPS, RasterGrid, SETTLE_MARGIN, floor_i, settle_interval};
 use crate::geom::{Point, ZERO_LENGTH};
 
 /// Below this magnitude a constraint's column coefficient is treated as unreliable: its
 /// interval is not used and both ends of the row are settled with the exact test.
 const TINY_COEFFICIENT: f64 = 1e-9;
-
-/// A cell centre closer than this (metres) to an interval end is settled with the exact test.
-const SETTLE_MARGIN: f64 = 1e-6;
-
-#[inline(always)]
-fn floor_i(x: f64) -> i64 {
-    let i = x as i64;
-    if (i as f64) > x { i - 1 } else { i }
-}
 
 /// One linear constraint `lo ≤ coef·dx + k0 + k1·row < hi` on the column of a row, as the
 /// interval `[lo.0 + lo.1·row, hi.0 + hi.1·row]` of fractional column positions it allows.
@@ -111,29 +102,7 @@ pub fn for_each_swept_row(grid: &RasterGrid, a: Point, b: Point, width: f64, mut
         if f0 > f1 + 1.0 || f1 < -1.0 || f0 > last_f + 1.0 {
             continue;
         }
-        let mut lo = -floor_i(-f0.max(-1.0));
-        let mut hi = floor_i(f1.min(last_f + 1.0));
-        let lo_near = settle_always || (lo as f64 - f0) < margin || (f0 - (lo - 1) as f64) < margin;
-        let hi_near = settle_always || (f1 - hi as f64) < margin || ((hi + 1) as f64 - f1) < margin;
-        lo = lo.clamp(0, last + 1);
-        hi = hi.clamp(-1, last);
-        if lo_near {
-            while lo > 0 && inside(lo - 1) {
-                lo -= 1;
-            }
-            while lo <= hi && !inside(lo) {
-                lo += 1;
-            }
-        }
-        if hi_near {
-            while hi < last && inside(hi + 1) {
-                hi += 1;
-            }
-            while hi >= lo && !inside(hi) {
-                hi -= 1;
-            }
-        }
-        if lo <= hi {
+        if let Some((lo, hi)) = settle_interval(f0, f1, last, margin, settle_always, inside) {
             run(row, lo as usize, hi as usize);
         }
     }
