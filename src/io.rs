@@ -24,7 +24,7 @@ use std::path::PathBuf;
 
 /// A bad path file: the file, the line (1-based, header = 1) and what is expected.
 #[derive(Debug, thiserror::Error)]
-#[error("{path}:{line}: {message}")]
+#[error("{}{}: {message}", path.display(), if *line > 0 { format!(":{line}") } else { String::new() })]
 pub struct PathFileError {
     /// The file.
     pub path: PathBuf,
@@ -38,8 +38,17 @@ pub struct PathFileError {
 /// `agent` column (non-negative integer) that splits the rows into one path per agent, and an
 /// `index` column that is ignored. Returns the paths in ascending agent order.
 pub fn read_path_csv(path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
+    let text = std::fs::read_to_string(path).map_err(|e| PathFileError {
+        path: path.to_path_buf(),
+        line: 0,
+        message: format!("cannot read path file: {e}"),
+    })?;
+    parse_path_csv(&text, path)
+}
+
+/// Parses the text of a path file read from `path` (named in messages); see [`read_path_csv`].
+pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
     let fail = |line: u64, message: String| PathFileError { path: path.to_path_buf(), line, message };
-    let text = std::fs::read_to_string(path).map_err(|e| fail(0, format!("cannot read path file: {e}")))?;
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
     let headers = reader.headers().map_err(|e| fail(1, format!("bad CSV header: {e}")))?.clone();
     let col = |name: &str| headers.iter().position(|h| h == name);
@@ -121,6 +130,34 @@ pub fn human_bytes(bytes: f64) -> String {
     }
 }
 
+/// Parses a byte count as users type it: `8G`, `512M`, `1.5GB`, `2GiB`, `4096` (decimal units
+/// k, M, G, T = 10³…; binary units Ki, Mi, Gi, Ti = 2¹⁰…; an optional trailing `B`).
+pub fn parse_bytes(text: &str) -> Result<u64, String> {
+    let t = text.trim();
+    let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let unit = unit.trim();
+    let unit = unit.strip_suffix(['B', 'b']).unwrap_or(unit);
+    let factor: f64 = match unit {
+        "" => 1.0,
+        "k" | "K" => 1e3,
+        "M" | "m" => 1e6,
+        "G" | "g" => 1e9,
+        "T" | "t" => 1e12,
+        "Ki" | "ki" => 1024.0,
+        "Mi" | "mi" => 1024f64.powi(2),
+        "Gi" | "gi" => 1024f64.powi(3),
+        "Ti" | "ti" => 1024f64.powi(4),
+        _ => return Err(format!("`{text}`: unknown unit `{unit}`; write e.g. 8G, 512M, 2GiB or a number of bytes")),
+    };
+    let v: f64 = number.parse().map_err(|_| format!("`{text}` is not a size; write e.g. 8G, 512M or 2GiB"))?;
+    let bytes = v * factor;
+    if !(1.0..1.8e19).contains(&bytes) {
+        return Err(format!("`{text}` is out of range: at least 1 byte and below 1.8e19"));
+    }
+    Ok(bytes.round() as u64)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -140,6 +177,29 @@ mod tests {
         assert_eq!(human_bytes(15.2e6), "15.2 MB");
         assert_eq!(human_bytes(6.4e13), "6.400e13 bytes");
         assert!(available_memory().is_none_or(|b| b > 0));
+    }
+
+    #[test]
+    fn sizes_read_as_people_type_them() {
+        for (text, bytes) in [
+            ("4096", 4096),
+            ("8G", 8_000_000_000),
+            ("512M", 512_000_000),
+            ("1.5GB", 1_500_000_000),
+            ("2GiB", 2 * 1024 * 1024 * 1024),
+            ("64 Ki", 65_536),
+        ] {
+            assert_eq!(parse_bytes(text), Ok(bytes), "{text}");
+        }
+        for bad in ["", "G", "8X", "-1G", "0", "1e30"] {
+            assert!(parse_bytes(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_missing_path_file_has_no_line_number() {
+        let e = read_path_csv(Path::new("/nonexistent/p.csv")).unwrap_err().to_string();
+        assert!(e.starts_with("/nonexistent/p.csv: cannot read path file"), "{e}");
     }
 
     #[test]

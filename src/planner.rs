@@ -155,6 +155,17 @@ pub enum PlannerKind {
 }
 
 impl PlannerKind {
+    /// The name as written in experiment files.
+    pub fn name(self) -> &'static str {
+        match self {
+            PlannerKind::Thesis => "thesis",
+            PlannerKind::Waypoint => "waypoint",
+            PlannerKind::Boustrophedon => "boustrophedon",
+            PlannerKind::Spiral => "spiral",
+            PlannerKind::RandomSearch => "random_search",
+        }
+    }
+
     /// Whether the planner ignores the seed.
     pub fn is_deterministic(self) -> bool {
         matches!(self, PlannerKind::Boustrophedon | PlannerKind::Spiral)
@@ -178,9 +189,7 @@ impl PlannerConfig {
     /// Validates the section of the file's planner; `origin` names the file in messages.
     pub fn from_file(file: &ExperimentFile, origin: &str, scenario: &Scenario) -> Result<Self, ConfigError> {
         Ok(match file.planner {
-            PlannerKind::Thesis => {
-                PlannerConfig::Thesis(crate::thesis::config::ThesisConfig::from_file(file, origin, scenario)?)
-            }
+            PlannerKind::Thesis => PlannerConfig::Thesis(crate::thesis::config::ThesisConfig::from_file(file, origin)?),
             PlannerKind::Waypoint => {
                 PlannerConfig::Waypoint(crate::waypoint::config::WaypointConfig::from_file(file, origin, scenario)?)
             }

@@ -40,6 +40,10 @@ pub struct GridArgs {
     /// CPUs per Slurm task (each shard runs that many runs at once).
     #[arg(long, default_value_t = 1)]
     cpus_per_task: usize,
+    /// Memory the runs may use at once (8G, 512M, 2GiB; default: the memory available); runs
+    /// that would need more are refused before anything is allocated.
+    #[arg(long, value_parser = crate::io::parse_bytes)]
+    max_memory: Option<u64>,
 }
 
 /// Arguments of `covga merge`.
@@ -61,13 +65,20 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     let stem = a.file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "study".into());
     let out = a.out.clone().unwrap_or_else(|| PathBuf::from("out").join(&stem));
     let all: Vec<&crate::study::grid::RunSpec> = study.runs.iter().collect();
-    crate::study::runner::validate_runs(&study, &all, &crate::study::runner::MapCache::default())
-        .map_err(CliError::input)?;
+    // A Slurm script runs on other machines: their memory is checked there, by each shard.
+    let (limit, parallel) = if a.slurm {
+        (a.max_memory, a.cpus_per_task)
+    } else {
+        (crate::study::memory::memory_limit(a.max_memory), a.jobs)
+    };
+    let largest_run_bytes =
+        crate::study::runner::validate_runs(&study, &all, &crate::study::runner::MapCache::default(), limit, parallel)
+            .map_err(CliError::input)?;
     if a.dry_run {
         return dry_run(&study, &a, &out);
     }
     if a.slurm {
-        return write_slurm(&a, &out, &stem);
+        return write_slurm(&a, &out, &stem, largest_run_bytes);
     }
     let terminal = std::io::stderr().is_terminal();
     let bar = super::progress_bar(0, "runs", terminal);
@@ -89,12 +100,12 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
             );
         }
     };
-    let opts = RunnerOptions { jobs: a.jobs, shard, out: out.clone(), on_done: &on_done };
+    let opts = RunnerOptions { jobs: a.jobs, shard, out: out.clone(), max_memory: a.max_memory, on_done: &on_done };
     let outcome = run_study(&study, &opts).map_err(|e| match e {
         crate::study::runner::StudyError::Config(c) => CliError::input(c),
-        crate::study::runner::StudyError::Mismatch { .. } | crate::study::runner::StudyError::Planner { .. } => {
-            CliError::input(e)
-        }
+        crate::study::runner::StudyError::Mismatch { .. }
+        | crate::study::runner::StudyError::Planner { .. }
+        | crate::study::runner::StudyError::Folder { .. } => CliError::input(e),
         other => CliError::internal(other),
     })?;
     bar.finish_and_clear();
@@ -145,7 +156,7 @@ fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), Cli
     Ok(())
 }
 
-fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str) -> Result<(), CliError> {
+fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str, largest_run_bytes: f64) -> Result<(), CliError> {
     check_time(&a.time).map_err(CliError::Input)?;
     if a.array_size == 0 || a.cpus_per_task == 0 {
         return Err(CliError::Input("--array-size and --cpus-per-task must be at least 1".into()));
@@ -156,7 +167,12 @@ fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str) -> Result<(), Cl
     let (grid, out_abs) = (abs(&a.file)?, abs(out)?);
     std::fs::create_dir_all(out_abs.join("slurm"))
         .map_err(|e| CliError::Internal(format!("{}: {e}", out_abs.display())))?;
-    let opts = SlurmOptions { array_size: a.array_size, time: a.time.clone(), cpus_per_task: a.cpus_per_task };
+    let opts = SlurmOptions {
+        array_size: a.array_size,
+        time: a.time.clone(),
+        cpus_per_task: a.cpus_per_task,
+        mem_bytes: a.max_memory.unwrap_or_else(|| task_memory(largest_run_bytes, a.cpus_per_task)),
+    };
     let script = sbatch_script(&exe, &grid, &out_abs, stem, &opts);
     let path = out_abs.join("study.sbatch");
     crate::io::write_atomic(&path, script.as_bytes()).map_err(CliError::internal)?;
@@ -164,6 +180,14 @@ fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str) -> Result<(), Cl
     println!("submit:  sbatch {}", path.display());
     println!("then:    covga merge {}", out_abs.display());
     Ok(())
+}
+
+/// The memory to request per array task: the largest run's estimate for each CPU, a quarter
+/// more for what the estimate leaves out, at least 512 MiB, in whole MiB.
+fn task_memory(largest_run_bytes: f64, cpus: usize) -> u64 {
+    const MIB: f64 = 1024.0 * 1024.0;
+    let bytes = (1.25 * largest_run_bytes * cpus as f64).max(512.0 * MIB);
+    ((bytes / MIB).ceil() * MIB) as u64
 }
 
 pub fn merge(a: MergeArgs) -> Result<(), CliError> {

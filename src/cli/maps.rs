@@ -15,7 +15,9 @@ pub struct MapsArgs {
 pub fn run(a: MapsArgs) -> Result<(), CliError> {
     for name in PRESET_NAMES {
         let map = preset(name).expect("listed presets exist");
-        crate::map::ros::write_ros(&map, &a.out, name).map_err(CliError::internal)?;
+        // A folder that cannot be made or written is the user's environment (exit 2).
+        crate::map::ros::write_ros(&map, &a.out, name)
+            .map_err(|e| CliError::Input(format!("{}: cannot write the map files: {e}", a.out.display())))?;
         println!("wrote {}", a.out.join(format!("{name}.yaml")).display());
     }
     Ok(())

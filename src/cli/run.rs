@@ -25,6 +25,10 @@ pub struct RunArgs {
     /// No progress bar and no summary.
     #[arg(long)]
     quiet: bool,
+    /// Memory the run may use (8G, 512M, 2GiB; default: the memory available); a run that
+    /// would need more is refused before anything is allocated.
+    #[arg(long, value_parser = crate::io::parse_bytes)]
+    max_memory: Option<u64>,
 }
 
 /// Progress bar over iterations.
@@ -61,19 +65,38 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     if let Some(seed) = a.seed {
         file.seed = seed;
     }
+    let ignored = match &a.file {
+        Some(path) => crate::study::ignored::ignored_in_text(&std::fs::read_to_string(path).unwrap_or_default(), &file),
+        None => Vec::new(),
+    };
     let exp = file.validate(&origin, &base, &stem).map_err(CliError::input)?;
+    for (key, why) in ignored {
+        eprintln!("warning: {origin}: `{key}` is ignored: {why}");
+    }
+    exp.check_memory(&origin, crate::study::memory::memory_limit(a.max_memory), 1).map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
+    let existed = dir.exists();
     std::fs::create_dir_all(&dir)
         .map_err(|e| CliError::Input(format!("{}: cannot create the results folder: {e}", dir.display())))?;
+    // A run refused by its planner leaves no folder behind that it made itself (the folder is
+    // removed only while still empty).
+    let discard_folder = || {
+        if !existed {
+            let _ = std::fs::remove_dir(&dir);
+        }
+    };
     let show = !a.quiet && std::io::stderr().is_terminal();
     let length = match exp.file.planner {
         PlannerKind::Waypoint => exp.file.waypoint.generations,
         _ => exp.budget.iterations,
     };
     let mut progress = Progress(super::progress_bar(u64::from(length), "it", show));
-    let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| match e {
-        OutputError::Planner(m) => CliError::Input(m),
-        other => CliError::internal(other),
+    let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| {
+        discard_folder();
+        match e {
+            OutputError::Planner(m) => CliError::Input(format!("{origin}: {m}")),
+            other => CliError::internal(other),
+        }
     })?;
     progress.0.finish_and_clear();
     if !a.quiet {

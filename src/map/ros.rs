@@ -106,10 +106,27 @@ fn yaml_error(path: &Path, message: impl Into<String>) -> MapError {
     MapError::Yaml { path: path.to_path_buf(), message: message.into() }
 }
 
-/// Loads a ROS map_server YAML file and the image it names (relative to the YAML's folder).
-pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
-    let text = std::fs::read_to_string(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
-    let y: RosYaml = serde_norway::from_str(&text).map_err(|e| {
+/// The metadata of a ROS map_server YAML file, checked.
+#[derive(Clone, Debug)]
+pub struct RosMeta {
+    /// The image file, resolved against the YAML's folder.
+    pub image: PathBuf,
+    /// Metres per pixel.
+    pub resolution: f64,
+    /// Position of the lower-left pixel's corner in metres.
+    pub origin: Point,
+    /// How pixel values become occupancy.
+    pub rule: PixelRule,
+}
+
+/// The largest map accepted, in cells (16 384 × 16 384): checked from the image header before
+/// any pixel is decoded, so a small file declaring a huge image is refused without allocating.
+pub const MAX_MAP_CELLS: u64 = 1 << 28;
+
+/// Parses and checks the text of a ROS map_server YAML file read from `path` (which names it in
+/// messages and resolves the image path).
+pub fn parse_ros_yaml(text: &str, path: &Path) -> Result<RosMeta, MapError> {
+    let y: RosYaml = serde_norway::from_str(text).map_err(|e| {
         let expected =
             "expected keys image, resolution, origin, negate, occupied_thresh, free_thresh, mode (trinary|scale|raw)";
         yaml_error(path, format!("malformed map YAML: {e} ({expected})"))
@@ -117,7 +134,7 @@ pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
     if !(y.resolution.is_finite() && y.resolution > 0.0) {
         return Err(yaml_error(
             path,
-            format!("`resolution` = {} must be a number of metres per cell > 0", y.resolution),
+            format!("`resolution` = {} must be a number of metres per cell > 0", crate::io::short_number(y.resolution)),
         ));
     }
     if y.origin.len() != 3 || y.origin.iter().any(|v| !v.is_finite()) {
@@ -145,29 +162,64 @@ pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
         Flag::Int(1) | Flag::Bool(true) => true,
         Flag::Int(v) => return Err(yaml_error(path, format!("`negate` = {v} must be 0 or 1"))),
     };
-    let image_path = path.parent().unwrap_or(Path::new(".")).join(&y.image);
-    let rule = PixelRule { negate, occupied_thresh: y.occupied_thresh, free_thresh: y.free_thresh, mode: y.mode };
+    if y.image.trim().is_empty() {
+        return Err(yaml_error(path, "`image` is empty: it must name the map's PGM or PNG file"));
+    }
+    Ok(RosMeta {
+        image: path.parent().unwrap_or(Path::new(".")).join(&y.image),
+        resolution: y.resolution,
+        origin: Point::new(y.origin[0], y.origin[1]),
+        rule: PixelRule { negate, occupied_thresh: y.occupied_thresh, free_thresh: y.free_thresh, mode: y.mode },
+    })
+}
+
+/// Loads a ROS map_server YAML file and the image it names (relative to the YAML's folder).
+pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
+    let text = std::fs::read_to_string(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
+    let meta = parse_ros_yaml(&text, path)?;
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    load_image_with(&image_path, &name, y.resolution, Point::new(y.origin[0], y.origin[1]), rule)
+    let bytes = std::fs::read(&meta.image).map_err(|source| MapError::Io { path: meta.image.clone(), source })?;
+    decode_map_image(&bytes, &meta.image, &name, meta.resolution, meta.origin, meta.rule)
 }
 
 /// Loads a bare PGM/PNG image at `resolution` m per pixel, origin (0, 0), default thresholds.
 pub fn load_image(path: &Path, resolution: f64) -> Result<GridMap, MapError> {
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    load_image_with(path, &name, resolution, Point::origin(), PixelRule::default())
+    let bytes = std::fs::read(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
+    decode_map_image(&bytes, path, &name, resolution, Point::origin(), PixelRule::default())
 }
 
-fn load_image_with(
+/// Decodes the bytes of a PGM or PNG image (read from `path`, named in messages) into a map.
+/// The image's size is read from its header first and refused above [`MAX_MAP_CELLS`].
+pub fn decode_map_image(
+    bytes: &[u8],
     path: &Path,
     name: &str,
     resolution: f64,
     origin: Point,
     rule: PixelRule,
 ) -> Result<GridMap, MapError> {
-    let bytes = std::fs::read(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
-    let img = image::load_from_memory(&bytes)
-        .map_err(|e| MapError::Image { path: path.to_path_buf(), message: e.to_string() })?;
+    let image_error = |message: String| MapError::Image { path: path.to_path_buf(), message };
+    let reader = || {
+        image::ImageReader::new(std::io::Cursor::new(bytes))
+            .with_guessed_format()
+            .map_err(|e| image_error(e.to_string()))
+    };
+    let (w, h) = reader()?.into_dimensions().map_err(|e| image_error(e.to_string()))?;
+    let cells_wanted = u64::from(w) * u64::from(h);
+    if cells_wanted > MAX_MAP_CELLS || w == 0 || h == 0 {
+        return Err(image_error(format!(
+            "the image is {w} × {h} pixels; a map must have between 1 and {MAX_MAP_CELLS} cells"
+        )));
+    }
+    let mut limited = reader()?;
+    let mut limits = image::Limits::default();
+    // The decoded image (up to 4 bytes per pixel in the decoder) and its grey-alpha copy.
+    limits.max_alloc = Some(16 * MAX_MAP_CELLS);
+    limited.limits(limits);
+    let img = limited.decode().map_err(|e| image_error(e.to_string()))?;
     let la = img.to_luma_alpha8();
+    drop(img);
     let (w, h) = (la.width() as usize, la.height() as usize);
     let mut cells = vec![CellState::Unknown; w * h];
     for (x, y, px) in la.enumerate_pixels() {

@@ -164,8 +164,20 @@ pub struct Experiment {
 
 impl ExperimentFile {
     /// Parses TOML text; `origin` names the file in messages.
+    /// A text that sets nothing (empty, or only comments) is refused: it is more often a wrong
+    /// or truncated file than a wish for every default, which is said with one key, e.g.
+    /// `planner = "thesis"`.
     pub fn parse(text: &str, origin: &str) -> Result<Self, ConfigError> {
-        toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))
+        let file = toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))?;
+        if text.parse::<toml::Table>().is_ok_and(|t| t.is_empty()) {
+            return Err(ConfigError::new(
+                origin,
+                "",
+                "sets nothing (the file is empty or only comments); to run every default, say so with one key, \
+                 e.g. `planner = \"thesis\"`",
+            ));
+        }
+        Ok(file)
     }
 
     /// Reads and parses a file.
@@ -219,6 +231,16 @@ impl ExperimentFile {
             } else {
                 base.join(&self.map.source).display().to_string()
             };
+        let bare_image = [".pgm", ".png"].iter().any(|e| self.map.source.to_ascii_lowercase().ends_with(e));
+        if bare_image && self.map.resolution.is_none() {
+            return Err(err(
+                "map.resolution",
+                format!(
+                    "is missing: the bare image `{}` needs its metres per pixel, e.g. `resolution = 0.05` under [map] (or give a ROS map YAML)",
+                    self.map.source
+                ),
+            ));
+        }
         if let Some(res) = self.map.resolution {
             check_range(origin, "map.resolution", res, 1e-9, 1e6, "> 0 metres per pixel")?;
         }

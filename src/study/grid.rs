@@ -267,6 +267,7 @@ impl Study {
             ));
         }
         let combos: usize = radix.iter().product();
+        let mut applied = vec![false; conds.len()];
         for mut index in 0..combos {
             let mut table = base.clone();
             let mut params = Vec::with_capacity(axes.len());
@@ -291,6 +292,7 @@ impl Study {
                     stack.push((t, params, branch, next_cond + 1));
                     continue;
                 }
+                applied[next_cond] = true;
                 let mut b = branch.clone();
                 b.push(when.iter().map(|(k, v)| format!("{k}={}", scalar_text(v))).collect::<Vec<_>>().join(","));
                 let mut expanded = vec![(t, params)];
@@ -310,6 +312,44 @@ impl Study {
                 // Reversed, so that the stack pops them in expansion order.
                 for (t, p) in expanded.into_iter().rev() {
                     stack.push((t, p, b.clone(), next_cond + 1));
+                }
+            }
+        }
+        if let Some(n) = applied.iter().position(|a| !a) {
+            let when: Vec<String> =
+                grid.conditional[n].when.iter().map(|(k, v)| format!("{k} = {}", scalar_text(v))).collect();
+            return Err(ConfigError::new(
+                &origin,
+                &format!("conditional[{n}].when"),
+                format!(
+                    "({}) matches no run of the grid, so its axes would be silently dropped: check the values against the axes, the earlier conditionals and the base",
+                    when.join(", ")
+                ),
+            ));
+        }
+        // A key swept over several values that a run's planner or selection does not read
+        // makes runs that differ only in a value nothing reads. (A single-valued axis only
+        // sets a key, e.g. per map for whichever planner runs there.)
+        let multi: Vec<bool> = columns
+            .iter()
+            .map(|k| {
+                axes.iter().chain(conds.iter().flat_map(|(_, cax)| cax.iter())).any(|(a, v)| a == k && v.len() > 1)
+            })
+            .collect();
+        for r in &runs {
+            for ((k, v), multi) in columns.iter().zip(&r.params).zip(&multi) {
+                if *multi
+                    && v.is_some()
+                    && let Some(why) = super::ignored::why_ignored(&r.file, k)
+                {
+                    return Err(ConfigError::new(
+                        &origin,
+                        k,
+                        format!(
+                            "is swept but ignored in run {} ({why}); sweep it in a conditional axis where it is read, e.g. [[conditional]] when = {{ \"thesis.selection\" = \"…\" }}",
+                            r.id
+                        ),
+                    ));
                 }
             }
         }

@@ -5,6 +5,8 @@ pub mod config;
 pub mod estimate;
 pub mod experiment;
 pub mod grid;
+pub mod ignored;
+pub mod memory;
 pub mod merge;
 pub mod output;
 pub mod records;

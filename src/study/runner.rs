@@ -28,6 +28,15 @@ pub enum StudyError {
         /// What does not match.
         message: String,
     },
+    /// The study folder cannot be made (a file is in the way, no permission: the user's
+    /// environment, not an internal fault).
+    #[error("{path}: cannot create the study folder: {source}")]
+    Folder {
+        /// The folder.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
     /// A file could not be read or written.
     #[error("{path}: {source}")]
     Io {
@@ -109,6 +118,8 @@ pub struct RunnerOptions<'a> {
     pub shard: Option<Shard>,
     /// Study folder.
     pub out: PathBuf,
+    /// The memory limit in bytes (`--max-memory`); `None`: the memory available.
+    pub max_memory: Option<u64>,
     /// Called after each finished run (from worker threads).
     pub on_done: &'a (dyn Fn(RunDone) + Sync),
 }
@@ -147,9 +158,23 @@ pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Ex
     run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r))
 }
 
-/// Validates the experiments of `runs` (maps loaded once through `maps`).
-pub fn validate_runs(study: &Study, runs: &[&RunSpec], maps: &MapCache) -> Result<(), ConfigError> {
-    runs.iter().try_for_each(|run| experiment_of(study, run, maps).map(|_| ()))
+/// Validates the experiments of `runs` (maps loaded once through `maps`) and checks that
+/// `parallel` of the largest of them fit in the memory `limit` (see [`super::memory`]).
+/// Returns the largest run's memory estimate in bytes.
+pub fn validate_runs(
+    study: &Study,
+    runs: &[&RunSpec],
+    maps: &MapCache,
+    limit: Option<u64>,
+    parallel: usize,
+) -> Result<f64, ConfigError> {
+    let parallel = parallel.min(runs.len());
+    runs.iter().try_fold(0.0f64, |largest, run| {
+        let exp = experiment_of(study, run, maps)?;
+        let origin = format!("{} (run {})", study.path.display(), run.id);
+        exp.check_memory(&origin, limit, parallel)?;
+        Ok(largest.max(exp.memory_estimate().bytes))
+    })
 }
 
 /// The identity of a study: a hash of its sorted run ids (each the hash of a fully resolved
@@ -238,9 +263,9 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     // Validate everything before the first run starts: bad input loses nothing. The validated
     // experiments are not kept (memory stays flat); each worker validates its run again.
     let maps = MapCache::default();
-    validate_runs(study, &selected, &maps)?;
+    validate_runs(study, &selected, &maps, super::memory::memory_limit(opts.max_memory), opts.jobs)?;
     check_identity(study, &opts.out)?;
-    std::fs::create_dir_all(&opts.out).map_err(io(&opts.out))?;
+    std::fs::create_dir_all(&opts.out).map_err(|source| StudyError::Folder { path: opts.out.clone(), source })?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
     let _lock = StudyLock::take(&file)?;
     write_study_files(study, &opts.out)?;

@@ -12,6 +12,10 @@ pub struct SlurmOptions {
     pub time: String,
     /// CPUs per task (= `--jobs` of each shard).
     pub cpus_per_task: usize,
+    /// Memory per task in bytes: requested from Slurm (`--mem`, in MiB rounded up) and passed
+    /// to each shard as `--max-memory`, so a shard checks its runs against its allocation, not
+    /// against the node's memory.
+    pub mem_bytes: u64,
 }
 
 /// Checks `HH:MM:SS` (hours may exceed 24, as Slurm allows).
@@ -39,16 +43,19 @@ pub fn sbatch_script(exe: &Path, grid: &Path, out: &Path, name: &str, o: &SlurmO
          #SBATCH --array=0-{last}\n\
          #SBATCH --time={time}\n\
          #SBATCH --cpus-per-task={cpus}\n\
+         #SBATCH --mem={mem_mib}M\n\
          #SBATCH --ntasks=1\n\
          #SBATCH --output={log}/%A_%a.out\n\
          set -euo pipefail\n\
-         exec {exe} grid {grid} --out {outq} --jobs \"${{SLURM_CPUS_PER_TASK:-{cpus}}}\" --shard \"$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT\"\n",
+         exec {exe} grid {grid} --out {outq} --jobs \"${{SLURM_CPUS_PER_TASK:-{cpus}}}\" --shard \"$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT\" --max-memory {mem_bytes}\n",
         script = quote(&out.join("study.sbatch")),
         outq = quote(out),
         name = name,
         last = o.array_size.saturating_sub(1),
         time = o.time,
         cpus = o.cpus_per_task,
+        mem_mib = o.mem_bytes.div_ceil(1024 * 1024),
+        mem_bytes = o.mem_bytes,
         log = out.join("slurm").display(),
         exe = quote(exe),
         grid = quote(grid),
@@ -69,10 +76,12 @@ mod tests {
 
     #[test]
     fn script_has_array_and_shard() {
-        let o = SlurmOptions { array_size: 4, time: "00:10:00".into(), cpus_per_task: 2 };
+        let o = SlurmOptions { array_size: 4, time: "00:10:00".into(), cpus_per_task: 2, mem_bytes: 3 << 29 };
         let s = sbatch_script(Path::new("/bin/covga"), Path::new("/g/smoke.toml"), Path::new("/o/s"), "smoke", &o);
         assert!(s.contains("#SBATCH --array=0-3"));
         assert!(s.contains("--shard \"$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT\""));
         assert!(s.contains("#SBATCH --cpus-per-task=2"));
+        assert!(s.contains("#SBATCH --mem=1536M"));
+        assert!(s.contains("--max-memory 1610612736\n"));
     }
 }

@@ -68,6 +68,18 @@ pub enum SelectionName {
     Rrws,
 }
 
+impl SelectionName {
+    /// The name as written in experiment files.
+    pub fn name(self) -> &'static str {
+        match self {
+            SelectionName::Elite => "elite",
+            SelectionName::Tournament => "tournament",
+            SelectionName::Prws => "prws",
+            SelectionName::Rrws => "rrws",
+        }
+    }
+}
+
 /// `[thesis.control]`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
@@ -162,30 +174,9 @@ pub struct ThesisConfig {
 
 impl ThesisConfig {
     /// Validates `[thesis]` and `[retrain]` of `file`; `origin` names the file in messages.
-    pub fn from_file(
-        file: &ExperimentFile,
-        origin: &str,
-        scenario: &crate::planner::Scenario,
-    ) -> Result<Self, ConfigError> {
+    pub fn from_file(file: &ExperimentFile, origin: &str) -> Result<Self, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let params = validate_params(&file.thesis, origin)?;
-        // Refuse before allocating what cannot fit: a population of genomes and viewpoints
-        // with their visit maps, parents and offspring alive at once.
-        let bytes = memory_estimate(&params, scenario.map.rows(), scenario.map.cols());
-        if let Some(available) = crate::io::available_memory()
-            && bytes > available as f64
-        {
-            return Err(err(
-                if params.initial_size() > params.pop_min { "thesis.init_individuals" } else { "thesis.pop_min" },
-                format!(
-                    "= {} individuals of up to {} actions need about {} on this map, more than the {} of memory available",
-                    params.initial_size(),
-                    params.max_genome_len,
-                    crate::io::human_bytes(bytes),
-                    crate::io::human_bytes(available as f64)
-                ),
-            ));
-        }
         let b = file.budget;
         let retrain = match file.retrain {
             None => None,

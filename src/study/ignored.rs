@@ -1,0 +1,137 @@
+//! Keys a configuration sets but its planner or selection scheme never reads. A key like that
+//! is a silent no-op (an `init_individuals` under Elite, a tournament size swept under RRWS):
+//! `covga run` warns about the ones the file sets, and a grid refuses to sweep one, since its
+//! runs would differ only in a value nothing reads.
+
+use super::experiment::ExperimentFile;
+use crate::planner::PlannerKind;
+use crate::thesis::config::SelectionName;
+
+/// The `[thesis]` keys each selection scheme does not read (003 §3.4: Elite keeps the
+/// `Pop_min` best of parents and children; the others draw `Select` parents).
+fn unread_by_selection(s: SelectionName) -> &'static [&'static str] {
+    match s {
+        SelectionName::Elite => &[
+            "thesis.init_individuals",
+            "thesis.keep",
+            "thesis.select",
+            "thesis.tournament_size",
+            "thesis.selection_pressure",
+        ],
+        SelectionName::Tournament => &["thesis.selection_pressure"],
+        SelectionName::Prws => &["thesis.tournament_size", "thesis.selection_pressure"],
+        SelectionName::Rrws => &["thesis.tournament_size"],
+    }
+}
+
+/// The `[thesis]` keys random search reads (how it draws genomes; the projection is the
+/// scorer's).
+const READ_BY_RANDOM_SEARCH: [&str; 5] =
+    ["thesis.pop_min", "thesis.init_actions", "thesis.init_dist_max", "thesis.max_genome_len", "thesis.projection"];
+
+/// Whether `key` (dotted) lies in the section or key `prefix`.
+fn within(key: &str, prefix: &str) -> bool {
+    key == prefix || key.strip_prefix(prefix).is_some_and(|rest| rest.starts_with('.'))
+}
+
+/// Why `file`'s planner and selection do not read `key` (a dotted key such as
+/// `thesis.keep`, or a section such as `pattern`), or `None` when they read it.
+pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
+    let planner = file.planner;
+    let name = planner.name();
+    if within(key, "retrain") && planner != PlannerKind::Thesis {
+        return Some(format!("only the thesis GA retrains; planner = \"{name}\""));
+    }
+    if within(key, "pattern") && !matches!(planner, PlannerKind::Boustrophedon | PlannerKind::Spiral) {
+        return Some(format!("only the boustrophedon and spiral patterns read [pattern]; planner = \"{name}\""));
+    }
+    if within(key, "thesis") && key != "thesis.projection" {
+        match planner {
+            PlannerKind::Thesis => {
+                let selection = file.thesis.selection;
+                if unread_by_selection(selection).contains(&key) {
+                    return Some(format!("thesis.selection = \"{}\" does not use it", selection.name()));
+                }
+            }
+            PlannerKind::RandomSearch => {
+                if !READ_BY_RANDOM_SEARCH.contains(&key) {
+                    return Some(format!(
+                        "random search reads only {} of [thesis]",
+                        READ_BY_RANDOM_SEARCH[..4].join(", ")
+                    ));
+                }
+            }
+            _ => return Some(format!("planner = \"{name}\" does not read [thesis] (except projection)")),
+        }
+    }
+    None
+}
+
+/// The dotted keys and sections set in the TOML `text` (tables and their keys, depth two),
+/// with their why-ignored reason where `file` does not read them.
+pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String)> {
+    let Ok(table) = text.parse::<toml::Table>() else { return Vec::new() };
+    let mut out = Vec::new();
+    for (section, value) in &table {
+        match value {
+            toml::Value::Table(t) if section == "thesis" => {
+                for key in t.keys() {
+                    let dotted = format!("{section}.{key}");
+                    if let Some(why) = why_ignored(file, &dotted) {
+                        out.push((dotted, why));
+                    }
+                }
+            }
+            _ => {
+                if let Some(why) = why_ignored(file, section) {
+                    out.push((section.clone(), why));
+                }
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn file(text: &str) -> ExperimentFile {
+        ExperimentFile::parse(text, "t.toml").unwrap()
+    }
+
+    #[test]
+    fn unread_keys_by_planner_and_selection() {
+        let elite = file("[thesis]\nselection = \"elite\"\n");
+        let rrws = file("[thesis]\nselection = \"rrws\"\n");
+        let waypoint = file("planner = \"waypoint\"\n");
+        let random = file("planner = \"random_search\"\n");
+        for (f, key, ignored) in [
+            (&elite, "thesis.init_individuals", true),
+            (&elite, "thesis.keep", true),
+            (&elite, "thesis.pop_min", false),
+            (&elite, "thesis.p_mi", false),
+            (&rrws, "thesis.selection_pressure", false),
+            (&rrws, "thesis.tournament_size", true),
+            (&rrws, "thesis.init_individuals", false),
+            (&elite, "retrain", false),
+            (&waypoint, "retrain", true),
+            (&waypoint, "thesis.c_len", true),
+            (&waypoint, "thesis.projection", false),
+            (&elite, "pattern", true),
+            (&elite, "pattern.angle_deg", true),
+            (&random, "thesis.init_actions", false),
+            (&random, "thesis.c_len", true),
+            (&elite, "thesis_x", false),
+        ] {
+            assert_eq!(why_ignored(f, key).is_some(), ignored, "{key} under {:?}", f.planner);
+        }
+    }
+
+    #[test]
+    fn only_keys_present_in_the_text_are_reported() {
+        let text = "[thesis]\nselection = \"elite\"\ninit_individuals = 500\npop_min = 20\n[pattern]\nangle_deg = 0\n";
+        let found: Vec<String> = ignored_in_text(text, &file(text)).into_iter().map(|(k, _)| k).collect();
+        assert_eq!(found, ["pattern", "thesis.init_individuals"]);
+    }
+}

@@ -1,0 +1,282 @@
+//! The reliability suite: every bad input found in review, as one table of cases (command,
+//! input files, expected exit code, a fragment of the message) checked the same way: exit 2,
+//! one error line naming the file or key, no panic, and nothing written. Plus warnings for
+//! ignored keys, and a study killed at several moments that resumes to the same results.
+
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+
+fn covga(dir: &Path, args: &[String]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir).args(args).output().expect("covga runs")
+}
+
+/// A small valid experiment (map 1, Elite, 20 individuals, 3 iterations).
+const SMALL: &str =
+    "seed = 3\n[map]\nsource = \"thesis-1\"\n[thesis]\npop_min = 20\ninit_actions = 20\n[budget]\niterations = 3\n";
+
+/// A small valid grid over two C_len values.
+const GRID: &str = "[base]\n[base.thesis]\npop_min = 20\ninit_actions = 20\n[base.budget]\niterations = 3\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n";
+
+struct Case {
+    /// What the case is about.
+    name: &'static str,
+    /// Files written into the case's folder first: name and contents.
+    files: &'static [(&'static str, &'static str)],
+    /// Arguments; `OUT` is the results folder that must not be created.
+    args: &'static [&'static str],
+    /// A fragment the one error line must contain.
+    needle: &'static str,
+}
+
+const CASES: &[Case] = &[
+    Case {
+        name: "empty experiment file",
+        files: &[("e.toml", "")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "e.toml: sets nothing",
+    },
+    Case {
+        name: "only comments",
+        files: &[("e.toml", "# planner = \"thesis\"\n\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "sets nothing",
+    },
+    Case {
+        name: "bare image map without resolution in TOML",
+        files: &[("e.toml", "[map]\nsource = \"m.pgm\"\n"), ("m.pgm", "P2\n2 2\n255\n254 254 254 254\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`map.resolution` is missing: the bare image `m.pgm`",
+    },
+    Case {
+        name: "robot wider than the map",
+        files: &[("e.toml", "[robot]\nwidth = 60\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`robot.width` = 60 m is wider",
+    },
+    Case {
+        name: "huge robot number shortened",
+        files: &[("e.toml", "[robot]\nwidth = 1e300\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "= 1e300 m",
+    },
+    Case {
+        name: "population that cannot fit the memory limit",
+        files: &[("e.toml", SMALL)],
+        args: &["run", "e.toml", "--out", "OUT", "--max-memory", "10k"],
+        needle: "`thesis.pop_min` would need up to about",
+    },
+    Case {
+        name: "absurd population refused at once",
+        files: &[("e.toml", "[thesis]\npop_min = 1000000\ninit_actions = 100000\nmax_genome_len = 1000000\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "1000000 individuals of up to 1000000 actions",
+    },
+    Case {
+        name: "bad --max-memory",
+        files: &[("e.toml", SMALL)],
+        args: &["run", "e.toml", "--out", "OUT", "--max-memory", "8X"],
+        needle: "unknown unit `X`",
+    },
+    Case {
+        name: "unknown key",
+        files: &[("e.toml", "[thesis]\ncolour = 3\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "unknown field `colour`",
+    },
+    Case {
+        name: "missing experiment file",
+        files: &[],
+        args: &["run", "absent.toml", "--out", "OUT"],
+        needle: "absent.toml",
+    },
+    Case {
+        name: "results folder is a file (run)",
+        files: &[("e.toml", SMALL), ("taken", "x")],
+        args: &["run", "e.toml", "--out", "taken/OUT"],
+        needle: "taken/OUT: cannot create the results folder",
+    },
+    Case {
+        name: "waypoint hallway too wide for the map",
+        files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nhallway = 30\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "e.toml: waypoint planner on map `thesis-1`: the start at (1.30, 1.30) m reaches only 1 of 1 waypoints",
+    },
+    Case {
+        name: "path point outside the map",
+        files: &[("p.csv", "x_m,y_m\n1.3,1.3\n100,100\n")],
+        args: &["eval", "--path", "p.csv", "--map", "thesis-1", "--out", "OUT"],
+        needle: "(100, 100) m is outside map",
+    },
+    Case {
+        name: "missing path file has no line 0",
+        files: &[],
+        args: &["eval", "--path", "absent.csv", "--out", "OUT"],
+        needle: "absent.csv: cannot read path file",
+    },
+    Case {
+        name: "image header declaring a huge map",
+        files: &[("huge.pgm", "P5\n100000 100000\n255\n")],
+        args: &["eval", "--map", "huge.pgm", "--resolution", "0.05", "--out", "OUT"],
+        needle: "a map must have between 1 and",
+    },
+    Case {
+        name: "conditional whose `when` never matches",
+        files: &[(
+            "g.toml",
+            "[base]\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n[[conditional]]\nwhen = { \"thesis.selection\" = \"rrws\" }\naxes = { \"thesis.selection_pressure\" = [1.5, 2.0] }\n",
+        )],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "`conditional[0].when` (thesis.selection = rrws) matches no run",
+    },
+    Case {
+        name: "swept key the selection ignores",
+        files: &[("g.toml", "[base]\n[axes]\n\"thesis.tournament_size\" = [3, 7]\n")],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "`thesis.tournament_size` is swept but ignored",
+    },
+    Case {
+        name: "grid over the memory limit",
+        files: &[("g.toml", GRID)],
+        args: &["grid", "g.toml", "--out", "OUT", "--jobs", "2", "--max-memory", "10k"],
+        needle: "× 2 runs at once",
+    },
+    Case {
+        name: "absurd grid counted before it is expanded",
+        files: &[(
+            "g.toml",
+            "[base]\n[axes]\n\"seed\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.pop_min\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.init_actions\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.p_c\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.c_len\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.p_ma\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.p_mi\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n",
+        )],
+        args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
+        needle: "expands to up to 1.000e7 runs",
+    },
+    Case {
+        name: "results folder is a file (grid)",
+        files: &[("g.toml", GRID), ("taken", "x")],
+        args: &["grid", "g.toml", "--out", "taken/OUT"],
+        needle: "taken/OUT",
+    },
+    Case { name: "merge of a folder with no shards", files: &[], args: &["merge", "."], needle: "" },
+    Case { name: "report of a non-study folder", files: &[], args: &["report", "."], needle: "not a study folder" },
+    Case {
+        name: "maps into a file",
+        files: &[("taken", "x")],
+        args: &["maps", "--out", "taken"],
+        needle: "taken: cannot write the map files",
+    },
+];
+
+#[test]
+fn every_bad_input_exits_2_with_one_line_and_writes_nothing() {
+    let mut failures = Vec::new();
+    for case in CASES {
+        let dir = tempfile::tempdir().unwrap();
+        for (name, text) in case.files {
+            std::fs::write(dir.path().join(name), text).unwrap();
+        }
+        let before = listing(dir.path());
+        let started = std::time::Instant::now();
+        let o = covga(dir.path(), &case.args.iter().map(|a| a.to_string()).collect::<Vec<_>>());
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        let problems = [
+            (o.status.code() != Some(2)).then(|| format!("exit {:?}", o.status.code())),
+            (!err.contains(case.needle)).then(|| format!("no `{}`", case.needle)),
+            // (The argument parser adds its usual pointer to --help after its one line.)
+            (err.trim().lines().filter(|l| !l.trim().is_empty() && !l.starts_with("For more information")).count()
+                != 1)
+                .then(|| "not one line".to_string()),
+            err.contains("panicked").then(|| "panicked".to_string()),
+            (listing(dir.path()) != before).then(|| format!("wrote {:?}", listing(dir.path()))),
+            (started.elapsed().as_secs() > 20).then(|| "slow to refuse".to_string()),
+        ];
+        for p in problems.into_iter().flatten() {
+            failures.push(format!("{}: {p}; stderr: {}", case.name, err.trim()));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every file below `dir` with its size.
+fn listing(dir: &Path) -> Vec<(String, u64)> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                stack.push(p.clone());
+            }
+            out.push((p.strip_prefix(dir).unwrap().display().to_string(), e.metadata().map_or(0, |m| m.len())));
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn keys_the_selection_ignores_are_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = SMALL.replace("[thesis]\n", "[thesis]\ninit_individuals = 500\nkeep = 4\n");
+    std::fs::write(dir.path().join("e.toml"), text).unwrap();
+    let o = covga(dir.path(), &["run".into(), "e.toml".into(), "--out".into(), "o".into(), "--quiet".into()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    for key in ["thesis.init_individuals", "thesis.keep"] {
+        assert!(
+            err.contains(&format!("warning: e.toml: `{key}` is ignored: thesis.selection = \"elite\" does not use it")),
+            "{err}"
+        );
+    }
+    assert!(!err.contains("pop_min"), "read keys are not warned about: {err}");
+}
+
+/// A 12-run grid, killed with SIGKILL at several moments (chosen by a fixed-seed generator, so
+/// the schedule is the same every time, while where the runs are when it strikes is not), then
+/// resumed: the results equal an uninterrupted study's.
+#[test]
+fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = "seed = 9\nseeds = 3\n[base]\n[base.thesis]\npop_min = 20\ninit_actions = 20\n[base.budget]\niterations = 400\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n\"thesis.p_mi\" = [0.0, 0.1]\n";
+    std::fs::write(dir.path().join("g.toml"), grid).unwrap();
+    let args = |out: &str, jobs: &str| -> Vec<String> {
+        ["grid", "g.toml", "--out", out, "--jobs", jobs].iter().map(|s| s.to_string()).collect()
+    };
+    let reference = covga(dir.path(), &args("reference", "2"));
+    assert!(reference.status.success(), "{}", String::from_utf8_lossy(&reference.stderr));
+    let mut state: u64 = 0x5EED;
+    let mut next = || {
+        state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z ^ (z >> 27)
+    };
+    for _ in 0..4 {
+        let delay_ms = 40 + next() % 400;
+        let jobs = if next() % 2 == 0 { "1" } else { "2" };
+        let mut child = Command::new(env!("CARGO_BIN_EXE_covga"))
+            .current_dir(dir.path())
+            .args(args("killed", jobs))
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(delay_ms));
+        let _ = child.kill();
+        let _ = child.wait();
+    }
+    let recorded = std::fs::read_to_string(dir.path().join("killed/runs.csv")).map_or(0, |t| t.lines().count() - 1);
+    assert!(recorded < 12, "the kills (about 0.8 s in all) struck before the study's end");
+    let resumed = covga(dir.path(), &args("killed", "2"));
+    assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
+    let rows = |study: &str| {
+        let text = std::fs::read_to_string(dir.path().join(study).join("runs.csv")).unwrap();
+        let mut lines = text.lines();
+        let wall = lines.next().unwrap().split(',').position(|h| h == "wall_s").unwrap();
+        let mut rows: Vec<String> = lines
+            .map(|l| l.split(',').enumerate().filter(|(i, _)| *i != wall).map(|(_, v)| v).collect::<Vec<_>>().join(","))
+            .collect();
+        rows.sort();
+        rows
+    };
+    assert_eq!(rows("killed").len(), 12);
+    assert_eq!(rows("killed"), rows("reference"));
+}
