@@ -21,8 +21,6 @@ const MEAN: RGBColor = RGBColor(20, 60, 170);
 const MIN: RGBColor = RGBColor(200, 60, 40);
 const MAX: RGBColor = RGBColor(30, 150, 60);
 const SWITCH: RGBColor = RGBColor(120, 120, 120);
-/// Width of the legend column right of each panel, in pixels.
-const LEGEND_W: u32 = 150;
 
 type Series<'a> = (&'a str, RGBColor, Box<dyn Fn(&GenerationStats) -> f64 + 'a>);
 
@@ -51,7 +49,7 @@ impl HistoryFigure<'_> {
         let mut chart = ChartBuilder::on(area)
             .margin_left(10)
             // The legend sits in this margin, right of the data it would otherwise hide.
-            .margin_right(LEGEND_W)
+            .margin_right(super::SIDE_LEGEND_W)
             .margin_top(8)
             .x_label_area_size(if last { 40 } else { 22 })
             .y_label_area_size(70)
@@ -83,27 +81,14 @@ impl HistoryFigure<'_> {
         let one_px = (hi - lo + 2.0 * pad) / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
         let mut legend: Vec<(&str, RGBColor)> = Vec::new();
         for (label, colour, f) in series {
-            // Two 1-px lines one pixel apart instead of one 2-px stroke: the backends join thick
-            // polylines with mitres, and a series that turns back on itself (common when
-            // thousands of iterations share a few hundred pixels) grows a spike far outside its
-            // data range and its panel.
-            for offset in [0.0, one_px] {
-                let points = h.iter().map(|s| (s.iteration, f(s) + offset)).filter(|(_, v)| v.is_finite());
-                chart.draw_series(LineSeries::new(points, colour.stroke_width(1))).map_err(err)?;
-            }
+            let points: Vec<(u32, f64)> = h.iter().map(|s| (s.iteration, f(s))).collect();
+            super::draw_series_line(&mut chart, &points, colour, one_px)?;
             legend.push((label, colour));
         }
         if !self.changes.is_empty() {
             legend.push(("env. change", SWITCH));
         }
-        // The legend in the panel's right margin, where it hides no data (a chart's own legend
-        // is clipped to its plotting area).
-        let (x0, y0) = (area.dim_in_pixel().0 as i32 - LEGEND_W as i32 + 14, 14);
-        for (k, (label, colour)) in legend.into_iter().enumerate() {
-            let y = y0 + 20 * k as i32;
-            area.draw(&PathElement::new(vec![(x0, y), (x0 + 22, y)], colour.stroke_width(3))).map_err(err)?;
-            area.draw(&Text::new(label.to_string(), (x0 + 28, y - 8), text(14.0))).map_err(err)?;
-        }
+        super::side_legend(area, &legend)?;
         Ok(())
     }
 }

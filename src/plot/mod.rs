@@ -176,6 +176,56 @@ pub fn series_legend<'a, DB: DrawingBackend + 'a, CT: plotters::coord::CoordTran
         .map_err(err)
 }
 
+/// Width of the legend column right of a time-series panel, in pixels.
+pub const SIDE_LEGEND_W: u32 = 150;
+
+/// Draws a time series as two 1-px lines one pixel apart (`one_px` in data units) instead of
+/// one 2-px stroke: the backends join thick polylines with mitres, and a series that turns
+/// back on itself (thousands of iterations on a few hundred pixels) grows a spike far outside
+/// its data range and its panel.
+pub fn draw_series_line<'a, DB: DrawingBackend + 'a, X: Clone + 'a>(
+    chart: &mut ChartContext<'a, DB, Cartesian2d<X, plotters::coord::types::RangedCoordf64>>,
+    points: &[(X::ValueType, f64)],
+    colour: RGBColor,
+    one_px: f64,
+) -> Result<(), String>
+where
+    X: plotters::coord::ranged1d::Ranged,
+    X::ValueType: Clone + 'static,
+{
+    for offset in [0.0, one_px] {
+        let shifted = points.iter().filter(|p| p.1.is_finite()).map(|(x, y)| (x.clone(), y + offset));
+        chart.draw_series(LineSeries::new(shifted, colour.stroke_width(1))).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// A legend drawn in the right margin of `area` (a chart's own legend is clipped to its
+/// plotting area, where it hides data): one coloured stroke and label per entry.
+pub fn side_legend<DB: DrawingBackend>(
+    area: &DrawingArea<DB, plotters::coord::Shift>,
+    entries: &[(&str, RGBColor)],
+) -> Result<(), String> {
+    let (x0, y0) = (area.dim_in_pixel().0 as i32 - SIDE_LEGEND_W as i32 + 14, 14);
+    for (k, (label, colour)) in entries.iter().enumerate() {
+        let y = y0 + 20 * k as i32;
+        area.draw(&PathElement::new(vec![(x0, y), (x0 + 22, y)], colour.stroke_width(3))).map_err(err)?;
+        area.draw(&Text::new(label.to_string(), (x0 + 28, y - 8), text(14.0))).map_err(err)?;
+    }
+    Ok(())
+}
+
+/// Tick labels with as many decimals as the range `span` needs (counts need none).
+pub fn tick_decimals(span: f64) -> usize {
+    if span >= 20.0 {
+        0
+    } else if span >= 2.0 {
+        1
+    } else {
+        2
+    }
+}
+
 /// Runs of equal classes along each row of a `width × height` raster (row 0 at the bottom):
 /// `(row, first column, end column, class)`. Drawing runs instead of cells keeps SVGs small.
 pub fn cell_runs<C: PartialEq + Copy>(

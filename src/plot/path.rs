@@ -121,8 +121,11 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     chart.draw_series(rects).map_err(err)?;
     let dot = if small { 1 } else { 2 };
     for path in &fig.paths {
+        // Segment by segment: a thick polyline is joined with mitres, and a path that turns
+        // back on itself would grow a spike far past its viewpoints.
+        let style = PATH.stroke_width(if small { 1 } else { 2 });
         chart
-            .draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(if small { 1 } else { 2 })))
+            .draw_series(path.windows(2).map(|w| PathElement::new(vec![(w[0].x, w[0].y), (w[1].x, w[1].y)], style)))
             .map_err(err)?;
         if !small {
             // The bitmap backend leaves gaps in some thick diagonal strokes; a 1-px line on

@@ -128,13 +128,16 @@ impl Figure for DiversityFigure {
             .axis_desc_style(text(15.0))
             .draw()
             .map_err(err)?;
+        let one_px = y_max * 1.05 / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
         for (k, g) in self.groups.iter().enumerate() {
             let colour = Palette99::pick(k).to_rgba();
             let band: Vec<(u32, f64)> =
                 g.curve.iter().map(|c| (c.0, c.3)).chain(g.curve.iter().rev().map(|c| (c.0, c.2))).collect();
             chart.draw_series([Polygon::new(band, colour.mix(0.18).filled())]).map_err(err)?;
+            let median: Vec<(u32, f64)> = g.curve.iter().map(|c| (c.0, c.1)).collect();
+            super::draw_series_line(&mut chart, &median, RGBColor(colour.0, colour.1, colour.2), one_px)?;
             chart
-                .draw_series(LineSeries::new(g.curve.iter().map(|c| (c.0, c.1)), colour.stroke_width(2)))
+                .draw_series(std::iter::empty::<PathElement<(u32, f64)>>())
                 .map_err(err)?
                 .label(format!("{} ({} runs)", g.label, g.runs))
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));

@@ -76,7 +76,10 @@ impl Figure for PathsFigure<'_> {
         let mut chart =
             raster_chart(&area, self.map, &self.title, |i| if self.map.occluded[i] { OBSTACLE } else { FREE })?;
         for (k, p) in self.paths.iter().enumerate() {
-            chart.draw_series(LineSeries::new(p.iter().copied(), agent_colour(k).stroke_width(2))).map_err(err)?;
+            // Segment by segment: thick polylines are joined with mitres, which spike where a
+            // path turns back on itself.
+            let style = agent_colour(k).stroke_width(2);
+            chart.draw_series(p.windows(2).map(|w| PathElement::new(vec![w[0], w[1]], style))).map_err(err)?;
             // The bitmap backend leaves gaps in some thick diagonal strokes; a 1-px line on top
             // keeps every segment continuous.
             chart.draw_series(LineSeries::new(p.iter().copied(), agent_colour(k).stroke_width(1))).map_err(err)?;
@@ -144,6 +147,9 @@ impl Figure for CoverageFigure<'_> {
 
 /// Population objectives at a few generations (000 Fig. 11).
 pub struct SnapshotsFigure<'a> {
+    /// Seconds per px-equivalent of 000's flight time: the raster scale over the robot's
+    /// speed (turning surcharges, lengths in 000, are flown at that speed too).
+    pub seconds_per_px: f64,
     /// `(generation, [(coverage, flight time, feasible)])`.
     pub snapshots: &'a [crate::waypoint::run::Snapshot],
 }
@@ -156,9 +162,11 @@ impl Figure for SnapshotsFigure<'_> {
         let root = root
             .titled("Population in objective space (feasible in blue, violating in grey)", text(18.0))
             .map_err(err)?;
+        let k = self.seconds_per_px;
         let all = self.snapshots.iter().flat_map(|s| s.1.iter());
         let (mut t0, mut t1, mut c0) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
         for &(c, t, _) in all {
+            let t = t * k;
             t0 = t0.min(t);
             t1 = t1.max(t);
             c0 = c0.min(c);
@@ -168,6 +176,7 @@ impl Figure for SnapshotsFigure<'_> {
             let mut chart = ChartBuilder::on(area)
                 .caption(format!("generation {g}"), text(15.0))
                 .margin(8)
+                .margin_right(24)
                 .x_label_area_size(40)
                 .y_label_area_size(55)
                 .build_cartesian_2d((t0 - pad)..(t1 + pad), (c0 - 0.02).max(0.0)..1.0)
@@ -175,7 +184,8 @@ impl Figure for SnapshotsFigure<'_> {
             chart
                 .configure_mesh()
                 .light_line_style(RGBColor(235, 235, 235))
-                .x_desc("flight time [px-equivalent]")
+                .x_label_formatter(&|v| format!("{v:.0}"))
+                .x_desc("flight time [s]")
                 .y_desc("coverage C [-]")
                 .label_style(text(12.0))
                 .axis_desc_style(text(13.0))
@@ -183,12 +193,14 @@ impl Figure for SnapshotsFigure<'_> {
                 .map_err(err)?;
             chart
                 .draw_series(
-                    pts.iter().filter(|p| !p.2).map(|p| Circle::new((p.1, p.0), 3, RGBColor(170, 170, 170).filled())),
+                    pts.iter()
+                        .filter(|p| !p.2)
+                        .map(|p| Circle::new((p.1 * k, p.0), 3, RGBColor(170, 170, 170).filled())),
                 )
                 .map_err(err)?;
             chart
                 .draw_series(
-                    pts.iter().filter(|p| p.2).map(|p| Circle::new((p.1, p.0), 3, RGBColor(31, 119, 180).filled())),
+                    pts.iter().filter(|p| p.2).map(|p| Circle::new((p.1 * k, p.0), 3, RGBColor(31, 119, 180).filled())),
                 )
                 .map_err(err)?;
         }
@@ -198,6 +210,8 @@ impl Figure for SnapshotsFigure<'_> {
 
 /// Average objectives over generations (000 Fig. 12).
 pub struct ObjectivesFigure<'a> {
+    /// Seconds per px-equivalent of flight time (see [`SnapshotsFigure::seconds_per_px`]).
+    pub seconds_per_px: f64,
     /// The statistics.
     pub history: &'a [WaypointStats],
 }
@@ -210,6 +224,7 @@ impl Figure for ObjectivesFigure<'_> {
         let root = root.titled("Population averages over generations", text(18.0)).map_err(err)?;
         let panels = root.split_evenly((2, 1));
         let x_max = self.history.last().map_or(1, |s| s.generation.max(1));
+        let k = self.seconds_per_px;
         type Pick = fn(&WaypointStats) -> f64;
         type Panel<'p> = (&'p str, &'p [(&'p str, RGBColor, Pick)]);
         let series: [Panel; 2] = [
@@ -222,7 +237,7 @@ impl Figure for ObjectivesFigure<'_> {
                 ],
             ),
             (
-                "flight time [px-eq.]",
+                "flight time [s]",
                 &[
                     ("mean flight time", RGBColor(255, 127, 14), |s| s.mean_flight_time),
                     ("min flight time", RGBColor(140, 86, 75), |s| s.min_flight_time),
@@ -230,7 +245,9 @@ impl Figure for ObjectivesFigure<'_> {
             ),
         ];
         for (area, (label, lines)) in panels.iter().zip(series) {
-            let vals: Vec<f64> = lines.iter().flat_map(|(_, _, f)| self.history.iter().map(f)).collect();
+            // Flight times in seconds; coverage as it is.
+            let scale = if label.starts_with("flight") { k } else { 1.0 };
+            let vals: Vec<f64> = lines.iter().flat_map(|(_, _, f)| self.history.iter().map(|s| f(s) * scale)).collect();
             let (lo, hi) = (
                 vals.iter().copied().fold(f64::INFINITY, f64::min),
                 vals.iter().copied().fold(f64::NEG_INFINITY, f64::max),
@@ -238,12 +255,15 @@ impl Figure for ObjectivesFigure<'_> {
             let pad = ((hi - lo) * 0.05).max(1e-3);
             let mut chart = ChartBuilder::on(area)
                 .margin(10)
+                .margin_right(super::SIDE_LEGEND_W)
                 .x_label_area_size(40)
                 .y_label_area_size(70)
                 .build_cartesian_2d(0u32..x_max, (lo - pad)..(hi + pad))
                 .map_err(err)?;
+            let decimals = super::tick_decimals(hi - lo);
             chart
                 .configure_mesh()
+                .y_label_formatter(&|v| format!("{v:.decimals$}"))
                 .light_line_style(RGBColor(235, 235, 235))
                 .x_desc("generation")
                 .y_desc(label)
@@ -251,17 +271,14 @@ impl Figure for ObjectivesFigure<'_> {
                 .axis_desc_style(text(14.0))
                 .draw()
                 .map_err(err)?;
+            let one_px = (hi - lo + 2.0 * pad) / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
+            let mut legend = Vec::new();
             for &(name, colour, f) in lines {
-                chart
-                    .draw_series(LineSeries::new(
-                        self.history.iter().map(|s| (s.generation, f(s))),
-                        colour.stroke_width(2),
-                    ))
-                    .map_err(err)?
-                    .label(name)
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
+                let points: Vec<(u32, f64)> = self.history.iter().map(|s| (s.generation, f(s) * scale)).collect();
+                super::draw_series_line(&mut chart, &points, colour, one_px)?;
+                legend.push((name, colour));
             }
-            super::series_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
+            super::side_legend(area, &legend)?;
         }
         Ok(())
     }

@@ -136,6 +136,7 @@ impl Planner for WaypointConfig {
             "open_coverage": e.open,
             "coverage": e.coverage,
             "flight_time": e.flight_time,
+            "flight_time_s": e.flight_time * self.world.scale / scenario.robot.speed,
             "loop_closures_ok": e.loops_ok(self.ga.objectives.lc_min),
             "connected": e.connected(),
             "closures": e.closures,
@@ -208,8 +209,12 @@ impl Planner for WaypointConfig {
             &CoverageFigure { map: &world.map, seen, band: world.map.band(world.buffer), title },
             &dir.join("coverage"),
         )?;
-        crate::plot::save(&SnapshotsFigure { snapshots: &out.snapshots }, &dir.join("pareto_snapshots"))?;
-        crate::plot::save(&ObjectivesFigure { history: &a.history }, &dir.join("objectives"))
+        let seconds_per_px = self.world.scale / scenario.robot.speed;
+        crate::plot::save(
+            &SnapshotsFigure { snapshots: &out.snapshots, seconds_per_px },
+            &dir.join("pareto_snapshots"),
+        )?;
+        crate::plot::save(&ObjectivesFigure { history: &a.history, seconds_per_px }, &dir.join("objectives"))
     }
 }
 
