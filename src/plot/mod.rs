@@ -183,14 +183,14 @@ pub const SIDE_LEGEND_W: u32 = 150;
 /// one 2-px stroke: the backends join thick polylines with mitres, and a series that turns
 /// back on itself (thousands of iterations on a few hundred pixels) grows a spike far outside
 /// its data range and its panel.
-pub fn draw_series_line<'a, DB: DrawingBackend + 'a, X: Clone + 'a>(
+pub fn draw_series_line<'a, DB: DrawingBackend + 'a, X>(
     chart: &mut ChartContext<'a, DB, Cartesian2d<X, plotters::coord::types::RangedCoordf64>>,
     points: &[(X::ValueType, f64)],
     colour: RGBColor,
     one_px: f64,
 ) -> Result<(), String>
 where
-    X: plotters::coord::ranged1d::Ranged,
+    X: plotters::coord::ranged1d::Ranged + Clone + 'a,
     X::ValueType: Clone + 'static,
 {
     for offset in [0.0, one_px] {
