@@ -189,7 +189,9 @@ impl PlannerConfig {
     /// Validates the section of the file's planner; `origin` names the file in messages.
     pub fn from_file(file: &ExperimentFile, origin: &str, scenario: &Scenario) -> Result<Self, ConfigError> {
         Ok(match file.planner {
-            PlannerKind::Thesis => PlannerConfig::Thesis(crate::thesis::config::ThesisConfig::from_file(file, origin)?),
+            PlannerKind::Thesis => {
+                PlannerConfig::Thesis(crate::thesis::config::ThesisConfig::from_file(file, origin, scenario)?)
+            }
             PlannerKind::Waypoint => {
                 PlannerConfig::Waypoint(crate::waypoint::config::WaypointConfig::from_file(file, origin, scenario)?)
             }

@@ -84,6 +84,15 @@ const CASES: &[Case] = &[
         needle: "unknown field `colour`",
     },
     Case {
+        name: "retrain region over the whole map (A_pix = 0)",
+        files: &[(
+            "e.toml",
+            "[budget]\niterations = 10\n[retrain]\nat_iteration = 5\nregion = [0.0, 0.0, 11.0, 11.0]\n",
+        )],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`retrain.region` = [0.0, 0.0, 11.0, 11.0] covers every free cell",
+    },
+    Case {
         name: "missing experiment file",
         files: &[],
         args: &["run", "absent.toml", "--out", "OUT"],

@@ -224,6 +224,45 @@ mod tests {
         }
     }
 
+    /// The pre-marked region takes the cells whose centres lie in `[x0, x1) × [y0, y1)`: a
+    /// centre on the lower edge is in, one on the upper edge is out (map 1: centres at
+    /// 0.1, 0.3, … m).
+    #[test]
+    fn premark_region_is_half_open_on_cell_centres() {
+        for (rect, taken) in [
+            ([1.0, 1.0, 1.4, 1.4], 4),       // centres 1.1, 1.3 in each axis
+            ([1.1, 1.1, 1.5, 1.5], 4),       // 1.1 on the lower edge is in, 1.5 on the upper edge out
+            ([1.1, 1.1, 1.1, 1.5], 0),       // empty in x
+            ([1.0, 1.0, 1.5000001, 1.3], 3), // 1.1, 1.3, 1.5 in x; 1.1 in y
+        ] {
+            let mut g = CoverageGrid::new(&preset("thesis-1").unwrap());
+            let before = g.area_cells();
+            g.premark_rect(rect[0], rect[1], rect[2], rect[3]);
+            assert_eq!(before - g.area_cells(), taken, "{rect:?}");
+        }
+    }
+
+    /// A pre-marked cell swept twice counts two crossings (its pre-mark is a first visit,
+    /// spec R26); an ordinary cell swept twice one.
+    #[test]
+    fn premarked_cells_swept_twice_cross_twice() {
+        let mut g = CoverageGrid::new(&preset("thesis-1").unwrap());
+        g.premark_rect(1.0, 1.0, 2.0, 2.0);
+        let mut s = SweepScratch::new(&g);
+        let there_and_back = [p(1.3, 1.3), p(4.3, 1.3), p(1.3, 1.3)];
+        let c = s.sweep(&g, &there_and_back, 0.6);
+        // Segments are half-open along their direction: out takes the centre columns
+        // 1.3 … 4.1 m, back 1.5 … 4.3 m (15 columns × 3 rows each). Pre-marked (x, y < 2 m):
+        // column 1.3 once → 1 crossing each (3), columns 1.5–1.9 twice → 2 each (18); the 33
+        // other cells of columns 1.5–4.1 twice → 1 each (33); column 4.3 once → 0. Newly
+        // covered: those 33 and column 4.3's 3.
+        assert_eq!(c, SweepCounts { cov_pix: 90, cross_pix: 54, obj_pix: 0 });
+        assert_eq!(c.unique(), 36);
+        let layers = crate::coverage::bits::BitLayers::new(&g);
+        let bits = layers.sweep(&mut crate::coverage::bits::VisitPlanes::default(), &there_and_back, 0.6).counts();
+        assert_eq!(bits, c, "bit rows agree");
+    }
+
     #[test]
     fn premarked_cells_count_as_crossings() {
         let mut g = CoverageGrid::new(&preset("thesis-1").unwrap());

@@ -177,6 +177,35 @@ mod tests {
         assert_eq!(best_k(&[0.1, 0.7, 0.7, 0.3], 3), vec![1, 2, 3]);
     }
 
+    /// R19: among equally fit contestants the one drawn first wins (a `>=` would pick the
+    /// last).
+    #[test]
+    fn tournament_ties_go_to_the_first_drawn() {
+        let fitness = [0.5; 6];
+        for seed in 0..50 {
+            let mut rng = stream(seed, Purpose::Main, &[]);
+            let mut replay = rng.clone();
+            let winner = tournament(&fitness, 4, &mut rng);
+            assert_eq!(winner, rand::seq::index::sample(&mut replay, 6, 4).index(0), "seed {seed}");
+        }
+        // A strictly fitter contestant beats a tie drawn earlier.
+        let fitness = [0.5, 0.5, 0.9, 0.5];
+        let mut rng = stream(1, Purpose::Main, &[]);
+        assert_eq!(tournament(&fitness, 4, &mut rng), 2);
+    }
+
+    /// The pointers start at a random offset in `[0, step)`: with two halves and one pick, each
+    /// half is picked about half the time (an offset fixed at 0 would always pick the first).
+    #[test]
+    fn low_variance_sampling_offset_is_random() {
+        let mut rng = stream(9, Purpose::Main, &[]);
+        let second = (0..2000).filter(|_| low_variance_sample(&[0.5, 0.5], 1, &mut rng)[0] == 1).count();
+        assert!((900..1100).contains(&second), "{second} of 2000");
+        // Pointers are one step apart: four picks over four equal shares take each once.
+        let picks = low_variance_sample(&[0.25; 4], 4, &mut rng);
+        assert_eq!(picks, vec![0, 1, 2, 3]);
+    }
+
     #[test]
     fn low_variance_sampling_is_floor_or_ceil() {
         let probs = [0.05, 0.3, 0.15, 0.4, 0.1];

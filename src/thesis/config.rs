@@ -174,7 +174,11 @@ pub struct ThesisConfig {
 
 impl ThesisConfig {
     /// Validates `[thesis]` and `[retrain]` of `file`; `origin` names the file in messages.
-    pub fn from_file(file: &ExperimentFile, origin: &str) -> Result<Self, ConfigError> {
+    pub fn from_file(
+        file: &ExperimentFile,
+        origin: &str,
+        scenario: &crate::planner::Scenario,
+    ) -> Result<Self, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let params = validate_params(&file.thesis, origin)?;
         let b = file.budget;
@@ -192,6 +196,19 @@ impl ThesisConfig {
                     return Err(err(
                         "retrain.region",
                         format!("= {:?} must be [x0, y0, x1, y1] with x0 < x1 and y0 < y1", rt.region),
+                    ));
+                }
+                // A region over every free cell would leave A_pix = 0: nothing to cover, and
+                // cov_final undefined (eq. 3.10).
+                let mut grid = crate::coverage::sweep::CoverageGrid::new(&scenario.map);
+                grid.premark_rect(x0, y0, x1, y1);
+                if grid.area_cells() == 0 {
+                    return Err(err(
+                        "retrain.region",
+                        format!(
+                            "= {:?} covers every free cell of the map: nothing would be left to cover after the change (A_pix = 0)",
+                            rt.region
+                        ),
                     ));
                 }
                 Some(Retrain { at_iteration: rt.at_iteration, region: rt.region })

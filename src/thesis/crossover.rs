@@ -244,7 +244,73 @@ mod tests {
         }
     }
 
+    /// The children of one crossover, by value: which interpretations come out, in which
+    /// order, for each `C_child` (003 Figs. 3.6–3.7): changing A←B, changing B←A, then
+    /// preserving A←B, preserving B←A, each from the same two drawn blocks.
+    #[test]
+    fn children_by_mode_are_the_named_interpretations_in_order() {
+        let (ga, pa) = parent(11, 24);
+        let (gb, pb) = parent(12, 18);
+        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        for (mode, seed) in [(ChildMode::Changing, 1), (ChildMode::Preserving, 2), (ChildMode::Both, 3)] {
+            let mut rng = stream(seed, Purpose::Individual, &[]);
+            let mut replay = rng.clone();
+            let kids = crossover(a, b, 0.3, mode, 1000, &frame(), &mut rng).expect("long parents always cross");
+            let (ba, bb) = (draw_block(24, 0.3, &mut replay).unwrap(), draw_block(18, 0.3, &mut replay).unwrap());
+            let changing = [changing_child(a, ba, b, bb, &frame()), changing_child(b, bb, a, ba, &frame())];
+            let preserving = [preserving_child(a, ba, b, bb), preserving_child(b, bb, a, ba)];
+            let expected: Vec<Vec<Action>> = match mode {
+                ChildMode::Changing => changing.to_vec(),
+                ChildMode::Preserving => preserving.to_vec(),
+                ChildMode::Both => changing.into_iter().chain(preserving).collect(),
+            };
+            assert_eq!(kids, expected, "{mode:?}");
+            // Each child is its receiver's genome with the donor's block: lengths add up.
+            let (la, lb) = (ba.1 - ba.0, bb.1 - bb.0);
+            assert_eq!(kids[0].len(), 24 - la + lb);
+            assert_eq!(kids[1].len(), 18 - lb + la);
+            assert_ne!(kids[0], kids[1], "the second child is not a copy of the first");
+        }
+        // The two interpretations of one cut differ (the inserted genes are re-aimed in one
+        // and keep their relative moves in the other).
+        let mut rng = stream(3, Purpose::Individual, &[]);
+        let both = crossover(a, b, 0.3, ChildMode::Both, 1000, &frame(), &mut rng).unwrap();
+        assert_ne!(both[0], both[2]);
+        assert_ne!(both[1], both[3]);
+    }
+
+    #[test]
+    fn a_child_of_exactly_max_len_is_accepted() {
+        // absShare = 1 for these lengths and C_len: blocks are one gene, children keep their
+        // receivers' lengths (24 and 18).
+        let (ga, pa) = parent(13, 24);
+        let (gb, pb) = parent(14, 18);
+        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        assert_eq!((abs_share(24, 0.04), abs_share(18, 0.04)), (1, 1));
+        let mut rng = stream(5, Purpose::Individual, &[]);
+        let kids = crossover(a, b, 0.04, ChildMode::Changing, 24, &frame(), &mut rng).expect("24 ≤ max_len = 24");
+        assert_eq!((kids[0].len(), kids[1].len()), (24, 18));
+        let mut rng = stream(5, Purpose::Individual, &[]);
+        assert!(
+            crossover(a, b, 0.04, ChildMode::Changing, 23, &frame(), &mut rng).is_none(),
+            "24 > 23 on every redraw"
+        );
+    }
+
     proptest! {
+        /// Parents long enough for a block always cross when the cap allows any child: no
+        /// silent "no crossover".
+        #[test]
+        fn long_enough_parents_always_cross(seed in 0u64..10_000, na in 6usize..80, nb in 6usize..80, c_len in 0.0..0.5f64, mode in 0u8..3) {
+            prop_assume!(na >= abs_share(na, c_len) + 3 && nb >= abs_share(nb, c_len) + 3);
+            let (ga, pa) = parent(seed, na);
+            let (gb, pb) = parent(seed + 1, nb);
+            let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+            let mut rng = stream(seed, Purpose::Individual, &[]);
+            let kids = crossover(a, b, c_len, ChildMode::from_index(mode).unwrap(), 1000, &frame(), &mut rng);
+            prop_assert!(kids.is_some());
+        }
+
         #[test]
         fn children_keep_stations_stay_on_the_map_and_respect_the_cap(seed in 0u64..10_000, na in 3usize..80, nb in 3usize..80, c_len in 0.0..1.0f64, mode in 0u8..3) {
             let (ga, pa) = parent(seed, na);

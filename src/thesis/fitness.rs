@@ -141,6 +141,23 @@ mod tests {
         (36, Projection::F2, 0.0124711, 0.962469, 0.932929),
     ];
 
+    /// F1 and F2 by hand (003 eqs. 3.14–3.15), and F2 as the default projection (spec §5).
+    #[test]
+    fn projections_by_hand_and_the_default() {
+        for (t, cov, f1v, f2v) in [(0.5, 0.8, 0.65, 0.4), (1.0, 0.0, 0.5, 0.0), (0.25, 0.25, 0.25, 0.0625)] {
+            assert!((Projection::F1.apply(t, cov) - f1v).abs() < 1e-15);
+            assert!((Projection::F2.apply(t, cov) - f2v).abs() < 1e-15);
+        }
+        assert_eq!(crate::thesis::config::ThesisSection::default().projection, Projection::F2);
+        assert_eq!(crate::thesis::config::ThesisSection::default().c_child, 2, "C_child = 2 (both) by default");
+        // The score uses the chosen projection.
+        let m = PathMetrics { cells_swept: 300, crossings: 30, area_cells: 2025, ..Default::default() };
+        let s2 = score(&m, &Footprint::default(), 0.2, Projection::F2);
+        let s1 = score(&m, &Footprint::default(), 0.2, Projection::F1);
+        assert!((s2.fitness - s2.t_final * s2.cov_final).abs() < 1e-15);
+        assert!((s1.fitness - 0.5 * (s1.t_final + s1.cov_final)).abs() < 1e-15);
+    }
+
     #[test]
     fn tables_3_1_and_3_2_reproduce_f_obstacle() {
         for (i, (obj, proj, expected, cov, t)) in TABLES_3_1_3_2.into_iter().enumerate() {
