@@ -1,0 +1,82 @@
+//! The numbers `covga report` publishes, checked on a six-run fixture study against values
+//! worked out by hand (hypervolumes, best runs) or computed independently (means with t-based
+//! 95 % intervals and the tie-corrected Kruskal–Wallis H with its χ²₁ p-value = erfc(√(H/2)),
+//! worked in a short script outside the project and written down here).
+
+use std::collections::HashMap;
+use std::process::Command;
+
+/// (run id, config id, replicate, C_len, cov_final, t_final, wall s).
+const RUNS: [(&str, &str, u32, &str, f64, f64, f64); 6] = [
+    ("a1", "cfgA", 0, "0.1", 0.50, 0.60, 1.0),
+    ("a2", "cfgA", 1, "0.1", 0.62, 0.50, 2.0),
+    ("a3", "cfgA", 2, "0.1", 0.70, 0.40, 3.0),
+    ("b1", "cfgB", 0, "0.4", 0.80, 0.50, 4.0),
+    ("b2", "cfgB", 1, "0.4", 0.60, 0.70, 5.0),
+    ("b3", "cfgB", 2, "0.4", 0.72, 0.60, 6.0),
+];
+
+fn fixture(dir: &std::path::Path) {
+    let params = vec!["thesis.c_len".to_string()];
+    let header = covga::study::records::header(&params);
+    let mut csv = header.join(",") + "\n";
+    for (id, config, rep, c_len, cov, t, wall) in RUNS {
+        let values: HashMap<&str, String> = [
+            ("run_id", id.to_string()),
+            ("config_id", config.to_string()),
+            ("replicate", rep.to_string()),
+            ("seed", "1".to_string()),
+            ("thesis.c_len", c_len.to_string()),
+            ("planner", "thesis".to_string()),
+            ("map", "thesis-1".to_string()),
+            ("feasible", "true".to_string()),
+            ("violations", String::new()),
+            ("cov_final_free", cov.to_string()),
+            ("cov_final_reach", cov.to_string()),
+            ("t_final", t.to_string()),
+            ("f_free", (cov * t).to_string()),
+            ("f_reach", (cov * t).to_string()),
+            ("wall_s", wall.to_string()),
+        ]
+        .into_iter()
+        .collect();
+        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
+        csv += &(row.join(",") + "\n");
+    }
+    std::fs::write(dir.join("runs.csv"), csv).unwrap();
+    std::fs::write(dir.join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 6}").unwrap();
+}
+
+#[test]
+fn report_numbers_match_hand_and_independent_computations() {
+    let dir = tempfile::tempdir().unwrap();
+    fixture(dir.path());
+    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["report", dir.path().to_str().unwrap(), "--by", "thesis.c_len"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
+    for line in [
+        "6 runs, 2 configurations, 3 replicate(s); grouped by thesis.c_len.",
+        // Best run per group by f = t·cov: a2 (0.31 against 0.30 and 0.28), b3 (0.432).
+        "| thesis.c_len=0.1 | a2 | 0.1 | 0.620000 | 0.500000 | 0.310000 |",
+        "| thesis.c_len=0.4 | b3 | 0.4 | 0.720000 | 0.600000 | 0.432000 |",
+        // Every point is on its group's front. Hypervolume from (0, 0), by t ascending:
+        // A: 0.4·0.7 + 0.1·0.62 + 0.1·0.5 = 0.392; B: 0.5·0.8 + 0.1·0.72 + 0.1·0.6 = 0.532.
+        "| thesis.c_len=0.1 | 3 | 3 | 0.3920 | 2.000 | 1.000 | 3.000 |",
+        "| thesis.c_len=0.4 | 3 | 3 | 0.5320 | 5.000 | 4.000 | 6.000 |",
+        // Means ± t(0.975, 2)·s/√3, best mean f first.
+        "| 0.4 | 3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 | 0.4173 |",
+        "| 0.1 | 3 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 |",
+        // Kruskal–Wallis: cov without ties (rank sums 8 and 13), t with two tied pairs.
+        "| thesis.c_len | cov_final_free | 2 | 1.190 | 1 | 2.752e-1 | 0.2381 |",
+        "| thesis.c_len | t_final | 2 | 1.263 | 1 | 2.612e-1 | 0.2525 |",
+    ] {
+        assert!(md.contains(line), "missing `{line}` in\n{md}");
+    }
+    // The per-configuration table holds the same means.
+    let conf = std::fs::read_to_string(dir.path().join("report/configurations.csv")).unwrap();
+    let first = conf.lines().nth(1).unwrap();
+    assert!(first.starts_with("cfgB,0.4,3,0.706666"), "{first}");
+}
