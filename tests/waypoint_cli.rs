@@ -75,7 +75,27 @@ fn three_agents_share_loop_closures() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s = summary_without_time(&out);
     assert_eq!(s["agents"], 3);
-    assert_eq!(s["closures"].as_array().unwrap().len(), 3);
+    // The loop-closure matrix of this seed, pinned: agents 0 and 2 share no closure but are
+    // connected through agent 1, so the closure graph has one component (one zero eigenvalue
+    // of its Laplacian, 000 eq. 5).
+    let closures: Vec<Vec<u64>> = serde_json::from_value(s["closures"].clone()).unwrap();
+    assert_eq!(closures, vec![vec![9, 3, 0], vec![3, 4, 2], vec![0, 2, 4]]);
+    for i in 0..3 {
+        for j in 0..3 {
+            assert_eq!(closures[i][j], closures[j][i], "symmetric");
+        }
+    }
+    assert_eq!(s["laplacian_zero_eigenvalues"], 1);
+    assert_eq!(s["connected"], true);
+    // Feasible means: every agent ≥ lc_min = 2 self closures, connected, coverage ≥ C_end = 0.8.
+    let loops_ok = (0..3).all(|i| closures[i][i] >= 2);
+    assert_eq!(s["loop_closures_ok"], loops_ok);
+    let coverage = s["coverage"].as_f64().unwrap();
+    assert_eq!(s["feasible"], loops_ok && coverage >= 0.8);
+    assert_eq!(s["feasible"], true);
+    assert!(s["violations"].as_array().unwrap().is_empty());
+    let initial = s["initial_feasible"].as_u64().unwrap();
+    assert!(initial <= 20, "at most the population: {initial}");
     let paths = std::fs::read_to_string(out.join("best_path.csv")).unwrap();
     let agents: std::collections::BTreeSet<&str> =
         paths.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
