@@ -274,3 +274,33 @@ fn every_planner_runs_alone_and_random_search_is_deterministic() {
     assert_eq!(s["pockets"], 0);
     assert_eq!(s["feasible"], true);
 }
+
+/// The budget's other stops: no better best for `stall_iterations`, and the wall clock; the
+/// reason is in summary.json and the iterations stop early.
+#[test]
+fn stall_and_wall_clock_stops_are_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = "seed = 2\n[map]\nsource = \"thesis-1\"\n[thesis]\npop_min = 20\ninit_actions = 20\n";
+    for (name, budget, stop) in [
+        ("stall", "[budget]\niterations = 100000\nstall_iterations = 5\n", "stall"),
+        ("clock", "[budget]\niterations = 100000000\nwall_clock_s = 0.5\n", "wall_clock"),
+    ] {
+        let exp = write(dir.path(), &format!("{name}.toml"), &format!("{base}{budget}"));
+        let out = dir.path().join(name);
+        let started = std::time::Instant::now();
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let s = summary_without_time(&out);
+        assert_eq!(s["stop"], stop, "{name}");
+        let iterations = s["iterations"].as_u64().unwrap();
+        assert!(iterations < 100_000, "{name}: {iterations}");
+        if name == "stall" {
+            // The best did not improve over the last 5 iterations of the history.
+            let best = column(&read(&out.join("history.csv")), "best_fitness");
+            let n = best.len();
+            assert!(n >= 6 && best[n - 1] <= best[n - 6], "{:?}", &best[n.saturating_sub(6)..]);
+        } else {
+            assert!(started.elapsed().as_secs_f64() < 30.0);
+        }
+    }
+}

@@ -157,4 +157,41 @@ mod tests {
         assert_eq!(relative_standard_error(&[5.0]), 0.0);
         assert_eq!(relative_standard_error(&[3.0, 3.0, 3.0]), 0.0);
     }
+
+    /// Per-branch means of the recorded run times; a branch without records takes the mean
+    /// of all records. Two Elite runs and four tournament runs (2 sizes × 2 C_len).
+    #[test]
+    fn estimates_from_records_by_hand() {
+        let grid = "[base]\n[base.thesis]\npop_min = 20\n[axes]\n\"thesis.selection\" = [\"elite\", \"tournament\"]\n\"thesis.c_len\" = [0.1, 0.4]\n[[conditional]]\nwhen = { \"thesis.selection\" = \"tournament\" }\naxes = { \"thesis.tournament_size\" = [2, 5] }\n";
+        let study = Study::parse(grid, Path::new("g.toml")).unwrap();
+        let of = |branch: &str| -> Vec<&str> {
+            study.runs.iter().filter(|r| r.branch == branch).map(|r| r.id.as_str()).collect()
+        };
+        let (elite, turn) = (of("no conditional axes"), of("thesis.selection=tournament"));
+        assert_eq!((elite.len(), turn.len()), (2, 4));
+        let dir = tempfile::tempdir().unwrap();
+        assert!(from_records(&study, dir.path()).is_none(), "nothing recorded: no estimate");
+        let write = |rows: &[(&str, f64)]| {
+            let mut csv = String::from("run_id,wall_s\n");
+            for (id, w) in rows {
+                csv.push_str(&format!("{id},{w}\n"));
+            }
+            std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
+        };
+        write(&[(elite[0], 2.0), (turn[0], 1.0), (turn[1], 3.0)]);
+        let times = from_records(&study, dir.path()).unwrap();
+        let by: BTreeMap<&str, &BranchTime> = times.iter().map(|b| (b.branch.as_str(), b)).collect();
+        let (e, t) = (by["no conditional axes"], by["thesis.selection=tournament"]);
+        assert_eq!((e.runs, e.seconds_per_run, e.samples), (2, 2.0, 1));
+        assert_eq!((t.runs, t.seconds_per_run, t.samples), (4, 2.0, 2));
+        assert_eq!(cpu_seconds(&times), 12.0);
+        assert_eq!(wall_seconds(&times, 2), 6.0);
+        // Only tournament runs recorded: Elite takes the overall mean (1 + 5) / 2 = 3.
+        write(&[(turn[0], 1.0), (turn[1], 5.0)]);
+        let times = from_records(&study, dir.path()).unwrap();
+        assert_eq!(cpu_seconds(&times), 2.0 * 3.0 + 4.0 * 3.0);
+        assert_eq!(human(90.0), "90.0 s");
+        assert_eq!(human(600.0), "10.0 min");
+        assert_eq!(human(10800.0), "3.00 h");
+    }
 }
