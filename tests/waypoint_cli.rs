@@ -80,9 +80,9 @@ fn three_agents_share_loop_closures() {
     // of its Laplacian, 000 eq. 5).
     let closures: Vec<Vec<u64>> = serde_json::from_value(s["closures"].clone()).unwrap();
     assert_eq!(closures, vec![vec![9, 3, 0], vec![3, 4, 2], vec![0, 2, 4]]);
-    for i in 0..3 {
-        for j in 0..3 {
-            assert_eq!(closures[i][j], closures[j][i], "symmetric");
+    for (i, row) in closures.iter().enumerate() {
+        for (j, &c) in row.iter().enumerate() {
+            assert_eq!(c, closures[j][i], "symmetric");
         }
     }
     assert_eq!(s["laplacian_zero_eigenvalues"], 1);
