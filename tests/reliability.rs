@@ -164,7 +164,31 @@ const CASES: &[Case] = &[
         args: &["grid", "g.toml", "--out", "taken/OUT"],
         needle: "taken/OUT",
     },
-    Case { name: "merge of a folder with no shards", files: &[], args: &["merge", "."], needle: "" },
+    Case { name: "merge of a folder with no shards", files: &[], args: &["merge", "."], needle: "no runs.csv" },
+    Case {
+        name: "merge of a folder that is not a study",
+        files: &[("runs.csv", "run_id\n")],
+        args: &["merge", "."],
+        needle: "not a study folder",
+    },
+    Case {
+        name: "merge of a garbage shard file",
+        files: &[("runs-shard-0-of-1.csv", "garbage\n\"unclosed,quote\n"), ("study.json", "{}")],
+        args: &["merge", "."],
+        needle: "runs-shard-0-of-1.csv: not a covga runs file",
+    },
+    Case {
+        name: "eval results folder is a file",
+        files: &[("taken", "x")],
+        args: &["eval", "--map", "thesis-1", "--out", "taken/OUT"],
+        needle: "taken/OUT: cannot create the output folder",
+    },
+    Case {
+        name: "negative coordinates as typed, outside the map",
+        files: &[],
+        args: &["eval", "--map", "thesis-1", "--start", "-17.4,-1.55", "--out", "OUT"],
+        needle: "--start (-17.4, -1.55) m is outside map",
+    },
     Case { name: "report of a non-study folder", files: &[], args: &["report", "."], needle: "not a study folder" },
     Case {
         name: "maps into a file",

@@ -62,6 +62,13 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
     if files.is_empty() {
         return Err(MergeError::Empty(dir.display().to_string()));
     }
+    if !dir.join("study.json").is_file() {
+        return Err(MergeError::File {
+            path: dir.display().to_string(),
+            message: "not a study folder (no study.json): merge only folders that `covga grid` wrote".into(),
+        });
+    }
+    let metrics = super::records::metric_columns();
     let mut header: Option<Vec<String>> = None;
     let mut merged: BTreeMap<String, (Vec<String>, String)> = BTreeMap::new();
     let mut table = RunsTable::default();
@@ -70,6 +77,22 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
         let text =
             std::fs::read_to_string(f).map_err(|e| MergeError::File { path: name.clone(), message: e.to_string() })?;
         let t = RunsTable::parse(&text).map_err(|m| MergeError::File { path: name.clone(), message: m })?;
+        // A covga runs file: the run's identity first, the common metrics last.
+        let identity = ["run_id", "config_id", "replicate", "seed"];
+        if t.header.len() < identity.len() + metrics.len()
+            || t.header[..identity.len()] != identity
+            || t.header[t.header.len() - metrics.len()..] != metrics[..]
+        {
+            return Err(MergeError::File {
+                path: name,
+                message: format!(
+                    "not a covga runs file: its header must start with {} and end with the metric columns ({} … {})",
+                    identity.join(","),
+                    metrics[0],
+                    metrics[metrics.len() - 1]
+                ),
+            });
+        }
         match &header {
             None => header = Some(t.header.clone()),
             Some(h) if *h != t.header => {
