@@ -97,12 +97,17 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     let (ox, oy) = (map.origin().x, map.origin().y);
     let (x1, y1) = (ox + map.width_m(), oy + map.height_m());
     let small = fonts.1 < 14.0;
-    let labels = if small { (28, 36) } else { (45, 55) };
+    // Label areas wide enough for the tick labels and the axis title beside them; a margin
+    // that keeps the last tick label inside the panel.
+    let labels = if small { (34, 50) } else { (45, 62) };
     let mut chart =
-        super::equal_scale_chart(area, &fig.title, fonts.0, labels, if small { 4 } else { 10 }, ox..x1, oy..y1)?;
+        super::equal_scale_chart(area, &fig.title, fonts.0, labels, if small { 14 } else { 16 }, ox..x1, oy..y1)?;
+    let tick = |v: &f64| format!("{}", (v * 1e6).round() / 1e6);
     chart
         .configure_mesh()
         .disable_mesh()
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
         .x_desc("x [m]")
         .y_desc("y [m]")
         .x_labels(if small { 4 } else { 10 })

@@ -106,43 +106,47 @@ pub struct DiversityFigure {
 
 impl Figure for DiversityFigure {
     fn size(&self) -> (u32, u32) {
-        (1000, 560)
+        // One panel per group: groups differ by orders of magnitude (map sizes), and one
+        // shared linear axis flattened the small ones.
+        (1000, 70 + 230 * self.groups.len().max(1) as u32)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let title = "Diversity of the runs on each group's front (median, band = min..max)";
+        let root = root.titled(title, super::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
         let x_max = self.groups.iter().flat_map(|g| g.curve.last().map(|c| c.0)).max().unwrap_or(1).max(1);
-        let y_max = self.groups.iter().flat_map(|g| g.curve.iter().map(|c| c.3)).fold(1.0f64, f64::max);
-        let mut chart = ChartBuilder::on(root)
-            .caption("Diversity of the runs on each group's front (median, band = min..max)", text(18.0))
-            .margin(12)
-            .x_label_area_size(45)
-            .y_label_area_size(70)
-            .build_cartesian_2d(0u32..x_max, 0.0..y_max * 1.05)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .light_line_style(RGBColor(235, 235, 235))
-            .x_desc("iteration")
-            .y_desc("Div [cells]")
-            .label_style(text(14.0))
-            .axis_desc_style(text(15.0))
-            .draw()
-            .map_err(err)?;
-        let one_px = y_max * 1.05 / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
-        for (k, g) in self.groups.iter().enumerate() {
+        let panels = root.split_evenly((self.groups.len().max(1), 1));
+        for (k, (area, g)) in panels.iter().zip(&self.groups).enumerate() {
+            let last = k + 1 == self.groups.len();
+            let y_max = g.curve.iter().map(|c| c.3).fold(1.0f64, f64::max) * 1.05;
+            let mut chart = ChartBuilder::on(area)
+                .caption(format!("{} ({} runs)", g.label, g.runs), super::fitting_text(&g.label, 800, 14.0))
+                .margin(8)
+                .margin_right(24)
+                .x_label_area_size(if last { 45 } else { 25 })
+                .y_label_area_size(80)
+                .build_cartesian_2d(0u32..x_max, 0.0..y_max)
+                .map_err(err)?;
+            let decimals = super::tick_decimals(y_max);
+            chart
+                .configure_mesh()
+                .y_label_formatter(&|v| format!("{v:.decimals$}"))
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_desc(if last { "iteration" } else { "" })
+                .y_desc("Div [cells]")
+                .label_style(text(14.0))
+                .axis_desc_style(text(14.0))
+                .draw()
+                .map_err(err)?;
             let colour = Palette99::pick(k).to_rgba();
             let band: Vec<(u32, f64)> =
                 g.curve.iter().map(|c| (c.0, c.3)).chain(g.curve.iter().rev().map(|c| (c.0, c.2))).collect();
             chart.draw_series([Polygon::new(band, colour.mix(0.18).filled())]).map_err(err)?;
+            let one_px = y_max / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
             let median: Vec<(u32, f64)> = g.curve.iter().map(|c| (c.0, c.1)).collect();
             super::draw_series_line(&mut chart, &median, RGBColor(colour.0, colour.1, colour.2), one_px)?;
-            chart
-                .draw_series(std::iter::empty::<PathElement<(u32, f64)>>())
-                .map_err(err)?
-                .label(format!("{} ({} runs)", g.label, g.runs))
-                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(3)));
         }
-        super::series_legend(&mut chart, SeriesLabelPosition::UpperRight)
+        Ok(())
     }
 }
 
