@@ -25,6 +25,8 @@ files=()
 if [[ " $* " != *" --file "* && " $* " != *" --in-diff "* ]]; then
   for f in "${core[@]}"; do files+=(--file "$f"); done
 fi
-test_args=(--release)
+# The test profile (opt-level 2 in Cargo.toml) serves both the build check and the tests,
+# so each mutant is compiled once.
+test_args=()
 if [ "${MUTANTS_TESTS:-all}" = lib ]; then test_args+=(--lib); fi
 exec cargo mutants "${files[@]}" --output target/mutants --timeout-multiplier 3 "$@" -- "${test_args[@]}"
