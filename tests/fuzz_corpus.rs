@@ -22,8 +22,10 @@ fn every_corpus_input_loads_or_fails_cleanly() {
                 // A panic fails the test and names the input through the panic message below.
                 let outcome = std::panic::catch_unwind(|| entry(&data));
                 assert!(outcome.is_ok(), "{target} panicked on {}", file.display());
+                // A hang, not a big input: the corpus holds the shipped 27 216-run grid, whose
+                // expansion takes a few seconds.
                 assert!(
-                    started.elapsed() < Duration::from_secs(5),
+                    started.elapsed() < Duration::from_secs(20),
                     "{target} took {:?} on {}",
                     started.elapsed(),
                     file.display()
