@@ -190,6 +190,9 @@ mod tests {
         let m = PathMetrics { area_cells: 2025, ..Default::default() };
         let s = score(&m, &Footprint::default(), 0.2, Projection::F1);
         assert_eq!((s.t_final, s.cov_final, s.fitness), (0.0, 0.0, 0.0));
+        // An empty area (refused by validation, see `retrain.region`) scores 0, never NaN.
+        assert_eq!(cov_final(0.0, 0.0), 0.0);
+        assert_eq!(cov_final(1.0, 0.0), 0.0);
     }
 
     #[test]
