@@ -373,4 +373,17 @@ fn merge_refuses_missing_shards_unless_partial() {
     let m = covga(&["merge", out.to_str().unwrap(), "--allow-partial"]);
     ok(&m);
     assert!(String::from_utf8_lossy(&m.stderr).contains("partial merge, missing runs-shard-1-of-3.csv"));
+    // The missing shard taken from another study (30 iterations): as many runs, not this
+    // study's; refused, nothing merged.
+    std::fs::remove_file(out.join("runs.csv")).unwrap();
+    let other = dir.path().join("other.toml");
+    std::fs::write(&other, GRID.replace("iterations = 60", "iterations = 30")).unwrap();
+    let foreign = dir.path().join("foreign");
+    ok(&covga(&["grid", other.to_str().unwrap(), "--shard", "1/3", "--out", foreign.to_str().unwrap()]));
+    std::fs::copy(foreign.join("runs-shard-1-of-3.csv"), out.join("runs-shard-1-of-3.csv")).unwrap();
+    let m = covga(&["merge", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&m.stderr);
+    assert_eq!(m.status.code(), Some(2), "{err}");
+    assert!(err.contains("runs of another study"), "{err}");
+    assert!(!out.join("runs.csv").exists(), "nothing merged");
 }

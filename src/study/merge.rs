@@ -124,10 +124,26 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
     let names: Vec<String> =
         files.iter().filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
     let mut missing = missing_shards(&names);
-    let expected = std::fs::read_to_string(dir.join("study.json"))
+    let meta = std::fs::read_to_string(dir.join("study.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
-        .and_then(|v| v["runs"].as_u64());
+        .unwrap_or_default();
+    let expected = meta["runs"].as_u64();
+    // Runs of another study (a foreign shard file copied in): more runs than the study has, or
+    // as many but not its runs (the study's identity is the hash of its sorted run ids).
+    if let Some(n) = expected {
+        let ids: Vec<&str> = table.rows.iter().map(|r| r[0].as_str()).collect();
+        let hash = format!("{:016x}", super::grid::fnv1a(ids.join("\n").as_bytes()));
+        let recorded = meta["grid_hash"].as_str().unwrap_or_default();
+        let foreign = table.rows.len() as u64 > n || (table.rows.len() as u64 == n && hash != recorded);
+        if foreign && !recorded.is_empty() {
+            return Err(MergeError::Incomplete(format!(
+                "{}: the runs files hold runs of another study ({} runs where study.json records {n} with hash {recorded}); remove the foreign shard files",
+                dir.display(),
+                table.rows.len()
+            )));
+        }
+    }
     if let Some(n) = expected
         && (table.rows.len() as u64) < n
     {
