@@ -94,6 +94,19 @@ mod tests {
         }
     }
 
+    /// eq. 3.24 by value: the new angle is `α + r` modulo 360 for the `r` the stream draws
+    /// (`α − r` or `α·r` have the same range and, for `α − r`, the same distribution).
+    #[test]
+    fn angle_offset_adds_the_drawn_offset() {
+        for (seed, alpha) in [(5, 10.0), (6, 200.0), (7, 359.5)] {
+            let mut rng = stream(seed, Purpose::Main, &[]);
+            let mut replay = rng.clone();
+            let r: f64 = replay.random_range(0.0..=360.0);
+            let m = rand_angle_offset(a(alpha, 2.0), &mut rng);
+            assert!((m.alpha_deg() - (alpha + r).rem_euclid(360.0)).abs() < 1e-9, "{seed}");
+        }
+    }
+
     #[test]
     fn action_mutation_touches_one_live_gene() {
         let mut rng = stream(3, Purpose::Main, &[]);
