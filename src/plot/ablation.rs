@@ -38,7 +38,7 @@ impl Figure for BoxFigure {
         let (r, c) = shape(self.panels.len());
         // Each box needs room for its label (up to ~18 characters at 12 pt).
         let boxes = self.panels.iter().map(|(_, b)| b.len()).max().unwrap_or(1) as u32;
-        (c as u32 * (130 * boxes + 80).max(720), r as u32 * 420 + 40)
+        (c as u32 * (150 * boxes + 80).max(720), r as u32 * 420 + 40)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
@@ -59,6 +59,7 @@ impl Figure for BoxFigure {
                 .build_cartesian_2d(0.0..n as f64, (lo - pad)..(hi + pad))
                 .map_err(err)?;
             let labels: Vec<String> = boxes.iter().map(|b| b.label.clone()).collect();
+            let decimals = super::tick_decimals(hi - lo);
             chart
                 .configure_mesh()
                 .disable_x_mesh()
@@ -73,6 +74,7 @@ impl Figure for BoxFigure {
                     }
                 })
                 .x_label_style(text(12.0))
+                .y_label_formatter(&|v| format!("{v:.decimals$}"))
                 .y_desc(&self.metric)
                 .label_style(text(12.0))
                 .axis_desc_style(text(13.0))
@@ -115,6 +117,9 @@ pub struct Curve {
     pub points: Vec<(f64, f64, f64, f64)>,
 }
 
+/// Height of the legend strip below the convergence panels, in pixels.
+const LEGEND_STRIP: u32 = 40;
+
 /// Convergence of the GAs: one panel per map.
 pub struct ConvergenceFigure {
     /// `(map, curves)` per panel.
@@ -124,7 +129,7 @@ pub struct ConvergenceFigure {
 impl Figure for ConvergenceFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = shape(self.panels.len());
-        (c as u32 * 620, r as u32 * 400 + 40)
+        (c as u32 * 620, r as u32 * 400 + 40 + LEGEND_STRIP)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
@@ -134,11 +139,27 @@ impl Figure for ConvergenceFigure {
                 text(16.0),
             )
             .map_err(err)?;
-        for (area, (map, curves)) in root.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
+        // One legend for all panels, below them, where it hides no curve.
+        let (panels, strip) = root.split_vertically(root.dim_in_pixel().1 - LEGEND_STRIP);
+        let widest = self.panels.iter().map(|(_, c)| c).max_by_key(|c| c.len());
+        let runs: std::collections::BTreeSet<usize> =
+            self.panels.iter().flat_map(|(_, c)| c.iter().map(|c| c.runs)).collect();
+        let mut x = 20;
+        for (k, c) in widest.into_iter().flatten().enumerate() {
+            let label = match runs.len() {
+                1 => format!("{} ({} runs)", c.label, c.runs),
+                _ => c.label.clone(),
+            };
+            strip.draw(&PathElement::new(vec![(x, 20), (x + 22, 20)], colour(k).stroke_width(3))).map_err(err)?;
+            strip.draw(&Text::new(label.clone(), (x + 28, 12), text(14.0))).map_err(err)?;
+            x += 28 + (label.chars().count() as f64 * 0.55 * 14.0) as i32 + 30;
+        }
+        for (area, (map, curves)) in panels.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
             let x_max = curves.iter().flat_map(|c| c.points.last().map(|p| p.0)).fold(1.0f64, f64::max);
             let mut chart = ChartBuilder::on(area)
                 .caption(map, text(15.0))
                 .margin(10)
+                .margin_right(24)
                 .x_label_area_size(45)
                 .y_label_area_size(55)
                 .build_cartesian_2d(0.0..x_max, 0.0..1.0)
@@ -162,11 +183,8 @@ impl Figure for ConvergenceFigure {
                 chart.draw_series([Polygon::new(band, col.mix(0.2).filled())]).map_err(err)?;
                 chart
                     .draw_series(LineSeries::new(c.points.iter().map(|p| (p.0, p.2)), col.stroke_width(2)))
-                    .map_err(err)?
-                    .label(format!("{} ({} runs)", c.label, c.runs))
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], col.stroke_width(3)));
+                    .map_err(err)?;
             }
-            super::series_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
         }
         Ok(())
     }

@@ -151,12 +151,13 @@ pub fn fitting_text(title: &str, width_px: u32, size: f64) -> TextStyle<'static>
 /// on "10.0 0.855 a.b x [m]" at each size.
 const CLEAN_SIZES: [f64; 4] = [10.0, 14.0, 18.0, 20.0];
 
-/// The clean size nearest to `size` (even sizes above 20 px are clean too).
+/// The clean size nearest to `size`, the larger one on a tie (even sizes above 20 px are
+/// clean too).
 pub fn clean_size(size: f64) -> f64 {
     if size > 21.0 {
         return (size / 2.0).round() * 2.0;
     }
-    CLEAN_SIZES.iter().copied().min_by(|a, b| (a - size).abs().total_cmp(&(b - size).abs())).unwrap_or(14.0)
+    CLEAN_SIZES.iter().rev().copied().min_by(|a, b| (a - size).abs().total_cmp(&(b - size).abs())).unwrap_or(14.0)
 }
 
 /// A text style of the embedded font, at the clean size nearest to `size`.
