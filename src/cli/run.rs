@@ -45,12 +45,15 @@ impl Observer for Progress {
 }
 
 pub fn run(a: RunArgs) -> Result<(), CliError> {
-    let (mut file, origin, base, stem) = match &a.file {
+    let (mut file, origin, base, stem, ignored) = match &a.file {
         Some(path) => {
-            let file = ExperimentFile::read(path).map_err(CliError::input)?;
+            let origin = path.display().to_string();
+            let text = ExperimentFile::read_text(path).map_err(CliError::input)?;
+            let file = ExperimentFile::parse(&text, &origin).map_err(CliError::input)?;
+            let ignored = crate::study::ignored::ignored_in_text(&text, &file);
             let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
             let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
-            (file, path.display().to_string(), base, stem)
+            (file, origin, base, stem, ignored)
         }
         None => {
             let origin = "built-in experiment thesis-map1-elite";
@@ -59,16 +62,13 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
                 origin.to_string(),
                 PathBuf::from("."),
                 "thesis-map1-elite".to_string(),
+                Vec::new(),
             )
         }
     };
     if let Some(seed) = a.seed {
         file.seed = seed;
     }
-    let ignored = match &a.file {
-        Some(path) => crate::study::ignored::ignored_in_text(&std::fs::read_to_string(path).unwrap_or_default(), &file),
-        None => Vec::new(),
-    };
     let exp = file.validate(&origin, &base, &stem).map_err(CliError::input)?;
     for (key, why) in ignored {
         eprintln!("warning: {origin}: `{key}` is ignored: {why}");

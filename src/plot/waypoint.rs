@@ -224,12 +224,13 @@ impl Figure for ObjectivesFigure<'_> {
         let root = root.titled("Population averages over generations", text(18.0)).map_err(err)?;
         let panels = root.split_evenly((2, 1));
         let x_max = self.history.last().map_or(1, |s| s.generation.max(1));
-        let k = self.seconds_per_px;
         type Pick = fn(&WaypointStats) -> f64;
-        type Panel<'p> = (&'p str, &'p [(&'p str, RGBColor, Pick)]);
+        // Axis label, factor from the recorded unit to the axis unit, series.
+        type Panel<'p> = (&'p str, f64, &'p [(&'p str, RGBColor, Pick)]);
         let series: [Panel; 2] = [
             (
                 "coverage [-]",
+                1.0,
                 &[
                     ("mean C", RGBColor(31, 119, 180), |s| s.mean_coverage),
                     ("mean C_walls", RGBColor(44, 160, 44), |s| s.mean_walls),
@@ -238,15 +239,14 @@ impl Figure for ObjectivesFigure<'_> {
             ),
             (
                 "flight time [s]",
+                self.seconds_per_px,
                 &[
                     ("mean flight time", RGBColor(255, 127, 14), |s| s.mean_flight_time),
                     ("min flight time", RGBColor(140, 86, 75), |s| s.min_flight_time),
                 ],
             ),
         ];
-        for (area, (label, lines)) in panels.iter().zip(series) {
-            // Flight times in seconds; coverage as it is.
-            let scale = if label.starts_with("flight") { k } else { 1.0 };
+        for (area, (label, scale, lines)) in panels.iter().zip(series) {
             let vals: Vec<f64> = lines.iter().flat_map(|(_, _, f)| self.history.iter().map(|s| f(s) * scale)).collect();
             let (lo, hi) = (
                 vals.iter().copied().fold(f64::INFINITY, f64::min),

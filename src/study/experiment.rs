@@ -182,9 +182,13 @@ impl ExperimentFile {
 
     /// Reads and parses a file.
     pub fn read(path: &Path) -> Result<Self, ConfigError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| ConfigError::new(path.display(), "", format!("cannot read experiment file: {e}")))?;
-        Self::parse(&text, &path.display().to_string())
+        Self::parse(&Self::read_text(path)?, &path.display().to_string())
+    }
+
+    /// The text of an experiment file (for [`Self::parse`] and for checks on what it sets).
+    pub fn read_text(path: &Path) -> Result<String, ConfigError> {
+        std::fs::read_to_string(path)
+            .map_err(|e| ConfigError::new(path.display(), "", format!("cannot read experiment file: {e}")))
     }
 
     /// Validates every value and loads the map. `base` resolves relative map paths; `origin`

@@ -69,14 +69,19 @@ impl Experiment {
     }
 
     /// Refuses the run (naming the key, the estimate and the limit) when `parallel` runs like it
-    /// would need more than `limit` bytes.
-    pub fn check_memory(&self, origin: &str, limit: Option<u64>, parallel: usize) -> Result<(), ConfigError> {
-        let Some(limit) = limit else { return Ok(()) };
+    /// would need more than `limit` bytes; returns the estimate otherwise.
+    pub fn check_memory(
+        &self,
+        origin: &str,
+        limit: Option<u64>,
+        parallel: usize,
+    ) -> Result<MemoryEstimate, ConfigError> {
         let e = self.memory_estimate();
+        let Some(limit) = limit else { return Ok(e) };
         let parallel = parallel.max(1);
         let total = e.bytes * parallel as f64;
         if total <= limit as f64 {
-            return Ok(());
+            return Ok(e);
         }
         let times =
             if parallel > 1 { format!(" × {parallel} runs at once = {}", human_bytes(total)) } else { String::new() };

@@ -132,8 +132,7 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
     // Runs of another study (a foreign shard file copied in): more runs than the study has, or
     // as many but not its runs (the study's identity is the hash of its sorted run ids).
     if let Some(n) = expected {
-        let ids: Vec<&str> = table.rows.iter().map(|r| r[0].as_str()).collect();
-        let hash = format!("{:016x}", super::grid::fnv1a(ids.join("\n").as_bytes()));
+        let hash = super::runner::ids_hash(table.rows.iter().map(|r| r[0].as_str()).collect());
         let recorded = meta["grid_hash"].as_str().unwrap_or_default();
         let foreign = table.rows.len() as u64 > n || (table.rows.len() as u64 == n && hash != recorded);
         if foreign && !recorded.is_empty() {

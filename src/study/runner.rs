@@ -172,15 +172,18 @@ pub fn validate_runs(
     runs.iter().try_fold(0.0f64, |largest, run| {
         let exp = experiment_of(study, run, maps)?;
         let origin = format!("{} (run {})", study.path.display(), run.id);
-        exp.check_memory(&origin, limit, parallel)?;
-        Ok(largest.max(exp.memory_estimate().bytes))
+        Ok(largest.max(exp.check_memory(&origin, limit, parallel)?.bytes))
     })
 }
 
 /// The identity of a study: a hash of its sorted run ids (each the hash of a fully resolved
 /// configuration and replicate), so two grids that expand to the same runs are one study.
 pub fn grid_hash(study: &Study) -> String {
-    let mut ids: Vec<&str> = study.runs.iter().map(|r| r.id.as_str()).collect();
+    ids_hash(study.runs.iter().map(|r| r.id.as_str()).collect())
+}
+
+/// The identity hash of a set of run ids (see [`grid_hash`]).
+pub fn ids_hash(mut ids: Vec<&str>) -> String {
     ids.sort_unstable();
     format!("{:016x}", super::grid::fnv1a(ids.join("\n").as_bytes()))
 }
