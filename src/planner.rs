@@ -73,6 +73,8 @@ pub struct RunOutcome {
     pub feasible: bool,
     /// The constraints it violates, in words (empty when feasible).
     pub violations: Vec<String>,
+    /// What the user should know about the run's set-up (e.g. space the planner cannot reach).
+    pub warnings: Vec<String>,
     /// Fitness evaluations spent.
     pub evaluations: u64,
     /// Iterations (generations) completed.

@@ -75,11 +75,10 @@ fn three_agents_share_loop_closures() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s = summary_without_time(&out);
     assert_eq!(s["agents"], 3);
-    // The loop-closure matrix of this seed, pinned: agents 0 and 2 share no closure but are
-    // connected through agent 1, so the closure graph has one component (one zero eigenvalue
-    // of its Laplacian, 000 eq. 5).
+    // The loop-closure matrix of this seed, pinned: every pair of agents shares closures, so
+    // the closure graph has one component (one zero eigenvalue of its Laplacian, 000 eq. 5).
     let closures: Vec<Vec<u64>> = serde_json::from_value(s["closures"].clone()).unwrap();
-    assert_eq!(closures, vec![vec![9, 3, 0], vec![3, 4, 2], vec![0, 2, 4]]);
+    assert_eq!(closures, vec![vec![3, 3, 26], vec![3, 2, 4], vec![26, 4, 15]]);
     for (i, row) in closures.iter().enumerate() {
         for (j, &c) in row.iter().enumerate() {
             assert_eq!(c, closures[j][i], "symmetric");

@@ -99,6 +99,9 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         }
     })?;
     progress.0.finish_and_clear();
+    for w in &summary.warnings {
+        eprintln!("warning: {origin}: {w}");
+    }
     if !a.quiet {
         let s = &summary.score;
         println!(

@@ -5,7 +5,7 @@ use super::{CellState, GridMap, MapError};
 use crate::geom::Point;
 
 /// Names of the presets accepted by [`preset`].
-pub const PRESET_NAMES: [&str; 4] = ["thesis-1", "thesis-2", "office", "office-large"];
+pub const PRESET_NAMES: [&str; 5] = ["thesis-1", "thesis-2", "office", "office-large", "office-ring"];
 
 /// Builds a preset by name.
 pub fn preset(name: &str) -> Option<GridMap> {
@@ -14,6 +14,7 @@ pub fn preset(name: &str) -> Option<GridMap> {
         "thesis-2" => thesis_map(true),
         "office" => office(),
         "office-large" => office_large(),
+        "office-ring" => office_ring(),
         _ => return None,
     };
     Some(map.expect("presets always have free cells"))
@@ -149,6 +150,74 @@ fn office_large() -> Result<GridMap, MapError> {
     GridMap::new("office-large", COLS, ROWS, RES, Point::origin(), cells)
 }
 
+/// A floor plan of the kind 000 plans on (a university building floor), 60 m × 40 m at
+/// 0.15 m/px: a 2.5 m ring corridor around a central block (stairs and shafts, not mapped),
+/// rooms on both sides of the corridor (14 outside, 8 inside, 1.5 m doors), 0.3 m walls.
+/// Nobody's data: drawn here from these rules.
+fn office_ring() -> Result<GridMap, MapError> {
+    const COLS: usize = 400;
+    const ROWS: usize = 267;
+    const RES: f64 = 0.15;
+    const TOP: f64 = 39.75; // inner face of the top outer wall
+    use CellState::{Free, Occupied};
+    let mut cells = vec![Occupied; COLS * ROWS];
+    let f = |cells: &mut Vec<CellState>, rect: [f64; 4], s: CellState| fill(cells, COLS, RES, rect, s);
+    f(&mut cells, [0.3, 0.3, 59.7, TOP], Free);
+    // The ring corridor [7.5, 52.5] × [7.5, 32.5] less [10, 50] × [10, 30], walled on both sides.
+    f(&mut cells, [7.2, 7.2, 52.8, 32.8], Occupied);
+    f(&mut cells, [7.5, 7.5, 52.5, 32.5], Free);
+    f(&mut cells, [10.0, 10.0, 50.0, 30.0], Occupied);
+    f(&mut cells, [10.3, 10.3, 49.7, 29.7], Free);
+    // The central block.
+    f(&mut cells, [16.0, 16.0, 44.0, 24.0], Occupied);
+    // Outer rooms: three on each short side (full depth), four along each long side.
+    for x in [7.2, 52.5] {
+        f(&mut cells, [x, 0.3, x + 0.3, 7.2], Occupied);
+        f(&mut cells, [x, 32.8, x + 0.3, TOP], Occupied);
+    }
+    for y in [13.5, 26.5] {
+        f(&mut cells, [0.3, y, 7.2, y + 0.3], Occupied);
+        f(&mut cells, [52.8, y, 59.7, y + 0.3], Occupied);
+    }
+    for x in [18.75, 30.0, 41.25] {
+        f(&mut cells, [x, 0.3, x + 0.3, 7.2], Occupied);
+        f(&mut cells, [x, 32.8, x + 0.3, TOP], Occupied);
+    }
+    // Inner rooms: three along each long side of the block, one at each short side.
+    for x in [22.85, 36.85] {
+        f(&mut cells, [x, 10.3, x + 0.3, 16.0], Occupied);
+        f(&mut cells, [x, 24.0, x + 0.3, 29.7], Occupied);
+    }
+    for x in [10.3, 44.0] {
+        f(&mut cells, [x, 15.7, x + 5.7, 16.0], Occupied);
+        f(&mut cells, [x, 24.0, x + 5.7, 24.3], Occupied);
+    }
+    // Doors, 1.5 m, centred on each room's corridor wall.
+    let door = |cells: &mut Vec<CellState>, horizontal: bool, centre: f64, wall: f64| {
+        let rect = if horizontal {
+            [centre - 0.75, wall, centre + 0.75, wall + 0.3]
+        } else {
+            [wall, centre - 0.75, wall + 0.3, centre + 0.75]
+        };
+        f(cells, rect, Free);
+    };
+    for x in [13.1, 24.5, 35.8, 47.0] {
+        door(&mut cells, true, x, 7.2);
+        door(&mut cells, true, x, 32.5);
+    }
+    for y in [10.0, 20.0, 30.0] {
+        door(&mut cells, false, y, 7.2);
+        door(&mut cells, false, y, 52.5);
+    }
+    for x in [16.5, 30.0, 43.4] {
+        door(&mut cells, true, x, 10.0);
+        door(&mut cells, true, x, 29.7);
+    }
+    door(&mut cells, false, 20.0, 10.0);
+    door(&mut cells, false, 20.0, 49.7);
+    GridMap::new("office-ring", COLS, ROWS, RES, Point::origin(), cells)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -178,6 +247,19 @@ mod tests {
         assert!(m.is_free_point(Point::new(15.5, 9.7)), "corridor beside the pillar");
         assert!(!m.is_free_point(Point::new(15.0, 9.7)), "pillar");
         assert!(m.free_count() > 40_000);
+    }
+
+    #[test]
+    fn office_ring_has_a_ring_corridor_and_doors() {
+        let m = preset("office-ring").unwrap();
+        assert_eq!((m.cols(), m.rows()), (400, 267));
+        for (x, y) in [(8.75, 20.0), (30.0, 8.75), (30.0, 31.25), (51.25, 20.0)] {
+            assert!(m.is_free_point(Point::new(x, y)), "corridor at ({x}, {y})");
+        }
+        assert!(!m.is_free_point(Point::new(30.0, 20.0)), "central block");
+        assert!(m.is_free_point(Point::new(13.1, 7.35)), "door of the first outer room");
+        assert!(!m.is_free_point(Point::new(11.0, 7.35)), "corridor wall beside it");
+        assert!(m.is_free_point(Point::new(10.15, 20.0)), "door of the left inner room");
     }
 
     #[test]

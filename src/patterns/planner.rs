@@ -98,6 +98,7 @@ impl Planner for PatternConfig {
             plan: vec![planned.points],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
             feasible: true,
+            warnings: Vec::new(),
             violations: Vec::new(),
             evaluations: 1,
             iterations: 0,

@@ -116,6 +116,7 @@ impl Planner for RandomSearch {
             plan: vec![best.points.clone()],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
             feasible: best.sweep.obj_pix == 0,
+            warnings: Vec::new(),
             violations: obstacle_violations(best.sweep.obj_pix),
             evaluations,
             iterations: iteration,

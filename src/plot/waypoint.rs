@@ -1,4 +1,4 @@
-//! Figures of the waypoint planner: paths per agent with self and inter-agent loop closures
+//! Figures of the waypoint planner: the waypoint graph (000 Fig. 3), paths per agent with self and inter-agent loop closures
 //! (000 Fig. 15), the coverage map (Fig. 5), Pareto-front snapshots (Fig. 11) and average
 //! objectives over generations (Fig. 12).
 
@@ -98,6 +98,66 @@ impl Figure for PathsFigure<'_> {
         entries.push((RED, format!("self loop closure ({})", self.self_closures.len())));
         entries.push((MAGENTA, format!("inter-agent closure ({})", self.shared_closures.len())));
         entries.push((OBSTACLE, "obstacle".into()));
+        super::legend(&side, &entries, 60)
+    }
+}
+
+/// The waypoints and traversability graph (000 Fig. 3 and §II-D) with the wall band no
+/// traversal can see.
+pub struct GraphFigure<'a> {
+    /// The raster.
+    pub map: &'a WorkMap,
+    /// Waypoints in metres.
+    pub points: Vec<(f64, f64)>,
+    /// Undirected edges (metres).
+    pub edges: Vec<((f64, f64), (f64, f64))>,
+    /// Start waypoints (metres).
+    pub starts: Vec<(f64, f64)>,
+    /// Wall band pixels that some traversal sees.
+    pub band_seen: Vec<bool>,
+    /// Wall band pixels.
+    pub band: Vec<bool>,
+    /// Title.
+    pub title: String,
+}
+
+impl Figure for GraphFigure<'_> {
+    fn size(&self) -> (u32, u32) {
+        let aspect = self.map.height as f64 / self.map.width as f64;
+        (1100, (840.0 * aspect) as u32 + 110)
+    }
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        const BAND: RGBColor = RGBColor(215, 230, 245);
+        const LOST: RGBColor = RGBColor(230, 60, 60);
+        const EDGE: RGBColor = RGBColor(120, 120, 120);
+        let (area, side) = root.split_horizontally(860);
+        let mut chart = raster_chart(&area, self.map, &self.title, |i| {
+            if self.map.occluded[i] {
+                OBSTACLE
+            } else if self.band[i] && !self.band_seen[i] {
+                LOST
+            } else if self.band[i] {
+                BAND
+            } else {
+                FREE
+            }
+        })?;
+        chart
+            .draw_series(self.edges.iter().map(|&(a, b)| PathElement::new(vec![a, b], EDGE.stroke_width(1))))
+            .map_err(err)?;
+        let dot = agent_colour(0);
+        chart.draw_series(self.points.iter().map(|&p| Circle::new(p, 3, dot.filled()))).map_err(err)?;
+        chart
+            .draw_series(self.starts.iter().map(|&s| TriangleMarker::new(s, 9, agent_colour(1).filled())))
+            .map_err(err)?;
+        let entries = [
+            (dot, format!("waypoint ({})", self.points.len())),
+            (EDGE, format!("edge ({})", self.edges.len())),
+            (agent_colour(1), "start".to_string()),
+            (BAND, "wall band, seen from the graph".to_string()),
+            (LOST, "wall band no edge sees".to_string()),
+            (OBSTACLE, "obstacle".to_string()),
+        ];
         super::legend(&side, &entries, 60)
     }
 }

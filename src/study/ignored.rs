@@ -45,6 +45,9 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     if within(key, "pattern") && !matches!(planner, PlannerKind::Boustrophedon | PlannerKind::Spiral) {
         return Some(format!("only the boustrophedon and spiral patterns read [pattern]; planner = \"{name}\""));
     }
+    if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
+        return Some("waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into());
+    }
     if within(key, "thesis") && key != "thesis.projection" {
         match planner {
             PlannerKind::Thesis => {
@@ -74,7 +77,7 @@ pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String
     let mut out = Vec::new();
     for (section, value) in &table {
         match value {
-            toml::Value::Table(t) if section == "thesis" => {
+            toml::Value::Table(t) if section == "thesis" || section == "waypoint" => {
                 for key in t.keys() {
                     let dotted = format!("{section}.{key}");
                     if let Some(why) = why_ignored(file, &dotted) {
@@ -123,6 +126,8 @@ mod tests {
             (&random, "thesis.init_actions", false),
             (&random, "thesis.c_len", true),
             (&elite, "thesis_x", false),
+            (&waypoint, "waypoint.near_wall", true),
+            (&file("planner = \"waypoint\"\n[waypoint]\nwaypoint_set = \"near_wall\"\n"), "waypoint.near_wall", false),
         ] {
             assert_eq!(why_ignored(f, key).is_some(), ignored, "{key} under {:?}", f.planner);
         }

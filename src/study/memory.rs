@@ -101,7 +101,8 @@ impl Experiment {
     }
 }
 
-/// The waypoint planner's world: at most one waypoint per grid step² of free space, each with
+/// The waypoint planner's world: at most one waypoint per (grid step or anti-crowding
+/// distance, the smaller)² of free space, each with
 /// at most 16 directed edges (its nearest neighbour per octant, and the reverse of its
 /// neighbours' choices: `waypoint::graph`), each edge holding two views stored as the
 /// words between their first and last pixel (a view spans at most `2·d_max` rows, a swept edge
@@ -111,7 +112,7 @@ fn waypoint_estimate(w: &crate::waypoint::config::WaypointConfig, map: &crate::m
     let p = &w.world;
     let px = map.resolution() / p.scale; // work-raster pixels per map cell (per axis)
     let (cols, rows) = (map.cols() as f64 * px, map.rows() as f64 * px);
-    let step_px = (p.hallway / (2.0 * p.scale)).max(1.0);
+    let step_px = (p.geometry.grid_step.min(p.geometry.merge) / p.scale).max(1.0);
     let free_px = map.free_count() as f64 * px * px;
     let waypoints = (free_px / (step_px * step_px)).ceil().max(1.0);
     let degree = 16f64.min(waypoints - 1.0).max(1.0);

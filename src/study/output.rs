@@ -99,6 +99,8 @@ pub struct Summary {
     pub feasible: bool,
     /// The constraints it violates, in words.
     pub violations: Vec<String>,
+    /// Warnings about the run's set-up, in words.
+    pub warnings: Vec<String>,
     /// The planner's own objectives of the plan.
     pub objectives: std::collections::BTreeMap<String, f64>,
     /// The common scorer's metrics of the plan.
@@ -165,6 +167,7 @@ pub fn run_experiment(
         stop: outcome.stop,
         feasible: outcome.feasible,
         violations: outcome.violations.clone(),
+        warnings: outcome.warnings.clone(),
         objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         score,
         details: outcome.details.clone(),

@@ -15,8 +15,28 @@ pub struct WaypointSection {
     pub scale: f64,
     /// UAV width (m).
     pub uav_width: f64,
-    /// Narrowest accessible hallway (m).
+    /// Narrowest accessible hallway `h_min` (m): sets the waypoint grid step and, by default,
+    /// the safety buffer (000 §II-B.2).
     pub hallway: f64,
+    /// Waypoint grid step: `half_hallway` (000 §II-B.2, default) or `hallway` (the authors'
+    /// driver: `floor(h_min / s)` px).
+    pub grid_step: super::geometry::GridStep,
+    /// Safety buffer (m): waypoints are nudged at least this far from walls, and the wall term
+    /// `C_walls` of eq. 2 scores this band. Default `h_min / 2` (the authors' driver; 000 asks
+    /// only that it exceed half the UAV width, which is checked).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub safety_buffer: Option<f64>,
+    /// Anti-crowding distance (m): waypoints closer than this are merged. Default: the grid
+    /// step (000 §II-B.2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub merge_distance: Option<f64>,
+    /// Width of the wall band scored by `C_walls` (m). Default: the safety buffer (000 eq. 2).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall_band: Option<f64>,
+    /// `waypoint_set = "near_wall"` keeps waypoints at most this far from a wall (m). Default
+    /// 2.5 × the safety buffer (the authors' driver; 000 does not say how near).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub near_wall: Option<f64>,
     /// Maximum traverse distance of an edge (m).
     pub max_traverse: f64,
     /// Camera `d_min` (m).
@@ -78,8 +98,11 @@ pub struct WaypointSection {
     pub aging: u32,
     /// `T_sep`.
     pub lc_separation: usize,
-    /// Minimum self loop closures.
+    /// Minimum self loop closures (Table I: 2).
     pub lc_min: usize,
+    /// What counts as one loop closure: `run` (a run of consecutive re-flown edges, spec W23,
+    /// default) or `edge` (every distinct re-flown edge, the authors' driver).
+    pub lc_rule: super::evaluate::LoopClosureRule,
     /// Penalty per violated constraint type (scaled units).
     pub penalty: f64,
 }
@@ -90,6 +113,11 @@ impl Default for WaypointSection {
             scale: 0.15,
             uav_width: 0.5,
             hallway: 1.5,
+            grid_step: super::geometry::GridStep::HalfHallway,
+            safety_buffer: None,
+            merge_distance: None,
+            wall_band: None,
+            near_wall: None,
             max_traverse: 4.0,
             d_min: 0.2,
             d_max: 7.0,
@@ -121,6 +149,7 @@ impl Default for WaypointSection {
             aging: 60,
             lc_separation: 30,
             lc_min: 2,
+            lc_rule: super::evaluate::LoopClosureRule::Run,
             penalty: 1000.0,
         }
     }
@@ -137,7 +166,7 @@ pub struct WaypointConfig {
 
 /// The camera of `[waypoint]` as the common scorer uses it (checked for every planner, since
 /// every run is scored with it): scale, depth range, field of view, sections, and the wall band
-/// of width `b·s` with the planner's safety buffer `b = floor(w / 2s) + 1` px (spec §2, W2).
+/// of the planner's geometry (by default the safety buffer, 000 eq. 2).
 pub fn camera_spec(
     w: &WaypointSection,
     origin: &str,
@@ -166,14 +195,14 @@ pub fn camera_spec(
             format!("= {} m gives a working raster of {pixels:.3e} pixels for this map (at most 4e8)", w.scale),
         ));
     }
-    let buffer_px = (w.uav_width / (2.0 * w.scale)).floor() + 1.0;
+    let geometry = super::geometry::Geometry::resolve(w, origin, map)?;
     Ok(crate::coverage::score::CameraSpec {
         scale: w.scale,
         d_min: w.d_min,
         d_max: w.d_max,
         fov_deg: w.fov_deg,
         sections: w.sections,
-        band_m: buffer_px * w.scale,
+        band_m: geometry.wall_band,
     })
 }
 
@@ -197,17 +226,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
     let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     // Scale, UAV width and the camera: the same checks as the scorer's camera.
     camera_spec(w, origin, map)?;
-    if !(w.hallway.is_finite() && w.hallway >= 2.0 * w.scale && w.hallway >= map.resolution()) {
-        return Err(err(
-            "waypoint.hallway",
-            format!(
-                "= {} m is below the cell size: the narrowest hallway must be at least 2 x scale = {} m and the map resolution {} m",
-                w.hallway,
-                2.0 * w.scale,
-                map.resolution()
-            ),
-        ));
-    }
+    let geometry = super::geometry::Geometry::resolve(w, origin, map)?;
     check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "> 0 metres")?;
     if w.agents == 0 || w.agents > 64 {
         return Err(err("waypoint.agents", format!("= {} is out of range [1, 64]", w.agents)));
@@ -255,6 +274,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
             scale: w.scale,
             uav_width: w.uav_width,
             hallway: w.hallway,
+            geometry,
             max_traverse: w.max_traverse,
             d_min: w.d_min,
             d_max: w.d_max,
@@ -293,6 +313,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
                 aging: w.aging,
                 lc_separation: w.lc_separation,
                 lc_min: w.lc_min,
+                lc_rule: w.lc_rule,
                 penalty: w.penalty,
             },
         },

@@ -28,6 +28,8 @@ pub struct ObjectiveParams {
     pub lc_separation: usize,
     /// Minimum self loop closures per agent.
     pub lc_min: usize,
+    /// What counts as one loop closure.
+    pub lc_rule: LoopClosureRule,
     /// `P_cov` = `P_time` (scaled units).
     pub penalty: f64,
 }
@@ -72,6 +74,55 @@ pub fn add_views(path: &[u32], graph: &Graph, tr: &Traversals, u: &mut Union) {
     if let [.., a, b] = path {
         u.add(&tr.get(graph, *a as usize, *b as usize).arrive);
     }
+}
+
+/// What counts as one loop closure (000 §III-A.4: the same waypoints flown in the same
+/// direction).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LoopClosureRule {
+    /// A run of consecutive re-flown edges counts once (spec W23).
+    #[default]
+    Run,
+    /// Every distinct re-flown directed edge counts once (the authors' driver).
+    Edge,
+}
+
+impl LoopClosureRule {
+    /// The rule's name as typed in `[waypoint]`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Run => "run",
+            Self::Edge => "edge",
+        }
+    }
+    /// Loop closures between `a` and `b` under this rule (see [`loop_closures`] and
+    /// [`edge_loop_closures`]).
+    pub fn count(self, a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
+        match self {
+            Self::Run => loop_closures(a, b, same, separation),
+            Self::Edge => edge_loop_closures(a, b, same, separation),
+        }
+    }
+}
+
+/// Loop closures counted per distinct re-flown directed edge (the authors' driver): an edge of
+/// `a` counts once if `b` flies it too — for a path with itself (`same`), at least
+/// `separation` positions after the edge's first occurrence.
+pub fn edge_loop_closures(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
+    let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));
+    let edge_a = |i: usize| (a[i], a[i + 1]);
+    let mut count = 0;
+    for i in 0..ea {
+        if (0..i).any(|k| edge_a(k) == edge_a(i)) {
+            continue; // counted at its first occurrence
+        }
+        let from = if same { i + separation.max(1) } else { 0 };
+        if (from..eb).any(|j| (b[j], b[j + 1]) == edge_a(i)) {
+            count += 1;
+        }
+    }
+    count
 }
 
 /// Loop closures between the directed edges of `a` and `b` (spec §12.3, W23): matches `(i, j)`
@@ -206,9 +257,9 @@ impl Evaluator<'_> {
         let n = rows.len();
         let mut closures = vec![vec![0; n]; n];
         for i in 0..n {
-            closures[i][i] = loop_closures(&rows[i], &rows[i], true, self.params.lc_separation);
+            closures[i][i] = self.params.lc_rule.count(&rows[i], &rows[i], true, self.params.lc_separation);
             for j in i + 1..n {
-                let c = loop_closures(&rows[i], &rows[j], false, 0);
+                let c = self.params.lc_rule.count(&rows[i], &rows[j], false, 0);
                 closures[i][j] = c;
                 closures[j][i] = c;
             }
@@ -250,6 +301,26 @@ mod tests {
     }
 
     #[test]
+    fn edge_rule_counts_each_reflown_edge_once() {
+        // The same paths as above, counted per distinct re-flown edge.
+        let p = [0, 1, 2, 3, 0, 1, 2];
+        assert_eq!(edge_loop_closures(&p, &p, true, 4), 2, "0→1 and 1→2");
+        assert_eq!(edge_loop_closures(&p, &p, true, 5), 0);
+        let q = [0, 1, 2, 3, 2, 1, 0];
+        assert_eq!(edge_loop_closures(&q, &q, true, 1), 0, "reverse direction");
+        let r = [0, 1, 5, 6, 7, 0, 1, 8, 6, 7];
+        assert_eq!(edge_loop_closures(&r, &r, true, 3), 2, "0→1 and 6→7");
+        // An edge flown three times counts once; separation from its first occurrence.
+        let t = [0, 1, 0, 1, 0, 1];
+        assert_eq!(edge_loop_closures(&t, &t, true, 2), 2, "0→1 and 1→0");
+        assert_eq!(edge_loop_closures(&t, &t, true, 4), 1, "only 0→1 recurs 4 later");
+        assert_eq!(edge_loop_closures(&[4, 0, 1, 2], &[9, 0, 1, 2, 3], false, 0), 2);
+        for (rule, expected) in [(LoopClosureRule::Run, 1), (LoopClosureRule::Edge, 2)] {
+            assert_eq!(rule.count(&p, &p, true, 4), expected, "{}", rule.name());
+        }
+    }
+
+    #[test]
     fn laplacian_zero_eigenvalues_count_components() {
         let f = false;
         let t = true;
@@ -284,6 +355,7 @@ mod tests {
             aging: 60,
             lc_separation: 30,
             lc_min: 2,
+            lc_rule: LoopClosureRule::Run,
             penalty: 1000.0,
         };
         assert_eq!(required_coverage(&p, 0), 0.3);

@@ -131,7 +131,8 @@ mod tests {
     #[test]
     fn no_edge_crosses_an_obstacle() {
         let map = WorkMap::new(&preset("office").unwrap(), 0.15);
-        let pts = super::super::waypoints::place(&map, 5.0, 2.0, 1.67);
+        let spacing = super::super::waypoints::Spacing { step: 5.0, buffer: 2.0, merge: 5.0, min_clearance: 1.67 };
+        let (pts, _) = super::super::waypoints::place(&map, &spacing);
         let g = Graph::build(&map, pts, 4.0 / 0.15);
         assert!(g.edge_count() > g.points.len());
         for (i, l) in g.adj.iter().enumerate() {

@@ -5,7 +5,7 @@
 //! population objectives).
 
 use super::config::WaypointConfig;
-use super::evaluate::{add_views, laplacian_zero_eigenvalues, required_coverage};
+use super::evaluate::{LoopClosureRule, add_views, laplacian_zero_eigenvalues, required_coverage};
 use super::precompute::Union;
 use super::run::{Limits, Organism, WaypointOutcome, WaypointStats, run};
 use super::world::World;
@@ -13,7 +13,7 @@ use crate::coverage::{CoverageGrid, SweepScratch};
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::geom::Point;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario};
-use crate::plot::waypoint::{CoverageFigure, ObjectivesFigure, PathsFigure, SnapshotsFigure};
+use crate::plot::waypoint::{CoverageFigure, GraphFigure, ObjectivesFigure, PathsFigure, SnapshotsFigure};
 use std::path::Path;
 use std::time::Instant;
 
@@ -45,7 +45,12 @@ fn violations(cfg: &WaypointConfig, o: &Organism, g: u32) -> Vec<String> {
     let mut out = Vec::new();
     for (k, row) in o.eval.closures.iter().enumerate() {
         if row[k] < p.lc_min {
-            out.push(format!("agent {k} has {} self loop closures, fewer than lc_min = {}", row[k], p.lc_min));
+            out.push(format!(
+                "agent {k} has {} self loop closures (counted per {}), fewer than lc_min = {}",
+                row[k],
+                p.lc_rule.name(),
+                p.lc_min
+            ));
         }
     }
     if !o.eval.connected() {
@@ -54,6 +59,36 @@ fn violations(cfg: &WaypointConfig, o: &Organism, g: u32) -> Vec<String> {
     let c_req = required_coverage(p, g);
     if o.eval.coverage < c_req {
         out.push(format!("coverage C = {:.4} is below the required {:.4}", o.eval.coverage, c_req));
+    }
+    out
+}
+
+/// Share of the wall band below which the set-up warns that the graph cannot see part of it.
+const REACHABLE_WARNING: f64 = 0.99;
+
+/// What the user should know about the world: waypoints the start cannot reach, and wall band
+/// that no traversal sees (which caps `C_walls`, and may make the coverage constraint
+/// unreachable).
+fn setup_warnings(cfg: &WaypointConfig, world: &World) -> Vec<String> {
+    let mut out = Vec::new();
+    if world.dropped > 0 {
+        out.push(format!(
+            "{} waypoints lie where the start cannot reach them through the graph and were dropped",
+            world.dropped
+        ));
+    }
+    if world.reachable_walls < REACHABLE_WARNING {
+        let c_end = cfg.ga.objectives.c_end;
+        let alpha = cfg.ga.objectives.alpha_cov;
+        let mut w = format!(
+            "the waypoint graph sees only {:.1} % of the wall band (reachable_wall_fraction {:.4}; waypoints.png shows where)",
+            100.0 * world.reachable_walls,
+            world.reachable_walls
+        );
+        if alpha + (1.0 - alpha) * world.reachable_walls < c_end {
+            w.push_str(&format!(": the coverage constraint C_end = {c_end} cannot be met"));
+        }
+        out.push(w);
     }
     out
 }
@@ -131,6 +166,10 @@ impl Planner for WaypointConfig {
             .map(|(i, r)| r.iter().enumerate().map(|(j, &c)| i != j && c >= 1).collect())
             .collect();
         let viol = violations(self, best, outcome.generations);
+        let warnings = setup_warnings(self, &world);
+        let counts = |rule: LoopClosureRule| -> Vec<usize> {
+            best.rows.iter().map(|r| rule.count(r, r, true, self.ga.objectives.lc_separation)).collect()
+        };
         let details = crate::planner::details(serde_json::json!({
             "wall_coverage": e.walls,
             "open_coverage": e.open,
@@ -144,8 +183,18 @@ impl Planner for WaypointConfig {
             "agents": best.rows.len(),
             "path_lengths": best.rows.iter().map(Vec::len).collect::<Vec<_>>(),
             "generations": outcome.generations,
+            "lc_rule": self.ga.objectives.lc_rule.name(),
+            "self_closures_per_run": counts(LoopClosureRule::Run),
+            "self_closures_per_edge": counts(LoopClosureRule::Edge),
             "waypoints": world.graph.points.len(),
             "edges": world.graph.edge_count(),
+            "waypoints_dropped": world.dropped,
+            "gap_waypoints_added": world.gap_fills,
+            "passage_waypoints_added": world.passage_fills,
+            "reachable_wall_fraction": world.reachable_walls,
+            "grid_step_m": self.world.geometry.grid_step,
+            "safety_buffer_m": self.world.geometry.buffer,
+            "wall_band_m": self.world.geometry.wall_band,
             "initial_feasible": outcome.initial_feasible,
             "precompute_s": precompute_s,
         }));
@@ -159,6 +208,7 @@ impl Planner for WaypointConfig {
             ],
             feasible: viol.is_empty(),
             violations: viol,
+            warnings,
             evaluations: outcome.evaluations,
             iterations: outcome.generations,
             stop: outcome.stop,
@@ -200,15 +250,40 @@ impl Planner for WaypointConfig {
             },
             &dir.join("paths"),
         )?;
+        let mut reach = Union::new(world.traversals.words);
+        for t in world.traversals.edges.iter().flatten() {
+            reach.add(&t.depart);
+            reach.add(&t.arrive);
+        }
+        let band = world.map.band(world.band_px);
+        let g = &world.graph;
+        let edges = (0..g.points.len())
+            .flat_map(|i| g.adj[i].iter().filter(move |&&j| (j as usize) > i).map(move |&j| (i as u32, j)))
+            .map(|(i, j)| (to_m(i), to_m(j)))
+            .collect();
+        crate::plot::save(
+            &GraphFigure {
+                map: &world.map,
+                points: (0..g.points.len() as u32).map(to_m).collect(),
+                edges,
+                starts: world.starts.iter().map(|&s| to_m(s)).collect(),
+                band_seen: (0..world.map.occluded.len()).map(|i| reach.contains(i)).collect(),
+                band: band.clone(),
+                title: format!(
+                    "{} waypoints on {}: {:.1} % of the wall band seen from the graph",
+                    g.points.len(),
+                    scenario.map.name(),
+                    100.0 * world.reachable_walls
+                ),
+            },
+            &dir.join("waypoints"),
+        )?;
         let mut u = Union::new(world.traversals.words);
         for r in &best.rows {
             add_views(r, &world.graph, &world.traversals, &mut u);
         }
         let seen = (0..world.map.occluded.len()).map(|i| u.contains(i)).collect();
-        crate::plot::save(
-            &CoverageFigure { map: &world.map, seen, band: world.map.band(world.buffer), title },
-            &dir.join("coverage"),
-        )?;
+        crate::plot::save(&CoverageFigure { map: &world.map, seen, band, title }, &dir.join("coverage"))?;
         let seconds_per_px = self.world.scale / scenario.robot.speed;
         crate::plot::save(
             &SnapshotsFigure { snapshots: &out.snapshots, seconds_per_px },

@@ -1,13 +1,29 @@
-//! Waypoint placement (000 §II-B.2, Fig. 3; spec §3, W3–W5): a grid at half the narrowest
-//! hallway, occluded points removed, points in the safety buffer nudged away from walls (or
-//! deleted where the UAV cannot fit), crowded points merged into centroids, and optionally only
-//! the points near walls kept.
+//! Waypoint placement (000 §II-B.2, Fig. 3; spec §3, W3–W5): a grid at the grid step, occluded
+//! points removed, points in the safety buffer nudged away from walls (or deleted where the UAV
+//! cannot fit), crowded points merged into centroids, and space left without a waypoint filled
+//! again, so that no corridor or room loses all its waypoints.
 
 use super::raster::WorkMap;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
 
-/// Places waypoints (px coordinates). `g` is the grid spacing and `b` the safety buffer (px);
-/// `min_clearance` is half the UAV width (px).
-pub fn place(map: &WorkMap, g: f64, b: f64, min_clearance: f64) -> Vec<(f64, f64)> {
+/// Spacings of the placement, in pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Spacing {
+    /// Grid step `g`.
+    pub step: f64,
+    /// Safety buffer `b`.
+    pub buffer: f64,
+    /// Anti-crowding distance: points closer than this are merged.
+    pub merge: f64,
+    /// Half the UAV width: the least clearance a waypoint may have.
+    pub min_clearance: f64,
+}
+
+/// Places waypoints (px coordinates); also returns how many were added to fill gaps left by
+/// nudging and merging (see [`fill_gaps`]).
+pub fn place(map: &WorkMap, s: &Spacing) -> (Vec<(f64, f64)>, usize) {
+    let (g, b, min_clearance) = (s.step, s.buffer, s.min_clearance);
     let mut pts = Vec::new();
     let mut j = 0;
     while (j as f64 + 0.5) * g < map.height as f64 {
@@ -22,7 +38,127 @@ pub fn place(map: &WorkMap, g: f64, b: f64, min_clearance: f64) -> Vec<(f64, f64
         j += 1;
     }
     let pts: Vec<(f64, f64)> = pts.into_iter().filter_map(|p| nudge(map, p, g, b, min_clearance)).collect();
-    merge_crowded(map, pts, g, b)
+    let mut pts = merge_crowded(map, pts, s.merge, b);
+    let added = fill_gaps(map, &mut pts, s);
+    (pts, added)
+}
+
+/// Chamfer costs of a straight and a diagonal pixel step (5-7 chamfer: the geodesic distance in
+/// pixels is the cost / 5, within 2 %).
+const STEP_COST: [u32; 2] = [5, 7];
+
+/// Pixels where the UAV's centre fits: free, with clearance at least `min_clearance` px.
+pub fn fits_mask(map: &WorkMap, min_clearance: f64) -> Vec<bool> {
+    (0..map.occluded.len()).map(|i| !map.occluded[i] && map.dist[i] >= min_clearance).collect()
+}
+
+/// How a step into pixel `j` is priced: by length, or (`centred`) by length times a factor
+/// that grows as the clearance shrinks, so that paths keep to the middle of passages.
+fn step_cost(map: &WorkMap, j: usize, diagonal: bool, centred: bool) -> u32 {
+    let base = STEP_COST[usize::from(diagonal)];
+    if centred { base * (1 + (32.0 / map.dist[j].max(1.0)).round() as u32) } else { base }
+}
+
+/// Spreads geodesic (chamfer) distances from `sources` (pixel indices) through the pixels
+/// where the UAV fits, lowering `dist` wherever a source is nearer; `parent` (if given)
+/// records each lowered pixel's predecessor (a source is its own). `centred` prices steps
+/// near walls higher (see [`step_cost`]).
+pub fn geodesic(
+    map: &WorkMap,
+    fits: &[bool],
+    dist: &mut [u32],
+    mut parent: Option<&mut [u32]>,
+    sources: &[usize],
+    centred: bool,
+) {
+    let mut heap = BinaryHeap::new();
+    for &s in sources {
+        dist[s] = 0;
+        if let Some(p) = parent.as_deref_mut() {
+            p[s] = s as u32;
+        }
+        heap.push(Reverse((0u32, s)));
+    }
+    let (w, h) = (map.width as i64, map.height as i64);
+    while let Some(Reverse((d, i))) = heap.pop() {
+        if d > dist[i] {
+            continue;
+        }
+        let (c, r) = ((i % map.width) as i64, (i / map.width) as i64);
+        for (dc, dr) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (1, -1), (-1, 1), (1, 1)] {
+            let (nc, nr) = (c + dc, r + dr);
+            if nc < 0 || nr < 0 || nc >= w || nr >= h {
+                continue;
+            }
+            let j = (nr * w + nc) as usize;
+            if !fits[j] {
+                continue;
+            }
+            let nd = d.saturating_add(step_cost(map, j, dc != 0 && dr != 0, centred));
+            if nd < dist[j] {
+                dist[j] = nd;
+                if let Some(p) = parent.as_deref_mut() {
+                    p[j] = i as u32;
+                }
+                heap.push(Reverse((nd, j)));
+            }
+        }
+    }
+}
+
+/// The pixel index of a px-coordinate point, if it lies on the raster.
+pub fn pixel_index(map: &WorkMap, p: (f64, f64)) -> Option<usize> {
+    let (c, r) = map.pixel_of(p);
+    (c >= 0 && r >= 0 && (c as usize) < map.width && (r as usize) < map.height)
+        .then(|| map.index(c as usize, r as usize))
+}
+
+/// Adds waypoints where the space the UAV fits in lies farther than `g + b` (geodesic, through
+/// that space) from every waypoint: a corridor or room whose waypoints were all nudged or
+/// merged away gets one back, as does a region with none. The farthest pixel is served
+/// first, by a waypoint nudged from it like a grid point (or the pixel itself when the nudge
+/// would leave it unserved). Returns how many were added.
+pub fn fill_gaps(map: &WorkMap, pts: &mut Vec<(f64, f64)>, s: &Spacing) -> usize {
+    let fits = fits_mask(map, s.min_clearance);
+    let mut dist = vec![u32::MAX; fits.len()];
+    let index = |p: (f64, f64)| pixel_index(map, p);
+    let sources: Vec<usize> = pts.iter().filter_map(|&p| index(p)).filter(|&i| fits[i]).collect();
+    geodesic(map, &fits, &mut dist, None, &sources, false);
+    let reach = ((s.step + s.buffer) * f64::from(STEP_COST[0])).ceil() as u32;
+    let mut added = 0;
+    loop {
+        // The farthest pixel (lowest index on ties); unserved regions are at u32::MAX.
+        let Some((far, &d)) =
+            dist.iter().enumerate().filter(|&(i, _)| fits[i]).max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(&a.0)))
+        else {
+            return added;
+        };
+        if d <= reach {
+            return added;
+        }
+        let pixel = ((far % map.width) as f64 + 0.5, (far / map.width) as f64 + 0.5);
+        let nudged = nudge(map, pixel, s.step, s.buffer, s.min_clearance)
+            .and_then(|p| index(p).filter(|&i| fits[i]).map(|i| (p, i)));
+        let mut trial = dist.clone();
+        let chosen = match nudged {
+            Some((p, i)) => {
+                geodesic(map, &fits, &mut trial, None, &[i], false);
+                (trial[far] <= reach).then_some(p)
+            }
+            None => None,
+        };
+        match chosen {
+            Some(p) => {
+                dist = trial;
+                pts.push(p);
+            }
+            None => {
+                geodesic(map, &fits, &mut dist, None, &[far], false);
+                pts.push(pixel);
+            }
+        }
+        added += 1;
+    }
 }
 
 /// The nearest occluded pixel centre to `p` (searching a growing window).
@@ -74,8 +210,9 @@ fn nudge(map: &WorkMap, p0: (f64, f64), g: f64, b: f64, min_clearance: f64) -> O
     (best.0 >= min_clearance).then_some(best.1)
 }
 
-/// Replaces every single-linkage cluster of points closer than `g` by its centroid (or its
-/// best-clearance member if the centroid is in the buffer), until no pair is closer (W4).
+/// Replaces every single-linkage cluster of points closer than `g` (the anti-crowding
+/// distance) by its centroid (or its best-clearance member if the centroid is in the buffer
+/// `b`), until no pair is closer (W4).
 pub fn merge_crowded(map: &WorkMap, mut pts: Vec<(f64, f64)>, g: f64, b: f64) -> Vec<(f64, f64)> {
     for _ in 0..10 {
         let n = pts.len();
@@ -149,7 +286,7 @@ mod tests {
     fn waypoints_keep_spacing_and_clearance() {
         let map = WorkMap::new(&preset("office").unwrap(), 0.15);
         let (g, b) = (5.0, 2.0);
-        let pts = place(&map, g, b, 0.5 / 0.3);
+        let (pts, _) = place(&map, &Spacing { step: g, buffer: b, merge: g, min_clearance: 0.5 / 0.3 });
         assert!(pts.len() > 300, "{}", pts.len());
         for (i, p) in pts.iter().enumerate() {
             assert!(map.clearance(*p) >= 0.5 / 0.3, "clearance at {p:?}");
@@ -160,5 +297,24 @@ mod tests {
         // Most points keep the full buffer.
         let inside = pts.iter().filter(|p| map.clearance(**p) >= b).count();
         assert!(inside * 10 >= pts.len() * 9);
+    }
+
+    #[test]
+    fn a_corridor_emptied_by_merging_gets_a_waypoint_back() {
+        // The office corridor runs at y 8.6-11.0 m = 57.3-73.3 px at 0.15 m/px.
+        let map = WorkMap::new(&preset("office").unwrap(), 0.15);
+        let s = Spacing { step: 8.0, buffer: 6.0, merge: 8.0, min_clearance: 0.25 / 0.15 };
+        let in_corridor = |p: &(f64, f64)| (57.3..73.3).contains(&p.1);
+        let (placed, _) = place(&map, &s);
+        assert!(placed.iter().any(in_corridor));
+        let mut pts: Vec<(f64, f64)> = placed.into_iter().filter(|p| !in_corridor(p)).collect();
+        let before = pts.len();
+        let added = fill_gaps(&map, &mut pts, &s);
+        assert!(added >= 1);
+        assert_eq!(pts.len(), before + added);
+        let back: Vec<_> = pts[before..].iter().filter(|p| in_corridor(p)).collect();
+        assert!(!back.is_empty(), "no waypoint returned to the corridor: {:?}", &pts[before..]);
+        // Every point where the UAV fits is again within g + b (geodesic) of a waypoint.
+        assert_eq!(fill_gaps(&map, &mut pts, &s), 0);
     }
 }

@@ -2,9 +2,9 @@
 //! traversal views, wall band and start waypoints, built once per map and parameter set.
 
 use super::graph::Graph;
-use super::precompute::{Sensing, Traversals, bitset};
+use super::precompute::{Sensing, Traversals, Union, bitset};
 use super::raster::WorkMap;
-use super::waypoints;
+use super::{passages, waypoints};
 use crate::coverage::camera::Camera;
 use crate::map::GridMap;
 
@@ -14,7 +14,7 @@ use crate::map::GridMap;
 pub enum WaypointSet {
     /// All waypoints.
     Full,
-    /// Only waypoints within one grid step of the buffer band (plus what connectivity needs).
+    /// Only waypoints at most the near-wall distance from a wall (plus what connectivity needs).
     NearWall,
 }
 
@@ -27,6 +27,8 @@ pub struct WorldParams {
     pub uav_width: f64,
     /// Narrowest accessible hallway `h_min` (m).
     pub hallway: f64,
+    /// Grid step, safety buffer, anti-crowding distance, wall band and near-wall distance (m).
+    pub geometry: super::geometry::Geometry,
     /// Maximum traverse distance of a graph edge (m).
     pub max_traverse: f64,
     /// `d_min` (m).
@@ -109,39 +111,59 @@ pub struct World {
     pub starts: Vec<u32>,
     /// Safety buffer `b` (px).
     pub buffer: f64,
-    /// Waypoints dropped because the start could not reach them.
+    /// Width of the wall band (px).
+    pub band_px: f64,
+    /// Waypoints of the full set dropped because the start could not reach them.
     pub dropped: usize,
+    /// Waypoints added where nudging and merging had left space without one.
+    pub gap_fills: usize,
+    /// Waypoints added in narrow passages (doors) to connect space the graph missed.
+    pub passage_fills: usize,
+    /// Share of the wall band that some traversal of the graph sees: the most `C_walls` any
+    /// plan can reach.
+    pub reachable_walls: f64,
 }
 
 impl World {
     /// Builds the world for `agents` agents.
     pub fn build(map: &GridMap, p: &WorldParams, agents: usize) -> Result<Self, WorldError> {
         let wm = WorkMap::new(map, p.scale);
-        let b = (p.uav_width / (2.0 * p.scale)).floor() + 1.0;
-        let g = p.hallway / (2.0 * p.scale);
-        let mut pts = waypoints::place(&wm, g, b, p.uav_width / (2.0 * p.scale));
+        let geo = &p.geometry;
+        let spacing = waypoints::Spacing {
+            step: geo.grid_step / p.scale,
+            buffer: geo.buffer / p.scale,
+            merge: geo.merge / p.scale,
+            min_clearance: p.uav_width / (2.0 * p.scale),
+        };
+        let b = spacing.buffer;
+        let (pts, gap_fills) = waypoints::place(&wm, &spacing);
         if pts.is_empty() {
             return Err(WorldError::NoWaypoints(p.hallway));
         }
         let starts_px: Vec<(f64, f64)> = p.starts.iter().map(|&(x, y)| wm.to_px(x, y)).collect();
         let max_len = p.max_traverse / p.scale;
-        let mut graph = Graph::build(&wm, pts.clone(), max_len);
-        if p.set == WaypointSet::NearWall {
-            let start_ids: Vec<usize> = starts_px.iter().map(|&s| graph.nearest(s)).collect();
-            let keep: Vec<bool> =
-                (0..pts.len()).map(|i| wm.clearance(pts[i]) <= b + g || start_ids.contains(&i)).collect();
-            let kept = connect_subset(&graph, keep, start_ids[0]);
-            pts = (0..pts.len()).filter(|&i| kept[i]).map(|i| pts[i]).collect();
-            graph = Graph::build(&wm, pts.clone(), max_len);
-        }
-        let first = graph.nearest(starts_px[0]);
-        let comp = graph.component(first);
+        let (full, passage_fills) =
+            passages::connect(&wm, pts, starts_px[0], max_len, spacing.step, spacing.min_clearance);
+        let placed = full.points.len();
+        let comp = full.component(full.nearest(starts_px[0]));
         let reached = comp.iter().filter(|c| **c).count();
-        if reached < 2 || reached * 2 < graph.points.len() {
+        if reached < 2 || reached * 2 < placed {
             let (x, y) = p.starts[0];
-            return Err(WorldError::Unreachable { x, y, reached, total: graph.points.len() });
+            return Err(WorldError::Unreachable { x, y, reached, total: placed });
         }
-        let (graph, _) = graph.restrict(&comp);
+        let (mut graph, _) = full.restrict(&comp);
+        if p.set == WaypointSet::NearWall {
+            let near = geo.near_wall / p.scale;
+            let start_ids: Vec<usize> = starts_px.iter().map(|&s| graph.nearest(s)).collect();
+            let keep: Vec<bool> = (0..graph.points.len())
+                .map(|i| wm.clearance(graph.points[i]) <= near || start_ids.contains(&i))
+                .collect();
+            let kept = connect_subset(&graph, keep, start_ids[0]);
+            let pts = (0..kept.len()).filter(|&i| kept[i]).map(|i| graph.points[i]).collect();
+            let near_graph = Graph::build(&wm, pts, max_len);
+            let comp = near_graph.component(near_graph.nearest(starts_px[0]));
+            graph = near_graph.restrict(&comp).0;
+        }
         let starts: Vec<u32> =
             (0..agents).map(|a| graph.nearest(starts_px[a.min(starts_px.len() - 1)]) as u32).collect();
         let camera = Camera {
@@ -155,13 +177,20 @@ impl World {
             Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
         };
         let traversals = Traversals::compute(&wm, &graph, &sensing);
-        let band_flags = wm.band(b);
+        let band_px = geo.wall_band / p.scale;
+        let band_flags = wm.band(band_px);
         let band_count = band_flags.iter().filter(|x| **x).count() as u64;
+        let band = bitset(&band_flags);
+        let reachable_walls = reachable_fraction(&traversals, &band, band_count);
         Ok(Self {
             free: wm.free_count() as u64,
-            band: bitset(&band_flags),
+            band,
             band_count,
-            dropped: pts.len().saturating_sub(graph.points.len()),
+            band_px,
+            gap_fills,
+            passage_fills,
+            reachable_walls,
+            dropped: placed - reached,
             map: wm,
             graph,
             traversals,
@@ -169,6 +198,17 @@ impl World {
             buffer: b,
         })
     }
+}
+
+/// The share of the band (`band`, `band_count` pixels) seen by at least one view of any
+/// traversal.
+fn reachable_fraction(tr: &Traversals, band: &[u64], band_count: u64) -> f64 {
+    let mut all = Union::new(tr.words);
+    for t in tr.edges.iter().flatten() {
+        all.add(&t.depart);
+        all.add(&t.arrive);
+    }
+    all.counts(band).1 as f64 / band_count.max(1) as f64
 }
 
 /// Adds back removed waypoints on shortest paths of the full graph until `keep` is connected
@@ -219,6 +259,13 @@ mod tests {
             scale: 0.15,
             uav_width: 0.5,
             hallway: 1.5,
+            geometry: crate::waypoint::geometry::Geometry {
+                grid_step: 0.75,
+                buffer: 0.3,
+                merge: 0.75,
+                wall_band: 0.3,
+                near_wall: 1.05,
+            },
             max_traverse: 4.0,
             d_min: 0.2,
             d_max: 7.0,
@@ -261,8 +308,8 @@ mod tests {
         assert!(near.graph.points.len() < full.graph.points.len());
         let comp = near.graph.component(near.starts[0] as usize);
         assert!(comp.iter().all(|c| *c), "every kept waypoint is reachable from the start");
-        // Safety buffer b = floor(0.5 / 0.3) + 1 = 2 px (W2).
-        assert_eq!(full.buffer, 2.0);
+        // Safety buffer 0.3 m at 0.15 m/px.
+        assert!((full.buffer - 2.0).abs() < 1e-12);
     }
 
     #[test]
@@ -272,5 +319,22 @@ mod tests {
         let p = WorldParams { max_traverse: 0.1, scale: 0.2, starts: vec![(1.5, 1.5)], ..params(WaypointSet::Full) };
         let e = World::build(&map, &p, 1).err().expect("edges longer than 0.1 m are removed");
         assert!(e.to_string().contains("reaches only"), "{e}");
+    }
+
+    #[test]
+    fn the_papers_values_reach_every_room_of_the_ring_office() {
+        // 000's hallway of 2.5 m on the ring office: 1.5 m doors are narrower than twice the
+        // 1.25 m buffer, so the doors need passage waypoints for the rooms to stay in the graph.
+        let map = preset("office-ring").unwrap();
+        let section: crate::waypoint::config::WaypointSection = toml::from_str("hallway = 2.5\n").unwrap();
+        for step in [crate::waypoint::geometry::GridStep::HalfHallway, crate::waypoint::geometry::GridStep::Hallway] {
+            let w = crate::waypoint::config::WaypointSection { grid_step: step, ..section.clone() };
+            let geometry = crate::waypoint::geometry::Geometry::resolve(&w, "e.toml", &map).unwrap();
+            let p = WorldParams { geometry, hallway: 2.5, starts: vec![(8.75, 8.75)], ..params(WaypointSet::Full) };
+            let world = World::build(&map, &p, 1).unwrap();
+            assert_eq!(world.dropped, 0, "{step:?}");
+            assert!(world.passage_fills > 0, "{step:?}");
+            assert!(world.reachable_walls > 0.99, "{step:?}: {}", world.reachable_walls);
+        }
     }
 }
