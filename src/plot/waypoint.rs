@@ -154,8 +154,8 @@ impl Figure for GraphFigure<'_> {
             (dot, format!("waypoint ({})", self.points.len())),
             (EDGE, format!("edge ({})", self.edges.len())),
             (agent_colour(1), "start".to_string()),
-            (BAND, "wall band, seen from the graph".to_string()),
-            (LOST, "wall band no edge sees".to_string()),
+            (BAND, "wall band in view".to_string()),
+            (LOST, "wall band out of view".to_string()),
             (OBSTACLE, "obstacle".to_string()),
         ];
         super::legend(&side, &entries, 60)
