@@ -52,6 +52,12 @@ fn raster_chart<'a, DB: DrawingBackend>(
     Ok(chart)
 }
 
+/// Size of a map figure: the map 840 px wide at equal scale beside a legend column.
+fn map_figure_size(map: &WorkMap) -> (u32, u32) {
+    let aspect = map.height as f64 / map.width as f64;
+    (1100, (840.0 * aspect) as u32 + 110)
+}
+
 /// Paths over the map, one colour per agent, with loop closures marked.
 pub struct PathsFigure<'a> {
     /// The raster.
@@ -68,8 +74,7 @@ pub struct PathsFigure<'a> {
 
 impl Figure for PathsFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let aspect = self.map.height as f64 / self.map.width as f64;
-        (1100, (840.0 * aspect) as u32 + 110)
+        map_figure_size(self.map)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let (area, side) = root.split_horizontally(860);
@@ -123,8 +128,7 @@ pub struct GraphFigure<'a> {
 
 impl Figure for GraphFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let aspect = self.map.height as f64 / self.map.width as f64;
-        (1100, (840.0 * aspect) as u32 + 110)
+        map_figure_size(self.map)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         const BAND: RGBColor = RGBColor(215, 230, 245);
@@ -176,8 +180,7 @@ pub struct CoverageFigure<'a> {
 
 impl Figure for CoverageFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let aspect = self.map.height as f64 / self.map.width as f64;
-        (1100, (840.0 * aspect) as u32 + 110)
+        map_figure_size(self.map)
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         const SEEN: RGBColor = RGBColor(120, 200, 120);

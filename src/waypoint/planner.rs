@@ -250,11 +250,7 @@ impl Planner for WaypointConfig {
             },
             &dir.join("paths"),
         )?;
-        let mut reach = Union::new(world.traversals.words);
-        for t in world.traversals.edges.iter().flatten() {
-            reach.add(&t.depart);
-            reach.add(&t.arrive);
-        }
+        let reach = world.traversals.all_views();
         let band = world.map.band(world.band_px);
         let g = &world.graph;
         let edges = (0..g.points.len())

@@ -66,6 +66,16 @@ pub struct Traversals {
 }
 
 impl Traversals {
+    /// The union of every traversal's views: what the whole graph can see.
+    pub fn all_views(&self) -> Union {
+        let mut all = Union::new(self.words);
+        for t in self.edges.iter().flatten() {
+            all.add(&t.depart);
+            all.add(&t.arrive);
+        }
+        all
+    }
+
     /// Computes every traversal's data.
     pub fn compute(map: &WorkMap, graph: &Graph, sensing: &Sensing) -> Self {
         use crate::coverage::raster::{RasterGrid, for_each_swept_cell};

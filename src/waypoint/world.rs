@@ -2,7 +2,7 @@
 //! traversal views, wall band and start waypoints, built once per map and parameter set.
 
 use super::graph::Graph;
-use super::precompute::{Sensing, Traversals, Union, bitset};
+use super::precompute::{Sensing, Traversals, bitset};
 use super::raster::WorkMap;
 use super::{passages, waypoints};
 use crate::coverage::camera::Camera;
@@ -203,12 +203,7 @@ impl World {
 /// The share of the band (`band`, `band_count` pixels) seen by at least one view of any
 /// traversal.
 fn reachable_fraction(tr: &Traversals, band: &[u64], band_count: u64) -> f64 {
-    let mut all = Union::new(tr.words);
-    for t in tr.edges.iter().flatten() {
-        all.add(&t.depart);
-        all.add(&t.arrive);
-    }
-    all.counts(band).1 as f64 / band_count.max(1) as f64
+    tr.all_views().counts(band).1 as f64 / band_count.max(1) as f64
 }
 
 /// Adds back removed waypoints on shortest paths of the full graph until `keep` is connected
