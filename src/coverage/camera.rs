@@ -1,6 +1,7 @@
 //! The camera coverage model of 000 (§II-C.1, eq. 1, Fig. 4; spec §5, W8–W9): a forward
 //! camera with depth range `[d_min, d_max]` and horizontal field of view `θ_fov`, split into
-//! `m` angular sections; each section sees up to its first obstacle.
+//! `m` angular sections; each section sees up to its first obstacle. [`ViewShape::Fan`] draws
+//! the view as the authors' public code does (a polygon through the section depths).
 
 /// Camera parameters in pixel units (ranges) and radians.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -13,6 +14,25 @@ pub struct Camera {
     pub fov: f64,
     /// `m`, the number of sections.
     pub sections: usize,
+    /// How the section depths become a viewed area.
+    pub shape: ViewShape,
+}
+
+/// How a pose's section depths `d_view,i` (eq. 1) become the set of viewed pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ViewShape {
+    /// 000 eq. 1 as written (spec W9): a pixel is seen when it lies in a section, at a range
+    /// between `d_min` and that section's first obstacle.
+    #[default]
+    Sections,
+    /// The authors' code (`mappy.py`, frustum precomputation): one ray per section at the
+    /// section's first bearing with the section's depth, and the filled polygon through the ray
+    /// ends and the two `d_min` points of the outer rays. Between two rays the edge is a straight
+    /// chord instead of an arc cut at each section's nearest obstacle, the bearings past the last
+    /// ray (one section's width) are not seen, and where neighbouring depths differ (a door, a
+    /// corner) a chord can cross a wall.
+    Fan,
 }
 
 /// `wrap(θ)` into (−π, π].
@@ -71,6 +91,10 @@ impl Camera {
             }
         }
         let limit: Vec<f64> = nearest.iter().map(|&o| d_view(self.d_max, self.d_min, o)).collect();
+        if self.shape == ViewShape::Fan {
+            self.fill_fan(width, height, &occluded, pos, psi, &limit, visible);
+            return;
+        }
         for r in (pr - reach).max(0)..=(pr + reach).min(height as i64 - 1) {
             for c in (pc - reach).max(0)..=(pc + reach).min(width as i64 - 1) {
                 if occluded(c, r) {
@@ -89,12 +113,67 @@ impl Camera {
     }
 }
 
+impl Camera {
+    /// The polygon of [`ViewShape::Fan`] for depths `limit` (px): ray ends at bearings
+    /// `−θ_fov/2 + i·θ_fov/m`, then the `d_min` points of the last and first rays.
+    pub fn fan_polygon(&self, pos: (f64, f64), psi: f64, limit: &[f64]) -> Vec<(f64, f64)> {
+        let step = self.fov / self.sections as f64;
+        let at = |bearing: f64, range: f64| {
+            let a = psi - 0.5 * self.fov + bearing;
+            (pos.0 + range * a.cos(), pos.1 + range * a.sin())
+        };
+        let mut poly: Vec<(f64, f64)> = limit.iter().enumerate().map(|(i, &d)| at(i as f64 * step, d)).collect();
+        poly.push(at((self.sections - 1) as f64 * step, self.d_min));
+        poly.push(at(0.0, self.d_min));
+        poly
+    }
+
+    /// Calls `visible` for every explorable pixel whose centre lies inside the fan polygon
+    /// (even–odd rule, one scanline per pixel row).
+    #[allow(clippy::too_many_arguments)]
+    fn fill_fan(
+        &self,
+        width: usize,
+        height: usize,
+        occluded: &impl Fn(i64, i64) -> bool,
+        pos: (f64, f64),
+        psi: f64,
+        limit: &[f64],
+        mut visible: impl FnMut(usize),
+    ) {
+        let poly = self.fan_polygon(pos, psi, limit);
+        let (lo, hi) = poly.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), p| (l.min(p.1), h.max(p.1)));
+        let mut xs = Vec::with_capacity(poly.len());
+        let rows = (lo.floor().max(0.0) as i64)..=(hi.ceil().min(height as f64 - 1.0) as i64);
+        for r in rows {
+            let y = r as f64 + 0.5;
+            xs.clear();
+            for (k, a) in poly.iter().enumerate() {
+                let b = poly[(k + 1) % poly.len()];
+                if (a.1 <= y) != (b.1 <= y) {
+                    xs.push(a.0 + (y - a.1) * (b.0 - a.0) / (b.1 - a.1));
+                }
+            }
+            xs.sort_by(f64::total_cmp);
+            for span in xs.chunks_exact(2) {
+                let first = (span[0] - 0.5).ceil().max(0.0) as i64;
+                let last = ((span[1] - 0.5).floor()).min(width as f64 - 1.0) as i64;
+                for c in first..=last {
+                    if !occluded(c, r) {
+                        visible(r as usize * width + c as usize);
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     fn cam() -> Camera {
-        Camera { d_min: 1.0, d_max: 20.0, fov: 60f64.to_radians(), sections: 7 }
+        Camera { d_min: 1.0, d_max: 20.0, fov: 60f64.to_radians(), sections: 7, shape: ViewShape::Sections }
     }
 
     #[test]
@@ -124,5 +203,42 @@ mod tests {
         assert!(back.iter().all(|&i| i % w <= 10));
         // Nothing closer than d_min.
         assert!(seen.iter().all(|&i| ((i % w) as f64 + 0.5 - 10.5).hypot((i / w) as f64 + 0.5 - 20.5) >= 1.0));
+    }
+
+    #[test]
+    fn the_fan_spans_from_the_first_ray_to_the_last_ray() {
+        // Open 60 x 60 raster, camera at (20.5, 20.5) facing +x, 60 deg in 7 sections: the rays
+        // stand at -30, -21.4, ..., +21.4 deg, so bearing +24 deg (pixel (29, 24), range 9.85) is
+        // outside the fan although inside the field of view; bearing -24 deg is inside both.
+        let (w, h) = (60usize, 60usize);
+        let occ = |c: i64, r: i64| c < 0 || r < 0 || c >= w as i64 || r >= h as i64;
+        let fan = Camera { shape: ViewShape::Fan, ..cam() };
+        let seen = |camera: &Camera| {
+            let mut v = Vec::new();
+            camera.view(w, h, occ, (20.5, 20.5), 0.0, |i| v.push(i));
+            v
+        };
+        let (by_sections, by_fan) = (seen(&cam()), seen(&fan));
+        assert!(by_sections.contains(&(24 * w + 29)) && !by_fan.contains(&(24 * w + 29)));
+        assert!(by_sections.contains(&(16 * w + 29)) && by_fan.contains(&(16 * w + 29)));
+        // Nothing nearer than d_min = 1 px or farther than d_max = 20 px.
+        for i in &by_fan {
+            let d = ((i % w) as f64 - 20.0).hypot((i / w) as f64 - 20.0);
+            assert!((0.99..=20.01).contains(&d), "pixel {i} at {d}");
+        }
+    }
+
+    #[test]
+    fn fan_polygon_vertices_by_hand() {
+        // Two sections over 90 deg at the origin facing +x: rays at -45 and 0 deg with depths
+        // 10 and 4, then the d_min = 1 points of the last ray (0 deg) and the first (-45 deg).
+        let c = Camera { d_min: 1.0, d_max: 10.0, fov: 90f64.to_radians(), sections: 2, shape: ViewShape::Fan };
+        let poly = c.fan_polygon((0.0, 0.0), 0.0, &[10.0, 4.0]);
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let expected = [(10.0 * h, -10.0 * h), (4.0, 0.0), (1.0, 0.0), (h, -h)];
+        assert_eq!(poly.len(), expected.len());
+        for (p, e) in poly.iter().zip(expected) {
+            assert!((p.0 - e.0).abs() < 1e-12 && (p.1 - e.1).abs() < 1e-12, "{p:?} vs {e:?}");
+        }
     }
 }

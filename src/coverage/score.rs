@@ -183,6 +183,8 @@ impl CameraLayer {
             d_max: spec.d_max / spec.scale,
             fov: spec.fov_deg.to_radians(),
             sections: spec.sections,
+            // The common scorer measures every planner with eq. 1 as written.
+            shape: crate::coverage::camera::ViewShape::Sections,
         };
         Self { map: wm, camera, band, reach, counts }
     }

@@ -151,8 +151,10 @@ fn office_large() -> Result<GridMap, MapError> {
 }
 
 /// A floor plan of the kind 000 plans on (a university building floor), 60 m × 40 m at
-/// 0.15 m/px: a 2.5 m ring corridor around a central block (stairs and shafts, not mapped),
-/// rooms on both sides of the corridor (14 outside, 8 inside, 1.5 m doors), 0.3 m walls.
+/// 0.15 m/px: a 2.5 m ring corridor around a central block, rooms on both sides of the corridor
+/// (three outside along each long side, two inside, 1.5 m doors), 0.3 m walls. As in 000
+/// §II-B.1, space that is not to be mapped (stairwells and services at the short ends, the
+/// block's core) is segmented as occluded, which leaves about 1 400 m² of explorable floor.
 /// Nobody's data: drawn here from these rules.
 fn office_ring() -> Result<GridMap, MapError> {
     const COLS: usize = 400;
@@ -162,59 +164,33 @@ fn office_ring() -> Result<GridMap, MapError> {
     use CellState::{Free, Occupied};
     let mut cells = vec![Occupied; COLS * ROWS];
     let f = |cells: &mut Vec<CellState>, rect: [f64; 4], s: CellState| fill(cells, COLS, RES, rect, s);
-    f(&mut cells, [0.3, 0.3, 59.7, TOP], Free);
-    // The ring corridor [7.5, 52.5] × [7.5, 32.5] less [10, 50] × [10, 30], walled on both sides.
-    f(&mut cells, [7.2, 7.2, 52.8, 32.8], Occupied);
+    // Outer rooms: the long sides' strips [7.5, 52.5] × [0.3, 7.2] and [7.5, 52.5] × [32.8, TOP].
+    f(&mut cells, [7.5, 0.3, 52.5, 7.2], Free);
+    f(&mut cells, [7.5, 32.8, 52.5, TOP], Free);
+    // The ring corridor [7.5, 52.5] × [7.5, 32.5] less [10, 50] × [10, 30].
     f(&mut cells, [7.5, 7.5, 52.5, 32.5], Free);
     f(&mut cells, [10.0, 10.0, 50.0, 30.0], Occupied);
-    f(&mut cells, [10.3, 10.3, 49.7, 29.7], Free);
-    // The central block.
-    f(&mut cells, [16.0, 16.0, 44.0, 24.0], Occupied);
-    // Outer rooms: three on each short side (full depth), four along each long side.
-    for x in [7.2, 52.5] {
+    // Inner rooms along the block's long sides; its core and short ends stay occluded.
+    f(&mut cells, [10.3, 10.3, 49.7, 16.0], Free);
+    f(&mut cells, [10.3, 24.0, 49.7, 29.7], Free);
+    for x in [22.35, 37.35] {
         f(&mut cells, [x, 0.3, x + 0.3, 7.2], Occupied);
         f(&mut cells, [x, 32.8, x + 0.3, TOP], Occupied);
     }
-    for y in [13.5, 26.5] {
-        f(&mut cells, [0.3, y, 7.2, y + 0.3], Occupied);
-        f(&mut cells, [52.8, y, 59.7, y + 0.3], Occupied);
-    }
-    for x in [18.75, 30.0, 41.25] {
-        f(&mut cells, [x, 0.3, x + 0.3, 7.2], Occupied);
-        f(&mut cells, [x, 32.8, x + 0.3, TOP], Occupied);
-    }
-    // Inner rooms: three along each long side of the block, one at each short side.
-    for x in [22.85, 36.85] {
-        f(&mut cells, [x, 10.3, x + 0.3, 16.0], Occupied);
-        f(&mut cells, [x, 24.0, x + 0.3, 29.7], Occupied);
-    }
-    for x in [10.3, 44.0] {
-        f(&mut cells, [x, 15.7, x + 5.7, 16.0], Occupied);
-        f(&mut cells, [x, 24.0, x + 5.7, 24.3], Occupied);
-    }
+    f(&mut cells, [29.85, 10.3, 30.15, 16.0], Occupied);
+    f(&mut cells, [29.85, 24.0, 30.15, 29.7], Occupied);
     // Doors, 1.5 m, centred on each room's corridor wall.
-    let door = |cells: &mut Vec<CellState>, horizontal: bool, centre: f64, wall: f64| {
-        let rect = if horizontal {
-            [centre - 0.75, wall, centre + 0.75, wall + 0.3]
-        } else {
-            [wall, centre - 0.75, wall + 0.3, centre + 0.75]
-        };
-        f(cells, rect, Free);
+    let door = |cells: &mut Vec<CellState>, centre: f64, wall: f64| {
+        f(cells, [centre - 0.75, wall, centre + 0.75, wall + 0.3], Free);
     };
-    for x in [13.1, 24.5, 35.8, 47.0] {
-        door(&mut cells, true, x, 7.2);
-        door(&mut cells, true, x, 32.5);
+    for x in [15.0, 30.0, 45.0] {
+        door(&mut cells, x, 7.2);
+        door(&mut cells, x, 32.5);
     }
-    for y in [10.0, 20.0, 30.0] {
-        door(&mut cells, false, y, 7.2);
-        door(&mut cells, false, y, 52.5);
+    for x in [20.0, 40.0] {
+        door(&mut cells, x, 10.0);
+        door(&mut cells, x, 29.7);
     }
-    for x in [16.5, 30.0, 43.4] {
-        door(&mut cells, true, x, 10.0);
-        door(&mut cells, true, x, 29.7);
-    }
-    door(&mut cells, false, 20.0, 10.0);
-    door(&mut cells, false, 20.0, 49.7);
     GridMap::new("office-ring", COLS, ROWS, RES, Point::origin(), cells)
 }
 
@@ -257,9 +233,13 @@ mod tests {
             assert!(m.is_free_point(Point::new(x, y)), "corridor at ({x}, {y})");
         }
         assert!(!m.is_free_point(Point::new(30.0, 20.0)), "central block");
-        assert!(m.is_free_point(Point::new(13.1, 7.35)), "door of the first outer room");
-        assert!(!m.is_free_point(Point::new(11.0, 7.35)), "corridor wall beside it");
-        assert!(m.is_free_point(Point::new(10.15, 20.0)), "door of the left inner room");
+        assert!(!m.is_free_point(Point::new(4.0, 20.0)), "services at the short end");
+        assert!(m.is_free_point(Point::new(15.0, 7.35)), "door of the first outer room");
+        assert!(!m.is_free_point(Point::new(13.0, 7.35)), "corridor wall beside it");
+        assert!(m.is_free_point(Point::new(20.0, 10.15)), "door of the first inner room");
+        assert!(m.is_free_point(Point::new(15.0, 3.0)), "inside the first outer room");
+        // About 1 400 m² of explorable floor (62 500 px of 0.0225 m²).
+        assert!((60_000..65_000).contains(&m.free_count()), "{}", m.free_count());
     }
 
     #[test]

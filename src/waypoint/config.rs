@@ -47,6 +47,8 @@ pub struct WaypointSection {
     pub fov_deg: f64,
     /// Coverage sections `m`.
     pub sections: usize,
+    /// `sections` (000 eq. 1, default) or `fan` (the authors' code's polygon view).
+    pub view_shape: crate::coverage::camera::ViewShape,
     /// `full` or `near_wall`.
     pub waypoint_set: super::world::WaypointSet,
     /// `camera` (000) or `footprint`: what the coverage objective measures; the footprint is
@@ -123,6 +125,7 @@ impl Default for WaypointSection {
             d_max: 7.0,
             fov_deg: 69.4,
             sections: 15,
+            view_shape: crate::coverage::camera::ViewShape::Sections,
             waypoint_set: super::world::WaypointSet::Full,
             objective: super::world::ObjectiveKind::Camera,
             agents: 1,
@@ -280,6 +283,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
             d_max: w.d_max,
             fov_deg: w.fov_deg,
             sections: w.sections,
+            view_shape: w.view_shape,
             set: w.waypoint_set,
             starts,
             objective: super::world::Objective::Camera,

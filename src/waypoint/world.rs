@@ -5,7 +5,7 @@ use super::graph::Graph;
 use super::precompute::{Sensing, Traversals, bitset};
 use super::raster::WorkMap;
 use super::{passages, waypoints};
-use crate::coverage::camera::Camera;
+use crate::coverage::camera::{Camera, ViewShape};
 use crate::map::GridMap;
 
 /// Which waypoints are used (spec §3.5).
@@ -39,6 +39,8 @@ pub struct WorldParams {
     pub fov_deg: f64,
     /// `m` sections.
     pub sections: usize,
+    /// How section depths become a view.
+    pub view_shape: ViewShape,
     /// Waypoint set.
     pub set: WaypointSet,
     /// Entry positions (m), one shared or one per agent.
@@ -171,6 +173,7 @@ impl World {
             d_max: p.d_max / p.scale,
             fov: p.fov_deg.to_radians(),
             sections: p.sections,
+            shape: p.view_shape,
         };
         let sensing = match p.objective {
             Objective::Camera => Sensing::Camera(camera),
@@ -266,6 +269,7 @@ mod tests {
             d_max: 7.0,
             fov_deg: 69.4,
             sections: 15,
+            view_shape: ViewShape::Sections,
             set,
             starts: vec![(2.0, 2.0)],
             objective: Objective::Camera,
@@ -318,8 +322,9 @@ mod tests {
 
     #[test]
     fn the_papers_values_reach_every_room_of_the_ring_office() {
-        // 000's hallway of 2.5 m on the ring office: 1.5 m doors are narrower than twice the
-        // 1.25 m buffer, so the doors need passage waypoints for the rooms to stay in the graph.
+        // 000's hallway of 2.5 m on the ring office. The 1.5 m doors are narrower than twice the
+        // 1.25 m buffer; at the driver's 2.5 m grid no grid point falls in a door, so the rooms
+        // stay in the graph only through passage waypoints.
         let map = preset("office-ring").unwrap();
         let section: crate::waypoint::config::WaypointSection = toml::from_str("hallway = 2.5\n").unwrap();
         for step in [crate::waypoint::geometry::GridStep::HalfHallway, crate::waypoint::geometry::GridStep::Hallway] {
@@ -328,8 +333,10 @@ mod tests {
             let p = WorldParams { geometry, hallway: 2.5, starts: vec![(8.75, 8.75)], ..params(WaypointSet::Full) };
             let world = World::build(&map, &p, 1).unwrap();
             assert_eq!(world.dropped, 0, "{step:?}");
-            assert!(world.passage_fills > 0, "{step:?}");
             assert!(world.reachable_walls > 0.99, "{step:?}: {}", world.reachable_walls);
+            if step == crate::waypoint::geometry::GridStep::Hallway {
+                assert!(world.passage_fills > 0, "{step:?}");
+            }
         }
     }
 }
