@@ -9,6 +9,7 @@
 
 pub mod cli;
 pub mod coverage;
+pub mod fleet;
 pub mod fuzz_entry;
 pub mod ga;
 pub mod geom;

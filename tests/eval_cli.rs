@@ -204,3 +204,40 @@ fn patterns_finish_on_a_slam_map_and_report_its_pockets() {
         assert!(v["common"]["reachable_cells"].as_u64().unwrap() < v["common"]["free_cells"].as_u64().unwrap());
     }
 }
+
+#[test]
+fn a_fleet_plan_is_scored_per_robot_and_bad_fleets_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |name: &str| dir.path().join(name).display().to_string();
+    std::fs::write(
+        d("fleet.toml"),
+        "[robot]\nspeed = 0.2\n[[robots]]\nname = \"small\"\nwidth = 0.4\nstart = [2.0, 3.0]\n\
+         [[robots]]\nname = \"large\"\nwidth = 0.8\nspeed = 0.4\nstart = [4.0, 3.0]\n",
+    )
+    .unwrap();
+    std::fs::write(d("plan.csv"), "x_m,y_m,agent\n2,3,0\n6,3,0\n4,3,1\n8,3,1\n").unwrap();
+    let out = covga(&["eval", "--path", &d("plan.csv"), "--fleet", &d("fleet.toml"), "--json", "--out", &d("out")]);
+    let v = json_of(&out);
+    let f = &v["fleet"];
+    assert_eq!(f["robots"], serde_json::json!(["small", "large"]));
+    // Hand-counted in fleet::metrics: 40 and 80 cells, 20 shared, union 100.
+    assert_eq!((num(f, "union_cells"), num(f, "overlap_cells")), (100.0, 20.0));
+    assert_eq!((num(f, "makespan_s"), num(f, "balance")), (20.0, 2.0));
+    assert!((num(f, "t_final") - 0.5).abs() < 1e-9);
+    let metrics: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("out/metrics.json")).unwrap()).unwrap();
+    assert_eq!(metrics["fleet"], *f);
+
+    std::fs::write(d("inside.toml"), "[[robots]]\nname = \"a\"\n[[robots]]\nname = \"b\"\nstart = [0.5, 3.0]\n")
+        .unwrap();
+    expect_input_error(
+        &["eval", "--path", &d("plan.csv"), "--fleet", &d("inside.toml"), "--out", &d("o2")],
+        "robots[1].start (robot \"b\")",
+    );
+    std::fs::write(d("one.toml"), "[[robots]]\nname = \"a\"\n").unwrap();
+    expect_input_error(
+        &["eval", "--path", &d("plan.csv"), "--fleet", &d("one.toml"), "--out", &d("o3")],
+        "2 paths for a fleet of 1 robots",
+    );
+    expect_input_error(&["eval", "--path", &d("plan.csv"), "--fleet", &d("missing.toml")], "missing.toml");
+}

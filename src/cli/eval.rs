@@ -43,6 +43,11 @@ pub struct EvalArgs {
     /// Score this path file instead: CSV with header x_m,y_m (optional agent column).
     #[arg(long)]
     path: Option<PathBuf>,
+    /// Score the path file as a fleet's plan: a TOML file of `[[robots]]` entries (name, width,
+    /// speed, rot_speed, start, end; defaults from its `[robot]` and `[stations]`), one robot per
+    /// path of the file, in order. Adds the fleet metrics (union, overlap, makespan, balance).
+    #[arg(long, requires = "path")]
+    fleet: Option<PathBuf>,
     /// Robot width R_width in metres.
     #[arg(long, default_value_t = 0.6)]
     width: f64,
@@ -115,6 +120,23 @@ struct Report<'a> {
     /// Their area in m².
     #[serde(skip_serializing_if = "Option::is_none")]
     pocket_area_m2: Option<f64>,
+    /// Fleet metrics (with `--fleet`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fleet: Option<crate::fleet::metrics::FleetScore>,
+}
+
+/// Reads and validates `--fleet` and scores the plan with it.
+fn fleet_score(
+    file: &std::path::Path,
+    map: &crate::map::GridMap,
+    paths: &[Vec<crate::geom::Point>],
+) -> Result<crate::fleet::metrics::FleetScore, CliError> {
+    let origin = file.display().to_string();
+    let text = std::fs::read_to_string(file).map_err(|e| CliError::Input(format!("{origin}: cannot read: {e}")))?;
+    let fleet = crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)?;
+    crate::fleet::metrics::FleetScorer::new(map, &fleet)
+        .score(paths)
+        .map_err(|m| CliError::Input(format!("{origin}: {m} (one path per robot, by the `agent` column)")))
 }
 
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
@@ -164,6 +186,10 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             (vec![path], name)
         }
     };
+    let fleet = match &a.fleet {
+        Some(file) => Some(fleet_score(file, &map, &paths)?),
+        None => None,
+    };
     let grid = CoverageGrid::new(&map);
     let metrics = robot.measure_plan(&grid, &mut SweepScratch::new(&grid), &paths);
     let sc = score(&metrics, &robot, map.resolution(), projection);
@@ -183,6 +209,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         common,
         pockets: pockets.map(|p| p.0),
         pocket_area_m2: pockets.map(|p| p.1),
+        fleet,
     };
     let json = serde_json::to_string_pretty(&report).map_err(CliError::internal)?;
     std::fs::create_dir_all(&a.out)
@@ -238,5 +265,22 @@ fn print_table(r: &Report) {
     ];
     for (k, v) in rows {
         println!("{k:<26} {v}");
+    }
+    if let Some(f) = &r.fleet {
+        println!("fleet ({} robots: {})", f.robots.len(), f.robots.join(", "));
+        let rows = [
+            (
+                "union cells",
+                format!("{} ({:.4} of free, {:.4} of reachable)", f.union_cells, f.union_free, f.union_reach),
+            ),
+            ("overlap cells", format!("{} ({:.4} of the union)", f.overlap_cells, f.overlap_fraction)),
+            ("robot times [s]", f.robot_time_s.iter().map(|t| format!("{t:.1}")).collect::<Vec<_>>().join(", ")),
+            ("makespan [s]", format!("{:.1}", f.makespan_s)),
+            ("balance (max/min time)", f.balance.map_or("-".into(), |b| format!("{b:.3}"))),
+            ("fleet cov_final / t_final", format!("{:.6} / {:.6}", f.cov_final, f.t_final)),
+        ];
+        for (k, v) in rows {
+            println!("  {k:<26} {v}");
+        }
     }
 }

@@ -177,6 +177,30 @@ impl SweepScratch {
         counts
     }
 
+    /// Sweeps one path per robot, each with its own width, into one shared visit grid, in
+    /// order, and returns the fleet's counts; `per_path[k]` receives path `k`'s share (its
+    /// crossings include the cells earlier paths swept). The cost is the sum of the robots'
+    /// swept cells: there is no per-robot copy of the grid.
+    pub fn sweep_fleet(
+        &mut self,
+        grid: &CoverageGrid,
+        paths: &[Vec<Point>],
+        widths: &[f64],
+        per_path: &mut [SweepCounts],
+    ) -> SweepCounts {
+        assert!(paths.len() == widths.len() && paths.len() == per_path.len(), "one width and one count per path");
+        self.reset();
+        let mut total = SweepCounts::default();
+        for ((p, &w), share) in paths.iter().zip(widths).zip(per_path.iter_mut()) {
+            *share = SweepCounts::default();
+            self.add_path(grid, p, w, share);
+            total.cov_pix += share.cov_pix;
+            total.cross_pix += share.cross_pix;
+            total.obj_pix += share.obj_pix;
+        }
+        total
+    }
+
     fn add_path(&mut self, grid: &CoverageGrid, points: &[Point], width: f64, counts: &mut SweepCounts) {
         // Plain slices, so the loop keeps their addresses in registers.
         let (visits, touched) = (&mut self.visits[..], &mut self.touched[..]);

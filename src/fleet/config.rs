@@ -1,0 +1,167 @@
+//! `[[robots]]` entries of an experiment (or fleet) file and their validation into a [`Fleet`].
+//! Every field but the name defaults to the file's `[robot]` and `[stations]`.
+
+use super::{Fleet, Robot};
+use crate::coverage::Footprint;
+use crate::geom::Point;
+use crate::map::GridMap;
+use crate::study::config::{ConfigError, check_range};
+use serde::{Deserialize, Serialize};
+
+/// Most robots a fleet may hold (a study of fleets goes to 5; the bound keeps a typo such as a
+/// pasted table from allocating one visit map per row).
+pub const MAX_ROBOTS: usize = 64;
+
+/// One `[[robots]]` entry as written.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RobotEntry {
+    /// Name (required, unique in the fleet).
+    pub name: String,
+    /// `R_width` in metres (default `[robot].width`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// `R_speed` in m/s (default `[robot].speed`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub speed: Option<f64>,
+    /// `R_rot` in rad/s (default `[robot].rot_speed`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rot_speed: Option<f64>,
+    /// Start station in metres (default `[stations].start`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub start: Option<[f64; 2]>,
+    /// End station in metres (default: this robot's start).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub end: Option<[f64; 2]>,
+}
+
+/// Validates `entries` (read from `origin`) into a fleet on `map`, with `robot` and `start`
+/// as the defaults. Each error names the entry (`robots[2]`, and the robot's name) and its key.
+pub fn validate(
+    entries: &[RobotEntry],
+    robot: Footprint,
+    start: [f64; 2],
+    origin: &str,
+    map: &GridMap,
+) -> Result<Fleet, ConfigError> {
+    if entries.is_empty() {
+        return Err(ConfigError::new(origin, "robots", "is empty: a fleet needs at least one [[robots]] entry"));
+    }
+    if entries.len() > MAX_ROBOTS {
+        return Err(ConfigError::new(
+            origin,
+            "robots",
+            format!("has {} entries: allowed at most {MAX_ROBOTS}", entries.len()),
+        ));
+    }
+    let mut robots: Vec<Robot> = Vec::with_capacity(entries.len());
+    for (k, e) in entries.iter().enumerate() {
+        let key = |field: &str| format!("robots[{k}].{field}");
+        if e.name.trim().is_empty() {
+            return Err(ConfigError::new(origin, &key("name"), "is empty: every robot needs a name"));
+        }
+        if let Some(j) = robots.iter().position(|r| r.name == e.name) {
+            return Err(ConfigError::new(
+                origin,
+                &key("name"),
+                format!("= \"{}\" is already the name of robots[{j}]: names must be distinct", e.name),
+            ));
+        }
+        let named = |field: &str| format!("{} (robot \"{}\")", key(field), e.name);
+        let width = e.width.unwrap_or(robot.width);
+        let speed = e.speed.unwrap_or(robot.speed);
+        let rot_speed = e.rot_speed.unwrap_or(robot.rot_speed);
+        check_range(origin, &named("width"), width, 1e-6, 1e6, "(0, 1e6] m")?;
+        check_range(origin, &named("speed"), speed, 1e-9, 1e6, "(0, 1e6] m/s")?;
+        check_range(origin, &named("rot_speed"), rot_speed, 0.0, 1e6, "[0, 1e6] rad/s (0 = no rotation cost)")?;
+        let footprint = Footprint { width, speed, rot_speed };
+        footprint.check_fits(map).map_err(|m| ConfigError::new(origin, &named("width"), m))?;
+        let s = e.start.unwrap_or(start);
+        let s = Point::new(s[0], s[1]);
+        let end = e.end.map_or(s, |p| Point::new(p[0], p[1]));
+        map.check_station(s, "the start").map_err(|m| ConfigError::new(origin, &named("start"), m))?;
+        map.check_station(end, "the end").map_err(|m| ConfigError::new(origin, &named("end"), m))?;
+        robots.push(Robot { name: e.name.clone(), footprint, start: s, end });
+    }
+    Ok(Fleet { robots })
+}
+
+/// A fleet file for `covga eval --fleet`: `[robot]` defaults, `[stations]` defaults and the
+/// `[[robots]]` entries, as in an experiment file.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FleetFile {
+    /// Defaults of the robots' widths and speeds.
+    #[serde(default)]
+    pub robot: crate::study::experiment::RobotSection,
+    /// Default start station.
+    #[serde(default)]
+    pub stations: crate::study::experiment::StationsSection,
+    /// The robots.
+    #[serde(default)]
+    pub robots: Vec<RobotEntry>,
+}
+
+impl FleetFile {
+    /// Parses `text` (from `origin`) and validates it on `map`.
+    pub fn parse(text: &str, origin: &str, map: &GridMap) -> Result<Fleet, ConfigError> {
+        let file: FleetFile = toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))?;
+        let r = file.robot;
+        validate(
+            &file.robots,
+            Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed },
+            file.stations.start,
+            origin,
+            map,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+
+    fn parse(text: &str) -> Result<Fleet, ConfigError> {
+        FleetFile::parse(text, "fleet.toml", &preset("thesis-1").unwrap())
+    }
+
+    #[test]
+    fn defaults_come_from_robot_and_stations() {
+        let f = parse(
+            "[robot]\nwidth = 0.5\nspeed = 0.25\n[stations]\nstart = [2.0, 2.0]\n\
+             [[robots]]\nname = \"a\"\n[[robots]]\nname = \"b\"\nwidth = 0.9\nstart = [8.0, 8.0]\nend = [5.0, 5.0]\n",
+        )
+        .unwrap();
+        let [a, b] = f.robots() else { panic!("two robots") };
+        assert_eq!((a.footprint.width, a.footprint.speed, a.start, a.end), (0.5, 0.25, Point::new(2.0, 2.0), a.start));
+        assert_eq!((b.footprint.width, b.footprint.speed), (0.9, 0.25));
+        assert_eq!((b.start, b.end), (Point::new(8.0, 8.0), Point::new(5.0, 5.0)));
+        assert!(!f.is_homogeneous());
+        assert!((f.sweep_rate() - (0.5 * 0.25 + 0.9 * 0.25)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bad_entries_name_the_robot_and_key() {
+        // (file, text every message must contain)
+        let cases = [
+            ("", "robots"),
+            ("[[robots]]\nname = \"\"\n", "robots[0].name"),
+            ("[[robots]]\nname = \"a\"\n[[robots]]\nname = \"a\"\n", "robots[1].name"),
+            ("[[robots]]\nname = \"x\"\nwidth = 0.0\n", "robots[0].width (robot \"x\")"),
+            ("[[robots]]\nname = \"x\"\nwidth = 50.0\n", "wider than the map"),
+            ("[[robots]]\nname = \"x\"\nspeed = -1.0\n", "robots[0].speed"),
+            ("[[robots]]\nname = \"x\"\nrot_speed = nan\n", "robots[0].rot_speed"),
+            (
+                "[[robots]]\nname = \"x\"\n[[robots]]\nname = \"y\"\nstart = [0.5, 5.0]\n",
+                "robots[1].start (robot \"y\")",
+            ),
+            ("[[robots]]\nname = \"x\"\nend = [50.0, 5.0]\n", "outside map"),
+            ("[[robots]]\nname = \"x\"\ncolour = 3\n", "colour"),
+        ];
+        for (text, needle) in cases {
+            let e = parse(text).err().unwrap_or_else(|| panic!("{text:?} must be refused")).to_string();
+            assert!(e.contains("fleet.toml") && e.contains(needle), "{text:?}: {e}");
+        }
+    }
+}
