@@ -61,8 +61,8 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
             ),
         ));
     };
-    if let Some(bad) = headers.iter().find(|h| !["x_m", "y_m", "agent", "index"].contains(h)) {
-        return Err(fail(1, format!("unknown column `{bad}`; allowed: x_m, y_m, agent, index")));
+    if let Some(bad) = headers.iter().find(|h| !["x_m", "y_m", "agent", "robot", "index"].contains(h)) {
+        return Err(fail(1, format!("unknown column `{bad}`; allowed: x_m, y_m, agent, robot, index")));
     }
     let ai = col("agent");
     let mut by_agent: std::collections::BTreeMap<u64, Vec<Point>> = Default::default();
@@ -96,6 +96,25 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
 
 /// Writes paths as CSV `agent,index,x_m,y_m` (the format [`read_path_csv`] reads).
 pub fn path_csv(paths: &[Vec<Point>]) -> Vec<u8> {
+    fleet_path_csv(paths, &[])
+}
+
+/// A fleet's plan as CSV: `agent,robot,index,x_m,y_m`, the robot named by `names[agent]`
+/// (the `robot` column is left out when `names` is empty; readers ignore it).
+pub fn fleet_path_csv(paths: &[Vec<Point>], names: &[String]) -> Vec<u8> {
+    if names.is_empty() {
+        return plain_path_csv(paths);
+    }
+    let mut out = String::from("agent,robot,index,x_m,y_m\n");
+    for (a, path) in paths.iter().enumerate() {
+        for (i, p) in path.iter().enumerate() {
+            out.push_str(&format!("{a},{},{i},{},{}\n", names[a], p.x, p.y));
+        }
+    }
+    out.into_bytes()
+}
+
+fn plain_path_csv(paths: &[Vec<Point>]) -> Vec<u8> {
     let mut out = String::from("agent,index,x_m,y_m\n");
     for (a, path) in paths.iter().enumerate() {
         for (i, p) in path.iter().enumerate() {

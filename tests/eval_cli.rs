@@ -241,3 +241,43 @@ fn a_fleet_plan_is_scored_per_robot_and_bad_fleets_exit_2() {
     );
     expect_input_error(&["eval", "--path", &d("plan.csv"), "--fleet", &d("missing.toml")], "missing.toml");
 }
+
+#[test]
+fn area_division_plans_one_region_per_robot() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = |name: &str| dir.path().join(name).display().to_string();
+    std::fs::write(
+        d("fleet.toml"),
+        "[[robots]]\nname = \"a\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
+         [[robots]]\nname = \"b\"\nwidth = 0.6\nspeed = 0.3\nstart = [9.7, 1.3]\n\
+         [[robots]]\nname = \"c\"\nwidth = 0.9\nspeed = 0.5\nstart = [5.5, 9.5]\n",
+    )
+    .unwrap();
+    let v = json_of(&covga(&["eval", "--fleet", &d("fleet.toml"), "--divide", "--json", "--out", &d("out")]));
+    let f = &v["fleet"];
+    assert_eq!(f["robots"].as_array().map(Vec::len), Some(3));
+    assert!(num(f, "union_reach") > 0.97, "{f}");
+    assert!(num(f, "overlap_fraction") < 0.1, "{f}");
+    assert!(v["source"].as_str().unwrap().starts_with("area division"));
+    let csv = std::fs::read_to_string(dir.path().join("out/path.csv")).unwrap();
+    assert!(csv.starts_with("agent,robot,index,x_m,y_m\n"), "{}", &csv[..40]);
+    let robots: std::collections::BTreeSet<&str> = csv.lines().skip(1).filter_map(|l| l.split(',').nth(1)).collect();
+    assert_eq!(robots, ["a", "b", "c"].into_iter().collect(), "one path per robot in path.csv");
+    // The file scores again as a fleet plan.
+    let again = json_of(&covga(&[
+        "eval",
+        "--path",
+        &dir.path().join("out/path.csv").display().to_string(),
+        "--fleet",
+        &d("fleet.toml"),
+        "--json",
+        "--out",
+        &d("again"),
+    ]));
+    assert_eq!(again["fleet"]["union_cells"], f["union_cells"]);
+    assert!(dir.path().join("out/path.png").exists());
+
+    std::fs::write(d("shared.toml"), "[[robots]]\nname = \"a\"\n[[robots]]\nname = \"b\"\n").unwrap();
+    expect_input_error(&["eval", "--fleet", &d("shared.toml"), "--divide", "--out", &d("o2")], "distinct start");
+    expect_input_error(&["eval", "--fleet", &d("fleet.toml"), "--out", &d("o3")], "--path FILE");
+}

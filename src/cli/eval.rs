@@ -46,8 +46,12 @@ pub struct EvalArgs {
     /// Score the path file as a fleet's plan: a TOML file of `[[robots]]` entries (name, width,
     /// speed, rot_speed, start, end; defaults from its `[robot]` and `[stations]`), one robot per
     /// path of the file, in order. Adds the fleet metrics (union, overlap, makespan, balance).
-    #[arg(long, requires = "path")]
+    #[arg(long)]
     fleet: Option<PathBuf>,
+    /// Plan for the `--fleet` by area division (DARP style): one connected region per robot,
+    /// sized by its width × speed around its start, swept by a boustrophedon at `--angle`.
+    #[arg(long, requires = "fleet", conflicts_with_all = ["path", "pattern"])]
+    divide: bool,
     /// Robot width R_width in metres.
     #[arg(long, default_value_t = 0.6)]
     width: f64,
@@ -125,18 +129,11 @@ struct Report<'a> {
     fleet: Option<crate::fleet::metrics::FleetScore>,
 }
 
-/// Reads and validates `--fleet` and scores the plan with it.
-fn fleet_score(
-    file: &std::path::Path,
-    map: &crate::map::GridMap,
-    paths: &[Vec<crate::geom::Point>],
-) -> Result<crate::fleet::metrics::FleetScore, CliError> {
+/// Reads and validates `--fleet`.
+fn read_fleet(file: &std::path::Path, map: &crate::map::GridMap) -> Result<crate::fleet::Fleet, CliError> {
     let origin = file.display().to_string();
     let text = std::fs::read_to_string(file).map_err(|e| CliError::Input(format!("{origin}: cannot read: {e}")))?;
-    let fleet = crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)?;
-    crate::fleet::metrics::FleetScorer::new(map, &fleet)
-        .score(paths)
-        .map_err(|m| CliError::Input(format!("{origin}: {m} (one path per robot, by the `agent` column)")))
+    crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)
 }
 
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
@@ -153,7 +150,20 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         ProjectionName::F2 => Projection::F2,
     };
     let mut pockets = None;
+    let fleet = match &a.fleet {
+        Some(file) => Some((file.display().to_string(), read_fleet(file, &map)?)),
+        None => None,
+    };
+    if fleet.is_some() && a.path.is_none() && !a.divide {
+        return Err(CliError::Input("--fleet needs a plan: --path FILE (one path per robot) or --divide".into()));
+    }
     let (paths, source) = match &a.path {
+        _ if a.divide => {
+            let (_, f) = fleet.as_ref().expect("--divide requires --fleet");
+            let (paths, division) = crate::fleet::division::plan(&map, f, a.angle).map_err(CliError::input)?;
+            let sizes: Vec<String> = division.sizes.iter().map(usize::to_string).collect();
+            (paths, format!("area division ({} cells, boustrophedon {}°)", sizes.join("/"), a.angle))
+        }
         Some(file) => {
             let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;
             for (k, p) in paths.iter().enumerate() {
@@ -186,8 +196,12 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             (vec![path], name)
         }
     };
-    let fleet = match &a.fleet {
-        Some(file) => Some(fleet_score(file, &map, &paths)?),
+    let fleet_score = match &fleet {
+        Some((origin, f)) => Some(
+            crate::fleet::metrics::FleetScorer::new(&map, f)
+                .score(&paths)
+                .map_err(|m| CliError::Input(format!("{origin}: {m} (one path per robot, by the `agent` column)")))?,
+        ),
         None => None,
     };
     let grid = CoverageGrid::new(&map);
@@ -209,19 +223,37 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         common,
         pockets: pockets.map(|p| p.0),
         pocket_area_m2: pockets.map(|p| p.1),
-        fleet,
+        fleet: fleet_score,
     };
     let json = serde_json::to_string_pretty(&report).map_err(CliError::internal)?;
     std::fs::create_dir_all(&a.out)
         .map_err(|e| CliError::Input(format!("{}: cannot create the output folder: {e}", a.out.display())))?;
     crate::io::write_atomic(&a.out.join("metrics.json"), json.as_bytes()).map_err(CliError::internal)?;
-    crate::io::write_atomic(&a.out.join("path.csv"), &crate::io::path_csv(&paths)).map_err(CliError::internal)?;
+    let names: Vec<String> =
+        fleet.as_ref().map(|(_, f)| f.robots().iter().map(|r| r.name.clone()).collect()).unwrap_or_default();
+    crate::io::write_atomic(&a.out.join("path.csv"), &crate::io::fleet_path_csv(&paths, &names))
+        .map_err(CliError::internal)?;
     let figure = PathFigure {
         map: &map,
         grid: &grid,
         paths: paths.clone(),
         width: robot.width,
-        title: format!("{} on {}: cov_final {:.3}, t_final {:.3}", report.source, map.name(), sc.cov_final, sc.t_final),
+        robots: fleet
+            .as_ref()
+            .map(|(_, f)| f.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect())
+            .unwrap_or_default(),
+        title: match &report.fleet {
+            Some(f) => format!(
+                "{} robots on {}: union {:.3} of reachable, makespan {:.0} s",
+                f.robots.len(),
+                map.name(),
+                f.union_reach,
+                f.makespan_s
+            ),
+            None => {
+                format!("{} on {}: cov_final {:.3}, t_final {:.3}", report.source, map.name(), sc.cov_final, sc.t_final)
+            }
+        },
     };
     crate::plot::save(&figure, &a.out.join("path")).map_err(CliError::internal)?;
     if a.json {

@@ -60,6 +60,13 @@ pub fn validate(
         if e.name.trim().is_empty() {
             return Err(ConfigError::new(origin, &key("name"), "is empty: every robot needs a name"));
         }
+        if e.name.chars().any(|c| matches!(c, ',' | '"' | '\n' | '\r')) {
+            return Err(ConfigError::new(
+                origin,
+                &key("name"),
+                format!("= {:?} holds a comma, quote or line break: names go into CSV columns", e.name),
+            ));
+        }
         if let Some(j) = robots.iter().position(|r| r.name == e.name) {
             return Err(ConfigError::new(
                 origin,
@@ -147,6 +154,7 @@ mod tests {
         let cases = [
             ("", "robots"),
             ("[[robots]]\nname = \"\"\n", "robots[0].name"),
+            ("[[robots]]\nname = \"a,b\"\n", "comma"),
             ("[[robots]]\nname = \"a\"\n[[robots]]\nname = \"a\"\n", "robots[1].name"),
             ("[[robots]]\nname = \"x\"\nwidth = 0.0\n", "robots[0].width (robot \"x\")"),
             ("[[robots]]\nname = \"x\"\nwidth = 50.0\n", "wider than the map"),

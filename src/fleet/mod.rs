@@ -3,6 +3,7 @@
 //! [`Fleet`] is the validated team; [`metrics`] scores a fleet's plan on one shared visit map.
 
 pub mod config;
+pub mod division;
 pub mod metrics;
 
 use crate::coverage::Footprint;

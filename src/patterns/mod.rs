@@ -13,7 +13,7 @@ use crate::map::GridMap;
 pub use crate::map::clearance::{self, Clearance};
 
 /// Why a pattern could not be planned.
-#[derive(Debug, thiserror::Error)]
+#[derive(Debug, thiserror::Error, PartialEq)]
 pub enum PatternError {
     /// No place reachable from the start fits the robot.
     #[error("no free area reachable from the start fits a robot {width} m wide")]

@@ -17,6 +17,17 @@ const SEVERAL: RGBColor = RGBColor(240, 170, 80);
 const PREMARKED: RGBColor = RGBColor(170, 200, 240);
 const HIT: RGBColor = RGBColor(220, 30, 30);
 const PATH: RGBColor = RGBColor(20, 40, 160);
+/// Colours of a fleet's robots, in order (repeated past eight robots).
+const ROBOTS: [RGBColor; 8] = [
+    RGBColor(20, 40, 160),
+    RGBColor(190, 30, 140),
+    RGBColor(0, 130, 130),
+    RGBColor(120, 60, 10),
+    RGBColor(110, 30, 200),
+    RGBColor(60, 120, 20),
+    RGBColor(200, 80, 0),
+    RGBColor(0, 0, 0),
+];
 
 /// A path over its map with the coverage it produces.
 pub struct PathFigure<'a> {
@@ -28,6 +39,9 @@ pub struct PathFigure<'a> {
     pub paths: Vec<Vec<Point>>,
     /// Robot width in metres.
     pub width: f64,
+    /// A fleet's robots, one `(name, width)` per path: each path is swept with its robot's
+    /// width and drawn in its own colour, named in the legend. Empty: one robot of `width`.
+    pub robots: Vec<(String, f64)>,
     /// Title line.
     pub title: String,
 }
@@ -62,9 +76,10 @@ impl PathFigure<'_> {
         let n = self.grid.len();
         let mut visits = vec![0u32; n];
         let mut hits = vec![false; n];
-        for path in &self.paths {
+        for (k, path) in self.paths.iter().enumerate() {
+            let width = self.robots.get(k).map_or(self.width, |r| r.1);
             for w in path.windows(2) {
-                for_each_swept_cell(self.grid.raster(), w[0], w[1], self.width, |i| {
+                for_each_swept_cell(self.grid.raster(), w[0], w[1], width, |i| {
                     if self.grid.is_blocked(i) { hits[i] = true } else { visits[i] += 1 }
                 });
             }
@@ -125,19 +140,20 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     });
     chart.draw_series(rects).map_err(err)?;
     let dot = if small { 1 } else { 2 };
-    for path in &fig.paths {
+    for (k, path) in fig.paths.iter().enumerate() {
+        let colour = if fig.robots.is_empty() { PATH } else { ROBOTS[k % ROBOTS.len()] };
         // Segment by segment: a thick polyline is joined with mitres, and a path that turns
         // back on itself would grow a spike far past its viewpoints.
-        let style = PATH.stroke_width(if small { 1 } else { 2 });
+        let style = colour.stroke_width(if small { 1 } else { 2 });
         chart
             .draw_series(path.windows(2).map(|w| PathElement::new(vec![(w[0].x, w[0].y), (w[1].x, w[1].y)], style)))
             .map_err(err)?;
         if !small {
             // The bitmap backend leaves gaps in some thick diagonal strokes; a 1-px line on
             // top keeps every segment continuous.
-            chart.draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), PATH.stroke_width(1))).map_err(err)?;
+            chart.draw_series(LineSeries::new(path.iter().map(|p| (p.x, p.y)), colour.stroke_width(1))).map_err(err)?;
         }
-        chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), dot, PATH.filled()))).map_err(err)?;
+        chart.draw_series(path.iter().map(|p| Circle::new((p.x, p.y), dot, colour.filled()))).map_err(err)?;
         if let (Some(s), Some(e)) = (path.first(), path.last()) {
             // The end first, the start on top: both stay visible where they coincide.
             chart.draw_series([Cross::new((e.x, e.y), 9, RED.stroke_width(3))]).map_err(err)?;
@@ -171,22 +187,29 @@ impl Figure for PathFigure<'_> {
             (NEVER, "free, not covered"),
             (ONCE, "covered once"),
             (SEVERAL, "covered 2+ times"),
-            (PREMARKED, "already covered (pre-marked)"),
+            (PREMARKED, "pre-marked as covered"),
             (HIT, "obstacle swept"),
             (OBSTACLE, "obstacle"),
             (UNKNOWN, "unknown"),
-            (PATH, "path"),
         ];
-        let entries: Vec<(RGBColor, String)> = entries.iter().map(|(c, s)| (*c, s.to_string())).collect();
+        let mut entries: Vec<(RGBColor, String)> = entries.iter().map(|(c, s)| (*c, s.to_string())).collect();
+        if self.robots.is_empty() {
+            entries.push((PATH, "path".into()));
+        } else {
+            for (k, (name, width)) in self.robots.iter().enumerate() {
+                entries.push((ROBOTS[k % ROBOTS.len()], format!("{name} ({width} m)")));
+            }
+        }
         legend(&side, &entries, 60)?;
-        side.draw(&TriangleMarker::new((17, 60 + 26 * 8 + 9), 9, GREEN.filled())).map_err(err)?;
-        side.draw(&Text::new("start", (34, 60 + 26 * 8), text(17.0))).map_err(err)?;
-        side.draw(&Cross::new((17, 60 + 26 * 9 + 9), 8, RED.stroke_width(3))).map_err(err)?;
-        side.draw(&Text::new("end", (34, 60 + 26 * 9), text(17.0))).map_err(err)?;
+        let below = 60 + 26 * entries.len() as i32;
+        side.draw(&TriangleMarker::new((17, below + 9), 9, GREEN.filled())).map_err(err)?;
+        side.draw(&Text::new("start", (34, below), text(17.0))).map_err(err)?;
+        side.draw(&Cross::new((17, below + 26 + 9), 8, RED.stroke_width(3))).map_err(err)?;
+        side.draw(&Text::new("end", (34, below + 26), text(17.0))).map_err(err)?;
         // The scale bar beside the map, not over it.
         let len = scale_length(self.map.width_m().max(self.map.height_m()));
         let bar = (len * px_per_m).round() as i32;
-        let y = 60 + 26 * 11;
+        let y = below + 26 * 3;
         side.draw(&PathElement::new(vec![(8, y), (8 + bar, y)], BLACK.stroke_width(4))).map_err(err)?;
         side.draw(&Text::new(format!("{len} m"), (8, y + 8), text(16.0))).map_err(err)?;
         Ok(())

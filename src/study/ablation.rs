@@ -340,6 +340,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                         grid: g,
                         paths: paths.clone(),
                         width: *w,
+                        robots: Vec::new(),
                         title: title.clone(),
                     })
                 })

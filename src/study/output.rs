@@ -181,6 +181,7 @@ pub fn run_experiment(
             grid: scorer.grid(),
             paths: outcome.plan.clone(),
             width: exp.scenario.robot.width,
+            robots: Vec::new(),
             title: format!(
                 "{} on {}: cov_final {:.3} (reachable {:.3}), t_final {:.3}",
                 planner.name(),

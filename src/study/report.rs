@@ -188,6 +188,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
                 grid,
                 paths: paths.clone(),
                 width: *width,
+                robots: Vec::new(),
                 title: title.clone(),
             })
             .collect();

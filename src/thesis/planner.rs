@@ -112,6 +112,7 @@ impl Planner for ThesisConfig {
                 grid: &grid,
                 paths: vec![out.best.points.clone()],
                 width: scenario.robot.width,
+                robots: Vec::new(),
                 title: title(&out.best, "best path"),
             };
             crate::plot::save(&figure, &dir.join("path"))?;
@@ -123,6 +124,7 @@ impl Planner for ThesisConfig {
                 grid: &plain,
                 paths: vec![before.points.clone()],
                 width: scenario.robot.width,
+                robots: Vec::new(),
                 title: title(before, "best before retrain"),
             };
             crate::plot::save(&figure, &dir.join("path_before_retrain"))?;
