@@ -257,7 +257,7 @@ fn area_division_plans_one_region_per_robot() {
     let f = &v["fleet"];
     assert_eq!(f["robots"].as_array().map(Vec::len), Some(3));
     assert!(num(f, "union_reach") > 0.97, "{f}");
-    assert!(num(f, "overlap_fraction") < 0.1, "{f}");
+    assert!(num(f, "overlap_fraction") < 0.2, "{f}");
     assert!(v["source"].as_str().unwrap().starts_with("area division"));
     let csv = std::fs::read_to_string(dir.path().join("out/path.csv")).unwrap();
     assert!(csv.starts_with("agent,robot,index,x_m,y_m\n"), "{}", &csv[..40]);

@@ -162,7 +162,12 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             let (_, f) = fleet.as_ref().expect("--divide requires --fleet");
             let (paths, division) = crate::fleet::division::plan(&map, f, a.angle).map_err(CliError::input)?;
             let sizes: Vec<String> = division.sizes.iter().map(usize::to_string).collect();
-            (paths, format!("area division ({} cells, boustrophedon {}°)", sizes.join("/"), a.angle))
+            let detached = if division.detached > 0 {
+                format!(", {} of them apart from their region", division.detached)
+            } else {
+                String::new()
+            };
+            (paths, format!("area division ({} cells{detached}, boustrophedon {}°)", sizes.join("/"), a.angle))
         }
         Some(file) => {
             let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;

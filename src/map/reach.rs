@@ -93,6 +93,15 @@ impl Reach {
         Self { centres, coverable, coverable_count, pockets, cell_area_m2: res * res }
     }
 
+    /// Keeps only the coverable cells flagged in `keep` (a region of the map the robot is to
+    /// sweep; it may still travel through the rest). Pockets stay those of the whole map.
+    pub fn keep_only(&mut self, keep: &[bool]) {
+        for (c, &k) in self.coverable.iter_mut().zip(keep) {
+            *c &= k;
+        }
+        self.coverable_count = self.coverable.iter().filter(|c| **c).count();
+    }
+
     /// Reachable robot centres, one flag per cell (row-major).
     pub fn centres(&self) -> &[bool] {
         &self.centres

@@ -48,6 +48,47 @@ pub struct PatternPlan {
     pub skipped_targets: usize,
 }
 
+/// Plans `pattern` over the free cells of `region` (a map equal to `map` with the cells outside
+/// the region closed), then visits the cells of `targets` the lanes left unswept travelling on
+/// the whole `map`: the lanes stay in the region, the connecting moves may cross the rest
+/// (needed where the region is one piece of cells but not one piece for the robot's disc).
+pub fn plan_region(
+    map: &GridMap,
+    region: &GridMap,
+    targets: &[bool],
+    pattern: Pattern,
+    width: f64,
+    start: Point,
+    end: Point,
+) -> Result<PatternPlan, PatternError> {
+    let mut lanes = Clearance::new(region, width);
+    let region_reach = crate::map::reach::Reach::new(&lanes, &[start]);
+    let mut whole = Clearance::new(map, width);
+    let mut reach = crate::map::reach::Reach::new(&whole, &[start]);
+    if reach.centres().iter().all(|c| !c) {
+        return Err(PatternError::NoRoom { width });
+    }
+    whole.restrict(reach.centres().to_vec());
+    let mut route = if region_reach.centres().iter().any(|c| *c) {
+        lanes.restrict(region_reach.centres().to_vec());
+        match pattern {
+            Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&lanes, width, angle_deg, start)?,
+            Pattern::Spiral => spiral::plan(&lanes, width, start)?,
+        }
+    } else {
+        Route::new(start)
+    };
+    reach.keep_only(targets);
+    self::complete::complete(&whole, &reach, width, &mut route);
+    route.finish(&whole, end);
+    Ok(PatternPlan {
+        skipped_targets: route.skipped,
+        points: route.points,
+        pockets: reach.pocket_count(),
+        pocket_area_m2: reach.pocket_area_m2(),
+    })
+}
+
 /// A growing polyline that starts at a station; targets it cannot reach are skipped.
 #[derive(Clone, Debug)]
 pub struct Route {
