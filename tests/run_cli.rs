@@ -304,3 +304,46 @@ fn stall_and_wall_clock_stops_are_reported() {
         }
     }
 }
+
+/// A small fleet experiment (two robots on map 1, 40 individuals each, 200 iterations).
+fn fleet(extra: &str) -> String {
+    format!(
+        "{}[fleet]\nround_iterations = 50\n[[robots]]\nname = \"narrow\"\nwidth = 0.4\nstart = [1.3, 1.3]\n\
+         [[robots]]\nname = \"wide\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.7, 9.7]\n{extra}",
+        small("")
+    )
+}
+
+#[test]
+fn a_fleet_negotiates_deterministically_and_writes_its_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), "fleet.toml", &fleet(""));
+    let run = |threads: &str, out: &str| {
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join(out).to_str().unwrap()], threads);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        dir.path().join(out)
+    };
+    let (one, two) = (run("1", "one"), run("2", "two"));
+    for file in ["history.csv", "best_path.csv", "config.toml"] {
+        assert_eq!(read(&one.join(file)), read(&two.join(file)), "{file} with 1 and 2 threads");
+    }
+    assert_eq!(summary_without_time(&one), summary_without_time(&two));
+    let s = summary_without_time(&one);
+    assert_eq!(s["fleet"]["robots"], serde_json::json!(["narrow", "wide"]));
+    assert_eq!(s["rounds"].as_u64(), Some(4), "200 iterations in rounds of 50");
+    let hist = read(&one.join("history.csv"));
+    assert!(hist.starts_with("round,robot,iteration,evaluations,best_fitness,cov_final,t_final,change\n"));
+    assert_eq!(hist.lines().count(), 1 + 4 * 2, "one row per round and robot");
+    assert!(read(&one.join("best_path.csv")).starts_with("agent,robot,index,x_m,y_m\n"));
+    assert!(one.join("path.png").exists());
+}
+
+#[test]
+fn bad_fleets_are_rejected_with_exit_2() {
+    expect_error(&fleet("[[robots]]\nname = \"narrow\"\n"), "`robots[2].name`");
+    expect_error(&fleet("[[robots]]\nname = \"x\"\nstart = [0.5, 5.0]\n"), "robots[2].start (robot \"x\")");
+    expect_error(&fleet("").replace("round_iterations = 50", "round_iterations = 0"), "fleet.round_iterations");
+    expect_error(&format!("planner = \"spiral\"\n{}", fleet("")), "cannot plan for [[robots]]");
+    expect_error(&fleet("").replace("iterations = 200", "iterations = 200\nevaluations = 5000"), "budget.evaluations");
+    expect_error(&small("[fleet]\nround_iterations = 5"), "no [[robots]]");
+}

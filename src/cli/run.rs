@@ -85,6 +85,37 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
             let _ = std::fs::remove_dir(&dir);
         }
     };
+    if let Some(fleet) = &exp.fleet {
+        let summary = crate::fleet::run::run_fleet(&exp, fleet, &dir).map_err(|e| {
+            discard_folder();
+            CliError::internal(e)
+        })?;
+        if !a.quiet {
+            let f = &summary.fleet;
+            println!(
+                "{origin}: fleet of {} on {} by negotiation, seed {}, {} rounds ({}), {} evaluations, {:.2} s",
+                f.robots.len(),
+                summary.map,
+                summary.seed,
+                summary.rounds,
+                if summary.converged { "settled" } else { "budget ended" },
+                summary.evaluations,
+                summary.wall_s
+            );
+            println!(
+                "union {:.4} of free ({:.4} of reachable), overlap {:.4}, makespan {:.0} s, balance {}, cov_final {:.4}, t_final {:.4}",
+                f.union_free,
+                f.union_reach,
+                f.overlap_fraction,
+                f.makespan_s,
+                f.balance.map_or("-".into(), |b| format!("{b:.2}")),
+                f.cov_final,
+                f.t_final
+            );
+            println!("wrote {}", dir.display());
+        }
+        return Ok(());
+    }
     let show = !a.quiet && std::io::stderr().is_terminal();
     let length = match exp.file.planner {
         PlannerKind::Waypoint => exp.file.waypoint.generations,

@@ -46,6 +46,17 @@ impl CoverageGrid {
         }
     }
 
+    /// Replaces the pre-marks by the free cells flagged in `cells` (one flag per cell): the
+    /// cells other robots' plans cover, in a fleet's negotiation. `A_pix` follows.
+    pub fn set_premarks(&mut self, cells: &[bool]) {
+        assert_eq!(cells.len(), self.blocked.len(), "one flag per cell");
+        self.area_cells = 0;
+        for ((p, &b), &mark) in self.premark.iter_mut().zip(&self.blocked).zip(cells) {
+            *p = u32::from(mark && !b);
+            self.area_cells += usize::from(!b && !mark);
+        }
+    }
+
     /// `A_pix`: free cells still to be covered.
     pub fn area_cells(&self) -> usize {
         self.area_cells

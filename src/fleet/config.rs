@@ -93,6 +93,113 @@ pub fn validate(
     Ok(Fleet { robots })
 }
 
+/// How a fleet is planned.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FleetMode {
+    /// Decentralised negotiation: one thesis GA per robot, plans exchanged every
+    /// `round_iterations` ([`super::negotiation`]).
+    #[default]
+    Negotiate,
+}
+
+/// `[fleet]` of an experiment file.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FleetSection {
+    /// How the fleet is planned.
+    pub mode: FleetMode,
+    /// Iterations of every robot's GA between two exchanges (`k`).
+    pub round_iterations: u32,
+    /// Largest plan change (share of swept cells) that counts as settled.
+    pub tolerance: f64,
+}
+
+impl Default for FleetSection {
+    fn default() -> Self {
+        Self { mode: FleetMode::Negotiate, round_iterations: 100, tolerance: 0.02 }
+    }
+}
+
+/// A validated fleet run of an experiment file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FleetRun {
+    /// The robots.
+    pub fleet: Fleet,
+    /// How they plan.
+    pub mode: FleetMode,
+    /// The negotiation's rounds, budget and tolerance.
+    pub negotiation: super::negotiation::NegotiationParams,
+}
+
+impl FleetRun {
+    /// Validates `[[robots]]` and `[fleet]` of `file` (`None` without robots).
+    pub fn from_file(
+        file: &crate::study::experiment::ExperimentFile,
+        origin: &str,
+        scenario: &crate::planner::Scenario,
+        budget: &crate::planner::Budget,
+    ) -> Result<Option<Self>, ConfigError> {
+        if file.robots.is_empty() {
+            if file.fleet.is_some() {
+                return Err(ConfigError::new(origin, "fleet", "is set but there are no [[robots]] to plan for"));
+            }
+            return Ok(None);
+        }
+        if file.planner != crate::planner::PlannerKind::Thesis {
+            return Err(ConfigError::new(
+                origin,
+                "planner",
+                format!(
+                    "= \"{}\" cannot plan for [[robots]]: a fleet is planned by the thesis GA (planner = \"thesis\"); \
+                     area division: covga eval --fleet FILE --divide",
+                    file.planner.name()
+                ),
+            ));
+        }
+        for (set, key) in [
+            (budget.evaluations.is_some(), "budget.evaluations"),
+            (budget.wall_clock.is_some(), "budget.wall_clock_s"),
+            (budget.stall_iterations.is_some(), "budget.stall_iterations"),
+        ] {
+            if set {
+                return Err(ConfigError::new(
+                    origin,
+                    key,
+                    "is not available for fleets: a negotiation stops at budget.iterations or when the plans settle",
+                ));
+            }
+        }
+        if file.retrain.is_some() {
+            return Err(ConfigError::new(
+                origin,
+                "retrain",
+                "is not available for fleets (the negotiation pre-marks cells itself)",
+            ));
+        }
+        let section = file.fleet.unwrap_or_default();
+        if section.round_iterations == 0 || section.round_iterations > 1_000_000 {
+            return Err(ConfigError::new(
+                origin,
+                "fleet.round_iterations",
+                format!("= {} is out of range [1, 1000000]", section.round_iterations),
+            ));
+        }
+        check_range(origin, "fleet.tolerance", section.tolerance, 0.0, 1.0, "[0, 1]")?;
+        let r = scenario.robot;
+        let fleet = validate(&file.robots, r, file.stations.start, origin, &scenario.map)?;
+        Ok(Some(Self {
+            fleet,
+            mode: section.mode,
+            negotiation: super::negotiation::NegotiationParams {
+                round_iterations: section.round_iterations,
+                iterations: budget.iterations,
+                tolerance: section.tolerance,
+            },
+        }))
+    }
+}
+
 /// A fleet file for `covga eval --fleet`: `[robot]` defaults, `[stations]` defaults and the
 /// `[[robots]]` entries, as in an experiment file.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -5,6 +5,8 @@
 pub mod config;
 pub mod division;
 pub mod metrics;
+pub mod negotiation;
+pub mod run;
 
 use crate::coverage::Footprint;
 use crate::geom::Point;

@@ -32,6 +32,8 @@ pub enum Purpose {
     Individual = 2,
     /// A run's seed inside a study (labels: run-id hash, replicate).
     Run = 3,
+    /// A fleet robot's own run (label: the robot's index).
+    Robot = 4,
 }
 
 /// A generator for `purpose` and `labels` under `seed`.

@@ -43,6 +43,13 @@ pub struct ExperimentFile {
     pub retrain: Option<RetrainSection>,
     /// Where results go.
     pub output: OutputSection,
+    /// A fleet instead of one robot: `[[robots]]` entries (defaults from `[robot]` and
+    /// `[stations]`), planned by the thesis GA as `[fleet]` says.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub robots: Vec<crate::fleet::config::RobotEntry>,
+    /// How a fleet is planned.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fleet: Option<crate::fleet::config::FleetSection>,
 }
 
 /// `[map]`.
@@ -117,6 +124,8 @@ impl Default for ExperimentFile {
             budget: BudgetSection::default(),
             retrain: None,
             output: OutputSection::default(),
+            robots: Vec::new(),
+            fleet: None,
         }
     }
 }
@@ -160,6 +169,8 @@ pub struct Experiment {
     pub budget: Budget,
     /// Results folder.
     pub output_dir: PathBuf,
+    /// The fleet and its negotiation, when the file has `[[robots]]`.
+    pub fleet: Option<crate::fleet::config::FleetRun>,
 }
 
 impl ExperimentFile {
@@ -265,7 +276,8 @@ impl ExperimentFile {
             stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
         };
         let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
+        let fleet = crate::fleet::config::FleetRun::from_file(&self, origin, &scenario, &budget)?;
         self.stations.end = Some([end.x, end.y]);
-        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir })
+        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, fleet })
     }
 }

@@ -129,6 +129,12 @@ pub fn run_experiment(
     figures: bool,
     extra: &mut [&mut dyn Observer],
 ) -> Result<(RunOutcome, Summary), OutputError> {
+    if exp.fleet.is_some() {
+        return Err(OutputError::Planner(
+            "a fleet ([[robots]]) runs with `covga run` on its own; grid studies of fleets are not available yet"
+                .into(),
+        ));
+    }
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
     let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
     let planner = exp.planner.planner();

@@ -37,6 +37,13 @@ impl Scenario {
         Self { grid, layers, robot, frame: Frame::new(start, end, min, max), projection, map }
     }
 
+    /// Replaces the pre-marks by the flagged free cells (see
+    /// [`CoverageGrid::set_premarks`]). Individuals must be re-evaluated in full afterwards.
+    pub fn set_premarks(&mut self, cells: &[bool]) {
+        self.grid.set_premarks(cells);
+        self.layers = BitLayers::new(&self.grid);
+    }
+
     /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` as already covered
     /// (the retrain region, spec R25). Individuals must be re-evaluated in full afterwards.
     pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {

@@ -173,6 +173,22 @@ impl ThesisGa {
     pub fn change_environment(&mut self, state: &mut GaState, region: [f64; 4]) {
         let [x0, y0, x1, y1] = region;
         self.scenario.premark_rect(x0, y0, x1, y1);
+        self.reevaluate(state);
+    }
+
+    /// Makes the flagged free cells the pre-marked ones (what other robots cover, in a fleet's
+    /// negotiation) and re-evaluates everyone.
+    pub fn set_premarks(&mut self, state: &mut GaState, cells: &[bool]) {
+        self.scenario.set_premarks(cells);
+        self.reevaluate(state);
+    }
+
+    /// A fresh scratch per worker thread, for [`Self::step`].
+    pub fn new_scratches(&self) -> Vec<EvalScratch> {
+        self.scratches()
+    }
+
+    fn reevaluate(&self, state: &mut GaState) {
         let mut scratch = EvalScratch::default();
         for ind in &mut state.population {
             evaluate(ind, &self.scenario, Base::None, self.params.evaluation, &mut scratch);

@@ -1,0 +1,231 @@
+//! Decentralised negotiation between the robots of a fleet (beyond 003, built on its retrain,
+//! §3.5.3): every robot runs its own thesis GA; every `k` iterations the robots exchange their
+//! current best plans, and each marks the cells the others' plans sweep as already covered
+//! (the retrain's pre-marks), re-evaluates its population and continues. The rounds end when
+//! no robot's plan changes by more than a tolerance, or with the iteration budget.
+//!
+//! Determinism: each robot's GA has its own seed, derived from the run's seed and the robot's
+//! index; the robots step in parallel but exchange only between rounds, in robot order, so the
+//! outcome does not depend on the number of threads.
+
+use super::Fleet;
+use crate::coverage::{CoverageGrid, SweepScratch};
+use crate::ga::rng::{Purpose, stream};
+use crate::geom::Point;
+use crate::map::GridMap;
+use crate::thesis::fitness::Projection;
+use crate::thesis::individual::Scenario;
+use crate::thesis::params::ThesisParams;
+use crate::thesis::run::{GaState, ThesisGa, best_index};
+use rand::RngCore;
+use rayon::prelude::*;
+
+/// How the robots negotiate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct NegotiationParams {
+    /// Iterations of every robot's GA per round (`k`).
+    pub round_iterations: u32,
+    /// Iterations of every robot's GA in all (the budget).
+    pub iterations: u32,
+    /// A plan "changes" when the share of its swept cells that differ from the previous
+    /// round's (symmetric difference over union) exceeds this.
+    pub tolerance: f64,
+}
+
+/// One robot at the end of one round.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RoundRecord {
+    /// Round, from 1.
+    pub round: u32,
+    /// Robot name.
+    pub robot: String,
+    /// Iterations of its GA so far.
+    pub iteration: u32,
+    /// Its evaluations so far.
+    pub evaluations: u64,
+    /// `f_obstacle` of its best plan against the others' plans of the previous round.
+    pub best_fitness: f64,
+    /// `cov_final` of that plan (cells the others did not cover, over the cells left to it).
+    pub cov_final: f64,
+    /// `t_final` of that plan.
+    pub t_final: f64,
+    /// Share of its best plan's swept cells that changed since the previous round (1 in the
+    /// first round).
+    pub change: f64,
+}
+
+/// The result of a negotiation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NegotiationOutcome {
+    /// One path per robot (its final best plan), in the fleet's order.
+    pub paths: Vec<Vec<Point>>,
+    /// Rounds held.
+    pub rounds: u32,
+    /// Whether the plans settled within the tolerance before the budget ended.
+    pub converged: bool,
+    /// Evaluations of all robots, re-evaluations after each exchange included.
+    pub evaluations: u64,
+    /// Per round and robot.
+    pub history: Vec<RoundRecord>,
+}
+
+/// The seed of robot `k`'s GA under the run's `seed`.
+pub fn robot_seed(seed: u64, k: usize) -> u64 {
+    stream(seed, Purpose::Robot, &[k as u64]).next_u64()
+}
+
+/// Cells a plan sweeps with a robot of `width` (one flag per cell).
+fn swept(grid: &CoverageGrid, scratch: &mut SweepScratch, points: &[Point], width: f64) -> Vec<bool> {
+    scratch.sweep(grid, points, width);
+    let mut cells = vec![false; grid.len()];
+    for (i, _) in scratch.visit_counts() {
+        cells[i as usize] = true;
+    }
+    cells
+}
+
+/// `|a Δ b| / |a ∪ b|` (0 for two empty sets).
+pub fn plan_change(a: &[bool], b: &[bool]) -> f64 {
+    let (mut diff, mut union) = (0usize, 0usize);
+    for (&x, &y) in a.iter().zip(b) {
+        diff += usize::from(x != y);
+        union += usize::from(x || y);
+    }
+    if union == 0 { 0.0 } else { diff as f64 / union as f64 }
+}
+
+/// Runs the negotiation of `fleet` on `map` with the thesis GA `params` (each robot with its
+/// own width, speed and stations).
+pub fn negotiate(
+    map: &GridMap,
+    fleet: &Fleet,
+    params: &ThesisParams,
+    projection: Projection,
+    seed: u64,
+    np: &NegotiationParams,
+) -> NegotiationOutcome {
+    let robots = fleet.robots();
+    let mut gas: Vec<ThesisGa> = robots
+        .iter()
+        .enumerate()
+        .map(|(k, r)| ThesisGa {
+            scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, projection),
+            params: *params,
+            seed: robot_seed(seed, k),
+        })
+        .collect();
+    let mut states: Vec<GaState> = gas.par_iter().map(|ga| ga.init(false)).collect();
+    let grid = CoverageGrid::new(map);
+    let mut scratch = SweepScratch::new(&grid);
+    let mut previous: Vec<Vec<bool>> = vec![vec![false; grid.len()]; robots.len()];
+    let (mut history, mut rounds, mut converged) = (Vec::new(), 0u32, false);
+    let round_iterations = np.round_iterations.max(1);
+    while states[0].iteration < np.iterations {
+        let steps = round_iterations.min(np.iterations - states[0].iteration);
+        gas.par_iter().zip(states.par_iter_mut()).for_each(|(ga, state)| {
+            let mut scratches = ga.new_scratches();
+            for _ in 0..steps {
+                let effective = ga.effective(state, state.iteration + 1, np.iterations);
+                ga.step(state, effective, &mut scratches, None);
+            }
+        });
+        rounds += 1;
+        let bests: Vec<usize> = states.iter().map(|s| best_index(&s.population)).collect();
+        let now: Vec<Vec<bool>> = (0..robots.len())
+            .map(|k| swept(&grid, &mut scratch, &states[k].population[bests[k]].points, robots[k].footprint.width))
+            .collect();
+        let mut settled = rounds >= 2;
+        for (k, r) in robots.iter().enumerate() {
+            let best = &states[k].population[bests[k]];
+            let change = if rounds == 1 { 1.0 } else { plan_change(&now[k], &previous[k]) };
+            settled &= change <= np.tolerance;
+            history.push(RoundRecord {
+                round: rounds,
+                robot: r.name.clone(),
+                iteration: states[k].iteration,
+                evaluations: states[k].evaluations,
+                best_fitness: best.fitness(),
+                cov_final: best.score.cov_final,
+                t_final: best.score.t_final,
+                change,
+            });
+        }
+        previous = now;
+        if settled {
+            converged = true;
+            break;
+        }
+        if states[0].iteration >= np.iterations {
+            break;
+        }
+        // The exchange: every robot pre-marks what the others' plans sweep.
+        for (k, (ga, state)) in gas.iter_mut().zip(states.iter_mut()).enumerate() {
+            let others: Vec<bool> =
+                (0..grid.len()).map(|i| previous.iter().enumerate().any(|(j, cells)| j != k && cells[i])).collect();
+            ga.set_premarks(state, &others);
+        }
+    }
+    let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
+    let evaluations = states.iter().map(|s| s.evaluations).sum();
+    NegotiationOutcome { paths, rounds, converged, evaluations, history }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fleet::config::FleetFile;
+    use crate::fleet::metrics::FleetScorer;
+    use crate::map::presets::preset;
+
+    fn params(iterations_pop: usize) -> ThesisParams {
+        let section = crate::thesis::config::ThesisSection { pop_min: iterations_pop, ..Default::default() };
+        crate::thesis::config::validate_params(&section, "test").unwrap()
+    }
+
+    #[test]
+    fn plan_change_by_hand() {
+        let a = [true, true, false, false];
+        let b = [true, false, true, false];
+        assert!((plan_change(&a, &b) - 2.0 / 3.0).abs() < 1e-12);
+        assert_eq!(plan_change(&a, &a), 0.0);
+        assert_eq!(plan_change(&[false], &[false]), 0.0);
+    }
+
+    #[test]
+    fn negotiation_is_deterministic_on_any_thread_count_and_shares_the_map() {
+        let map = preset("thesis-1").unwrap();
+        let fleet = FleetFile::parse(
+            "[[robots]]\nname = \"a\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
+             [[robots]]\nname = \"b\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.7, 9.7]\n",
+            "f.toml",
+            &map,
+        )
+        .unwrap();
+        let np = NegotiationParams { round_iterations: 40, iterations: 200, tolerance: 0.0 };
+        let p = params(20);
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| negotiate(&map, &fleet, &p, Projection::F1, 7, &np))
+        };
+        let (one, two) = (run(1), run(2));
+        assert_eq!(one, two, "same plans, history and evaluations with 1 and 2 threads");
+        assert_eq!(one.rounds, 5);
+        assert_eq!(one.history.len(), 10);
+        assert!(one.history.iter().all(|r| r.iteration % 40 == 0));
+        // Against the same robots planning alone (one round, no exchange), the negotiated plans
+        // overlap less.
+        let alone = negotiate(&map, &fleet, &p, Projection::F1, 7, &NegotiationParams { round_iterations: 200, ..np });
+        assert_eq!(alone.rounds, 1);
+        let scorer = FleetScorer::new(&map, &fleet);
+        let (together, apart) = (scorer.score(&one.paths).unwrap(), scorer.score(&alone.paths).unwrap());
+        assert!(
+            together.overlap_fraction < apart.overlap_fraction,
+            "negotiated {} vs alone {}",
+            together.overlap_fraction,
+            apart.overlap_fraction
+        );
+    }
+}
