@@ -69,9 +69,10 @@ pub struct NegotiationOutcome {
     pub history: Vec<RoundRecord>,
 }
 
-/// The seed of robot `k`'s GA under the run's `seed`.
+/// The seed of robot `k`'s GA under the run's `seed`: the run's own seed for the first robot
+/// (so that a fleet of one is the single-robot run, bit for bit), a derived one for the others.
 pub fn robot_seed(seed: u64, k: usize) -> u64 {
-    stream(seed, Purpose::Robot, &[k as u64]).next_u64()
+    if k == 0 { seed } else { stream(seed, Purpose::Robot, &[k as u64]).next_u64() }
 }
 
 /// Cells a plan sweeps with a robot of `width` (one flag per cell).
@@ -118,6 +119,7 @@ pub fn negotiate(
     let grid = CoverageGrid::new(map);
     let mut scratch = SweepScratch::new(&grid);
     let mut previous: Vec<Vec<bool>> = vec![vec![false; grid.len()]; robots.len()];
+    let mut premarked = previous.clone();
     let (mut history, mut rounds, mut converged) = (Vec::new(), 0u32, false);
     let round_iterations = np.round_iterations.max(1);
     while states[0].iteration < np.iterations {
@@ -158,11 +160,15 @@ pub fn negotiate(
         if states[0].iteration >= np.iterations {
             break;
         }
-        // The exchange: every robot pre-marks what the others' plans sweep.
+        // The exchange: every robot pre-marks what the others' plans sweep (and re-evaluates
+        // its population only when that changed).
         for (k, (ga, state)) in gas.iter_mut().zip(states.iter_mut()).enumerate() {
             let others: Vec<bool> =
                 (0..grid.len()).map(|i| previous.iter().enumerate().any(|(j, cells)| j != k && cells[i])).collect();
-            ga.set_premarks(state, &others);
+            if others != premarked[k] {
+                ga.set_premarks(state, &others);
+                premarked[k] = others;
+            }
         }
     }
     let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
@@ -180,6 +186,36 @@ mod tests {
     fn params(iterations_pop: usize) -> ThesisParams {
         let section = crate::thesis::config::ThesisSection { pop_min: iterations_pop, ..Default::default() };
         crate::thesis::config::validate_params(&section, "test").unwrap()
+    }
+
+    #[test]
+    fn a_fleet_of_one_is_the_single_robot_run() {
+        let map = preset("thesis-2").unwrap();
+        let fleet = FleetFile::parse(
+            "[[robots]]\nname = \"solo\"\nwidth = 0.6\nspeed = 0.2\nstart = [1.3, 1.3]\n",
+            "f.toml",
+            &map,
+        )
+        .unwrap();
+        let p = params(20);
+        let np = NegotiationParams { round_iterations: 30, iterations: 150, tolerance: 0.0 };
+        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np);
+        let r = &fleet.robots()[0];
+        let mut single = ThesisGa {
+            scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F1),
+            params: p,
+            seed: 11,
+        };
+        let budget = crate::thesis::params::Budget {
+            iterations: 150,
+            evaluations: None,
+            wall_clock: None,
+            stall_iterations: None,
+        };
+        let alone = single.run(&budget, None, &mut []).unwrap();
+        assert_eq!(negotiated.paths, vec![alone.best.points.clone()]);
+        assert_eq!(negotiated.evaluations, alone.evaluations);
+        assert_eq!(negotiated.rounds, 5);
     }
 
     #[test]
