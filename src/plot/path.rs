@@ -55,6 +55,8 @@ enum Class {
     Several,
     Premarked,
     Hit,
+    /// Swept by this one robot of a fleet (any number of times).
+    Robot(usize),
 }
 
 impl Class {
@@ -67,8 +69,16 @@ impl Class {
             Class::Several => SEVERAL,
             Class::Premarked => PREMARKED,
             Class::Hit => HIT,
+            Class::Robot(k) => robot_tint(k),
         }
     }
+}
+
+/// The light tint of robot `k`'s colour its cells are filled with.
+fn robot_tint(k: usize) -> RGBColor {
+    let RGBColor(r, g, b) = ROBOTS[k % ROBOTS.len()];
+    let tint = |c: u8| c + ((255 - c) as f64 * 0.65) as u8;
+    RGBColor(tint(r), tint(g), tint(b))
 }
 
 impl PathFigure<'_> {
@@ -76,11 +86,22 @@ impl PathFigure<'_> {
         let n = self.grid.len();
         let mut visits = vec![0u32; n];
         let mut hits = vec![false; n];
+        // For a fleet: the one robot that swept a cell, or `MANY` for two robots or more.
+        const NONE: usize = usize::MAX;
+        const MANY: usize = usize::MAX - 1;
+        let mut owner = vec![NONE; if self.robots.is_empty() { 0 } else { n }];
         for (k, path) in self.paths.iter().enumerate() {
             let width = self.robots.get(k).map_or(self.width, |r| r.1);
             for w in path.windows(2) {
                 for_each_swept_cell(self.grid.raster(), w[0], w[1], width, |i| {
-                    if self.grid.is_blocked(i) { hits[i] = true } else { visits[i] += 1 }
+                    if self.grid.is_blocked(i) {
+                        hits[i] = true
+                    } else {
+                        visits[i] += 1;
+                        if let Some(o) = owner.get_mut(i) {
+                            *o = if *o == NONE || *o == k { k } else { MANY };
+                        }
+                    }
                 });
             }
         }
@@ -90,6 +111,11 @@ impl PathFigure<'_> {
                 CellState::Occupied => Class::Obstacle,
                 CellState::Unknown => Class::Unknown,
                 CellState::Free if self.grid.is_premarked(i) => Class::Premarked,
+                CellState::Free if !owner.is_empty() => match owner[i] {
+                    NONE => Class::Never,
+                    MANY => Class::Several,
+                    k => Class::Robot(k),
+                },
                 CellState::Free => match visits[i] {
                     0 => Class::Never,
                     1 => Class::Once,
@@ -183,24 +209,36 @@ impl Figure for PathFigure<'_> {
         let (plot_area, side) = root.split_horizontally(w - 260);
         let px_per_m = draw_map_paths(&plot_area, self, (20.0, 15.0))?;
         // Legend on the side.
+        let fleet = !self.robots.is_empty();
         let entries = [
             (NEVER, "free, not covered"),
             (ONCE, "covered once"),
-            (SEVERAL, "covered 2+ times"),
+            (SEVERAL, if fleet { "swept by 2+ robots" } else { "covered 2+ times" }),
             (PREMARKED, "pre-marked as covered"),
             (HIT, "obstacle swept"),
             (OBSTACLE, "obstacle"),
             (UNKNOWN, "unknown"),
         ];
-        let mut entries: Vec<(RGBColor, String)> = entries.iter().map(|(c, s)| (*c, s.to_string())).collect();
-        if self.robots.is_empty() {
-            entries.push((PATH, "path".into()));
-        } else {
+        // A fleet's cells are tinted by robot: "covered once" does not apply.
+        let mut entries: Vec<(RGBColor, String)> =
+            entries.iter().filter(|(c, _)| !fleet || *c != ONCE).map(|(c, s)| (*c, s.to_string())).collect();
+        if fleet {
             for (k, (name, width)) in self.robots.iter().enumerate() {
-                entries.push((ROBOTS[k % ROBOTS.len()], format!("{name} ({width} m)")));
+                entries.push((robot_tint(k), format!("{name} ({width} m), alone")));
             }
+        } else {
+            entries.push((PATH, "path".into()));
         }
         legend(&side, &entries, 60)?;
+        if fleet {
+            // Each robot's path colour across its swatch.
+            let first = entries.len() - self.robots.len();
+            for k in 0..self.robots.len() {
+                let y = 60 + 26 * (first + k) as i32 + 9;
+                side.draw(&PathElement::new(vec![(8, y), (26, y)], ROBOTS[k % ROBOTS.len()].stroke_width(3)))
+                    .map_err(err)?;
+            }
+        }
         let below = 60 + 26 * entries.len() as i32;
         side.draw(&TriangleMarker::new((17, below + 9), 9, GREEN.filled())).map_err(err)?;
         side.draw(&Text::new("start", (34, below), text(17.0))).map_err(err)?;
@@ -238,5 +276,34 @@ mod tests {
         assert_eq!(scale_length(11.0), 2.0);
         assert_eq!(scale_length(30.0), 5.0);
         assert_eq!(scale_length(3.0), 0.5);
+    }
+
+    #[test]
+    fn fleet_cells_are_classed_by_the_robot_that_swept_them() {
+        // thesis-1 (0.2 m cells): robot 0 (0.4 m) along y = 3 from x = 2 to 6, robot 1 (0.8 m)
+        // from x = 4 to 8; x in [4, 6) is swept by both.
+        let map = crate::map::presets::preset("thesis-1").unwrap();
+        let grid = CoverageGrid::new(&map);
+        let p = |x: f64, y: f64| Point::new(x, y);
+        let fig = PathFigure {
+            map: &map,
+            grid: &grid,
+            paths: vec![vec![p(2.0, 3.0), p(6.0, 3.0)], vec![p(4.0, 3.0), p(8.0, 3.0)]],
+            width: 0.6,
+            robots: vec![("a".into(), 0.4), ("b".into(), 0.8)],
+            title: String::new(),
+        };
+        let classes = fig.classes();
+        let at = |x: f64, y: f64| {
+            let (r, c) = map.cell_at(p(x, y)).unwrap();
+            classes[r * map.cols() + c]
+        };
+        assert!(at(3.0, 3.1) == Class::Robot(0));
+        assert!(at(7.0, 3.3) == Class::Robot(1));
+        assert!(at(5.0, 3.1) == Class::Several);
+        assert!(at(5.0, 3.3) == Class::Robot(1), "outside robot 0's 0.4 m");
+        assert!(at(5.0, 5.0) == Class::Never);
+        let count = |k: Class| classes.iter().filter(|c| **c == k).count();
+        assert_eq!((count(Class::Robot(0)), count(Class::Robot(1)), count(Class::Several)), (20, 60, 20));
     }
 }
