@@ -227,6 +227,10 @@ fn bad_grid_files_are_rejected() {
     expect_grid_error(&format!("seeds = 0\n{base}"), "at least 1 replicate");
     expect_grid_error("[axes]\n\"thesis.c_len\" = [0.1]\n", "missing field `base`");
     expect_grid_error(&format!("{base}[axes]\n\"thesis.p_c\" = [1.5]\n"), "`thesis.p_c` = 1.5 is out of range");
+    expect_grid_error(
+        &format!("{base}[[base.robots]]\nname = \"a\"\n[axes]\n\"thesis.p_c\" = [0.5]\n"),
+        "grid studies of fleets are not available",
+    );
 }
 
 #[test]

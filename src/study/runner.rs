@@ -172,6 +172,13 @@ pub fn validate_runs(
     runs.iter().try_fold(0.0f64, |largest, run| {
         let exp = experiment_of(study, run, maps)?;
         let origin = format!("{} (run {})", study.path.display(), run.id);
+        if exp.fleet.is_some() {
+            return Err(ConfigError::new(
+                &origin,
+                "robots",
+                "are set: grid studies of fleets are not available yet (a fleet runs with `covga run`)",
+            ));
+        }
         Ok(largest.max(exp.check_memory(&origin, limit, parallel)?.bytes))
     })
 }
