@@ -99,6 +99,13 @@ fn three_agents_share_loop_closures() {
     let agents: std::collections::BTreeSet<&str> =
         paths.lines().skip(1).map(|l| l.split(',').next().unwrap()).collect();
     assert_eq!(agents.len(), 3);
+    // The team is scored as a fleet of three of the experiment's robot; its union is the
+    // common scorer's coverage and its makespan the common makespan.
+    let f = &s["fleet"];
+    assert_eq!(f["robots"], serde_json::json!(["agent 0", "agent 1", "agent 2"]));
+    assert_eq!(f["cov_final"], s["score"]["cov_final_free"]);
+    assert_eq!(f["makespan_s"], s["score"]["makespan_s"]);
+    assert!(f["overlap_fraction"].as_f64().unwrap() > 0.0, "loop closures re-fly shared edges");
 }
 
 #[test]

@@ -38,6 +38,19 @@ pub struct Fleet {
 }
 
 impl Fleet {
+    /// A team of identical robots named `agent 0`, `agent 1`, … with the given start and end
+    /// stations (a multi-agent plan of one robot type, e.g. the waypoint planner's teams).
+    /// `None` without stations.
+    pub fn homogeneous(footprint: Footprint, stations: &[(Point, Point)]) -> Option<Self> {
+        (!stations.is_empty()).then(|| Self {
+            robots: stations
+                .iter()
+                .enumerate()
+                .map(|(k, &(start, end))| Robot { name: format!("agent {k}"), footprint, start, end })
+                .collect(),
+        })
+    }
+
     /// The robots, in the order of the experiment file.
     pub fn robots(&self) -> &[Robot] {
         &self.robots

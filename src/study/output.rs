@@ -105,6 +105,10 @@ pub struct Summary {
     pub objectives: std::collections::BTreeMap<String, f64>,
     /// The common scorer's metrics of the plan.
     pub score: Score,
+    /// Fleet metrics of a plan of several agents (the experiment's robot for each; union,
+    /// overlap, makespan, balance), as `covga eval --fleet` reports them.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fleet: Option<crate::fleet::metrics::FleetScore>,
     /// Planner-specific fields.
     #[serde(flatten)]
     pub details: serde_json::Map<String, serde_json::Value>,
@@ -119,6 +123,17 @@ pub fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Scorer {
     let mut stations = vec![s.start];
     stations.extend(plan.iter().filter_map(|p| p.first().copied()));
     Scorer::new(&s.map, s.robot, s.projection, &s.camera, &stations)
+}
+
+/// The fleet metrics of a plan of two agents or more, each agent the experiment's robot
+/// starting and ending where its path does.
+fn team_score(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Option<crate::fleet::metrics::FleetScore> {
+    if plan.len() < 2 || plan.iter().any(Vec::is_empty) {
+        return None;
+    }
+    let stations: Vec<_> = plan.iter().map(|p| (p[0], *p.last().expect("non-empty"))).collect();
+    let fleet = crate::fleet::Fleet::homogeneous(exp.scenario.robot, &stations)?;
+    crate::fleet::metrics::FleetScorer::new(&exp.scenario.map, &fleet).score(plan).ok()
 }
 
 /// Runs the experiment, streaming history to `dir`, and writes every result file; `figures`
@@ -164,6 +179,7 @@ pub fn run_experiment(
     }
     let scorer = scorer_of(exp, &outcome.plan);
     let score = scorer.score(&outcome.plan);
+    let fleet = team_score(exp, &outcome.plan);
     let summary = Summary {
         planner: planner.name(),
         map: exp.scenario.map.name().to_string(),
@@ -176,6 +192,7 @@ pub fn run_experiment(
         warnings: outcome.warnings.clone(),
         objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         score,
+        fleet,
         details: outcome.details.clone(),
         wall_s: outcome.wall_s,
     };
