@@ -61,6 +61,8 @@ pub enum StopReason {
     Stall,
     /// A deterministic planner finished its plan.
     Completed,
+    /// A fleet's negotiated plans settled within the tolerance.
+    Settled,
 }
 
 /// The result of one run of any planner.

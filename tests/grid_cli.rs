@@ -228,9 +228,59 @@ fn bad_grid_files_are_rejected() {
     expect_grid_error("[axes]\n\"thesis.c_len\" = [0.1]\n", "missing field `base`");
     expect_grid_error(&format!("{base}[axes]\n\"thesis.p_c\" = [1.5]\n"), "`thesis.p_c` = 1.5 is out of range");
     expect_grid_error(
-        &format!("{base}[[base.robots]]\nname = \"a\"\n[axes]\n\"thesis.p_c\" = [0.5]\n"),
-        "grid studies of fleets are not available",
+        &format!(
+            "{base}[[base.robots]]\nname = \"a\"\nwidth = 0.9\n[base.fleet]\nmode = \"waypoint\"\n[base.waypoint]\ngenerations = 5\n[axes]\n\"planner\" = [\"waypoint\"]\n"
+        ),
+        "differs from [robot]",
     );
+}
+
+#[test]
+fn a_fleet_grid_runs_every_method_and_reports_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("fleets.toml");
+    std::fs::write(
+        &grid,
+        "seeds = 2\n[base]\nplanner = \"thesis\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n\
+         [base.thesis]\npop_min = 20\n[base.fleet]\nround_iterations = 10\n\
+         [base.waypoint]\ngenerations = 1000\nl_init = 100\nobjective = \"footprint\"\nalpha_cov = 1.0\nuav_width = 0.6\n\
+         [base.budget]\niterations = 100000\nevaluations = 1500\n\
+         [[base.robots]]\nname = \"a\"\nstart = [1.3, 1.3]\n[[base.robots]]\nname = \"b\"\nstart = [9.7, 9.7]\n\
+         [axes]\n\"fleet.name\" = [\"pair\"]\n\"fleet.mode\" = [\"central\", \"negotiate\", \"divide\", \"waypoint\"]\n\
+         [[conditional]]\nwhen = { \"fleet.mode\" = \"waypoint\" }\naxes = { \"planner\" = [\"waypoint\"] }\n",
+    )
+    .unwrap();
+    let out = dir.path().join("study");
+    let dry = covga(&["grid", grid.to_str().unwrap(), "--dry-run"]);
+    ok(&dry);
+    assert!(String::from_utf8_lossy(&dry.stdout).contains("7 runs (4 configurations"), "division runs once");
+    ok(&covga(&["grid", grid.to_str().unwrap(), "--jobs", "2", "--out", out.to_str().unwrap()]));
+    let text = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = r.headers().unwrap().iter().map(str::to_string).collect();
+    let col = |name: &str| header.iter().rposition(|h| h == name).unwrap_or_else(|| panic!("{name}"));
+    let rows: Vec<Vec<String>> = r.records().map(|x| x.unwrap().iter().map(str::to_string).collect()).collect();
+    assert_eq!(rows.len(), 7);
+    let planners: std::collections::BTreeSet<&str> = rows.iter().map(|r| r[col("planner")].as_str()).collect();
+    assert_eq!(
+        planners.into_iter().collect::<Vec<_>>(),
+        ["fleet-central", "fleet-divide", "fleet-negotiate", "fleet-waypoint"]
+    );
+    for row in &rows {
+        assert_eq!((row[col("fleet_name")].as_str(), row[col("fleet_robots")].as_str()), ("pair", "2"));
+        let union: f64 = row[col("union_reach")].parse().unwrap();
+        assert!(union > 0.0 && union <= 1.0, "{row:?}");
+        let evaluations: u64 = row[col("evaluations")].parse().unwrap();
+        let budget = if row[col("planner")] == "fleet-divide" { 0..=0 } else { 1500..=1700 };
+        assert!(budget.contains(&evaluations), "{}: {evaluations}", row[col("planner")]);
+    }
+    ok(&covga(&["report", out.to_str().unwrap()]));
+    let md = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    for needle in
+        ["# Fleet study", "| pair | central | 2 |", "| pair | divide | 1 |", "## Pairwise tests", "## Convergence"]
+    {
+        assert!(md.contains(needle), "{needle} in\n{md}");
+    }
 }
 
 #[test]

@@ -339,11 +339,46 @@ fn a_fleet_negotiates_deterministically_and_writes_its_results() {
 }
 
 #[test]
+fn a_fleet_plans_centrally_deterministically_and_writes_its_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = fleet("").replace("[fleet]\n", "[fleet]\nmode = \"central\"\n");
+    let exp = write(dir.path(), "central.toml", &text);
+    let run = |threads: &str, out: &str| {
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join(out).to_str().unwrap()], threads);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        dir.path().join(out)
+    };
+    let (one, two) = (run("1", "one"), run("2", "two"));
+    for file in ["history.csv", "best_path.csv", "config.toml"] {
+        assert_eq!(read(&one.join(file)), read(&two.join(file)), "{file} with 1 and 2 threads");
+    }
+    let s = summary_without_time(&one);
+    assert_eq!(s, summary_without_time(&two));
+    assert_eq!(s["planner"], "fleet-central");
+    assert_eq!(s["fleet"]["robots"], serde_json::json!(["narrow", "wide"]));
+    assert_eq!(s["iterations"].as_u64(), Some(200));
+    assert_eq!(s["genome_len"].as_array().map(Vec::len), Some(2), "one genome per robot");
+    let f = &s["fleet"];
+    assert!(f["union_reach"].as_f64().unwrap() > 0.5, "{f}");
+    assert_eq!(f["robot_time_s"].as_array().map(Vec::len), Some(2));
+    assert_eq!(read(&one.join("history.csv")).lines().count(), 1 + 201, "one row per iteration");
+    let paths = read(&one.join("best_path.csv"));
+    assert!(paths.contains(",narrow,") && paths.contains(",wide,"));
+    assert!(one.join("path.png").exists());
+}
+
+#[test]
 fn bad_fleets_are_rejected_with_exit_2() {
     expect_error(&fleet("[[robots]]\nname = \"narrow\"\n"), "`robots[2].name`");
     expect_error(&fleet("[[robots]]\nname = \"x\"\nstart = [0.5, 5.0]\n"), "robots[2].start (robot \"x\")");
     expect_error(&fleet("").replace("round_iterations = 50", "round_iterations = 0"), "fleet.round_iterations");
     expect_error(&format!("planner = \"spiral\"\n{}", fleet("")), "cannot plan for [[robots]]");
-    expect_error(&fleet("").replace("iterations = 200", "iterations = 200\nevaluations = 5000"), "budget.evaluations");
+    expect_error(
+        &fleet("").replace("iterations = 200", "iterations = 200\nstall_iterations = 5"),
+        "budget.stall_iterations",
+    );
+    expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nmode = \"waypoint\"\n"), "cannot plan for [[robots]]");
+    expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nname = \"a,b\"\n"), "fleet.name");
+    expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nmode = \"teleport\"\n"), "teleport");
     expect_error(&small("[fleet]\nround_iterations = 5"), "no [[robots]]");
 }

@@ -85,44 +85,14 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
             let _ = std::fs::remove_dir(&dir);
         }
     };
-    if let Some(fleet) = &exp.fleet {
-        let summary = crate::fleet::run::run_fleet(&exp, fleet, &dir).map_err(|e| {
-            discard_folder();
-            CliError::internal(e)
-        })?;
-        if !a.quiet {
-            let f = &summary.fleet;
-            println!(
-                "{origin}: fleet of {} on {} by negotiation, seed {}, {} rounds ({}), {} evaluations, {:.2} s",
-                f.robots.len(),
-                summary.map,
-                summary.seed,
-                summary.rounds,
-                if summary.converged { "settled" } else { "budget ended" },
-                summary.evaluations,
-                summary.wall_s
-            );
-            println!(
-                "union {:.4} of free ({:.4} of reachable), overlap {:.4}, makespan {:.0} s, balance {}, cov_final {:.4}, t_final {:.4}",
-                f.union_free,
-                f.union_reach,
-                f.overlap_fraction,
-                f.makespan_s,
-                f.balance.map_or("-".into(), |b| format!("{b:.2}")),
-                f.cov_final,
-                f.t_final
-            );
-            println!("wrote {}", dir.display());
-        }
-        return Ok(());
-    }
     let show = !a.quiet && std::io::stderr().is_terminal();
-    let length = match exp.file.planner {
-        PlannerKind::Waypoint => exp.file.waypoint.generations,
+    let length = match (exp.file.planner, &exp.fleet) {
+        (PlannerKind::Waypoint, _) => exp.file.waypoint.generations,
+        (_, Some(f)) if f.mode != crate::fleet::config::FleetMode::Central => 0,
         _ => exp.budget.iterations,
     };
     let mut progress = Progress(super::progress_bar(u64::from(length), "it", show));
-    let (_, summary) = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| {
+    let summary = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| {
         discard_folder();
         match e {
             OutputError::Planner(m) => CliError::Input(format!("{origin}: {m}")),
@@ -141,10 +111,30 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         );
         let own: Vec<String> = summary.objectives.iter().map(|(k, v)| format!("{k} {v:.4}")).collect();
         println!("planner's objectives: {}", own.join("  "));
-        println!(
-            "common score: cov_final {:.4} (reachable {:.4})  t_final {:.4}  camera walls {:.4}  length {:.1} m  time {:.0} s",
-            s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
-        );
+        if let Some(f) = &summary.fleet {
+            if let Some(rounds) = summary.details.get("rounds") {
+                let settled = summary.details.get("converged").and_then(|c| c.as_bool()).unwrap_or(false);
+                println!("negotiation: {rounds} rounds, {}", if settled { "settled" } else { "budget ended" });
+            }
+            println!(
+                "fleet of {} ({}): union {:.4} of free ({:.4} of reachable), overlap {:.4}, makespan {:.0} s, balance {}, cov_final {:.4}, t_final {:.4}",
+                f.robots.len(),
+                f.robots.join(", "),
+                f.union_free,
+                f.union_reach,
+                f.overlap_fraction,
+                f.makespan_s,
+                f.balance.map_or("-".into(), |b| format!("{b:.2}")),
+                f.cov_final,
+                f.t_final
+            );
+        }
+        if exp.fleet.is_none() {
+            println!(
+                "common score: cov_final {:.4} (reachable {:.4})  t_final {:.4}  camera walls {:.4}  length {:.1} m  time {:.0} s",
+                s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
+            );
+        }
         if summary.feasible {
             println!("feasible: yes");
         } else {

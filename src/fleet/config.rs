@@ -101,23 +101,47 @@ pub enum FleetMode {
     /// `round_iterations` ([`super::negotiation`]).
     #[default]
     Negotiate,
+    /// The centralised fleet GA: one genome per robot in every member ([`super::central`]).
+    Central,
+    /// Area division in the style of DARP, a boustrophedon per region ([`super::division`]).
+    Divide,
+    /// The waypoint planner's multi-agent mode (000), one agent per robot from its start; the
+    /// robots must all be the experiment's `[robot]`.
+    Waypoint,
+}
+
+impl FleetMode {
+    /// The planner's name in summaries and study tables.
+    pub fn planner_name(self) -> &'static str {
+        match self {
+            FleetMode::Negotiate => "fleet-negotiate",
+            FleetMode::Central => "fleet-central",
+            FleetMode::Divide => "fleet-divide",
+            FleetMode::Waypoint => "fleet-waypoint",
+        }
+    }
 }
 
 /// `[fleet]` of an experiment file.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FleetSection {
     /// How the fleet is planned.
     pub mode: FleetMode,
-    /// Iterations of every robot's GA between two exchanges (`k`).
+    /// A label for the fleet in study tables (e.g. `hetero-3`); no effect on the plan.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Iterations of every robot's GA between two exchanges (`k`, negotiation).
     pub round_iterations: u32,
-    /// Largest plan change (share of swept cells) that counts as settled.
+    /// Largest plan change (share of swept cells) that counts as settled (negotiation).
     pub tolerance: f64,
+    /// Lane angle of the regions' boustrophedons in degrees (division).
+    pub angle_deg: f64,
 }
 
 impl Default for FleetSection {
     fn default() -> Self {
-        Self { mode: FleetMode::Negotiate, round_iterations: 100, tolerance: 0.02 }
+        Self { mode: FleetMode::Negotiate, name: None, round_iterations: 100, tolerance: 0.02, angle_deg: 0.0 }
     }
 }
 
@@ -128,8 +152,12 @@ pub struct FleetRun {
     pub fleet: Fleet,
     /// How they plan.
     pub mode: FleetMode,
+    /// The fleet's label, if any.
+    pub name: Option<String>,
     /// The negotiation's rounds, budget and tolerance.
     pub negotiation: super::negotiation::NegotiationParams,
+    /// The division's lane angle in degrees.
+    pub angle_deg: f64,
 }
 
 impl FleetRun {
@@ -146,28 +174,36 @@ impl FleetRun {
             }
             return Ok(None);
         }
-        if file.planner != crate::planner::PlannerKind::Thesis {
+        let section = file.fleet.clone().unwrap_or_default();
+        let wanted = match section.mode {
+            FleetMode::Waypoint => crate::planner::PlannerKind::Waypoint,
+            _ => crate::planner::PlannerKind::Thesis,
+        };
+        if file.planner != wanted {
             return Err(ConfigError::new(
                 origin,
                 "planner",
                 format!(
-                    "= \"{}\" cannot plan for [[robots]]: a fleet is planned by the thesis GA (planner = \"thesis\"); \
-                     area division: covga eval --fleet FILE --divide",
-                    file.planner.name()
+                    "= \"{}\" cannot plan for [[robots]] with fleet.mode = \"{}\": a fleet is planned by the thesis GA \
+                     (planner = \"thesis\", fleet.mode = \"central\" or \"negotiate\"), by area division (planner = \"thesis\", \
+                     fleet.mode = \"divide\") or by the waypoint planner's teams (planner = \"waypoint\", fleet.mode = \"waypoint\")",
+                    file.planner.name(),
+                    section.mode.planner_name().trim_start_matches("fleet-")
                 ),
             ));
         }
-        for (set, key) in [
-            (budget.evaluations.is_some(), "budget.evaluations"),
-            (budget.wall_clock.is_some(), "budget.wall_clock_s"),
-            (budget.stall_iterations.is_some(), "budget.stall_iterations"),
-        ] {
-            if set {
-                return Err(ConfigError::new(
-                    origin,
-                    key,
-                    "is not available for fleets: a negotiation stops at budget.iterations or when the plans settle",
-                ));
+        if section.mode == FleetMode::Negotiate {
+            for (set, key) in [
+                (budget.wall_clock.is_some(), "budget.wall_clock_s"),
+                (budget.stall_iterations.is_some(), "budget.stall_iterations"),
+            ] {
+                if set {
+                    return Err(ConfigError::new(
+                        origin,
+                        key,
+                        "is not available for a negotiation: it stops at budget.iterations, budget.evaluations or when the plans settle",
+                    ));
+                }
             }
         }
         if file.retrain.is_some() {
@@ -177,7 +213,6 @@ impl FleetRun {
                 "is not available for fleets (the negotiation pre-marks cells itself)",
             ));
         }
-        let section = file.fleet.unwrap_or_default();
         if section.round_iterations == 0 || section.round_iterations > 1_000_000 {
             return Err(ConfigError::new(
                 origin,
@@ -186,18 +221,68 @@ impl FleetRun {
             ));
         }
         check_range(origin, "fleet.tolerance", section.tolerance, 0.0, 1.0, "[0, 1]")?;
+        check_range(origin, "fleet.angle_deg", section.angle_deg, -360.0, 360.0, "[-360, 360] degrees")?;
+        if let Some(name) = &section.name
+            && (name.trim().is_empty() || name.len() > 64 || name.chars().any(|c| matches!(c, ',' | '"' | '\n' | '\r')))
+        {
+            return Err(ConfigError::new(
+                origin,
+                "fleet.name",
+                format!(
+                    "= {name:?} must be 1 to 64 characters without comma, quote or line break (it goes into CSV columns)"
+                ),
+            ));
+        }
         let r = scenario.robot;
         let fleet = validate(&file.robots, r, file.stations.start, origin, &scenario.map)?;
+        if section.mode == FleetMode::Waypoint
+            && let Some(k) = fleet.robots().iter().position(|x| x.footprint != r)
+        {
+            return Err(ConfigError::new(
+                origin,
+                &format!("robots[{k}]"),
+                format!(
+                    "(robot \"{}\") differs from [robot]: the waypoint planner plans teams of identical robots \
+                     (leave width, speed and rot_speed to [robot])",
+                    fleet.robots()[k].name
+                ),
+            ));
+        }
         Ok(Some(Self {
             fleet,
             mode: section.mode,
+            name: section.name,
             negotiation: super::negotiation::NegotiationParams {
                 round_iterations: section.round_iterations,
                 iterations: budget.iterations,
+                evaluations: budget.evaluations,
                 tolerance: section.tolerance,
             },
+            angle_deg: section.angle_deg,
         }))
     }
+}
+
+/// For `fleet.mode = "waypoint"`: makes `[waypoint]` plan one agent per robot, each from
+/// the robot's start, before the planner is validated.
+pub fn waypoint_team(file: &mut crate::study::experiment::ExperimentFile, origin: &str) -> Result<(), ConfigError> {
+    if file.robots.is_empty() || file.fleet.as_ref().is_none_or(|f| f.mode != FleetMode::Waypoint) {
+        return Ok(());
+    }
+    let start = file.stations.start;
+    let agents = file.robots.len().min(MAX_ROBOTS);
+    let starts: Vec<[f64; 2]> = file.robots.iter().take(agents).map(|r| r.start.unwrap_or(start)).collect();
+    let unset = file.waypoint.agents == 1 && file.waypoint.starts.is_empty();
+    if !unset && (file.waypoint.agents != agents || file.waypoint.starts != starts) {
+        return Err(ConfigError::new(
+            origin,
+            "waypoint.agents",
+            "and waypoint.starts come from [[robots]] with fleet.mode = \"waypoint\": leave them out",
+        ));
+    }
+    file.waypoint.agents = agents;
+    file.waypoint.starts = starts;
+    Ok(())
 }
 
 /// A fleet file for `covga eval --fleet`: `[robot]` defaults, `[stations]` defaults and the

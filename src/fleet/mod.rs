@@ -2,6 +2,7 @@
 //! them as the next step): several robots of their own width, speed and stations on one map.
 //! [`Fleet`] is the validated team; [`metrics`] scores a fleet's plan on one shared visit map.
 
+pub mod central;
 pub mod config;
 pub mod division;
 pub mod metrics;
@@ -97,6 +98,20 @@ pub fn fleet_t_final(t_optimal: f64, robot_times: &[f64]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_homogeneous_team_names_its_agents() {
+        let fp = Footprint { width: 0.5, speed: 0.25, rot_speed: 0.0 };
+        let (a, b) = (Point::new(1.0, 2.0), Point::new(3.0, 4.0));
+        let team = Fleet::homogeneous(fp, &[(a, b), (b, a)]).unwrap();
+        assert_eq!((team.len(), team.is_empty(), team.is_homogeneous()), (2, false, true));
+        let names: Vec<&str> = team.robots().iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names, ["agent 0", "agent 1"]);
+        assert_eq!((team.robots()[1].start, team.robots()[1].end), (b, a));
+        assert!((team.sweep_rate() - 0.25).abs() < 1e-15, "2 × 0.5 m × 0.25 m/s");
+        assert!(Fleet::homogeneous(fp, &[]).is_none());
+        assert!(Fleet { robots: Vec::new() }.is_empty());
+    }
 
     #[test]
     fn fleet_time_by_hand() {

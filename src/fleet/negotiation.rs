@@ -27,6 +27,9 @@ pub struct NegotiationParams {
     pub round_iterations: u32,
     /// Iterations of every robot's GA in all (the budget).
     pub iterations: u32,
+    /// Evaluations of all robots together (the budget), shared equally: robot `k` of `n` may
+    /// spend `E / n`, plus one when `k < E mod n`.
+    pub evaluations: Option<u64>,
     /// A plan "changes" when the share of its swept cells that differ from the previous
     /// round's (symmetric difference over union) exceeds this.
     pub tolerance: f64,
@@ -122,11 +125,16 @@ pub fn negotiate(
     let mut premarked = previous.clone();
     let (mut history, mut rounds, mut converged) = (Vec::new(), 0u32, false);
     let round_iterations = np.round_iterations.max(1);
-    while states[0].iteration < np.iterations {
-        let steps = round_iterations.min(np.iterations - states[0].iteration);
-        gas.par_iter().zip(states.par_iter_mut()).for_each(|(ga, state)| {
+    let n = robots.len() as u64;
+    let share = |k: usize| np.evaluations.map(|e| e / n + u64::from((k as u64) < e % n));
+    let active = |k: usize, s: &GaState| s.iteration < np.iterations && share(k).is_none_or(|e| s.evaluations < e);
+    while states.iter().enumerate().any(|(k, s)| active(k, s)) {
+        gas.par_iter().zip(states.par_iter_mut()).enumerate().for_each(|(k, (ga, state))| {
             let mut scratches = ga.new_scratches();
-            for _ in 0..steps {
+            for _ in 0..round_iterations {
+                if !active(k, state) {
+                    break;
+                }
                 let effective = ga.effective(state, state.iteration + 1, np.iterations);
                 ga.step(state, effective, &mut scratches, None);
             }
@@ -157,7 +165,7 @@ pub fn negotiate(
             converged = true;
             break;
         }
-        if states[0].iteration >= np.iterations {
+        if !states.iter().enumerate().any(|(k, s)| active(k, s)) {
             break;
         }
         // The exchange: every robot pre-marks what the others' plans sweep (and re-evaluates
@@ -198,7 +206,7 @@ mod tests {
         )
         .unwrap();
         let p = params(20);
-        let np = NegotiationParams { round_iterations: 30, iterations: 150, tolerance: 0.0 };
+        let np = NegotiationParams { round_iterations: 30, iterations: 150, evaluations: None, tolerance: 0.0 };
         let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np);
         let r = &fleet.robots()[0];
         let mut single = ThesisGa {
@@ -237,7 +245,7 @@ mod tests {
             &map,
         )
         .unwrap();
-        let np = NegotiationParams { round_iterations: 40, iterations: 200, tolerance: 0.0 };
+        let np = NegotiationParams { round_iterations: 40, iterations: 200, evaluations: None, tolerance: 0.0 };
         let p = params(20);
         let run = |threads: usize| {
             rayon::ThreadPoolBuilder::new()

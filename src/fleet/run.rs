@@ -1,106 +1,208 @@
-//! Running an experiment file with `[[robots]]`: the fleet's negotiation, then its results
-//! folder — `config.toml`, `history.csv` (one row per round and robot), `best_path.csv` (with
-//! `agent` and `robot` columns), `summary.json` (the fleet metrics and the negotiation's
-//! rounds) and `path.png` / `path.svg` (one colour per robot).
+//! Running an experiment file with `[[robots]]` (by `covga run` or in a grid study): the fleet
+//! is planned as `[fleet] mode` says, then its results folder is written — `config.toml`,
+//! `history.csv` (per generation for the centralised GA, per round and robot for the
+//! negotiation), `best_path.csv` (with `agent` and `robot` columns), `summary.json` (the
+//! common summary with the fleet metrics) and, when asked, `path.png` / `path.svg` (one colour
+//! per robot).
 
 use super::config::{FleetMode, FleetRun};
 use super::metrics::{FleetScore, FleetScorer};
-use super::negotiation::{NegotiationOutcome, negotiate};
 use crate::coverage::CoverageGrid;
-use crate::planner::PlannerConfig;
+use crate::ga::observer::Observer;
+use crate::geom::Point;
+use crate::planner::{PlannerConfig, StopReason};
 use crate::plot::path::PathFigure;
 use crate::study::experiment::Experiment;
+use crate::study::output::{HistoryCsv, OutputError, Summary, scorer_of};
 use std::path::Path;
 
-/// What a fleet run reports (written as `summary.json`).
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct FleetSummary {
-    /// `negotiate`.
-    pub mode: FleetMode,
-    /// Map name.
-    pub map: String,
-    /// The run's seed.
-    pub seed: u64,
-    /// Rounds of exchanges held.
-    pub rounds: u32,
-    /// Whether the plans settled before the budget ended.
-    pub converged: bool,
-    /// Evaluations of all robots.
-    pub evaluations: u64,
-    /// The fleet metrics of the final plans.
-    pub fleet: FleetScore,
-    /// Wall time in seconds (not part of the deterministic outputs).
-    pub wall_s: f64,
+/// A fleet's plan and what its planner reports besides the fleet metrics.
+struct FleetPlan {
+    paths: Vec<Vec<Point>>,
+    evaluations: u64,
+    iterations: u32,
+    stop: StopReason,
+    details: serde_json::Value,
+    /// The planner's own constraint violations (the waypoint planner's), in words.
+    violations: Vec<String>,
 }
 
-/// Why a fleet run failed.
-#[derive(Debug, thiserror::Error)]
-pub enum FleetRunError {
-    /// A results file could not be written.
-    #[error("cannot write {path}: {source}")]
-    Io {
-        /// The file.
-        path: std::path::PathBuf,
-        /// The cause.
-        source: std::io::Error,
-    },
-    /// A figure could not be drawn.
-    #[error(transparent)]
-    Plot(#[from] crate::plot::PlotError),
+fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
+    move |source| OutputError::Io { path: path.to_path_buf(), source }
 }
 
-/// Plans `run` for `exp` and writes the results folder `dir`.
-pub fn run_fleet(exp: &Experiment, run: &FleetRun, dir: &Path) -> Result<FleetSummary, FleetRunError> {
+/// Plans `run` for `exp`, writes the results folder `dir` (figures when `figures`) and returns
+/// the summary. `extra` observers see the centralised GA's generations.
+pub fn run_fleet(
+    exp: &Experiment,
+    run: &FleetRun,
+    dir: &Path,
+    figures: bool,
+    extra: &mut [&mut dyn Observer],
+) -> Result<Summary, OutputError> {
     let started = std::time::Instant::now();
-    let PlannerConfig::Thesis(thesis) = &exp.planner else { unreachable!("fleets are validated to use the thesis GA") };
+    let thesis = || match &exp.planner {
+        PlannerConfig::Thesis(t) => t.params,
+        _ => unreachable!("fleets planned by the thesis GA are validated to configure it"),
+    };
     let map = &exp.scenario.map;
-    let outcome: NegotiationOutcome = match run.mode {
+    let projection = exp.scenario.projection;
+    std::fs::create_dir_all(dir).map_err(io_err(dir))?;
+    let write = |name: &str, bytes: &[u8]| crate::io::write_atomic(&dir.join(name), bytes).map_err(io_err(dir));
+    let plan = match run.mode {
+        FleetMode::Central => {
+            let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
+            let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
+            observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
+            let mut ga = crate::thesis::run::Ga::<super::central::Crew> {
+                scenario: super::central::FleetWorld::new(map, &run.fleet, projection),
+                params: thesis(),
+                seed: exp.seed,
+            };
+            let out = ga.run(&exp.budget, None, &mut observers).map_err(io_err(dir))?;
+            history.finish().map_err(io_err(dir))?;
+            let best = &out.best;
+            FleetPlan {
+                paths: best.paths(),
+                evaluations: out.evaluations,
+                iterations: out.iterations,
+                stop: out.stop,
+                details: serde_json::json!({
+                    "fitness": best.score.fitness,
+                    "genome_len": best.robots.iter().map(|r| r.len()).collect::<Vec<_>>(),
+                }),
+                violations: Vec::new(),
+            }
+        }
         FleetMode::Negotiate => {
-            negotiate(map, &run.fleet, &thesis.params, exp.scenario.projection, exp.seed, &run.negotiation)
+            let out = super::negotiation::negotiate(map, &run.fleet, &thesis(), projection, exp.seed, &run.negotiation);
+            let mut history = csv::Writer::from_writer(Vec::new());
+            for record in &out.history {
+                history.serialize(record).expect("records serialise");
+            }
+            write("history.csv", &history.into_inner().expect("in memory"))?;
+            let iterations = out.history.iter().map(|r| r.iteration).max().unwrap_or(0);
+            let stop = if out.converged {
+                StopReason::Settled
+            } else if run.negotiation.evaluations.is_some() && iterations < run.negotiation.iterations {
+                StopReason::Evaluations
+            } else {
+                StopReason::Iterations
+            };
+            let changes: Vec<f64> = out.history.iter().map(|r| r.change).collect();
+            FleetPlan {
+                paths: out.paths,
+                evaluations: out.evaluations,
+                iterations,
+                stop,
+                details: serde_json::json!({
+                    "rounds": out.rounds,
+                    "converged": out.converged,
+                    "last_round_change": changes.chunks(run.fleet.len()).last().map(|c| c.iter().copied().fold(0.0, f64::max)),
+                }),
+                violations: Vec::new(),
+            }
+        }
+        FleetMode::Waypoint => {
+            let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
+            let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
+            observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
+            let out = match exp.planner.planner().run(&exp.scenario, exp.seed, &exp.budget, &mut observers) {
+                Ok(out) => out,
+                Err(e) => {
+                    history.discard();
+                    return Err(match e {
+                        crate::planner::PlannerError::Input(m) => OutputError::Planner(m),
+                        crate::planner::PlannerError::Io(e) => {
+                            OutputError::Io { path: dir.join("history.csv"), source: e }
+                        }
+                    });
+                }
+            };
+            history.finish().map_err(io_err(dir))?;
+            FleetPlan {
+                paths: out.plan,
+                evaluations: out.evaluations,
+                iterations: out.iterations,
+                stop: out.stop,
+                details: serde_json::Value::Object(out.details),
+                violations: out.violations,
+            }
+        }
+        FleetMode::Divide => {
+            let (paths, division) = super::division::plan(map, &run.fleet, run.angle_deg)
+                .map_err(|e| OutputError::Planner(e.to_string()))?;
+            FleetPlan {
+                paths,
+                evaluations: 0,
+                iterations: 0,
+                stop: StopReason::Completed,
+                details: serde_json::json!({
+                    "region_cells": division.sizes,
+                    "region_targets": division.targets,
+                    "detached_cells": division.detached,
+                    "angle_deg": run.angle_deg,
+                }),
+                violations: Vec::new(),
+            }
         }
     };
-    let score = FleetScorer::new(map, &run.fleet).score(&outcome.paths).expect("one path per robot");
-    let io = |path: &Path| {
-        let path = path.to_path_buf();
-        move |source| FleetRunError::Io { path, source }
-    };
-    std::fs::create_dir_all(dir).map_err(io(dir))?;
-    let write = |name: &str, bytes: &[u8]| crate::io::write_atomic(&dir.join(name), bytes).map_err(io(&dir.join(name)));
+    let score: FleetScore = FleetScorer::new(map, &run.fleet).score(&plan.paths).expect("one path per robot");
     write("config.toml", toml::to_string_pretty(&exp.file).expect("experiment files serialise").as_bytes())?;
-    let mut history = csv::Writer::from_writer(Vec::new());
-    for record in &outcome.history {
-        history.serialize(record).expect("records serialise");
-    }
-    write("history.csv", &history.into_inner().expect("in memory"))?;
     let names: Vec<String> = run.fleet.robots().iter().map(|r| r.name.clone()).collect();
-    write("best_path.csv", &crate::io::fleet_path_csv(&outcome.paths, &names))?;
-    let summary = FleetSummary {
-        mode: run.mode,
+    write("best_path.csv", &crate::io::fleet_path_csv(&plan.paths, &names))?;
+    let mut details = crate::planner::details(plan.details);
+    details.insert("mode".into(), serde_json::to_value(run.mode).expect("modes serialise"));
+    if let Some(name) = &run.name {
+        details.insert("fleet_name".into(), name.clone().into());
+    }
+    let mut violations = plan.violations;
+    violations.extend(crate::thesis::planner::obstacle_violations(score.obstacle_cells));
+    let feasible = violations.is_empty();
+    let summary = Summary {
+        planner: run.mode.planner_name(),
         map: map.name().to_string(),
         seed: exp.seed,
-        rounds: outcome.rounds,
-        converged: outcome.converged,
-        evaluations: outcome.evaluations,
-        fleet: score,
+        evaluations: plan.evaluations,
+        iterations: plan.iterations,
+        stop: plan.stop,
+        feasible,
+        violations,
+        warnings: Vec::new(),
+        objectives: [
+            ("union_reach", score.union_reach),
+            ("makespan_s", score.makespan_s),
+            ("cov_final", score.cov_final),
+            ("t_final", score.t_final),
+        ]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect(),
+        score: scorer_of(exp, &plan.paths).score(&plan.paths),
+        fleet: Some(score),
+        details,
         wall_s: started.elapsed().as_secs_f64(),
     };
-    let json = serde_json::to_string_pretty(&summary).expect("summaries serialise");
-    write("summary.json", json.as_bytes())?;
-    let grid = CoverageGrid::new(map);
-    let figure = PathFigure {
-        map,
-        grid: &grid,
-        paths: outcome.paths.clone(),
-        width: exp.scenario.robot.width,
-        robots: run.fleet.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect(),
-        title: format!(
-            "{} robots on {} (negotiation): union {:.3}, makespan {:.0} s",
-            run.fleet.len(),
-            map.name(),
-            summary.fleet.union_reach,
-            summary.fleet.makespan_s
-        ),
-    };
-    crate::plot::save(&figure, &dir.join("path"))?;
+    write("summary.json", serde_json::to_string_pretty(&summary).expect("summaries serialise").as_bytes())?;
+    if figures {
+        let grid = CoverageGrid::new(map);
+        let f = summary.fleet.as_ref().expect("set above");
+        let figure = PathFigure {
+            map,
+            grid: &grid,
+            paths: plan.paths.clone(),
+            width: exp.scenario.robot.width,
+            robots: run.fleet.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect(),
+            title: format!(
+                "{} robots on {} ({}): union {:.3}, makespan {:.0} s",
+                run.fleet.len(),
+                map.name(),
+                run.mode.planner_name(),
+                f.union_reach,
+                f.makespan_s
+            ),
+        };
+        crate::plot::save(&figure, &dir.join("path"))?;
+    }
     Ok(summary)
 }

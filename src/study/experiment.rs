@@ -174,6 +174,13 @@ pub struct Experiment {
 }
 
 impl ExperimentFile {
+    /// Whether the plan ignores the seed: a deterministic planner, or a fleet planned by area
+    /// division. Grid studies run such a configuration once.
+    pub fn is_deterministic(&self) -> bool {
+        let divide = self.fleet.as_ref().is_some_and(|f| f.mode == crate::fleet::config::FleetMode::Divide);
+        self.planner.is_deterministic() || (!self.robots.is_empty() && divide)
+    }
+
     /// Parses TOML text; `origin` names the file in messages.
     /// A text that sets nothing (empty, or only comments) is refused: it is more often a wrong
     /// or truncated file than a wish for every default, which is said with one key, e.g.
@@ -268,6 +275,7 @@ impl ExperimentFile {
         robot.check_fits(&map).map_err(|m| err("robot.width", m))?;
         let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
         let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
+        crate::fleet::config::waypoint_team(&mut self, origin)?;
         let planner = PlannerConfig::from_file(&self, origin, &scenario)?;
         let budget = Budget {
             iterations: b.iterations,

@@ -410,7 +410,7 @@ fn self_runs(
     let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
     let branch = if branch.is_empty() { "no conditional axes".to_string() } else { branch.join(" & ") };
     // A deterministic planner gives the same plan for every seed: it runs once.
-    let replicates = if file.planner.is_deterministic() { 1 } else { grid.seeds };
+    let replicates = if file.is_deterministic() { 1 } else { grid.seeds };
     for replicate in 0..replicates {
         let mut f = file.clone();
         // TOML integers are signed 64-bit: keep run seeds below 2^63.

@@ -4,6 +4,7 @@ pub mod ablation;
 pub mod config;
 pub mod estimate;
 pub mod experiment;
+pub mod fleet_report;
 pub mod grid;
 pub mod ignored;
 pub mod memory;

@@ -7,7 +7,7 @@
 use super::experiment::Experiment;
 use crate::coverage::score::{Score, Scorer};
 use crate::ga::observer::{GenerationRecord, Observer};
-use crate::planner::{PlannerError, RunOutcome, StopReason};
+use crate::planner::{PlannerError, StopReason};
 use crate::plot::path::PathFigure;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -143,12 +143,9 @@ pub fn run_experiment(
     dir: &Path,
     figures: bool,
     extra: &mut [&mut dyn Observer],
-) -> Result<(RunOutcome, Summary), OutputError> {
-    if exp.fleet.is_some() {
-        return Err(OutputError::Planner(
-            "a fleet ([[robots]]) runs with `covga run` on its own; grid studies of fleets are not available yet"
-                .into(),
-        ));
+) -> Result<Summary, OutputError> {
+    if let Some(fleet) = &exp.fleet {
+        return crate::fleet::run::run_fleet(exp, fleet, dir, figures, extra);
     }
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
     let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
@@ -217,5 +214,5 @@ pub fn run_experiment(
         crate::plot::save(&figure, &dir.join("path"))?;
         planner.write_figures(&exp.scenario, &outcome, dir)?;
     }
-    Ok((outcome, summary))
+    Ok(summary)
 }

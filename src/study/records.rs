@@ -12,17 +12,31 @@ pub const ID_COLUMNS: [&str; 4] = ["run_id", "config_id", "replicate", "seed"];
 pub const RUN_COLUMNS: [&str; 4] = ["planner", "map", "feasible", "violations"];
 /// Columns after the scorer's: effort and timing.
 pub const EFFORT_COLUMNS: [&str; 4] = ["evaluations", "iterations", "stop", "wall_s"];
+/// Columns of a fleet's plan (two agents or more; empty for a single robot): the fleet's
+/// label, robot count and the fleet metrics of [`crate::fleet::metrics::FleetScore`].
+pub const FLEET_COLUMNS: [&str; 9] = [
+    "fleet_name",
+    "fleet_robots",
+    "union_free",
+    "union_reach",
+    "overlap_fraction",
+    "makespan_s",
+    "balance",
+    "fleet_cov_final",
+    "fleet_t_final",
+];
 /// Columns that measure time and so differ between otherwise identical runs.
 pub const TIMING_COLUMNS: [&str; 1] = ["wall_s"];
 
 /// The metric columns of every run, whatever its planner: run columns, the common scorer's
-/// ([`crate::coverage::score::Score::columns`]), effort.
+/// ([`crate::coverage::score::Score::columns`]), effort, fleet.
 pub fn metric_columns() -> Vec<String> {
     RUN_COLUMNS
         .iter()
         .copied()
         .chain(crate::coverage::score::Score::column_names())
         .chain(EFFORT_COLUMNS.iter().copied())
+        .chain(FLEET_COLUMNS.iter().copied())
         .map(str::to_string)
         .collect()
 }
@@ -50,7 +64,26 @@ pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
         stop,
         format!("{:.3}", summary.wall_s),
     ]);
+    out.extend(fleet_fields(summary));
     out
+}
+
+/// The [`FLEET_COLUMNS`] of a run (empty fields for a single robot's plan).
+fn fleet_fields(summary: &Summary) -> Vec<String> {
+    let Some(f) = &summary.fleet else { return vec![String::new(); FLEET_COLUMNS.len()] };
+    let name = summary.details.get("fleet_name").and_then(|v| v.as_str()).unwrap_or_default().to_string();
+    let num = |v: f64| format!("{v}");
+    vec![
+        name,
+        f.robots.len().to_string(),
+        num(f.union_free),
+        num(f.union_reach),
+        num(f.overlap_fraction),
+        num(f.makespan_s),
+        f.balance.map(num).unwrap_or_default(),
+        num(f.cov_final),
+        num(f.t_final),
+    ]
 }
 
 /// One CSV line (with its newline) for `fields`.

@@ -96,6 +96,10 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
     }
     let out = dir.join("report");
     std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
+    if super::fleet_report::applies(&t) {
+        super::fleet_report::write(dir, &t, &out)?;
+        return Ok(out);
+    }
     let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
     let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
     // Groups by the --by columns.

@@ -172,13 +172,6 @@ pub fn validate_runs(
     runs.iter().try_fold(0.0f64, |largest, run| {
         let exp = experiment_of(study, run, maps)?;
         let origin = format!("{} (run {})", study.path.display(), run.id);
-        if exp.fleet.is_some() {
-            return Err(ConfigError::new(
-                &origin,
-                "robots",
-                "are set: grid studies of fleets are not available yet (a fleet runs with `covga run`)",
-            ));
-        }
         Ok(largest.max(exp.check_memory(&origin, limit, parallel)?.bytes))
     })
 }
@@ -308,7 +301,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
             let result = (|| -> Result<(f64, f64, f64), StudyError> {
                 let dir = opts.out.join("runs").join(&run.id);
                 let exp = experiment_of(study, run, &maps)?;
-                let (_, summary) = super::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
+                let summary = super::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
                     super::output::OutputError::Planner(message) => StudyError::Planner { id: run.id.clone(), message },
                     other => StudyError::Run { id: run.id.clone(), message: other.to_string() },
                 })?;

@@ -179,6 +179,26 @@ pub fn a12_magnitude(a12: f64) -> &'static str {
     }
 }
 
+/// Two-sided exact sign test of `values` against the constant `c`: ties are dropped, and the
+/// p-value is the probability under Binomial(n, ½) of a split at least as uneven as the observed
+/// one. `None` when every value ties with `c`.
+pub fn sign_test(values: &[f64], c: f64) -> Option<f64> {
+    let above = values.iter().filter(|&&v| v > c).count();
+    let below = values.iter().filter(|&&v| v < c).count();
+    let n = above + below;
+    if n == 0 {
+        return None;
+    }
+    let k = above.min(below);
+    // Σ_{i ≤ k} C(n, i) / 2^n, in floating point (n is a number of seeds).
+    let (mut term, mut tail) = (0.5f64.powi(n as i32), 0.0);
+    for i in 0..=k {
+        tail += term;
+        term *= (n - i) as f64 / (i + 1) as f64;
+    }
+    Some((2.0 * tail).min(1.0))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -242,5 +262,15 @@ mod tests {
         assert!((kw.h - raw / (1.0 - 18.0 / 210.0)).abs() < 1e-12);
         assert!(kruskal_wallis(&[vec![1.0, 1.0], vec![1.0]]).is_none());
         assert!(kruskal_wallis(&[vec![1.0, 2.0]]).is_none());
+    }
+
+    #[test]
+    fn sign_test_by_hand() {
+        // 10 of 10 above: 2 · 2⁻¹⁰; 8 of 10: 2 · (1 + 10 + 45) / 1024; ties dropped.
+        let ten: Vec<f64> = (1..=10).map(f64::from).collect();
+        assert!((sign_test(&ten, 0.0).unwrap() - 2.0 / 1024.0).abs() < 1e-15);
+        assert!((sign_test(&ten, 2.5).unwrap() - 2.0 * 56.0 / 1024.0).abs() < 1e-15);
+        assert!((sign_test(&[1.0, 2.0, 2.0], 2.0).unwrap() - 1.0).abs() < 1e-15);
+        assert_eq!(sign_test(&[3.0, 3.0], 3.0), None);
     }
 }

@@ -6,10 +6,8 @@
 //! its own stream (seed, iteration, slot) for mutation and re-initialisation, and jobs are
 //! mutated, corrected and evaluated in parallel: the result does not depend on the threads.
 
-use super::crossover::{Parent, crossover};
-use super::genome::{Action, random_genome};
-use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario, correct_and_evaluate};
-use super::mutation::{Mutation, mutate, mutate_action};
+use super::individual::EvalScratch;
+use super::member::{Member, Op, Origin, Variation};
 use super::params::{Selection, ThesisParams};
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
@@ -66,87 +64,53 @@ impl MutationRate {
     }
 }
 
-/// What a job does before it is corrected and evaluated.
+/// What a job's member was made from (an index into the parents), for incremental evaluation.
 #[derive(Clone, Copy, Debug)]
-enum Op {
-    /// Architecture (a): `randInit` with `P_mI`, else the action mutation with `P_mA`.
-    Mutate { p_mi: f64, p_ma: f64 },
-    /// Architecture (b) children: the action mutation with `P_mA`.
-    MutateAction { p_ma: f64 },
-    /// A fresh random genome (`randInit`).
-    Reinit,
-}
-
-/// What a job's genome was made from, for incremental evaluation.
-#[derive(Clone, Copy, Debug)]
-enum Origin {
+enum JobOrigin {
     /// A fresh genome.
     New,
-    /// A copy of an evaluated individual (its own path is the base).
+    /// A copy of an evaluated member.
     Copy,
     /// A crossover child of this receiving parent (index into the population).
     Child(usize),
 }
 
-/// An individual to be changed and evaluated, with its own random stream.
-pub(crate) struct Job {
-    ind: Individual,
+/// A member to be changed and evaluated, with its own random stream.
+pub(crate) struct Job<T> {
+    ind: T,
     rng: Rng,
     op: Op,
-    origin: Origin,
+    origin: JobOrigin,
     evaluations: u64,
 }
 
-impl Job {
-    fn fresh(genome: Vec<Action>, rng: Rng, op: Op) -> Self {
-        Self { ind: Individual { genome, ..Default::default() }, rng, op, origin: Origin::New, evaluations: 0 }
+impl<T: Member> Job<T> {
+    fn fresh(rng: Rng, op: Op) -> Self {
+        Self { ind: T::default(), rng, op, origin: JobOrigin::New, evaluations: 0 }
     }
-    fn child(genome: Vec<Action>, receiver: usize, rng: Rng, op: Op) -> Self {
-        Self { origin: Origin::Child(receiver), ..Self::fresh(genome, rng, op) }
+    fn child(genes: T::Genes, receiver: usize, rng: Rng, op: Op) -> Self {
+        Self { ind: T::from_genes(genes), rng, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
     }
-    fn copy(ind: Individual, rng: Rng, op: Op) -> Self {
-        Self { ind, rng, op, origin: Origin::Copy, evaluations: 0 }
+    fn copy(ind: T, rng: Rng, op: Op) -> Self {
+        Self { ind, rng, op, origin: JobOrigin::Copy, evaluations: 0 }
     }
-    fn execute(&mut self, pop: &[Individual], scenario: &Scenario, run: &JobContext, scratch: &mut EvalScratch) {
-        let (rng, init) = (&mut self.rng, &run.init);
-        let change = match self.op {
-            Op::Mutate { p_mi, p_ma } => mutate(&mut self.ind.genome, p_mi, p_ma, init, rng),
-            Op::MutateAction { p_ma } => {
-                if rng.random_bool(p_ma.clamp(0.0, 1.0)) {
-                    mutate_action(&mut self.ind.genome, rng);
-                    Mutation::Action
-                } else {
-                    Mutation::None
-                }
-            }
-            Op::Reinit => {
-                random_genome(rng, init.actions, init.dist_max, &mut self.ind.genome);
-                Mutation::Reinit
-            }
+    fn execute(&mut self, pop: &[T], world: &T::World, run: &Variation, scratch: &mut EvalScratch) {
+        let origin = match self.origin {
+            JobOrigin::New => Origin::New,
+            JobOrigin::Copy => Origin::Copy,
+            JobOrigin::Child(receiver) => Origin::Child(&pop[receiver]),
         };
-        let base = match (change, self.origin) {
-            (Mutation::Reinit, _) | (_, Origin::New) => Base::None,
-            (Mutation::None, Origin::Copy) => return,
-            (_, Origin::Copy) => Base::Own,
-            (_, Origin::Child(receiver)) => Base::Parent(&pop[receiver]),
-        };
-        self.evaluations += correct_and_evaluate(&mut self.ind, scenario, base, run.mode, scratch, init, rng);
+        self.evaluations += self.ind.vary_and_evaluate(self.op, origin, world, run, scratch, &mut self.rng);
     }
-}
-
-/// What every job of a generation shares.
-pub(crate) struct JobContext {
-    pub init: InitParams,
-    pub mode: EvaluationMode,
 }
 
 /// Runs jobs in parallel, one scratch per chunk; `pop` holds the parents the jobs' children
 /// were made from. Returns the evaluations spent.
-pub(crate) fn run_jobs(
-    jobs: &mut [Job],
-    pop: &[Individual],
-    scenario: &Scenario,
-    context: &JobContext,
+pub(crate) fn run_jobs<T: Member>(
+    jobs: &mut [Job<T>],
+    pop: &[T],
+    world: &T::World,
+    context: &Variation,
     scratches: &mut [EvalScratch],
 ) -> u64 {
     if jobs.is_empty() {
@@ -155,7 +119,7 @@ pub(crate) fn run_jobs(
     let chunk = jobs.len().div_ceil(scratches.len());
     jobs.par_chunks_mut(chunk).zip(scratches.par_iter_mut()).for_each(|(jobs, scratch)| {
         for job in jobs {
-            job.execute(pop, scenario, context, scratch);
+            job.execute(pop, world, context, scratch);
         }
     });
     jobs.iter().map(|j| j.evaluations).sum()
@@ -170,53 +134,40 @@ pub fn family_survivors(fitness: &[f64]) -> [usize; 2] {
 }
 
 /// Context of one generation.
-pub(crate) struct Generation<'a> {
-    pub scenario: &'a Scenario,
+pub(crate) struct Generation<'a, T: Member> {
+    pub scenario: &'a T::World,
     pub params: &'a ThesisParams,
     pub effective: Effective,
     pub seed: u64,
     pub iteration: u32,
 }
 
-impl Generation<'_> {
+impl<T: Member> Generation<'_, T> {
     fn stream(&self, slot: usize) -> Rng {
         stream(self.seed, Purpose::Individual, &[u64::from(self.iteration), slot as u64])
     }
 
-    fn context(&self) -> JobContext {
-        JobContext { init: self.params.init, mode: self.params.evaluation }
+    fn context(&self) -> Variation {
+        Variation { init: self.params.init, mode: self.params.evaluation }
     }
 
-    fn parent<'p>(pop: &'p [Individual], i: usize) -> Parent<'p> {
-        Parent { genome: &pop[i].genome, points: &pop[i].points }
-    }
-
-    fn cross(&self, pop: &[Individual], a: usize, b: usize, rng: &mut Rng) -> Option<Vec<Vec<Action>>> {
-        let p = self.params;
-        crossover(
-            Self::parent(pop, a),
-            Self::parent(pop, b),
-            p.c_len,
-            p.c_child,
-            p.max_genome_len,
-            &self.scenario.frame,
-            rng,
-        )
+    fn cross(&self, pop: &[T], a: usize, b: usize, rng: &mut Rng) -> Option<Vec<T::Genes>> {
+        T::cross(&pop[a], &pop[b], self.params, self.scenario, rng)
     }
 
     /// Initial population of `size` random genomes, evaluated (spec §6).
-    pub fn initial(&self, size: usize, scratches: &mut [EvalScratch]) -> (Vec<Individual>, u64) {
-        let mut jobs: Vec<Job> = (0..size).map(|s| Job::fresh(Vec::new(), self.stream(s), Op::Reinit)).collect();
+    pub fn initial(&self, size: usize, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
+        let mut jobs: Vec<Job<T>> = (0..size).map(|s| Job::fresh(self.stream(s), Op::Reinit)).collect();
         let evaluations = run_jobs(&mut jobs, &[], self.scenario, &self.context(), scratches);
         (jobs.into_iter().map(|j| j.ind).collect(), evaluations)
     }
 
     /// Architecture (a) (spec §11.1): `keep` elite copies, `select` pairs by the scheme,
     /// crossover with `P_c`, mutation of offspring and rest, refill to `Pop_min` (R22).
-    pub fn step_a(&self, pop: Vec<Individual>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<Individual>, u64) {
+    pub fn step_a(&self, pop: Vec<T>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
         let (p, e) = (self.params, self.effective);
         let n = pop.len();
-        let fit: Vec<f64> = pop.iter().map(Individual::fitness).collect();
+        let fit: Vec<f64> = pop.iter().map(T::fitness).collect();
         let elite = best_k(&fit, p.keep.min(n));
         let wheel = match p.selection {
             Selection::Prws => cumulative(&proportionate_probabilities(&fit)),
@@ -227,7 +178,7 @@ impl Generation<'_> {
             Selection::Tournament { .. } => tournament(&fit, e.tournament_size, rng),
             _ => spin(&wheel, rng),
         };
-        let mut jobs = Vec::with_capacity(4 * p.select);
+        let mut jobs: Vec<Job<T>> = Vec::with_capacity(4 * p.select);
         for _ in 0..p.select {
             let p1 = pick(rng);
             let mut p2 = pick(rng);
@@ -255,8 +206,8 @@ impl Generation<'_> {
             }
         }
         let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
-        let mut old: Vec<Option<Individual>> = pop.into_iter().map(Some).collect();
-        let mut next: Vec<Individual> = elite.iter().map(|&i| old[i].take().expect("distinct elite")).collect();
+        let mut old: Vec<Option<T>> = pop.into_iter().map(Some).collect();
+        let mut next: Vec<T> = elite.iter().map(|&i| old[i].take().expect("distinct elite")).collect();
         next.extend(jobs.into_iter().map(|j| j.ind));
         if next.len() < p.pop_min {
             let rest: Vec<usize> = (0..n).filter(|&i| old[i].is_some()).collect();
@@ -271,7 +222,7 @@ impl Generation<'_> {
     /// Architecture (b) (spec §11.2): random families of two; crossing families keep their two
     /// best of parents and children (ties to children, R20); the others pass on, each
     /// re-initialised with `P_mI`; an odd individual passes unchanged.
-    pub fn step_b(&self, pop: Vec<Individual>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<Individual>, u64) {
+    pub fn step_b(&self, pop: Vec<T>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
         enum Family {
             Cross { parents: [usize; 2], kids: std::ops::Range<usize> },
             Apart([Result<usize, usize>; 2]),
@@ -280,7 +231,7 @@ impl Generation<'_> {
         let n = pop.len();
         let mut order: Vec<usize> = (0..n).collect();
         order.shuffle(rng);
-        let mut jobs = Vec::new();
+        let mut jobs: Vec<Job<T>> = Vec::new();
         let mut families = Vec::with_capacity(n / 2);
         let mut slot = 0;
         for pair in order.chunks_exact(2) {
@@ -296,11 +247,11 @@ impl Generation<'_> {
                 }
                 families.push(Family::Cross { parents: [a, b], kids: start..jobs.len() });
             } else {
-                let mut member = |q: usize, jobs: &mut Vec<Job>| {
+                let mut member = |q: usize, jobs: &mut Vec<Job<T>>| {
                     let mut s = self.stream(slot);
                     slot += 1;
                     if s.random_bool(e.p_mi.clamp(0.0, 1.0)) {
-                        jobs.push(Job::fresh(Vec::new(), s, Op::Reinit));
+                        jobs.push(Job::fresh(s, Op::Reinit));
                         Err(jobs.len() - 1)
                     } else {
                         Ok(q)
@@ -312,8 +263,8 @@ impl Generation<'_> {
             }
         }
         let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
-        let mut old: Vec<Option<Individual>> = pop.into_iter().map(Some).collect();
-        let mut new: Vec<Option<Individual>> = jobs.into_iter().map(|j| Some(j.ind)).collect();
+        let mut old: Vec<Option<T>> = pop.into_iter().map(Some).collect();
+        let mut new: Vec<Option<T>> = jobs.into_iter().map(|j| Some(j.ind)).collect();
         let mut next = Vec::with_capacity(n);
         if n % 2 == 1 {
             next.push(old[order[n - 1]].take().expect("odd one"));
@@ -322,10 +273,10 @@ impl Generation<'_> {
             match family {
                 Family::Cross { parents, kids } => {
                     // Children first, so that they win ties.
-                    let mut cands: Vec<Option<Individual>> = kids.map(|k| new[k].take()).collect();
+                    let mut cands: Vec<Option<T>> = kids.map(|k| new[k].take()).collect();
                     cands.extend(parents.iter().map(|&q| old[q].take()));
                     let fitness: Vec<f64> =
-                        cands.iter().map(|c| c.as_ref().map_or(f64::NEG_INFINITY, Individual::fitness)).collect();
+                        cands.iter().map(|c| c.as_ref().map_or(f64::NEG_INFINITY, T::fitness)).collect();
                     for k in family_survivors(&fitness) {
                         next.push(cands[k].take().expect("each member survives once"));
                     }

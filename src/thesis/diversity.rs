@@ -25,8 +25,18 @@ pub struct DiversityScratch {
 /// empty) are added into bit-sliced counters of `c_t`, and `Σ c_t(N − c_t) = N·Σc_t − Σc_t²`
 /// is read off them by popcounts.
 pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> u64 {
-    let n = pop.len() as u64;
-    let words = pop.iter().map(|i| i.visits.plane_words()).max().unwrap_or(0);
+    pair_distance_sum_by(pop.len(), |i| &pop[i].visits, scratch)
+}
+
+/// [`pair_distance_sum`] over `n` visit maps, the `i`-th given by `map(i)`.
+pub fn pair_distance_sum_by<'a>(
+    n: usize,
+    map: impl Fn(usize) -> &'a VisitPlanes,
+    scratch: &mut DiversityScratch,
+) -> u64 {
+    let pop = || (0..n).map(&map);
+    let n = n as u64;
+    let words = pop().map(VisitPlanes::plane_words).max().unwrap_or(0);
     if n < 2 || words == 0 {
         return 0;
     }
@@ -35,8 +45,7 @@ pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> 
     let mut sum = 0u64;
     for idx in 0..words {
         let mut t_max = 0usize;
-        for ind in pop {
-            let v = &ind.visits;
+        for v in pop() {
             if idx >= v.plane_words() {
                 continue;
             }
@@ -103,8 +112,12 @@ fn distance_to_dense(dense_a: &[u32], sum_a: u64, b: &VisitPlanes) -> u64 {
 }
 
 fn dense_of(ind: &Individual, dense: &mut [u32]) -> u64 {
+    dense_of_map(&ind.visits, dense)
+}
+
+fn dense_of_map(visits: &VisitPlanes, dense: &mut [u32]) -> u64 {
     let mut s = 0;
-    ind.visits.for_each_count(|c, k| {
+    visits.for_each_count(|c, k| {
         dense[c as usize] = k;
         s += u64::from(k);
     });
@@ -121,16 +134,29 @@ pub fn distance(a: &Individual, b: &Individual) -> u64 {
 /// `Div_max = max_{i,j} D_ij` over the population (spec §12.2); `O(N²)` sparse merges, in
 /// parallel. Only the adaptive parameter control needs it.
 pub fn max_distance(pop: &[Individual]) -> u64 {
-    let cells = slots(pop);
-    (0..pop.len())
+    max_distance_by(pop.len(), 1, |i, _| &pop[i].visits)
+}
+
+/// `Div_max` of `n` members made of `parts` visit maps each (`map(i, part)`), the distance of
+/// two members being the sum of their parts' distances (eq. 3.17 over the parts' cells).
+pub fn max_distance_by<'a>(n: usize, parts: usize, map: impl Fn(usize, usize) -> &'a VisitPlanes + Sync) -> u64 {
+    let cells = (0..n).flat_map(|i| (0..parts).map(move |k| (i, k))).map(|(i, k)| map(i, k).cell_slots()).max();
+    let cells = cells.unwrap_or(0);
+    (0..n)
         .into_par_iter()
         .map_init(
-            || vec![0u32; cells],
-            |dense, i| {
-                let sa = dense_of(&pop[i], dense);
-                let m = pop[i + 1..].iter().map(|b| distance_to_dense(dense, sa, &b.visits)).max().unwrap_or(0);
-                pop[i].visits.for_each_count(|c, _| dense[c as usize] = 0);
-                m
+            || (vec![0u32; cells], vec![0u64; n]),
+            |(dense, sums), i| {
+                sums[i + 1..].fill(0);
+                for k in 0..parts {
+                    let a = map(i, k);
+                    let sa = dense_of_map(a, dense);
+                    for (j, s) in sums.iter_mut().enumerate().skip(i + 1) {
+                        *s += distance_to_dense(dense, sa, map(j, k));
+                    }
+                    a.for_each_count(|c, _| dense[c as usize] = 0);
+                }
+                sums[i + 1..].iter().copied().max().unwrap_or(0)
             },
         )
         .max()

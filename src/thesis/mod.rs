@@ -9,6 +9,7 @@ pub mod diversity;
 pub mod fitness;
 pub mod genome;
 pub mod individual;
+pub mod member;
 pub mod mutation;
 pub mod params;
 pub mod planner;

@@ -4,8 +4,9 @@
 //! a region as covered part-way (retrain, 003 §3.5.3).
 
 use super::architecture::{Effective, Generation, MutationRate};
-use super::diversity::{DiversityScratch, diversity, max_distance};
-use super::individual::{Base, EvalScratch, Individual, Scenario, evaluate};
+use super::diversity::DiversityScratch;
+use super::individual::{EvalScratch, Individual};
+use super::member::{Member, Premark};
 use super::params::{Budget, Control, Retrain, Selection, ThesisParams};
 use crate::ga::control;
 use crate::ga::observer::{GenerationStats, Observer, RunEvent};
@@ -13,20 +14,24 @@ use crate::ga::rng::{Purpose, Rng, stream};
 pub use crate::planner::StopReason;
 use std::time::Instant;
 
-/// The algorithm: what stays fixed during a run.
-pub struct ThesisGa {
-    /// Map, robot, stations, projection.
-    pub scenario: Scenario,
+/// The algorithm: what stays fixed during a run. `T` is what the population holds: one
+/// robot's genome ([`Individual`], the thesis GA) or one genome per robot of a fleet.
+pub struct Ga<T: Member> {
+    /// What an evaluation reads: map, robot(s), stations, projection.
+    pub scenario: T::World,
     /// Operator and population parameters.
     pub params: ThesisParams,
     /// The run's seed.
     pub seed: u64,
 }
 
+/// The thesis GA of 003: a population of single-robot genomes.
+pub type ThesisGa = Ga<Individual>;
+
 /// What a run evolves.
-pub struct GaState {
+pub struct GaState<T = Individual> {
     /// The current population.
-    pub population: Vec<Individual>,
+    pub population: Vec<T>,
     /// Iterations completed.
     pub iteration: u32,
     /// Evaluations so far.
@@ -39,11 +44,11 @@ pub struct GaState {
 }
 
 /// The result of a run of the thesis GA.
-pub struct ThesisOutcome {
+pub struct ThesisOutcome<T = Individual> {
     /// Best individual of the final population (R30).
-    pub best: Individual,
+    pub best: T,
     /// Best individual just before the environment changed, if it did.
-    pub best_before_retrain: Option<Individual>,
+    pub best_before_retrain: Option<T>,
     /// Iterations completed.
     pub iterations: u32,
     /// Evaluations spent.
@@ -59,7 +64,7 @@ pub struct ThesisOutcome {
 }
 
 /// Index of the fittest individual (first on ties).
-pub fn best_index(pop: &[Individual]) -> usize {
+pub fn best_index<T: Member>(pop: &[T]) -> usize {
     let mut best = 0;
     for (i, ind) in pop.iter().enumerate() {
         if ind.fitness() > pop[best].fitness() {
@@ -69,7 +74,7 @@ pub fn best_index(pop: &[Individual]) -> usize {
     best
 }
 
-impl ThesisGa {
+impl<T: Member> Ga<T> {
     fn scratches(&self) -> Vec<EvalScratch> {
         (0..rayon::current_num_threads().max(1)).map(|_| EvalScratch::default()).collect()
     }
@@ -78,7 +83,7 @@ impl ThesisGa {
         matches!(self.params.control, Control::Adaptive(_))
     }
 
-    fn generation(&self, iteration: u32, effective: Effective) -> Generation<'_> {
+    fn generation(&self, iteration: u32, effective: Effective) -> Generation<'_, T> {
         Generation { scenario: &self.scenario, params: &self.params, effective, seed: self.seed, iteration }
     }
 
@@ -93,7 +98,7 @@ impl ThesisGa {
     }
 
     /// Operator probabilities for `iteration` under the configured control (spec §12).
-    pub fn effective(&self, state: &GaState, iteration: u32, iter_max: u32) -> Effective {
+    pub fn effective(&self, state: &GaState<T>, iteration: u32, iter_max: u32) -> Effective {
         let mut e = self.fixed_effective();
         match self.params.control {
             Control::None => {}
@@ -106,7 +111,7 @@ impl ThesisGa {
                 _ => {}
             },
             Control::Adaptive(c) => {
-                let fit = state.population.iter().map(Individual::fitness);
+                let fit = state.population.iter().map(T::fitness);
                 let f_min = fit.clone().fold(f64::INFINITY, f64::min);
                 let f_max = fit.fold(f64::NEG_INFINITY, f64::max);
                 let div = state.diversity.expect("adaptive control measures the diversity");
@@ -124,7 +129,7 @@ impl ThesisGa {
 
     /// Creates and evaluates the initial population (spec §6) — iteration 0. Measures the
     /// diversity when `measure_diversity` or the parameter control needs it.
-    pub fn init(&self, measure_diversity: bool) -> GaState {
+    pub fn init(&self, measure_diversity: bool) -> GaState<T> {
         let mut scratches = self.scratches();
         let size = self.params.initial_size();
         let (population, evaluations) = self.generation(0, self.fixed_effective()).initial(size, &mut scratches);
@@ -140,10 +145,10 @@ impl ThesisGa {
         state
     }
 
-    fn measure_diversity(&self, state: &mut GaState, wanted: bool, scratch: &mut DiversityScratch) {
-        state.diversity = (wanted || self.adaptive()).then(|| diversity(&state.population, scratch));
+    fn measure_diversity(&self, state: &mut GaState<T>, wanted: bool, scratch: &mut DiversityScratch) {
+        state.diversity = (wanted || self.adaptive()).then(|| T::diversity(&state.population, scratch));
         if self.adaptive() {
-            state.diversity_max = max_distance(&state.population) as f64;
+            state.diversity_max = T::max_distance(&state.population) as f64;
         }
     }
 
@@ -151,7 +156,7 @@ impl ThesisGa {
     /// `div` is `Some` when the diversity is to be measured.
     pub fn step(
         &self,
-        state: &mut GaState,
+        state: &mut GaState<T>,
         effective: Effective,
         scratches: &mut [EvalScratch],
         div: Option<&mut DiversityScratch>,
@@ -169,33 +174,28 @@ impl ThesisGa {
         self.measure_diversity(state, wanted, div.unwrap_or(&mut DiversityScratch::default()));
     }
 
-    /// Marks `region` as already covered and re-evaluates everyone (spec §13, R25).
-    pub fn change_environment(&mut self, state: &mut GaState, region: [f64; 4]) {
-        let [x0, y0, x1, y1] = region;
-        self.scenario.premark_rect(x0, y0, x1, y1);
-        self.reevaluate(state);
-    }
-
-    /// Makes the flagged free cells the pre-marked ones (what other robots cover, in a fleet's
-    /// negotiation) and re-evaluates everyone.
-    pub fn set_premarks(&mut self, state: &mut GaState, cells: &[bool]) {
-        self.scenario.set_premarks(cells);
-        self.reevaluate(state);
-    }
-
     /// A fresh scratch per worker thread, for [`Self::step`].
     pub fn new_scratches(&self) -> Vec<EvalScratch> {
         self.scratches()
     }
 
-    fn reevaluate(&self, state: &mut GaState) {
+    fn reevaluate(&self, state: &mut GaState<T>) {
         let mut scratch = EvalScratch::default();
         for ind in &mut state.population {
-            evaluate(ind, &self.scenario, Base::None, self.params.evaluation, &mut scratch);
-            state.evaluations += 1;
+            state.evaluations += ind.reevaluate(&self.scenario, self.params.evaluation, &mut scratch);
         }
         let wanted = state.diversity.is_some();
         self.measure_diversity(state, wanted, &mut DiversityScratch::default());
+    }
+
+    /// Marks `region` as already covered and re-evaluates everyone (spec §13, R25).
+    pub fn change_environment(&mut self, state: &mut GaState<T>, region: [f64; 4])
+    where
+        T::World: Premark,
+    {
+        let [x0, y0, x1, y1] = region;
+        self.scenario.premark_rect(x0, y0, x1, y1);
+        self.reevaluate(state);
     }
 
     /// Runs to the end of the budget, handing statistics to `observers`.
@@ -204,7 +204,10 @@ impl ThesisGa {
         budget: &Budget,
         retrain: Option<&Retrain>,
         observers: &mut [&mut dyn Observer],
-    ) -> std::io::Result<ThesisOutcome> {
+    ) -> std::io::Result<ThesisOutcome<T>>
+    where
+        T::World: Premark,
+    {
         let started = Instant::now();
         let mut history = Vec::new();
         let mut changes = Vec::new();
@@ -274,8 +277,17 @@ impl ThesisGa {
     }
 }
 
+impl ThesisGa {
+    /// Makes the flagged free cells the pre-marked ones (what other robots cover, in a fleet's
+    /// negotiation) and re-evaluates everyone.
+    pub fn set_premarks(&mut self, state: &mut GaState, cells: &[bool]) {
+        self.scenario.set_premarks(cells);
+        self.reevaluate(state);
+    }
+}
+
 /// Statistics of the current population (spec §17).
-pub fn stats(state: &GaState, effective: &Effective) -> GenerationStats {
+pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective) -> GenerationStats {
     let pop = &state.population;
     let n = pop.len() as f64;
     let best = &pop[best_index(pop)];
@@ -283,24 +295,26 @@ pub fn stats(state: &GaState, effective: &Effective) -> GenerationStats {
     let (mut len_sum, mut len_min, mut len_max) = (0usize, usize::MAX, 0usize);
     let mut p_ma_sum = 0.0;
     for ind in pop {
-        let v = [ind.score.cov_final, ind.score.t_final];
+        let score = ind.score();
+        let v = [score.cov_final, score.t_final];
         for k in 0..2 {
             s[k] += v[k];
             lo[k] = lo[k].min(v[k]);
             hi[k] = hi[k].max(v[k]);
         }
         s[2] += ind.fitness();
-        len_sum += ind.len();
-        len_min = len_min.min(ind.len());
-        len_max = len_max.max(ind.len());
+        let len = ind.genome_len();
+        len_sum += len;
+        len_min = len_min.min(len);
+        len_max = len_max.max(len);
         p_ma_sum += effective.p_ma.for_fitness(ind.fitness());
     }
     GenerationStats {
         iteration: state.iteration,
         evaluations: state.evaluations,
         best_fitness: best.fitness(),
-        best_cov_final: best.score.cov_final,
-        best_t_final: best.score.t_final,
+        best_cov_final: best.score().cov_final,
+        best_t_final: best.score().t_final,
         mean_cov_final: s[0] / n,
         min_cov_final: lo[0],
         max_cov_final: hi[0],

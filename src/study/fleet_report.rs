@@ -1,0 +1,248 @@
+//! The report of a fleet study (every run a fleet's plan): per map and fleet, union coverage and
+//! makespan of each method as median [IQR] over seeds; pairwise Mann–Whitney U tests with Holm's
+//! correction and Vargha–Delaney `A₁₂` (an exact sign test against a deterministic method's one
+//! plan); the makespan speed-up with fleet size; the negotiation's convergence. Methods are
+//! compared only through the fleet metrics of the common scorer ([`crate::fleet::metrics`]).
+
+use super::records::RunsTable;
+use super::report::ReportError;
+use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, sign_test, vargha_delaney_a12};
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Whether every run of the table planned a fleet (the fleet columns are filled).
+pub fn applies(t: &RunsTable) -> bool {
+    t.col("fleet_robots").is_some_and(|c| t.rows.iter().all(|r| !r[c].is_empty()))
+}
+
+/// A run's fleet label: the `fleet.name` it was given, else `homo-<n>` / `fleet-<n>`.
+fn fleet_label(t: &RunsTable, r: &[String]) -> String {
+    let name = t.col("fleet_name").map(|c| r[c].clone()).unwrap_or_default();
+    if name.is_empty() { format!("fleet-{}", t.col("fleet_robots").map_or("?", |c| r[c].as_str())) } else { name }
+}
+
+fn short_map(source: &str) -> String {
+    Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| source.to_string())
+}
+
+/// Runs of one (map, fleet, method).
+#[derive(Default)]
+struct Cell {
+    rows: Vec<usize>,
+}
+
+fn iqr(v: &[f64], decimals: usize) -> String {
+    if v.is_empty() {
+        return "–".into();
+    }
+    let (q1, m, q3) = quartiles(v);
+    if v.len() == 1 { format!("{m:.decimals$}") } else { format!("{m:.decimals$} [{q1:.decimals$}, {q3:.decimals$}]") }
+}
+
+/// Which way a metric improves, for the effect sizes: `A₁₂` is reported as the probability that
+/// a run of the first method is better than one of the second.
+#[derive(Clone, Copy)]
+enum Better {
+    Higher,
+    Lower,
+}
+
+fn oriented(v: &[f64], better: Better) -> Vec<f64> {
+    match better {
+        Better::Higher => v.to_vec(),
+        Better::Lower => v.iter().map(|x| -x).collect(),
+    }
+}
+
+/// The fleet section of the study report, written to `summary.md` in `out`.
+pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportError> {
+    let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
+    let text = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
+    // The metric `planner` column, not a swept `planner` key of the same name before it.
+    let planner = t.header.iter().rposition(|h| h == "planner");
+    // map -> fleet -> method -> runs.
+    let mut cells: BTreeMap<String, BTreeMap<String, BTreeMap<String, Cell>>> = BTreeMap::new();
+    for r in 0..t.rows.len() {
+        let m = short_map(&text(r, "map"));
+        let f = fleet_label(t, &t.rows[r]);
+        let method = planner.map_or("", |c| t.rows[r][c].as_str()).trim_start_matches("fleet-").to_string();
+        cells.entry(m).or_default().entry(f).or_default().entry(method).or_default().rows.push(r);
+    }
+    let values = |c: &Cell, metric: &str| -> Vec<f64> { c.rows.iter().map(|&r| num(r, metric)).collect() };
+    let mut md = String::new();
+    let _ = writeln!(md, "# Fleet study\n");
+    let _ = writeln!(
+        md,
+        "{} runs from `{}`. Methods: `central` (the centralised fleet GA), `negotiate` (one thesis GA per robot, \
+         plans exchanged every `fleet.round_iterations`), `divide` (area division + boustrophedon; deterministic, one run), \
+         `waypoint` (000's multi-agent planner, homogeneous fleets only). Union = swept cells any robot can reach over \
+         the cells the robots can reach; makespan = the slowest robot's time (length / speed + turning / rotation speed). \
+         Medians [IQR] over seeds; `feasible` counts plans without obstacle sweeps (and, for the waypoint teams, \
+         meeting the planner's own constraints).\n",
+        t.rows.len(),
+        dir.display()
+    );
+    let _ = writeln!(md, "## Union coverage and makespan\n");
+    for (m, fleets) in &cells {
+        let _ = writeln!(md, "### {m}\n");
+        let _ = writeln!(
+            md,
+            "| fleet | method | runs | union (reachable) | makespan [s] | overlap | balance | feasible |\n|---|---|---|---|---|---|---|---|"
+        );
+        for (f, methods) in fleets {
+            for (method, c) in methods {
+                let feasible = c.rows.iter().filter(|&&r| text(r, "feasible") == "true").count();
+                let _ = writeln!(
+                    md,
+                    "| {f} | {method} | {} | {} | {} | {} | {} | {feasible}/{} |",
+                    c.rows.len(),
+                    iqr(&values(c, "union_reach"), 3),
+                    iqr(&values(c, "makespan_s"), 0),
+                    iqr(&values(c, "overlap_fraction"), 3),
+                    iqr(&values(c, "balance").into_iter().filter(|b| b.is_finite()).collect::<Vec<_>>(), 2),
+                    c.rows.len()
+                );
+            }
+        }
+        let _ = writeln!(md);
+    }
+    md.push_str(&pairwise(&cells, &values));
+    md.push_str(&speed_up(&cells, &values));
+    md.push_str(&convergence(dir, t, &cells));
+    let path = out.join("summary.md");
+    crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
+    Ok(md)
+}
+
+type Cells = BTreeMap<String, BTreeMap<String, BTreeMap<String, Cell>>>;
+
+/// Pairwise tests of the methods within each map and fleet, Holm-corrected over the table.
+fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
+    struct Test {
+        row: String,
+        p: Option<f64>,
+        a12: f64,
+        test: &'static str,
+    }
+    let mut tests = Vec::new();
+    for (m, fleets) in cells {
+        for (f, methods) in fleets {
+            let names: Vec<&String> = methods.keys().collect();
+            for i in 0..names.len() {
+                for j in i + 1..names.len() {
+                    let (a, b) = (&methods[names[i]], &methods[names[j]]);
+                    for (metric, better) in [("union_reach", Better::Higher), ("makespan_s", Better::Lower)] {
+                        let (va, vb) = (oriented(&values(a, metric), better), oriented(&values(b, metric), better));
+                        let a12 = vargha_delaney_a12(&va, &vb);
+                        let (p, test) = match (va.len(), vb.len()) {
+                            (1, _) => (sign_test(&vb, va[0]), "sign"),
+                            (_, 1) => (sign_test(&va, vb[0]), "sign"),
+                            _ => (mann_whitney_u(&va, &vb).map(|w| w.p_value), "MWU"),
+                        };
+                        let row = format!("| {m} | {f} | {} vs {} | {metric} |", names[i], names[j]);
+                        tests.push(Test { row, p, a12, test });
+                    }
+                }
+            }
+        }
+    }
+    let ps: Vec<f64> = tests.iter().map(|t| t.p.unwrap_or(1.0)).collect();
+    let adjusted = holm(&ps);
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "## Pairwise tests\n\n`A₁₂` = probability that a run of the first method is better than one of the second \
+         (higher union, shorter makespan); 0.5 = no difference. p: two-sided Mann–Whitney U (normal approximation, \
+         tie-corrected), or an exact sign test of the seeds against a deterministic method's single plan; Holm-corrected \
+         over all {} tests.\n",
+        tests.len()
+    );
+    let _ = writeln!(
+        md,
+        "| map | fleet | methods | metric | test | p (Holm) | A₁₂ | effect |\n|---|---|---|---|---|---|---|---|"
+    );
+    for (t, p) in tests.iter().zip(adjusted) {
+        let p = if t.p.is_some() { format!("{p:.2e}") } else { "–".into() };
+        let _ = writeln!(md, "{} {} | {p} | {:.2} | {} |", t.row, t.test, t.a12, a12_magnitude(t.a12));
+    }
+    md.push('\n');
+    md
+}
+
+/// Median makespan of one robot over that of `n` identical robots, per map and method.
+fn speed_up(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "## Makespan speed-up with fleet size (homogeneous fleets)\n\nMedian makespan of `homo-1` over that of \
+         `homo-n`, with the median union coverage of `homo-n` beside it (a speed-up bought with less coverage is \
+         no speed-up).\n"
+    );
+    let _ = writeln!(md, "| map | method | n = 2 | n = 3 | n = 5 |\n|---|---|---|---|---|");
+    let med = |v: Vec<f64>| if v.is_empty() { f64::NAN } else { quartiles(&v).1 };
+    for (m, fleets) in cells {
+        let Some(one) = fleets.get("homo-1") else { continue };
+        for (method, c1) in one {
+            let base = med(values(c1, "makespan_s"));
+            let cols: Vec<String> = [2, 3, 5]
+                .iter()
+                .map(|n| match fleets.get(&format!("homo-{n}")).and_then(|f| f.get(method)) {
+                    Some(c) => {
+                        format!(
+                            "{:.2}× (union {:.3})",
+                            base / med(values(c, "makespan_s")),
+                            med(values(c, "union_reach"))
+                        )
+                    }
+                    None => "–".into(),
+                })
+                .collect();
+            let _ = writeln!(md, "| {m} | {method} | {} |", cols.join(" | "));
+        }
+    }
+    md.push('\n');
+    md
+}
+
+/// Rounds, settled runs and the last round's largest plan change of the negotiations, read from
+/// each run's `summary.json`.
+fn convergence(dir: &Path, t: &RunsTable, cells: &Cells) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "## Convergence of the negotiation\n\nRounds held, runs whose plans settled (every robot's plan changed by \
+         at most `fleet.tolerance` of its swept cells in a round) before the evaluation budget ended, and the largest \
+         plan change of the last round (medians over seeds).\n"
+    );
+    let _ = writeln!(md, "| map | fleet | runs | rounds | settled | last change |\n|---|---|---|---|---|---|");
+    let id = t.col("run_id");
+    for (m, fleets) in cells {
+        for (f, methods) in fleets {
+            let Some(c) = methods.get("negotiate") else { continue };
+            let (mut rounds, mut settled, mut change) = (Vec::new(), 0, Vec::new());
+            for &r in &c.rows {
+                let Some(i) = id else { continue };
+                let path = dir.join("runs").join(&t.rows[r][i]).join("summary.json");
+                let Some(v) =
+                    std::fs::read_to_string(path).ok().and_then(|s| serde_json::from_str::<serde_json::Value>(&s).ok())
+                else {
+                    continue;
+                };
+                rounds.extend(v["rounds"].as_f64());
+                settled += usize::from(v["converged"].as_bool() == Some(true));
+                change.extend(v["last_round_change"].as_f64());
+            }
+            let _ = writeln!(
+                md,
+                "| {m} | {f} | {} | {} | {settled}/{} | {} |",
+                c.rows.len(),
+                iqr(&rounds, 0),
+                rounds.len(),
+                iqr(&change, 3)
+            );
+        }
+    }
+    md.push('\n');
+    md
+}

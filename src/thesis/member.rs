@@ -1,0 +1,177 @@
+//! What the two architectures and the run loop ask of a population member. One GA then
+//! evolves either one robot's genome ([`Individual`], 003 as written) or a fleet's genomes,
+//! one per robot ([`crate::fleet::central::Crew`]), with the same operators, selections and
+//! parameter control.
+
+use super::crossover::{Parent, crossover};
+use super::diversity::{DiversityScratch, diversity, max_distance};
+use super::fitness::ThesisScore;
+use super::genome::{Action, random_genome};
+use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario, correct_and_evaluate};
+use super::mutation::{Mutation, mutate, mutate_action};
+use super::params::ThesisParams;
+use crate::ga::rng::Rng;
+use rand::Rng as _;
+
+/// What a job does to a member before it is corrected and evaluated.
+#[derive(Clone, Copy, Debug)]
+pub enum Op {
+    /// Architecture (a): `randInit` with `P_mI`, else the action mutation with `P_mA`.
+    Mutate {
+        /// `P_mI`.
+        p_mi: f64,
+        /// `P_mA`.
+        p_ma: f64,
+    },
+    /// Architecture (b) children: the action mutation with `P_mA`.
+    MutateAction {
+        /// `P_mA`.
+        p_ma: f64,
+    },
+    /// A fresh random genome (`randInit`).
+    Reinit,
+}
+
+/// What a member's genome was made from, for incremental evaluation.
+#[derive(Clone, Copy, Debug)]
+pub enum Origin<'a, T> {
+    /// A fresh genome.
+    New,
+    /// A copy of an evaluated member (its own path is the base).
+    Copy,
+    /// A crossover child of this receiving parent.
+    Child(&'a T),
+}
+
+/// How changed genomes are re-drawn when dead and evaluated.
+#[derive(Clone, Copy, Debug)]
+pub struct Variation {
+    /// How a dead genome is re-initialised (spec §6).
+    pub init: InitParams,
+    /// Incremental or full evaluation.
+    pub mode: EvaluationMode,
+}
+
+/// A member of the thesis GA's population.
+pub trait Member: Clone + Default + Send + Sync {
+    /// What an evaluation reads (a [`Scenario`], or one per robot).
+    type World: Sync;
+    /// The genes of a crossover child.
+    type Genes: Send;
+    /// `f_obstacle` (maximised).
+    fn fitness(&self) -> f64;
+    /// The objectives behind the fitness.
+    fn score(&self) -> ThesisScore;
+    /// Genes in all (`G_len`; summed over a fleet's robots).
+    fn genome_len(&self) -> usize;
+    /// An unevaluated member holding `genes`.
+    fn from_genes(genes: Self::Genes) -> Self;
+    /// The modified dual-point crossover of `a` and `b` (003 §3.3.2); `None` when no child
+    /// could be made (the children are then copies).
+    fn cross(a: &Self, b: &Self, params: &ThesisParams, world: &Self::World, rng: &mut Rng)
+    -> Option<Vec<Self::Genes>>;
+    /// Applies `op`, then corrects and evaluates what changed (R17), against `origin` where
+    /// that saves work. Returns the single-robot path evaluations spent.
+    fn vary_and_evaluate(
+        &mut self,
+        op: Op,
+        origin: Origin<'_, Self>,
+        world: &Self::World,
+        how: &Variation,
+        scratch: &mut EvalScratch,
+        rng: &mut Rng,
+    ) -> u64;
+    /// Evaluates the member anew (after the world changed). Returns the evaluations spent.
+    fn reevaluate(&mut self, world: &Self::World, mode: EvaluationMode, scratch: &mut EvalScratch) -> u64;
+    /// `Div` of a population (003 eq. 3.18).
+    fn diversity(pop: &[Self], scratch: &mut DiversityScratch) -> f64;
+    /// `Div_max` of a population (spec §12.2).
+    fn max_distance(pop: &[Self]) -> u64;
+}
+
+/// A world that can mark a region as already covered (the retrain, 003 §3.5.3).
+pub trait Premark {
+    /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` as covered.
+    fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64);
+}
+
+impl Premark for Scenario {
+    fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
+        Scenario::premark_rect(self, x0, y0, x1, y1);
+    }
+}
+
+/// Applies `op` to one genome (spec §8, R15–R16) and says what changed.
+pub fn vary(genome: &mut Vec<Action>, op: Op, init: &InitParams, rng: &mut Rng) -> Mutation {
+    match op {
+        Op::Mutate { p_mi, p_ma } => mutate(genome, p_mi, p_ma, init, rng),
+        Op::MutateAction { p_ma } => {
+            if rng.random_bool(p_ma.clamp(0.0, 1.0)) {
+                mutate_action(genome, rng);
+                Mutation::Action
+            } else {
+                Mutation::None
+            }
+        }
+        Op::Reinit => {
+            random_genome(rng, init.actions, init.dist_max, genome);
+            Mutation::Reinit
+        }
+    }
+}
+
+impl Member for Individual {
+    type World = Scenario;
+    type Genes = Vec<Action>;
+
+    fn fitness(&self) -> f64 {
+        self.score.fitness
+    }
+    fn score(&self) -> ThesisScore {
+        self.score
+    }
+    fn genome_len(&self) -> usize {
+        self.genome.len()
+    }
+    fn from_genes(genome: Vec<Action>) -> Self {
+        Individual { genome, ..Default::default() }
+    }
+
+    fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng) -> Option<Vec<Vec<Action>>> {
+        fn parent(x: &Individual) -> Parent<'_> {
+            Parent { genome: &x.genome, points: &x.points }
+        }
+        crossover(parent(a), parent(b), p.c_len, p.c_child, p.max_genome_len, &world.frame, rng)
+    }
+
+    fn vary_and_evaluate(
+        &mut self,
+        op: Op,
+        origin: Origin<'_, Self>,
+        world: &Scenario,
+        how: &Variation,
+        scratch: &mut EvalScratch,
+        rng: &mut Rng,
+    ) -> u64 {
+        let change = vary(&mut self.genome, op, &how.init, rng);
+        let base = match (change, origin) {
+            (Mutation::Reinit, _) | (_, Origin::New) => Base::None,
+            (Mutation::None, Origin::Copy) => return 0,
+            (_, Origin::Copy) => Base::Own,
+            (_, Origin::Child(parent)) => Base::Parent(parent),
+        };
+        correct_and_evaluate(self, world, base, how.mode, scratch, &how.init, rng)
+    }
+
+    fn reevaluate(&mut self, world: &Scenario, mode: EvaluationMode, scratch: &mut EvalScratch) -> u64 {
+        super::individual::evaluate(self, world, Base::None, mode, scratch);
+        1
+    }
+
+    fn diversity(pop: &[Self], scratch: &mut DiversityScratch) -> f64 {
+        diversity(pop, scratch)
+    }
+    fn max_distance(pop: &[Self]) -> u64 {
+        max_distance(pop)
+    }
+}
