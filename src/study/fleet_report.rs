@@ -11,9 +11,16 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// Whether every run of the table planned a fleet (the fleet columns are filled).
+/// Whether every run of the table planned a fleet: its fleet columns hold a robot count and
+/// its planner is one of the fleet modes.
 pub fn applies(t: &RunsTable) -> bool {
-    t.col("fleet_robots").is_some_and(|c| t.rows.iter().all(|r| !r[c].is_empty()))
+    let planner = t.header.iter().rposition(|h| h == "planner");
+    match (t.col("fleet_robots"), planner) {
+        (Some(c), Some(p)) => {
+            t.rows.iter().all(|r| r[c].parse::<u32>().is_ok_and(|n| n >= 1) && r[p].starts_with("fleet-"))
+        }
+        _ => false,
+    }
 }
 
 /// A run's fleet label: the `fleet.name` it was given, else `homo-<n>` / `fleet-<n>`.
@@ -98,7 +105,7 @@ pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportErro
                     "| {f} | {method} | {} | {} | {} | {} | {} | {feasible}/{} |",
                     c.rows.len(),
                     iqr(&values(c, "union_reach"), 3),
-                    iqr(&values(c, "makespan_s"), 0),
+                    iqr(&values(c, "fleet_makespan_s"), 0),
                     iqr(&values(c, "overlap_fraction"), 3),
                     iqr(&values(c, "balance").into_iter().filter(|b| b.is_finite()).collect::<Vec<_>>(), 2),
                     c.rows.len()
@@ -132,7 +139,7 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
             for i in 0..names.len() {
                 for j in i + 1..names.len() {
                     let (a, b) = (&methods[names[i]], &methods[names[j]]);
-                    for (metric, better) in [("union_reach", Better::Higher), ("makespan_s", Better::Lower)] {
+                    for (metric, better) in [("union_reach", Better::Higher), ("fleet_makespan_s", Better::Lower)] {
                         let (va, vb) = (oriented(&values(a, metric), better), oriented(&values(b, metric), better));
                         let a12 = vargha_delaney_a12(&va, &vb);
                         let (p, test) = match (va.len(), vb.len()) {
@@ -184,14 +191,14 @@ fn speed_up(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
     for (m, fleets) in cells {
         let Some(one) = fleets.get("homo-1") else { continue };
         for (method, c1) in one {
-            let base = med(values(c1, "makespan_s"));
+            let base = med(values(c1, "fleet_makespan_s"));
             let cols: Vec<String> = [2, 3, 5]
                 .iter()
                 .map(|n| match fleets.get(&format!("homo-{n}")).and_then(|f| f.get(method)) {
                     Some(c) => {
                         format!(
                             "{:.2}× (union {:.3})",
-                            base / med(values(c, "makespan_s")),
+                            base / med(values(c, "fleet_makespan_s")),
                             med(values(c, "union_reach"))
                         )
                     }

@@ -20,7 +20,7 @@ pub const FLEET_COLUMNS: [&str; 9] = [
     "union_free",
     "union_reach",
     "overlap_fraction",
-    "makespan_s",
+    "fleet_makespan_s",
     "balance",
     "fleet_cov_final",
     "fleet_t_final",
