@@ -314,19 +314,26 @@ fn fleet(extra: &str) -> String {
     )
 }
 
-#[test]
-fn a_fleet_negotiates_deterministically_and_writes_its_results() {
-    let dir = tempfile::tempdir().unwrap();
-    let exp = write(dir.path(), "fleet.toml", &fleet(""));
+/// Runs `exp` with 1 and 2 threads into `dir/one` and `dir/two`, checks that the history, plan
+/// and configuration files are identical, and returns both folders.
+fn run_on_one_and_two_threads(dir: &Path, exp: &Path) -> (PathBuf, PathBuf) {
     let run = |threads: &str, out: &str| {
-        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join(out).to_str().unwrap()], threads);
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.join(out).to_str().unwrap()], threads);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        dir.path().join(out)
+        dir.join(out)
     };
     let (one, two) = (run("1", "one"), run("2", "two"));
     for file in ["history.csv", "best_path.csv", "config.toml"] {
         assert_eq!(read(&one.join(file)), read(&two.join(file)), "{file} with 1 and 2 threads");
     }
+    (one, two)
+}
+
+#[test]
+fn a_fleet_negotiates_deterministically_and_writes_its_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = write(dir.path(), "fleet.toml", &fleet(""));
+    let (one, two) = run_on_one_and_two_threads(dir.path(), &exp);
     assert_eq!(summary_without_time(&one), summary_without_time(&two));
     let s = summary_without_time(&one);
     assert_eq!(s["fleet"]["robots"], serde_json::json!(["narrow", "wide"]));
@@ -343,15 +350,7 @@ fn a_fleet_plans_centrally_deterministically_and_writes_its_results() {
     let dir = tempfile::tempdir().unwrap();
     let text = fleet("").replace("[fleet]\n", "[fleet]\nmode = \"central\"\n");
     let exp = write(dir.path(), "central.toml", &text);
-    let run = |threads: &str, out: &str| {
-        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join(out).to_str().unwrap()], threads);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        dir.path().join(out)
-    };
-    let (one, two) = (run("1", "one"), run("2", "two"));
-    for file in ["history.csv", "best_path.csv", "config.toml"] {
-        assert_eq!(read(&one.join(file)), read(&two.join(file)), "{file} with 1 and 2 threads");
-    }
+    let (one, two) = run_on_one_and_two_threads(dir.path(), &exp);
     let s = summary_without_time(&one);
     assert_eq!(s, summary_without_time(&two));
     assert_eq!(s["planner"], "fleet-central");
