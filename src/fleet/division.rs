@@ -27,7 +27,9 @@ pub const MAX_ITERATIONS: usize = 1000;
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum DivisionError {
     /// Two robots start in the same cell: a geodesic split needs distinct starts.
-    #[error("robots \"{0}\" and \"{1}\" start in the same cell: area division needs distinct start stations")]
+    #[error(
+        "robots \"{0}\" and \"{1}\" start in the same cell (or, where a start lies off the free cells, the nearest cell each fits in): area division needs distinct start stations"
+    )]
     SharedStart(String, String),
     /// A robot's end station lies outside its region.
     #[error("robot \"{robot}\"'s end station ({x}, {y}) m lies outside its region: give it an end inside, or none")]
@@ -117,13 +119,20 @@ fn robot_distance(map: &GridMap, r: &super::Robot) -> Vec<f64> {
     dist
 }
 
+/// The cell robot `r` starts its sweep from: the nearest cell centre its disc fits on (its start
+/// cell, unless the start lies on or too near an obstacle, as stations on SLAM maps can);
+/// `None` if it fits nowhere.
+fn anchor(map: &GridMap, r: &super::Robot) -> Option<usize> {
+    Clearance::new(map, r.footprint.width).snap(r.start)
+}
+
 /// Splits the cells the robots can sweep between them (see the module documentation).
 pub fn divide(map: &GridMap, fleet: &Fleet) -> Result<Division, DivisionError> {
     let robots = fleet.robots();
-    let start_cells: Vec<Option<(usize, usize)>> = robots.iter().map(|r| map.cell_at(r.start)).collect();
+    let anchors: Vec<Option<usize>> = robots.iter().map(|r| anchor(map, r)).collect();
     for i in 0..robots.len() {
         for j in 0..i {
-            if start_cells[i] == start_cells[j] {
+            if anchors[i] == anchors[j] {
                 return Err(DivisionError::SharedStart(robots[j].name.clone(), robots[i].name.clone()));
             }
         }
@@ -133,7 +142,6 @@ pub fn divide(map: &GridMap, fleet: &Fleet) -> Result<Division, DivisionError> {
     let dist: Vec<Vec<f64>> = robots.iter().map(|r| robot_distance(map, r)).collect();
     let cells: Vec<usize> = (0..n).filter(|&c| dist.iter().any(|d| d[c].is_finite())).collect();
     let shares: Vec<f64> = robots.iter().map(|r| r.sweep_rate() / fleet.sweep_rate()).collect();
-    let starts: Vec<Point> = robots.iter().map(|r| r.start).collect();
     // Additive weights: cell c goes to the robot with the least d_i(c) − w_i, then each region
     // keeps the part connected to its start (robots of different widths reach different
     // cells, so a narrow robot's strips along walls can lie apart from its region). The
@@ -150,8 +158,14 @@ pub fn divide(map: &GridMap, fleet: &Fleet) -> Result<Division, DivisionError> {
                 .expect("some robot sweeps every listed cell");
             owner[c] = Some(best as u16);
         }
+        // A robot keeps the cell it starts from, however the weights lean.
+        for (k, a) in anchors.iter().enumerate() {
+            if let Some(a) = *a {
+                owner[a] = Some(k as u16);
+            }
+        }
         let assigned_by_weight = owner.clone();
-        connect_regions(map, &starts, &dist, &mut owner);
+        connect_regions(map, &anchors, &dist, &mut owner);
         // Cells no connected region could take go back to their robot by weight: only robots
         // whose regions lie apart from them can sweep them (a narrow robot's strips along
         // walls), and its plan reaches them travelling through the others' regions.
@@ -193,7 +207,7 @@ const STEPS: [(isize, isize); 8] = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1),
 /// Keeps each region's part connected (8-connected) to its robot's start and hands the cut-off
 /// cells to a neighbouring region whose robot can sweep them (breadth first from the kept
 /// regions, neighbours in a fixed order, so the result is deterministic).
-fn connect_regions(map: &GridMap, starts: &[Point], dist: &[Vec<f64>], owner: &mut [Option<u16>]) {
+fn connect_regions(map: &GridMap, anchors: &[Option<usize>], dist: &[Vec<f64>], owner: &mut [Option<u16>]) {
     let (rows, cols) = (map.rows() as isize, map.cols() as isize);
     let neighbours = |i: usize| {
         let (r, c) = ((i as isize) / cols, (i as isize) % cols);
@@ -204,9 +218,8 @@ fn connect_regions(map: &GridMap, starts: &[Point], dist: &[Vec<f64>], owner: &m
     };
     let mut kept = vec![false; owner.len()];
     let mut queue = VecDeque::new();
-    for (k, s) in starts.iter().enumerate() {
-        if let Some((r, c)) = map.cell_at(*s) {
-            let i = r * map.cols() + c;
+    for (k, a) in anchors.iter().enumerate() {
+        if let Some(i) = *a {
             if owner[i] == Some(k as u16) {
                 kept[i] = true;
                 queue.push_back(i);
@@ -287,7 +300,9 @@ pub fn plan(map: &GridMap, fleet: &Fleet, angle_deg: f64) -> Result<(Vec<Vec<Poi
             .collect();
         let region = GridMap::new(map.name(), map.cols(), map.rows(), map.resolution(), map.origin(), cells)
             .expect("a region holds its robot's start");
-        if !region.cell_at(robot.end).is_some_and(|(r, c)| region.is_free(r, c)) {
+        // The route returns to the end through the nearest cell it fits on (as for a start).
+        let end_cell = Clearance::new(map, robot.footprint.width).snap(robot.end);
+        if !end_cell.is_some_and(|i| open[i]) {
             return Err(DivisionError::EndOutside { robot: robot.name.clone(), x: robot.end.x, y: robot.end.y });
         }
         // The region's shape decides which lane direction is quick; try four.
@@ -424,6 +439,38 @@ mod tests {
             })
             .fold(f64::INFINITY, f64::min);
         assert!(s.makespan_s < alone, "fleet {} s, best alone {alone} s ({:?})", s.makespan_s, division.sizes);
+    }
+
+    #[test]
+    fn a_robot_whose_share_is_all_rooms_only_it_can_enter_keeps_its_start() {
+        // A 3 x 2.8 m room and, behind a 0.5 m door, a 2.8 m room that only the 0.4 m robot
+        // can enter. Its share (4 % of the cells) is smaller than that room: the weights then
+        // give every shared cell to the 0.9 m robot, its start cell included, and its region
+        // used to vanish ("end station outside its region"). It keeps the cell it starts
+        // from, and both plans are drivable.
+        use crate::map::CellState;
+        let (cols, rows) = (60, 30);
+        let mut cells = vec![CellState::Occupied; cols * rows];
+        for r in 1..29 {
+            for c in 1..59 {
+                if c != 30 || (12..17).contains(&r) {
+                    cells[r * cols + c] = CellState::Free;
+                }
+            }
+        }
+        let map = GridMap::new("rooms", cols, rows, 0.1, Point::origin(), cells).unwrap();
+        let f = fleet(
+            "[[robots]]\nname = \"slow\"\nwidth = 0.4\nspeed = 0.05\nstart = [1.0, 1.0]\n\
+             [[robots]]\nname = \"fast\"\nwidth = 0.9\nspeed = 0.5\nstart = [2.0, 2.0]\n",
+            &map,
+        );
+        let (paths, d) = plan(&map, &f, 0.0).unwrap();
+        assert_eq!(d.owner[anchor(&map, &f.robots()[0]).unwrap()], Some(0));
+        let s = FleetScorer::new(&map, &f).score(&paths).unwrap();
+        assert_eq!(s.obstacle_cells, 0);
+        assert!(s.union_free > 0.85, "{}", s.union_free);
+        assert!(paths[0].iter().any(|p| p.x > 4.0), "the slow robot sweeps the room behind the door");
+        assert!(d.sizes[0] >= 700, "that room is the slow robot's: {:?}", d.sizes);
     }
 
     #[test]

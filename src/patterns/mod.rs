@@ -70,10 +70,32 @@ pub fn plan_region(
     }
     whole.restrict(reach.centres().to_vec());
     let mut route = if region_reach.centres().iter().any(|c| *c) {
+        // Where the region closes the start's surroundings (a robot whose region is cut to its
+        // start cell), the lanes' nearest centre can lie metres away behind walls: drive there
+        // over the whole map first, and let the lanes start from it.
+        let entry = lanes.snap(start).filter(|&i| whole.snap(start) != Some(i)).map(|i| {
+            let cols = region.cols();
+            region.cell_centre(i / cols, i % cols)
+        });
+        let mut route = Route::new(start);
+        let from = match entry {
+            Some(p) => {
+                route.go(&whole, p);
+                p
+            }
+            None => start,
+        };
         lanes.restrict(region_reach.centres().to_vec());
-        match pattern {
-            Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&lanes, width, angle_deg, start)?,
-            Pattern::Spiral => spiral::plan(&lanes, width, start)?,
+        let lanes_route = match pattern {
+            Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&lanes, width, angle_deg, from)?,
+            Pattern::Spiral => spiral::plan(&lanes, width, from)?,
+        };
+        if entry.is_none() {
+            lanes_route
+        } else {
+            route.points.extend_from_slice(&lanes_route.points[1..]);
+            route.skipped += lanes_route.skipped;
+            route
         }
     } else {
         Route::new(start)
@@ -236,5 +258,44 @@ mod tests {
             assert!(p.points.iter().all(|q| q.x < 2.1), "{pattern:?} never enters the pocket");
             assert_eq!((p.points[0], *p.points.last().unwrap()), (s, s));
         }
+    }
+    #[test]
+    fn a_region_cut_to_its_start_cell_is_entered_over_the_map_not_through_the_wall() {
+        use crate::map::CellState;
+        // Two 2 x 2 m rooms split by a wall at x = 2 m with a door at the top; the region is
+        // the right room and the start cell in the left one (a robot whose area division left
+        // it its start cell only): the way in goes through the door.
+        let (cols, rows) = (42, 22);
+        let mut cells = vec![CellState::Occupied; cols * rows];
+        for r in 1..21 {
+            for c in 1..41 {
+                if c != 20 || r >= 14 {
+                    cells[r * cols + c] = CellState::Free;
+                }
+            }
+        }
+        let m = GridMap::new("rooms", cols, rows, 0.1, Point::origin(), cells.clone()).unwrap();
+        let s = Point::new(0.55, 0.55);
+        let (sr, sc) = m.cell_at(s).unwrap();
+        let mut open = vec![false; cols * rows];
+        for r in 0..rows {
+            for c in 21..cols {
+                open[r * cols + c] = true;
+            }
+        }
+        open[sr * cols + sc] = true;
+        let closed: Vec<CellState> = cells
+            .iter()
+            .zip(&open)
+            .map(|(&c, &o)| if c == CellState::Free && !o { CellState::Occupied } else { c })
+            .collect();
+        let region = GridMap::new("rooms", cols, rows, 0.1, Point::origin(), closed).unwrap();
+        let p = plan_region(&m, &region, &open, Pattern::Boustrophedon { angle_deg: 0.0 }, 0.4, s, s).unwrap();
+        let g = CoverageGrid::new(&m);
+        let fp = Footprint { width: 0.4, ..Footprint::default() };
+        let metrics = fp.measure(&g, &mut SweepScratch::new(&g), &p.points);
+        assert_eq!(metrics.obstacle_cells, 0, "{:?}", &p.points[..4]);
+        assert!(p.points.iter().any(|q| q.x > 3.0), "the right room is swept");
+        assert_eq!((p.points[0], *p.points.last().unwrap()), (s, s));
     }
 }
