@@ -219,11 +219,11 @@ fn connect_regions(map: &GridMap, anchors: &[Option<usize>], dist: &[Vec<f64>], 
     let mut kept = vec![false; owner.len()];
     let mut queue = VecDeque::new();
     for (k, a) in anchors.iter().enumerate() {
-        if let Some(i) = *a {
-            if owner[i] == Some(k as u16) {
-                kept[i] = true;
-                queue.push_back(i);
-            }
+        if let Some(i) = *a
+            && owner[i] == Some(k as u16)
+        {
+            kept[i] = true;
+            queue.push_back(i);
         }
     }
     while let Some(i) = queue.pop_front() {
