@@ -273,7 +273,17 @@ fn a_fleet_grid_runs_every_method_and_reports_them() {
         let evaluations: u64 = row[col("evaluations")].parse().unwrap();
         let budget = if row[col("planner")] == "fleet-divide" { 0..=0 } else { 1500..=1700 };
         assert!(budget.contains(&evaluations), "{}: {evaluations}", row[col("planner")]);
+        let rounds = &row[col("negotiation_rounds")];
+        if row[col("planner")] == "fleet-negotiate" {
+            assert!(rounds.parse::<u32>().unwrap() >= 1, "{row:?}");
+            assert!(["true", "false"].contains(&row[col("negotiation_settled")].as_str()));
+            assert!(row[col("negotiation_last_change")].parse::<f64>().unwrap() >= 0.0);
+        } else {
+            assert_eq!(rounds, "", "only a negotiation has rounds");
+        }
     }
+    // The report reads runs.csv: the raw run folders are not needed.
+    std::fs::remove_dir_all(out.join("runs")).unwrap();
     ok(&covga(&["report", out.to_str().unwrap()]));
     let md = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
     for needle in
@@ -281,6 +291,8 @@ fn a_fleet_grid_runs_every_method_and_reports_them() {
     {
         assert!(md.contains(needle), "{needle} in\n{md}");
     }
+    let convergence = md.lines().find(|l| l.starts_with("| thesis-1 | pair | 2 |")).expect("a convergence row");
+    assert!(!convergence.contains('–') && !convergence.contains("0/0"), "{convergence}");
 }
 
 #[test]

@@ -223,12 +223,21 @@ fn convergence(dir: &Path, t: &RunsTable, cells: &Cells) -> String {
          plan change of the last round (medians over seeds).\n"
     );
     let _ = writeln!(md, "| map | fleet | runs | rounds | settled | last change |\n|---|---|---|---|---|---|");
-    let id = t.col("run_id");
+    let (id, rounds_col, settled_col, change_col) =
+        (t.col("run_id"), t.col("negotiation_rounds"), t.col("negotiation_settled"), t.col("negotiation_last_change"));
     for (m, fleets) in cells {
         for (f, methods) in fleets {
             let Some(c) = methods.get("negotiate") else { continue };
             let (mut rounds, mut settled, mut change) = (Vec::new(), 0, Vec::new());
             for &r in &c.rows {
+                let field = |col: Option<usize>| col.map(|i| t.rows[r][i].as_str()).filter(|v| !v.is_empty());
+                if let Some(n) = field(rounds_col).and_then(|v| v.parse::<f64>().ok()) {
+                    rounds.push(n);
+                    settled += usize::from(field(settled_col) == Some("true"));
+                    change.extend(field(change_col).and_then(|v| v.parse::<f64>().ok()));
+                    continue;
+                }
+                // Studies recorded before these columns existed: the run's own summary.
                 let Some(i) = id else { continue };
                 let path = dir.join("runs").join(&t.rows[r][i]).join("summary.json");
                 let Some(v) =

@@ -14,7 +14,7 @@ pub const RUN_COLUMNS: [&str; 4] = ["planner", "map", "feasible", "violations"];
 pub const EFFORT_COLUMNS: [&str; 4] = ["evaluations", "iterations", "stop", "wall_s"];
 /// Columns of a fleet's plan (two agents or more; empty for a single robot): the fleet's
 /// label, robot count and the fleet metrics of [`crate::fleet::metrics::FleetScore`].
-pub const FLEET_COLUMNS: [&str; 9] = [
+pub const FLEET_COLUMNS: [&str; 12] = [
     "fleet_name",
     "fleet_robots",
     "union_free",
@@ -24,6 +24,9 @@ pub const FLEET_COLUMNS: [&str; 9] = [
     "balance",
     "fleet_cov_final",
     "fleet_t_final",
+    "negotiation_rounds",
+    "negotiation_settled",
+    "negotiation_last_change",
 ];
 /// Columns that measure time and so differ between otherwise identical runs.
 pub const TIMING_COLUMNS: [&str; 1] = ["wall_s"];
@@ -73,6 +76,12 @@ fn fleet_fields(summary: &Summary) -> Vec<String> {
     let Some(f) = &summary.fleet else { return vec![String::new(); FLEET_COLUMNS.len()] };
     let name = summary.details.get("fleet_name").and_then(|v| v.as_str()).unwrap_or_default().to_string();
     let num = |v: f64| format!("{v}");
+    // Only a negotiation has rounds; other fleet methods leave the fields empty.
+    let detail = |key: &str| match summary.details.get(key) {
+        Some(serde_json::Value::Number(n)) => n.to_string(),
+        Some(serde_json::Value::Bool(b)) => b.to_string(),
+        _ => String::new(),
+    };
     vec![
         name,
         f.robots.len().to_string(),
@@ -83,6 +92,9 @@ fn fleet_fields(summary: &Summary) -> Vec<String> {
         f.balance.map(num).unwrap_or_default(),
         num(f.cov_final),
         num(f.t_final),
+        detail("rounds"),
+        detail("converged"),
+        detail("last_round_change"),
     ]
 }
 
