@@ -361,6 +361,15 @@ fn a_fleet_plans_centrally_deterministically_and_writes_its_results() {
     assert!(f["union_reach"].as_f64().unwrap() > 0.5, "{f}");
     assert_eq!(f["robot_time_s"].as_array().map(Vec::len), Some(2));
     assert_eq!(read(&one.join("history.csv")).lines().count(), 1 + 201, "one row per iteration");
+    // Per generation and robot of the best crew; the last generation's genomes are the plan's.
+    let robots = read(&one.join("robots_history.csv"));
+    assert_eq!(robots.lines().next(), Some("iteration,robot,genome_len,swept_cells,t_actual_s"));
+    assert_eq!(robots.lines().count(), 1 + 201 * 2);
+    let last: Vec<Vec<&str>> = robots.lines().rev().take(2).map(|l| l.split(',').collect()).collect();
+    assert_eq!((last[1][0], last[1][1], last[0][0], last[0][1]), ("200", "narrow", "200", "wide"));
+    assert_eq!(last[1][2].parse::<u64>().ok(), s["genome_len"][0].as_u64());
+    assert_eq!(last[0][2].parse::<u64>().ok(), s["genome_len"][1].as_u64());
+    assert_eq!(robots, read(&two.join("robots_history.csv")));
     let paths = read(&one.join("best_path.csv"));
     assert!(paths.contains(",narrow,") && paths.contains(",wide,"));
     assert!(one.join("path.png").exists());

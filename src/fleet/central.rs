@@ -11,6 +11,7 @@
 
 use super::{Fleet, fleet_t_final, fleet_t_optimal};
 use crate::coverage::bits::VisitPlanes;
+use crate::ga::observer::RobotRecord;
 use crate::ga::rng::Rng;
 use crate::geom::Point;
 use crate::map::GridMap;
@@ -90,6 +91,13 @@ fn visited(v: &VisitPlanes, idx: usize, planes: usize) -> u64 {
     (0..planes).fold(0, |acc, p| acc | v.word(p, idx))
 }
 
+/// A robot's time as the fitness reads it: 003 eq. 3.12 over the area it sweeps, plus its
+/// rotation time.
+fn robot_time_s(ind: &Individual, scenario: &Scenario) -> f64 {
+    let res = scenario.map.resolution();
+    t_actual(area_m2(ind.sweep.cov_pix, res), scenario.robot.speed, scenario.robot.width) + ind.t_rot_s
+}
+
 /// 003's objectives of a fleet plan: eq. 3.9 with `cross_pix` the sweeps of cells some robot
 /// had already swept (all sweeps minus the union), eq. 3.10 over the union, `t_optimal` with
 /// the fleet's sweep rate ([`fleet_t_optimal`]) and eq. 3.13 with the slowest robot's
@@ -102,8 +110,7 @@ pub fn crew_score(robots: &[Individual], union: u64, world: &FleetWorld) -> Thes
     for (ind, s) in robots.iter().zip(&world.robots) {
         cov_pix += ind.sweep.cov_pix;
         obj_pix += ind.sweep.obj_pix;
-        let t = t_actual(area_m2(ind.sweep.cov_pix, res), s.robot.speed, s.robot.width) + ind.t_rot_s;
-        makespan = makespan.max(t);
+        makespan = makespan.max(robot_time_s(ind, s));
     }
     let actual = cov_actual(area_m2(cov_pix, res), area_m2(cov_pix - union, res));
     let cov = cov_final(actual, area_m2(first.grid.area_cells() as u64, res));
@@ -128,6 +135,17 @@ impl Member for Crew {
     }
     fn genome_len(&self) -> usize {
         self.robots.iter().map(Individual::len).sum()
+    }
+    fn robot_records(&self, world: &FleetWorld) -> Vec<RobotRecord> {
+        self.robots
+            .iter()
+            .zip(&world.robots)
+            .map(|(ind, s)| RobotRecord {
+                genome_len: ind.len() as u32,
+                swept_cells: ind.sweep.unique(),
+                t_actual_s: robot_time_s(ind, s),
+            })
+            .collect()
     }
     fn from_genes(genes: Vec<Vec<Action>>) -> Self {
         Crew { robots: genes.into_iter().map(Individual::from_genes).collect(), ..Default::default() }

@@ -1,7 +1,7 @@
 //! Running an experiment file with `[[robots]]` (by `covga run` or in a grid study): the fleet
 //! is planned as `[fleet] mode` says, then its results folder is written — `config.toml`,
-//! `history.csv` (per generation for the centralised GA, per round and robot for the
-//! negotiation), `best_path.csv` (with `agent` and `robot` columns), `summary.json` (the
+//! `history.csv` (per generation for the centralised GA, with `robots_history.csv` per
+//! generation and robot; per round and robot for the negotiation), `best_path.csv` (with `agent` and `robot` columns), `summary.json` (the
 //! common summary with the fleet metrics) and, when asked, `path.png` / `path.svg` (one colour
 //! per robot).
 
@@ -25,6 +25,40 @@ struct FleetPlan {
     details: serde_json::Value,
     /// The planner's own constraint violations (the waypoint planner's), in words.
     violations: Vec<String>,
+}
+
+/// `robots_history.csv` of the centralised GA: per generation and robot of the best crew, its
+/// genome length, distinct swept cells and time as the fitness reads it.
+struct RobotHistory {
+    names: Vec<String>,
+    out: csv::Writer<Vec<u8>>,
+}
+
+impl RobotHistory {
+    fn new(fleet: &super::Fleet) -> Self {
+        let mut out = csv::Writer::from_writer(Vec::new());
+        out.write_record(["iteration", "robot", "genome_len", "swept_cells", "t_actual_s"]).expect("in memory");
+        Self { names: fleet.robots().iter().map(|r| r.name.clone()).collect(), out }
+    }
+    fn finish(self) -> Vec<u8> {
+        self.out.into_inner().expect("in memory")
+    }
+}
+
+impl Observer for RobotHistory {
+    fn generation(&mut self, record: &crate::ga::observer::GenerationRecord) -> std::io::Result<()> {
+        for (name, r) in self.names.iter().zip(&record.robots) {
+            let row = [
+                record.iteration.to_string(),
+                name.clone(),
+                r.genome_len.to_string(),
+                r.swept_cells.to_string(),
+                r.t_actual_s.to_string(),
+            ];
+            self.out.write_record(&row).map_err(std::io::Error::other)?;
+        }
+        Ok(())
+    }
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
@@ -52,7 +86,8 @@ pub fn run_fleet(
     let plan = match run.mode {
         FleetMode::Central => {
             let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
-            let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
+            let mut robots = RobotHistory::new(&run.fleet);
+            let mut observers: Vec<&mut dyn Observer> = vec![&mut history, &mut robots];
             observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
             let mut ga = crate::thesis::run::Ga::<super::central::Crew> {
                 scenario: super::central::FleetWorld::new(map, &run.fleet, projection),
@@ -61,6 +96,7 @@ pub fn run_fleet(
             };
             let out = ga.run(&exp.budget, None, &mut observers).map_err(io_err(dir))?;
             history.finish().map_err(io_err(dir))?;
+            write("robots_history.csv", &robots.finish())?;
             let best = &out.best;
             FleetPlan {
                 paths: best.paths(),

@@ -23,6 +23,19 @@ pub struct GenerationRecord {
     pub diversity: Option<f64>,
     /// Planner-specific columns, the same names in every record of a run.
     pub extras: Vec<(&'static str, f64)>,
+    /// The reported plan's robots, for planners of fleets (empty otherwise).
+    pub robots: Vec<RobotRecord>,
+}
+
+/// One robot of a fleet's reported plan in a generation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct RobotRecord {
+    /// Its genome length.
+    pub genome_len: u32,
+    /// Distinct countable cells it sweeps.
+    pub swept_cells: u64,
+    /// Its time as the fitness reads it: 003 eq. 3.12 over its swept area, plus rotation.
+    pub t_actual_s: f64,
 }
 
 /// Column names of the planner-neutral part of a [`GenerationRecord`].
@@ -122,6 +135,7 @@ impl GenerationStats {
             best_coverage: self.best_cov_final,
             feasible: None,
             diversity: self.diversity,
+            robots: Vec::new(),
             extras: vec![
                 ("best_cov_final", self.best_cov_final),
                 ("best_t_final", self.best_t_final),

@@ -81,6 +81,7 @@ impl Planner for PatternConfig {
             best_coverage: sc.cov_final,
             feasible: Some(1),
             diversity: None,
+            robots: Vec::new(),
             extras: Vec::new(),
         };
         for o in observers.iter_mut() {

@@ -97,6 +97,7 @@ impl Planner for RandomSearch {
                 best_coverage: b.score.cov_final,
                 feasible: None,
                 diversity: None,
+                robots: Vec::new(),
                 extras: vec![("best_t_final", b.score.t_final), ("best_genome_len", b.len() as f64)],
             };
             for o in observers.iter_mut() {

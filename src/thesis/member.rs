@@ -87,6 +87,10 @@ pub trait Member: Clone + Default + Send + Sync {
     fn diversity(pop: &[Self], scratch: &mut DiversityScratch) -> f64;
     /// `Div_max` of a population (spec §12.2).
     fn max_distance(pop: &[Self]) -> u64;
+    /// Per robot of a fleet's member, what the history records of it (none for one robot).
+    fn robot_records(&self, _world: &Self::World) -> Vec<crate::ga::observer::RobotRecord> {
+        Vec::new()
+    }
 }
 
 /// A world that can mark a region as already covered (the retrain, 003 §3.5.3).

@@ -9,7 +9,7 @@ use super::individual::{EvalScratch, Individual};
 use super::member::{Member, Premark};
 use super::params::{Budget, Control, Retrain, Selection, ThesisParams};
 use crate::ga::control;
-use crate::ga::observer::{GenerationStats, Observer, RunEvent};
+use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
 use crate::ga::rng::{Purpose, Rng, stream};
 pub use crate::planner::StopReason;
 use std::time::Instant;
@@ -218,7 +218,7 @@ impl<T: Member> Ga<T> {
         let fixed = self.fixed_effective();
         let first = stats(&state, &fixed);
         for o in observers.iter_mut() {
-            o.generation(&first.record())?;
+            o.generation(&record(&first, &state, &self.scenario))?;
         }
         history.push(first);
         let mut best_seen = state.population[best_index(&state.population)].fitness();
@@ -247,8 +247,11 @@ impl<T: Member> Ga<T> {
             let effective = self.effective(&state, state.iteration + 1, budget.iterations);
             self.step(&mut state, effective, &mut scratches, wants_diversity.then_some(&mut div));
             let now = stats(&state, &effective);
-            for o in observers.iter_mut() {
-                o.generation(&now.record())?;
+            if !observers.is_empty() {
+                let r = record(&now, &state, &self.scenario);
+                for o in observers.iter_mut() {
+                    o.generation(&r)?;
+                }
             }
             history.push(now);
             let best = state.population[best_index(&state.population)].fitness();
@@ -284,6 +287,13 @@ impl ThesisGa {
         self.scenario.set_premarks(cells);
         self.reevaluate(state);
     }
+}
+
+/// The record observers receive: the statistics, and the best member's robots for a fleet.
+fn record<T: Member>(stats: &GenerationStats, state: &GaState<T>, world: &T::World) -> GenerationRecord {
+    let mut r = stats.record();
+    r.robots = state.population[best_index(&state.population)].robot_records(world);
+    r
 }
 
 /// Statistics of the current population (spec §17).

@@ -130,6 +130,7 @@ impl Planner for WaypointConfig {
                     best_coverage: counts.unique() as f64 / grid.area_cells().max(1) as f64,
                     feasible: Some(s.feasible),
                     diversity: None,
+                    robots: Vec::new(),
                     extras: vec![
                         ("best_walls", b.eval.walls),
                         ("best_open", b.eval.open),
