@@ -50,34 +50,47 @@ impl BitLayers {
         self.free.len()
     }
 
-    /// Adds (`ADD`) or removes the swept rectangle of `a → b` to or from `visits`, updating
-    /// `tally`. Removing is only meaningful for a segment that was added before.
+    /// The grid geometry the rows are laid out on.
+    pub fn raster(&self) -> &RasterGrid {
+        &self.raster
+    }
+
+    /// Calls `mask(word index, bits)` for every word of every row the swept rectangle of
+    /// `a → b` touches: the cells of the segment, in the layout of the planes.
     #[inline]
-    pub fn apply<const ADD: bool>(&self, visits: &mut VisitPlanes, a: Point, b: Point, width: f64, tally: &mut Tally) {
+    pub fn for_each_mask(&self, a: Point, b: Point, width: f64, mut mask: impl FnMut(usize, u64)) {
         let words = self.words;
-        let (mut cov, mut obj, mut changed) = (0u64, 0u64, 0u64);
         for_each_swept_row(&self.raster, a, b, width, |row, lo, hi| {
             let base = row * words;
             let (w0, w1) = (lo / 64, hi / 64);
             for w in w0..=w1 {
-                let mut mask = u64::MAX;
+                let mut bits = u64::MAX;
                 if w == w0 {
-                    mask &= u64::MAX << (lo % 64);
+                    bits &= u64::MAX << (lo % 64);
                 }
                 if w == w1 {
-                    mask &= u64::MAX >> (63 - hi % 64);
+                    bits &= u64::MAX >> (63 - hi % 64);
                 }
-                let idx = base + w;
-                let free = mask & self.free[idx];
-                let n_free = u64::from(free.count_ones());
-                cov += n_free;
-                obj += u64::from(mask.count_ones()) - n_free;
-                if free != 0 {
-                    let flipped = if ADD { visits.add(idx, free) } else { visits.remove(idx, free) };
-                    changed += u64::from((flipped & self.countable[idx]).count_ones());
-                }
+                mask(base + w, bits);
             }
         });
+    }
+
+    /// One word of a segment: counts its free and obstacle cells and adds or removes a visit.
+    #[inline(always)]
+    fn apply_word<const ADD: bool>(&self, visits: &mut VisitPlanes, idx: usize, mask: u64, counts: &mut [u64; 3]) {
+        let free = mask & self.free[idx];
+        let n_free = u64::from(free.count_ones());
+        counts[0] += n_free;
+        counts[1] += u64::from(mask.count_ones()) - n_free;
+        if free != 0 {
+            let flipped = if ADD { visits.add(idx, free) } else { visits.remove(idx, free) };
+            counts[2] += u64::from((flipped & self.countable[idx]).count_ones());
+        }
+    }
+
+    #[inline(always)]
+    fn settle<const ADD: bool>(tally: &mut Tally, [cov, obj, changed]: [u64; 3]) {
         if ADD {
             tally.cov_pix += cov;
             tally.obj_pix += obj;
@@ -87,6 +100,25 @@ impl BitLayers {
             tally.obj_pix -= obj;
             tally.unique -= changed;
         }
+    }
+
+    /// Adds (`ADD`) or removes the swept rectangle of `a → b` to or from `visits`, updating
+    /// `tally`. Removing is only meaningful for a segment that was added before.
+    #[inline]
+    pub fn apply<const ADD: bool>(&self, visits: &mut VisitPlanes, a: Point, b: Point, width: f64, tally: &mut Tally) {
+        let mut counts = [0u64; 3];
+        self.for_each_mask(a, b, width, |idx, mask| self.apply_word::<ADD>(visits, idx, mask, &mut counts));
+        Self::settle::<ADD>(tally, counts);
+    }
+
+    /// [`Self::apply`] for a segment given by its masks (from [`Self::for_each_mask`]).
+    #[inline]
+    pub fn apply_masks<const ADD: bool>(&self, visits: &mut VisitPlanes, masks: &[(u32, u64)], tally: &mut Tally) {
+        let mut counts = [0u64; 3];
+        for &(idx, mask) in masks {
+            self.apply_word::<ADD>(visits, idx as usize, mask, &mut counts);
+        }
+        Self::settle::<ADD>(tally, counts);
     }
 
     /// Sweeps a whole polyline into cleared `visits` and returns its tally.

@@ -7,6 +7,7 @@ pub mod motion;
 pub mod raster;
 pub mod rows;
 pub mod score;
+pub mod segments;
 pub mod sweep;
 
 pub use sweep::{CoverageGrid, SweepCounts, SweepScratch};

@@ -4,6 +4,7 @@
 use super::fitness::{Projection, ThesisScore, score_counts};
 use super::genome::{Action, Frame, decode, live, random_genome};
 use crate::coverage::bits::{BitLayers, Tally, VisitPlanes};
+use crate::coverage::segments::SegmentCache;
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
 use crate::map::GridMap;
@@ -129,10 +130,12 @@ pub enum Base<'a> {
     Parent(&'a Individual),
 }
 
-/// Reusable buffers of an evaluation.
+/// Reusable buffers of an evaluation, one per worker thread.
 #[derive(Clone, Debug, Default)]
 pub struct EvalScratch {
     points: Vec<Point>,
+    /// Segments already swept, replayed by incremental evaluations.
+    segments: SegmentCache,
 }
 
 /// Decodes with correction (written back) and evaluates, in place (spec §9 steps 1–2).
@@ -152,14 +155,18 @@ pub fn evaluate(
     decode(&mut ind.genome, &scenario.frame, &mut scratch.points);
     let (layers, width) = (&scenario.layers, scenario.robot.width);
     let tally = match (mode, base) {
-        (EvaluationMode::Full, _) | (_, Base::None) => layers.sweep(&mut ind.visits, &scratch.points, width),
+        (EvaluationMode::Full, _) => layers.sweep(&mut ind.visits, &scratch.points, width),
+        (EvaluationMode::Incremental, Base::None) => {
+            ind.visits.reset(layers.plane_words());
+            edit(layers, &mut scratch.segments, &mut ind.visits, Tally::default(), &[], &scratch.points, width)
+        }
         (EvaluationMode::Incremental, Base::Own) => {
             let t = ind.tally();
-            edit(layers, &mut ind.visits, t, &ind.points, &scratch.points, width)
+            edit(layers, &mut scratch.segments, &mut ind.visits, t, &ind.points, &scratch.points, width)
         }
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             ind.visits.copy_from(&p.visits);
-            edit(layers, &mut ind.visits, p.tally(), &p.points, &scratch.points, width)
+            edit(layers, &mut scratch.segments, &mut ind.visits, p.tally(), &p.points, &scratch.points, width)
         }
     };
     std::mem::swap(&mut ind.points, &mut scratch.points);
@@ -180,6 +187,7 @@ pub fn evaluate(
 /// Turns the visit map of path `old` (with counts `tally`) into that of path `new`.
 fn edit(
     layers: &BitLayers,
+    cache: &mut SegmentCache,
     visits: &mut VisitPlanes,
     mut tally: Tally,
     old: &[Point],
@@ -197,10 +205,10 @@ fn edit(
         y += 1;
     }
     for i in x..so - y {
-        layers.apply::<false>(visits, old[i], old[i + 1], width, &mut tally);
+        cache.apply::<false>(layers, visits, old[i], old[i + 1], width, &mut tally);
     }
     for i in x..sn - y {
-        layers.apply::<true>(visits, new[i], new[i + 1], width, &mut tally);
+        cache.apply::<true>(layers, visits, new[i], new[i + 1], width, &mut tally);
     }
     tally
 }
