@@ -1,9 +1,9 @@
 //! Running an experiment file with `[[robots]]` (by `covga run` or in a grid study): the fleet
 //! is planned as `[fleet] mode` says, then its results folder is written — `config.toml`,
 //! `history.csv` (per generation for the centralised GA, with `robots_history.csv` per
-//! generation and robot; per round and robot for the negotiation), `best_path.csv` (with `agent` and `robot` columns), `summary.json` (the
-//! common summary with the fleet metrics) and, when asked, `path.png` / `path.svg` (one colour
-//! per robot).
+//! generation and robot; per round and robot for the negotiation), `best_path.csv` (with
+//! `agent` and `robot` columns), `summary.json` (the common summary with the fleet metrics)
+//! and, when asked, `path.png` / `path.svg` (one colour per robot).
 
 use super::config::{FleetMode, FleetRun};
 use super::metrics::{FleetScore, FleetScorer};

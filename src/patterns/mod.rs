@@ -78,25 +78,17 @@ pub fn plan_region(
             region.cell_centre(i / cols, i % cols)
         });
         let mut route = Route::new(start);
-        let from = match entry {
-            Some(p) => {
-                route.go(&whole, p);
-                p
-            }
-            None => start,
-        };
+        let from = entry.unwrap_or(start);
+        route.go(&whole, from);
         lanes.restrict(region_reach.centres().to_vec());
         let lanes_route = match pattern {
             Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&lanes, width, angle_deg, from)?,
             Pattern::Spiral => spiral::plan(&lanes, width, from)?,
         };
-        if entry.is_none() {
-            lanes_route
-        } else {
-            route.points.extend_from_slice(&lanes_route.points[1..]);
-            route.skipped += lanes_route.skipped;
-            route
-        }
+        // The lanes' route starts at `from`, which the route has reached.
+        route.points.extend_from_slice(&lanes_route.points[1..]);
+        route.skipped += lanes_route.skipped;
+        route
     } else {
         Route::new(start)
     };
