@@ -390,3 +390,22 @@ fn bad_fleets_are_rejected_with_exit_2() {
     expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nmode = \"teleport\"\n"), "teleport");
     expect_error(&small("[fleet]\nround_iterations = 5"), "no [[robots]]");
 }
+
+#[test]
+fn short_genomes_keep_crossing_unless_the_literal_rule_is_asked_for() {
+    // 50 m initial moves (003 §3.3.1 read literally) clamp every viewpoint to the map edge and
+    // leave genomes of ~10 actions; with C_len = 0.8 eq. 3.21's CP_1 range is empty for them,
+    // and under Elite with P_mI = 0 the literal rule stops every evaluation.
+    let dir = tempfile::tempdir().unwrap();
+    let evaluations_late = |rule: &str| {
+        let text = small(&format!("init_dist_max = 50.0\nc_len = 0.8\np_mi = 0.0\nshort_genomes = \"{rule}\"\n"));
+        let exp = write(dir.path(), &format!("{rule}.toml"), &text);
+        let out = dir.path().join(rule);
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let evals = column(&read(&out.join("history.csv")), "evaluations");
+        evals[200] - evals[100]
+    };
+    assert_eq!(evaluations_late("literal"), 0.0, "the literal rule freezes this population");
+    assert!(evaluations_late("clamp") > 1000.0, "clamped, short genomes still cross");
+}

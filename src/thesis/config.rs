@@ -2,7 +2,7 @@
 //! thesis GA's typed parameters (003 Tables 4.1–4.3 ranges, spec §14.2). Library users get the
 //! same checks through [`ThesisConfig::from_file`].
 
-use super::crossover::ChildMode;
+use super::crossover::{ChildMode, ShortGenomes};
 use super::fitness::Projection;
 use super::individual::{EvaluationMode, InitParams};
 use super::params::{Control, Retrain, Selection, ThesisParams};
@@ -35,6 +35,9 @@ pub struct ThesisSection {
     pub c_len: f64,
     /// `C_child` (0 changing, 1 preserving, 2 both).
     pub c_child: u8,
+    /// `clamp` (default) or `literal`: crossover of genomes too short for the cut-point ranges
+    /// of 003 eqs. 3.21–3.22 (see `ShortGenomes`).
+    pub short_genomes: ShortGenomes,
     /// `P_mA`.
     pub p_ma: f64,
     /// `P_mI`.
@@ -148,6 +151,7 @@ impl Default for ThesisSection {
             p_c: p.p_c,
             c_len: p.c_len,
             c_child: p.c_child.index(),
+            short_genomes: p.short_genomes,
             p_ma: p.p_ma,
             p_mi: p.p_mi,
             keep: 10,
@@ -298,6 +302,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
         p_c: t.p_c,
         c_len: t.c_len,
         c_child: child,
+        short_genomes: t.short_genomes,
         p_ma: t.p_ma,
         p_mi: t.p_mi,
         keep: t.keep,

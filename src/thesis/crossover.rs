@@ -38,14 +38,62 @@ pub fn abs_share(n: usize, c_len: f64) -> usize {
     ((c_len * n as f64).floor() as usize).max(1)
 }
 
-/// Draws a shared block for a parent of length `n` (003 eqs. 3.21–3.22, 1-based
-/// `CP_1 ∈ {2, …, n − absShare − 1}`, `CP_2 ∈ {CP_1 + 1, …, CP_1 + absShare}`), returned
-/// 0-based half-open as `[CP_1 − 1, CP_2 − 1)`. `None` when the `CP_1` range is empty.
-pub fn draw_block<R: Rng + ?Sized>(n: usize, c_len: f64, rng: &mut R) -> Option<(usize, usize)> {
-    let share = abs_share(n, c_len);
-    if n < share + 3 {
+/// What crossover does with parents too short for the cut-point ranges of 003 eqs. 3.21–3.22.
+///
+/// Read literally, those equations leave two traps for short genomes. When `C_len·n < 2` the
+/// block of eq. 3.22 is always one gene long, so both children keep their parents' lengths and
+/// crossover can no longer change a genome's length. When `n < absShare + 3` the range of
+/// `CP_1` is empty and there is no crossover at all; with Elite families and `P_mI = 0` a
+/// population of such genomes then stops changing (with `C_len = 0.8` and 50 m initial moves,
+/// evaluations stop at iteration ~100). The thesis does not say what its operator does there.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ShortGenomes {
+    /// The default: the block bound is clamped into `[2, n − 3]` ([`clamped_share`]), so every
+    /// parent with at least one live gene after the first can cross, and blocks of one or two
+    /// genes let lengths change. Genomes long enough for eqs. 3.21–3.22 are untouched.
+    #[default]
+    Clamp,
+    /// eqs. 3.20–3.22 as printed (spec R12): one-gene blocks when `C_len·n < 2`, no crossover
+    /// when `n < absShare + 3`.
+    Literal,
+}
+
+impl ShortGenomes {
+    /// The name as written in experiment files.
+    pub fn name(self) -> &'static str {
+        match self {
+            ShortGenomes::Clamp => "clamp",
+            ShortGenomes::Literal => "literal",
+        }
+    }
+
+    /// The block bound used for a parent of length `n`; `None` when it cannot cross.
+    pub fn share(self, n: usize, c_len: f64) -> Option<usize> {
+        match self {
+            ShortGenomes::Literal => Some(abs_share(n, c_len)).filter(|&share| n >= share + 3),
+            ShortGenomes::Clamp => clamped_share(n, c_len),
+        }
+    }
+}
+
+/// `absShare` clamped into `[2, n − 3]` (`[1, 1]` for `n = 4`): the largest bound for which the
+/// `CP_1` range of eq. 3.21 is not empty, and at least two so that blocks of different lengths
+/// exist. `None` for `n < 4`, where no gene lies strictly between the first gene and the
+/// connector.
+pub fn clamped_share(n: usize, c_len: f64) -> Option<usize> {
+    if n < 4 {
         return None;
     }
+    Some(abs_share(n, c_len).max(2).min(n - 3))
+}
+
+/// Draws a shared block for a parent of length `n` (003 eqs. 3.21–3.22, 1-based
+/// `CP_1 ∈ {2, …, n − absShare − 1}`, `CP_2 ∈ {CP_1 + 1, …, CP_1 + absShare}`), returned
+/// 0-based half-open as `[CP_1 − 1, CP_2 − 1)`, with `absShare` from `short`. `None` when the
+/// parent cannot cross.
+pub fn draw_block<R: Rng + ?Sized>(n: usize, c_len: f64, short: ShortGenomes, rng: &mut R) -> Option<(usize, usize)> {
+    let share = short.share(n, c_len)?;
     let cp1 = rng.random_range(2..=n - share - 1);
     let cp2 = rng.random_range(cp1 + 1..=cp1 + share);
     Some((cp1 - 1, cp2 - 1))
@@ -103,10 +151,12 @@ pub fn preserving_child(a: Parent, (a0, a1): (usize, usize), b: Parent, (b0, b1)
 
 /// Crossover of two parents (spec §7): draws blocks for both, redrawing up to 10 times while a
 /// child would exceed `max_len` (R14); `None` means "no crossover" (children = copies).
+#[allow(clippy::too_many_arguments)]
 pub fn crossover<R: Rng + ?Sized>(
     a: Parent,
     b: Parent,
     c_len: f64,
+    short: ShortGenomes,
     mode: ChildMode,
     max_len: usize,
     frame: &Frame,
@@ -114,8 +164,8 @@ pub fn crossover<R: Rng + ?Sized>(
 ) -> Option<Vec<Vec<Action>>> {
     let (na, nb) = (a.genome.len(), b.genome.len());
     for _ in 0..10 {
-        let ba = draw_block(na, c_len, rng)?;
-        let bb = draw_block(nb, c_len, rng)?;
+        let ba = draw_block(na, c_len, short, rng)?;
+        let bb = draw_block(nb, c_len, short, rng)?;
         let (la, lb) = (ba.1 - ba.0, bb.1 - bb.0);
         if na - la + lb > max_len || nb - lb + la > max_len {
             continue;
@@ -139,6 +189,7 @@ mod tests {
     use super::*;
     use crate::ga::rng::{Purpose, stream};
     use crate::thesis::genome::{decode, random_genome};
+    use ShortGenomes::{Clamp, Literal};
     use proptest::prelude::*;
 
     #[test]
@@ -148,7 +199,7 @@ mod tests {
         let mut rng = stream(1, Purpose::Main, &[]);
         let (mut seen_lo, mut seen_hi) = (usize::MAX, 0);
         for _ in 0..5000 {
-            let (a0, a1) = draw_block(30, 0.5, &mut rng).unwrap();
+            let (a0, a1) = draw_block(30, 0.5, Literal, &mut rng).unwrap();
             let (cp1, cp2) = (a0 + 1, a1 + 1);
             assert!((2..=14).contains(&cp1), "{cp1}");
             assert!(cp2 > cp1 && cp2 <= cp1 + 15);
@@ -167,9 +218,72 @@ mod tests {
     #[test]
     fn too_short_parents_do_not_cross() {
         let mut rng = stream(2, Purpose::Main, &[]);
-        assert!(draw_block(3, 0.2, &mut rng).is_none());
-        assert!(draw_block(4, 0.2, &mut rng).is_some());
-        assert!(draw_block(10, 0.8, &mut rng).is_none());
+        assert!(draw_block(3, 0.2, Literal, &mut rng).is_none());
+        assert!(draw_block(4, 0.2, Literal, &mut rng).is_some());
+        assert!(draw_block(10, 0.8, Literal, &mut rng).is_none());
+        assert!(draw_block(3, 0.2, Clamp, &mut rng).is_none(), "no gene between the first and the connector");
+    }
+
+    #[test]
+    fn clamped_share_table() {
+        // (n, C_len, literal absShare, literal can cross, clamped share)
+        for (n, c_len, literal, crosses, clamped) in [
+            (3, 0.5, 1, false, None),
+            (4, 0.2, 1, true, Some(1)),
+            (5, 0.2, 1, true, Some(2)),
+            (10, 0.8, 8, false, Some(7)),
+            (10, 0.1, 1, true, Some(2)),
+            (13, 0.8, 10, true, Some(10)),
+            (30, 0.5, 15, true, Some(15)),
+            (300, 0.2, 60, true, Some(60)),
+        ] {
+            assert_eq!(abs_share(n, c_len), literal, "n = {n}, C_len = {c_len}");
+            assert_eq!(Literal.share(n, c_len).is_some(), crosses, "n = {n}, C_len = {c_len}");
+            assert_eq!(Clamp.share(n, c_len), clamped, "n = {n}, C_len = {c_len}");
+        }
+    }
+
+    #[test]
+    fn clamped_blocks_of_short_parents_span_every_allowed_cut() {
+        // n = 10, C_len = 0.8: literally no crossover; clamped to absShare = 7, so CP_1 = 2 and
+        // CP_2 ∈ {3, …, 9}: blocks [1, CP_2 − 1) of 1 to 7 genes, never the connector (8) or E.
+        let mut rng = stream(7, Purpose::Main, &[]);
+        let mut lengths = std::collections::BTreeSet::new();
+        for _ in 0..2000 {
+            let (a0, a1) = draw_block(10, 0.8, Clamp, &mut rng).unwrap();
+            assert_eq!(a0, 1);
+            assert!(a1 <= 8);
+            lengths.insert(a1 - a0);
+        }
+        assert_eq!(lengths.into_iter().collect::<Vec<_>>(), (1..=7).collect::<Vec<_>>());
+        // C_len·n < 2 (n = 9, C_len = 0.2): literal blocks are one gene, clamped ones one or two.
+        let mut seen = std::collections::BTreeSet::new();
+        for _ in 0..2000 {
+            let (a0, a1) = draw_block(9, 0.2, Literal, &mut rng).unwrap();
+            assert_eq!(a1 - a0, 1);
+            let (a0, a1) = draw_block(9, 0.2, Clamp, &mut rng).unwrap();
+            seen.insert(a1 - a0);
+        }
+        assert_eq!(seen.into_iter().collect::<Vec<_>>(), vec![1, 2]);
+    }
+
+    #[test]
+    fn short_parents_cross_and_change_length_only_when_clamped() {
+        let (ga, pa) = parent(21, 9);
+        let (gb, pb) = parent(22, 10);
+        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        let mut rng = stream(8, Purpose::Individual, &[]);
+        assert!(crossover(a, b, 0.8, Literal, ChildMode::Changing, 300, &frame(), &mut rng).is_none());
+        let mut lengths = std::collections::BTreeSet::new();
+        for _ in 0..200 {
+            let kids = crossover(a, b, 0.8, Clamp, ChildMode::Changing, 300, &frame(), &mut rng).expect("clamped");
+            assert_eq!(kids[0].len() + kids[1].len(), 19, "genes are exchanged, not made or lost");
+            lengths.insert(kids[0].len());
+            // Small C_len: literal one-gene blocks keep the lengths.
+            let kids = crossover(a, b, 0.15, Literal, ChildMode::Changing, 300, &frame(), &mut rng).unwrap();
+            assert_eq!((kids[0].len(), kids[1].len()), (9, 10));
+        }
+        assert!(lengths.len() > 3, "clamped children take several lengths: {lengths:?}");
     }
 
     fn frame() -> Frame {
@@ -255,8 +369,12 @@ mod tests {
         for (mode, seed) in [(ChildMode::Changing, 1), (ChildMode::Preserving, 2), (ChildMode::Both, 3)] {
             let mut rng = stream(seed, Purpose::Individual, &[]);
             let mut replay = rng.clone();
-            let kids = crossover(a, b, 0.3, mode, 1000, &frame(), &mut rng).expect("long parents always cross");
-            let (ba, bb) = (draw_block(24, 0.3, &mut replay).unwrap(), draw_block(18, 0.3, &mut replay).unwrap());
+            let kids =
+                crossover(a, b, 0.3, Literal, mode, 1000, &frame(), &mut rng).expect("long parents always cross");
+            let (ba, bb) = (
+                draw_block(24, 0.3, Literal, &mut replay).unwrap(),
+                draw_block(18, 0.3, Literal, &mut replay).unwrap(),
+            );
             let changing = [changing_child(a, ba, b, bb, &frame()), changing_child(b, bb, a, ba, &frame())];
             let preserving = [preserving_child(a, ba, b, bb), preserving_child(b, bb, a, ba)];
             let expected: Vec<Vec<Action>> = match mode {
@@ -274,7 +392,7 @@ mod tests {
         // The two interpretations of one cut differ (the inserted genes are re-aimed in one
         // and keep their relative moves in the other).
         let mut rng = stream(3, Purpose::Individual, &[]);
-        let both = crossover(a, b, 0.3, ChildMode::Both, 1000, &frame(), &mut rng).unwrap();
+        let both = crossover(a, b, 0.3, Literal, ChildMode::Both, 1000, &frame(), &mut rng).unwrap();
         assert_ne!(both[0], both[2]);
         assert_ne!(both[1], both[3]);
     }
@@ -288,11 +406,12 @@ mod tests {
         let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
         assert_eq!((abs_share(24, 0.04), abs_share(18, 0.04)), (1, 1));
         let mut rng = stream(5, Purpose::Individual, &[]);
-        let kids = crossover(a, b, 0.04, ChildMode::Changing, 24, &frame(), &mut rng).expect("24 ≤ max_len = 24");
+        let kids =
+            crossover(a, b, 0.04, Literal, ChildMode::Changing, 24, &frame(), &mut rng).expect("24 ≤ max_len = 24");
         assert_eq!((kids[0].len(), kids[1].len()), (24, 18));
         let mut rng = stream(5, Purpose::Individual, &[]);
         assert!(
-            crossover(a, b, 0.04, ChildMode::Changing, 23, &frame(), &mut rng).is_none(),
+            crossover(a, b, 0.04, Literal, ChildMode::Changing, 23, &frame(), &mut rng).is_none(),
             "24 > 23 on every redraw"
         );
     }
@@ -307,18 +426,40 @@ mod tests {
             let (gb, pb) = parent(seed + 1, nb);
             let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
             let mut rng = stream(seed, Purpose::Individual, &[]);
-            let kids = crossover(a, b, c_len, ChildMode::from_index(mode).unwrap(), 1000, &frame(), &mut rng);
+            let kids = crossover(a, b, c_len, Literal, ChildMode::from_index(mode).unwrap(), 1000, &frame(), &mut rng);
             prop_assert!(kids.is_some());
         }
 
+        /// Clamped, every pair of parents with four genes or more crosses, whatever `C_len`,
+        /// and a clamped draw equals the literal one wherever the literal one exists.
         #[test]
-        fn children_keep_stations_stay_on_the_map_and_respect_the_cap(seed in 0u64..10_000, na in 3usize..80, nb in 3usize..80, c_len in 0.0..1.0f64, mode in 0u8..3) {
+        fn clamped_parents_always_cross_and_agree_with_the_literal_rule(seed in 0u64..10_000, na in 4usize..40, nb in 4usize..40, c_len in 0.0..1.0f64, mode in 0u8..3) {
             let (ga, pa) = parent(seed, na);
             let (gb, pb) = parent(seed + 1, nb);
             let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
             let mode = ChildMode::from_index(mode).unwrap();
             let mut rng = stream(seed, Purpose::Individual, &[]);
-            if let Some(kids) = crossover(a, b, c_len, mode, 100, &frame(), &mut rng) {
+            prop_assert!(crossover(a, b, c_len, Clamp, mode, 1000, &frame(), &mut rng).is_some());
+            let long = |n: usize| abs_share(n, c_len) >= 2 && Literal.share(n, c_len).is_some();
+            if long(na) && long(nb) {
+                let mut r1 = stream(seed, Purpose::Individual, &[]);
+                let mut r2 = r1.clone();
+                prop_assert_eq!(
+                    crossover(a, b, c_len, Clamp, mode, 1000, &frame(), &mut r1),
+                    crossover(a, b, c_len, Literal, mode, 1000, &frame(), &mut r2)
+                );
+            }
+        }
+
+        #[test]
+        fn children_keep_stations_stay_on_the_map_and_respect_the_cap(seed in 0u64..10_000, na in 3usize..80, nb in 3usize..80, c_len in 0.0..1.0f64, mode in 0u8..3, clamp in any::<bool>()) {
+            let short = if clamp { Clamp } else { Literal };
+            let (ga, pa) = parent(seed, na);
+            let (gb, pb) = parent(seed + 1, nb);
+            let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+            let mode = ChildMode::from_index(mode).unwrap();
+            let mut rng = stream(seed, Purpose::Individual, &[]);
+            if let Some(kids) = crossover(a, b, c_len, short, mode, 100, &frame(), &mut rng) {
                 prop_assert_eq!(kids.len(), mode.children());
                 for mut k in kids {
                     prop_assert!(k.len() >= 3 && k.len() <= 100);

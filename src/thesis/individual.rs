@@ -303,7 +303,7 @@ mod tests {
         /// equal their full evaluation in every field, visit map included.
         #[test]
         fn incremental_evaluation_equals_full(seed in 0u64..1_000_000, na in 3usize..70, nb in 3usize..70, c_len in 0.0..0.6f64, mode in 0u8..3, map in 0usize..2, dist in 0.5..12.0f64) {
-            use crate::thesis::crossover::{ChildMode, Parent, crossover};
+            use crate::thesis::crossover::{ChildMode, Parent, ShortGenomes, crossover};
             use crate::thesis::mutation::mutate_action;
             let m = preset(["thesis-1", "thesis-2"][map]).unwrap();
             let s = Point::new(1.3, 1.3);
@@ -334,7 +334,7 @@ mod tests {
             };
             let pa = Parent { genome: &parents[0].genome, points: &parents[0].points };
             let pb = Parent { genome: &parents[1].genome, points: &parents[1].points };
-            let kids = crossover(pa, pb, c_len, ChildMode::from_index(mode).unwrap(), 300, &sc.frame, &mut rng);
+            let kids = crossover(pa, pb, c_len, ShortGenomes::Clamp, ChildMode::from_index(mode).unwrap(), 300, &sc.frame, &mut rng);
             for (k, genome) in kids.into_iter().flatten().enumerate() {
                 let receiver = &parents[k % 2];
                 let mut child = Individual { genome, ..Default::default() };

@@ -145,7 +145,7 @@ impl Member for Individual {
         fn parent(x: &Individual) -> Parent<'_> {
             Parent { genome: &x.genome, points: &x.points }
         }
-        crossover(parent(a), parent(b), p.c_len, p.c_child, p.max_genome_len, &world.frame, rng)
+        crossover(parent(a), parent(b), p.c_len, p.short_genomes, p.c_child, p.max_genome_len, &world.frame, rng)
     }
 
     fn vary_and_evaluate(

@@ -1,7 +1,7 @@
 //! Validated parameters of the thesis GA (003 Tables 4.1–4.3, spec §14). Built by the
 //! experiment loader, which checks every range; the algorithm trusts them.
 
-use super::crossover::ChildMode;
+use super::crossover::{ChildMode, ShortGenomes};
 use super::individual::{EvaluationMode, InitParams};
 use crate::ga::control::AdaptiveConstants;
 use std::time::Duration;
@@ -84,6 +84,8 @@ pub struct ThesisParams {
     pub c_len: f64,
     /// `C_child`.
     pub c_child: ChildMode,
+    /// Crossover of genomes too short for eqs. 3.21–3.22.
+    pub short_genomes: ShortGenomes,
     /// `P_mA`.
     pub p_ma: f64,
     /// `P_mI`.
@@ -113,6 +115,7 @@ impl ThesisParams {
             max_genome_len: 300,
             p_c: 0.8,
             c_len: 0.1,
+            short_genomes: ShortGenomes::Clamp,
             c_child: ChildMode::Both,
             p_ma: 0.01,
             p_mi: 0.0,
