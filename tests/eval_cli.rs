@@ -160,6 +160,13 @@ fn bad_input_gives_one_clear_error_and_exit_2() {
         (vec!["--width=-1".into()], "--width"),
         (vec!["--width".into(), "60".into()], "--width = 60 m is wider than the map's shorter side (11 m)"),
         (vec!["--width".into(), "1e300".into()], "--width = 1e300 m is wider"),
+        (vec!["--obstacle".into(), "5,5,6".into()], "--obstacle 5,5,6: expected four numbers"),
+        (vec!["--obstacle".into(), "6,5,5,6".into()], "X0 < X1 and Y0 < Y1"),
+        (vec!["--obstacle".into(), "5,5,x,6".into()], "`x` is not a number"),
+        (vec!["--obstacle".into(), "-1,-1,12,12".into()], "no free cell"),
+        (vec!["--obstacle-in-area".into()], "--obstacle"),
+        (vec!["--pattern".into(), "thesis-spiral".into(), "--map".into(), "thesis-2".into()], "one rectangle"),
+        (vec!["--pattern".into(), "thesis-spiral".into(), "--end".into(), "2,2".into()], "same station"),
     ];
     for (args, needle) in cases {
         let mut all = vec!["eval".to_string(), "--out".into(), out.clone()];

@@ -5,6 +5,7 @@ use super::{CliError, parse_point};
 use crate::coverage::score::{Score, Scorer};
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
 use crate::map::ros::load_map;
+use crate::patterns::hand_made::{HandMade, hand_made};
 use crate::patterns::{self, Pattern};
 use crate::plot::path::PathFigure;
 use crate::thesis::fitness::{Projection, ThesisScore, score};
@@ -14,6 +15,11 @@ use std::path::PathBuf;
 enum PatternName {
     Boustrophedon,
     Spiral,
+    /// The hand-made boustrophedon of 003 Table 3.1 (lanes one width apart over a rectangular
+    /// free area, straight back to the start; obstacles ignored).
+    ThesisBoustrophedon,
+    /// The hand-made inward spiral of 003 Table 3.2.
+    ThesisSpiral,
 }
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -67,6 +73,16 @@ pub struct EvalArgs {
     /// End station X,Y in metres (default: the start).
     #[arg(long, allow_hyphen_values = true)]
     end: Option<String>,
+    /// Place an obstacle on the map: the cells whose centres lie in the metre rectangle
+    /// `X0,Y0,X1,Y1` (half-open, `[X0, X1) × [Y0, Y1)`) become occupied, as in the test
+    /// scenario of 003 §3.2.2. Repeatable.
+    #[arg(long = "obstacle", allow_hyphen_values = true, value_name = "X0,Y0,X1,Y1")]
+    obstacles: Vec<String>,
+    /// Keep the cells of `--obstacle` in the area `A_pix` (spec R29, as 003 Tables 3.1/3.2 do):
+    /// a path that crosses them then loses coverage as well as fitness. By default obstacles
+    /// are known beforehand and left out of `A_pix`, as in the thesis's experiments.
+    #[arg(long)]
+    obstacle_in_area: bool,
     /// Projection f of the fitness (003 eqs. 3.14–3.15).
     #[arg(long, value_enum, default_value = "f1")]
     projection: ProjectionName,
@@ -76,6 +92,19 @@ pub struct EvalArgs {
     /// Folder for path.png, path.svg, path.csv and metrics.json.
     #[arg(long, default_value = "out/eval")]
     out: PathBuf,
+}
+
+/// Parses `X0,Y0,X1,Y1` (metres, `X0 < X1`, `Y0 < Y1`).
+fn parse_rect(text: &str) -> Result<[f64; 4], String> {
+    let v: Vec<f64> = text
+        .split(',')
+        .map(|t| t.trim().parse::<f64>().map_err(|_| format!("`{}` is not a number", t.trim())))
+        .collect::<Result<_, _>>()?;
+    match v[..] {
+        [x0, y0, x1, y1] if v.iter().all(|x| x.is_finite()) && x0 < x1 && y0 < y1 => Ok([x0, y0, x1, y1]),
+        [_, _, _, _] => Err("expected finite metres with X0 < X1 and Y0 < Y1".into()),
+        _ => Err(format!("expected four numbers X0,Y0,X1,Y1, got {}", v.len())),
+    }
 }
 
 fn check_robot(a: &EvalArgs) -> Result<Footprint, CliError> {
@@ -143,7 +172,18 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     {
         return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
     }
-    let map = load_map(&a.map, a.resolution).map_err(CliError::input)?;
+    let mut map = load_map(&a.map, a.resolution).map_err(CliError::input)?;
+    let unobstructed = map.clone();
+    if a.obstacle_in_area && a.obstacles.is_empty() {
+        return Err(CliError::Input("--obstacle-in-area needs at least one --obstacle X0,Y0,X1,Y1".into()));
+    }
+    let mut placed = 0;
+    for text in &a.obstacles {
+        let rect = parse_rect(text).map_err(|m| CliError::Input(format!("--obstacle {text}: {m}")))?;
+        let (with, n) = map.with_obstacle(rect).map_err(|e| CliError::Input(format!("--obstacle {text}: {e}")))?;
+        map = with;
+        placed += n;
+    }
     robot.check_fits(&map).map_err(|m| CliError::Input(format!("--width {m}")))?;
     let projection = match a.projection {
         ProjectionName::F1 => Projection::F1,
@@ -186,19 +226,35 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             };
             map.check_station(start, "--start").map_err(CliError::Input)?;
             map.check_station(end, "--end").map_err(CliError::Input)?;
-            let pattern = match a.pattern.unwrap_or(PatternName::Boustrophedon) {
-                PatternName::Boustrophedon => Pattern::Boustrophedon { angle_deg: a.angle },
-                PatternName::Spiral => Pattern::Spiral,
+            let hand = match a.pattern {
+                Some(PatternName::ThesisBoustrophedon) => Some((HandMade::Boustrophedon, "thesis boustrophedon")),
+                Some(PatternName::ThesisSpiral) => Some((HandMade::Spiral, "thesis spiral")),
+                _ => None,
             };
-            let planned =
-                patterns::plan(&map, pattern, robot.width, start, end, !a.no_complete).map_err(CliError::input)?;
-            pockets = Some((planned.pockets, planned.pocket_area_m2));
-            let path = planned.points;
-            let name = match pattern {
-                Pattern::Boustrophedon { angle_deg } => format!("boustrophedon {angle_deg}°"),
-                Pattern::Spiral => "spiral".into(),
-            };
-            (vec![path], name)
+            if let Some((kind, name)) = hand {
+                if end != start {
+                    return Err(CliError::Input(
+                        "--end: the hand-made thesis patterns start and end at the same station (003 §3.2.2); leave --end out".into(),
+                    ));
+                }
+                // Drawn over the map as it was before `--obstacle`: the thesis puts the obstacle
+                // under the path afterwards (003 §3.2.2).
+                let path = hand_made(&unobstructed, kind, robot.width, start).map_err(CliError::input)?;
+                (vec![path], name.to_string())
+            } else {
+                let pattern = match a.pattern {
+                    Some(PatternName::Spiral) => Pattern::Spiral,
+                    _ => Pattern::Boustrophedon { angle_deg: a.angle },
+                };
+                let planned =
+                    patterns::plan(&map, pattern, robot.width, start, end, !a.no_complete).map_err(CliError::input)?;
+                pockets = Some((planned.pockets, planned.pocket_area_m2));
+                let name = match pattern {
+                    Pattern::Boustrophedon { angle_deg } => format!("boustrophedon {angle_deg}°"),
+                    Pattern::Spiral => "spiral".into(),
+                };
+                (vec![planned.points], name)
+            }
         }
     };
     let fleet_score = match &fleet {
@@ -210,7 +266,10 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         None => None,
     };
     let grid = CoverageGrid::new(&map);
-    let metrics = robot.measure_plan(&grid, &mut SweepScratch::new(&grid), &paths);
+    let mut metrics = robot.measure_plan(&grid, &mut SweepScratch::new(&grid), &paths);
+    if a.obstacle_in_area {
+        metrics.area_cells += placed as u64;
+    }
     let sc = score(&metrics, &robot, map.resolution(), projection);
     let camera =
         crate::waypoint::config::camera_spec(&Default::default(), "default camera", &map).map_err(CliError::input)?;

@@ -178,6 +178,24 @@ impl GridMap {
     pub fn cells(&self) -> &[CellState] {
         &self.cells
     }
+    /// A copy with the cells whose centres lie in the half-open metre rectangle
+    /// `[x0, x1) × [y0, y1)` made obstacles, and how many of them were free before (the
+    /// "obstacle placed under the path" of 003 §3.2.2). Fails when no free cell would remain.
+    pub fn with_obstacle(&self, [x0, y0, x1, y1]: [f64; 4]) -> Result<(GridMap, usize), MapError> {
+        let mut cells = self.cells.clone();
+        let mut placed = 0;
+        for r in 0..self.rows {
+            for c in 0..self.cols {
+                let p = self.cell_centre(r, c);
+                let i = self.index(r, c);
+                if p.x >= x0 && p.x < x1 && p.y >= y0 && p.y < y1 && cells[i] != CellState::Occupied {
+                    placed += usize::from(cells[i] == CellState::Free);
+                    cells[i] = CellState::Occupied;
+                }
+            }
+        }
+        Ok((GridMap::new(self.name.clone(), self.cols, self.rows, self.resolution, self.origin, cells)?, placed))
+    }
     /// Centre of a cell in world coordinates.
     pub fn cell_centre(&self, row: usize, col: usize) -> Point {
         Point::new(
@@ -269,5 +287,18 @@ mod tests {
     fn map_without_free_cell_is_rejected() {
         let err = GridMap::new("walls", 2, 1, 1.0, Point::origin(), vec![CellState::Occupied; 2]).unwrap_err();
         assert!(err.to_string().contains("no free cell"));
+    }
+
+    #[test]
+    fn an_obstacle_takes_the_cells_whose_centres_it_holds() {
+        // Centres of tiny(): x ∈ {-0.75, -0.25, 0.25}, y ∈ {2.25, 2.75}; cell (1, 2) is a wall.
+        let (m, placed) = tiny().with_obstacle([-0.25, 2.25, 0.5, 3.0]).unwrap();
+        assert_eq!(placed, 3, "(0, 1), (0, 2), (1, 1) were free; (1, 2) already a wall");
+        assert_eq!(m.free_count(), 2);
+        assert!(m.is_free(0, 0) && m.is_free(1, 0) && !m.is_free(0, 1) && !m.is_free(1, 1));
+        // Half-open: a rectangle ending on a centre leaves it free.
+        let (_, placed) = tiny().with_obstacle([-1.0, 2.0, -0.25, 2.25]).unwrap();
+        assert_eq!(placed, 1);
+        assert!(tiny().with_obstacle([-1.0, 2.0, 0.5, 3.0]).is_err(), "no free cell left");
     }
 }

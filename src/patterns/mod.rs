@@ -3,6 +3,7 @@
 
 pub mod boustrophedon;
 mod complete;
+pub mod hand_made;
 pub mod planner;
 pub mod random_search;
 
