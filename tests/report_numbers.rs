@@ -72,6 +72,16 @@ fn report_numbers_match_hand_and_independent_computations() {
         // Kruskal–Wallis: cov without ties (rank sums 8 and 13), t with two tied pairs.
         "| thesis.c_len | cov_final_free | 2 | 1.190 | 1 | 2.752e-1 | 0.2381 |",
         "| thesis.c_len | t_final | 2 | 1.263 | 1 | 2.612e-1 | 0.2525 |",
+        // Per group, f = cov·t: 0.30, 0.31, 0.28 → 0.2967 ± t(0.975, 2)·0.015275/√3.
+        "| thesis.c_len=0.1 | 3 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 ± 0.0379 |",
+        // One-way ANOVA of cov: SS_between = 6·0.05² = 0.015, SS_within = 2·0.020267 = 0.040533,
+        // η² = 0.015/0.055533, F = 0.015/(0.040533/4) = 1.48; P(F(1, 4) > F) = P(|T₄| > √F),
+        // from the closed form of Student's t with 4 df: 0.2906. On ranks (A 1, 3, 4; B 6, 2, 5):
+        // F = 4.1667/(13.333/4) = 1.25, p = 0.3262. The model has every configuration, so the
+        // residual is all between replicates.
+        "| thesis.c_len | 1 | 0.2701 | 1.48 | 2.91e-1 | 3.26e-1 |",
+        "| residual | 4 | 0.7299 | | | |",
+        "| of which between replicates of one configuration | | 0.7299 | | | |",
     ] {
         assert!(md.contains(line), "missing `{line}` in\n{md}");
     }

@@ -1,6 +1,8 @@
 //! Experiment files, their validation and running one experiment with all its outputs.
 
 pub mod ablation;
+pub mod anova;
+pub mod anova_report;
 pub mod config;
 pub mod estimate;
 pub mod experiment;

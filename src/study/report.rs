@@ -1,7 +1,7 @@
 //! `covga report`: figures, tables and statistics of a study folder — Pareto fronts per group
 //! with hypervolume, diversity of the front runs, best paths, the best configuration and run
 //! durations per group (003 Tables A.1/A.2, 4.4), means with 95 % confidence intervals over
-//! seeds, and Kruskal–Wallis tests per swept parameter (003 §5.3).
+//! seeds, Kruskal–Wallis tests per swept parameter and the ANOVA of 003 §5.3.
 
 use super::records::RunsTable;
 use super::stats::{kruskal_wallis, mean_ci95};
@@ -290,6 +290,24 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             hi
         );
     }
+    let _ = writeln!(md, "\n## Per group: mean ± 95 % CI over its runs\n");
+    let _ = writeln!(md, "| group | runs | cov_final | t_final | f |\n|---|---|---|---|---|");
+    for g in &groups {
+        let ci = |c: &str| mean_ci95(&g.rows.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
+        let (c, tf, f) = (ci("cov_final_free"), ci("t_final"), ci("f_free"));
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} |",
+            g.label,
+            g.rows.len(),
+            c.0,
+            c.1,
+            tf.0,
+            tf.1,
+            f.0,
+            f.1
+        );
+    }
     let _ =
         writeln!(md, "\n## Across seeds: the 20 configurations with the highest mean f (all in configurations.csv)\n");
     let _ = writeln!(
@@ -342,6 +360,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             }
         }
     }
+    md.push_str(&super::anova_report::section(&t, &params));
     let path = out.join("summary.md");
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
     Ok(path)

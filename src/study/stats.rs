@@ -33,7 +33,7 @@ pub struct KruskalWallis {
 }
 
 /// Mid-ranks (1-based) of `values`, ties sharing the mean rank; also `Σ (t³ − t)` over ties.
-fn ranks(values: &[f64]) -> (Vec<f64>, f64) {
+pub(crate) fn ranks(values: &[f64]) -> (Vec<f64>, f64) {
     let mut order: Vec<usize> = (0..values.len()).collect();
     order.sort_by(|&a, &b| values[a].total_cmp(&values[b]));
     let mut r = vec![0.0; values.len()];

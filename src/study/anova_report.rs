@@ -1,0 +1,118 @@
+//! The ANOVA section of `covga report` (003 §5.3): which swept parameters explain how much of
+//! each metric's spread, and how much is left to the seed.
+
+use super::anova::{Anova, Factor, TermSpec, anova, replicate_spread};
+use super::records::RunsTable;
+use std::fmt::Write as _;
+
+/// Largest model (columns) the report fits; beyond it the interactions are left out.
+const MAX_COLUMNS: usize = 2_000;
+
+/// The metrics the report analyses.
+pub const METRICS: [&str; 3] = ["cov_final_free", "t_final", "f_free"];
+
+/// Factors and terms for the swept columns of `t`: every column with two or more values is a
+/// factor; those set in every run get main effects and all two-way interactions, those that
+/// apply to some runs only (scheme-specific keys, empty elsewhere) main effects after them.
+pub fn model(t: &RunsTable, params: &[String]) -> (Vec<Factor>, Vec<TermSpec>, bool) {
+    let mut factors = Vec::new();
+    let mut conditional = Vec::new();
+    for p in params {
+        let Some(c) = t.col(p) else { continue };
+        let levels: Vec<String> = t.rows.iter().map(|r| r[c].clone()).collect();
+        let distinct = levels.iter().collect::<std::collections::BTreeSet<_>>().len();
+        if distinct < 2 {
+            continue;
+        }
+        let f = Factor { name: p.clone(), levels };
+        if f.levels.iter().any(String::is_empty) { conditional.push(f) } else { factors.push(f) }
+    }
+    let unconditional = factors.len();
+    factors.extend(conditional);
+    let mut terms: Vec<TermSpec> = (0..factors.len()).map(TermSpec::Main).collect();
+    let levels = |f: &Factor| f.levels.iter().collect::<std::collections::BTreeSet<_>>().len() - 1;
+    let mains: usize = factors.iter().map(levels).sum();
+    let pairs: Vec<TermSpec> =
+        (0..unconditional).flat_map(|i| (i + 1..unconditional).map(move |j| TermSpec::Pair(i, j))).collect();
+    let pair_columns: usize = pairs
+        .iter()
+        .map(|p| match *p {
+            TermSpec::Pair(i, j) => levels(&factors[i]) * levels(&factors[j]),
+            TermSpec::Main(_) => 0,
+        })
+        .sum();
+    let with_pairs = 1 + mains + pair_columns < MAX_COLUMNS.min(t.rows.len() / 2);
+    if with_pairs {
+        terms.extend(pairs);
+    }
+    (factors, terms, with_pairs)
+}
+
+fn table(md: &mut String, a: &Anova, spread: (f64, f64)) {
+    let _ = writeln!(md, "| term | df | η² (share of SS) | F | p | p on ranks |\n|---|---|---|---|---|---|");
+    let mut order: Vec<&super::anova::TermTest> = a.terms.iter().collect();
+    order.sort_by(|x, y| y.eta2.total_cmp(&x.eta2));
+    let p = |p: f64| if p == 0.0 { "< 1e-300".to_string() } else { format!("{p:.2e}") };
+    for t in order {
+        if t.df == 0 {
+            let _ = writeln!(md, "| {} | 0 | aliased: nested in the terms above | | | |", t.name);
+            continue;
+        }
+        let _ = writeln!(md, "| {} | {} | {:.4} | {:.2} | {} | {} |", t.name, t.df, t.eta2, t.f, p(t.p), p(t.rank_p));
+    }
+    let (rss, df) = a.residual;
+    let share = if a.total_ss > 0.0 { rss / a.total_ss } else { 0.0 };
+    let _ = writeln!(md, "| residual | {df} | {share:.4} | | | |");
+    let _ = writeln!(md, "| of which between replicates of one configuration | | {:.4} | | | |\n", spread.1);
+}
+
+/// The markdown section, or a line saying why there is none.
+pub fn section(t: &RunsTable, params: &[String]) -> String {
+    let mut md = String::from("\n## Analysis of variance (003 §5.3)\n\n");
+    let (factors, terms, with_pairs) = model(t, params);
+    if factors.is_empty() {
+        md.push_str("No parameter takes two or more values: nothing to analyse.\n");
+        return md;
+    }
+    let _ = writeln!(
+        md,
+        "A linear model of each metric over the swept parameters as categorical factors ({}), \
+         solved by least squares (QR); sequential sums of squares, main effects first{}. \
+         η² is each term's share of the total sum of squares; the residual row is what the model \
+         leaves, and its part between replicates of one configuration (same parameters, other \
+         seed) is the share of the spread that is luck. \"p on ranks\" refits the model to the \
+         ranks of the metric, to read where the residuals are far from normal.\n",
+        factors.iter().map(|f| f.name.as_str()).collect::<Vec<_>>().join(", "),
+        if with_pairs {
+            ", then every two-way interaction of the parameters set in every run"
+        } else {
+            "; too many columns for the interactions, which are left out"
+        }
+    );
+    let configs: Vec<String> = match t.col("config_id") {
+        Some(c) => t.rows.iter().map(|r| r[c].clone()).collect(),
+        None => (0..t.rows.len()).map(|i| i.to_string()).collect(),
+    };
+    for metric in METRICS {
+        let y: Vec<f64> = t.rows.iter().map(|r| t.num(r, metric).unwrap_or(f64::NAN)).collect();
+        if y.iter().any(|v| !v.is_finite()) {
+            let _ = writeln!(md, "### {metric}\n\nSome runs have no value: not analysed.\n");
+            continue;
+        }
+        match anova(&factors, &terms, &y) {
+            Ok(a) => {
+                let normal = if a.normality_p < 1e-3 {
+                    format!("residuals far from normal (Jarque–Bera p = {:.1e}): read the rank p-values", a.normality_p)
+                } else {
+                    format!("residuals close to normal (Jarque–Bera p = {:.3})", a.normality_p)
+                };
+                let _ = writeln!(md, "### {metric}\n\n{} runs; {normal}.\n", a.n);
+                table(&mut md, &a, replicate_spread(&configs, &y));
+            }
+            Err(e) => {
+                let _ = writeln!(md, "### {metric}\n\nNot analysed: {e}.\n");
+            }
+        }
+    }
+    md
+}
