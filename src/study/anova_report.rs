@@ -102,7 +102,8 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
         match anova(&factors, &terms, &y) {
             Ok(a) => {
                 let normal = if a.normality_p < 1e-3 {
-                    format!("residuals far from normal (Jarque–Bera p = {:.1e}): read the rank p-values", a.normality_p)
+                    let p = if a.normality_p > 0.0 { format!("{:.1e}", a.normality_p) } else { "< 1e-15".into() };
+                    format!("residuals far from normal (Jarque–Bera p = {p}): read the rank p-values")
                 } else {
                     format!("residuals close to normal (Jarque–Bera p = {:.3})", a.normality_p)
                 };
