@@ -90,3 +90,33 @@ fn report_numbers_match_hand_and_independent_computations() {
     let first = conf.lines().nth(1).unwrap();
     assert!(first.starts_with("cfgB,0.4,3,0.706666"), "{first}");
 }
+
+#[test]
+fn where_filters_the_runs_and_name_keeps_reports_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    fixture(dir.path());
+    let report = |extra: &[&str]| {
+        let mut args = vec!["report", dir.path().to_str().unwrap()];
+        args.extend(extra);
+        Command::new(env!("CARGO_BIN_EXE_covga")).args(&args).output().unwrap()
+    };
+    // `0.40` equals `0.4` as a number.
+    let o = report(&["--where", "thesis.c_len=0.40", "--name", "c-len-04"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(dir.path().join("report-c-len-04/summary.md")).unwrap();
+    assert!(md.contains("Runs with thesis.c_len = 0.40 only."), "{md}");
+    assert!(md.contains("3 runs, 1 configurations, 3 replicate(s)"), "{md}");
+    assert!(md.contains("| all runs | 3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 |"), "{md}");
+    assert!(!dir.path().join("report").exists(), "the default report folder is left alone");
+    for (args, needle) in [
+        (vec!["--where", "nothing=1"], "--where `nothing` is not a column"),
+        (vec!["--where", "thesis.c_len=0.7"], "no recorded run"),
+        (vec!["--where", "thesis.c_len"], "expected KEY=VALUE"),
+        (vec!["--name", "../x"], "--name `../x`"),
+    ] {
+        let o = report(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+    }
+}

@@ -207,10 +207,26 @@ pub struct ReportArgs {
     /// Group (facet) by these columns, e.g. --by thesis.selection --by thesis.projection.
     #[arg(long)]
     by: Vec<String>,
+    /// Only the runs whose column has this value, e.g. --where map.source=thesis-1 --where
+    /// robot.rot_speed=0 (numbers compare as numbers). Repeatable.
+    #[arg(long = "where", value_name = "KEY=VALUE")]
+    filter: Vec<String>,
+    /// Write into `<DIR>/report-NAME` instead of `<DIR>/report`, so that several reports of one
+    /// study (e.g. one per figure of 003) stand side by side.
+    #[arg(long)]
+    name: Option<String>,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
-    let path = crate::study::report::write_report(&a.dir, &a.by).map_err(|e| match e {
+    let mut filter = Vec::new();
+    for f in &a.filter {
+        let Some((k, v)) = f.split_once('=') else {
+            return Err(CliError::Input(format!("--where {f}: expected KEY=VALUE, e.g. map.source=thesis-1")));
+        };
+        filter.push((k.trim().to_string(), v.trim().to_string()));
+    }
+    let opts = crate::study::report::ReportOptions { by: a.by, filter, name: a.name };
+    let path = crate::study::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
         crate::study::report::ReportError::Input(m) => CliError::Input(m),
         other => CliError::internal(other),
     })?;

@@ -19,8 +19,17 @@ pub struct ParetoFacet {
 
 /// Pareto scatter, one panel per group.
 pub struct ParetoFigure {
-    /// The facets.
+    /// The facets, row by row.
     pub facets: Vec<ParetoFacet>,
+    /// Rows × columns of panels (e.g. the values of two grouping columns, as 003 lays out its
+    /// Figs. 4.2–4.5); `None` for a near-square grid.
+    pub shape: Option<(usize, usize)>,
+}
+
+impl ParetoFigure {
+    fn shape(&self) -> (usize, usize) {
+        self.shape.filter(|&(r, c)| r * c == self.facets.len()).unwrap_or_else(|| grid_shape(self.facets.len()))
+    }
 }
 
 fn grid_shape(n: usize) -> (usize, usize) {
@@ -36,14 +45,14 @@ const FRONT: RGBColor = RGBColor(210, 40, 30);
 
 impl Figure for ParetoFigure {
     fn size(&self) -> (u32, u32) {
-        let (r, c) = grid_shape(self.facets.len());
+        let (r, c) = self.shape();
         (c as u32 * 480, r as u32 * 440 + 40)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root =
             root.titled(PARETO_TITLE, super::fitting_text(PARETO_TITLE, root.dim_in_pixel().0, 20.0)).map_err(err)?;
-        let (r, c) = grid_shape(self.facets.len());
+        let (r, c) = self.shape();
         let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
         for f in &self.facets {
             for p in &f.points {

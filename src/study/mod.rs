@@ -17,3 +17,4 @@ pub mod report;
 pub mod runner;
 pub mod slurm;
 pub mod stats;
+pub mod thesis_report;

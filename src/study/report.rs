@@ -58,8 +58,34 @@ fn median(v: &mut [f64]) -> f64 {
     if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
 }
 
-/// Writes `<dir>/report/` and returns the path of `summary.md`.
+/// What `covga report` reads and where it writes: groups, a filter on the runs and the name of
+/// the report folder.
+#[derive(Clone, Debug, Default)]
+pub struct ReportOptions {
+    /// Group (facet) by these columns.
+    pub by: Vec<String>,
+    /// Keep only the runs whose column equals the value (numbers compared as numbers).
+    pub filter: Vec<(String, String)>,
+    /// Report folder `<dir>/report-<name>` (default `<dir>/report`).
+    pub name: Option<String>,
+}
+
+/// Whether a cell of runs.csv equals a `--where` value: as numbers when both parse, else as text.
+fn cell_matches(cell: &str, want: &str) -> bool {
+    match (cell.parse::<f64>(), want.parse::<f64>()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => cell == want,
+    }
+}
+
+/// Writes `<dir>/report/` (grouped by `by`) and returns the path of `summary.md`.
 pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, ReportError> {
+    write_report_with(dir, &ReportOptions { by: by.to_vec(), ..Default::default() })
+}
+
+/// Writes the report folder of `opts` and returns the path of `summary.md`.
+pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::PathBuf, ReportError> {
+    let by = &opts.by[..];
     if !dir.join("study.json").is_file() {
         return Err(ReportError::Input(format!(
             "{}: not a study folder (no study.json); run `covga grid` into it first",
@@ -81,7 +107,26 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             ReportError::Input(format!("{}: {e}", runs_file.display()))
         }
     })?;
-    let t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
+    let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
+    let mut selected = Vec::new();
+    for (key, want) in &opts.filter {
+        let Some(c) = t.col(key) else {
+            return Err(ReportError::Input(format!(
+                "--where `{key}` is not a column of {}; columns: {}",
+                runs_file.display(),
+                t.header.join(", ")
+            )));
+        };
+        let before = t.rows.len();
+        t.rows.retain(|r| cell_matches(&r[c], want));
+        if t.rows.is_empty() && before > 0 {
+            return Err(ReportError::Input(format!(
+                "--where {key}={want}: no recorded run of {} has that value",
+                runs_file.display()
+            )));
+        }
+        selected.push(format!("{key} = {want}"));
+    }
     if t.rows.is_empty() {
         return Err(ReportError::Input(format!("{}: no runs recorded yet", runs_file.display())));
     }
@@ -94,7 +139,17 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
             )));
         }
     }
-    let out = dir.join("report");
+    let out = match &opts.name {
+        Some(name) => {
+            if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+                return Err(ReportError::Input(format!(
+                    "--name `{name}`: expected letters, digits, `-` and `_` only (it names the folder report-NAME)"
+                )));
+            }
+            dir.join(format!("report-{name}"))
+        }
+        None => dir.join("report"),
+    };
     std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
     if super::fleet_report::applies(&t) {
         super::fleet_report::write(dir, &t, &out)?;
@@ -114,6 +169,15 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
     }
     let groups: Vec<Group> = groups.into_iter().map(|(label, rows)| Group { label, rows }).collect();
     let point = |r: usize| (num(r, "t_final"), num(r, "cov_final_free"));
+    // Two grouping columns lay the panels out as rows × columns when every combination ran.
+    let shape = match by {
+        [a, b] => {
+            let distinct =
+                |c: &str| (0..t.rows.len()).map(|r| get(r, c)).collect::<std::collections::BTreeSet<_>>().len();
+            Some((distinct(a), distinct(b)))
+        }
+        _ => None,
+    };
     // Pareto facets.
     let facets: Vec<ParetoFacet> = groups
         .iter()
@@ -129,6 +193,7 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
                 .iter()
                 .map(|f| ParetoFacet { label: f.label.clone(), points: f.points.clone(), front: f.front.clone() })
                 .collect(),
+            shape,
         },
         &out.join("pareto"),
     )?;
@@ -234,6 +299,9 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
         .collect::<std::collections::BTreeSet<_>>()
         .len();
     let _ = writeln!(md, "# Study report: {}\n", dir.display());
+    if !selected.is_empty() {
+        let _ = writeln!(md, "Runs with {} only.\n", selected.join(", "));
+    }
     let _ = writeln!(
         md,
         "{} runs, {} configurations, {} replicate(s); grouped by {}.\n",
@@ -359,6 +427,9 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
                 }
             }
         }
+    }
+    if super::thesis_report::applies(&t) {
+        md.push_str(&super::thesis_report::section(&t));
     }
     md.push_str(&super::anova_report::section(&t, &params));
     let path = out.join("summary.md");

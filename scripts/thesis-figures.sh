@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# 003 Figs. 4.2-4.5 (map 1, R_rot = 0) and the whole-study report from a Table 4.3 study folder,
+# each figure laid out as the thesis lays it out (rows x columns of the two parameters):
+#   covga grid grids/thesis-table-4-3.toml --jobs 2 --out out/thesis-table-4-3
+#   scripts/thesis-figures.sh out/thesis-table-4-3
+# Writes DIR/report (all runs, by selection) and DIR/report-fig-4-{2,3-ts,3-sp,4,5}.
+set -euo pipefail
+dir=${1:?usage: scripts/thesis-figures.sh STUDY_DIR}
+covga=${COVGA:-covga}
+m1=(--where map.source=thesis-1 --where robot.rot_speed=0)
+"$covga" report "$dir" --by thesis.selection
+"$covga" report "$dir" "${m1[@]}" --by thesis.selection --by thesis.projection --name fig-4-2
+"$covga" report "$dir" "${m1[@]}" --where thesis.selection=tournament \
+  --by thesis.tournament_size --by thesis.projection --name fig-4-3-ts
+"$covga" report "$dir" "${m1[@]}" --where thesis.selection=rrws \
+  --by thesis.selection_pressure --by thesis.projection --name fig-4-3-sp
+"$covga" report "$dir" "${m1[@]}" --by thesis.c_len --by thesis.c_child --name fig-4-4
+"$covga" report "$dir" "${m1[@]}" --by thesis.p_mi --by thesis.p_ma --name fig-4-5
