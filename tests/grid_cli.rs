@@ -65,7 +65,7 @@ fn thesis_grids_expand_to_table_4_3() {
         ("thesis-turn.toml", 6912),
         ("thesis-prws.toml", 3456),
         ("thesis-rrws.toml", 6912),
-        ("thesis-table-4-3.toml", 18144),
+        ("thesis-table-4-3.toml", 3 * 18144),
         ("thesis-extended.toml", 27216),
         ("smoke.toml", 36),
     ] {
@@ -77,10 +77,12 @@ fn thesis_grids_expand_to_table_4_3() {
     let o = covga(&["grid", root.join("thesis-table-4-3.toml").to_str().unwrap(), "--dry-run"]);
     let text = String::from_utf8_lossy(&o.stdout);
     for line in [
-        "864 runs  no conditional axes",
-        "6912 runs  thesis.selection=tournament",
-        "3456 runs  thesis.selection=prws",
-        "6912 runs  thesis.selection=rrws",
+        // Three seeds of every configuration.
+        "54432 runs (18144 configurations x replicates)",
+        "2592 runs  no conditional axes",
+        "20736 runs  thesis.selection=tournament",
+        "10368 runs  thesis.selection=prws",
+        "20736 runs  thesis.selection=rrws",
     ] {
         assert!(text.contains(line), "{line}: {text}");
     }
@@ -177,6 +179,10 @@ fn killed_study_resumes_to_the_same_results() {
     let runs = killed.join("runs.csv");
     let recorded = std::fs::read_to_string(&runs).unwrap().lines().count() - 1;
     assert_eq!(recorded, 4, "the study stopped after its fourth run");
+    // Seeds come one after the other: the first runs are all of the first replicate.
+    let text = std::fs::read_to_string(&runs).unwrap();
+    let rep = text.lines().next().unwrap().split(',').position(|h| h == "replicate").unwrap();
+    assert!(text.lines().skip(1).all(|l| l.split(',').nth(rep) == Some("0")), "{text}");
     // Simulate a torn write of the next row.
     let mut f = std::fs::OpenOptions::new().append(true).open(&runs).unwrap();
     std::io::Write::write_all(&mut f, b"deadbeef00000000,half").unwrap();

@@ -274,7 +274,11 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     write_study_files(study, &opts.out)?;
     let head = header(&study.columns);
     let done_ids = recorded_ids(&file, &head)?;
-    let pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
+    let mut pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
+    // Replicate by replicate, in id (hash) order within each, handed out one at a time: a study
+    // stopped part-way holds whole seeds first and, of the seed in progress, a uniform random
+    // sample of the configurations (results never depend on the order).
+    pending.sort_by(|a, b| a.replicate.cmp(&b.replicate).then_with(|| a.id.cmp(&b.id)));
     let skipped = selected.len() - pending.len();
     let writer = Mutex::new(std::fs::OpenOptions::new().create(true).append(true).open(&file).map_err(io(&file))?);
     if done_ids.is_empty() {
@@ -294,7 +298,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
         .map_err(|e| StudyError::Run { id: String::new(), message: e.to_string() })?;
     pool.install(|| {
         use rayon::prelude::*;
-        pending.par_iter().for_each(|&run| {
+        pending.iter().par_bridge().for_each(|&run| {
             if failed.load(Ordering::Relaxed) {
                 return;
             }
