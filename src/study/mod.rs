@@ -3,6 +3,7 @@
 pub mod ablation;
 pub mod anova;
 pub mod anova_report;
+pub mod claims;
 pub mod config;
 pub mod estimate;
 pub mod experiment;

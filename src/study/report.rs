@@ -429,7 +429,7 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         }
     }
     if super::thesis_report::applies(&t) {
-        md.push_str(&super::thesis_report::section(&t));
+        md.push_str(&super::thesis_report::sections(dir, &t));
     }
     md.push_str(&super::anova_report::section(&t, &params));
     let path = out.join("summary.md");

@@ -38,6 +38,16 @@ pub fn durations(t: &RunsTable) -> BTreeMap<String, (usize, f64, f64, f64)> {
         .collect()
 }
 
+/// The thesis sections: run durations beside Table 4.4 and, for studies over the Table 4.3
+/// operators, the claims of 003 §5.1 checked on the runs recorded in `dir`.
+pub fn sections(dir: &std::path::Path, t: &RunsTable) -> String {
+    let mut md = section(t);
+    if ["thesis.c_len", "thesis.c_child", "thesis.p_mi"].iter().all(|c| t.col(c).is_some()) {
+        md.push_str(&super::claims::section(dir, t));
+    }
+    md
+}
+
 /// The markdown table of run durations beside Table 4.4.
 pub fn section(t: &RunsTable) -> String {
     let ours = durations(t);
