@@ -296,8 +296,8 @@ mod tests {
         assert_eq!(placed, 3, "(0, 1), (0, 2), (1, 1) were free; (1, 2) already a wall");
         assert_eq!(m.free_count(), 2);
         assert!(m.is_free(0, 0) && m.is_free(1, 0) && !m.is_free(0, 1) && !m.is_free(1, 1));
-        // Half-open: a rectangle ending on a centre leaves it free.
-        let (_, placed) = tiny().with_obstacle([-1.0, 2.0, -0.25, 2.25]).unwrap();
+        // Half-open: x1 = -0.25 ends on the centre of (0, 1) and leaves it free; only (0, 0) is in.
+        let (_, placed) = tiny().with_obstacle([-1.0, 2.0, -0.25, 2.5]).unwrap();
         assert_eq!(placed, 1);
         assert!(tiny().with_obstacle([-1.0, 2.0, 0.5, 3.0]).is_err(), "no free cell left");
     }
