@@ -15,6 +15,7 @@ pub mod merge;
 pub mod output;
 pub mod records;
 pub mod report;
+mod report_tables;
 pub mod runner;
 pub mod slurm;
 pub mod stats;

@@ -4,9 +4,9 @@
 //! seeds, Kruskal–Wallis tests per swept parameter and the ANOVA of 003 §5.3.
 
 use super::records::RunsTable;
-use super::stats::{kruskal_wallis, mean_ci95};
+use super::stats::mean_ci95;
 use crate::coverage::CoverageGrid;
-use crate::ga::pareto::{hypervolume_2d, non_dominated};
+use crate::ga::pareto::non_dominated;
 use crate::plot::path::PathFigure;
 use crate::plot::report::{DiversityFigure, DiversityGroup, ParetoFacet, ParetoFigure, PathsGridFigure};
 use std::collections::BTreeMap;
@@ -28,11 +28,11 @@ pub enum ReportError {
 }
 
 /// One configuration over its replicates: id, rows, cov (mean, CI), t (mean, CI), mean f.
-type ConfigRow = (String, Vec<usize>, (f64, f64), (f64, f64), f64);
+pub(super) type ConfigRow = (String, Vec<usize>, (f64, f64), (f64, f64), f64);
 
-struct Group {
-    label: String,
-    rows: Vec<usize>,
+pub(super) struct Group {
+    pub(super) label: String,
+    pub(super) rows: Vec<usize>,
 }
 
 /// The swept-parameter columns of a runs table: between `seed` and the metric columns (a swept
@@ -320,114 +320,15 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     if super::ablation::applies(&t) {
         md.push_str(&super::ablation::compare(dir, &t, &out)?.markdown);
     }
-    let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
-    let _ = writeln!(md, "| group | run | {} | cov_final | t_final | f |", params.join(" | "));
-    let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
-    for (g, &r) in groups.iter().zip(&best) {
-        let vals: Vec<String> = params.iter().map(|p| get(r, p)).collect();
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {:.6} | {:.6} | {:.6} |",
-            g.label,
-            get(r, "run_id"),
-            vals.join(" | "),
-            num(r, "cov_final_free"),
-            num(r, "t_final"),
-            num(r, "f_free")
-        );
+    super::report_tables::GroupTables {
+        t: &t,
+        groups: &groups,
+        best: &best,
+        facets: &facets,
+        configs: &conf_rows,
+        params: &params,
     }
-    let _ = writeln!(md, "\n## Fronts, hypervolume (reference point (0, 0)) and run durations per group\n");
-    let _ = writeln!(
-        md,
-        "| group | runs | front size | hypervolume | wall s mean | min | max |\n|---|---|---|---|---|---|---|"
-    );
-    for (g, f) in groups.iter().zip(&facets) {
-        let w: Vec<f64> = g.rows.iter().map(|&r| num(r, "wall_s")).collect();
-        let mean = w.iter().sum::<f64>() / w.len() as f64;
-        let (lo, hi) =
-            (w.iter().copied().fold(f64::INFINITY, f64::min), w.iter().copied().fold(f64::NEG_INFINITY, f64::max));
-        let _ = writeln!(
-            md,
-            "| {} | {} | {} | {:.4} | {:.3} | {:.3} | {:.3} |",
-            g.label,
-            g.rows.len(),
-            f.front.len(),
-            hypervolume_2d(&f.points, (0.0, 0.0)),
-            mean,
-            lo,
-            hi
-        );
-    }
-    let _ = writeln!(md, "\n## Per group: mean ± 95 % CI over its runs\n");
-    let _ = writeln!(md, "| group | runs | cov_final | t_final | f |\n|---|---|---|---|---|");
-    for g in &groups {
-        let ci = |c: &str| mean_ci95(&g.rows.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
-        let (c, tf, f) = (ci("cov_final_free"), ci("t_final"), ci("f_free"));
-        let _ = writeln!(
-            md,
-            "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} |",
-            g.label,
-            g.rows.len(),
-            c.0,
-            c.1,
-            tf.0,
-            tf.1,
-            f.0,
-            f.1
-        );
-    }
-    let _ =
-        writeln!(md, "\n## Across seeds: the 20 configurations with the highest mean f (all in configurations.csv)\n");
-    let _ = writeln!(
-        md,
-        "| {} | n | cov_final mean ± 95 % CI | t_final mean ± 95 % CI | mean f |\n|{}---|---|---|---|",
-        params.join(" | "),
-        "---|".repeat(params.len())
-    );
-    for (_, rows, c, tf, f) in conf_rows.iter().take(20) {
-        let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
-        let _ = writeln!(
-            md,
-            "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
-            vals.join(" | "),
-            rows.len(),
-            c.0,
-            c.1,
-            tf.0,
-            tf.1,
-            f
-        );
-    }
-    let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
-    let _ = writeln!(
-        md,
-        "Does the parameter's value shift the distribution of the run results? H (tie-corrected), degrees of freedom, p-value and effect size ε² = H/(N−1); runs where the parameter does not apply are left out.\n"
-    );
-    let _ = writeln!(md, "| parameter | metric | groups | H | df | p | ε² |\n|---|---|---|---|---|---|---|");
-    for p in &params {
-        for metric in ["cov_final_free", "t_final"] {
-            let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-            for r in 0..t.rows.len() {
-                let v = get(r, p);
-                if !v.is_empty() {
-                    by_value.entry(v).or_default().push(num(r, metric));
-                }
-            }
-            let k = by_value.len();
-            match kruskal_wallis(&by_value.into_values().collect::<Vec<_>>()) {
-                Some(kw) => {
-                    let _ = writeln!(
-                        md,
-                        "| {p} | {metric} | {k} | {:.3} | {} | {:.3e} | {:.4} |",
-                        kw.h, kw.df, kw.p_value, kw.epsilon_squared
-                    );
-                }
-                None => {
-                    let _ = writeln!(md, "| {p} | {metric} | {k} | – | – | – | – |");
-                }
-            }
-        }
-    }
+    .write(&mut md);
     if super::thesis_report::applies(&t) {
         md.push_str(&super::thesis_report::sections(dir, &t));
     }

@@ -1,0 +1,175 @@
+//! The per-group tables of `covga report`'s summary: best run and best configuration per
+//! group (003 Tables A.1/A.2), fronts with hypervolume and run durations (Table 4.4), means
+//! with confidence intervals, and Kruskal–Wallis tests per swept parameter.
+
+use super::records::RunsTable;
+use super::report::{ConfigRow, Group};
+use super::stats::{kruskal_wallis, mean_ci95};
+use crate::ga::pareto::hypervolume_2d;
+use crate::plot::report::ParetoFacet;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+/// What the tables are made of.
+pub(super) struct GroupTables<'a> {
+    /// The runs.
+    pub t: &'a RunsTable,
+    /// The groups of `--by`.
+    pub groups: &'a [Group],
+    /// The best run of each group.
+    pub best: &'a [usize],
+    /// Each group's Pareto facet.
+    pub facets: &'a [ParetoFacet],
+    /// Configurations over their replicates, best mean f first.
+    pub configs: &'a [ConfigRow],
+    /// The swept-parameter columns.
+    pub params: &'a [String],
+}
+
+impl GroupTables<'_> {
+    /// Appends the tables to `md`.
+    pub fn write(&self, md: &mut String) {
+        let (t, groups, best, facets, params) = (self.t, self.groups, self.best, self.facets, self.params);
+        let conf_rows = self.configs;
+        let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
+        let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
+        let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
+        let _ = writeln!(md, "| group | run | {} | cov_final | t_final | f |", params.join(" | "));
+        let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
+        for (g, &r) in groups.iter().zip(best) {
+            let vals: Vec<String> = params.iter().map(|p| get(r, p)).collect();
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {:.6} | {:.6} | {:.6} |",
+                g.label,
+                get(r, "run_id"),
+                vals.join(" | "),
+                num(r, "cov_final_free"),
+                num(r, "t_final"),
+                num(r, "f_free")
+            );
+        }
+        let _ = writeln!(
+            md,
+            "\n## Best configuration per group over seeds (highest mean f; 003 Tables A.1/A.2 with 95 % CIs)\n"
+        );
+        let _ = writeln!(
+            md,
+            "| group | {} | n | cov_final mean ± 95 % CI | t_final mean ± 95 % CI | mean f |\n|---|{}---|---|---|---|",
+            params.join(" | "),
+            "---|".repeat(params.len())
+        );
+        for g in groups {
+            let members: std::collections::HashSet<usize> = g.rows.iter().copied().collect();
+            if let Some((_, rows, c, tf, f)) = conf_rows.iter().find(|c| members.contains(&c.1[0])) {
+                let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
+                let _ = writeln!(
+                    md,
+                    "| {} | {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
+                    g.label,
+                    vals.join(" | "),
+                    rows.len(),
+                    c.0,
+                    c.1,
+                    tf.0,
+                    tf.1,
+                    f
+                );
+            }
+        }
+        let _ = writeln!(md, "\n## Fronts, hypervolume (reference point (0, 0)) and run durations per group\n");
+        let _ = writeln!(
+            md,
+            "| group | runs | front size | hypervolume | wall s mean | min | max |\n|---|---|---|---|---|---|---|"
+        );
+        for (g, f) in groups.iter().zip(facets) {
+            let w: Vec<f64> = g.rows.iter().map(|&r| num(r, "wall_s")).collect();
+            let mean = w.iter().sum::<f64>() / w.len() as f64;
+            let (lo, hi) =
+                (w.iter().copied().fold(f64::INFINITY, f64::min), w.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} | {:.4} | {:.3} | {:.3} | {:.3} |",
+                g.label,
+                g.rows.len(),
+                f.front.len(),
+                hypervolume_2d(&f.points, (0.0, 0.0)),
+                mean,
+                lo,
+                hi
+            );
+        }
+        let _ = writeln!(md, "\n## Per group: mean ± 95 % CI over its runs\n");
+        let _ = writeln!(md, "| group | runs | cov_final | t_final | f |\n|---|---|---|---|---|");
+        for g in groups {
+            let ci = |c: &str| mean_ci95(&g.rows.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
+            let (c, tf, f) = (ci("cov_final_free"), ci("t_final"), ci("f_free"));
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} |",
+                g.label,
+                g.rows.len(),
+                c.0,
+                c.1,
+                tf.0,
+                tf.1,
+                f.0,
+                f.1
+            );
+        }
+        let _ = writeln!(
+            md,
+            "\n## Across seeds: the 20 configurations with the highest mean f (all in configurations.csv)\n"
+        );
+        let _ = writeln!(
+            md,
+            "| {} | n | cov_final mean ± 95 % CI | t_final mean ± 95 % CI | mean f |\n|{}---|---|---|---|",
+            params.join(" | "),
+            "---|".repeat(params.len())
+        );
+        for (_, rows, c, tf, f) in conf_rows.iter().take(20) {
+            let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
+                vals.join(" | "),
+                rows.len(),
+                c.0,
+                c.1,
+                tf.0,
+                tf.1,
+                f
+            );
+        }
+        let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
+        let _ = writeln!(
+            md,
+            "Does the parameter's value shift the distribution of the run results? H (tie-corrected), degrees of freedom, p-value and effect size ε² = H/(N−1); runs where the parameter does not apply are left out.\n"
+        );
+        let _ = writeln!(md, "| parameter | metric | groups | H | df | p | ε² |\n|---|---|---|---|---|---|---|");
+        for p in params {
+            for metric in ["cov_final_free", "t_final"] {
+                let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+                for r in 0..t.rows.len() {
+                    let v = get(r, p);
+                    if !v.is_empty() {
+                        by_value.entry(v).or_default().push(num(r, metric));
+                    }
+                }
+                let k = by_value.len();
+                match kruskal_wallis(&by_value.into_values().collect::<Vec<_>>()) {
+                    Some(kw) => {
+                        let _ = writeln!(
+                            md,
+                            "| {p} | {metric} | {k} | {:.3} | {} | {:.3e} | {:.4} |",
+                            kw.h, kw.df, kw.p_value, kw.epsilon_squared
+                        );
+                    }
+                    None => {
+                        let _ = writeln!(md, "| {p} | {metric} | {k} | – | – | – | – |");
+                    }
+                }
+            }
+        }
+    }
+}
