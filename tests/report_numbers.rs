@@ -122,3 +122,82 @@ fn where_filters_the_runs_and_name_keeps_reports_apart() {
         assert!(err.contains(needle), "{args:?}: {err}");
     }
 }
+
+/// A thesis study of 40 Elite and 40 tournament runs on map 1 (and one on map 2, which the
+/// claims leave out), with histories whose final diversity is known: Elite 100–139,
+/// tournament 200–239 with TS 7 on the lower half.
+#[test]
+fn the_claims_of_section_5_1_get_their_verdicts() {
+    let dir = tempfile::tempdir().unwrap();
+    let params: Vec<String> = [
+        "map.source",
+        "robot.rot_speed",
+        "thesis.selection",
+        "thesis.projection",
+        "thesis.c_len",
+        "thesis.c_child",
+        "thesis.p_ma",
+        "thesis.p_mi",
+        "thesis.tournament_size",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let header = covga::study::records::header(&params);
+    let mut csv = header.join(",") + "\n";
+    let mut add = |id: String, map: &str, selection: &str, ts: &str, diversity: f64| {
+        let values: HashMap<&str, String> = [
+            ("run_id", id.clone()),
+            ("config_id", id.clone()),
+            ("map.source", map.to_string()),
+            ("robot.rot_speed", "0".to_string()),
+            ("thesis.selection", selection.to_string()),
+            ("thesis.projection", "f2".to_string()),
+            ("thesis.c_len", "0.2".to_string()),
+            ("thesis.c_child", "2".to_string()),
+            ("thesis.p_ma", "0.01".to_string()),
+            ("thesis.p_mi", "0".to_string()),
+            ("thesis.tournament_size", ts.to_string()),
+            ("planner", "thesis".to_string()),
+            ("feasible", "true".to_string()),
+            ("cov_final_free", "0.7".to_string()),
+            ("t_final", "0.8".to_string()),
+            ("f_free", "0.56".to_string()),
+        ]
+        .into_iter()
+        .collect();
+        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
+        csv += &(row.join(",") + "\n");
+        let run = dir.path().join("runs").join(&id);
+        std::fs::create_dir_all(&run).unwrap();
+        let history: String = std::iter::once("iteration,diversity\n".to_string())
+            .chain((0..10).map(|i| format!("{i},{diversity}\n")))
+            .collect();
+        std::fs::write(run.join("history.csv"), history).unwrap();
+    };
+    for k in 0..40 {
+        add(format!("e{k:02}"), "thesis-1", "elite", "", 100.0 + f64::from(k));
+        add(format!("t{k:02}"), "thesis-1", "tournament", if k < 20 { "7" } else { "3" }, 200.0 + f64::from(k));
+    }
+    add("m2".into(), "thesis-2", "elite", "", 1000.0);
+    std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
+    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 81}").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_covga")).args(["report", dir.path().to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
+    for line in [
+        "On the 80 runs of map 1 without rotation cost (80 with a history for the diversity).",
+        // Every Elite value below every tournament value: A₁₂ = 0.
+        "| Elite loses the most diversity | final diversity, Elite vs tournament | 40 / 40 | A₁₂ = 0.000 (large) |",
+        "| Elite loses the most diversity | final diversity, Elite vs prws | 40 / 0 | – | – | cannot say |",
+        // TS 7 holds the 20 lowest tournament values.
+        "| Higher TS lowers diversity | final diversity, TS 7 vs TS 3 | 20 / 20 | A₁₂ = 0.000 (large) |",
+        // Identical best individuals: every deviation is 0, all tied, no test → cannot say.
+        "| Elite's best individuals lie in a small distribution | distance of cov_final from the group median, Elite vs tournament | 40 / 40 | – | – | cannot say |",
+    ] {
+        assert!(md.contains(line), "missing `{line}` in\n{md}");
+    }
+    let holds = md.lines().filter(|l| l.starts_with("| Elite loses") && l.ends_with("| holds |")).count();
+    assert_eq!(holds, 1, "only the tournament comparison has data");
+    assert!(md.lines().any(|l| l.starts_with("| Higher TS lowers") && l.ends_with("| holds |")));
+}
