@@ -118,7 +118,7 @@ pub fn compare_rates((ka, na): (usize, usize), (kb, nb): (usize, usize), expect:
     Comparison { n, effect: pa - pb, p, verdict: judge(expect, pa > pb, p, n) }
 }
 
-/// Mean diversity over the last tenth of a run's `history.csv`, read from the file's tail.
+/// Mean diversity over the last tenth of the rows of a run's `history.csv`.
 pub fn final_diversity(history: &Path) -> Option<f64> {
     let text = std::fs::read_to_string(history).ok()?;
     let mut lines = text.lines();

@@ -4,7 +4,7 @@
 
 use super::records::RunsTable;
 use super::report::{ConfigRow, Group};
-use super::stats::{kruskal_wallis, mean_ci95};
+use super::stats::{kruskal_wallis, mean_ci95, mean_min_max};
 use crate::ga::pareto::hypervolume_2d;
 use crate::plot::report::ParetoFacet;
 use std::collections::BTreeMap;
@@ -33,6 +33,20 @@ impl GroupTables<'_> {
         let conf_rows = self.configs;
         let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
         let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
+        // A configuration's cells: its parameter values, replicates, means with CIs, mean f.
+        let config_cells = |(_, rows, c, tf, f): &ConfigRow| {
+            let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
+            format!(
+                "{} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
+                vals.join(" | "),
+                rows.len(),
+                c.0,
+                c.1,
+                tf.0,
+                tf.1,
+                f
+            )
+        };
         let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
         let _ = writeln!(md, "| group | run | {} | cov_final | t_final | f |", params.join(" | "));
         let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
@@ -61,20 +75,8 @@ impl GroupTables<'_> {
         );
         for g in groups {
             let members: std::collections::HashSet<usize> = g.rows.iter().copied().collect();
-            if let Some((_, rows, c, tf, f)) = conf_rows.iter().find(|c| members.contains(&c.1[0])) {
-                let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
-                let _ = writeln!(
-                    md,
-                    "| {} | {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
-                    g.label,
-                    vals.join(" | "),
-                    rows.len(),
-                    c.0,
-                    c.1,
-                    tf.0,
-                    tf.1,
-                    f
-                );
+            if let Some(c) = conf_rows.iter().find(|c| members.contains(&c.1[0])) {
+                let _ = writeln!(md, "| {} | {}", g.label, config_cells(c));
             }
         }
         let _ = writeln!(md, "\n## Fronts, hypervolume (reference point (0, 0)) and run durations per group\n");
@@ -84,9 +86,7 @@ impl GroupTables<'_> {
         );
         for (g, f) in groups.iter().zip(facets) {
             let w: Vec<f64> = g.rows.iter().map(|&r| num(r, "wall_s")).collect();
-            let mean = w.iter().sum::<f64>() / w.len() as f64;
-            let (lo, hi) =
-                (w.iter().copied().fold(f64::INFINITY, f64::min), w.iter().copied().fold(f64::NEG_INFINITY, f64::max));
+            let (mean, lo, hi) = mean_min_max(&w);
             let _ = writeln!(
                 md,
                 "| {} | {} | {} | {:.4} | {:.3} | {:.3} | {:.3} |",
@@ -127,19 +127,8 @@ impl GroupTables<'_> {
             params.join(" | "),
             "---|".repeat(params.len())
         );
-        for (_, rows, c, tf, f) in conf_rows.iter().take(20) {
-            let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
-            let _ = writeln!(
-                md,
-                "| {} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
-                vals.join(" | "),
-                rows.len(),
-                c.0,
-                c.1,
-                tf.0,
-                tf.1,
-                f
-            );
+        for c in conf_rows.iter().take(20) {
+            let _ = writeln!(md, "| {}", config_cells(c));
         }
         let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
         let _ = writeln!(

@@ -83,6 +83,14 @@ pub fn kruskal_wallis(groups: &[Vec<f64>]) -> Option<KruskalWallis> {
     Some(KruskalWallis { h, df, p_value, epsilon_squared: h / (n - 1.0) })
 }
 
+/// `(mean, min, max)` of `values`; NaN mean and infinite bounds for no values.
+pub fn mean_min_max(values: &[f64]) -> (f64, f64, f64) {
+    let mean = values.iter().sum::<f64>() / values.len() as f64;
+    let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (mean, lo, hi)
+}
+
 /// Quartiles `(q1, median, q3)` by linear interpolation between order statistics (the
 /// usual "type 7" definition); `NaN` for no values.
 pub fn quartiles(values: &[f64]) -> (f64, f64, f64) {

@@ -30,9 +30,7 @@ pub fn durations(t: &RunsTable) -> BTreeMap<String, (usize, f64, f64, f64)> {
     }
     by.into_iter()
         .map(|(k, v)| {
-            let mean = v.iter().sum::<f64>() / v.len() as f64;
-            let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let (mean, lo, hi) = super::stats::mean_min_max(&v);
             (k, (v.len(), mean, lo, hi))
         })
         .collect()
