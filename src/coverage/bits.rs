@@ -191,6 +191,11 @@ impl VisitPlanes {
         if p < self.top { self.planes[p * self.words + idx] } else { 0 }
     }
 
+    /// The planes in use, plane after plane (`planes()` × `plane_words()` words).
+    pub fn plane_data(&self) -> &[u64] {
+        &self.planes[..self.top * self.words]
+    }
+
     /// The cells of word `idx` visited at least `t` times (`t ≥ 1`), by a bit-sliced
     /// comparison of the counts with `t` from the most significant plane down.
     #[inline(always)]

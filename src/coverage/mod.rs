@@ -3,6 +3,7 @@
 
 pub mod bits;
 pub mod camera;
+pub mod lanes;
 pub mod motion;
 pub mod raster;
 pub mod rows;

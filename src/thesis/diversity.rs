@@ -8,22 +8,24 @@
 
 use super::individual::Individual;
 use crate::coverage::bits::VisitPlanes;
+use crate::coverage::lanes::lane_count_sums;
 use rayon::prelude::*;
 
-/// Reusable buffers for [`pair_distance_sum`]: bit-sliced counters of the cells of one word.
+/// Reusable buffers for [`pair_distance_sum`]: the masks "visited at least `t` times" of the
+/// current word, one list per `t`.
 #[derive(Default, Debug)]
 pub struct DiversityScratch {
-    /// `counters[(t − 1)·bits + q]`: bit `q` of `c_t` for the 64 cells of the current word.
-    counters: Vec<u64>,
+    /// `at_least[t − 1]`: every individual's non-empty mask of cells visited `≥ t` times.
+    at_least: Vec<Vec<u64>>,
 }
 
 /// `Σ_{i<j} Dist(M^i, M^j)` over the population (eqs. 3.17–3.18).
 ///
 /// For one cell, `Σ_{i<j} |a_i − a_j| = Σ_{t≥1} c_t·(N − c_t)` with `c_t` the number of
 /// individuals that visited it at least `t` times. The visit maps are bit-sliced, so for 64
-/// cells at once each individual's masks "at least `t` visits" (`t = 1, 2, …` until one is
-/// empty) are added into bit-sliced counters of `c_t`, and `Σ c_t(N − c_t) = N·Σc_t − Σc_t²`
-/// is read off them by popcounts.
+/// cells at once the individuals' masks "at least `t` visits" (`t = 1, 2, …` until one is
+/// empty) are counted lane by lane ([`lane_count_sums`]), and `Σ c_t(N − c_t) = N·Σc_t − Σc_t²`
+/// is read off the counts.
 pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> u64 {
     pair_distance_sum_by(pop.len(), |i| &pop[i].visits, scratch)
 }
@@ -34,55 +36,105 @@ pub fn pair_distance_sum_by<'a>(
     map: impl Fn(usize) -> &'a VisitPlanes,
     scratch: &mut DiversityScratch,
 ) -> u64 {
-    let pop = || (0..n).map(&map);
-    let n = n as u64;
-    let words = pop().map(VisitPlanes::plane_words).max().unwrap_or(0);
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("popcnt") {
+        // SAFETY: the CPU has just been found to support `popcnt`.
+        return unsafe { pair_distance_sum_popcnt(n, map, scratch) };
+    }
+    pair_distance_sum_kernel(n, map, scratch)
+}
+
+/// The kernel compiled with the `popcnt` instruction, which the default x86-64 target lacks
+/// (its software population count is most of the kernel's time); the result is the same.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "popcnt")]
+unsafe fn pair_distance_sum_popcnt<'a>(
+    n: usize,
+    map: impl Fn(usize) -> &'a VisitPlanes,
+    scratch: &mut DiversityScratch,
+) -> u64 {
+    pair_distance_sum_kernel(n, map, scratch)
+}
+
+/// Asks for the cache line of `word` ahead of its use: the kernel reads one word of every
+/// individual in turn, a pattern the hardware prefetcher does not follow.
+#[inline(always)]
+fn prefetch(word: &u64) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: a prefetch is only a hint; the address is that of a live reference.
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>((word as *const u64).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = word;
+}
+
+/// The cells of one word visited at least `t` times, from the word's count planes `pl`
+/// (least significant first): a bit-sliced comparison from the most significant plane down.
+#[inline(always)]
+fn at_least(pl: &[u64], t: usize) -> u64 {
+    let (mut below, mut equal) = (0u64, u64::MAX);
+    for (p, &v) in pl.iter().enumerate().rev() {
+        if (t >> p) & 1 == 1 {
+            below |= equal & !v;
+            equal &= v;
+        } else {
+            equal &= !v;
+        }
+    }
+    !below
+}
+
+#[inline(always)]
+fn pair_distance_sum_kernel<'a>(
+    n: usize,
+    map: impl Fn(usize) -> &'a VisitPlanes,
+    scratch: &mut DiversityScratch,
+) -> u64 {
+    let maps: Vec<(&[u64], usize, usize)> =
+        (0..n).map(&map).map(|m| (m.plane_data(), m.plane_words(), m.planes())).collect();
+    let words = maps.iter().map(|m| m.1).max().unwrap_or(0);
     if n < 2 || words == 0 {
         return 0;
     }
-    let bits = (u64::BITS - n.leading_zeros()) as usize;
-    let counters = &mut scratch.counters;
+    let lists = &mut scratch.at_least;
     let mut sum = 0u64;
+    let mut pl = [0u64; 32];
     for idx in 0..words {
         let mut t_max = 0usize;
-        for v in pop() {
-            if idx >= v.plane_words() {
+        for &(data, w, top) in &maps {
+            if idx >= w {
                 continue;
             }
-            let mut t = 1;
-            loop {
-                let mut carry = v.at_least(idx, t as u32);
-                if carry == 0 {
-                    break;
+            if idx % 8 == 0 && idx + 8 < w {
+                for p in 0..top {
+                    prefetch(&data[p * w + idx + 8]);
                 }
+            }
+            let mut occupied = 0;
+            for (p, v) in pl[..top].iter_mut().enumerate() {
+                *v = data[p * w + idx];
+                occupied |= *v;
+            }
+            let pl = &pl[..top];
+            let mut mask = occupied;
+            let mut t = 1;
+            while mask != 0 {
                 if t > t_max {
                     t_max = t;
-                    if counters.len() < t * bits {
-                        counters.resize(t * bits, 0);
+                    if lists.len() < t {
+                        lists.push(Vec::new());
                     }
+                    lists[t - 1].clear();
                 }
-                let c = &mut counters[(t - 1) * bits..t * bits];
-                let mut q = 0;
-                while carry != 0 {
-                    let old = c[q];
-                    c[q] = old ^ carry;
-                    carry &= old;
-                    q += 1;
-                }
+                lists[t - 1].push(mask);
                 t += 1;
+                mask = if t >> top == 0 { at_least(pl, t) } else { 0 };
             }
         }
-        for c in counters[..t_max * bits].chunks_exact_mut(bits) {
-            let (mut s1, mut s2) = (0u64, 0u64);
-            for q in 0..bits {
-                s1 += u64::from(c[q].count_ones()) << q;
-                s2 += u64::from(c[q].count_ones()) << (2 * q);
-                for r in q + 1..bits {
-                    s2 += u64::from((c[q] & c[r]).count_ones()) << (q + r + 1);
-                }
-            }
-            sum += n * s1 - s2;
-            c.fill(0);
+        for list in &lists[..t_max] {
+            let (s1, s2) = lane_count_sums(list);
+            sum += n as u64 * s1 - s2;
         }
     }
     sum

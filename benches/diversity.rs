@@ -1,0 +1,50 @@
+//! Population diversity (003 eqs. 3.17–3.19): the pair-distance sum of 100 and of 1 000 visit
+//! maps on thesis-1, each swept from a random 40-move path of moves up to 3 m from the station
+//! (the shape of an initial population), as every generation of a recorded run computes it.
+//!
+//! `cargo bench --bench diversity`
+
+use covga::coverage::CoverageGrid;
+use covga::coverage::bits::{BitLayers, VisitPlanes};
+use covga::geom::Point;
+use covga::map::presets::preset;
+use covga::thesis::diversity::{DiversityScratch, pair_distance_sum_by};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use rand::{Rng, SeedableRng};
+use std::hint::black_box;
+
+fn population(layers: &BitLayers, n: usize, rng: &mut impl Rng) -> Vec<VisitPlanes> {
+    (0..n)
+        .map(|_| {
+            let mut p = Point::new(1.3, 1.3);
+            let mut path = vec![p];
+            for _ in 0..40 {
+                let (a, d) = (rng.random_range(0.0..std::f64::consts::TAU), rng.random_range(0.0..3.0));
+                p = Point::new((p.x + d * a.cos()).clamp(0.3, 10.7), (p.y + d * a.sin()).clamp(0.3, 10.7));
+                path.push(p);
+            }
+            let mut visits = VisitPlanes::default();
+            layers.sweep(&mut visits, &path, 0.6);
+            visits
+        })
+        .collect()
+}
+
+fn diversity(c: &mut Criterion) {
+    let grid = CoverageGrid::new(&preset("thesis-1").expect("preset"));
+    let layers = BitLayers::new(&grid);
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+    let mut group = c.benchmark_group("diversity");
+    for n in [100, 1000] {
+        let pop = population(&layers, n, &mut rng);
+        let mut scratch = DiversityScratch::default();
+        group.throughput(Throughput::Elements(n as u64));
+        group.bench_function(format!("pair_distance_sum/{n}_maps"), |b| {
+            b.iter(|| black_box(pair_distance_sum_by(pop.len(), |i| &pop[i], &mut scratch)))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, diversity);
+criterion_main!(benches);
