@@ -111,14 +111,54 @@ impl BitLayers {
         Self::settle::<ADD>(tally, counts);
     }
 
-    /// [`Self::apply`] for a segment given by its masks (from [`Self::for_each_mask`]).
+    /// The free cells of `mask` in word `idx`.
+    #[inline(always)]
+    pub fn free_cells(&self, idx: usize, mask: u64) -> u64 {
+        mask & self.free[idx]
+    }
+
+    /// [`Self::apply`] for a segment given by the free cells of its words (from
+    /// [`Self::for_each_mask`] and [`Self::free_cells`], empty words left out) and its counts
+    /// `[free cells, obstacle cells]`.
     #[inline]
-    pub fn apply_masks<const ADD: bool>(&self, visits: &mut VisitPlanes, masks: &[(u32, u64)], tally: &mut Tally) {
-        let mut counts = [0u64; 3];
-        for &(idx, mask) in masks {
-            self.apply_word::<ADD>(visits, idx as usize, mask, &mut counts);
+    pub fn apply_free_masks<const ADD: bool>(
+        &self,
+        visits: &mut VisitPlanes,
+        masks: &[(u32, u64)],
+        [free, obstacle]: [u64; 2],
+        tally: &mut Tally,
+    ) {
+        #[cfg(target_arch = "x86_64")]
+        let changed = if std::arch::is_x86_feature_detected!("popcnt") {
+            // SAFETY: the CPU has just been found to support `popcnt`.
+            unsafe { self.changed_cells_popcnt::<ADD>(visits, masks) }
+        } else {
+            self.changed_cells::<ADD>(visits, masks)
+        };
+        #[cfg(not(target_arch = "x86_64"))]
+        let changed = self.changed_cells::<ADD>(visits, masks);
+        Self::settle::<ADD>(tally, [free, obstacle, changed]);
+    }
+
+    /// Applies the free cells `masks`; returns how many countable cells became visited (`ADD`)
+    /// or unvisited.
+    #[inline(always)]
+    fn changed_cells<const ADD: bool>(&self, visits: &mut VisitPlanes, masks: &[(u32, u64)]) -> u64 {
+        let mut changed = 0;
+        for &(idx, cells) in masks {
+            let idx = idx as usize;
+            let flipped = if ADD { visits.add(idx, cells) } else { visits.remove(idx, cells) };
+            changed += u64::from((flipped & self.countable[idx]).count_ones());
         }
-        Self::settle::<ADD>(tally, counts);
+        changed
+    }
+
+    /// [`Self::changed_cells`] with the `popcnt` instruction (not in the default x86-64
+    /// target); the same result.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "popcnt")]
+    unsafe fn changed_cells_popcnt<const ADD: bool>(&self, visits: &mut VisitPlanes, masks: &[(u32, u64)]) -> u64 {
+        self.changed_cells::<ADD>(visits, masks)
     }
 
     /// Sweeps a whole polyline into cleared `visits` and returns its tally.

@@ -21,7 +21,38 @@ use std::hash::{BuildHasherDefault, Hasher};
 pub const CACHE_MASKS: usize = 1 << 18;
 
 /// A segment: the bits of its endpoints and of the width.
-type Key = [u64; 5];
+#[derive(Clone, Copy, Debug)]
+struct Key([u64; 5]);
+
+impl std::hash::Hash for Key {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        for word in self.0 {
+            state.write_u64(word);
+        }
+    }
+}
+
+impl PartialEq for Key {
+    /// Word by word and inlined (the array comparison calls `memcmp`).
+    fn eq(&self, other: &Self) -> bool {
+        let (a, b) = (&self.0, &other.0);
+        (a[0] == b[0]) & (a[1] == b[1]) & (a[2] == b[2]) & (a[3] == b[3]) & (a[4] == b[4])
+    }
+}
+
+impl Eq for Key {}
+
+/// Where a segment's masks are kept, and its cell counts, which do not depend on the map it is
+/// added to or removed from.
+#[derive(Clone, Copy, Debug)]
+struct Span {
+    start: u32,
+    len: u32,
+    /// Free cells of the swept rectangle (its share of `cov_pix`).
+    free: u64,
+    /// Obstacle cells of the swept rectangle (its share of `obj_pix`).
+    obstacle: u64,
+}
 
 /// Multiply-rotate hashing of the five words of a key: the keys are the bits of coordinates,
 /// already well spread; SipHash would cost more than the lookup saves.
@@ -45,12 +76,12 @@ impl Hasher for KeyHasher {
     }
 }
 
-/// Swept segments of one grid as `(word index, mask)` lists, replayed by
-/// [`SegmentCache::apply`].
+/// Swept segments of one grid as lists of `(word index, free cells)` with their cell counts,
+/// replayed by [`SegmentCache::apply`].
 #[derive(Debug, Default)]
 pub struct SegmentCache {
     raster: Option<RasterGrid>,
-    spans: HashMap<Key, (u32, u32), BuildHasherDefault<KeyHasher>>,
+    spans: HashMap<Key, Span, BuildHasherDefault<KeyHasher>>,
     masks: Vec<(u32, u64)>,
 }
 
@@ -77,22 +108,31 @@ impl SegmentCache {
             self.clear();
             self.raster = Some(*layers.raster());
         }
-        let key = [a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits(), width.to_bits()];
-        let (start, len) = match self.spans.get(&key) {
+        let key = Key([a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits(), width.to_bits()]);
+        let span = match self.spans.get(&key) {
             Some(&span) => span,
             None => {
                 if self.masks.len() >= CACHE_MASKS {
                     self.clear();
                 }
                 let start = self.masks.len();
-                layers.for_each_mask(a, b, width, |idx, mask| self.masks.push((idx as u32, mask)));
-                let span = (start as u32, (self.masks.len() - start) as u32);
+                let (mut free, mut obstacle) = (0, 0);
+                layers.for_each_mask(a, b, width, |idx, mask| {
+                    let f = layers.free_cells(idx, mask);
+                    free += u64::from(f.count_ones());
+                    obstacle += u64::from((mask & !f).count_ones());
+                    if f != 0 {
+                        self.masks.push((idx as u32, f));
+                    }
+                });
+                let len = (self.masks.len() - start) as u32;
+                let span = Span { start: start as u32, len, free, obstacle };
                 self.spans.insert(key, span);
                 span
             }
         };
-        let masks = &self.masks[start as usize..(start + len) as usize];
-        layers.apply_masks::<ADD>(visits, masks, tally);
+        let masks = &self.masks[span.start as usize..(span.start + span.len) as usize];
+        layers.apply_free_masks::<ADD>(visits, masks, [span.free, span.obstacle], tally);
     }
 
     /// Forgets every segment (keeps the allocations).

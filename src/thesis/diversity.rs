@@ -11,12 +11,18 @@ use crate::coverage::bits::VisitPlanes;
 use crate::coverage::lanes::lane_count_sums;
 use rayon::prelude::*;
 
+/// Visit counts whose thresholds are listed without a branch per mask (four count planes).
+const LOW: usize = 15;
+
 /// Reusable buffers for [`pair_distance_sum`]: the masks "visited at least `t` times" of the
 /// current word, one list per `t`.
 #[derive(Default, Debug)]
 pub struct DiversityScratch {
-    /// `at_least[t − 1]`: every individual's non-empty mask of cells visited `≥ t` times.
-    at_least: Vec<Vec<u64>>,
+    /// `low[(t − 1)·N ..]`: the individuals' non-empty masks of cells visited `≥ t` times,
+    /// for `t ≤ LOW`.
+    low: Vec<u64>,
+    /// `high[t − LOW − 1]`: the same for `t > LOW`.
+    high: Vec<Vec<u64>>,
 }
 
 /// `Σ_{i<j} Dist(M^i, M^j)` over the population (eqs. 3.17–3.18).
@@ -85,23 +91,45 @@ fn at_least(pl: &[u64], t: usize) -> u64 {
     !below
 }
 
+/// `th[t]` = the cells visited at least `t` times, for every `t < 2^planes` (at most four
+/// planes), built plane by plane: with plane `k` added, a count reaches `t < 2^k` if it did
+/// before or has bit `k`, reaches `2^k` if it has bit `k`, and `2^k + t` if both.
+#[inline(always)]
+fn thermometer(pl: &[u64], th: &mut [u64; LOW + 1]) {
+    for (k, &b) in pl.iter().enumerate() {
+        let half = 1 << k;
+        for t in 1..half {
+            th[t + half] = b & th[t];
+            th[t] |= b;
+        }
+        th[half] = b;
+    }
+}
+
 #[inline(always)]
 fn pair_distance_sum_kernel<'a>(
     n: usize,
     map: impl Fn(usize) -> &'a VisitPlanes,
     scratch: &mut DiversityScratch,
 ) -> u64 {
-    let maps: Vec<(&[u64], usize, usize)> =
+    let mut maps: Vec<(&[u64], usize, usize)> =
         (0..n).map(&map).map(|m| (m.plane_data(), m.plane_words(), m.planes())).collect();
+    // By number of planes: the number of thresholds listed per word is then predictable.
+    maps.sort_by_key(|m| m.2);
     let words = maps.iter().map(|m| m.1).max().unwrap_or(0);
     if n < 2 || words == 0 {
         return 0;
     }
-    let lists = &mut scratch.at_least;
+    if scratch.low.len() < LOW * n {
+        scratch.low.resize(LOW * n, 0);
+    }
+    let (low, high) = (&mut scratch.low[..LOW * n], &mut scratch.high);
     let mut sum = 0u64;
     let mut pl = [0u64; 32];
+    let mut th = [0u64; LOW + 1];
     for idx in 0..words {
-        let mut t_max = 0usize;
+        let mut lens = [0usize; LOW];
+        let mut high_max = 0usize;
         for &(data, w, top) in &maps {
             if idx >= w {
                 continue;
@@ -116,23 +144,50 @@ fn pair_distance_sum_kernel<'a>(
                 *v = data[p * w + idx];
                 occupied |= *v;
             }
+            if occupied == 0 {
+                continue;
+            }
             let pl = &pl[..top];
-            let mut mask = occupied;
-            let mut t = 1;
-            while mask != 0 {
-                if t > t_max {
-                    t_max = t;
-                    if lists.len() < t {
-                        lists.push(Vec::new());
-                    }
-                    lists[t - 1].clear();
+            let listed = if top <= 4 {
+                thermometer(pl, &mut th);
+                (1 << top) - 1
+            } else {
+                for (t, m) in th.iter_mut().enumerate().skip(1) {
+                    *m = at_least(pl, t);
                 }
-                lists[t - 1].push(mask);
-                t += 1;
-                mask = if t >> top == 0 { at_least(pl, t) } else { 0 };
+                LOW
+            };
+            for t in 1..=listed {
+                let mask = th[t];
+                low[(t - 1) * n + lens[t - 1]] = mask;
+                lens[t - 1] += usize::from(mask != 0);
+            }
+            if top > 4 {
+                let mut t = LOW + 1;
+                loop {
+                    let mask = at_least(pl, t);
+                    if mask == 0 {
+                        break;
+                    }
+                    let h = t - LOW;
+                    if h > high_max {
+                        high_max = h;
+                        if high.len() < h {
+                            high.push(Vec::new());
+                        }
+                        high[h - 1].clear();
+                    }
+                    high[h - 1].push(mask);
+                    t += 1;
+                }
             }
         }
-        for list in &lists[..t_max] {
+        // Fewer individuals reach each next threshold: the lists shrink with `t`.
+        for (t, &len) in lens.iter().enumerate().take_while(|(_, len)| **len > 0) {
+            let (s1, s2) = lane_count_sums(&low[t * n..t * n + len]);
+            sum += n as u64 * s1 - s2;
+        }
+        for list in &high[..high_max] {
             let (s1, s2) = lane_count_sums(list);
             sum += n as u64 * s1 - s2;
         }
@@ -283,6 +338,16 @@ mod tests {
     }
 
     proptest::proptest! {
+        /// The thermometer of up to four planes equals the comparison with every threshold.
+        #[test]
+        fn thermometer_equals_the_comparisons(planes in proptest::collection::vec(proptest::prelude::any::<u64>(), 0..=4)) {
+            let mut th = [0u64; LOW + 1];
+            thermometer(&planes, &mut th);
+            for (t, &mask) in th.iter().enumerate().take(1 << planes.len()).skip(1) {
+                proptest::prop_assert_eq!(mask, at_least(&planes, t), "t = {}", t);
+            }
+        }
+
         /// The histogram sum equals the sum of pairwise distances by definition (eq. 3.17).
         #[test]
         fn pair_sum_equals_the_sum_of_pair_distances(maps in proptest::collection::vec(proptest::collection::vec(0u32..40, 64), 2..40)) {
