@@ -77,6 +77,7 @@ fn prefetch(word: &u64) {
 
 /// The cells of one word visited at least `t` times, from the word's count planes `pl`
 /// (least significant first): a bit-sliced comparison from the most significant plane down.
+/// Only the low `pl.len()` bits of `t` are read: `t` must be below `2^pl.len()`.
 #[inline(always)]
 fn at_least(pl: &[u64], t: usize) -> u64 {
     let (mut below, mut equal) = (0u64, u64::MAX);
@@ -163,8 +164,8 @@ fn pair_distance_sum_kernel<'a>(
                 lens[t - 1] += usize::from(mask != 0);
             }
             if top > 4 {
-                let mut t = LOW + 1;
-                loop {
+                // `at_least` reads only the low `top` bits of `t`: stop below `2^top`.
+                for t in LOW + 1..1 << top {
                     let mask = at_least(pl, t);
                     if mask == 0 {
                         break;
@@ -178,7 +179,6 @@ fn pair_distance_sum_kernel<'a>(
                         high[h - 1].clear();
                     }
                     high[h - 1].push(mask);
-                    t += 1;
                 }
             }
         }
@@ -313,6 +313,21 @@ mod tests {
         assert_eq!(max_distance(&pop), 6);
         // Literal eq. 3.19: pairs without the last individual: D_ab = 5; 2·5/(3·4).
         assert!((diversity_literal(&pop, &mut s) - 10.0 / 12.0).abs() < 1e-12);
+    }
+
+    /// Counts that fill their top plane (`2^k − 1`) next to a larger population of small
+    /// ones: the thresholds stop at the planes' range, whatever their number.
+    #[test]
+    fn counts_at_the_top_of_their_planes() {
+        for k in 1..=9u32 {
+            let full = (1u32 << k) - 1;
+            let pop = vec![ind(&[(0, full), (1, 1)]), ind(&[(0, 1), (63, 16)]), ind(&[(2, 3)])];
+            let expected: u64 = (0..pop.len())
+                .flat_map(|i| (i + 1..pop.len()).map(move |j| (i, j)))
+                .map(|(i, j)| distance(&pop[i], &pop[j]))
+                .sum();
+            assert_eq!(pair_distance_sum(&pop, &mut DiversityScratch::default()), expected, "top count {full}");
+        }
     }
 
     #[test]
