@@ -222,22 +222,27 @@ pub fn remove_zero_actions(ind: &mut Individual) -> usize {
     if n < 5 {
         return 0;
     }
-    let g = &ind.genome;
-    let marked: Vec<bool> =
-        (0..n).map(|i| i >= 1 && i <= n - 3 && g[i - 1].is_zero() && g[i].is_zero() && g[i + 1].is_zero()).collect();
-    let removed = marked.iter().filter(|&&m| m).count();
-    if removed > 0 {
-        let mut k = 0;
-        ind.genome.retain(|_| {
-            k += 1;
-            !marked[k - 1]
-        });
-        let mut k = 0;
-        ind.points.retain(|_| {
-            k += 1;
-            !marked[k - 1]
-        });
+    // One pass in place, no marks buffer: a gene's mark reads its neighbours as they were, and
+    // the write position never passes the read position, so the genes ahead are still
+    // unchanged; the zero flag of the gene behind is carried over from the previous step.
+    let mut write = 0;
+    let mut behind_zero = false;
+    for i in 0..n {
+        let here_zero = ind.genome[i].is_zero();
+        let ahead_zero = i + 1 < n && ind.genome[i + 1].is_zero();
+        let marked = i >= 1 && i <= n - 3 && behind_zero && here_zero && ahead_zero;
+        behind_zero = here_zero;
+        if !marked {
+            ind.genome[write] = ind.genome[i];
+            if i < ind.points.len() {
+                ind.points[write] = ind.points[i];
+            }
+            write += 1;
+        }
     }
+    let removed = n - write;
+    ind.genome.truncate(write);
+    ind.points.truncate(write);
     removed
 }
 
@@ -295,6 +300,28 @@ mod tests {
         assert_eq!(d, vec![1.0, 0.0, 0.0, 1.0, 0.0, 2.0, 0.0]);
         assert_eq!(ind.points.len(), 7);
         assert_eq!(ind.points[2], Point::new(4.0, 0.0));
+    }
+
+    /// Zero-action removal by its definition: marks on the unchanged genome, then deletion;
+    /// the indices of the genes kept.
+    fn kept_by_marks(genome: &[Action]) -> Vec<usize> {
+        let n = genome.len();
+        let z = |i: usize| genome[i].is_zero();
+        (0..n).filter(|&i| !(n >= 5 && i >= 1 && i <= n - 3 && z(i - 1) && z(i) && z(i + 1))).collect()
+    }
+
+    proptest::proptest! {
+        /// The in-place pass deletes exactly the marked genes and their viewpoints.
+        #[test]
+        fn zero_action_removal_follows_its_marks(zeros in proptest::collection::vec(proptest::prelude::any::<bool>(), 0..40)) {
+            let genome: Vec<Action> = zeros.iter().enumerate().map(|(i, &z)| a(if z { 0.0 } else { 1.0 + i as f64 })).collect();
+            let points: Vec<Point> = (0..genome.len()).map(|i| Point::new(i as f64, 0.0)).collect();
+            let kept = kept_by_marks(&genome);
+            let mut ind = Individual { genome: genome.clone(), points: points.clone(), ..Default::default() };
+            proptest::prop_assert_eq!(remove_zero_actions(&mut ind), genome.len() - kept.len());
+            proptest::prop_assert_eq!(ind.genome, kept.iter().map(|&i| genome[i]).collect::<Vec<_>>());
+            proptest::prop_assert_eq!(ind.points, kept.iter().map(|&i| points[i]).collect::<Vec<_>>());
+        }
     }
 
     proptest::proptest! {
