@@ -236,26 +236,6 @@ impl VisitPlanes {
         &self.planes[..self.top * self.words]
     }
 
-    /// The cells of word `idx` visited at least `t` times (`t ≥ 1`), by a bit-sliced
-    /// comparison of the counts with `t` from the most significant plane down.
-    #[inline(always)]
-    pub fn at_least(&self, idx: usize, t: u32) -> u64 {
-        if t >= 1 << self.top.min(31) {
-            return 0;
-        }
-        let (mut below, mut equal) = (0u64, u64::MAX);
-        for p in (0..self.top).rev() {
-            let v = self.planes[p * self.words + idx];
-            if (t >> p) & 1 == 1 {
-                below |= equal & !v;
-                equal &= v;
-            } else {
-                equal &= !v;
-            }
-        }
-        !below
-    }
-
     #[inline(always)]
     fn occupied(&self, idx: usize) -> u64 {
         let mut any = 0;
