@@ -46,6 +46,25 @@ pub fn param_columns(t: &RunsTable) -> Vec<String> {
     }
 }
 
+/// Orders two groups' values parameter by parameter: numbers by magnitude (so the panels of
+/// `tournament_size` run 2, 3, 5, 10 and not 10, 2, 3, 5), anything else as text, and a number
+/// before a text.
+pub(super) fn cmp_group_values(a: &[String], b: &[String]) -> std::cmp::Ordering {
+    use std::cmp::Ordering;
+    for (x, y) in a.iter().zip(b) {
+        let order = match (x.parse::<f64>(), y.parse::<f64>()) {
+            (Ok(p), Ok(q)) => p.total_cmp(&q).then_with(|| x.cmp(y)),
+            (Ok(_), Err(_)) => Ordering::Less,
+            (Err(_), Ok(_)) => Ordering::Greater,
+            (Err(_), Err(_)) => x.cmp(y),
+        };
+        if order != Ordering::Equal {
+            return order;
+        }
+    }
+    a.len().cmp(&b.len())
+}
+
 fn read_history_diversity(path: &Path) -> Option<Vec<(u32, f64)>> {
     let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
     let (i, d) = (t.col("iteration")?, t.col("diversity")?);
@@ -158,16 +177,23 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
     let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
     // Groups by the --by columns.
-    let mut groups: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+    let mut by_values: BTreeMap<Vec<String>, Vec<usize>> = BTreeMap::new();
     for r in 0..t.rows.len() {
-        let label = if by.is_empty() {
-            "all runs".to_string()
-        } else {
-            by.iter().map(|b| format!("{b}={}", get(r, b))).collect::<Vec<_>>().join(", ")
-        };
-        groups.entry(label).or_default().push(r);
+        by_values.entry(by.iter().map(|b| get(r, b)).collect()).or_default().push(r);
     }
-    let groups: Vec<Group> = groups.into_iter().map(|(label, rows)| Group { label, rows }).collect();
+    let mut by_values: Vec<(Vec<String>, Vec<usize>)> = by_values.into_iter().collect();
+    by_values.sort_by(|(a, _), (b, _)| cmp_group_values(a, b));
+    let groups: Vec<Group> = by_values
+        .into_iter()
+        .map(|(values, rows)| {
+            let label = if by.is_empty() {
+                "all runs".to_string()
+            } else {
+                by.iter().zip(&values).map(|(b, v)| format!("{b}={v}")).collect::<Vec<_>>().join(", ")
+            };
+            Group { label, rows }
+        })
+        .collect();
     let point = |r: usize| (num(r, "t_final"), num(r, "cov_final_free"));
     // Two grouping columns lay the panels out as rows × columns when every combination ran.
     let shape = match by {
@@ -336,4 +362,39 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     let path = out.join("summary.md");
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::cmp_group_values;
+    use std::cmp::Ordering::{Equal, Greater, Less};
+
+    fn values(v: &[&str]) -> Vec<String> {
+        v.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn group_values_order_numbers_by_magnitude_and_text_as_text() {
+        let cases: &[(&[&str], &[&str], std::cmp::Ordering)] = &[
+            (&["2"], &["10"], Less),
+            (&["10"], &["3"], Greater),
+            (&["0.01"], &["0.1"], Less),
+            (&["-1"], &["0"], Less),
+            (&["1e3"], &["50"], Greater),
+            (&["rrws"], &["elite"], Greater),
+            (&["5"], &["elite"], Less),
+            (&["f2"], &["3"], Greater),
+            (&["7", "f1"], &["7", "f2"], Less),
+            (&["10", "f1"], &["9", "f2"], Greater),
+            (&["3"], &["3"], Equal),
+            // Equal numbers written differently stay distinct groups, in text order.
+            (&["1.0"], &["1"], Greater),
+        ];
+        for (a, b, want) in cases {
+            assert_eq!(cmp_group_values(&values(a), &values(b)), *want, "{a:?} vs {b:?}");
+        }
+        let mut sizes = vec![values(&["10"]), values(&["2"]), values(&["5"]), values(&["3"])];
+        sizes.sort_by(|a, b| cmp_group_values(a, b));
+        assert_eq!(sizes, vec![values(&["2"]), values(&["3"]), values(&["5"]), values(&["10"])]);
+    }
 }
