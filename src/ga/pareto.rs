@@ -56,4 +56,36 @@ mod tests {
         assert!(dominates((0.7, 0.8), (0.6, 0.6)));
         assert!(!dominates((0.9, 0.5), (0.5, 0.9)));
     }
+
+    #[test]
+    fn dominance_by_cases() {
+        let cases = [
+            ((0.5, 0.5), (0.5, 0.5), false, "equal points"),
+            ((0.6, 0.5), (0.5, 0.5), true, "better first, equal second"),
+            ((0.5, 0.6), (0.5, 0.5), true, "equal first, better second"),
+            ((0.6, 0.6), (0.5, 0.5), true, "better in both"),
+            ((0.6, 0.4), (0.5, 0.5), false, "a trade-off"),
+            ((0.4, 0.5), (0.5, 0.5), false, "worse first"),
+            ((0.5, 0.4), (0.5, 0.5), false, "worse second"),
+        ];
+        for (a, b, want, what) in cases {
+            assert_eq!(dominates(a, b), want, "{what}: {a:?} over {b:?}");
+        }
+    }
+
+    #[test]
+    fn front_drops_a_point_tied_on_one_coordinate_and_keeps_exact_duplicates() {
+        // (0.6, 0.5) ties (0.9, 0.5) on the second coordinate and loses on the first.
+        assert_eq!(non_dominated(&[(0.6, 0.5), (0.9, 0.5)]), vec![1]);
+        assert_eq!(non_dominated(&[(0.9, 0.5), (0.9, 0.5), (0.5, 0.9)]), vec![0, 1, 2]);
+    }
+
+    #[test]
+    fn hypervolume_with_a_reference_point_off_the_origin() {
+        // Reference (0.2, 0.1): the staircase of (0.9, 0.5) and (0.5, 0.9) is
+        // 0.7·0.4 + 0.3·0.4 = 0.40; (0.1, 0.95) lies left of the reference and adds nothing.
+        let pts = [(0.9, 0.5), (0.5, 0.9), (0.1, 0.95)];
+        assert!((hypervolume_2d(&pts, (0.2, 0.1)) - 0.40).abs() < 1e-12, "{}", hypervolume_2d(&pts, (0.2, 0.1)));
+        assert_eq!(hypervolume_2d(&[(0.1, 0.95)], (0.2, 0.1)), 0.0);
+    }
 }
