@@ -92,9 +92,18 @@ pub fn best_k(fitness: &[f64], k: usize) -> Vec<usize> {
 /// equally spaced pointers, so individual `i` is picked `⌊count·p_i⌋` or `⌈count·p_i⌉` times
 /// (000 §III-A.6).
 pub fn low_variance_sample<R: Rng + ?Sized>(probs: &[f64], count: usize, rng: &mut R) -> Vec<usize> {
+    let step = probs.iter().sum::<f64>() / count as f64;
+    low_variance_picks(probs, count, rng.random::<f64>() * step)
+}
+
+/// The picks of [`low_variance_sample`] for a given first pointer `offset` in `[0, step)`,
+/// `step = Σp / count`. A pointer exactly on the boundary between two individuals picks the
+/// first (the `while U > c` of the low-variance sampler); a pointer that rounding carries past
+/// the last running sum picks the last individual.
+pub fn low_variance_picks(probs: &[f64], count: usize, offset: f64) -> Vec<usize> {
     let total: f64 = probs.iter().sum();
     let step = total / count as f64;
-    let mut pointer = rng.random::<f64>() * step;
+    let mut pointer = offset;
     let mut out = Vec::with_capacity(count);
     let mut acc = probs[0];
     let mut i = 0;
@@ -204,6 +213,40 @@ mod tests {
         // Pointers are one step apart: four picks over four equal shares take each once.
         let picks = low_variance_sample(&[0.25; 4], 4, &mut rng);
         assert_eq!(picks, vec![0, 1, 2, 3]);
+    }
+
+    /// Hand-worked pointers: shares 0.5 / 0.5, two picks, step 0.5.
+    #[test]
+    fn low_variance_picks_by_hand() {
+        let cases: &[(&[f64], usize, f64, &[usize])] = &[
+            // Pointers 0.2, 0.7: one each.
+            (&[0.5, 0.5], 2, 0.2, &[0, 1]),
+            // Pointers 0, 0.5: the second lies exactly on the boundary and stays with the first.
+            (&[0.5, 0.5], 2, 0.0, &[0, 0]),
+            // Pointers 0.1, 0.35, 0.6, 0.85 over running sums 0.25, 0.5, 1.0.
+            (&[0.25, 0.25, 0.5], 4, 0.1, &[0, 1, 2, 2]),
+            // A zero share between two others is never picked.
+            (&[0.5, 0.0, 0.5], 2, 0.25, &[0, 2]),
+        ];
+        for (probs, count, offset, want) in cases {
+            assert_eq!(low_variance_picks(probs, *count, *offset), *want, "{probs:?} × {count} from {offset}");
+        }
+        // With the largest offset below one step, rounding carries the last of ten pointers
+        // past the last running sum of [0.15, 0.15]: it picks the last individual.
+        let step = 0.3 / 10.0;
+        let picks = low_variance_picks(&[0.15, 0.15], 10, (1.0 - f64::EPSILON / 2.0) * step);
+        assert_eq!(picks, vec![0, 0, 0, 0, 0, 1, 1, 1, 1, 1]);
+    }
+
+    /// A wheel whose total is not 1 is spun over its whole length, and a wheel of zero weights
+    /// still returns an individual (the last).
+    #[test]
+    fn spin_covers_the_whole_wheel() {
+        let cum = cumulative(&[1.0, 3.0]);
+        let mut rng = stream(5, Purpose::Main, &[]);
+        let second = (0..4000).filter(|_| spin(&cum, &mut rng) == 1).count();
+        assert!((2850..3150).contains(&second), "{second} of 4000");
+        assert_eq!(spin(&[0.0, 0.0, 0.0], &mut rng), 2);
     }
 
     #[test]
