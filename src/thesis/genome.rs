@@ -244,6 +244,26 @@ mod tests {
     }
 
     #[test]
+    fn a_connector_of_zero_length_keeps_its_own_heading() {
+        // All moves are zero, so the last live viewpoint is S = E and the connector has no
+        // direction of its own: polar_deg keeps the connector's heading, not a neighbour's.
+        let mut g = vec![a(0.0, 0.0), a(10.0, 0.0), a(20.0, 0.0), a(77.0, 0.0), a(0.0, 0.0)];
+        let mut pts = Vec::new();
+        decode(&mut g, &frame(), &mut pts);
+        assert_eq!(pts, vec![frame().start; 5]);
+        assert_eq!((g[3].alpha_deg(), g[3].dist_m()), (77.0, 0.0));
+        assert_eq!(g[2].alpha_deg(), 20.0);
+    }
+
+    #[test]
+    fn zero_actions_are_those_shorter_than_a_nanometre() {
+        // Spec R18: strictly below 1e-9 m.
+        for (dist, zero) in [(0.0, true), (0.999e-9, true), (1e-9, false), (1e-6, false)] {
+            assert_eq!(a(30.0, dist).is_zero(), zero, "dist {dist}");
+        }
+    }
+
+    #[test]
     fn snap_rounds_to_the_lattice() {
         assert_eq!(snap(1.3), (1.3 * 68_719_476_736.0f64).round() / 68_719_476_736.0);
         assert_eq!(snap(11.0), 11.0);
@@ -270,6 +290,9 @@ mod tests {
             decode(&mut g, &f, &mut again);
             proptest::prop_assert_eq!(&first, &again);
             proptest::prop_assert_eq!(&corrected, &g);
+            // The connector (gene n − 2) leads from the last live viewpoint to E.
+            let connector_end = first[n - 2] + g[n - 2].direction() * g[n - 2].dist_m();
+            proptest::prop_assert!((connector_end - f.end).norm() < 1e-9, "connector ends at {connector_end}");
             // Re-aim gene 0 at viewpoint j and append the rest from j: it lands on it exactly.
             let j = rng.random_range(1..n - 1);
             let mut child: Vec<Action> = std::iter::once(g[0]).chain(g[j..].iter().copied()).collect();
