@@ -71,9 +71,12 @@ fn report_numbers_match_hand_and_independent_computations() {
         // Means ± t(0.975, 2)·s/√3, best mean f first.
         "| 0.4 | 3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 | 0.4173 |",
         "| 0.1 | 3 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 |",
-        // Kruskal–Wallis: cov without ties (rank sums 8 and 13), t with two tied pairs.
-        "| thesis.c_len | cov_final_free | 2 | 1.190 | 1 | 2.752e-1 | 0.2381 |",
-        "| thesis.c_len | t_final | 2 | 1.263 | 1 | 2.612e-1 | 0.2525 |",
+        // Kruskal–Wallis: cov without ties (rank sums 8 and 13), t with two tied pairs, f with
+        // every A below every B (rank sums 6 and 15: H = 12/42·(36/3 + 225/3) − 21 = 27/7,
+        // p = erfc(√(H/2)) = 0.0495); the medians are each group's middle run.
+        "| thesis.c_len | cov_final_free | 2 | 1.190 | 1 | 2.752e-1 | 0.2381 | 0.1: 0.6200 · 0.4: 0.7200 |",
+        "| thesis.c_len | t_final | 2 | 1.263 | 1 | 2.612e-1 | 0.2525 | 0.1: 0.5000 · 0.4: 0.6000 |",
+        "| thesis.c_len | f_free | 2 | 3.857 | 1 | 4.953e-2 | 0.7714 | 0.1: 0.3000 · 0.4: 0.4200 |",
         // Per group, f = cov·t: 0.30, 0.31, 0.28 → 0.2967 ± t(0.975, 2)·0.015275/√3.
         "| thesis.c_len=0.1 | 3 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 ± 0.0379 |",
         // One-way ANOVA of cov: SS_between = 6·0.05² = 0.015, SS_within = 2·0.020267 = 0.040533,

@@ -1,10 +1,11 @@
 //! The per-group tables of `covga report`'s summary: best run and best configuration per
 //! group (003 Tables A.1/A.2), fronts with hypervolume and run durations (Table 4.4), means
-//! with confidence intervals, and Kruskal–Wallis tests per swept parameter.
+//! with confidence intervals, and Kruskal–Wallis tests per swept parameter with the median of
+//! each value.
 
 use super::records::RunsTable;
-use super::report::{ConfigRow, Group};
-use super::stats::{kruskal_wallis, mean_ci95, mean_min_max};
+use super::report::{ConfigRow, Group, cmp_group_values};
+use super::stats::{kruskal_wallis, mean_ci95, mean_min_max, quartiles};
 use crate::ga::pareto::hypervolume_2d;
 use crate::plot::report::ParetoFacet;
 use std::collections::BTreeMap;
@@ -133,11 +134,14 @@ impl GroupTables<'_> {
         let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
         let _ = writeln!(
             md,
-            "Does the parameter's value shift the distribution of the run results? H (tie-corrected), degrees of freedom, p-value and effect size ε² = H/(N−1); runs where the parameter does not apply are left out.\n"
+            "Does the parameter's value shift the distribution of the run results? H (tie-corrected), degrees of freedom, p-value, effect size ε² = H/(N−1) and the median of each value's runs (which way it shifts); runs where the parameter does not apply are left out.\n"
         );
-        let _ = writeln!(md, "| parameter | metric | groups | H | df | p | ε² |\n|---|---|---|---|---|---|---|");
+        let _ = writeln!(
+            md,
+            "| parameter | metric | groups | H | df | p | ε² | median per value |\n|---|---|---|---|---|---|---|---|"
+        );
         for p in params {
-            for metric in ["cov_final_free", "t_final"] {
+            for metric in ["cov_final_free", "t_final", "f_free"] {
                 let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
                 for r in 0..t.rows.len() {
                     let v = get(r, p);
@@ -145,19 +149,16 @@ impl GroupTables<'_> {
                         by_value.entry(v).or_default().push(num(r, metric));
                     }
                 }
-                let k = by_value.len();
-                match kruskal_wallis(&by_value.into_values().collect::<Vec<_>>()) {
-                    Some(kw) => {
-                        let _ = writeln!(
-                            md,
-                            "| {p} | {metric} | {k} | {:.3} | {} | {:.3e} | {:.4} |",
-                            kw.h, kw.df, kw.p_value, kw.epsilon_squared
-                        );
-                    }
-                    None => {
-                        let _ = writeln!(md, "| {p} | {metric} | {k} | – | – | – | – |");
-                    }
-                }
+                let mut values: Vec<(String, Vec<f64>)> = by_value.into_iter().collect();
+                values.sort_by(|(a, _), (b, _)| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
+                let medians: Vec<String> =
+                    values.iter().map(|(v, runs)| format!("{v}: {:.4}", quartiles(runs).1)).collect();
+                let k = values.len();
+                let stats = match kruskal_wallis(&values.into_iter().map(|(_, runs)| runs).collect::<Vec<_>>()) {
+                    Some(kw) => format!("{:.3} | {} | {:.3e} | {:.4}", kw.h, kw.df, kw.p_value, kw.epsilon_squared),
+                    None => "– | – | – | –".to_string(),
+                };
+                let _ = writeln!(md, "| {p} | {metric} | {k} | {stats} | {} |", medians.join(" · "));
             }
         }
     }
