@@ -134,6 +134,26 @@ pub fn equal_scale_chart<'a, DB: DrawingBackend>(
         .map_err(err)
 }
 
+/// A group label as a panel caption: `map.source=thesis-1, thesis.c_len=0.2` becomes
+/// `source=thesis-1, c_len=0.2`. Each key keeps its last name only, so that a panel of a
+/// study grouped by several keys still has a caption that fits; the report's tables keep the
+/// full names.
+pub fn panel_label(label: &str) -> String {
+    label
+        .split(", ")
+        .map(|part| match part.split_once('=') {
+            Some((key, value)) => format!("{}={value}", key.rsplit('.').next().unwrap_or(key)),
+            None => part.to_string(),
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// Whether `title` fits `width_px` at `size` px (the estimate of [`fitting_text`]).
+pub fn fits(title: &str, width_px: u32, size: f64) -> bool {
+    0.55 * size * title.chars().count() as f64 <= 0.92 * f64::from(width_px)
+}
+
 /// A text style for `title` no larger than `size` that fits `width_px` (about 0.55 em per
 /// character in DejaVu Sans, with a margin).
 pub fn fitting_text(title: &str, width_px: u32, size: f64) -> TextStyle<'static> {
@@ -280,5 +300,19 @@ mod tests {
         }
         assert_eq!(tick_decimals(100.0), 0);
         assert_eq!(tick_decimals(0.5), 2);
+    }
+
+    #[test]
+    fn panel_labels_keep_the_last_name_of_each_key() {
+        for (label, caption) in [
+            ("map.source=thesis-1, thesis.c_len=0.2", "source=thesis-1, c_len=0.2"),
+            ("thesis.selection=elite", "selection=elite"),
+            ("seeds=3", "seeds=3"),
+            ("all runs", "all runs"),
+            ("map.source=a.b", "source=a.b"),
+        ] {
+            assert_eq!(panel_label(label), caption, "{label}");
+        }
+        assert!(fits(&"x".repeat(66), 400, 10.0) && !fits(&"x".repeat(67), 400, 10.0));
     }
 }

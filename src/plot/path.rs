@@ -30,6 +30,7 @@ const ROBOTS: [RGBColor; 8] = [
 ];
 
 /// A path over its map with the coverage it produces.
+#[derive(Clone)]
 pub struct PathFigure<'a> {
     /// The map.
     pub map: &'a GridMap,

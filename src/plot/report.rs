@@ -62,8 +62,9 @@ impl Figure for ParetoFigure {
         }
         let (lo_x, lo_y) = ((lo_x - 0.05).max(0.0), (lo_y - 0.05).max(0.0));
         for (area, facet) in root.split_evenly((r, c)).iter().zip(&self.facets) {
+            let caption = super::panel_label(&facet.label);
             let mut chart = ChartBuilder::on(area)
-                .caption(&facet.label, text(16.0))
+                .caption(&caption, super::fitting_text(&caption, area.dim_in_pixel().0, 16.0))
                 .margin(8)
                 .x_label_area_size(40)
                 .y_label_area_size(55)
@@ -128,8 +129,9 @@ impl Figure for DiversityFigure {
         for (k, (area, g)) in panels.iter().zip(&self.groups).enumerate() {
             let last = k + 1 == self.groups.len();
             let y_max = g.curve.iter().map(|c| c.3).fold(1.0f64, f64::max) * 1.05;
+            let label = super::panel_label(&g.label);
             let mut chart = ChartBuilder::on(area)
-                .caption(format!("{} ({} runs)", g.label, g.runs), super::fitting_text(&g.label, 800, 14.0))
+                .caption(format!("{label} ({} runs)", g.runs), super::fitting_text(&label, 800, 14.0))
                 .margin(8)
                 .margin_right(24)
                 .x_label_area_size(if last { 45 } else { 25 })
@@ -176,7 +178,17 @@ impl Figure for PathsGridFigure<'_> {
             root.titled(PATHS_TITLE, super::fitting_text(PATHS_TITLE, root.dim_in_pixel().0, 18.0)).map_err(err)?;
         let (r, c) = grid_shape(self.panels.len());
         for (area, panel) in root.split_evenly((r, c)).iter().zip(&self.panels) {
-            draw_map_paths(area, panel, (13.0, 11.0))?;
+            // A caption too wide for one line goes on two: the group, then the scores.
+            let width = area.dim_in_pixel().0;
+            match panel.title.split_once(": ") {
+                Some((group, scores)) if !super::fits(&panel.title, width, 13.0) => {
+                    let below = area.titled(group, super::fitting_text(group, width, 14.0)).map_err(err)?;
+                    draw_map_paths(&below, &PathFigure { title: scores.to_string(), ..panel.clone() }, (13.0, 11.0))?;
+                }
+                _ => {
+                    draw_map_paths(area, panel, (13.0, 11.0))?;
+                }
+            }
         }
         Ok(())
     }

@@ -271,7 +271,12 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             let [x0, y0, x1, y1] = rt.region;
             grid.premark_rect(x0, y0, x1, y1);
         }
-        let title = format!("{}: cov {:.3}, t {:.3}", g.label, num(r, "cov_final_free"), num(r, "t_final"));
+        let title = format!(
+            "{}: cov {:.3}, t {:.3}",
+            crate::plot::panel_label(&g.label),
+            num(r, "cov_final_free"),
+            num(r, "t_final")
+        );
         loaded.push((map, grid, paths, cfg.robot.width, title));
     }
     let wrote_paths = !loaded.is_empty();
