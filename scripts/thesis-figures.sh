@@ -3,7 +3,9 @@
 # each figure laid out as the thesis lays it out (rows x columns of the two parameters):
 #   covga grid grids/thesis-table-4-3.toml --jobs 2 --out out/thesis-table-4-3
 #   scripts/thesis-figures.sh out/thesis-table-4-3
-# Writes DIR/report (all runs, by selection) and DIR/report-fig-4-{2,3-ts,3-sp,4,5}.
+# Writes DIR/report (all runs, by selection), DIR/report-fig-4-{2,3-ts,3-sp,4,5} and
+# DIR/report-tables-a1-a2 (the best configuration of each map x R_rot x selection x fitness
+# function over seeds, as 003 Tables A.1/A.2 list them).
 set -euo pipefail
 dir=${1:?usage: scripts/thesis-figures.sh STUDY_DIR}
 covga=${COVGA:-covga}
@@ -16,3 +18,5 @@ m1=(--where map.source=thesis-1 --where robot.rot_speed=0)
   --by thesis.selection_pressure --by thesis.projection --name fig-4-3-sp
 "$covga" report "$dir" "${m1[@]}" --by thesis.c_len --by thesis.c_child --name fig-4-4
 "$covga" report "$dir" "${m1[@]}" --by thesis.p_mi --by thesis.p_ma --name fig-4-5
+"$covga" report "$dir" --by map.source --by robot.rot_speed --by thesis.selection --by thesis.projection \
+  --name tables-a1-a2
