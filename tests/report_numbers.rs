@@ -29,8 +29,9 @@ fn fixture(dir: &std::path::Path) {
             ("thesis.c_len", c_len.to_string()),
             ("planner", "thesis".to_string()),
             ("map", "thesis-1".to_string()),
-            ("feasible", "true".to_string()),
-            ("violations", String::new()),
+            // One infeasible run, counted in its group's row.
+            ("feasible", (id != "a3").to_string()),
+            ("violations", if id == "a3" { "the path sweeps 1 obstacle cells".to_string() } else { String::new() }),
             ("cov_final_free", cov.to_string()),
             ("cov_final_reach", cov.to_string()),
             ("t_final", t.to_string()),
@@ -78,7 +79,8 @@ fn report_numbers_match_hand_and_independent_computations() {
         "| thesis.c_len | t_final | 2 | 1.263 | 1 | 2.612e-1 | 0.2525 | 0.1: 0.5000 · 0.4: 0.6000 |",
         "| thesis.c_len | f_free | 2 | 3.857 | 1 | 4.953e-2 | 0.7714 | 0.1: 0.3000 · 0.4: 0.4200 |",
         // Per group, f = cov·t: 0.30, 0.31, 0.28 → 0.2967 ± t(0.975, 2)·0.015275/√3.
-        "| thesis.c_len=0.1 | 3 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 ± 0.0379 |",
+        "| thesis.c_len=0.1 | 3 | 1 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 ± 0.0379 |",
+        "| thesis.c_len=0.4 | 3 | 0 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 | 0.4173 ± ",
         // One-way ANOVA of cov: SS_between = 6·0.05² = 0.015, SS_within = 2·0.020267 = 0.040533,
         // η² = 0.015/0.055533, F = 0.015/(0.040533/4) = 1.48; P(F(1, 4) > F) = P(|T₄| > √F),
         // from the closed form of Student's t with 4 df: 0.2906. On ranks (A 1, 3, 4; B 6, 2, 5):
@@ -111,7 +113,7 @@ fn where_filters_the_runs_and_name_keeps_reports_apart() {
     let md = std::fs::read_to_string(dir.path().join("report-c-len-04/summary.md")).unwrap();
     assert!(md.contains("Runs with thesis.c_len = 0.40 only."), "{md}");
     assert!(md.contains("3 runs, 1 configurations, 3 replicate(s)"), "{md}");
-    assert!(md.contains("| all runs | 3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 |"), "{md}");
+    assert!(md.contains("| all runs | 3 | 0 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 |"), "{md}");
     assert!(!dir.path().join("report").exists(), "the default report folder is left alone");
     for (args, needle) in [
         (vec!["--where", "nothing=1"], "--where `nothing` is not a column"),
