@@ -160,7 +160,10 @@ impl GroupTables<'_> {
                     values.iter().map(|(v, runs)| format!("{v}: {:.4}", quartiles(runs).1)).collect();
                 let k = values.len();
                 let stats = match kruskal_wallis(&values.into_iter().map(|(_, runs)| runs).collect::<Vec<_>>()) {
-                    Some(kw) => format!("{:.3} | {} | {:.3e} | {:.4}", kw.h, kw.df, kw.p_value, kw.epsilon_squared),
+                    Some(kw) => {
+                        let p = if kw.p_value > 0.0 { format!("{:.3e}", kw.p_value) } else { "< 1e-300".into() };
+                        format!("{:.3} | {} | {p} | {:.4}", kw.h, kw.df, kw.epsilon_squared)
+                    }
                     None => "– | – | – | –".to_string(),
                 };
                 let _ = writeln!(md, "| {p} | {metric} | {k} | {stats} | {} |", medians.join(" · "));

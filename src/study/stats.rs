@@ -79,7 +79,8 @@ pub fn kruskal_wallis(groups: &[Vec<f64>]) -> Option<KruskalWallis> {
     }
     let h = (12.0 / (n * (n + 1.0)) * sum - 3.0 * (n + 1.0)) / correction;
     let df = groups.len() - 1;
-    let p_value = 1.0 - ChiSquared::new(df as f64).expect("df > 0").cdf(h.max(0.0));
+    // The survival function keeps p-values far below 1e-16, where `1 − cdf` rounds to 0.
+    let p_value = ChiSquared::new(df as f64).expect("df > 0").sf(h.max(0.0));
     Some(KruskalWallis { h, df, p_value, epsilon_squared: h / (n - 1.0) })
 }
 
@@ -270,6 +271,13 @@ mod tests {
         assert!((kw.h - raw / (1.0 - 18.0 / 210.0)).abs() < 1e-12);
         assert!(kruskal_wallis(&[vec![1.0, 1.0], vec![1.0]]).is_none());
         assert!(kruskal_wallis(&[vec![1.0, 2.0]]).is_none());
+        // {1..100} against {101..200}: H = 12/(200·201)·(5050² + 15050²)/100 − 603 = 149.25,
+        // p = erfc(√(H/2)) ≈ 2.6e-34, which `1 − cdf` would round to 0.
+        let low: Vec<f64> = (1..=100).map(f64::from).collect();
+        let high: Vec<f64> = (101..=200).map(f64::from).collect();
+        let kw = kruskal_wallis(&[low, high]).unwrap();
+        assert!((kw.h - 149.253_731_343).abs() < 1e-6, "{}", kw.h);
+        assert!(kw.p_value > 1e-35 && kw.p_value < 1e-33, "{}", kw.p_value);
     }
 
     #[test]
