@@ -36,9 +36,14 @@ fn main() {
     }
     let mut ga = ThesisGa { scenario, params, seed };
     let mut rec = Recorder::default();
-    let out = ga
-        .run(&Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None }, None, &mut [&mut rec])
-        .expect("run");
+    let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
+    // NO_OBSERVER=1: no observer, hence no diversity measured (as in `cargo bench --bench thesis_run`).
+    let out = if std::env::var_os("NO_OBSERVER").is_some() {
+        ga.run(&budget, None, &mut [])
+    } else {
+        ga.run(&budget, None, &mut [&mut rec])
+    }
+    .expect("run");
     let b = &out.best.score;
     println!(
         "iterations {} evaluations {} wall {:.3} s cov_final {:.4} t_final {:.4} f {:.4} len {} div {:.0}",

@@ -370,36 +370,4 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
 }
 
 #[cfg(test)]
-mod tests {
-    use super::cmp_group_values;
-    use std::cmp::Ordering::{Equal, Greater, Less};
-
-    fn values(v: &[&str]) -> Vec<String> {
-        v.iter().map(|s| s.to_string()).collect()
-    }
-
-    #[test]
-    fn group_values_order_numbers_by_magnitude_and_text_as_text() {
-        let cases: &[(&[&str], &[&str], std::cmp::Ordering)] = &[
-            (&["2"], &["10"], Less),
-            (&["10"], &["3"], Greater),
-            (&["0.01"], &["0.1"], Less),
-            (&["-1"], &["0"], Less),
-            (&["1e3"], &["50"], Greater),
-            (&["rrws"], &["elite"], Greater),
-            (&["5"], &["elite"], Less),
-            (&["f2"], &["3"], Greater),
-            (&["7", "f1"], &["7", "f2"], Less),
-            (&["10", "f1"], &["9", "f2"], Greater),
-            (&["3"], &["3"], Equal),
-            // Equal numbers written differently stay distinct groups, in text order.
-            (&["1.0"], &["1"], Greater),
-        ];
-        for (a, b, want) in cases {
-            assert_eq!(cmp_group_values(&values(a), &values(b)), *want, "{a:?} vs {b:?}");
-        }
-        let mut sizes = vec![values(&["10"]), values(&["2"]), values(&["5"]), values(&["3"])];
-        sizes.sort_by(|a, b| cmp_group_values(a, b));
-        assert_eq!(sizes, vec![values(&["2"]), values(&["3"]), values(&["5"]), values(&["10"])]);
-    }
-}
+mod tests;

@@ -231,6 +231,16 @@ mod tests {
         assert_eq!(back.u, 9.0);
         assert!((back.p_value - t.p_value).abs() < 1e-15);
         assert!(mann_whitney_u(&[1.0], &[2.0, 3.0]).is_none());
+        assert!(mann_whitney_u(&[2.0, 3.0], &[1.0]).is_none());
+        assert!(mann_whitney_u(&[2.0, 3.0], &[]).is_none());
+        // Unequal sizes, two values each side allowed: a = {1,2,3}, b = {4,5,6,7}: U = 0,
+        // n1 n2 / 2 = 6, σ² = 12/12 · 8 = 8, z = (6 − 0.5)/√8.
+        let t = mann_whitney_u(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0, 7.0]).unwrap();
+        assert_eq!(t.u, 0.0);
+        assert!((t.z - 5.5 / 8f64.sqrt()).abs() < 1e-12, "{}", t.z);
+        // Two against two: R1 = 3, U = 0, σ² = 4/12 · 5, z = (2 − 0.5)/√(5/3).
+        let t = mann_whitney_u(&[1.0, 2.0], &[3.0, 4.0]).unwrap();
+        assert!((t.z - 1.5 / (5.0f64 / 3.0).sqrt()).abs() < 1e-12, "{}", t.z);
         assert!(mann_whitney_u(&[1.0, 1.0], &[1.0, 1.0]).is_none());
     }
 
@@ -242,9 +252,24 @@ mod tests {
         assert_eq!(holm(&[0.6, 0.5]), vec![1.0, 1.0]);
         assert_eq!(vargha_delaney_a12(&[3.0, 4.0], &[1.0, 3.0]), 3.5 / 4.0);
         assert_eq!(vargha_delaney_a12(&[1.0], &[2.0]), 0.0);
-        assert_eq!(a12_magnitude(0.5), "negligible");
-        assert_eq!(a12_magnitude(0.8), "large");
-        assert_eq!(a12_magnitude(0.38), "small");
+        // One against two: 2 wins of 1 × 2 pairs.
+        assert_eq!(vargha_delaney_a12(&[3.0], &[1.0, 2.0]), 1.0);
+        assert_eq!(vargha_delaney_a12(&[3.0, 0.0, 0.0], &[1.0, 2.0]), 2.0 / 6.0);
+        // Thresholds 0.06, 0.14, 0.21 of |A − 0.5|, each the lower bound of the next word
+        // (0.44 and 0.36 are exactly 0.06 and 0.14 from 0.5 in binary floating point).
+        for (a12, word) in [
+            (0.5, "negligible"),
+            (0.45, "negligible"),
+            (0.44, "small"),
+            (0.38, "small"),
+            (0.36, "medium"),
+            (0.64, "medium"),
+            (0.65, "medium"),
+            (0.2, "large"),
+            (0.8, "large"),
+        ] {
+            assert_eq!(a12_magnitude(a12), word, "{a12}");
+        }
     }
 
     #[test]
@@ -254,6 +279,10 @@ mod tests {
         assert_eq!(m, 2.0);
         assert!((h - 4.302_652_729_911_275 / 3f64.sqrt()).abs() < 1e-9);
         assert!(mean_ci95(&[5.0]).1.is_nan());
+        // Two values: mean 2, s² = 2, t_{0.975, 1} = 12.7062047 → half-width 12.7062047.
+        let (m, h) = mean_ci95(&[1.0, 3.0]);
+        assert_eq!(m, 2.0);
+        assert!((h - 12.706_204_736_174_7).abs() < 1e-6, "{h}");
     }
 
     #[test]

@@ -238,12 +238,137 @@ mod tests {
     }
 
     #[test]
+    fn headings_of_lattice_moves_by_hand() {
+        use std::f64::consts::PI;
+        let g = lattice();
+        // (from, to, heading): the lattice has 6 columns, 5 m apart; ids run row by row.
+        let cases =
+            [(0, 1, 0.0), (0, 6, PI / 2.0), (1, 0, PI), (6, 0, -PI / 2.0), (0, 7, PI / 4.0), (8, 13, 3.0 * PI / 4.0)];
+        for (a, b, expected) in cases {
+            assert!((heading(&g, a, b) - expected).abs() < 1e-12, "{a} → {b}: {}", heading(&g, a, b));
+        }
+    }
+
+    #[test]
+    fn extension_stops_at_the_target_length_and_goes_straight_under_a_strong_bias() {
+        let g = lattice();
+        let p = OperatorParams { lambda: 50.0, ..params() };
+        let mut rng = stream(3, Purpose::Main, &[]);
+        // Heading north from 0: every turn weighs 10^-25 or less against going straight on.
+        let mut path = vec![0, 6];
+        extend_random(&mut path, 6, &g, &p, &mut rng);
+        assert_eq!(path, vec![0, 6, 12, 18, 24, 30]);
+        // Westward along the second row.
+        let mut path = vec![11, 10];
+        extend_random(&mut path, 5, &g, &p, &mut rng);
+        assert_eq!(path, vec![11, 10, 9, 8, 7]);
+    }
+
+    #[test]
+    fn extension_avoids_the_last_m_waypoints_unless_every_neighbour_is_among_them() {
+        let g = lattice();
+        let p = OperatorParams { lambda: 0.0, memory: 3, ..params() };
+        for seed in 0..50 {
+            let mut rng = stream(seed, Purpose::Main, &[]);
+            let mut path = vec![14];
+            extend_random(&mut path, 40, &g, &p, &mut rng);
+            assert_eq!(path.len(), 40);
+            for k in 1..path.len() {
+                let recent = &path[k.saturating_sub(3)..k];
+                let forced = g.adj[path[k - 1] as usize].iter().all(|c| recent.contains(c));
+                assert!(forced || !recent.contains(&path[k]), "seed {seed}: {path:?} at {k}");
+            }
+        }
+        // Cornered: both neighbours of 0 (1 and 6) are recent, so one of them is taken; with
+        // only 1 recent, 6 is.
+        let mut rng = stream(1, Purpose::Main, &[]);
+        let mut path = vec![6, 1, 0];
+        extend_random(&mut path, 4, &g, &p, &mut rng);
+        assert!([1, 6].contains(&path[3]), "{path:?}");
+        for _ in 0..20 {
+            let mut path = vec![1, 0];
+            extend_random(&mut path, 3, &g, &p, &mut rng);
+            assert_eq!(path, vec![1, 0, 6]);
+        }
+    }
+
+    #[test]
+    fn without_a_bias_every_neighbour_is_equally_likely() {
+        // From 14 (interior: neighbours 8, 13, 15, 20) with λ = 0 and no history, each of the
+        // four is drawn with probability 1/4: 4 000 draws, each count within 4 000/4 ± 120
+        // (about 4.4 standard deviations).
+        let g = lattice();
+        let p = OperatorParams { lambda: 0.0, ..params() };
+        let mut rng = stream(4, Purpose::Main, &[]);
+        let mut counts = std::collections::BTreeMap::new();
+        for _ in 0..4000 {
+            let mut path = vec![14];
+            extend_random(&mut path, 2, &g, &p, &mut rng);
+            *counts.entry(path[1]).or_insert(0) += 1;
+        }
+        assert_eq!(counts.keys().copied().collect::<Vec<u32>>(), vec![8, 13, 15, 20]);
+        assert!(counts.values().all(|&c| (880..=1120).contains(&c)), "{counts:?}");
+    }
+
+    #[test]
+    fn mutation_a_keeps_a_prefix_of_two_or_more_and_regrows_within_bounds() {
+        let g = lattice();
+        let p = OperatorParams { l_max: 12, ..params() };
+        // A walk along the first row and up the last column: 0 1 2 3 4 5 11 17.
+        let original: Vec<u32> = vec![0, 1, 2, 3, 4, 5, 11, 17];
+        let mut kept_lengths = std::collections::BTreeSet::new();
+        for seed in 0..300 {
+            let mut rng = stream(seed, Purpose::Main, &[]);
+            let mut path = original.clone();
+            mutation_a(&mut path, &g, &p, &mut rng);
+            assert!((original.len()..=12).contains(&path.len()), "seed {seed}: {path:?}");
+            assert!(is_feasible(&path, &g));
+            let kept = path.iter().zip(&original).take_while(|(x, y)| x == y).count();
+            assert!(kept >= 2, "seed {seed}: the start and its first move stay: {path:?}");
+            kept_lengths.insert(kept);
+        }
+        assert_eq!(kept_lengths.first(), Some(&2), "k = 1 is drawn");
+        // A path of two waypoints is regrown from its first move; one of one is left alone.
+        let grown = (0..50).any(|seed| {
+            let mut path = vec![0, 1];
+            mutation_a(&mut path, &g, &p, &mut stream(seed, Purpose::Main, &[]));
+            assert_eq!(&path[..2], &[0, 1]);
+            path.len() > 2
+        });
+        assert!(grown);
+        let mut path = vec![7];
+        mutation_a(&mut path, &g, &p, &mut stream(1, Purpose::Main, &[]));
+        assert_eq!(path, vec![7]);
+    }
+
+    #[test]
     fn crossover_joins_at_the_common_waypoint() {
         let mut rng = stream(1, Purpose::Main, &[]);
         let (c1, c2) = crossover(&[0, 1, 2, 3, 9], &[0, 6, 2, 8], 5, &mut rng).unwrap();
         assert_eq!(c1, vec![0, 1, 2, 8]);
         assert_eq!(c2, vec![0, 6, 2, 3, 9]);
         assert!(crossover(&[0, 1], &[0, 2], 5, &mut rng).is_none(), "only the start is shared");
+        // The shared 5 lies at positions 1 and 3: within T_x = 2 of each other, not within 1.
+        let (c1, c2) = crossover(&[0, 5, 9], &[0, 1, 2, 5, 4], 2, &mut rng).expect("|1 − 3| ≤ 2");
+        assert_eq!((c1, c2), (vec![0, 5, 4], vec![0, 1, 2, 5, 9]));
+        assert!(crossover(&[0, 5, 9], &[0, 1, 2, 5, 4], 1, &mut rng).is_none());
+    }
+
+    #[test]
+    fn repair_truncates_to_l_max_and_extends_to_l_min() {
+        let g = lattice();
+        let p = OperatorParams { l_min: 4, l_max: 6, ..params() };
+        let mut rng = stream(6, Purpose::Main, &[]);
+        let mut long: Vec<u32> = vec![0, 1, 2, 3, 4, 5, 11, 17];
+        repair(&mut long, &g, &p, &mut rng);
+        assert_eq!(long, vec![0, 1, 2, 3, 4, 5]);
+        let mut short = vec![0, 1];
+        repair(&mut short, &g, &p, &mut rng);
+        assert_eq!((short.len(), &short[..2]), (4, &[0, 1][..]));
+        assert!(is_feasible(&short, &g));
+        let mut fine = vec![0, 1, 7, 8, 9];
+        repair(&mut fine, &g, &p, &mut rng);
+        assert_eq!(fine, vec![0, 1, 7, 8, 9]);
     }
 
     #[test]
