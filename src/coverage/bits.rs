@@ -207,11 +207,13 @@ impl VisitPlanes {
         self.top = 0;
     }
 
-    /// Becomes a copy of `other` (keeps the allocation).
+    /// Becomes a copy of `other` (keeps the allocation), with room for one more plane: a
+    /// child's first visit that carries into a new plane then grows the map without moving it.
     pub fn copy_from(&mut self, other: &VisitPlanes) {
         self.words = other.words;
         self.top = other.top;
         self.planes.clear();
+        self.planes.reserve((other.top + 1) * other.words);
         self.planes.extend_from_slice(&other.planes[..other.top * other.words]);
     }
 

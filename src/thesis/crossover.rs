@@ -1,7 +1,7 @@
 //! Modified dual-point crossover with locality-changing and locality-preserving children
 //! (003 §3.3.2, eqs. 3.20–3.22, Figs. 3.6–3.7; spec §7, R12–R14).
 
-use super::genome::{Action, Frame, decode_prefix, set_move};
+use super::genome::{Action, Frame, decode_prefix, decode_prefix_from, set_move};
 use crate::geom::Point;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
@@ -106,6 +106,9 @@ pub struct Parent<'a> {
     pub genome: &'a [Action],
     /// Its decoded, corrected viewpoints.
     pub points: &'a [Point],
+    /// Its stable prefix (see [`super::genome::decode`]): a child that starts with these genes
+    /// is decoded from the end of the ones it shares. 0 is always safe.
+    pub stable: usize,
 }
 
 fn splice(a: &[Action], (a0, a1): (usize, usize), b: &[Action], (b0, b1): (usize, usize)) -> Vec<Action> {
@@ -129,8 +132,16 @@ pub fn changing_child(
     let mut child = splice(a.genome, (a0, a1), b.genome, (b0, b1));
     let k = a0 + (b1 - b0);
     if k < child.len() - 2 {
+        // The child starts with the receiver's genes 0 .. a0: those of its stable prefix
+        // decode to its viewpoints.
+        let shared = a0.min(a.stable);
         let mut pts = Vec::with_capacity(k + 1);
-        decode_prefix(&mut child, frame, k, &mut pts);
+        if shared > 0 {
+            pts.extend_from_slice(&a.points[..=shared]);
+            decode_prefix_from(&mut child, frame, k, &mut pts);
+        } else {
+            decode_prefix(&mut child, frame, k, &mut pts);
+        }
         set_move(&mut child, k, pts[k], a.points[a1 + 1]);
     }
     child

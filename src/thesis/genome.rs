@@ -132,40 +132,90 @@ pub fn live(n: usize) -> std::ops::Range<usize> {
 /// and each move whose start or end was changed is re-derived, so the next action still
 /// starts from its originally intended place where possible. `points` receives the viewpoints.
 pub fn decode_prefix(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut Vec<Point>) {
-    let n = genome.len();
-    debug_assert!(n >= MIN_GENOME_LEN && upto <= n - 2);
+    debug_assert!(genome.len() >= MIN_GENOME_LEN && upto <= genome.len() - 2);
     points.clear();
     points.push(frame.start);
-    let mut q_prev = frame.start;
+    decode_span(genome, frame, upto, points);
+}
+
+/// [`decode_prefix`] resumed after a stable prefix: `points` holds viewpoints `0 ..= k` of a
+/// genome whose first `k` genes equal (bit for bit) those of a genome with a stable prefix of at
+/// least `k` genes (see [`decode`]), `k ≤ upto`. The result equals [`decode_prefix`]'s.
+pub fn decode_prefix_from(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut Vec<Point>) {
+    debug_assert!(!points.is_empty() && points.len() <= upto + 1 && upto <= genome.len() - 2);
+    decode_span(genome, frame, upto, points);
+}
+
+/// Continues [`decode_prefix`] from the last of `points` (the viewpoints of a stable prefix,
+/// see [`decode`]) up to viewpoint `upto`. Returns the length of the stable prefix after it.
+///
+/// A gene decoded without correction re-decodes with the same arithmetic on the same inputs. A
+/// re-derived gene is stable when decoding its new move from its start lands on its viewpoint
+/// bit for bit (the lattice makes this the rule; a re-derived move shorter than a zero action
+/// is the exception, as it would not move at all when decoded again).
+fn decode_span(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut Vec<Point>) -> usize {
+    let from = points.len() - 1;
+    let mut q_prev = points[from];
     let mut prev_changed = false;
-    for i in 0..upto {
+    let mut stable = from;
+    for i in from..upto {
         // A zero action (R18) does not move at all, so deleting it later cannot move the path.
         let q = if genome[i].is_zero() { q_prev } else { snap_point(q_prev + genome[i].direction * genome[i].dist_m) };
         let p = frame.clamp(q);
         let changed = p != q;
+        let mut holds = true;
         if changed || prev_changed {
             let (alpha, dist) = polar_deg(p - points[i], genome[i].alpha_deg);
-            genome[i] = Action::new(alpha, dist);
+            let gene = Action::new(alpha, dist);
+            genome[i] = gene;
+            let again = if gene.is_zero() { points[i] } else { snap_point(points[i] + gene.direction * gene.dist_m) };
+            holds = again == p;
+        }
+        if holds && stable == i {
+            stable = i + 1;
         }
         points.push(p);
         q_prev = q;
         prev_changed = changed;
     }
+    stable
 }
 
 /// Decodes the whole genome with correction (spec §2.2): viewpoints `0 ..= n − 2` as in
 /// [`decode_prefix`], the connector's move recomputed to reach E, and E appended. After this,
 /// the moves reproduce `points` exactly up to rounding.
-pub fn decode(genome: &mut [Action], frame: &Frame, points: &mut Vec<Point>) {
+///
+/// Returns the stable prefix: the number of leading live genes whose corrected moves, decoded
+/// again from S, give the same viewpoints bit for bit and need no correction. A genome that
+/// shares those genes decodes to the same first viewpoints, so [`decode_from`] may start after
+/// them.
+pub fn decode(genome: &mut [Action], frame: &Frame, points: &mut Vec<Point>) -> usize {
+    points.clear();
+    points.push(frame.start);
+    decode_from(genome, frame, points)
+}
+
+/// [`decode`] resumed after a stable prefix: `points` holds viewpoints `0 ..= k` of a genome
+/// whose first `k` genes equal (bit for bit) the first `k` of a genome with a stable prefix of
+/// at least `k` genes, `k ≤ n − 2`. The result equals [`decode`]'s, the returned stable prefix
+/// included.
+pub fn decode_from(genome: &mut [Action], frame: &Frame, points: &mut Vec<Point>) -> usize {
     let n = genome.len();
-    // The gene right after a clamped point is re-derived inside decode_prefix for i < n − 2;
+    debug_assert!(n >= MIN_GENOME_LEN && !points.is_empty() && points.len() < n);
+    // The gene right after a clamped point is re-derived inside decode_span for i < n − 2;
     // the connector is re-derived unconditionally below.
-    decode_prefix(genome, frame, n - 2, points);
+    let stable = decode_span(genome, frame, n - 2, points);
     let last = points[n - 2];
     let (alpha, dist) = polar_deg(frame.end - last, genome[n - 2].alpha_deg);
     genome[n - 2] = Action::new(alpha, dist);
     genome[n - 1] = genome[n - 1].with_dist(0.0);
     points.push(frame.end);
+    stable
+}
+
+/// Whether two actions are the same bit for bit (the direction follows from the heading).
+pub fn same_bits(a: &Action, b: &Action) -> bool {
+    (a.alpha_deg.to_bits() == b.alpha_deg.to_bits()) & (a.dist_m.to_bits() == b.dist_m.to_bits())
 }
 
 /// Sets the move of gene `i` so that it goes from `from` to `to` (used by crossover patches).
@@ -300,6 +350,54 @@ mod tests {
             let mut pts = Vec::new();
             decode(&mut child, &f, &mut pts);
             proptest::prop_assert_eq!(&pts[1..], &first[j..]);
+        }
+    }
+
+    #[test]
+    fn a_re_derived_move_shorter_than_a_zero_action_ends_the_stable_prefix() {
+        // Gene 0 leaves the map and is cut at x = 11 (stable: decoded again it lands there).
+        // Gene 1 was meant to start at the unclamped x = 13.3 and end 0.5 nm inside the edge;
+        // re-aimed from the cut point it is 0.5 nm long, a zero action, which decoded again
+        // would not move: the stable prefix ends before it.
+        let mut g = vec![a(0.0, 12.0), a(180.0, 2.3 + 5e-10), a(90.0, 1.0), a(0.0, 0.0), a(0.0, 0.0)];
+        let mut pts = Vec::new();
+        assert_eq!(decode(&mut g, &frame(), &mut pts), 1);
+        assert_eq!(pts[1], Point::new(11.0, snap(1.3)));
+        assert!(g[1].is_zero() && pts[2] != pts[1]);
+        let mut again = Vec::new();
+        decode(&mut g, &frame(), &mut again);
+        assert_eq!(again[2], pts[1], "decoded again, the zero action stays put: not the same path");
+        // Without the cut, every gene is stable.
+        let mut inside = vec![a(0.0, 2.0), a(90.0, 3.0), a(180.0, 1.0), a(0.0, 0.0), a(0.0, 0.0)];
+        assert_eq!(decode(&mut inside, &frame(), &mut pts), 3);
+    }
+
+    proptest::proptest! {
+        /// A genome that shares a stable prefix with a decoded one, decoded from the end of
+        /// the shared genes, equals its decoding from S: viewpoints, corrected moves and stable
+        /// prefix.
+        #[test]
+        fn decoding_from_a_stable_prefix_equals_decoding_from_s(seed in 0u64..20_000, n in 3usize..60, m in 3usize..60, dist_max in 0.5..30.0f64) {
+            let mut rng = crate::ga::rng::stream(seed, crate::ga::rng::Purpose::Main, &[]);
+            let f = Frame::new(Point::new(1.3, 1.3), Point::new(9.7, 2.1), Point::new(0.0, 0.0), Point::new(11.0, 11.0));
+            let mut parent = Vec::new();
+            random_genome(&mut rng, n - 2, dist_max, &mut parent);
+            let mut points = Vec::new();
+            let stable = decode(&mut parent, &f, &mut points);
+            proptest::prop_assert!(stable <= n - 2);
+            // The child: the parent's first k genes, then genes of its own.
+            let k = rng.random_range(0..=stable.min(m - 2));
+            let mut tail = Vec::new();
+            random_genome(&mut rng, m - 2, dist_max, &mut tail);
+            let child: Vec<Action> = parent[..k].iter().chain(&tail[k..]).copied().collect();
+            let (mut whole, mut resumed) = (child.clone(), child);
+            let mut from_s = Vec::new();
+            let s_whole = decode(&mut whole, &f, &mut from_s);
+            let mut from_k = points[..=k].to_vec();
+            let s_resumed = decode_from(&mut resumed, &f, &mut from_k);
+            proptest::prop_assert_eq!(from_s, from_k);
+            proptest::prop_assert_eq!(whole, resumed);
+            proptest::prop_assert_eq!(s_whole, s_resumed);
         }
     }
 

@@ -2,7 +2,7 @@
 //! follow every creation or change of a genome (003 §3.3.4, spec §9, order of R17).
 
 use super::fitness::{Projection, ThesisScore, score_counts};
-use super::genome::{Action, Frame, decode, live, random_genome};
+use super::genome::{Action, Frame, decode, decode_from, live, random_genome, same_bits};
 use crate::coverage::bits::{BitLayers, Tally, VisitPlanes};
 use crate::coverage::segments::SegmentCache;
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
@@ -80,6 +80,10 @@ pub struct Individual {
     pub score: ThesisScore,
     /// `M_traveled`: visits of every free cell the path swept (pre-marks not included).
     pub visits: VisitPlanes,
+    /// Leading genes whose moves, decoded again, give the same first viewpoints (see
+    /// [`decode`]); a child that shares them is decoded from its first changed gene. 0 is
+    /// always safe.
+    pub stable_genes: usize,
 }
 
 impl Individual {
@@ -152,24 +156,45 @@ pub fn evaluate(
     mode: EvaluationMode,
     scratch: &mut EvalScratch,
 ) {
-    decode(&mut ind.genome, &scenario.frame, &mut scratch.points);
+    // A child shares its receiving parent's first genes up to the first changed one; those
+    // of the parent's stable prefix decode to the parent's viewpoints, so decoding starts there.
+    let shared = match (mode, base) {
+        (EvaluationMode::Incremental, Base::Parent(p)) => {
+            let bound = p.stable_genes.min(ind.genome.len() - 2);
+            (0..bound).find(|&i| !same_bits(&ind.genome[i], &p.genome[i])).unwrap_or(bound)
+        }
+        _ => 0,
+    };
+    ind.stable_genes = if let Base::Parent(p) = base
+        && shared > 0
+    {
+        scratch.points.clear();
+        scratch.points.extend_from_slice(&p.points[..=shared]);
+        decode_from(&mut ind.genome, &scenario.frame, &mut scratch.points)
+    } else {
+        decode(&mut ind.genome, &scenario.frame, &mut scratch.points)
+    };
     let (layers, width) = (&scenario.layers, scenario.robot.width);
+    let cache = &mut scratch.segments;
     let tally = match (mode, base) {
         (EvaluationMode::Full, _) => layers.sweep(&mut ind.visits, &scratch.points, width),
         (EvaluationMode::Incremental, Base::None) => {
             ind.visits.reset(layers.plane_words());
-            edit(layers, &mut scratch.segments, &mut ind.visits, Tally::default(), &[], &scratch.points, width)
+            edit(layers, cache, &mut ind.visits, Tally::default(), &[], &scratch.points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Own) => {
             let t = ind.tally();
-            edit(layers, &mut scratch.segments, &mut ind.visits, t, &ind.points, &scratch.points, width)
+            edit(layers, cache, &mut ind.visits, t, &ind.points, &scratch.points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             ind.visits.copy_from(&p.visits);
-            edit(layers, &mut scratch.segments, &mut ind.visits, p.tally(), &p.points, &scratch.points, width)
+            edit(layers, cache, &mut ind.visits, p.tally(), &p.points, &scratch.points, shared, width)
         }
     };
-    std::mem::swap(&mut ind.points, &mut scratch.points);
+    // Copied, not swapped: a swap would hand the scratch a new child's empty vector, to be
+    // grown again by the next decode.
+    ind.points.clear();
+    ind.points.extend_from_slice(&scratch.points);
     ind.sweep = tally.counts();
     let rot = scenario.robot.rot_speed;
     ind.t_rot_s = if rot > 0.0 { motion::rotation_time(motion::turning(&ind.points).0, rot) } else { 0.0 };
@@ -184,7 +209,9 @@ pub fn evaluate(
     );
 }
 
-/// Turns the visit map of path `old` (with counts `tally`) into that of path `new`.
+/// Turns the visit map of path `old` (with counts `tally`) into that of path `new`, whose first
+/// `same + 1` viewpoints are known to be `old`'s.
+#[allow(clippy::too_many_arguments)]
 fn edit(
     layers: &BitLayers,
     cache: &mut SegmentCache,
@@ -192,11 +219,12 @@ fn edit(
     mut tally: Tally,
     old: &[Point],
     new: &[Point],
+    same: usize,
     width: f64,
 ) -> Tally {
     let (so, sn) = (old.len().saturating_sub(1), new.len().saturating_sub(1));
     let shared = so.min(sn);
-    let mut x = 0;
+    let mut x = same.min(shared);
     while x < shared && old[x] == new[x] && old[x + 1] == new[x + 1] {
         x += 1;
     }
@@ -222,16 +250,31 @@ pub fn remove_zero_actions(ind: &mut Individual) -> usize {
     if n < 5 {
         return 0;
     }
-    // One pass in place, no marks buffer: a gene's mark reads its neighbours as they were, and
-    // the write position never passes the read position, so the genes ahead are still
-    // unchanged; the zero flag of the gene behind is carried over from the previous step.
-    let mut write = 0;
-    let mut behind_zero = false;
-    for i in 0..n {
+    // Most genomes have no run of three zeros: find the first marked gene without writing (the
+    // middle of the first three zeros in a row ending at gene n − 2 or before).
+    let mut run = 0;
+    let Some(first) = ind.genome[..n - 1].iter().position(|g| {
+        run = if g.is_zero() { run + 1 } else { 0 };
+        run == 3
+    }) else {
+        return 0;
+    };
+    let first = first - 1;
+    // From there, one pass in place, no marks buffer: a gene's mark reads its neighbours as
+    // they were, and the write position never passes the read position, so the genes ahead
+    // are still unchanged; the zero flag of the gene behind is carried over from the previous
+    // step.
+    let mut write = first;
+    let mut behind_zero = true;
+    let mut deleted_in_stable = 0;
+    for i in first..n {
         let here_zero = ind.genome[i].is_zero();
         let ahead_zero = i + 1 < n && ind.genome[i + 1].is_zero();
         let marked = i >= 1 && i <= n - 3 && behind_zero && here_zero && ahead_zero;
         behind_zero = here_zero;
+        if marked && i < ind.stable_genes {
+            deleted_in_stable += 1;
+        }
         if !marked {
             ind.genome[write] = ind.genome[i];
             if i < ind.points.len() {
@@ -241,6 +284,9 @@ pub fn remove_zero_actions(ind: &mut Individual) -> usize {
         }
     }
     let removed = n - write;
+    // The deleted genes are zero actions, which move nothing when decoded again: the stable
+    // prefix stays stable, shorter by the genes deleted from it.
+    ind.stable_genes -= deleted_in_stable;
     ind.genome.truncate(write);
     ind.points.truncate(write);
     removed
@@ -352,15 +398,16 @@ mod tests {
                 (inc, full)
             };
             let same = |a: &Individual, b: &Individual| {
-                a.genome == b.genome && a.points == b.points && a.sweep == b.sweep && a.score == b.score && {
+                a.genome == b.genome && a.points == b.points && a.sweep == b.sweep && a.score == b.score
+                    && a.stable_genes == b.stable_genes && {
                     let (mut x, mut y) = (Vec::new(), Vec::new());
                     a.visits.for_each_count(|c, k| x.push((c, k)));
                     b.visits.for_each_count(|c, k| y.push((c, k)));
                     x == y
                 }
             };
-            let pa = Parent { genome: &parents[0].genome, points: &parents[0].points };
-            let pb = Parent { genome: &parents[1].genome, points: &parents[1].points };
+            let pa = Parent { genome: &parents[0].genome, points: &parents[0].points, stable: parents[0].stable_genes };
+            let pb = Parent { genome: &parents[1].genome, points: &parents[1].points, stable: parents[1].stable_genes };
             let kids = crossover(pa, pb, c_len, ShortGenomes::Clamp, ChildMode::from_index(mode).unwrap(), 300, &sc.frame, &mut rng);
             for (k, genome) in kids.into_iter().flatten().enumerate() {
                 let receiver = &parents[k % 2];

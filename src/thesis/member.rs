@@ -143,7 +143,7 @@ impl Member for Individual {
 
     fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng) -> Option<Vec<Vec<Action>>> {
         fn parent(x: &Individual) -> Parent<'_> {
-            Parent { genome: &x.genome, points: &x.points }
+            Parent { genome: &x.genome, points: &x.points, stable: x.stable_genes }
         }
         crossover(parent(a), parent(b), p.c_len, p.short_genomes, p.c_child, p.max_genome_len, &world.frame, rng)
     }

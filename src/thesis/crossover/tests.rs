@@ -83,7 +83,7 @@ fn clamped_blocks_of_short_parents_span_every_allowed_cut() {
 fn short_parents_cross_and_change_length_only_when_clamped() {
     let (ga, pa) = parent(21, 9);
     let (gb, pb) = parent(22, 10);
-    let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
     let mut rng = stream(8, Purpose::Individual, &[]);
     assert!(crossover(a, b, 0.8, Literal, ChildMode::Changing, 300, &frame(), &mut rng).is_none());
     let mut lengths = std::collections::BTreeSet::new();
@@ -119,7 +119,7 @@ fn close(p: Point, q: Point) -> bool {
 fn preserving_child_keeps_absolute_positions() {
     let (ga, pa) = parent(3, 20);
     let (gb, pb) = parent(4, 16);
-    let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
     let mut child = preserving_child(a, (4, 9), b, (3, 6));
     let mut pts = Vec::new();
     decode(&mut child, &frame(), &mut pts);
@@ -148,7 +148,7 @@ fn changing_child_keeps_relative_moves_and_the_receiver_suffix() {
         (g, p)
     };
     let ((ga, pa), (gb, pb)) = (make(5, 20), make(6, 16));
-    let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
     let mut child = changing_child(a, (4, 9), b, (3, 6), &centre);
     let mut pts = Vec::new();
     decode(&mut child, &centre, &mut pts);
@@ -172,7 +172,7 @@ fn changing_child_keeps_relative_moves_and_the_receiver_suffix() {
 fn children_by_mode_are_the_named_interpretations_in_order() {
     let (ga, pa) = parent(11, 24);
     let (gb, pb) = parent(12, 18);
-    let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
     for (mode, seed) in [(ChildMode::Changing, 1), (ChildMode::Preserving, 2), (ChildMode::Both, 3)] {
         let mut rng = stream(seed, Purpose::Individual, &[]);
         let mut replay = rng.clone();
@@ -207,7 +207,7 @@ fn a_child_of_exactly_max_len_is_accepted() {
     // receivers' lengths (24 and 18).
     let (ga, pa) = parent(13, 24);
     let (gb, pb) = parent(14, 18);
-    let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
     assert_eq!((abs_share(24, 0.04), abs_share(18, 0.04)), (1, 1));
     let mut rng = stream(5, Purpose::Individual, &[]);
     let kids = crossover(a, b, 0.04, Literal, ChildMode::Changing, 24, &frame(), &mut rng).expect("24 ≤ max_len = 24");
@@ -232,7 +232,7 @@ fn a_block_ending_at_the_last_free_gene_leaves_the_connector_alone() {
     // the block to aim at but the end station, which the connector reaches anyway).
     let (ga, pa) = parent(15, 20);
     let (gb, pb) = parent(16, 16);
-    let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
     for (a0, b0, b1) in [(17, 3, 6), (15, 10, 12)] {
         let k = a0 + (b1 - b0);
         let changing = changing_child(a, (a0, 18), b, (b0, b1), &frame());
@@ -256,7 +256,7 @@ proptest! {
         prop_assume!(na >= abs_share(na, c_len) + 3 && nb >= abs_share(nb, c_len) + 3);
         let (ga, pa) = parent(seed, na);
         let (gb, pb) = parent(seed + 1, nb);
-        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
         let mut rng = stream(seed, Purpose::Individual, &[]);
         let kids = crossover(a, b, c_len, Literal, ChildMode::from_index(mode).unwrap(), 1000, &frame(), &mut rng);
         prop_assert!(kids.is_some());
@@ -268,7 +268,7 @@ proptest! {
     fn clamped_parents_always_cross_and_agree_with_the_literal_rule(seed in 0u64..10_000, na in 4usize..40, nb in 4usize..40, c_len in 0.0..1.0f64, mode in 0u8..3) {
         let (ga, pa) = parent(seed, na);
         let (gb, pb) = parent(seed + 1, nb);
-        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
         let mode = ChildMode::from_index(mode).unwrap();
         let mut rng = stream(seed, Purpose::Individual, &[]);
         prop_assert!(crossover(a, b, c_len, Clamp, mode, 1000, &frame(), &mut rng).is_some());
@@ -283,12 +283,34 @@ proptest! {
         }
     }
 
+    /// Children of parents that pass their stable prefixes (decoded from the end of the
+    /// shared genes) equal children of parents that pass none (decoded from S).
+    #[test]
+    fn children_from_stable_prefixes_equal_children_decoded_from_s(seed in 0u64..10_000, na in 4usize..60, nb in 4usize..60, c_len in 0.0..0.6f64, mode in 0u8..3, dist in 1.0..20.0f64) {
+        let decoded = |seed: u64, n: usize| {
+            let mut rng = stream(seed, Purpose::Main, &[]);
+            let mut g = Vec::new();
+            random_genome(&mut rng, n - 2, dist, &mut g);
+            let mut p = Vec::new();
+            let stable = decode(&mut g, &frame(), &mut p);
+            (g, p, stable)
+        };
+        let (ga, pa, sa) = decoded(seed, na);
+        let (gb, pb, sb) = decoded(seed + 1, nb);
+        let mode = ChildMode::from_index(mode).unwrap();
+        let kids = |sa: usize, sb: usize| {
+            let (a, b) = (Parent { genome: &ga, points: &pa, stable: sa }, Parent { genome: &gb, points: &pb, stable: sb });
+            crossover(a, b, c_len, Clamp, mode, 1000, &frame(), &mut stream(seed, Purpose::Individual, &[]))
+        };
+        prop_assert_eq!(kids(sa, sb), kids(0, 0));
+    }
+
     #[test]
     fn children_keep_stations_stay_on_the_map_and_respect_the_cap(seed in 0u64..10_000, na in 3usize..80, nb in 3usize..80, c_len in 0.0..1.0f64, mode in 0u8..3, clamp in any::<bool>()) {
         let short = if clamp { Clamp } else { Literal };
         let (ga, pa) = parent(seed, na);
         let (gb, pb) = parent(seed + 1, nb);
-        let (a, b) = (Parent { genome: &ga, points: &pa }, Parent { genome: &gb, points: &pb });
+        let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
         let mode = ChildMode::from_index(mode).unwrap();
         let mut rng = stream(seed, Purpose::Individual, &[]);
         if let Some(kids) = crossover(a, b, c_len, short, mode, 100, &frame(), &mut rng) {
