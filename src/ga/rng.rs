@@ -38,6 +38,13 @@ pub enum Purpose {
 
 /// A generator for `purpose` and `labels` under `seed`.
 pub fn stream(seed: u64, purpose: Purpose, labels: &[u64]) -> Rng {
+    // A stream per individual per generation: short label lists stay on the stack.
+    let mut short = [0u64; 8];
+    if labels.len() < short.len() {
+        short[0] = purpose as u64;
+        short[1..=labels.len()].copy_from_slice(labels);
+        return Rng::seed_from_u64(derive(seed, &short[..=labels.len()]));
+    }
     let mut all = Vec::with_capacity(labels.len() + 1);
     all.push(purpose as u64);
     all.extend_from_slice(labels);

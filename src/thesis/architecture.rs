@@ -85,13 +85,20 @@ pub(crate) struct Job<T> {
 }
 
 impl<T: Member> Job<T> {
-    fn fresh(rng: Rng, op: Op) -> Self {
-        Self { ind: T::default(), rng, op, origin: JobOrigin::New, evaluations: 0 }
+    /// A member whose genome a re-initialisation will draw, in a recycled member.
+    fn fresh(spare: &mut Vec<T>, rng: Rng, op: Op) -> Self {
+        Self { ind: spare.pop().unwrap_or_default(), rng, op, origin: JobOrigin::New, evaluations: 0 }
     }
-    fn child(genes: T::Genes, receiver: usize, rng: Rng, op: Op) -> Self {
-        Self { ind: T::from_genes(genes), rng, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
+    /// A crossover child, in a recycled member.
+    fn child(spare: &mut Vec<T>, genes: T::Genes, receiver: usize, rng: Rng, op: Op) -> Self {
+        let mut ind = spare.pop().unwrap_or_default();
+        ind.set_genes(genes);
+        Self { ind, rng, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
     }
-    fn copy(ind: T, rng: Rng, op: Op) -> Self {
+    /// A copy of `of`, in a recycled member.
+    fn copy(spare: &mut Vec<T>, of: &T, rng: Rng, op: Op) -> Self {
+        let mut ind = spare.pop().unwrap_or_default();
+        ind.clone_from(of);
         Self { ind, rng, op, origin: JobOrigin::Copy, evaluations: 0 }
     }
     fn execute(&mut self, pop: &[T], world: &T::World, run: &Variation, scratch: &mut EvalScratch) {
@@ -127,10 +134,17 @@ pub(crate) fn run_jobs<T: Member>(
 
 /// The family contest of the Elite scheme (003 §3.4.1): indices of the two fittest members,
 /// listed children first so that a child wins a tie with a parent (R20).
+/// The first two of the indices sorted stably by descending fitness, found without sorting.
 pub fn family_survivors(fitness: &[f64]) -> [usize; 2] {
-    let mut idx: Vec<usize> = (0..fitness.len()).collect();
-    idx.sort_by(|&x, &y| fitness[y].total_cmp(&fitness[x]));
-    [idx[0], idx[1]]
+    debug_assert!(fitness.len() >= 2);
+    let better = |x: usize, y: usize| fitness[x].total_cmp(&fitness[y]).is_gt();
+    // The earliest of the fittest, then the earliest of the fittest of the others.
+    let first = (1..fitness.len()).fold(0, |best, i| if better(i, best) { i } else { best });
+    let second = (0..fitness.len())
+        .filter(|&i| i != first)
+        .reduce(|best, i| if better(i, best) { i } else { best })
+        .expect("two members at least");
+    [first, second]
 }
 
 /// Context of one generation.
@@ -157,14 +171,23 @@ impl<T: Member> Generation<'_, T> {
 
     /// Initial population of `size` random genomes, evaluated (spec §6).
     pub fn initial(&self, size: usize, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
-        let mut jobs: Vec<Job<T>> = (0..size).map(|s| Job::fresh(self.stream(s), Op::Reinit)).collect();
+        let mut jobs: Vec<Job<T>> =
+            (0..size).map(|s| Job::fresh(&mut Vec::new(), self.stream(s), Op::Reinit)).collect();
         let evaluations = run_jobs(&mut jobs, &[], self.scenario, &self.context(), scratches);
         (jobs.into_iter().map(|j| j.ind).collect(), evaluations)
     }
 
     /// Architecture (a) (spec §11.1): `keep` elite copies, `select` pairs by the scheme,
     /// crossover with `P_c`, mutation of offspring and rest, refill to `Pop_min` (R22).
-    pub fn step_a(&self, pop: Vec<T>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
+    /// New members are built in the members of `spare` (their buffers are reused, their
+    /// contents overwritten); the members that do not pass on are put there.
+    pub fn step_a(
+        &self,
+        pop: Vec<T>,
+        rng: &mut Rng,
+        scratches: &mut [EvalScratch],
+        spare: &mut Vec<T>,
+    ) -> (Vec<T>, u64) {
         let (p, e) = (self.params, self.effective);
         let n = pop.len();
         let fit: Vec<f64> = pop.iter().map(T::fitness).collect();
@@ -194,13 +217,13 @@ impl<T: Member> Generation<'_, T> {
                     for (k, genome) in kids.into_iter().enumerate() {
                         let receiver = if k % 2 == 0 { p1 } else { p2 };
                         let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
-                        jobs.push(Job::child(genome, receiver, self.stream(jobs.len()), op));
+                        jobs.push(Job::child(spare, genome, receiver, self.stream(jobs.len()), op));
                     }
                 }
                 None => {
                     for q in [p1, p2] {
                         let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[q]) };
-                        jobs.push(Job::copy(pop[q].clone(), self.stream(jobs.len()), op));
+                        jobs.push(Job::copy(spare, &pop[q], self.stream(jobs.len()), op));
                     }
                 }
             }
@@ -216,13 +239,21 @@ impl<T: Member> Generation<'_, T> {
                 next.push(old[rest[k]].take().expect("sampled once"));
             }
         }
+        recycle(spare, old.into_iter().flatten(), next.len());
         (next, evaluations)
     }
 
     /// Architecture (b) (spec §11.2): random families of two; crossing families keep their two
     /// best of parents and children (ties to children, R20); the others pass on, each
-    /// re-initialised with `P_mI`; an odd individual passes unchanged.
-    pub fn step_b(&self, pop: Vec<T>, rng: &mut Rng, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
+    /// re-initialised with `P_mI`; an odd individual passes unchanged. `spare` as in
+    /// [`Self::step_a`].
+    pub fn step_b(
+        &self,
+        pop: Vec<T>,
+        rng: &mut Rng,
+        scratches: &mut [EvalScratch],
+        spare: &mut Vec<T>,
+    ) -> (Vec<T>, u64) {
         enum Family {
             Cross { parents: [usize; 2], kids: std::ops::Range<usize> },
             Apart([Result<usize, usize>; 2]),
@@ -242,7 +273,7 @@ impl<T: Member> Generation<'_, T> {
                 for (k, genome) in kids.into_iter().enumerate() {
                     let receiver = if k % 2 == 0 { a } else { b };
                     let op = Op::MutateAction { p_ma: e.p_ma.for_fitness(pop[receiver].fitness()) };
-                    jobs.push(Job::child(genome, receiver, self.stream(slot), op));
+                    jobs.push(Job::child(spare, genome, receiver, self.stream(slot), op));
                     slot += 1;
                 }
                 families.push(Family::Cross { parents: [a, b], kids: start..jobs.len() });
@@ -251,7 +282,7 @@ impl<T: Member> Generation<'_, T> {
                     let mut s = self.stream(slot);
                     slot += 1;
                     if s.random_bool(e.p_mi.clamp(0.0, 1.0)) {
-                        jobs.push(Job::fresh(s, Op::Reinit));
+                        jobs.push(Job::fresh(spare, s, Op::Reinit));
                         Err(jobs.len() - 1)
                     } else {
                         Ok(q)
@@ -269,17 +300,20 @@ impl<T: Member> Generation<'_, T> {
         if n % 2 == 1 {
             next.push(old[order[n - 1]].take().expect("odd one"));
         }
+        let (mut cands, mut fitness): (Vec<Option<T>>, Vec<f64>) = (Vec::with_capacity(6), Vec::with_capacity(6));
         for family in families {
             match family {
                 Family::Cross { parents, kids } => {
                     // Children first, so that they win ties.
-                    let mut cands: Vec<Option<T>> = kids.map(|k| new[k].take()).collect();
+                    cands.clear();
+                    cands.extend(kids.map(|k| new[k].take()));
                     cands.extend(parents.iter().map(|&q| old[q].take()));
-                    let fitness: Vec<f64> =
-                        cands.iter().map(|c| c.as_ref().map_or(f64::NEG_INFINITY, T::fitness)).collect();
+                    fitness.clear();
+                    fitness.extend(cands.iter().map(|c| c.as_ref().map_or(f64::NEG_INFINITY, T::fitness)));
                     for k in family_survivors(&fitness) {
                         next.push(cands[k].take().expect("each member survives once"));
                     }
+                    spare.extend(cands.drain(..).flatten());
                 }
                 Family::Apart(members) => {
                     for m in members {
@@ -291,13 +325,33 @@ impl<T: Member> Generation<'_, T> {
                 }
             }
         }
+        // Members re-initialised in place of a parent leave the parent behind.
+        recycle(spare, old.into_iter().flatten(), next.len());
         (next, evaluations)
     }
+}
+
+/// Puts the members that did not pass on into `spare`, kept to at most `limit` (one
+/// population) so that a large initial population is not held on to.
+fn recycle<T>(spare: &mut Vec<T>, dropped: impl Iterator<Item = T>, limit: usize) {
+    spare.extend(dropped.take(limit.saturating_sub(spare.len())));
+    spare.truncate(limit);
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    proptest::proptest! {
+        /// The two survivors are the first two of a stable sort by descending fitness.
+        #[test]
+        fn family_survivors_equal_the_head_of_a_stable_sort(levels in proptest::collection::vec(0usize..4, 2..8)) {
+            let fitness: Vec<f64> = levels.iter().map(|&l| [f64::NEG_INFINITY, 0.25, 0.5, 0.5 + 1e-16][l]).collect();
+            let mut idx: Vec<usize> = (0..fitness.len()).collect();
+            idx.sort_by(|&x, &y| fitness[y].total_cmp(&fitness[x]));
+            proptest::prop_assert_eq!(family_survivors(&fitness), [idx[0], idx[1]]);
+        }
+    }
 
     #[test]
     fn family_contest_keeps_the_two_best_and_children_win_ties() {

@@ -66,7 +66,7 @@ pub enum EvaluationMode {
 }
 
 /// A decoded, evaluated genome with its visit-count map (the input of the diversity, §5).
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub struct Individual {
     /// The actions.
     pub genome: Vec<Action>,
@@ -84,6 +84,26 @@ pub struct Individual {
     /// [`decode`]); a child that shares them is decoded from its first changed gene. 0 is
     /// always safe.
     pub stable_genes: usize,
+}
+
+impl Clone for Individual {
+    fn clone(&self) -> Self {
+        let mut copy = Individual::default();
+        copy.clone_from(self);
+        copy
+    }
+    /// Field by field, into the buffers already held (a recycled member's).
+    fn clone_from(&mut self, other: &Self) {
+        // Destructured, so that a new field cannot be forgotten here.
+        let Individual { genome, points, sweep, t_rot_s, score, visits, stable_genes } = other;
+        self.genome.clone_from(genome);
+        self.points.clone_from(points);
+        self.sweep = *sweep;
+        self.t_rot_s = *t_rot_s;
+        self.score = *score;
+        self.visits.copy_from(visits);
+        self.stable_genes = *stable_genes;
+    }
 }
 
 impl Individual {

@@ -66,6 +66,11 @@ pub trait Member: Clone + Default + Send + Sync {
     fn genome_len(&self) -> usize;
     /// An unevaluated member holding `genes`.
     fn from_genes(genes: Self::Genes) -> Self;
+    /// Becomes an unevaluated member holding `genes`, keeping buffers it can reuse (its other
+    /// contents are overwritten by the evaluation that follows).
+    fn set_genes(&mut self, genes: Self::Genes) {
+        *self = Self::from_genes(genes);
+    }
     /// The modified dual-point crossover of `a` and `b` (003 §3.3.2); `None` when no child
     /// could be made (the children are then copies).
     fn cross(a: &Self, b: &Self, params: &ThesisParams, world: &Self::World, rng: &mut Rng)
@@ -139,6 +144,10 @@ impl Member for Individual {
     }
     fn from_genes(genome: Vec<Action>) -> Self {
         Individual { genome, ..Default::default() }
+    }
+    fn set_genes(&mut self, genome: Vec<Action>) {
+        self.genome = genome;
+        self.stable_genes = 0;
     }
 
     fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng) -> Option<Vec<Vec<Action>>> {

@@ -41,6 +41,8 @@ pub struct GaState<T = Individual> {
     /// `Div_max` of the current population (adaptive control only, else 0).
     pub diversity_max: f64,
     rng: Rng,
+    /// Members that did not pass on, whose buffers the next generation's new members reuse.
+    spare: Vec<T>,
 }
 
 /// The result of a run of the thesis GA.
@@ -140,6 +142,7 @@ impl<T: Member> Ga<T> {
             diversity: None,
             diversity_max: 0.0,
             rng: stream(self.seed, Purpose::Main, &[]),
+            spare: Vec::new(),
         };
         self.measure_diversity(&mut state, measure_diversity, &mut DiversityScratch::default());
         state
@@ -165,8 +168,8 @@ impl<T: Member> Ga<T> {
         let generation = self.generation(state.iteration, effective);
         let pop = std::mem::take(&mut state.population);
         let (next, evaluations) = match self.params.selection {
-            Selection::Elite => generation.step_b(pop, &mut state.rng, scratches),
-            _ => generation.step_a(pop, &mut state.rng, scratches),
+            Selection::Elite => generation.step_b(pop, &mut state.rng, scratches, &mut state.spare),
+            _ => generation.step_a(pop, &mut state.rng, scratches, &mut state.spare),
         };
         state.population = next;
         state.evaluations += evaluations;
