@@ -242,6 +242,11 @@ mod tests {
         let t = mann_whitney_u(&[1.0, 2.0], &[3.0, 4.0]).unwrap();
         assert!((t.z - 1.5 / (5.0f64 / 3.0).sqrt()).abs() < 1e-12, "{}", t.z);
         assert!(mann_whitney_u(&[1.0, 1.0], &[1.0, 1.0]).is_none());
+        // With ties: a = {1,2,2}, b = {2,3,3,4}: mid-ranks 1 | 3 3 3 | 5.5 5.5 | 7, R1 = 7,
+        // U = 7 − 6 = 1, Σ(t³−t) = 24 + 6 = 30, σ² = 12/12 · (8 − 30/42), z = (5 − 0.5)/σ.
+        let t = mann_whitney_u(&[1.0, 2.0, 2.0], &[2.0, 3.0, 3.0, 4.0]).unwrap();
+        assert_eq!(t.u, 1.0);
+        assert!((t.z - 4.5 / (8.0f64 - 30.0 / 42.0).sqrt()).abs() < 1e-12, "{}", t.z);
     }
 
     #[test]

@@ -372,6 +372,65 @@ mod tests {
     }
 
     #[test]
+    fn short_hop_by_hand() {
+        // a = 0 and b = 1 are not adjacent; 2, 3 and 4 each join them. Route lengths through
+        // (-1, 5), (1, 1) and (6, -4): 14.56 + 6.71, 11.66 + 10.0, 5.10 + 17.0 px; the second
+        // is the shortest (20.34 against 21.27 and 22.10).
+        let points = vec![(7.0, -9.0), (-7.0, 7.0), (-1.0, 5.0), (1.0, 1.0), (6.0, -4.0)];
+        let adj = vec![vec![2, 3, 4], vec![2, 3, 4], vec![0, 1], vec![0, 1], vec![0, 1]];
+        let g = Graph { points, adj };
+        assert_eq!(short_hop(&g, 0, 1), Some((2, Some(3))));
+        assert_eq!(short_hop(&g, 0, 0), Some((0, None)));
+        assert_eq!(short_hop(&g, 0, 2), Some((1, None)));
+        // From 2 to 3 through 0 (27.8 px) or 1 (16.3 px).
+        assert_eq!(short_hop(&g, 2, 3), Some((2, Some(1))));
+        let far = Graph { points: vec![(0.0, 0.0); 3], adj: vec![vec![1], vec![0], vec![]] };
+        assert_eq!(short_hop(&far, 0, 2), None);
+    }
+
+    #[test]
+    fn mutation_b_by_hand() {
+        // The 6 × 6 lattice: waypoint y·6 + x at (5x, 5y). A window of D + 1 = 6 waypoints; a
+        // path of exactly six puts it at s = 0. p_acc = 1. The farthest j with a shorter route
+        // is the one examined; if l_min forbids it, the instance changes nothing.
+        let g = lattice();
+        let op = |l_min: usize, b_instances: usize| OperatorParams {
+            l_min,
+            b_instances,
+            b_distance: 5,
+            b_accept: 1.0,
+            ..params()
+        };
+        // (path, l_min, instances, expected)
+        let cases: [(&[u32], usize, usize, &[u32]); 10] = [
+            // Back at the start (0 hops) at j = 5: 1, 7, 6, 12 and the return go; new length
+            // 6 − 4 − 1 = 1.
+            (&[0, 1, 7, 6, 12, 0], 1, 1, &[0]),
+            (&[0, 1, 7, 6, 12, 0], 2, 1, &[0, 1, 7, 6, 12, 0]),
+            // One hop from 0 to 6 at j = 5: new length 6 − 4 + 1 − 1 = 2.
+            (&[0, 1, 2, 8, 7, 6], 2, 1, &[0, 6]),
+            (&[0, 1, 2, 8, 7, 6], 3, 1, &[0, 1, 2, 8, 7, 6]),
+            // Two hops from 0 to 7 at j = 5, through 1 or 6 (equally long: the first, 1); new
+            // length 6 − 4 + 2 − 1 = 3.
+            (&[0, 1, 2, 8, 14, 7], 3, 1, &[0, 1, 7]),
+            (&[0, 1, 2, 8, 14, 7], 4, 1, &[0, 1, 2, 8, 14, 7]),
+            // A straight path has no shorter route (0 → 2 through 1 is as long).
+            (&[0, 1, 2, 3, 4, 5], 2, 1, &[0, 1, 2, 3, 4, 5]),
+            // Shorter than the window: untouched.
+            (&[0, 1, 7, 6, 0], 1, 1, &[0, 1, 7, 6, 0]),
+            // Seven waypoints, windows at s = 0 (nothing within two hops of 30) and s = 1 (back
+            // at 0 at j = 6, removing j − s − 1 = 4): twenty instances find it.
+            (&[30, 0, 1, 7, 6, 12, 0], 2, 20, &[30, 0]),
+            (&[30, 0, 1, 7, 6, 12, 0], 3, 20, &[30, 0, 1, 7, 6, 12, 0]),
+        ];
+        for (path, l_min, instances, expected) in cases {
+            let mut p = path.to_vec();
+            mutation_b(&mut p, &g, &op(l_min, instances), &mut stream(4, Purpose::Main, &[]));
+            assert_eq!(p, expected, "{path:?}, l_min {l_min}");
+        }
+    }
+
+    #[test]
     fn shortcut_replaces_a_detour() {
         let g = lattice();
         // 0 → 1 → 7 → 13 → 12 → 6: 0 and 6 are adjacent, so the detour collapses to 0 → 6.
