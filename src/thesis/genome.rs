@@ -192,22 +192,36 @@ fn decode_span(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut V
 pub fn decode(genome: &mut [Action], frame: &Frame, points: &mut Vec<Point>) -> usize {
     points.clear();
     points.push(frame.start);
-    decode_from(genome, frame, points)
+    decode_from(genome, frame, points, None)
 }
 
 /// [`decode`] resumed after a stable prefix: `points` holds viewpoints `0 ..= k` of a genome
 /// whose first `k` genes equal (bit for bit) the first `k` of a genome with a stable prefix of
 /// at least `k` genes, `k ≤ n − 2`. The result equals [`decode`]'s, the returned stable prefix
 /// included.
-pub fn decode_from(genome: &mut [Action], frame: &Frame, points: &mut Vec<Point>) -> usize {
+///
+/// `connector`: the last live viewpoint and the connector of a genome decoded in the same
+/// frame (the receiving parent's). A connector from the same viewpoint is the same move unless
+/// it has zero length (it then keeps its own heading), so it is copied instead of derived.
+pub fn decode_from(
+    genome: &mut [Action],
+    frame: &Frame,
+    points: &mut Vec<Point>,
+    connector: Option<(Point, Action)>,
+) -> usize {
     let n = genome.len();
     debug_assert!(n >= MIN_GENOME_LEN && !points.is_empty() && points.len() < n);
     // The gene right after a clamped point is re-derived inside decode_span for i < n − 2;
     // the connector is re-derived unconditionally below.
     let stable = decode_span(genome, frame, n - 2, points);
     let last = points[n - 2];
-    let (alpha, dist) = polar_deg(frame.end - last, genome[n - 2].alpha_deg);
-    genome[n - 2] = Action::new(alpha, dist);
+    genome[n - 2] = match connector {
+        Some((from, known)) if from == last && !known.is_zero() => known,
+        _ => {
+            let (alpha, dist) = polar_deg(frame.end - last, genome[n - 2].alpha_deg);
+            Action::new(alpha, dist)
+        }
+    };
     genome[n - 1] = genome[n - 1].with_dist(0.0);
     points.push(frame.end);
     stable
@@ -393,11 +407,20 @@ mod tests {
             let (mut whole, mut resumed) = (child.clone(), child);
             let mut from_s = Vec::new();
             let s_whole = decode(&mut whole, &f, &mut from_s);
+            let connector = Some((points[n - 2], parent[n - 2]));
             let mut from_k = points[..=k].to_vec();
-            let s_resumed = decode_from(&mut resumed, &f, &mut from_k);
+            let s_resumed = decode_from(&mut resumed, &f, &mut from_k, connector);
             proptest::prop_assert_eq!(from_s, from_k);
             proptest::prop_assert_eq!(whole, resumed);
             proptest::prop_assert_eq!(s_whole, s_resumed);
+            // The parent itself, resumed after its stable prefix with its own connector given.
+            let mut again = parent.clone();
+            let mut from_stable = points[..=stable].to_vec();
+            let mut from_s = Vec::new();
+            let mut fresh = parent.clone();
+            proptest::prop_assert_eq!(decode_from(&mut again, &f, &mut from_stable, connector), decode(&mut fresh, &f, &mut from_s));
+            proptest::prop_assert_eq!(again, fresh);
+            proptest::prop_assert_eq!(from_stable, from_s);
         }
     }
 

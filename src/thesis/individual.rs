@@ -185,14 +185,14 @@ pub fn evaluate(
         }
         _ => 0,
     };
-    ind.stable_genes = if let Base::Parent(p) = base
-        && shared > 0
-    {
-        scratch.points.clear();
-        scratch.points.extend_from_slice(&p.points[..=shared]);
-        decode_from(&mut ind.genome, &scenario.frame, &mut scratch.points)
-    } else {
-        decode(&mut ind.genome, &scenario.frame, &mut scratch.points)
+    ind.stable_genes = match (mode, base) {
+        (EvaluationMode::Incremental, Base::Parent(p)) => {
+            scratch.points.clear();
+            scratch.points.extend_from_slice(&p.points[..=shared]);
+            let last = p.genome.len() - 2;
+            decode_from(&mut ind.genome, &scenario.frame, &mut scratch.points, Some((p.points[last], p.genome[last])))
+        }
+        _ => decode(&mut ind.genome, &scenario.frame, &mut scratch.points),
     };
     let (layers, width) = (&scenario.layers, scenario.robot.width);
     let cache = &mut scratch.segments;
