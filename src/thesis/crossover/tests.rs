@@ -225,6 +225,36 @@ fn a_child_of_exactly_max_len_is_accepted() {
     assert!(crossover(b, a, 0.04, Literal, ChildMode::Changing, 23, &frame(), &mut rng).is_none());
 }
 
+/// R14 as a model: crossover takes the first of up to ten block draws (one for each parent,
+/// from the same stream) whose two children both fit in `max_len`, and gives up after ten.
+#[test]
+fn the_first_draw_that_fits_max_len_is_taken() {
+    let (ga, pa) = parent(21, 30);
+    let (gb, pb) = parent(22, 24);
+    let (a, b) = (Parent { genome: &ga, points: &pa, stable: 0 }, Parent { genome: &gb, points: &pb, stable: 0 });
+    let (mut taken, mut refused) = (0, 0);
+    for seed in 0..60 {
+        for max_len in [27, 29, 30, 32] {
+            let mut model = stream(seed, Purpose::Individual, &[]);
+            let mut expected = None;
+            for _ in 0..10 {
+                let (ba, bb) =
+                    (draw_block(30, 0.3, Clamp, &mut model).unwrap(), draw_block(24, 0.3, Clamp, &mut model).unwrap());
+                let (la, lb) = (ba.1 - ba.0, bb.1 - bb.0);
+                if 30 - la + lb <= max_len && 24 - lb + la <= max_len {
+                    expected = Some((30 - la + lb, 24 - lb + la));
+                    break;
+                }
+            }
+            let mut rng = stream(seed, Purpose::Individual, &[]);
+            let kids = crossover(a, b, 0.3, Clamp, ChildMode::Changing, max_len, &frame(), &mut rng);
+            assert_eq!(kids.map(|k| (k[0].len(), k[1].len())), expected, "seed {seed}, max_len {max_len}");
+            if expected.is_some() { taken += 1 } else { refused += 1 }
+        }
+    }
+    assert!(taken > 0 && refused > 0, "both outcomes occur: {taken} taken, {refused} refused");
+}
+
 #[test]
 fn a_block_ending_at_the_last_free_gene_leaves_the_connector_alone() {
     // CP_2 = n − 1 (0-based end n − 2): the receiver's genes from a1 on are its last free
