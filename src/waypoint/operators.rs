@@ -431,6 +431,15 @@ mod tests {
     }
 
     #[test]
+    fn feasibility_needs_every_step_to_be_an_edge() {
+        let g = lattice();
+        assert!(is_feasible(&[0, 1, 7, 13], &g));
+        assert!(is_feasible(&[5], &g), "a single waypoint has no step");
+        assert!(!is_feasible(&[0, 1, 8], &g), "1 → 8 is a diagonal");
+        assert!(!is_feasible(&[0, 2, 3], &g), "0 → 2 skips a waypoint");
+    }
+
+    #[test]
     fn shortcut_replaces_a_detour() {
         let g = lattice();
         // 0 → 1 → 7 → 13 → 12 → 6: 0 and 6 are adjacent, so the detour collapses to 0 → 6.
