@@ -206,3 +206,25 @@ fn the_claims_of_section_5_1_get_their_verdicts() {
     assert_eq!(holds, 1, "only the tournament comparison has data");
     assert!(md.lines().any(|l| l.starts_with("| Higher TS lowers") && l.ends_with("| holds |")));
 }
+
+/// The library's `write_report` writes what `covga report --by` writes, and returns the path
+/// of its summary.
+#[test]
+fn the_library_call_writes_the_report_the_command_writes() {
+    let (lib, cli) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    fixture(lib.path());
+    fixture(cli.path());
+    let path = covga::study::report::write_report(lib.path(), &["thesis.c_len".to_string()]).unwrap();
+    assert_eq!(path, lib.path().join("report/summary.md"));
+    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["report", cli.path().to_str().unwrap(), "--by", "thesis.c_len"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let read = |dir: &std::path::Path| {
+        std::fs::read_to_string(dir.join("report/summary.md")).unwrap().replace(dir.to_str().unwrap(), "<study>")
+    };
+    let summary = read(lib.path());
+    assert!(summary.contains("0.4"), "grouped by C_len: {summary}");
+    assert_eq!(summary, read(cli.path()));
+}
