@@ -228,3 +228,19 @@ fn the_library_call_writes_the_report_the_command_writes() {
     assert!(summary.contains("0.4"), "grouped by C_len: {summary}");
     assert_eq!(summary, read(cli.path()));
 }
+
+/// A study with no run recorded yet says so, with or without `--where` (whose own message is
+/// for a value no recorded run has).
+#[test]
+fn an_empty_study_says_no_runs_are_recorded_yet() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = covga::study::records::header(&["thesis.c_len".to_string()]);
+    std::fs::write(dir.path().join("runs.csv"), header.join(",") + "\n").unwrap();
+    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 0}").unwrap();
+    for filter in [&[][..], &["--where", "thesis.c_len=0.1"][..]] {
+        let o = Command::new(env!("CARGO_BIN_EXE_covga")).arg("report").arg(dir.path()).args(filter).output().unwrap();
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains("no runs recorded yet"), "{filter:?}: {err}");
+    }
+}
