@@ -244,3 +244,19 @@ fn an_empty_study_says_no_runs_are_recorded_yet() {
         assert!(err.contains("no runs recorded yet"), "{filter:?}: {err}");
     }
 }
+
+/// Grouped by two columns, the Pareto panels are laid out as the first column's values (rows)
+/// by the second's (columns): C_len's two values over one map give two rows of one panel
+/// (480 × 2·440 + 40 px), not the default two panels side by side.
+#[test]
+fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    fixture(dir.path());
+    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["report", dir.path().to_str().unwrap(), "--by", "thesis.c_len", "--by", "map"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let size = image::image_dimensions(dir.path().join("report/pareto.png")).unwrap();
+    assert_eq!(size, (480, 2 * 440 + 40));
+}
