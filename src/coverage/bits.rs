@@ -21,6 +21,8 @@ pub struct BitLayers {
     words: usize,
     free: Vec<u64>,
     countable: Vec<u64>,
+    /// A fingerprint of `free` (see [`Self::walls_id`]).
+    walls_id: u64,
 }
 
 impl BitLayers {
@@ -42,7 +44,8 @@ impl BitLayers {
                 }
             }
         }
-        Self { raster, words, free, countable }
+        let walls_id = free.iter().fold(raster.rows as u64, |h, &w| crate::ga::rng::mix64(h ^ w));
+        Self { raster, words, free, countable, walls_id }
     }
 
     /// Words in one bit plane (rows × words per row).
@@ -109,6 +112,12 @@ impl BitLayers {
         let mut counts = [0u64; 3];
         self.for_each_mask(a, b, width, |idx, mask| self.apply_word::<ADD>(visits, idx, mask, &mut counts));
         Self::settle::<ADD>(tally, counts);
+    }
+
+    /// A 64-bit fingerprint of the free cells: grids of one raster with other walls differ in
+    /// it (but for a 2⁻⁶⁴ chance), so a cache of free-cell masks can tell them apart.
+    pub fn walls_id(&self) -> u64 {
+        self.walls_id
     }
 
     /// The free cells of `mask` in word `idx`.

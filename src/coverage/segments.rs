@@ -82,7 +82,8 @@ impl Hasher for KeyHasher {
 /// replayed by [`SegmentCache::apply`].
 #[derive(Debug, Default)]
 pub struct SegmentCache {
-    raster: Option<RasterGrid>,
+    /// The grid the masks belong to: its raster and the fingerprint of its walls.
+    grid: Option<(RasterGrid, u64)>,
     spans: HashMap<Key, Span, BuildHasherDefault<KeyHasher>>,
     masks: Vec<(u32, u64)>,
 }
@@ -106,9 +107,12 @@ impl SegmentCache {
         width: f64,
         tally: &mut Tally,
     ) {
-        if self.raster != Some(*layers.raster()) {
+        // Masks hold the free cells of the grid they were scanned on: another grid (or the same
+        // raster with other walls) starts afresh.
+        let grid = Some((*layers.raster(), layers.walls_id()));
+        if self.grid != grid {
             self.clear();
-            self.raster = Some(*layers.raster());
+            self.grid = grid;
         }
         let key = Key([a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits(), width.to_bits()]);
         let span = match self.spans.get(&key) {
@@ -160,6 +164,31 @@ mod tests {
     use crate::coverage::CoverageGrid;
     use crate::map::presets::preset;
     use proptest::prelude::*;
+
+    /// A cache used on one grid and then on another (same raster or not, other walls) replays
+    /// nothing of the first: every tally equals a fresh scan's.
+    #[test]
+    fn a_cache_moved_to_another_grid_gives_that_grid_s_counts() {
+        let grids: Vec<BitLayers> = ["thesis-1", "thesis-2", "office"]
+            .iter()
+            .map(|m| BitLayers::new(&CoverageGrid::new(&preset(m).unwrap())))
+            .collect();
+        let mut cache = SegmentCache::default();
+        assert!(cache.is_empty());
+        let (a, b) = (Point::new(1.3, 1.3), Point::new(9.3, 7.1));
+        for layers in grids.iter().chain(&grids[..1]) {
+            let (mut cached, mut scanned) = (VisitPlanes::default(), VisitPlanes::default());
+            cached.reset(layers.plane_words());
+            scanned.reset(layers.plane_words());
+            let (mut t_cached, mut t_scanned) = (Tally::default(), Tally::default());
+            cache.apply::<true>(layers, &mut cached, a, b, 0.6, &mut t_cached);
+            layers.apply::<true>(&mut scanned, a, b, 0.6, &mut t_scanned);
+            assert_eq!(t_cached, t_scanned);
+            assert_eq!(cached, scanned);
+            assert!(!cache.is_empty());
+        }
+        assert_eq!(grids[0].raster(), grids[1].raster(), "the thesis maps share a raster, not their walls");
+    }
 
     #[test]
     fn a_replayed_segment_is_not_scanned_again_and_a_new_grid_starts_afresh() {

@@ -17,9 +17,12 @@ pub fn mix64(mut z: u64) -> u64 {
 
 /// Combines a seed with a list of labels into one stream id.
 pub fn derive(seed: u64, labels: &[u64]) -> u64 {
-    labels
-        .iter()
-        .fold(mix64(seed ^ 0x9e37_79b9_7f4a_7c15), |h, &l| mix64(h ^ mix64(l.wrapping_add(0x632b_e59b_d9b4_e019))))
+    labels.iter().fold(mix64(seed ^ 0x9e37_79b9_7f4a_7c15), |h, &l| absorb(h, l))
+}
+
+/// One label folded into a stream id (the step of [`derive`]).
+fn absorb(h: u64, label: u64) -> u64 {
+    mix64(h ^ mix64(label.wrapping_add(0x632b_e59b_d9b4_e019)))
 }
 
 /// Purposes of streams, so that different uses of one seed never share a stream.
@@ -38,17 +41,10 @@ pub enum Purpose {
 
 /// A generator for `purpose` and `labels` under `seed`.
 pub fn stream(seed: u64, purpose: Purpose, labels: &[u64]) -> Rng {
-    // A stream per individual per generation: short label lists stay on the stack.
-    let mut short = [0u64; 8];
-    if labels.len() < short.len() {
-        short[0] = purpose as u64;
-        short[1..=labels.len()].copy_from_slice(labels);
-        return Rng::seed_from_u64(derive(seed, &short[..=labels.len()]));
-    }
-    let mut all = Vec::with_capacity(labels.len() + 1);
-    all.push(purpose as u64);
-    all.extend_from_slice(labels);
-    Rng::seed_from_u64(derive(seed, &all))
+    // `derive(seed, [purpose, labels…])`, folded without building the list (a stream is made
+    // per individual per generation).
+    let id = labels.iter().fold(derive(seed, &[purpose as u64]), |h, &l| absorb(h, l));
+    Rng::seed_from_u64(id)
 }
 
 #[cfg(test)]
