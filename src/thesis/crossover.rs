@@ -1,7 +1,7 @@
 //! Modified dual-point crossover with locality-changing and locality-preserving children
 //! (003 §3.3.2, eqs. 3.20–3.22, Figs. 3.6–3.7; spec §7, R12–R14).
 
-use super::genome::{Action, Frame, decode_prefix_from, set_move};
+use super::genome::{Action, Frame, decode_prefix, set_move};
 use crate::geom::Point;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
@@ -138,7 +138,7 @@ pub fn changing_child(
         let mut pts = Vec::with_capacity(k + 1);
         pts.push(frame.start);
         pts.extend_from_slice(&a.points[1..=shared]);
-        decode_prefix_from(&mut child, frame, k, &mut pts);
+        decode_prefix(&mut child, frame, k, &mut pts);
         set_move(&mut child, k, pts[k], a.points[a1 + 1]);
     }
     child

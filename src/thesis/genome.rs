@@ -125,23 +125,18 @@ pub fn live(n: usize) -> std::ops::Range<usize> {
     0..n.saturating_sub(2)
 }
 
-/// Decodes the first `upto + 1` viewpoints with out-of-bounds correction and writes the
-/// corrected moves of genes `0 .. upto` back (spec §2.2, R8): the unclamped chain
+/// Decodes viewpoints up to `upto` with out-of-bounds correction and writes the corrected
+/// moves of the genes decoded back (spec §2.2, R8): the unclamped chain
 /// `q_{i+1} = q_i + d_i·dist_i` (eq. 3.8) is followed on the viewpoint lattice ([`snap`]),
 /// every point is clamped to the map,
 /// and each move whose start or end was changed is re-derived, so the next action still
-/// starts from its originally intended place where possible. `points` receives the viewpoints.
+/// starts from its originally intended place where possible.
+///
+/// `points` holds the viewpoints already known and receives the rest: `[S]` to decode from the
+/// start, or viewpoints `0 ..= k` of a genome whose first `k` genes equal (bit for bit) those of
+/// a genome with a stable prefix of at least `k` genes (see [`decode`]), `k ≤ upto`; both give
+/// the same result.
 pub fn decode_prefix(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut Vec<Point>) {
-    debug_assert!(genome.len() >= MIN_GENOME_LEN && upto <= genome.len() - 2);
-    points.clear();
-    points.push(frame.start);
-    decode_span(genome, frame, upto, points);
-}
-
-/// [`decode_prefix`] resumed after a stable prefix: `points` holds viewpoints `0 ..= k` of a
-/// genome whose first `k` genes equal (bit for bit) those of a genome with a stable prefix of at
-/// least `k` genes (see [`decode`]), `k ≤ upto`. The result equals [`decode_prefix`]'s.
-pub fn decode_prefix_from(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut Vec<Point>) {
     debug_assert!(!points.is_empty() && points.len() <= upto + 1 && upto <= genome.len() - 2);
     decode_span(genome, frame, upto, points);
 }

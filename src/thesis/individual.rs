@@ -178,22 +178,19 @@ pub fn evaluate(
 ) {
     // A child shares its receiving parent's first genes up to the first changed one; those
     // of the parent's stable prefix decode to the parent's viewpoints, so decoding starts there.
-    let shared = match (mode, base) {
+    let (shared, stable) = match (mode, base) {
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             let bound = p.stable_genes.min(ind.genome.len() - 2);
-            (0..bound).find(|&i| !same_bits(&ind.genome[i], &p.genome[i])).unwrap_or(bound)
-        }
-        _ => 0,
-    };
-    ind.stable_genes = match (mode, base) {
-        (EvaluationMode::Incremental, Base::Parent(p)) => {
+            let shared = (0..bound).find(|&i| !same_bits(&ind.genome[i], &p.genome[i])).unwrap_or(bound);
             scratch.points.clear();
             scratch.points.extend_from_slice(&p.points[..=shared]);
             let last = p.genome.len() - 2;
-            decode_from(&mut ind.genome, &scenario.frame, &mut scratch.points, Some((p.points[last], p.genome[last])))
+            let connector = Some((p.points[last], p.genome[last]));
+            (shared, decode_from(&mut ind.genome, &scenario.frame, &mut scratch.points, connector))
         }
-        _ => decode(&mut ind.genome, &scenario.frame, &mut scratch.points),
+        _ => (0, decode(&mut ind.genome, &scenario.frame, &mut scratch.points)),
     };
+    ind.stable_genes = stable;
     let (layers, width) = (&scenario.layers, scenario.robot.width);
     let cache = &mut scratch.segments;
     let tally = match (mode, base) {

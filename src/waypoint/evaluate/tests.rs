@@ -73,9 +73,9 @@ fn turning_cost_values_of_spec_6() {
     assert!((turn_cost(8.0, -3.0 * PI / 2.0) - 8.0).abs() < 1e-9, "wrapped to 90°");
 }
 
-#[test]
-fn ramp_and_blend() {
-    let p = ObjectiveParams {
+/// The objective parameters of the hand-worked cases.
+fn objective_params() -> ObjectiveParams {
+    ObjectiveParams {
         alpha_cov: 0.1,
         rho: 8.0,
         scale_coverage: -1.0,
@@ -87,7 +87,12 @@ fn ramp_and_blend() {
         lc_min: 2,
         lc_rule: LoopClosureRule::Run,
         penalty: 1000.0,
-    };
+    }
+}
+
+#[test]
+fn ramp_and_blend() {
+    let p = objective_params();
     assert_eq!(required_coverage(&p, 0), 0.3);
     assert!((required_coverage(&p, 30) - 0.55).abs() < 1e-12);
     assert_eq!(required_coverage(&p, 600), 0.8);
@@ -145,19 +150,7 @@ fn flight_time_and_views_of_a_square_by_hand() {
 fn evaluation_of_two_agents_by_hand() {
     let (g, tr) = square();
     let band = [u64::MAX, 0, 0, 0];
-    let params = ObjectiveParams {
-        alpha_cov: 0.25,
-        rho: 8.0,
-        scale_coverage: -1.0,
-        scale_time: 1e-4,
-        c_start: 0.3,
-        c_end: 0.8,
-        aging: 60,
-        lc_separation: 1,
-        lc_min: 1,
-        lc_rule: LoopClosureRule::Run,
-        penalty: 1000.0,
-    };
+    let params = ObjectiveParams { alpha_cov: 0.25, lc_separation: 1, lc_min: 1, ..objective_params() };
     let ev = Evaluator { graph: &g, traversals: &tr, band: &band, free: 200, band_count: 64, params };
     let mut scratch = Union::new(4);
     // A flies 0 1 2 1, B flies 3 2 1 2: views {1, 12, 21, 121} ∪ {32, 21, 12, 112} = six
@@ -178,19 +171,7 @@ fn evaluation_of_two_agents_by_hand() {
 
 #[test]
 fn penalties_and_violations_by_constraint() {
-    let p = ObjectiveParams {
-        alpha_cov: 0.1,
-        rho: 8.0,
-        scale_coverage: -1.0,
-        scale_time: 1e-4,
-        c_start: 0.3,
-        c_end: 0.8,
-        aging: 60,
-        lc_separation: 30,
-        lc_min: 2,
-        lc_rule: LoopClosureRule::Run,
-        penalty: 1000.0,
-    };
+    let p = objective_params();
     /// (closures, components, coverage, C_req, loops ok, connected, [f1, f2], violations)
     type Case = (Vec<Vec<usize>>, usize, f64, f64, bool, bool, [f64; 2], usize);
     let cases: [Case; 6] = [
