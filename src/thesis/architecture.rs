@@ -339,39 +339,4 @@ fn recycle<T>(spare: &mut Vec<T>, dropped: impl Iterator<Item = T>, limit: usize
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    proptest::proptest! {
-        /// The two survivors are the first two of a stable sort by descending fitness.
-        #[test]
-        fn family_survivors_equal_the_head_of_a_stable_sort(levels in proptest::collection::vec(0usize..4, 2..8)) {
-            let fitness: Vec<f64> = levels.iter().map(|&l| [f64::NEG_INFINITY, 0.25, 0.5, 0.5 + 1e-16][l]).collect();
-            let mut idx: Vec<usize> = (0..fitness.len()).collect();
-            idx.sort_by(|&x, &y| fitness[y].total_cmp(&fitness[x]));
-            proptest::prop_assert_eq!(family_survivors(&fitness), [idx[0], idx[1]]);
-        }
-    }
-
-    #[test]
-    fn family_contest_keeps_the_two_best_and_children_win_ties() {
-        // (fitness of [kids..., parent1, parent2], survivors)
-        let cases: [(&[f64], [usize; 2]); 4] = [
-            (&[0.2, 0.9, 0.5, 0.7], [1, 3]),
-            (&[0.1, 0.2, 0.8, 0.9], [3, 2]),
-            (&[0.5, 0.3, 0.5, 0.5], [0, 2]),
-            (&[0.4, 0.4, 0.4, 0.4, 0.9, 0.1], [4, 0]),
-        ];
-        for (fitness, expected) in cases {
-            assert_eq!(family_survivors(fitness), expected, "{fitness:?}");
-        }
-    }
-
-    #[test]
-    fn adaptive_rate_spares_the_best() {
-        let r = MutationRate::Adaptive { diversity_part: 0.2, k: 0.5, f_min: 0.1, f_max: 0.9 };
-        assert!((r.for_fitness(0.9) - 0.1).abs() < 1e-12);
-        assert!((r.for_fitness(0.1) - 0.35).abs() < 1e-12);
-        assert_eq!(MutationRate::Fixed(0.3).for_fitness(0.5), 0.3);
-    }
-}
+mod tests;
