@@ -65,6 +65,57 @@ pub fn flight_time(path: &[u32], graph: &Graph, tr: &Traversals, rho: f64) -> f6
     total
 }
 
+/// The turning surcharges of a graph's every pair of consecutive edges, computed once per run:
+/// [`flight_time`] computes `|Δψ|^ρ` at each interior waypoint, which made `pow` a tenth of a
+/// generation. Entries are [`turn_cost`] of the same arguments, so the sum is the same to the
+/// bit.
+#[derive(Clone, Debug, Default)]
+pub struct TurnCosts {
+    /// Id of the first edge leaving each waypoint (edge `i → adj[i][k]` is `first[i] + k`).
+    first: Vec<usize>,
+    /// Per edge `u → v`, where its costs start in `costs`; `adj[v].len()` of them follow.
+    start: Vec<usize>,
+    /// `turn_cost(ρ, ψ(v → adj[v][k]) − ψ(u → v))` for each edge `u → v` and each `k`.
+    costs: Vec<f64>,
+}
+
+impl TurnCosts {
+    /// The table of `graph` with the headings of `tr` and exponent `rho`.
+    pub fn new(graph: &Graph, tr: &Traversals, rho: f64) -> Self {
+        let mut table = Self::default();
+        let mut edges = 0;
+        for adj in &graph.adj {
+            table.first.push(edges);
+            edges += adj.len();
+        }
+        for (u, adj) in graph.adj.iter().enumerate() {
+            for (k, &v) in adj.iter().enumerate() {
+                let arrive = tr.edges[u][k].heading;
+                table.start.push(table.costs.len());
+                let leave = &tr.edges[v as usize];
+                table.costs.extend(leave.iter().map(|t| turn_cost(rho, t.heading - arrive)));
+            }
+        }
+        table
+    }
+
+    /// [`flight_time`] of `path` with the surcharges looked up (the same value to the bit).
+    pub fn flight_time(&self, path: &[u32], graph: &Graph, tr: &Traversals) -> f64 {
+        let mut total = 0.0;
+        let mut arriving: Option<usize> = None;
+        for w in path.windows(2) {
+            let i = w[0] as usize;
+            let k = graph.adj[i].binary_search(&w[1]).expect("consecutive waypoints are joined by an edge");
+            total += tr.edges[i][k].dist;
+            if let Some(e) = arriving {
+                total += self.costs[self.start[e] + k];
+            }
+            arriving = Some(self.first[i] + k);
+        }
+        total
+    }
+}
+
 /// ORs the views of a path into `u` (one pose per waypoint facing the next; the last facing
 /// its arrival direction, W10).
 pub fn add_views(path: &[u32], graph: &Graph, tr: &Traversals, u: &mut Union) {
@@ -110,41 +161,77 @@ impl LoopClosureRule {
 /// `a` counts once if `b` flies it too — for a path with itself (`same`), at least
 /// `separation` positions after the edge's first occurrence.
 pub fn edge_loop_closures(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
-    let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));
-    let edge_a = |i: usize| (a[i], a[i + 1]);
-    let mut count = 0;
-    for i in 0..ea {
-        if (0..i).any(|k| edge_a(k) == edge_a(i)) {
-            continue; // counted at its first occurrence
+    EDGE_LISTS.with_borrow_mut(|(ka, kb)| {
+        sorted_edges(a, ka);
+        sorted_edges(b, kb);
+        let mut count = 0;
+        let mut rest: &[(u64, u32)] = kb;
+        // Groups of one edge in `a`, first occurrence first; the last of its group in `b` is
+        // its latest occurrence there.
+        for (g, &(edge, first)) in ka.iter().enumerate() {
+            if g > 0 && ka[g - 1].0 == edge {
+                continue;
+            }
+            let from = if same { first as usize + separation.max(1) } else { 0 };
+            rest = &rest[rest.partition_point(|&(e, _)| e < edge)..];
+            let last_in_b = rest.iter().take_while(|&&(e, _)| e == edge).last();
+            if last_in_b.is_some_and(|&(_, j)| j as usize >= from) {
+                count += 1;
+            }
         }
-        let from = if same { i + separation.max(1) } else { 0 };
-        if (from..eb).any(|j| (b[j], b[j + 1]) == edge_a(i)) {
-            count += 1;
-        }
-    }
-    count
+        count
+    })
 }
 
 /// Loop closures between the directed edges of `a` and `b` (spec §12.3, W23): matches `(i, j)`
 /// with the same directed edge and, for a path with itself (`same`), `j − i ≥ separation`;
 /// a run of consecutive matches counts once.
+///
+/// Only pairs with the same edge can match, so `b`'s edges are sorted once and each edge of
+/// `a` looks up its occurrences: O((|a| + |b|)·log |b|) instead of every pair of positions.
+/// A match `(i, j)` continues a run when `(i − 1, j − 1)` matches too; with `a[i] = b[j]`
+/// known and the separation the same for both, that is `a[i − 1] = b[j − 1]`.
 pub fn loop_closures(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
-    let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));
-    let is_match = |i: usize, j: usize| -> bool {
-        if same && (j < i + separation.max(1)) {
-            return false;
-        }
-        a[i] == b[j] && a[i + 1] == b[j + 1]
-    };
-    let mut count = 0;
-    for i in 0..ea {
-        for j in 0..eb {
-            if is_match(i, j) && !(i > 0 && j > 0 && is_match(i - 1, j - 1)) {
-                count += 1;
+    EDGE_LISTS.with_borrow_mut(|(_, kb)| {
+        sorted_edges(b, kb);
+        let separation = separation.max(1);
+        let mut count = 0;
+        for i in 0..a.len().saturating_sub(1) {
+            let edge = edge_key(a, i);
+            let start = kb.partition_point(|&(e, _)| e < edge);
+            for &(_, j) in kb[start..].iter().take_while(|&&(e, _)| e == edge) {
+                let j = j as usize;
+                let separated = !same || j >= i + separation;
+                let continues_run = i > 0 && j > 0 && a[i - 1] == b[j - 1];
+                count += usize::from(separated && !continues_run);
             }
         }
-    }
-    count
+        count
+    })
+}
+
+/// The directed edge `path[i] → path[i + 1]` as one sortable key.
+#[inline]
+fn edge_key(path: &[u32], i: usize) -> u64 {
+    (u64::from(path[i]) << 32) | u64::from(path[i + 1])
+}
+
+/// `(edge, position)` of every edge of `path`, sorted by edge, then position.
+fn sorted_edges(path: &[u32], out: &mut EdgeList) {
+    out.clear();
+    out.extend((0..path.len().saturating_sub(1)).map(|i| (edge_key(path, i), i as u32)));
+    out.sort_unstable();
+}
+
+/// Directed edges as `(key, position)`, sorted (see [`sorted_edges`]).
+type EdgeList = Vec<(u64, u32)>;
+
+thread_local! {
+    /// The sorted edge lists of [`loop_closures`] and [`edge_loop_closures`], kept per thread
+    /// so that counting allocates nothing once they have grown.
+    static EDGE_LISTS: std::cell::RefCell<(EdgeList, EdgeList)> = const {
+        std::cell::RefCell::new((Vec::new(), Vec::new()))
+    };
 }
 
 /// Number of connected components of the agents' loop-closure graph (= the number of zero
@@ -242,6 +329,8 @@ pub struct Evaluator<'a> {
     pub band_count: u64,
     /// Parameters.
     pub params: ObjectiveParams,
+    /// The turning surcharges for `params.rho` ([`TurnCosts::new`]).
+    pub turns: &'a TurnCosts,
 }
 
 impl Evaluator<'_> {
@@ -272,7 +361,7 @@ impl Evaluator<'_> {
             open,
             walls,
             coverage: blended_coverage(self.params.alpha_cov, open, walls),
-            flight_time: rows.iter().map(|r| flight_time(r, self.graph, self.traversals, self.params.rho)).sum(),
+            flight_time: rows.iter().map(|r| self.turns.flight_time(r, self.graph, self.traversals)).sum(),
             closures,
             components: comps,
         }

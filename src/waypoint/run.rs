@@ -3,7 +3,7 @@
 //! penalised objectives with the coverage ramp, maximin fitness over parents ∪ children and
 //! elitism. Single and multi-agent (one row per agent).
 
-use super::evaluate::{Evaluation, Evaluator, ObjectiveParams, required_coverage};
+use super::evaluate::{Evaluation, Evaluator, ObjectiveParams, TurnCosts, required_coverage};
 use super::operators::{OperatorParams, crossover, extend_random, mutation_a, mutation_b, repair};
 use super::precompute::Union;
 use super::world::World;
@@ -189,6 +189,7 @@ pub fn run(
     on_generation: &mut GenerationCallback<'_>,
 ) -> WaypointOutcome {
     let started = std::time::Instant::now();
+    let turns = TurnCosts::new(&world.graph, &world.traversals, p.objectives.rho);
     let ev = Evaluator {
         graph: &world.graph,
         traversals: &world.traversals,
@@ -196,6 +197,7 @@ pub fn run(
         free: world.free,
         band_count: world.band_count,
         params: p.objectives,
+        turns: &turns,
     };
     let words = world.traversals.words;
     let g = &world.graph;

@@ -140,6 +140,11 @@ fn flight_time_and_views_of_a_square_by_hand() {
     assert!((flight_time(&[0, 1, 2, 1], &g, &tr, 8.0) - 2086.0).abs() < 1e-9);
     assert!((flight_time(&[0, 1], &g, &tr, 8.0) - 10.0).abs() < 1e-12);
     assert_eq!(flight_time(&[0], &g, &tr, 8.0), 0.0);
+    // The run's table gives the same times to the bit.
+    let turns = TurnCosts::new(&g, &tr, 8.0);
+    for path in [&[0, 1, 2, 1][..], &[0, 1], &[0], &[], &[1, 2, 1, 0, 1]] {
+        assert_eq!(turns.flight_time(path, &g, &tr).to_bits(), flight_time(path, &g, &tr, 8.0).to_bits(), "{path:?}");
+    }
     let mut u = Union::new(4);
     add_views(&[0, 1, 2, 1], &g, &tr, &mut u);
     let seen: Vec<usize> = (0..256).filter(|&i| u.contains(i)).collect();
@@ -151,7 +156,8 @@ fn evaluation_of_two_agents_by_hand() {
     let (g, tr) = square();
     let band = [u64::MAX, 0, 0, 0];
     let params = ObjectiveParams { alpha_cov: 0.25, lc_separation: 1, lc_min: 1, ..objective_params() };
-    let ev = Evaluator { graph: &g, traversals: &tr, band: &band, free: 200, band_count: 64, params };
+    let turns = TurnCosts::new(&g, &tr, params.rho);
+    let ev = Evaluator { graph: &g, traversals: &tr, band: &band, free: 200, band_count: 64, params, turns: &turns };
     let mut scratch = Union::new(4);
     // A flies 0 1 2 1, B flies 3 2 1 2: views {1, 12, 21, 121} ∪ {32, 21, 12, 112} = six
     // pixels, four of them in the band; A's 1→2 and 2→1 are B's too (two runs); B turns
@@ -189,5 +195,48 @@ fn penalties_and_violations_by_constraint() {
         let f = e.objectives(&p, c_req);
         assert!((f[0] - objectives[0]).abs() < 1e-9 && (f[1] - objectives[1]).abs() < 1e-9, "{e:?}: {f:?}");
         assert_eq!(e.violations(&p, c_req), violations, "{e:?}");
+    }
+}
+
+/// Loop closures by their definition (spec W23), pair by pair: the reference the sorted-edge
+/// count must equal.
+fn loop_closures_by_pairs(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
+    let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));
+    let is_match = |i: usize, j: usize| (!same || j >= i + separation.max(1)) && a[i] == b[j] && a[i + 1] == b[j + 1];
+    (0..ea)
+        .flat_map(|i| (0..eb).map(move |j| (i, j)))
+        .filter(|&(i, j)| is_match(i, j) && !(i > 0 && j > 0 && is_match(i - 1, j - 1)))
+        .count()
+}
+
+/// The authors' driver's count by its definition: each edge of `a` at its first occurrence,
+/// if `b` flies it at or after `from`.
+fn edge_loop_closures_by_scan(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
+    let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));
+    let edge = |p: &[u32], i: usize| (p[i], p[i + 1]);
+    (0..ea)
+        .filter(|&i| !(0..i).any(|k| edge(a, k) == edge(a, i)))
+        .filter(|&i| {
+            let from = if same { i + separation.max(1) } else { 0 };
+            (from..eb).any(|j| edge(b, j) == edge(a, i))
+        })
+        .count()
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+    /// The sorted-edge counts equal the counts by definition on random walks over few nodes
+    /// (many repeated edges, runs, and matches at either path's first edge), with a path and
+    /// itself and between two paths.
+    #[test]
+    fn closure_counts_equal_their_definitions(
+        a in proptest::collection::vec(0u32..5, 0..40),
+        b in proptest::collection::vec(0u32..5, 0..40),
+        separation in 0usize..8,
+    ) {
+        for (x, y, same) in [(&a, &a, true), (&a, &b, false), (&b, &a, false)] {
+            proptest::prop_assert_eq!(loop_closures(x, y, same, separation), loop_closures_by_pairs(x, y, same, separation));
+            proptest::prop_assert_eq!(edge_loop_closures(x, y, same, separation), edge_loop_closures_by_scan(x, y, same, separation));
+        }
     }
 }
