@@ -1,5 +1,7 @@
 //! The waypoint planner's speed targets: precomputation (waypoints, graph, per-edge views) on
-//! the office preset, and 1000 generations of 100 organisms, single agent.
+//! the office preset, and 1000 generations of 100 organisms, single agent; and 100
+//! generations on the floor-plan scale of 000 (`experiments/olson-ring.toml`: the 60 m × 40 m
+//! `office-ring` preset with the authors' camera).
 //!
 //! `cargo bench --bench waypoint`
 
@@ -30,6 +32,15 @@ fn bench(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(60));
     group.bench_function("ga_1000_generations_100_organisms", |b| {
         b.iter(|| run(&world, &plan.ga, 1, &Limits::default(), &mut |_, _, _, _| {}).best)
+    });
+    let ring = ExperimentFile::read(Path::new("experiments/olson-ring.toml")).expect("olson-ring.toml");
+    let ring = ring.validate("olson-ring", Path::new("experiments"), "olson-ring").expect("valid");
+    let PlannerConfig::Waypoint(mut ring_plan) = ring.planner else { panic!("a waypoint experiment") };
+    ring_plan.ga.generations = 100;
+    let ring_world = World::build(&ring.scenario.map, &ring_plan.world, 1).expect("world");
+    group.measurement_time(Duration::from_secs(30));
+    group.bench_function("ring_floor_100_generations", |b| {
+        b.iter(|| run(&ring_world, &ring_plan.ga, 1, &Limits::default(), &mut |_, _, _, _| {}).best)
     });
     group.finish();
 }

@@ -247,13 +247,17 @@ impl VisitPlanes {
         &self.planes[..self.top * self.words]
     }
 
+    /// The planes in use as one slice per plane, each `words` long, so that indexing a plane at
+    /// an index checked once against `words` needs no further bounds checks.
+    #[inline(always)]
+    fn used_planes(&self) -> std::slice::ChunksExact<'_, u64> {
+        self.planes[..self.top * self.words].chunks_exact(self.words.max(1))
+    }
+
     #[inline(always)]
     fn occupied(&self, idx: usize) -> u64 {
-        let mut any = 0;
-        for p in 0..self.top {
-            any |= self.planes[p * self.words + idx];
-        }
-        any
+        assert!(idx < self.words);
+        self.used_planes().fold(0, |any, plane| any | plane[idx])
     }
 
     /// Adds one visit to every cell of `mask` in word `idx`; returns the cells that were
@@ -262,17 +266,20 @@ impl VisitPlanes {
     fn add(&mut self, idx: usize, mask: u64) -> u64 {
         let fresh = mask & !self.occupied(idx);
         let mut carry = mask;
-        let mut p = 0;
-        while carry != 0 {
-            if p == self.top {
-                self.top += 1;
-                self.planes.resize(self.top * self.words, 0);
-            }
-            let w = &mut self.planes[p * self.words + idx];
-            let old = *w;
-            *w = old ^ carry;
+        let words = self.words;
+        for plane in self.planes[..self.top * words].chunks_exact_mut(words) {
+            let old = plane[idx];
+            plane[idx] = old ^ carry;
             carry &= old;
-            p += 1;
+            if carry == 0 {
+                return fresh;
+            }
+        }
+        if carry != 0 {
+            // The carry leaves the top plane: the map grows by one plane.
+            self.top += 1;
+            self.planes.resize(self.top * words, 0);
+            self.planes[(self.top - 1) * words + idx] = carry;
         }
         fresh
     }
@@ -281,14 +288,16 @@ impl VisitPlanes {
     /// the cells left unvisited.
     #[inline(always)]
     fn remove(&mut self, idx: usize, mask: u64) -> u64 {
+        assert!(idx < self.words);
         let mut borrow = mask;
-        let mut p = 0;
-        while borrow != 0 && p < self.top {
-            let w = &mut self.planes[p * self.words + idx];
-            let old = *w;
-            *w = old ^ borrow;
+        let words = self.words;
+        for plane in self.planes[..self.top * words].chunks_exact_mut(words) {
+            let old = plane[idx];
+            plane[idx] = old ^ borrow;
             borrow &= !old;
-            p += 1;
+            if borrow == 0 {
+                break;
+            }
         }
         debug_assert_eq!(borrow, 0, "removed a visit that was never added");
         mask & !self.occupied(idx)

@@ -56,10 +56,8 @@ pub fn lane_count_sums(masks: &[u64]) -> (u64, u64) {
         fours ^= c2;
         used = ripple(&mut levels, c4, 3, used);
     }
+    // Levels 0–2 may be zero (fewer than four masks); they then add nothing below.
     (levels[0], levels[1], levels[2]) = (ones, twos, fours);
-    while used > 0 && levels[used - 1] == 0 {
-        used -= 1;
-    }
     let (mut s1, mut s2) = (0u64, 0u64);
     for q in 0..used {
         let ones_q = u64::from(levels[q].count_ones());
