@@ -249,6 +249,13 @@ fn edit(
     while x + y < shared && old[so - y] == new[sn - y] && old[so - y - 1] == new[sn - y - 1] {
         y += 1;
     }
+    // The cache's slots of all the segments are fetched at once, not one miss after another.
+    for i in x..so - y {
+        cache.prefetch(old[i], old[i + 1], width);
+    }
+    for i in x..sn - y {
+        cache.prefetch(new[i], new[i + 1], width);
+    }
     for i in x..so - y {
         cache.apply::<false>(layers, visits, old[i], old[i + 1], width, &mut tally);
     }
