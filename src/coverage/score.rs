@@ -342,6 +342,50 @@ mod tests {
         assert!(sc.cam_walls_free > 0.0 && sc.cam_walls_free < 1.0 && sc.cam_open_free > 0.0);
     }
 
+    /// The camera is posed at both ends of a segment and every [`CAMERA_STEP_M`] between, looking
+    /// along it: a 4 m lane gives the union of five views, no more and no fewer.
+    #[test]
+    fn the_camera_is_posed_every_metre_along_a_segment_and_at_its_ends() {
+        let map = preset("thesis-1").unwrap();
+        let layer = CameraLayer::new(&map, &camera(), &[Point::new(1.0, 1.0)]);
+        let wm = &layer.map;
+        let views = |xs: &[f64]| {
+            let mut seen = vec![false; wm.occluded.len()];
+            for &x in xs {
+                let pos = wm.to_px(x, 1.0);
+                layer.camera.view(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, 0.0, |i| seen[i] = true);
+            }
+            let open = seen.iter().filter(|s| **s).count() as f64 / layer.counts[1] as f64;
+            let walls =
+                seen.iter().zip(&layer.band).filter(|(s, b)| **s && **b).count() as f64 / layer.counts[0] as f64;
+            (walls, open)
+        };
+        let lane = vec![Point::new(1.0, 1.0), Point::new(5.0, 1.0)];
+        let [walls, open, _, _] = layer.coverage(std::slice::from_ref(&lane));
+        assert_eq!((walls, open), views(&[1.0, 2.0, 3.0, 4.0, 5.0]));
+        assert!(open > views(&[1.0, 5.0]).1, "the poses between the ends see more");
+        // A repeated vertex adds no pose (it has no heading) and a vertex on a pose adds none.
+        let repeated = vec![lane[0], lane[0], Point::new(3.0, 1.0), lane[1]];
+        assert_eq!(layer.coverage(&[repeated]), layer.coverage(&[lane]));
+    }
+
+    /// The columns of `runs.csv` in their order, each value written as Rust writes it.
+    #[test]
+    fn score_columns_are_named_and_ordered_with_their_values() {
+        let sc = Score { agents: 3, cov_final_free: 0.25, crossings: 17, makespan_s: 12.5, ..Score::default() };
+        let cols = sc.columns();
+        assert_eq!(cols.len(), 23);
+        assert_eq!(cols[0], ("agents", "3".to_string()));
+        assert_eq!(cols[1], ("cov_final_free", "0.25".to_string()));
+        assert_eq!(cols[9], ("crossings", "17".to_string()));
+        assert_eq!(cols[22], ("makespan_s", "12.5".to_string()));
+        assert_eq!(Score::column_names(), cols.iter().map(|(k, _)| *k).collect::<Vec<_>>());
+        let mut names = Score::column_names();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), 23, "no column twice");
+    }
+
     #[test]
     fn makespan_is_the_slowest_agent_and_agents_share_one_visit_map() {
         let map = preset("thesis-1").unwrap();
