@@ -1,0 +1,98 @@
+//! One iteration of each architecture of the thesis GA on one thread, in the middle of a run:
+//! Elite families (architecture b, Table A.1 row e) with incremental and with full evaluation
+//! of children, and tournament, PRWS and RRWS (architecture a, `Init_I` 1000, `keep` 10,
+//! `select` 20, as in the Table 4.3 grid). Thesis-1, f2, no diversity measured.
+//!
+//! Each sample starts from a run advanced [`WARM_ITERATIONS`] iterations (outside the timer)
+//! and times the next iterations of that run (the same number in every sample). The throughput is in evaluations, so criterion's
+//! rate is children evaluated per second.
+//!
+//! `cargo bench --bench iteration`
+
+use covga::coverage::Footprint;
+use covga::geom::Point;
+use covga::map::presets::preset;
+use covga::thesis::crossover::ChildMode;
+use covga::thesis::fitness::Projection;
+use covga::thesis::individual::{EvaluationMode, Scenario};
+use covga::thesis::params::{Selection, ThesisParams};
+use covga::thesis::run::{GaState, ThesisGa};
+use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
+use std::time::{Duration, Instant};
+
+/// Iterations a run is advanced before its iterations are timed (past the initial population's
+/// fast improvements, when genomes have their typical length).
+const WARM_ITERATIONS: u32 = 200;
+
+fn ga(params: ThesisParams) -> ThesisGa {
+    let s = Point::new(1.3, 1.3);
+    let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
+    ThesisGa { scenario, params, seed: 1 }
+}
+
+/// Advances `state` by `iterations` iterations of `ga` (iteration budget `iter_max`).
+fn advance(ga: &ThesisGa, state: &mut GaState, iterations: u32, iter_max: u32) {
+    let mut scratches = ga.new_scratches();
+    for _ in 0..iterations {
+        let effective = ga.effective(state, state.iteration + 1, iter_max);
+        ga.step(state, effective, &mut scratches, None);
+    }
+}
+
+/// A run of `ga` advanced [`WARM_ITERATIONS`] iterations.
+fn warm(ga: &ThesisGa) -> GaState {
+    let mut state = ga.init(false);
+    advance(ga, &mut state, WARM_ITERATIONS, u32::MAX);
+    state
+}
+
+fn iteration(c: &mut Criterion) {
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
+    let row_e = ThesisParams::thesis_elite();
+    let arch_a = ThesisParams {
+        init_individuals: 1000,
+        keep: 10,
+        select: 20,
+        c_len: 0.4,
+        c_child: ChildMode::Changing,
+        p_ma: 0.1,
+        p_mi: 0.1,
+        ..row_e
+    };
+    let cases = [
+        ("elite_row_e/incremental", row_e),
+        ("elite_row_e/full", ThesisParams { evaluation: EvaluationMode::Full, ..row_e }),
+        ("tournament_3", ThesisParams { selection: Selection::Tournament { size: 3 }, ..arch_a }),
+        ("prws", ThesisParams { selection: Selection::Prws, ..arch_a }),
+        ("rrws_2", ThesisParams { selection: Selection::Rrws { pressure: 2.0 }, ..arch_a }),
+    ];
+    let mut group = c.benchmark_group("iteration");
+    // Every sample times the same number of iterations from the same point of the run.
+    group.sampling_mode(SamplingMode::Flat);
+    group.sample_size(20).measurement_time(Duration::from_secs(10)).warm_up_time(Duration::from_secs(1));
+    for (name, params) in cases {
+        let ga = ga(params);
+        // Evaluations per iteration, counted over 100 iterations after the warm-up.
+        let per_iteration = pool.install(|| {
+            let mut state = warm(&ga);
+            let before = state.evaluations;
+            advance(&ga, &mut state, 100, u32::MAX);
+            (state.evaluations - before).div_ceil(100)
+        });
+        group.throughput(Throughput::Elements(per_iteration));
+        group.bench_function(name, |b| {
+            b.iter_custom(|iters| {
+                pool.install(|| {
+                    let mut state = warm(&ga);
+                    let start = Instant::now();
+                    advance(&ga, &mut state, iters as u32, u32::MAX);
+                    start.elapsed()
+                })
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, iteration);
+criterion_main!(benches);
