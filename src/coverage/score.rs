@@ -369,6 +369,42 @@ mod tests {
         assert_eq!(layer.coverage(&[repeated]), layer.coverage(&[lane]));
     }
 
+    /// Two rooms split by a thick wall: the camera's `_reach` figures count only the room of
+    /// the station, whose every seen pixel is reachable, so they are the `_free` figures over a
+    /// smaller denominator. (The path keeps 2.5 m from the wall: at close range eq. 1's
+    /// sections can fall between the centres of a thin wall's pixels and see past it.)
+    #[test]
+    fn camera_reach_figures_count_the_station_s_room_only() {
+        use crate::map::{CellState, GridMap};
+        let (cols, rows) = (100, 40);
+        let mut cells = vec![CellState::Free; cols * rows];
+        for r in 0..rows {
+            for c in 0..cols {
+                if r == 0 || c == 0 || r == rows - 1 || c == cols - 1 || (60..66).contains(&c) {
+                    cells[r * cols + c] = CellState::Occupied;
+                }
+            }
+        }
+        let map = GridMap::new("two-rooms", cols, rows, 0.1, Point::origin(), cells).unwrap();
+        let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
+        let s = Scorer::new(&map, robot, Projection::F2, &camera(), &[Point::new(1.0, 1.0)]);
+        let counts = s.camera.counts;
+        assert!(counts[3] < counts[1] && counts[2] < counts[0], "the far room is not reachable: {counts:?}");
+        let sc = s.score(&[vec![Point::new(1.0, 1.0), Point::new(1.0, 3.0), Point::new(3.5, 3.0)]]);
+        let hits = |share: f64, of: usize| (share * of as f64).round() as usize;
+        let (walls, open) = (hits(sc.cam_walls_free, counts[0]), hits(sc.cam_open_free, counts[1]));
+        assert!(walls > 0 && open > walls);
+        assert_eq!(hits(sc.cam_walls_reach, counts[2]), walls);
+        assert_eq!(hits(sc.cam_open_reach, counts[3]), open);
+        assert!(sc.cam_open_reach > sc.cam_open_free);
+        // The footprint's own share, cheap form: unique cells over all free cells.
+        let mut scratch = SweepScratch::new(s.grid());
+        let share = s.footprint_coverage(&mut scratch, &[vec![Point::new(1.0, 1.0), Point::new(1.0, 3.0)]]);
+        let lane = s.score(&[vec![Point::new(1.0, 1.0), Point::new(1.0, 3.0)]]);
+        assert!(share > 0.0);
+        assert_eq!(share, lane.unique_cells as f64 / lane.free_cells as f64);
+    }
+
     /// The columns of `runs.csv` in their order, each value written as Rust writes it.
     #[test]
     fn score_columns_are_named_and_ordered_with_their_values() {
