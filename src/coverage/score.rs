@@ -405,6 +405,20 @@ mod tests {
         assert_eq!(share, lane.unique_cells as f64 / lane.free_cells as f64);
     }
 
+    /// Time per agent is its length at the robot's speed plus its turns at `R_rot` (eqs.
+    /// 3.1–3.3): 5 m at 0.2 m/s and a quarter turn at 0.5 rad/s.
+    #[test]
+    fn agent_time_adds_the_turns_at_the_rotation_speed() {
+        let map = preset("thesis-1").unwrap();
+        let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.5 };
+        let s = Scorer::new(&map, robot, Projection::F2, &camera(), &[Point::new(1.3, 1.3)]);
+        let path = vec![Point::new(1.3, 1.3), Point::new(4.3, 1.3), Point::new(4.3, 3.3)];
+        let sc = s.score(&[path]);
+        let expected = 25.0 + std::f64::consts::PI;
+        assert!((sc.agent_time_s[0] - expected).abs() < 1e-9, "{}", sc.agent_time_s[0]);
+        assert_eq!((sc.time_s, sc.makespan_s), (sc.agent_time_s[0], sc.agent_time_s[0]));
+    }
+
     /// The columns of `runs.csv` in their order, each value written as Rust writes it.
     #[test]
     fn score_columns_are_named_and_ordered_with_their_values() {
