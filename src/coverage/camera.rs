@@ -62,6 +62,12 @@ impl Camera {
     /// Calls `visible(index)` for every explorable pixel seen from `pos` (px) with heading `psi`:
     /// in the field of view, at range `d_min ≤ r ≤ d_view` of its section. `occluded(col, row)`
     /// must be true outside the raster.
+    ///
+    /// A pixel belongs to the section of its centre's bearing (W9). Closer than about
+    /// `m / θ_fov` pixels (12.4 px for 000's camera: 15 sections over 69.4°) a pixel spans more
+    /// than a section, so a section can hold no centre of a one-pixel-thick wall in front of it
+    /// and sees past the wall, as eq. 1 read pixel by pixel implies; thicker walls or more
+    /// distant ones block every section.
     pub fn view(
         &self,
         width: usize,
