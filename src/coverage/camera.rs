@@ -66,8 +66,8 @@ impl Camera {
     /// A pixel belongs to the section of its centre's bearing (W9). Closer than about
     /// `m / θ_fov` pixels (12.4 px for 000's camera: 15 sections over 69.4°) a pixel spans more
     /// than a section, so a section can hold no centre of a one-pixel-thick wall in front of it
-    /// and sees past the wall, as eq. 1 read pixel by pixel implies; thicker walls or more
-    /// distant ones block every section.
+    /// and sees past the wall, as eq. 1 read pixel by pixel implies. Beyond that range, or
+    /// behind walls several pixels thick, a section holds some wall centre in practice.
     pub fn view(
         &self,
         width: usize,
