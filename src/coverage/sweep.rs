@@ -249,6 +249,27 @@ mod tests {
         Point::new(x, y)
     }
 
+    /// A fleet's pre-marks replace the earlier ones: flagged free cells are marked and leave
+    /// `A_pix`, a flagged obstacle stays an obstacle and unmarked, unflagged cells stay open.
+    #[test]
+    fn set_premarks_replaces_the_marks_and_a_pix_by_hand() {
+        use crate::map::CellState::{Free, Occupied};
+        // 3 × 2 cells, the middle of the bottom row occupied: five free cells.
+        let cells = vec![Free, Occupied, Free, Free, Free, Free];
+        let map = GridMap::new("six", 3, 2, 0.5, Point::origin(), cells).unwrap();
+        let mut g = CoverageGrid::new(&map);
+        assert_eq!((g.len(), g.is_empty(), g.area_cells()), (6, false, 5));
+        g.set_premarks(&[true, true, false, false, true, false]);
+        let marked: Vec<bool> = (0..6).map(|i| g.is_premarked(i)).collect();
+        assert_eq!(marked, [true, false, false, false, true, false]);
+        assert_eq!(g.area_cells(), 3);
+        assert!(g.is_blocked(1) && !g.is_blocked(0));
+        g.set_premarks(&[false, true, true, false, false, false]);
+        let marked: Vec<bool> = (0..6).map(|i| g.is_premarked(i)).collect();
+        assert_eq!(marked, [false, false, true, false, false, false], "the earlier marks are gone");
+        assert_eq!(g.area_cells(), 4);
+    }
+
     #[test]
     fn premark_of_the_retrain_corner_matches_spec() {
         // spec §16.4: the 5 m corner square leaves A_pix = 1400 (map 1) and 1225 (map 2).
