@@ -270,6 +270,36 @@ mod tests {
         assert_eq!(g.area_cells(), 4);
     }
 
+    /// A fleet's counts are the sum of its robots' shares, each robot with its width, on one
+    /// shared visit grid; `visits` reads the grid cell by cell as `visit_counts` lists it.
+    #[test]
+    fn fleet_totals_are_the_shares_summed_and_visits_read_the_shared_grid() {
+        use crate::map::CellState::{Free, Occupied};
+        let mut cells = vec![Free; 100];
+        cells[5 * 10 + 5] = Occupied;
+        let map = GridMap::new("ten", 10, 10, 0.5, Point::origin(), cells).unwrap();
+        let g = CoverageGrid::new(&map);
+        let mut s = SweepScratch::new(&g);
+        let paths = vec![vec![p(0.75, 2.75), p(4.25, 2.75)], vec![p(2.25, 0.5), p(2.25, 4.5), p(2.25, 0.5)]];
+        let mut shares = [SweepCounts::default(); 2];
+        let total = s.sweep_fleet(&g, &paths, &[0.4, 0.9], &mut shares);
+        assert!(shares[0].obj_pix > 0 && shares[1].obj_pix == 0, "only the first robot crosses the obstacle");
+        assert!(shares[1].cross_pix > 0, "the second robot re-sweeps the first one's cells and its own");
+        let summed = SweepCounts {
+            cov_pix: shares[0].cov_pix + shares[1].cov_pix,
+            cross_pix: shares[0].cross_pix + shares[1].cross_pix,
+            obj_pix: shares[0].obj_pix + shares[1].obj_pix,
+        };
+        assert_eq!(total, summed);
+        let listed: Vec<(u32, u32)> = s.visit_counts().collect();
+        assert_eq!(listed.iter().map(|&(_, n)| u64::from(n)).sum::<u64>(), total.cov_pix);
+        assert!(listed.iter().any(|&(_, n)| n == 3), "the crossing cells are visited three times");
+        for &(i, n) in &listed {
+            assert_eq!(s.visits(i as usize), n);
+        }
+        assert_eq!(s.visits(99), 0, "a corner no robot reaches");
+    }
+
     #[test]
     fn premark_of_the_retrain_corner_matches_spec() {
         // spec §16.4: the 5 m corner square leaves A_pix = 1400 (map 1) and 1225 (map 2).
