@@ -336,6 +336,19 @@ mod tests {
         assert_eq!(diversity(&pop, &mut DiversityScratch::default()), 0.0);
     }
 
+    /// A scratch grows with the population it serves: reused from 2 individuals to 40, it
+    /// gives the sums a fresh one gives.
+    #[test]
+    fn a_reused_scratch_grows_with_the_population() {
+        let pop: Vec<Individual> = (0..40u32).map(|k| ind(&[(k % 7, 1 + k % 5), (20 + k % 3, 2)])).collect();
+        let mut scratch = DiversityScratch::default();
+        for n in [2, 3, 40] {
+            let fresh = pair_distance_sum(&pop[..n], &mut DiversityScratch::default());
+            assert_eq!(pair_distance_sum(&pop[..n], &mut scratch), fresh, "n = {n}");
+            assert_eq!(fresh, pair_sum_by_cells(&pop[..n]));
+        }
+    }
+
     /// The sum over cells of the histogram formula, cell by cell (the reference).
     fn pair_sum_by_cells(pop: &[Individual]) -> u64 {
         let n = pop.len() as u64;
