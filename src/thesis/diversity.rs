@@ -345,6 +345,15 @@ mod tests {
         assert_eq!(diversity(&pop, &mut DiversityScratch::default()), 0.0);
     }
 
+    /// `Div` of one member is 0, of two the one distance between them (2·D / (2·1)).
+    #[test]
+    fn diversity_of_one_and_of_two_members() {
+        let (a, b) = (ind(&[(0, 1), (1, 2)]), ind(&[(1, 1), (2, 3)]));
+        let mut scratch = DiversityScratch::default();
+        assert_eq!(diversity(std::slice::from_ref(&a), &mut scratch), 0.0);
+        assert_eq!(diversity(&[a, b], &mut scratch), 5.0);
+    }
+
     /// A scratch grows with the population it serves: reused from 2 individuals to 40, it
     /// gives the sums a fresh one gives.
     #[test]
