@@ -4,14 +4,10 @@
 //!
 //! `cargo bench --bench allocations` prints the counts; it times nothing.
 
-use covga::coverage::Footprint;
-use covga::geom::Point;
-use covga::map::presets::preset;
-use covga::thesis::crossover::ChildMode;
-use covga::thesis::fitness::Projection;
-use covga::thesis::individual::Scenario;
+mod common;
+
+use common::{architecture_a, thesis1_ga};
 use covga::thesis::params::{Budget, Selection, ThesisParams};
-use covga::thesis::run::ThesisGa;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -42,9 +38,7 @@ unsafe impl GlobalAlloc for Counting {
 static GLOBAL: Counting = Counting;
 
 fn count(name: &str, params: ThesisParams, iterations: u32) {
-    let s = Point::new(1.3, 1.3);
-    let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
-    let mut ga = ThesisGa { scenario, params, seed: 1 };
+    let mut ga = thesis1_ga(params);
     let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
     let (a0, b0) = (ALLOCATIONS.load(Ordering::Relaxed), BYTES.load(Ordering::Relaxed));
@@ -64,16 +58,6 @@ fn main() {
     // `cargo bench` passes `--bench`; any other run (e.g. `cargo test --benches`) also counts.
     let row_e = ThesisParams::thesis_elite();
     count("reference run (row e, Elite, 2000 iterations)", row_e, 2000);
-    let tournament = ThesisParams {
-        selection: Selection::Tournament { size: 3 },
-        init_individuals: 1000,
-        keep: 10,
-        select: 20,
-        c_len: 0.4,
-        c_child: ChildMode::Changing,
-        p_ma: 0.1,
-        p_mi: 0.1,
-        ..row_e
-    };
+    let tournament = architecture_a(Selection::Tournament { size: 3 });
     count("tournament, Init_I 1000, 200 iterations", tournament, 200);
 }

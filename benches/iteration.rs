@@ -9,12 +9,10 @@
 //!
 //! `cargo bench --bench iteration`
 
-use covga::coverage::Footprint;
-use covga::geom::Point;
-use covga::map::presets::preset;
-use covga::thesis::crossover::ChildMode;
-use covga::thesis::fitness::Projection;
-use covga::thesis::individual::{EvaluationMode, Scenario};
+mod common;
+
+use common::{architecture_a, thesis1_ga};
+use covga::thesis::individual::EvaluationMode;
 use covga::thesis::params::{Selection, ThesisParams};
 use covga::thesis::run::{GaState, ThesisGa};
 use criterion::{Criterion, SamplingMode, Throughput, criterion_group, criterion_main};
@@ -23,12 +21,6 @@ use std::time::{Duration, Instant};
 /// Iterations a run is advanced before its iterations are timed (past the initial population's
 /// fast improvements, when genomes have their typical length).
 const WARM_ITERATIONS: u32 = 200;
-
-fn ga(params: ThesisParams) -> ThesisGa {
-    let s = Point::new(1.3, 1.3);
-    let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
-    ThesisGa { scenario, params, seed: 1 }
-}
 
 /// Advances `state` by `iterations` iterations of `ga` (iteration budget `iter_max`).
 fn advance(ga: &ThesisGa, state: &mut GaState, iterations: u32, iter_max: u32) {
@@ -49,29 +41,19 @@ fn warm(ga: &ThesisGa) -> GaState {
 fn iteration(c: &mut Criterion) {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
     let row_e = ThesisParams::thesis_elite();
-    let arch_a = ThesisParams {
-        init_individuals: 1000,
-        keep: 10,
-        select: 20,
-        c_len: 0.4,
-        c_child: ChildMode::Changing,
-        p_ma: 0.1,
-        p_mi: 0.1,
-        ..row_e
-    };
     let cases = [
         ("elite_row_e/incremental", row_e),
         ("elite_row_e/full", ThesisParams { evaluation: EvaluationMode::Full, ..row_e }),
-        ("tournament_3", ThesisParams { selection: Selection::Tournament { size: 3 }, ..arch_a }),
-        ("prws", ThesisParams { selection: Selection::Prws, ..arch_a }),
-        ("rrws_2", ThesisParams { selection: Selection::Rrws { pressure: 2.0 }, ..arch_a }),
+        ("tournament_3", architecture_a(Selection::Tournament { size: 3 })),
+        ("prws", architecture_a(Selection::Prws)),
+        ("rrws_2", architecture_a(Selection::Rrws { pressure: 2.0 })),
     ];
     let mut group = c.benchmark_group("iteration");
     // Every sample times the same number of iterations from the same point of the run.
     group.sampling_mode(SamplingMode::Flat);
     group.sample_size(20).measurement_time(Duration::from_secs(10)).warm_up_time(Duration::from_secs(1));
     for (name, params) in cases {
-        let ga = ga(params);
+        let ga = thesis1_ga(params);
         // Evaluations per iteration, counted over 100 iterations after the warm-up.
         let per_iteration = pool.install(|| {
             let mut state = warm(&ga);

@@ -5,21 +5,16 @@
 //!
 //! `cargo bench --bench thesis_run`
 
-use covga::coverage::Footprint;
-use covga::geom::Point;
-use covga::map::presets::preset;
+mod common;
+
+use common::{architecture_a, thesis1_ga};
 use covga::thesis::crossover::ChildMode;
-use covga::thesis::fitness::Projection;
-use covga::thesis::individual::Scenario;
 use covga::thesis::params::{Budget, Selection, ThesisParams};
-use covga::thesis::run::ThesisGa;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::time::Duration;
 
 fn run(params: ThesisParams, iterations: u32) -> f64 {
-    let s = Point::new(1.3, 1.3);
-    let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
-    let mut ga = ThesisGa { scenario, params, seed: 1 };
+    let mut ga = thesis1_ga(params);
     let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
     ga.run(&budget, None, &mut []).expect("run").best.fitness()
 }
@@ -32,17 +27,7 @@ fn reference(c: &mut Criterion) {
     let row_a = ThesisParams { c_len: 0.6, c_child: ChildMode::Changing, p_ma: 0.01, p_mi: 0.1, ..row_e };
     group.bench_function("elite_2000_iterations/row_e_default", |b| b.iter(|| pool.install(|| run(row_e, 2000))));
     group.bench_function("elite_2000_iterations/row_a", |b| b.iter(|| pool.install(|| run(row_a, 2000))));
-    let tournament = ThesisParams {
-        selection: Selection::Tournament { size: 3 },
-        init_individuals: 1000,
-        keep: 10,
-        select: 20,
-        c_len: 0.4,
-        c_child: ChildMode::Changing,
-        p_ma: 0.1,
-        p_mi: 0.1,
-        ..row_e
-    };
+    let tournament = architecture_a(Selection::Tournament { size: 3 });
     group.throughput(Throughput::Elements(200));
     group.bench_function("tournament_init1000/200_iterations", |b| b.iter(|| pool.install(|| run(tournament, 200))));
     group.finish();
