@@ -315,6 +315,30 @@ mod tests {
     }
 
     #[test]
+    fn a_known_connector_of_zero_length_is_not_copied() {
+        // The parent's connector leads from S = E to E: zero length, heading 77°. A child
+        // from the same viewpoint with a connector heading 40° keeps its 40°, as decoding it
+        // from S does; only a connector of non-zero length is the same move whoever owns it.
+        let parent = [a(0.0, 0.0), a(10.0, 0.0), a(20.0, 0.0), a(77.0, 0.0), a(0.0, 0.0)];
+        let mut child = parent;
+        child[3] = a(40.0, 0.0);
+        let start = frame().start;
+        let mut pts = vec![start; 4];
+        decode_from(&mut child, &frame(), &mut pts, Some((start, parent[3])));
+        assert_eq!((child[3].alpha_deg(), child[3].dist_m()), (40.0, 0.0));
+        // A known connector of non-zero length from the same viewpoint is copied bit for bit.
+        let far = Frame::new(start, Point::new(4.3, 5.3), Point::new(0.0, 0.0), Point::new(11.0, 11.0));
+        let mut own = vec![start];
+        let mut parent = parent;
+        decode(&mut parent, &far, &mut own);
+        let mut child = parent;
+        child[3] = a(40.0, 0.0);
+        let mut pts = vec![start; 4];
+        decode_from(&mut child, &far, &mut pts, Some((start, parent[3])));
+        assert!(same_bits(&child[3], &parent[3]) && child[3].dist_m() == 5.0, "{:?}", child[3]);
+    }
+
+    #[test]
     fn zero_actions_are_those_shorter_than_a_nanometre() {
         // Spec R18: strictly below 1e-9 m.
         for (dist, zero) in [(0.0, true), (0.999e-9, true), (1e-9, false), (1e-6, false)] {
