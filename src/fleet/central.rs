@@ -17,7 +17,6 @@ use crate::geom::Point;
 use crate::map::GridMap;
 use crate::thesis::diversity::{DiversityScratch, max_distance_by, pair_distance_sum_by};
 use crate::thesis::fitness::{Projection, ThesisScore, area_m2, cov_actual, cov_final, f_obstacle, f1, f2, t_actual};
-use crate::thesis::genome::Action;
 use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual, Scenario};
 use crate::thesis::member::{Member, Op, Origin, Premark, Variation};
 use crate::thesis::params::ThesisParams;
@@ -125,7 +124,6 @@ pub fn crew_score(robots: &[Individual], union: u64, world: &FleetWorld) -> Thes
 
 impl Member for Crew {
     type World = FleetWorld;
-    type Genes = Vec<Vec<Action>>;
 
     fn fitness(&self) -> f64 {
         self.score.fitness
@@ -147,31 +145,31 @@ impl Member for Crew {
             })
             .collect()
     }
-    fn from_genes(genes: Vec<Vec<Action>>) -> Self {
-        Crew { robots: genes.into_iter().map(Individual::from_genes).collect(), ..Default::default() }
-    }
-
     /// Robot by robot, the robot's genomes of the two parents cross; a robot whose crossover
     /// draws no blocks passes to each child as the receiving parent's copy.
-    fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &FleetWorld, rng: &mut Rng) -> Option<Vec<Self::Genes>> {
-        let per_robot: Vec<Option<Vec<Vec<Action>>>> = (0..world.robots.len())
-            .map(|k| Individual::cross(&a.robots[k], &b.robots[k], p, &world.robots[k], rng))
-            .collect();
-        let children = per_robot.iter().flatten().map(Vec::len).next()?;
-        let kids = (0..children)
-            .map(|c| {
-                let receiver = if c % 2 == 0 { a } else { b };
-                per_robot
-                    .iter()
-                    .enumerate()
-                    .map(|(k, genes)| match genes {
-                        Some(g) => g[c].clone(),
-                        None => receiver.robots[k].genome.clone(),
-                    })
-                    .collect()
-            })
-            .collect();
-        Some(kids)
+    fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &FleetWorld, rng: &mut Rng, kids: &mut Vec<Self>) -> bool {
+        let robots = world.robots.len();
+        kids.resize_with(p.c_child.children(), Default::default);
+        for kid in kids.iter_mut() {
+            kid.robots.resize_with(robots, Default::default);
+        }
+        let mut robot_kids: Vec<Individual> = Vec::with_capacity(kids.len());
+        let mut crossed_any = false;
+        for k in 0..robots {
+            robot_kids.clear();
+            robot_kids.extend(kids.iter_mut().map(|kid| std::mem::take(&mut kid.robots[k])));
+            let crossed = Individual::cross(&a.robots[k], &b.robots[k], p, &world.robots[k], rng, &mut robot_kids);
+            crossed_any |= crossed;
+            for (c, (kid, mut robot)) in kids.iter_mut().zip(robot_kids.drain(..)).enumerate() {
+                if !crossed {
+                    let receiver = if c % 2 == 0 { a } else { b };
+                    robot.genome.clone_from(&receiver.robots[k].genome);
+                    robot.stable_genes = 0;
+                }
+                kid.robots[k] = robot;
+            }
+        }
+        crossed_any
     }
 
     fn vary_and_evaluate(
@@ -319,6 +317,68 @@ mod tests {
         assert_eq!(one.evaluations, two.evaluations);
         let fit = |o: &ThesisOutcome<Crew>| o.history.iter().map(|g| g.best_fitness.to_bits()).collect::<Vec<_>>();
         assert_eq!(fit(&one), fit(&two));
+    }
+
+    #[test]
+    fn a_crew_crosses_robot_by_robot_into_recycled_kids() {
+        // Robot 0's genomes are too short to cross (three genes), robot 1's cross. Each child
+        // holds its receiver's robot 0 and the matching child of robot 1's own crossover, drawn
+        // from the same stream, whatever the recycled kids held before.
+        use crate::thesis::crossover::{Parent, crossover};
+        let map = preset("thesis-1").unwrap();
+        let fleet = FleetFile::parse(HETERO, "f.toml", &map).unwrap();
+        let world = FleetWorld::new(&map, &fleet, Projection::F2);
+        let p = params(20, "elite");
+        let mut rng = crate::ga::rng::stream(4, crate::ga::rng::Purpose::Main, &[]);
+        let robot = |r: usize, len: usize, rng: &mut Rng| {
+            let mut ind = Individual::default();
+            crate::thesis::genome::random_genome(rng, len - 2, 5.0, &mut ind.genome);
+            crate::thesis::individual::evaluate(
+                &mut ind,
+                &world.robots[r],
+                crate::thesis::individual::Base::None,
+                EvaluationMode::Full,
+                &mut EvalScratch::default(),
+            );
+            ind
+        };
+        let crew = |rng: &mut Rng| Crew {
+            robots: vec![robot(0, 3, rng), robot(1, 20, rng), robot(2, 3, rng)],
+            ..Default::default()
+        };
+        let (a, b) = (crew(&mut rng), crew(&mut rng));
+        let mut kids = vec![crew(&mut rng), Crew::default()];
+        let mut replay = rng.clone();
+        assert!(Crew::cross(&a, &b, &p, &world, &mut rng, &mut kids));
+        fn parent(x: &Individual) -> Parent<'_> {
+            Parent { genome: &x.genome, points: &x.points, stable: x.stable_genes }
+        }
+        let (r1a, r1b) = (parent(&a.robots[1]), parent(&b.robots[1]));
+        let expected = crossover(
+            r1a,
+            r1b,
+            p.c_len,
+            p.short_genomes,
+            p.c_child,
+            p.max_genome_len,
+            &world.robots[1].frame,
+            &mut replay,
+        )
+        .expect("robot 1 crosses");
+        assert_eq!(kids.len(), p.c_child.children());
+        for (c, kid) in kids.iter().enumerate() {
+            let receiver = if c % 2 == 0 { &a } else { &b };
+            assert_eq!(kid.robots.len(), 3);
+            assert_eq!(kid.robots[0].genome, receiver.robots[0].genome, "child {c}, robot 0");
+            assert_eq!(kid.robots[1].genome, expected[c], "child {c}, robot 1");
+            assert_eq!(kid.robots[2].genome, receiver.robots[2].genome, "child {c}, robot 2");
+            assert!(kid.robots.iter().all(|r| r.stable_genes == 0));
+        }
+        assert_eq!(rng.get_word_pos(), replay.get_word_pos(), "robots 0 and 2 draw nothing");
+        // No robot can cross: no child.
+        let short = |rng: &mut Rng| Crew { robots: (0..3).map(|r| robot(r, 3, rng)).collect(), ..Default::default() };
+        let (c, d) = (short(&mut rng), short(&mut rng));
+        assert!(!Crew::cross(&c, &d, &p, &world, &mut rng, &mut kids));
     }
 
     #[test]

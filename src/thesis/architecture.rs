@@ -89,10 +89,8 @@ impl<T: Member> Job<T> {
     fn fresh(spare: &mut Vec<T>, rng: Rng, op: Op) -> Self {
         Self { ind: spare.pop().unwrap_or_default(), rng, op, origin: JobOrigin::New, evaluations: 0 }
     }
-    /// A crossover child, in a recycled member.
-    fn child(spare: &mut Vec<T>, genes: T::Genes, receiver: usize, rng: Rng, op: Op) -> Self {
-        let mut ind = spare.pop().unwrap_or_default();
-        ind.set_genes(genes);
+    /// A crossover child (built by [`Member::cross`] in a recycled member).
+    fn child(ind: T, receiver: usize, rng: Rng, op: Op) -> Self {
         Self { ind, rng, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
     }
     /// A copy of `of`, in a recycled member.
@@ -165,8 +163,14 @@ impl<T: Member> Generation<'_, T> {
         Variation { init: self.params.init, mode: self.params.evaluation }
     }
 
-    fn cross(&self, pop: &[T], a: usize, b: usize, rng: &mut Rng) -> Option<Vec<T::Genes>> {
-        T::cross(&pop[a], &pop[b], self.params, self.scenario, rng)
+    /// Crosses `pop[a]` and `pop[b]` into `kids`, topped up with members of `spare` first so
+    /// that the children reuse their buffers. False when no child could be made.
+    fn cross(&self, pop: &[T], (a, b): (usize, usize), rng: &mut Rng, kids: &mut Vec<T>, spare: &mut Vec<T>) -> bool {
+        let want = self.params.c_child.children();
+        while kids.len() < want {
+            kids.push(spare.pop().unwrap_or_default());
+        }
+        T::cross(&pop[a], &pop[b], self.params, self.scenario, rng, kids)
     }
 
     /// Initial population of `size` random genomes, evaluated (spec §6).
@@ -202,6 +206,7 @@ impl<T: Member> Generation<'_, T> {
             _ => spin(&wheel, rng),
         };
         let mut jobs: Vec<Job<T>> = Vec::with_capacity(4 * p.select);
+        let mut kids = Vec::with_capacity(4);
         for _ in 0..p.select {
             let p1 = pick(rng);
             let mut p2 = pick(rng);
@@ -212,23 +217,22 @@ impl<T: Member> Generation<'_, T> {
                 p2 = pick(rng);
             }
             let crossing = rng.random_bool(e.p_c.clamp(0.0, 1.0));
-            match crossing.then(|| self.cross(&pop, p1, p2, rng)).flatten() {
-                Some(kids) => {
-                    for (k, genome) in kids.into_iter().enumerate() {
-                        let receiver = if k % 2 == 0 { p1 } else { p2 };
-                        let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
-                        jobs.push(Job::child(spare, genome, receiver, self.stream(jobs.len()), op));
-                    }
+            if crossing && self.cross(&pop, (p1, p2), rng, &mut kids, spare) {
+                for (k, ind) in kids.drain(..).enumerate() {
+                    let receiver = if k % 2 == 0 { p1 } else { p2 };
+                    let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
+                    jobs.push(Job::child(ind, receiver, self.stream(jobs.len()), op));
                 }
-                None => {
-                    for q in [p1, p2] {
-                        let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[q]) };
-                        jobs.push(Job::copy(spare, &pop[q], self.stream(jobs.len()), op));
-                    }
+            } else {
+                for q in [p1, p2] {
+                    let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[q]) };
+                    jobs.push(Job::copy(spare, &pop[q], self.stream(jobs.len()), op));
                 }
             }
         }
+        spare.append(&mut kids);
         let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
+        let made = jobs.len();
         let mut old: Vec<Option<T>> = pop.into_iter().map(Some).collect();
         let mut next: Vec<T> = elite.iter().map(|&i| old[i].take().expect("distinct elite")).collect();
         next.extend(jobs.into_iter().map(|j| j.ind));
@@ -239,7 +243,7 @@ impl<T: Member> Generation<'_, T> {
                 next.push(old[rest[k]].take().expect("sampled once"));
             }
         }
-        recycle(spare, old.into_iter().flatten(), next.len());
+        recycle(spare, old.into_iter().flatten(), next.len().max(made));
         (next, evaluations)
     }
 
@@ -264,16 +268,17 @@ impl<T: Member> Generation<'_, T> {
         order.shuffle(rng);
         let mut jobs: Vec<Job<T>> = Vec::new();
         let mut families = Vec::with_capacity(n / 2);
+        let mut kids = Vec::with_capacity(4);
         let mut slot = 0;
         for pair in order.chunks_exact(2) {
             let (a, b) = (pair[0], pair[1]);
             let crossing = rng.random_bool(e.p_c.clamp(0.0, 1.0));
-            if let Some(kids) = crossing.then(|| self.cross(&pop, a, b, rng)).flatten() {
+            if crossing && self.cross(&pop, (a, b), rng, &mut kids, spare) {
                 let start = jobs.len();
-                for (k, genome) in kids.into_iter().enumerate() {
+                for (k, ind) in kids.drain(..).enumerate() {
                     let receiver = if k % 2 == 0 { a } else { b };
                     let op = Op::MutateAction { p_ma: e.p_ma.for_fitness(pop[receiver].fitness()) };
-                    jobs.push(Job::child(spare, genome, receiver, self.stream(slot), op));
+                    jobs.push(Job::child(ind, receiver, self.stream(slot), op));
                     slot += 1;
                 }
                 families.push(Family::Cross { parents: [a, b], kids: start..jobs.len() });
@@ -293,7 +298,9 @@ impl<T: Member> Generation<'_, T> {
                 families.push(Family::Apart([ma, mb]));
             }
         }
+        spare.append(&mut kids);
         let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
+        let made = jobs.len();
         let mut old: Vec<Option<T>> = pop.into_iter().map(Some).collect();
         let mut new: Vec<Option<T>> = jobs.into_iter().map(|j| Some(j.ind)).collect();
         let mut next = Vec::with_capacity(n);
@@ -326,13 +333,14 @@ impl<T: Member> Generation<'_, T> {
             }
         }
         // Members re-initialised in place of a parent leave the parent behind.
-        recycle(spare, old.into_iter().flatten(), next.len());
+        recycle(spare, old.into_iter().flatten(), next.len().max(made));
         (next, evaluations)
     }
 }
 
-/// Puts the members that did not pass on into `spare`, kept to at most `limit` (one
-/// population) so that a large initial population is not held on to.
+/// Puts the members that did not pass on into `spare`, kept to at most `limit` (a population,
+/// or a generation's new members if they are more) so that the next generation finds a
+/// member to reuse for each it makes, and a large initial population is not held on to.
 fn recycle<T>(spare: &mut Vec<T>, dropped: impl Iterator<Item = T>, limit: usize) {
     spare.extend(dropped.take(limit.saturating_sub(spare.len())));
     spare.truncate(limit);

@@ -111,12 +111,31 @@ pub struct Parent<'a> {
     pub stable: usize,
 }
 
-fn splice(a: &[Action], (a0, a1): (usize, usize), b: &[Action], (b0, b1): (usize, usize)) -> Vec<Action> {
-    let mut child = Vec::with_capacity(a.len() - (a1 - a0) + (b1 - b0));
+/// Where [`crossover_into`] writes a child: its genome and room for viewpoints, both reused
+/// (a recycled member's buffers).
+pub trait ChildBuffers {
+    /// The child's genome (overwritten) and a viewpoint scratch (overwritten; of no use after).
+    fn buffers(&mut self) -> (&mut Vec<Action>, &mut Vec<Point>);
+}
+
+impl ChildBuffers for (Vec<Action>, Vec<Point>) {
+    fn buffers(&mut self) -> (&mut Vec<Action>, &mut Vec<Point>) {
+        (&mut self.0, &mut self.1)
+    }
+}
+
+/// Writes `a[..a0] ++ b[b0..b1] ++ a[a1..]` into `child`.
+fn splice_into(
+    child: &mut Vec<Action>,
+    a: &[Action],
+    (a0, a1): (usize, usize),
+    b: &[Action],
+    (b0, b1): (usize, usize),
+) {
+    child.clear();
     child.extend_from_slice(&a[..a0]);
     child.extend_from_slice(&b[b0..b1]);
     child.extend_from_slice(&a[a1..]);
-    child
 }
 
 /// Locality-changing child of receiver `a` with donor block `b[b0..b1]` (spec §7.3): the
@@ -124,37 +143,63 @@ fn splice(a: &[Action], (a0, a1): (usize, usize), b: &[Action], (b0, b1): (usize
 /// receiver's next viewpoint, so the rest of the receiver stays in place.
 pub fn changing_child(
     a: Parent,
+    block_a: (usize, usize),
+    b: Parent,
+    block_b: (usize, usize),
+    frame: &Frame,
+) -> Vec<Action> {
+    let mut child = Vec::new();
+    changing_child_into(a, block_a, b, block_b, frame, &mut child, &mut Vec::new());
+    child
+}
+
+/// [`changing_child`] written into `child`, with `points` as the viewpoint scratch.
+pub fn changing_child_into(
+    a: Parent,
     (a0, a1): (usize, usize),
     b: Parent,
     (b0, b1): (usize, usize),
     frame: &Frame,
-) -> Vec<Action> {
-    let mut child = splice(a.genome, (a0, a1), b.genome, (b0, b1));
+    child: &mut Vec<Action>,
+    points: &mut Vec<Point>,
+) {
+    splice_into(child, a.genome, (a0, a1), b.genome, (b0, b1));
     let k = a0 + (b1 - b0);
     if k < child.len() - 2 {
         // The child starts with the receiver's genes 0 .. a0: those of its stable prefix
         // decode to its viewpoints.
         let shared = a0.min(a.stable);
-        let mut pts = Vec::with_capacity(k + 1);
-        pts.push(frame.start);
-        pts.extend_from_slice(&a.points[1..=shared]);
-        decode_prefix(&mut child, frame, k, &mut pts);
-        set_move(&mut child, k, pts[k], a.points[a1 + 1]);
+        points.clear();
+        points.push(frame.start);
+        points.extend_from_slice(&a.points[1..=shared]);
+        decode_prefix(child, frame, k, points);
+        set_move(child, k, points[k], a.points[a1 + 1]);
     }
-    child
 }
 
 /// Locality-preserving child (spec §7.4): the inserted genes keep the donor's absolute
 /// viewpoints; the gene before the block is re-aimed at the donor block's start and the gene
 /// after it from the block's end to the receiver's next viewpoint.
-pub fn preserving_child(a: Parent, (a0, a1): (usize, usize), b: Parent, (b0, b1): (usize, usize)) -> Vec<Action> {
-    let mut child = splice(a.genome, (a0, a1), b.genome, (b0, b1));
-    set_move(&mut child, a0 - 1, a.points[a0 - 1], b.points[b0]);
+pub fn preserving_child(a: Parent, block_a: (usize, usize), b: Parent, block_b: (usize, usize)) -> Vec<Action> {
+    let mut child = Vec::new();
+    preserving_child_into(a, block_a, b, block_b, &mut child);
+    child
+}
+
+/// [`preserving_child`] written into `child`.
+pub fn preserving_child_into(
+    a: Parent,
+    (a0, a1): (usize, usize),
+    b: Parent,
+    (b0, b1): (usize, usize),
+    child: &mut Vec<Action>,
+) {
+    splice_into(child, a.genome, (a0, a1), b.genome, (b0, b1));
+    set_move(child, a0 - 1, a.points[a0 - 1], b.points[b0]);
     let k = a0 + (b1 - b0);
     if k < child.len() - 2 {
-        set_move(&mut child, k, b.points[b1], a.points[a1 + 1]);
+        set_move(child, k, b.points[b1], a.points[a1 + 1]);
     }
-    child
 }
 
 /// Crossover of two parents (spec §7): draws blocks for both, redrawing up to 10 times while a
@@ -170,26 +215,52 @@ pub fn crossover<R: Rng + ?Sized>(
     frame: &Frame,
     rng: &mut R,
 ) -> Option<Vec<Vec<Action>>> {
+    let mut kids = vec![(Vec::new(), Vec::new()); mode.children()];
+    crossover_into(a, b, c_len, short, mode, max_len, frame, rng, &mut kids)
+        .then(|| kids.into_iter().map(|(genome, _)| genome).collect())
+}
+
+/// [`crossover`] written into `kids`, one per child (`mode.children()` of them), in the order
+/// changing A←B, changing B←A, preserving A←B, preserving B←A (those of `mode`). Returns
+/// false when no child could be made; `kids` then hold nothing of use. Draws exactly what
+/// [`crossover`] draws.
+#[allow(clippy::too_many_arguments)]
+pub fn crossover_into<R: Rng + ?Sized, K: ChildBuffers>(
+    a: Parent,
+    b: Parent,
+    c_len: f64,
+    short: ShortGenomes,
+    mode: ChildMode,
+    max_len: usize,
+    frame: &Frame,
+    rng: &mut R,
+    kids: &mut [K],
+) -> bool {
+    assert_eq!(kids.len(), mode.children(), "one buffer per child");
     let (na, nb) = (a.genome.len(), b.genome.len());
     for _ in 0..10 {
-        let ba = draw_block(na, c_len, short, rng)?;
-        let bb = draw_block(nb, c_len, short, rng)?;
+        let Some(ba) = draw_block(na, c_len, short, rng) else { return false };
+        let Some(bb) = draw_block(nb, c_len, short, rng) else { return false };
         let (la, lb) = (ba.1 - ba.0, bb.1 - bb.0);
         if na - la + lb > max_len || nb - lb + la > max_len {
             continue;
         }
-        let mut kids = Vec::with_capacity(mode.children());
+        let mut slots = kids.iter_mut().map(ChildBuffers::buffers);
         if mode != ChildMode::Preserving {
-            kids.push(changing_child(a, ba, b, bb, frame));
-            kids.push(changing_child(b, bb, a, ba, frame));
+            let (child, points) = slots.next().expect("a buffer per child");
+            changing_child_into(a, ba, b, bb, frame, child, points);
+            let (child, points) = slots.next().expect("a buffer per child");
+            changing_child_into(b, bb, a, ba, frame, child, points);
         }
         if mode != ChildMode::Changing {
-            kids.push(preserving_child(a, ba, b, bb));
-            kids.push(preserving_child(b, bb, a, ba));
+            let (child, _) = slots.next().expect("a buffer per child");
+            preserving_child_into(a, ba, b, bb, child);
+            let (child, _) = slots.next().expect("a buffer per child");
+            preserving_child_into(b, bb, a, ba, child);
         }
-        return Some(kids);
+        return true;
     }
-    None
+    false
 }
 
 #[cfg(test)]

@@ -3,7 +3,7 @@
 //! one per robot ([`crate::fleet::central::Crew`]), with the same operators, selections and
 //! parameter control.
 
-use super::crossover::{Parent, crossover};
+use super::crossover::{ChildBuffers, Parent, crossover_into};
 use super::diversity::{DiversityScratch, diversity, max_distance};
 use super::fitness::ThesisScore;
 use super::genome::{Action, random_genome};
@@ -11,6 +11,7 @@ use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParam
 use super::mutation::{Mutation, mutate, mutate_action};
 use super::params::ThesisParams;
 use crate::ga::rng::Rng;
+use crate::geom::Point;
 use rand::Rng as _;
 
 /// What a job does to a member before it is corrected and evaluated.
@@ -56,25 +57,25 @@ pub struct Variation {
 pub trait Member: Clone + Default + Send + Sync {
     /// What an evaluation reads (a [`Scenario`], or one per robot).
     type World: Sync;
-    /// The genes of a crossover child.
-    type Genes: Send;
     /// `f_obstacle` (maximised).
     fn fitness(&self) -> f64;
     /// The objectives behind the fitness.
     fn score(&self) -> ThesisScore;
     /// Genes in all (`G_len`; summed over a fleet's robots).
     fn genome_len(&self) -> usize;
-    /// An unevaluated member holding `genes`.
-    fn from_genes(genes: Self::Genes) -> Self;
-    /// Becomes an unevaluated member holding `genes`, keeping buffers it can reuse (its other
-    /// contents are overwritten by the evaluation that follows).
-    fn set_genes(&mut self, genes: Self::Genes) {
-        *self = Self::from_genes(genes);
-    }
-    /// The modified dual-point crossover of `a` and `b` (003 §3.3.2); `None` when no child
-    /// could be made (the children are then copies).
-    fn cross(a: &Self, b: &Self, params: &ThesisParams, world: &Self::World, rng: &mut Rng)
-    -> Option<Vec<Self::Genes>>;
+    /// The modified dual-point crossover of `a` and `b` (003 §3.3.2), written into `kids`:
+    /// recycled members, resized to the number of children (`C_child`), each made an
+    /// unevaluated member holding one child's genes. Their buffers are reused; the evaluation
+    /// that follows overwrites the rest. Returns false when no child could be made (the
+    /// children are then copies; `kids` hold nothing of use).
+    fn cross(
+        a: &Self,
+        b: &Self,
+        params: &ThesisParams,
+        world: &Self::World,
+        rng: &mut Rng,
+        kids: &mut Vec<Self>,
+    ) -> bool;
     /// Applies `op`, then corrects and evaluates what changed (R17), against `origin` where
     /// that saves work. Returns the single-robot path evaluations spent.
     fn vary_and_evaluate(
@@ -131,8 +132,6 @@ pub fn vary(genome: &mut Vec<Action>, op: Op, init: &InitParams, rng: &mut Rng) 
 
 impl Member for Individual {
     type World = Scenario;
-    type Genes = Vec<Action>;
-
     fn fitness(&self) -> f64 {
         self.score.fitness
     }
@@ -142,19 +141,17 @@ impl Member for Individual {
     fn genome_len(&self) -> usize {
         self.genome.len()
     }
-    fn from_genes(genome: Vec<Action>) -> Self {
-        Individual { genome, ..Default::default() }
-    }
-    fn set_genes(&mut self, genome: Vec<Action>) {
-        self.genome = genome;
-        self.stable_genes = 0;
-    }
-
-    fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng) -> Option<Vec<Vec<Action>>> {
+    fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng, kids: &mut Vec<Self>) -> bool {
         fn parent(x: &Individual) -> Parent<'_> {
             Parent { genome: &x.genome, points: &x.points, stable: x.stable_genes }
         }
-        crossover(parent(a), parent(b), p.c_len, p.short_genomes, p.c_child, p.max_genome_len, &world.frame, rng)
+        kids.resize_with(p.c_child.children(), Default::default);
+        let (c_len, short, mode, max_len) = (p.c_len, p.short_genomes, p.c_child, p.max_genome_len);
+        let crossed = crossover_into(parent(a), parent(b), c_len, short, mode, max_len, &world.frame, rng, kids);
+        for kid in kids.iter_mut() {
+            kid.stable_genes = 0;
+        }
+        crossed
     }
 
     fn vary_and_evaluate(
@@ -186,5 +183,13 @@ impl Member for Individual {
     }
     fn max_distance(pop: &[Self]) -> u64 {
         max_distance(pop)
+    }
+}
+
+/// A member's genome is where a crossover child is written; its viewpoints are the scratch
+/// (the evaluation that follows overwrites them).
+impl ChildBuffers for Individual {
+    fn buffers(&mut self) -> (&mut Vec<Action>, &mut Vec<Point>) {
+        (&mut self.genome, &mut self.points)
     }
 }

@@ -84,7 +84,6 @@ struct World {
 
 impl Member for Probe {
     type World = World;
-    type Genes = (usize, u64, u64);
     fn fitness(&self) -> f64 {
         self.fit
     }
@@ -94,11 +93,13 @@ impl Member for Probe {
     fn genome_len(&self) -> usize {
         1
     }
-    fn from_genes(genes: Self::Genes) -> Self {
-        Probe { genes: Some(genes), ..Default::default() }
-    }
-    fn cross(a: &Self, b: &Self, _: &ThesisParams, world: &World, _: &mut Rng) -> Option<Vec<Self::Genes>> {
-        world.children.map(|c| (0..c).map(|k| (k, a.id, b.id)).collect())
+    fn cross(a: &Self, b: &Self, _: &ThesisParams, world: &World, _: &mut Rng, kids: &mut Vec<Self>) -> bool {
+        let Some(c) = world.children else { return false };
+        kids.resize_with(c, Default::default);
+        for (k, kid) in kids.iter_mut().enumerate() {
+            kid.genes = Some((k, a.id, b.id));
+        }
+        true
     }
     fn vary_and_evaluate(
         &mut self,
@@ -351,7 +352,8 @@ fn architecture_b_families_keep_their_two_best_with_receivers_and_slots() {
             assert_eq!(child.draw, draws[4 * family + k], "family {family} child {k}");
         }
     }
-    // The losers (two children and two parents per family) are put aside, one population.
-    assert_eq!(out.spare.len(), 4);
+    // The losers (two children and two parents per family) are put aside, as many as the
+    // generation made (eight), so that the next one finds a member to reuse for each child.
+    assert_eq!(out.spare.len(), 8);
     assert_eq!(out.evaluations, 8 * 2);
 }

@@ -22,7 +22,9 @@ fn worked_example_of_section_3_3_2_1() {
     // CP1 = 3, CP2 = 8 shares positions 3..7 (five genes) = 0-based 2..7.
     let a: Vec<Action> = (0..30).map(|i| Action::new(i as f64, 1.0)).collect();
     let b: Vec<Action> = (0..30).map(|i| Action::new(100.0 + i as f64, 1.0)).collect();
-    let child = splice(&a, (2, 7), &b, (2, 7));
+    let mut child = vec![Action::new(0.0, 9.0); 40];
+    splice_into(&mut child, &a, (2, 7), &b, (2, 7));
+    assert_eq!(child.len(), 30, "what the buffer held before is gone");
     let angles: Vec<f64> = child.iter().map(|x| x.alpha_deg()).collect();
     assert_eq!(&angles[..9], &[0.0, 1.0, 102.0, 103.0, 104.0, 105.0, 106.0, 7.0, 8.0]);
 }
