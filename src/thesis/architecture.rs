@@ -266,7 +266,8 @@ impl<T: Member> Generation<'_, T> {
         let n = pop.len();
         let mut order: Vec<usize> = (0..n).collect();
         order.shuffle(rng);
-        let mut jobs: Vec<Job<T>> = Vec::new();
+        // Sized once: growing a vector of jobs moves every job made so far.
+        let mut jobs: Vec<Job<T>> = Vec::with_capacity(n / 2 * self.params.c_child.children());
         let mut families = Vec::with_capacity(n / 2);
         let mut kids = Vec::with_capacity(4);
         let mut slot = 0;
