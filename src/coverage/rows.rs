@@ -170,5 +170,14 @@ mod tests {
             let (a, b) = (Point::new(ax, ay), Point::new(bx, by));
             prop_assert_eq!(rows(&g, a, b, w), swept_cells_brute_force(&g, a, b, w));
         }
+
+        /// Cells larger than a metre on a grid whose origin lies below and left of zero: the
+        /// range of rows is found in cell units from the grid's origin, not in metres from zero.
+        #[test]
+        fn coarse_grids_below_zero_match(ax in -6.0..24.0f64, ay in -5.0..14.0f64, bx in -6.0..24.0f64, by in -5.0..14.0f64, w in 0.05..4.0f64) {
+            let g = RasterGrid { cols: 20, rows: 12, resolution: 1.25, origin_x: -3.7, origin_y: -2.9 };
+            let (a, b) = (Point::new(ax, ay), Point::new(bx, by));
+            prop_assert_eq!(rows(&g, a, b, w), swept_cells_brute_force(&g, a, b, w));
+        }
     }
 }
