@@ -140,6 +140,45 @@ mod tests {
         assert!(rows(&grid(), Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
     }
 
+    /// The `x` within 64 ulps of `start` for which `f(x) == target` exactly (`f` increasing).
+    fn solve(f: impl Fn(f64) -> f64, target: f64, start: f64) -> Option<f64> {
+        let mut x = start;
+        for _ in 0..64 {
+            let y = f(x);
+            if y == target {
+                return Some(x);
+            }
+            x = f64::from_bits(if y < target { x.to_bits() + 1 } else { x.to_bits() - 1 });
+        }
+        None
+    }
+
+    #[test]
+    fn centres_exactly_on_the_far_ends_are_outside() {
+        // Spec §3.3 is half-open: a cell belongs when t < L − ε and s < w/2 − ε. Each segment
+        // is placed, ulp by ulp, so that the scan's own arithmetic puts whole cell centres
+        // exactly on one of those ends; those cells are out, as the brute-force rule says.
+        let g = RasterGrid { cols: 20, rows: 20, resolution: 0.25, origin_x: 0.0, origin_y: 0.0 };
+        let centre = |k: usize| (k as f64 + 0.5) * 0.25;
+        // t: along row 5 from column 0's centre; column 3's centre lies at t = L − ε.
+        let a = Point::new(centre(0), centre(5));
+        let t_end = |bx: f64| (Point::new(bx, a.y) - a).norm() - RASTER_EPS;
+        let bx = solve(t_end, centre(3) - a.x, centre(3) + RASTER_EPS).expect("an exact far end in t");
+        let b = Point::new(bx, a.y);
+        let swept = rows(&g, a, b, 0.3);
+        assert_eq!(swept, vec![100, 101, 102], "columns 0 to 2 of row 5, not 3");
+        assert_eq!(swept, swept_cells_brute_force(&g, a, b, 0.3));
+        // s: up from row 2's centre, 1 m, 0.45 m wide (a width for which an exact start
+        // exists); column 0's centre lies at s = w/2 − ε (s = −dx for a segment pointing up).
+        let s_hi = 0.5 * 0.45 - RASTER_EPS;
+        let s_of_column_0 = |ax: f64| -((g.origin_x + 0.5 * g.resolution) - ax);
+        let ax = solve(s_of_column_0, s_hi, centre(0) + s_hi).expect("an exact far end in s");
+        let (a, b) = (Point::new(ax, centre(2)), Point::new(ax, centre(2) + 1.0));
+        let swept = rows(&g, a, b, 0.45);
+        assert_eq!(swept, vec![41, 61, 81, 101], "column 1 of rows 2 to 5, not column 0");
+        assert_eq!(swept, swept_cells_brute_force(&g, a, b, 0.45));
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(3000))]
         #[test]
