@@ -140,15 +140,15 @@ mod tests {
         assert!(rows(&grid(), Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
     }
 
-    /// The `x` within 64 ulps of `start` for which `f(x) == target` exactly (`f` increasing).
-    fn solve(f: impl Fn(f64) -> f64, target: f64, start: f64) -> Option<f64> {
+    /// The `x` within 64 ulps of `start` (positive) for which `f(x) == target` exactly.
+    fn solve(f: impl Fn(f64) -> f64, increasing: bool, target: f64, start: f64) -> Option<f64> {
         let mut x = start;
         for _ in 0..64 {
             let y = f(x);
             if y == target {
                 return Some(x);
             }
-            x = f64::from_bits(if y < target { x.to_bits() + 1 } else { x.to_bits() - 1 });
+            x = f64::from_bits(if (y < target) == increasing { x.to_bits() + 1 } else { x.to_bits() - 1 });
         }
         None
     }
@@ -163,7 +163,7 @@ mod tests {
         // t: along row 5 from column 0's centre; column 3's centre lies at t = L − ε.
         let a = Point::new(centre(0), centre(5));
         let t_end = |bx: f64| (Point::new(bx, a.y) - a).norm() - RASTER_EPS;
-        let bx = solve(t_end, centre(3) - a.x, centre(3) + RASTER_EPS).expect("an exact far end in t");
+        let bx = solve(t_end, true, centre(3) - a.x, centre(3) + RASTER_EPS).expect("an exact far end in t");
         let b = Point::new(bx, a.y);
         let swept = rows(&g, a, b, 0.3);
         assert_eq!(swept, vec![100, 101, 102], "columns 0 to 2 of row 5, not 3");
@@ -172,10 +172,27 @@ mod tests {
         // exists); column 0's centre lies at s = w/2 − ε (s = −dx for a segment pointing up).
         let s_hi = 0.5 * 0.45 - RASTER_EPS;
         let s_of_column_0 = |ax: f64| -((g.origin_x + 0.5 * g.resolution) - ax);
-        let ax = solve(s_of_column_0, s_hi, centre(0) + s_hi).expect("an exact far end in s");
+        let ax = solve(s_of_column_0, true, s_hi, centre(0) + s_hi).expect("an exact far end in s");
         let (a, b) = (Point::new(ax, centre(2)), Point::new(ax, centre(2) + 1.0));
         let swept = rows(&g, a, b, 0.45);
         assert_eq!(swept, vec![41, 61, 81, 101], "column 1 of rows 2 to 5, not column 0");
+        assert_eq!(swept, swept_cells_brute_force(&g, a, b, 0.45));
+        // The same ends for constraints parallel to the rows, decided once per row. t: up
+        // column 5 from row 0's centre; row 3's centre lies at t = L − ε.
+        let a = Point::new(centre(5), centre(0));
+        let t_end = |by: f64| (Point::new(a.x, by) - a).norm() - RASTER_EPS;
+        let by = solve(t_end, true, centre(3) - a.y, centre(3) + RASTER_EPS).expect("an exact far end in t");
+        let swept = rows(&g, a, Point::new(a.x, by), 0.3);
+        assert_eq!(swept, vec![5, 25, 45], "rows 0 to 2 of column 5, not 3");
+        assert_eq!(swept, swept_cells_brute_force(&g, a, Point::new(a.x, by), 0.3));
+        // s: along the rows, 1 m from 0.1 m before column 2's centre (so that no column is
+        // near an end in t and the row's test alone decides), 0.45 m wide; row 1's centre lies
+        // at s = w/2 − ε (s = dy for a segment pointing right), as the scan computes dy.
+        let s_of_row_1 = |ay: f64| ((g.origin_y + 0.5 * g.resolution) - ay) + 1.0 * g.resolution;
+        let ay = solve(s_of_row_1, false, s_hi, centre(1) - s_hi).expect("an exact far end in s");
+        let (a, b) = (Point::new(centre(2) - 0.1, ay), Point::new(centre(2) + 0.9, ay));
+        let swept = rows(&g, a, b, 0.45);
+        assert_eq!(swept, vec![2, 3, 4, 5], "columns 2 to 5 of row 0, not row 1");
         assert_eq!(swept, swept_cells_brute_force(&g, a, b, 0.45));
     }
 
