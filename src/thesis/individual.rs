@@ -372,6 +372,74 @@ mod tests {
         assert_eq!(ind.points[2], Point::new(4.0, 0.0));
     }
 
+    #[test]
+    fn a_premarked_rectangle_makes_its_cells_revisits_in_both_evaluations() {
+        // The 3 m lane east from (1.3, 1.3) on thesis map 1 sweeps 45 cells; with the 1 m square
+        // at (1, 1) pre-marked, its 12 lane cells are revisits (as the sweep's own case says).
+        let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 1.3));
+        let mut scenario = Scenario::new(preset("thesis-1").unwrap(), Footprint::default(), s, e, Projection::F2);
+        let lane = || Individual {
+            genome: vec![Action::new(0.0, 3.0), Action::new(0.0, 0.0), Action::new(0.0, 0.0)],
+            ..Default::default()
+        };
+        let eval = |scenario: &Scenario, mode| {
+            let mut ind = lane();
+            evaluate(&mut ind, scenario, Base::None, mode, &mut EvalScratch::default());
+            ind
+        };
+        for mode in [EvaluationMode::Full, EvaluationMode::Incremental] {
+            assert_eq!(eval(&scenario, mode).sweep, SweepCounts { cov_pix: 45, cross_pix: 0, obj_pix: 0 });
+        }
+        scenario.premark_rect(1.0, 1.0, 2.0, 2.0);
+        for mode in [EvaluationMode::Full, EvaluationMode::Incremental] {
+            let ind = eval(&scenario, mode);
+            assert_eq!(ind.sweep, SweepCounts { cov_pix: 45, cross_pix: 12, obj_pix: 0 }, "{mode:?}");
+            // The accessors read the member.
+            assert_eq!(ind.fitness(), ind.score.fitness);
+            assert!(ind.fitness() > 0.0 && ind.fitness() != 1.0, "{}", ind.fitness());
+            assert_eq!((ind.len(), ind.is_empty()), (3, false));
+        }
+        assert!(Individual::default().is_empty());
+    }
+
+    #[test]
+    fn turning_costs_r_rot_and_nothing_without_it() {
+        // East 3 m, then the connector north 3 m to E: a quarter turn, T_rot = (π/2) / R_rot.
+        let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 4.3));
+        for (rot_speed, t_rot) in [(0.5, std::f64::consts::PI), (0.0, 0.0)] {
+            let robot = Footprint { rot_speed, ..Footprint::default() };
+            let scenario = Scenario::new(preset("thesis-1").unwrap(), robot, s, e, Projection::F2);
+            let mut ind = Individual {
+                genome: vec![Action::new(0.0, 3.0), Action::new(0.0, 0.0), Action::new(0.0, 0.0)],
+                ..Default::default()
+            };
+            evaluate(&mut ind, &scenario, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
+            assert!((ind.t_rot_s - t_rot).abs() < 1e-12, "R_rot {rot_speed}: {}", ind.t_rot_s);
+        }
+    }
+
+    #[test]
+    fn a_child_equal_to_its_parent_up_to_its_connector_evaluates_as_in_full() {
+        // Parent: five equal moves of 0.5 m east, the connector, E. Child: the same five genes,
+        // the fifth now in its connector's slot, and E. All the child's genes before E are the
+        // parent's bit for bit, one more than the child's stable prefix can hold.
+        let (s, e) = (Point::new(1.3, 1.3), Point::new(1.3, 3.3));
+        let scenario = Scenario::new(preset("thesis-1").unwrap(), Footprint::default(), s, e, Projection::F2);
+        let (g, zero) = (Action::new(0.0, 0.5), Action::new(0.0, 0.0));
+        let mut scratch = EvalScratch::default();
+        let mut parent = Individual { genome: vec![g, g, g, g, g, zero, zero], ..Default::default() };
+        evaluate(&mut parent, &scenario, Base::None, EvaluationMode::Incremental, &mut scratch);
+        assert_eq!(parent.stable_genes, 5);
+        let mut child = Individual { genome: vec![g, g, g, g, g, zero], ..Default::default() };
+        let mut full = Individual { genome: child.genome.clone(), ..Default::default() };
+        evaluate(&mut child, &scenario, Base::Parent(&parent), EvaluationMode::Incremental, &mut scratch);
+        evaluate(&mut full, &scenario, Base::None, EvaluationMode::Full, &mut scratch);
+        assert_eq!((&child.genome, &child.points, child.sweep), (&full.genome, &full.points, full.sweep));
+        assert_eq!((child.stable_genes, child.score), (full.stable_genes, full.score));
+        assert_eq!(child.visits, full.visits);
+        assert!((child.points[4] - Point::new(3.3, 1.3)).norm() < 1e-9, "four moves east, then the connector to E");
+    }
+
     /// Zero-action removal by its definition: marks on the unchanged genome, then deletion;
     /// the indices of the genes kept.
     fn kept_by_marks(genome: &[Action]) -> Vec<usize> {
