@@ -440,6 +440,51 @@ mod tests {
         assert!((child.points[4] - Point::new(3.3, 1.3)).norm() < 1e-9, "four moves east, then the connector to E");
     }
 
+    #[test]
+    fn an_edit_skips_only_the_segments_both_paths_share() {
+        // A path's visit map edited into another's equals the other's fresh sweep, however
+        // many viewpoints the two share at either end (`same`: leading viewpoints known shared).
+        let s = Point::new(1.3, 1.3);
+        let scenario = Scenario::new(preset("thesis-1").unwrap(), Footprint::default(), s, s, Projection::F2);
+        let (layers, width) = (&scenario.layers, scenario.robot.width);
+        let p = Point::new;
+        let old = [s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s];
+        let cases: [(Vec<Point>, usize); 9] = [
+            // The third viewpoint from the end differs; the last two are shared.
+            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(8.3, 8.3), p(6.3, 2.3), s], 3),
+            // The second differs; all after it are shared.
+            (vec![s, p(4.3, 1.3), p(5.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 1),
+            // The same, with nothing known shared beyond S.
+            (vec![s, p(4.3, 1.3), p(5.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 0),
+            // A viewpoint inserted, one removed.
+            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(3.3, 3.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 2),
+            (vec![s, p(4.3, 1.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 1),
+            // S again where the other path has a viewpoint, and S twice at the end: a shared
+            // tail is two equal segments, not one equal viewpoint matched with a neighbour.
+            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), s, p(6.3, 2.3), s], 1),
+            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), s, s], 1),
+            // Nothing shared but S and E; and the same path.
+            (vec![s, p(9.3, 9.3), s], 0),
+            (old.to_vec(), 6),
+        ];
+        let counts = |v: &VisitPlanes| {
+            let mut c = Vec::new();
+            v.for_each_count(|cell, k| c.push((cell, k)));
+            c
+        };
+        // Each pair both ways: from `old` to the case's path and back.
+        for (i, (path, same)) in cases.iter().enumerate() {
+            for (from, to) in [(&old[..], &path[..]), (&path[..], &old[..])] {
+                let mut visits = VisitPlanes::default();
+                let tally = layers.sweep(&mut visits, from, width);
+                let edited = edit(layers, &mut SegmentCache::default(), &mut visits, tally, from, to, *same, width);
+                let mut fresh = VisitPlanes::default();
+                assert_eq!(edited, layers.sweep(&mut fresh, to, width), "case {i}");
+                assert_eq!(counts(&visits), counts(&fresh), "case {i}");
+            }
+        }
+    }
+
     /// Zero-action removal by its definition: marks on the unchanged genome, then deletion;
     /// the indices of the genes kept.
     fn kept_by_marks(genome: &[Action]) -> Vec<usize> {
