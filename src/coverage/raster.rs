@@ -278,6 +278,29 @@ mod tests {
     }
 
     #[test]
+    fn ends_near_a_centre_are_settled_by_the_exact_test() {
+        // `inside` plays the exact rule of spec §3.3; the interval [f0, f1] is its rounded
+        // image, here off by δ = 1e-9 (far below SETTLE_MARGIN) where rounding could put it.
+        // Table: (f0, f1, always, the cells of 0 ..= 9 the exact rule admits: the run expected).
+        let d = 1e-9;
+        let cases: [(f64, f64, bool, Option<(i64, i64)>); 9] = [
+            (2.0 + d, 6.5, false, Some((2, 6))), // centre 2 just below f0, in
+            (3.0 - d, 6.5, false, Some((4, 6))), // centre 3 just above f0, out
+            (1.5, 6.0 - d, false, Some((2, 6))), // centre 6 just above f1, in
+            (1.5, 5.0 + d, false, Some((2, 4))), // centre 5 just below f1, out
+            (2.5, 5.5, false, Some((3, 5))),     // no end near a centre
+            (3.2, 3.7, false, None),             // no centre between the ends
+            (3.0 - d, 3.0 + d, false, None),     // both ends near 3, which is out
+            (-3.2, 40.0, false, Some((0, 9))),   // ends off the line
+            (0.5, 8.5, true, Some((3, 5))),      // `always`: the rule alone decides
+        ];
+        for (i, (f0, f1, always, admitted)) in cases.into_iter().enumerate() {
+            let inside = |k: i64| admitted.is_some_and(|(lo, hi)| (lo..=hi).contains(&k));
+            assert_eq!(settle_interval(f0, f1, 9, SETTLE_MARGIN, always, inside), admitted, "case {i}");
+        }
+    }
+
+    #[test]
     fn zero_length_sweeps_nothing() {
         assert!(scan(Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
     }
