@@ -279,24 +279,31 @@ mod tests {
 
     #[test]
     fn ends_near_a_centre_are_settled_by_the_exact_test() {
-        // `inside` plays the exact rule of spec §3.3; the interval [f0, f1] is its rounded
-        // image, here off by δ = 1e-9 (far below SETTLE_MARGIN) where rounding could put it.
-        // Table: (f0, f1, always, the cells of 0 ..= 9 the exact rule admits: the run expected).
+        // `inside` plays the exact rule of spec §3.3, which knows nothing of the line's ends
+        // (cells 0 ..= 9 here); the interval [f0, f1] is its rounded image, off by
+        // δ = 1e-9 (far below SETTLE_MARGIN) where rounding could put it.
+        // Table: (f0, f1, always, the cells the rule admits, the run expected).
         let d = 1e-9;
-        let cases: [(f64, f64, bool, Option<(i64, i64)>); 9] = [
-            (2.0 + d, 6.5, false, Some((2, 6))), // centre 2 just below f0, in
-            (3.0 - d, 6.5, false, Some((4, 6))), // centre 3 just above f0, out
-            (1.5, 6.0 - d, false, Some((2, 6))), // centre 6 just above f1, in
-            (1.5, 5.0 + d, false, Some((2, 4))), // centre 5 just below f1, out
-            (2.5, 5.5, false, Some((3, 5))),     // no end near a centre
-            (3.2, 3.7, false, None),             // no centre between the ends
-            (3.0 - d, 3.0 + d, false, None),     // both ends near 3, which is out
-            (-3.2, 40.0, false, Some((0, 9))),   // ends off the line
-            (0.5, 8.5, true, Some((3, 5))),      // `always`: the rule alone decides
+        let cases: [(f64, f64, bool, (i64, i64), Option<(i64, i64)>); 15] = [
+            (2.0 + d, 6.5, false, (2, 6), Some((2, 6))),  // centre 2 just below f0, in
+            (3.0 - d, 6.5, false, (4, 6), Some((4, 6))),  // centre 3 just above f0, out
+            (1.5, 6.0 - d, false, (2, 6), Some((2, 6))),  // centre 6 just above f1, in
+            (1.5, 5.0 + d, false, (2, 4), Some((2, 4))),  // centre 5 just below f1, out
+            (2.0 + d, 3.5, false, (2, 3), Some((2, 3))),  // a run of two, its first just below f0
+            (2.0 + d, 2.5, false, (2, 2), Some((2, 2))),  // a run of one just below f0
+            (2.5, 3.0 - d, false, (3, 3), Some((3, 3))),  // a run of one just above f1
+            (2.5, 5.5, false, (3, 5), Some((3, 5))),      // no end near a centre
+            (3.2, 3.7, false, (4, 3), None),              // no centre between the ends
+            (3.0 - d, 3.0 + d, false, (4, 3), None),      // both ends near 3, which is out
+            (-3.2, 40.0, false, (-3, 40), Some((0, 9))),  // ends off the line
+            (d, 6.5, false, (-3, 6), Some((0, 6))),       // the rule goes on below the line
+            (2.5, 9.0 - d, false, (3, 12), Some((3, 9))), // and above it
+            (0.5, 8.5, true, (3, 5), Some((3, 5))),       // `always`: the rule alone decides
+            (0.5, 8.5, true, (-2, 11), Some((0, 9))),     // the rule beyond the interval: to the line's ends
         ];
-        for (i, (f0, f1, always, admitted)) in cases.into_iter().enumerate() {
-            let inside = |k: i64| admitted.is_some_and(|(lo, hi)| (lo..=hi).contains(&k));
-            assert_eq!(settle_interval(f0, f1, 9, SETTLE_MARGIN, always, inside), admitted, "case {i}");
+        for (i, (f0, f1, always, (lo, hi), expected)) in cases.into_iter().enumerate() {
+            let inside = |k: i64| (lo..=hi).contains(&k);
+            assert_eq!(settle_interval(f0, f1, 9, SETTLE_MARGIN, always, inside), expected, "case {i}");
         }
     }
 
