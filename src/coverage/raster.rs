@@ -308,6 +308,28 @@ mod tests {
     }
 
     #[test]
+    fn an_edge_through_a_row_of_centres_keeps_that_row() {
+        // Flat segments pointing left have their s = −w/2 edge (which belongs, spec §3.3) on
+        // the side of growing y; with that edge through a row of centres, the last row
+        // scanned must be that row, whatever rounding does to the row range. Likewise for
+        // steep segments pointing up, whose −w/2 edge is on the side of growing x.
+        let g = grid();
+        let centre = |k: usize| (k as f64 + 0.5) * g.resolution;
+        for k in 3..50 {
+            for hw in [0.1, 0.2, 0.3, 0.4, 0.5, 0.7, 1.1] {
+                let at = centre(k) - hw;
+                for (a, b) in [(Point::new(8.0, at), Point::new(2.0, at)), (Point::new(at, 2.0), Point::new(at, 8.0))] {
+                    assert_eq!(
+                        scan(a, b, 2.0 * hw),
+                        swept_cells_brute_force(&g, a, b, 2.0 * hw),
+                        "row {k}, w/2 = {hw}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
     fn zero_length_sweeps_nothing() {
         assert!(scan(Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
     }
@@ -326,6 +348,20 @@ mod tests {
             let a = Point::new((ax * 5.0).round() / 5.0 + 0.1, (ay * 5.0).round() / 5.0 + 0.1);
             let b = a + crate::geom::Vector::new(angle.cos(), angle.sin()) * len;
             prop_assert_eq!(scan(a, b, 0.6), swept_cells_brute_force(&grid(), a, b, 0.6));
+        }
+
+        #[test]
+        /// On a grid of cells larger than a metre whose origin is below or above zero, the
+        /// range of lines is found in cell units from the grid's origin, not in metres from zero.
+        #[test]
+        fn coarse_grids_off_zero_match(ax in -6.0..30.0f64, ay in -5.0..20.0f64, bx in -6.0..30.0f64, by in -5.0..20.0f64, w in 0.05..4.0f64, below in proptest::bool::ANY) {
+            let (origin_x, origin_y) = if below { (-3.7, -2.9) } else { (2.3, 1.7) };
+            let g = RasterGrid { cols: 20, rows: 12, resolution: 1.25, origin_x, origin_y };
+            let (a, b) = (Point::new(ax, ay), Point::new(bx, by));
+            let mut cells = Vec::new();
+            for_each_swept_cell(&g, a, b, w, |i| cells.push(i));
+            cells.sort_unstable();
+            prop_assert_eq!(cells, swept_cells_brute_force(&g, a, b, w));
         }
 
         #[test]
