@@ -309,20 +309,27 @@ mod tests {
 
     #[test]
     fn an_edge_through_a_row_of_centres_keeps_that_row() {
-        // Flat segments pointing left have their s = −w/2 edge (which belongs, spec §3.3) on
-        // the side of growing y; with that edge through a row of centres, the last row
-        // scanned must be that row, whatever rounding does to the row range. Likewise for
-        // steep segments pointing up, whose −w/2 edge is on the side of growing x.
+        // The s = −w/2 edge belongs (spec §3.3). It lies on the side of growing y for flat
+        // segments pointing left, of falling y pointing right, of growing x for steep ones
+        // pointing up and of falling x pointing down. With that edge through a line of
+        // centres (the grid's last line too), the line is kept, whatever rounding does to the
+        // range of lines.
         let g = grid();
         let centre = |k: usize| (k as f64 + 0.5) * g.resolution;
-        for k in 3..50 {
+        for k in 0..g.rows {
             for hw in [0.1, 0.2, 0.3, 0.4, 0.5, 0.7, 1.1] {
-                let at = centre(k) - hw;
-                for (a, b) in [(Point::new(8.0, at), Point::new(2.0, at)), (Point::new(at, 2.0), Point::new(at, 8.0))] {
+                let (below, above) = (centre(k) - hw, centre(k) + hw);
+                let segments = [
+                    (Point::new(8.0, below), Point::new(2.0, below)),
+                    (Point::new(2.0, above), Point::new(8.0, above)),
+                    (Point::new(below, 2.0), Point::new(below, 8.0)),
+                    (Point::new(above, 8.0), Point::new(above, 2.0)),
+                ];
+                for (a, b) in segments {
                     assert_eq!(
                         scan(a, b, 2.0 * hw),
                         swept_cells_brute_force(&g, a, b, 2.0 * hw),
-                        "row {k}, w/2 = {hw}"
+                        "line {k}, w/2 = {hw}"
                     );
                 }
             }
