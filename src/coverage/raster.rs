@@ -284,7 +284,9 @@ mod tests {
         // δ = 1e-9 (far below SETTLE_MARGIN) where rounding could put it.
         // Table: (f0, f1, always, the cells the rule admits, the run expected).
         let d = 1e-9;
-        let cases: [(f64, f64, bool, (i64, i64), Option<(i64, i64)>); 15] = [
+        // A run of cells, first and last.
+        type Run = (i64, i64);
+        let cases: [(f64, f64, bool, Run, Option<Run>); 15] = [
             (2.0 + d, 6.5, false, (2, 6), Some((2, 6))),  // centre 2 just below f0, in
             (3.0 - d, 6.5, false, (4, 6), Some((4, 6))),  // centre 3 just above f0, out
             (1.5, 6.0 - d, false, (2, 6), Some((2, 6))),  // centre 6 just above f1, in
