@@ -359,7 +359,6 @@ mod tests {
             prop_assert_eq!(scan(a, b, 0.6), swept_cells_brute_force(&grid(), a, b, 0.6));
         }
 
-        #[test]
         /// On a grid of cells larger than a metre whose origin is below or above zero, the
         /// range of lines is found in cell units from the grid's origin, not in metres from zero.
         #[test]
