@@ -261,8 +261,13 @@ mod tests {
     }
 
     fn scan(a: Point, b: Point, w: f64) -> Vec<usize> {
+        scan_on(&grid(), a, b, w)
+    }
+
+    /// The cells the scan visits, in row-major order.
+    fn scan_on(g: &RasterGrid, a: Point, b: Point, w: f64) -> Vec<usize> {
         let mut v = Vec::new();
-        for_each_swept_cell(&grid(), a, b, w, |i| v.push(i));
+        for_each_swept_cell(g, a, b, w, |i| v.push(i));
         v.sort_unstable();
         v
     }
@@ -366,10 +371,7 @@ mod tests {
             let (origin_x, origin_y) = if below { (-3.7, -2.9) } else { (2.3, 1.7) };
             let g = RasterGrid { cols: 20, rows: 12, resolution: 1.25, origin_x, origin_y };
             let (a, b) = (Point::new(ax, ay), Point::new(bx, by));
-            let mut cells = Vec::new();
-            for_each_swept_cell(&g, a, b, w, |i| cells.push(i));
-            cells.sort_unstable();
-            prop_assert_eq!(cells, swept_cells_brute_force(&g, a, b, w));
+            prop_assert_eq!(scan_on(&g, a, b, w), swept_cells_brute_force(&g, a, b, w));
         }
 
         #[test]

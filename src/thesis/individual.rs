@@ -357,6 +357,19 @@ mod tests {
         Action::new(90.0, dist_m)
     }
 
+    /// Thesis map 1 with this robot, S and E, projection f2.
+    fn thesis1(robot: Footprint, s: Point, e: Point) -> Scenario {
+        Scenario::new(preset("thesis-1").unwrap(), robot, s, e, Projection::F2)
+    }
+
+    /// One move 3 m east, then two zero genes (the connector's slot and E's).
+    fn three_metres_east() -> Individual {
+        Individual {
+            genome: vec![Action::new(0.0, 3.0), Action::new(0.0, 0.0), Action::new(0.0, 0.0)],
+            ..Default::default()
+        }
+    }
+
     #[test]
     fn zero_runs_shrink_to_two() {
         // Genes: S(1) 0 0 0 0 1 0 conn E → the middle two of the four zeros go.
@@ -377,13 +390,9 @@ mod tests {
         // The 3 m lane east from (1.3, 1.3) on thesis map 1 sweeps 45 cells; with the 1 m square
         // at (1, 1) pre-marked, its 12 lane cells are revisits (as the sweep's own case says).
         let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 1.3));
-        let mut scenario = Scenario::new(preset("thesis-1").unwrap(), Footprint::default(), s, e, Projection::F2);
-        let lane = || Individual {
-            genome: vec![Action::new(0.0, 3.0), Action::new(0.0, 0.0), Action::new(0.0, 0.0)],
-            ..Default::default()
-        };
+        let mut scenario = thesis1(Footprint::default(), s, e);
         let eval = |scenario: &Scenario, mode| {
-            let mut ind = lane();
+            let mut ind = three_metres_east();
             evaluate(&mut ind, scenario, Base::None, mode, &mut EvalScratch::default());
             ind
         };
@@ -408,11 +417,8 @@ mod tests {
         let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 4.3));
         for (rot_speed, t_rot) in [(0.5, std::f64::consts::PI), (0.0, 0.0)] {
             let robot = Footprint { rot_speed, ..Footprint::default() };
-            let scenario = Scenario::new(preset("thesis-1").unwrap(), robot, s, e, Projection::F2);
-            let mut ind = Individual {
-                genome: vec![Action::new(0.0, 3.0), Action::new(0.0, 0.0), Action::new(0.0, 0.0)],
-                ..Default::default()
-            };
+            let scenario = thesis1(robot, s, e);
+            let mut ind = three_metres_east();
             evaluate(&mut ind, &scenario, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
             assert!((ind.t_rot_s - t_rot).abs() < 1e-12, "R_rot {rot_speed}: {}", ind.t_rot_s);
         }
@@ -424,7 +430,7 @@ mod tests {
         // the fifth now in its connector's slot, and E. All the child's genes before E are the
         // parent's bit for bit, one more than the child's stable prefix can hold.
         let (s, e) = (Point::new(1.3, 1.3), Point::new(1.3, 3.3));
-        let scenario = Scenario::new(preset("thesis-1").unwrap(), Footprint::default(), s, e, Projection::F2);
+        let scenario = thesis1(Footprint::default(), s, e);
         let (g, zero) = (Action::new(0.0, 0.5), Action::new(0.0, 0.0));
         let mut scratch = EvalScratch::default();
         let mut parent = Individual { genome: vec![g, g, g, g, g, zero, zero], ..Default::default() };
@@ -445,7 +451,7 @@ mod tests {
         // A path's visit map edited into another's equals the other's fresh sweep, however
         // many viewpoints the two share at either end (`same`: leading viewpoints known shared).
         let s = Point::new(1.3, 1.3);
-        let scenario = Scenario::new(preset("thesis-1").unwrap(), Footprint::default(), s, s, Projection::F2);
+        let scenario = thesis1(Footprint::default(), s, s);
         let (layers, width) = (&scenario.layers, scenario.robot.width);
         let p = Point::new;
         let old = [s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s];
