@@ -343,6 +343,29 @@ mod tests {
         }
     }
 
+    /// A segment that crosses the lines by less than 1e-9 of its length, down to a subnormal
+    /// amount (whose division overflows to infinity), is scanned by the exact rule: the
+    /// brute-force cells, rows and columns, both ways. The line range around it holds a line
+    /// outside the rectangle (centre 0.375 m off the axis, half-width 0.3 m), which only the
+    /// `s` constraint leaves out.
+    #[test]
+    fn segments_crossing_lines_by_a_tiny_amount_match_brute_force() {
+        let g = RasterGrid { cols: 40, rows: 40, resolution: 0.25, origin_x: -3.0, origin_y: -3.0 };
+        for tilt in [1e-320, -1e-320, 5e-300, -2e-12, 4e-10] {
+            for (a, d) in [
+                (Point::new(-1.3, 0.0), (4.1, tilt)),
+                (Point::new(2.8, 0.0), (-4.1, tilt)),
+                (Point::new(0.0, -1.3), (tilt, 4.1)),
+                (Point::new(0.0, 2.8), (tilt, -4.1)),
+            ] {
+                let b = Point::new(a.x + d.0, a.y + d.1);
+                let cells = scan_on(&g, a, b, 0.6);
+                assert_eq!(cells.len(), 2 * 16, "{a:?} → {b:?}: two lines of 16 cells");
+                assert_eq!(cells, swept_cells_brute_force(&g, a, b, 0.6), "{a:?} → {b:?}");
+            }
+        }
+    }
+
     #[test]
     fn zero_length_sweeps_nothing() {
         assert!(scan(Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
