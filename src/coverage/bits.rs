@@ -247,17 +247,26 @@ impl VisitPlanes {
         &self.planes[..self.top * self.words]
     }
 
-    /// The planes in use as one slice per plane, each `words` long, so that indexing a plane at
-    /// an index checked once against `words` needs no further bounds checks.
+    /// The planes in use, with `idx` checked against the plane length once: word `idx` of
+    /// plane `p` is then at `idx + p × words`, below the slice's length for every plane in use.
+    /// The planes are walked by stride, not by `chunks_exact` (or `step_by` on a range), whose
+    /// set-up divides by the plane length: a `div` on every word edited, about a sixth of the
+    /// edits' time.
     #[inline(always)]
-    fn used_planes(&self) -> std::slice::ChunksExact<'_, u64> {
-        self.planes[..self.top * self.words].chunks_exact(self.words.max(1))
+    fn used_words(&self, idx: usize) -> &[u64] {
+        assert!(idx < self.words);
+        &self.planes[..self.top * self.words]
     }
 
     #[inline(always)]
     fn occupied(&self, idx: usize) -> u64 {
-        assert!(idx < self.words);
-        self.used_planes().fold(0, |any, plane| any | plane[idx])
+        let used = self.used_words(idx);
+        let (mut any, mut i) = (0, idx);
+        while i < used.len() {
+            any |= used[i];
+            i += self.words;
+        }
+        any
     }
 
     /// Adds one visit to every cell of `mask` in word `idx`; returns the cells that were
@@ -265,15 +274,16 @@ impl VisitPlanes {
     #[inline(always)]
     fn add(&mut self, idx: usize, mask: u64) -> u64 {
         let fresh = mask & !self.occupied(idx);
-        let mut carry = mask;
-        let words = self.words;
-        for plane in self.planes[..self.top * words].chunks_exact_mut(words) {
-            let old = plane[idx];
-            plane[idx] = old ^ carry;
+        let (words, mut carry, mut i) = (self.words, mask, idx);
+        let used = &mut self.planes[..self.top * words];
+        while i < used.len() {
+            let old = used[i];
+            used[i] = old ^ carry;
             carry &= old;
             if carry == 0 {
                 return fresh;
             }
+            i += words;
         }
         if carry != 0 {
             // The carry leaves the top plane: the map grows by one plane.
@@ -288,16 +298,17 @@ impl VisitPlanes {
     /// the cells left unvisited.
     #[inline(always)]
     fn remove(&mut self, idx: usize, mask: u64) -> u64 {
-        assert!(idx < self.words);
-        let mut borrow = mask;
-        let words = self.words;
-        for plane in self.planes[..self.top * words].chunks_exact_mut(words) {
-            let old = plane[idx];
-            plane[idx] = old ^ borrow;
+        let (words, mut borrow, mut i) = (self.words, mask, idx);
+        let used = &mut self.planes[..self.top * words];
+        assert!(idx < words);
+        while i < used.len() {
+            let old = used[i];
+            used[i] = old ^ borrow;
             borrow &= !old;
             if borrow == 0 {
                 break;
             }
+            i += words;
         }
         debug_assert_eq!(borrow, 0, "removed a visit that was never added");
         mask & !self.occupied(idx)
