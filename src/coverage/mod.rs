@@ -3,6 +3,8 @@
 
 pub mod bits;
 pub mod camera;
+#[cfg(test)]
+pub(crate) mod exact;
 pub mod lanes;
 pub mod motion;
 pub mod raster;

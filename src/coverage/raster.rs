@@ -366,9 +366,59 @@ mod tests {
         }
     }
 
+    /// Spec §3.3 is half-open: a cell belongs when `t < L − ε` and `s < w/2 − ε`. A segment
+    /// (or a width) is placed ulp by ulp so that the exact test's own arithmetic puts a cell
+    /// centre exactly on one of those ends: that cell is out, as the brute-force rule says, and
+    /// in once the end moves past it.
+    #[test]
+    fn centres_exactly_on_the_far_ends_are_outside() {
+        use crate::coverage::exact::solve;
+        let g = RasterGrid { cols: 20, rows: 20, resolution: 0.25, origin_x: 0.0, origin_y: 0.0 };
+        let centre = |k: usize| (k as f64 + 0.5) * 0.25;
+        // t: along row 5 from column 0's centre; column 3's centre lies at t = L − ε.
+        let a = Point::new(centre(0), centre(5));
+        let t_end = |bx: f64| (Point::new(bx, a.y) - a).norm() - RASTER_EPS;
+        let bx = solve(t_end, true, centre(3) - a.x, centre(3) + RASTER_EPS).expect("an exact far end in t");
+        let b = Point::new(bx, a.y);
+        assert_eq!(scan_on(&g, a, b, 0.2), vec![100, 101, 102], "columns 0 to 2 of row 5, not 3");
+        assert_eq!(scan_on(&g, a, b, 0.2), swept_cells_brute_force(&g, a, b, 0.2));
+        let past = Point::new(bx + 1e-6, a.y);
+        assert_eq!(scan_on(&g, a, past, 0.2), vec![100, 101, 102, 103]);
+        // s: along (4, 3) from (0.125, 0.125); the centre of column 6, row 7 lies at
+        // s = −dx·uy + dy·ux (dx = 1.5, dy = 1.75, exact) with the width solved so that
+        // w/2 − ε is exactly that s.
+        let (a, b) = (Point::new(0.125, 0.125), Point::new(4.125, 3.125));
+        let v = b - a;
+        let (ux, uy) = (v.x / v.norm(), v.y / v.norm());
+        let s = -1.5 * uy + 1.75 * ux;
+        let w = solve(|w| 0.5 * w - RASTER_EPS, true, s, 2.0 * (s + RASTER_EPS)).expect("an exact far end in s");
+        let cell = 7 * 20 + 6;
+        let swept = scan_on(&g, a, b, w);
+        assert!(!swept.contains(&cell), "the centre on s = w/2 − ε is out");
+        assert_eq!(swept, swept_cells_brute_force(&g, a, b, w));
+        assert!(scan_on(&g, a, b, w + 1e-6).contains(&cell));
+        // s of a segment parallel to the lines, decided once per line: along row 0, 0.45 m
+        // wide, with row 1's centre at s = w/2 − ε as the scan computes it (dl0 + 1·res).
+        let s_hi = 0.5 * 0.45 - RASTER_EPS;
+        let s_of_row_1 = |ay: f64| ((g.origin_y + 0.5 * g.resolution) - ay) + 1.0 * g.resolution;
+        let ay = solve(s_of_row_1, false, s_hi, centre(1) - s_hi).expect("an exact far end in s");
+        let (a, b) = (Point::new(centre(2) - 0.1, ay), Point::new(centre(2) + 0.9, ay));
+        assert_eq!(scan_on(&g, a, b, 0.45), vec![2, 3, 4, 5], "columns 2 to 5 of row 0, not row 1");
+        assert_eq!(scan_on(&g, a, b, 0.45), swept_cells_brute_force(&g, a, b, 0.45));
+    }
+
     #[test]
     fn zero_length_sweeps_nothing() {
         assert!(scan(Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
+        // Shorter than ZERO_LENGTH (0.5 nm), yet column 10's centres lie in its t range
+        // [−ε, L − ε) (t = −0.8 nm): nothing, in the scan and in the brute-force rule; at 2 nm
+        // the rule takes the three of them in the 0.6 m band.
+        let a = Point::new(2.1 + 0.8e-9, 2.1);
+        for (len, cells) in [(0.5e-9, vec![]), (2e-9, vec![9 * 55 + 10, 10 * 55 + 10, 11 * 55 + 10])] {
+            let b = Point::new(a.x + len, a.y);
+            assert_eq!(swept_cells_brute_force(&grid(), a, b, 0.6), cells, "{len} m");
+        }
+        assert!(scan(a, Point::new(a.x + 0.5e-9, a.y), 0.6).is_empty());
     }
 
     proptest! {

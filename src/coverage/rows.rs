@@ -140,21 +140,9 @@ mod tests {
         assert!(rows(&grid(), Point::new(2.0, 2.0), Point::new(2.0, 2.0), 0.6).is_empty());
     }
 
-    /// The `x` within 64 ulps of `start` (positive) for which `f(x) == target` exactly.
-    fn solve(f: impl Fn(f64) -> f64, increasing: bool, target: f64, start: f64) -> Option<f64> {
-        let mut x = start;
-        for _ in 0..64 {
-            let y = f(x);
-            if y == target {
-                return Some(x);
-            }
-            x = f64::from_bits(if (y < target) == increasing { x.to_bits() + 1 } else { x.to_bits() - 1 });
-        }
-        None
-    }
-
     #[test]
     fn centres_exactly_on_the_far_ends_are_outside() {
+        use crate::coverage::exact::solve;
         // Spec §3.3 is half-open: a cell belongs when t < L − ε and s < w/2 − ε. Each segment
         // is placed, ulp by ulp, so that the scan's own arithmetic puts whole cell centres
         // exactly on one of those ends; those cells are out, as the brute-force rule says.
