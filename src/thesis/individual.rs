@@ -176,42 +176,51 @@ pub fn evaluate(
     mode: EvaluationMode,
     scratch: &mut EvalScratch,
 ) {
+    // The new path is decoded into the individual's own buffer, unless its old path is the
+    // base the visit map is edited from; then into the scratch, copied over at the end.
+    let keep_old = matches!((mode, base), (EvaluationMode::Incremental, Base::Own));
+    let mut points = std::mem::take(if keep_old { &mut scratch.points } else { &mut ind.points });
     // A child shares its receiving parent's first genes up to the first changed one; those
     // of the parent's stable prefix decode to the parent's viewpoints, so decoding starts there.
     let (shared, stable) = match (mode, base) {
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             let bound = p.stable_genes.min(ind.genome.len() - 2);
             let shared = (0..bound).find(|&i| !same_bits(&ind.genome[i], &p.genome[i])).unwrap_or(bound);
-            scratch.points.clear();
-            scratch.points.extend_from_slice(&p.points[..=shared]);
+            points.clear();
+            points.extend_from_slice(&p.points[..=shared]);
             let last = p.genome.len() - 2;
             let connector = Some((p.points[last], p.genome[last]));
-            (shared, decode_from(&mut ind.genome, &scenario.frame, &mut scratch.points, connector))
+            (shared, decode_from(&mut ind.genome, &scenario.frame, &mut points, connector))
         }
-        _ => (0, decode(&mut ind.genome, &scenario.frame, &mut scratch.points)),
+        _ => (0, decode(&mut ind.genome, &scenario.frame, &mut points)),
     };
     ind.stable_genes = stable;
     let (layers, width) = (&scenario.layers, scenario.robot.width);
     let cache = &mut scratch.segments;
     let tally = match (mode, base) {
-        (EvaluationMode::Full, _) => layers.sweep(&mut ind.visits, &scratch.points, width),
+        (EvaluationMode::Full, _) => layers.sweep(&mut ind.visits, &points, width),
         (EvaluationMode::Incremental, Base::None) => {
             ind.visits.reset(layers.plane_words());
-            edit(layers, cache, &mut ind.visits, Tally::default(), &[], &scratch.points, 0, width)
+            edit(layers, cache, &mut ind.visits, Tally::default(), &[], &points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Own) => {
             let t = ind.tally();
-            edit(layers, cache, &mut ind.visits, t, &ind.points, &scratch.points, 0, width)
+            edit(layers, cache, &mut ind.visits, t, &ind.points, &points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             ind.visits.copy_from(&p.visits);
-            edit(layers, cache, &mut ind.visits, p.tally(), &p.points, &scratch.points, shared, width)
+            edit(layers, cache, &mut ind.visits, p.tally(), &p.points, &points, shared, width)
         }
     };
-    // Copied, not swapped: a swap would hand the scratch a new child's empty vector, to be
-    // grown again by the next decode.
-    ind.points.clear();
-    ind.points.extend_from_slice(&scratch.points);
+    if keep_old {
+        // Copied, not swapped: a swap would hand the scratch the individual's old vector,
+        // perhaps a short one, to be grown again by the next decode.
+        ind.points.clear();
+        ind.points.extend_from_slice(&points);
+        scratch.points = points;
+    } else {
+        ind.points = points;
+    }
     ind.sweep = tally.counts();
     let rot = scenario.robot.rot_speed;
     ind.t_rot_s = if rot > 0.0 { motion::rotation_time(motion::turning(&ind.points).0, rot) } else { 0.0 };
