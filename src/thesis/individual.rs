@@ -509,16 +509,22 @@ mod tests {
     }
 
     proptest::proptest! {
-        /// The in-place pass deletes exactly the marked genes and their viewpoints.
+        /// The in-place pass deletes exactly the marked genes and their viewpoints (with one
+        /// viewpoint per gene, or one fewer), and the stable prefix loses the genes deleted
+        /// from it.
         #[test]
-        fn zero_action_removal_follows_its_marks(zeros in proptest::collection::vec(proptest::prelude::any::<bool>(), 0..40)) {
+        fn zero_action_removal_follows_its_marks(zeros in proptest::collection::vec(proptest::prelude::any::<bool>(), 0..40), stable in 0usize..41, short in proptest::bool::ANY) {
             let genome: Vec<Action> = zeros.iter().enumerate().map(|(i, &z)| a(if z { 0.0 } else { 1.0 + i as f64 })).collect();
-            let points: Vec<Point> = (0..genome.len()).map(|i| Point::new(i as f64, 0.0)).collect();
+            let n_points = if short { genome.len().saturating_sub(1) } else { genome.len() };
+            let points: Vec<Point> = (0..n_points).map(|i| Point::new(i as f64, 0.0)).collect();
+            let stable = stable.min(genome.len());
             let kept = kept_by_marks(&genome);
-            let mut ind = Individual { genome: genome.clone(), points: points.clone(), ..Default::default() };
+            let mut ind = Individual { genome: genome.clone(), points: points.clone(), stable_genes: stable, ..Default::default() };
             proptest::prop_assert_eq!(remove_zero_actions(&mut ind), genome.len() - kept.len());
             proptest::prop_assert_eq!(ind.genome, kept.iter().map(|&i| genome[i]).collect::<Vec<_>>());
-            proptest::prop_assert_eq!(ind.points, kept.iter().map(|&i| points[i]).collect::<Vec<_>>());
+            let kept_points: Vec<Point> = kept.iter().filter(|&&i| i < n_points).map(|&i| points[i]).collect();
+            proptest::prop_assert_eq!(&ind.points[..kept_points.len().min(ind.points.len())], &kept_points[..]);
+            proptest::prop_assert_eq!(ind.stable_genes, kept.iter().filter(|&&i| i < stable).count());
         }
     }
 
