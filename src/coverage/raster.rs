@@ -372,17 +372,13 @@ mod tests {
     /// in once the end moves past it.
     #[test]
     fn centres_exactly_on_the_far_ends_are_outside() {
-        use crate::coverage::exact::solve;
-        let g = RasterGrid { cols: 20, rows: 20, resolution: 0.25, origin_x: 0.0, origin_y: 0.0 };
-        let centre = |k: usize| (k as f64 + 0.5) * 0.25;
+        use crate::coverage::exact::{far_end_on_a_centre, solve};
         // t: along row 5 from column 0's centre; column 3's centre lies at t = L − ε.
-        let a = Point::new(centre(0), centre(5));
-        let t_end = |bx: f64| (Point::new(bx, a.y) - a).norm() - RASTER_EPS;
-        let bx = solve(t_end, true, centre(3) - a.x, centre(3) + RASTER_EPS).expect("an exact far end in t");
-        let b = Point::new(bx, a.y);
+        let (g, a, b) = far_end_on_a_centre();
+        let centre = |k: usize| (k as f64 + 0.5) * g.resolution;
         assert_eq!(scan_on(&g, a, b, 0.2), vec![100, 101, 102], "columns 0 to 2 of row 5, not 3");
         assert_eq!(scan_on(&g, a, b, 0.2), swept_cells_brute_force(&g, a, b, 0.2));
-        let past = Point::new(bx + 1e-6, a.y);
+        let past = Point::new(b.x + 1e-6, a.y);
         assert_eq!(scan_on(&g, a, past, 0.2), vec![100, 101, 102, 103]);
         // s: along (4, 3) from (0.125, 0.125); the centre of column 6, row 7 lies at
         // s = −dx·uy + dy·ux (dx = 1.5, dy = 1.75, exact) with the width solved so that

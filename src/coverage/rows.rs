@@ -142,17 +142,13 @@ mod tests {
 
     #[test]
     fn centres_exactly_on_the_far_ends_are_outside() {
-        use crate::coverage::exact::solve;
+        use crate::coverage::exact::{far_end_on_a_centre, solve};
         // Spec §3.3 is half-open: a cell belongs when t < L − ε and s < w/2 − ε. Each segment
         // is placed, ulp by ulp, so that the scan's own arithmetic puts whole cell centres
         // exactly on one of those ends; those cells are out, as the brute-force rule says.
-        let g = RasterGrid { cols: 20, rows: 20, resolution: 0.25, origin_x: 0.0, origin_y: 0.0 };
-        let centre = |k: usize| (k as f64 + 0.5) * 0.25;
         // t: along row 5 from column 0's centre; column 3's centre lies at t = L − ε.
-        let a = Point::new(centre(0), centre(5));
-        let t_end = |bx: f64| (Point::new(bx, a.y) - a).norm() - RASTER_EPS;
-        let bx = solve(t_end, true, centre(3) - a.x, centre(3) + RASTER_EPS).expect("an exact far end in t");
-        let b = Point::new(bx, a.y);
+        let (g, a, b) = far_end_on_a_centre();
+        let centre = |k: usize| (k as f64 + 0.5) * g.resolution;
         let swept = rows(&g, a, b, 0.3);
         assert_eq!(swept, vec![100, 101, 102], "columns 0 to 2 of row 5, not 3");
         assert_eq!(swept, swept_cells_brute_force(&g, a, b, 0.3));
