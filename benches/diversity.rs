@@ -5,7 +5,8 @@
 //! `cargo bench --bench diversity`
 
 use covga::coverage::CoverageGrid;
-use covga::coverage::bits::{BitLayers, VisitPlanes};
+use covga::coverage::bits::BitLayers;
+use covga::coverage::planes::VisitPlanes;
 use covga::geom::Point;
 use covga::map::presets::preset;
 use covga::thesis::diversity::{DiversityScratch, pair_distance_sum_by};

@@ -24,7 +24,7 @@ fn evaluate(c: &mut Criterion) {
         b.iter(|| black_box(robot.measure(&grid, &mut scratch, black_box(&path))))
     });
     let layers = covga::coverage::bits::BitLayers::new(&grid);
-    let mut planes = covga::coverage::bits::VisitPlanes::default();
+    let mut planes = covga::coverage::planes::VisitPlanes::default();
     group.bench_function("random_100_segments/bit_rows", |b| {
         b.iter(|| black_box(layers.sweep(&mut planes, black_box(&path), 0.6)))
     });

@@ -24,7 +24,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v cargo-mutants >/dev/null || cargo install cargo-mutants --locked
 core=(
-  src/coverage/bits.rs src/coverage/rows.rs src/coverage/raster.rs src/coverage/sweep.rs src/coverage/score.rs
+  src/coverage/bits.rs src/coverage/planes.rs src/coverage/rows.rs src/coverage/raster.rs src/coverage/sweep.rs src/coverage/score.rs
   src/coverage/segments.rs src/coverage/lanes.rs
   src/thesis/fitness.rs src/thesis/crossover.rs src/thesis/mutation.rs src/thesis/genome.rs
   src/thesis/individual.rs src/thesis/diversity.rs src/thesis/architecture.rs

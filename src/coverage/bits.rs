@@ -8,6 +8,7 @@
 //! cells visited at least once), a map can also be edited: removing a segment is a
 //! ripple-borrow subtract. That is what lets a child be evaluated from its parent's map.
 
+use super::planes::VisitPlanes;
 use super::raster::RasterGrid;
 use super::rows::for_each_swept_row;
 use super::sweep::{CoverageGrid, SweepCounts};
@@ -154,11 +155,7 @@ impl BitLayers {
     #[inline(always)]
     fn changed_cells<const ADD: bool>(&self, visits: &mut VisitPlanes, masks: &[(u32, u64)]) -> u64 {
         let mut changed = 0;
-        for &(idx, cells) in masks {
-            let idx = idx as usize;
-            let flipped = if ADD { visits.add(idx, cells) } else { visits.remove(idx, cells) };
-            changed += u64::from((flipped & self.countable[idx]).count_ones());
-        }
+        visits.edit::<ADD>(masks, |idx, flipped| changed += u64::from((flipped & self.countable[idx]).count_ones()));
         changed
     }
 
@@ -196,157 +193,6 @@ impl Tally {
     /// The counts of Listing 3.1.
     pub fn counts(&self) -> SweepCounts {
         SweepCounts { cov_pix: self.cov_pix, cross_pix: self.cov_pix - self.unique, obj_pix: self.obj_pix }
-    }
-}
-
-/// A visit-count map stored bit-sliced: plane `p` holds bit `p` of every free cell's count,
-/// laid out like [`BitLayers`]. Only the planes in use are stored.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct VisitPlanes {
-    words: usize,
-    planes: Vec<u64>,
-    top: usize,
-}
-
-impl VisitPlanes {
-    /// Empties the map for a grid of `words` words per plane (keeps the allocation).
-    pub fn reset(&mut self, words: usize) {
-        self.words = words;
-        self.planes.clear();
-        self.top = 0;
-    }
-
-    /// Becomes a copy of `other` (keeps the allocation), with room for one more plane: a
-    /// child's first visit that carries into a new plane then grows the map without moving it.
-    pub fn copy_from(&mut self, other: &VisitPlanes) {
-        self.words = other.words;
-        self.top = other.top;
-        self.planes.clear();
-        self.planes.reserve((other.top + 1) * other.words);
-        self.planes.extend_from_slice(&other.planes[..other.top * other.words]);
-    }
-
-    /// Bit planes in use (counts are below `2^planes`).
-    pub fn planes(&self) -> usize {
-        self.top
-    }
-
-    /// Words per plane.
-    pub fn plane_words(&self) -> usize {
-        self.words
-    }
-
-    /// Word `idx` of plane `p` (zero above the planes in use).
-    #[inline(always)]
-    pub fn word(&self, p: usize, idx: usize) -> u64 {
-        if p < self.top { self.planes[p * self.words + idx] } else { 0 }
-    }
-
-    /// The planes in use, plane after plane (`planes()` × `plane_words()` words).
-    pub fn plane_data(&self) -> &[u64] {
-        &self.planes[..self.top * self.words]
-    }
-
-    /// The planes in use, with `idx` checked against the plane length once: word `idx` of
-    /// plane `p` is then at `idx + p × words`, below the slice's length for every plane in use.
-    /// The planes are walked by stride, not by `chunks_exact` (or `step_by` on a range), whose
-    /// set-up divides by the plane length: a `div` on every word edited, about a sixth of the
-    /// edits' time.
-    #[inline(always)]
-    fn used_words(&self, idx: usize) -> &[u64] {
-        assert!(idx < self.words);
-        &self.planes[..self.top * self.words]
-    }
-
-    #[inline(always)]
-    fn occupied(&self, idx: usize) -> u64 {
-        let used = self.used_words(idx);
-        let (mut any, mut i) = (0, idx);
-        while i < used.len() {
-            any |= used[i];
-            i += self.words;
-        }
-        any
-    }
-
-    /// Adds one visit to every cell of `mask` in word `idx`; returns the cells that were
-    /// unvisited before.
-    #[inline(always)]
-    fn add(&mut self, idx: usize, mask: u64) -> u64 {
-        let fresh = mask & !self.occupied(idx);
-        let (words, mut carry, mut i) = (self.words, mask, idx);
-        let used = &mut self.planes[..self.top * words];
-        while i < used.len() {
-            let old = used[i];
-            used[i] = old ^ carry;
-            carry &= old;
-            if carry == 0 {
-                return fresh;
-            }
-            i += words;
-        }
-        if carry != 0 {
-            // The carry leaves the top plane: the map grows by one plane.
-            self.top += 1;
-            self.planes.resize(self.top * words, 0);
-            self.planes[(self.top - 1) * words + idx] = carry;
-        }
-        fresh
-    }
-
-    /// Removes one visit from every cell of `mask` in word `idx` (each must have one); returns
-    /// the cells left unvisited.
-    #[inline(always)]
-    fn remove(&mut self, idx: usize, mask: u64) -> u64 {
-        let (words, mut borrow, mut i) = (self.words, mask, idx);
-        let used = &mut self.planes[..self.top * words];
-        assert!(idx < words);
-        while i < used.len() {
-            let old = used[i];
-            used[i] = old ^ borrow;
-            borrow &= !old;
-            if borrow == 0 {
-                break;
-            }
-            i += words;
-        }
-        debug_assert_eq!(borrow, 0, "removed a visit that was never added");
-        mask & !self.occupied(idx)
-    }
-
-    /// Calls `f(cell, visits)` for every visited cell, with cells numbered `word·64 + bit` in
-    /// the layout of [`BitLayers`] (row-major, rows padded to whole words).
-    pub fn for_each_count(&self, mut f: impl FnMut(u32, u32)) {
-        for idx in 0..self.words {
-            let mut nz = self.occupied(idx);
-            while nz != 0 {
-                let bit = nz.trailing_zeros();
-                let mut count = 0u32;
-                for p in 0..self.top {
-                    count |= (((self.planes[p * self.words + idx] >> bit) & 1) as u32) << p;
-                }
-                f(idx as u32 * 64 + bit, count);
-                nz &= nz - 1;
-            }
-        }
-    }
-
-    /// A map of `words` words per plane holding `counts` (`(cell, visits)` in the numbering of
-    /// [`Self::for_each_count`]).
-    pub fn from_counts(words: usize, counts: &[(u32, u32)]) -> Self {
-        let mut v = VisitPlanes::default();
-        v.reset(words);
-        for &(cell, k) in counts {
-            for _ in 0..k {
-                v.add(cell as usize / 64, 1u64 << (cell % 64));
-            }
-        }
-        v
-    }
-
-    /// Number of cells in the padded numbering of [`Self::for_each_count`].
-    pub fn cell_slots(&self) -> usize {
-        self.words * 64
     }
 }
 

@@ -7,6 +7,7 @@ pub mod camera;
 pub(crate) mod exact;
 pub mod lanes;
 pub mod motion;
+pub mod planes;
 pub mod raster;
 pub mod rows;
 pub mod score;

@@ -11,8 +11,8 @@
 //! and the grid's geometry, and a replay applies exactly the masks a scan would produce (tested
 //! below against [`BitLayers::apply`]).
 
-use super::bits::{BitLayers, Tally, VisitPlanes};
-use super::raster::RasterGrid;
+use super::bits::{BitLayers, Tally};
+use super::{planes::VisitPlanes, raster::RasterGrid};
 use crate::geom::Point;
 
 /// Masks kept before the cache starts afresh (16 bytes each: 4 MiB per worker thread). 2^19

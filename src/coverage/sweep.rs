@@ -345,7 +345,7 @@ mod tests {
         assert_eq!(c, SweepCounts { cov_pix: 90, cross_pix: 54, obj_pix: 0 });
         assert_eq!(c.unique(), 36);
         let layers = crate::coverage::bits::BitLayers::new(&g);
-        let bits = layers.sweep(&mut crate::coverage::bits::VisitPlanes::default(), &there_and_back, 0.6).counts();
+        let bits = layers.sweep(&mut crate::coverage::planes::VisitPlanes::default(), &there_and_back, 0.6).counts();
         assert_eq!(bits, c, "bit rows agree");
     }
 

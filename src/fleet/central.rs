@@ -10,7 +10,7 @@
 //! negotiation or a single-robot run.
 
 use super::{Fleet, fleet_t_final, fleet_t_optimal};
-use crate::coverage::bits::VisitPlanes;
+use crate::coverage::planes::VisitPlanes;
 use crate::ga::observer::RobotRecord;
 use crate::ga::rng::Rng;
 use crate::geom::Point;

@@ -7,8 +7,8 @@
 //! visited cells.
 
 use super::individual::Individual;
-use crate::coverage::bits::VisitPlanes;
 use crate::coverage::lanes::lane_count_sums;
+use crate::coverage::planes::VisitPlanes;
 use rayon::prelude::*;
 
 /// Visit counts whose thresholds are listed without a branch per mask (four count planes).

@@ -3,7 +3,8 @@
 
 use super::fitness::{Projection, ThesisScore, score_counts};
 use super::genome::{Action, Frame, decode, decode_from, live, random_genome, same_bits};
-use crate::coverage::bits::{BitLayers, Tally, VisitPlanes};
+use crate::coverage::bits::{BitLayers, Tally};
+use crate::coverage::planes::VisitPlanes;
 use crate::coverage::segments::SegmentCache;
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
