@@ -39,11 +39,22 @@ pub enum Purpose {
     Robot = 4,
 }
 
-/// A generator for `purpose` and `labels` under `seed`.
+/// A generator for `purpose` and `labels` under `seed`: [`from_stream_seed`] of
+/// [`stream_seed`].
 pub fn stream(seed: u64, purpose: Purpose, labels: &[u64]) -> Rng {
+    from_stream_seed(stream_seed(seed, purpose, labels))
+}
+
+/// The 64-bit seed of the stream for `purpose` and `labels` under `seed`: a stream can be
+/// passed around as its seed (8 bytes instead of a generator's state) and made where it is used.
+pub fn stream_seed(seed: u64, purpose: Purpose, labels: &[u64]) -> u64 {
     // `derive(seed, [purpose, labels…])`, folded without building the list (a stream is made
     // per individual per generation).
-    let id = labels.iter().fold(derive(seed, &[purpose as u64]), |h, &l| absorb(h, l));
+    labels.iter().fold(derive(seed, &[purpose as u64]), |h, &l| absorb(h, l))
+}
+
+/// The generator of a stream seed from [`stream_seed`].
+pub fn from_stream_seed(id: u64) -> Rng {
     Rng::seed_from_u64(id)
 }
 
@@ -73,5 +84,11 @@ mod tests {
         assert_eq!(derive(42, &[2, 3, 7]), 0xbc0e_33bb_6ecf_d187);
         assert_eq!(stream(42, Purpose::Individual, &[3, 7]).random::<u64>(), 0x7b28_9904_1892_0467);
         assert_eq!(stream(2026, Purpose::Main, &[]).random::<u64>(), 0x5d5c_9211_18bc_6331);
+        // The seed of a stream is `derive` of its purpose and labels (the value above).
+        assert_eq!(stream_seed(42, Purpose::Individual, &[3, 7]), 0xbc0e_33bb_6ecf_d187);
+        assert_eq!(
+            from_stream_seed(stream_seed(42, Purpose::Individual, &[3, 7])).random::<u64>(),
+            0x7b28_9904_1892_0467
+        );
     }
 }

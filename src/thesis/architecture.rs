@@ -9,7 +9,7 @@
 use super::individual::EvalScratch;
 use super::member::{Member, Op, Origin, Variation};
 use super::params::{Selection, ThesisParams};
-use crate::ga::rng::{Purpose, Rng, stream};
+use crate::ga::rng::{Purpose, Rng, from_stream_seed, stream_seed};
 use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
 use rand::Rng as _;
 use rand::seq::SliceRandom;
@@ -75,10 +75,37 @@ enum JobOrigin {
     Child(usize),
 }
 
+/// A job's random stream, made on the worker that runs the job: a generator's state is about
+/// 300 bytes, which cost more to move through the job list than to make where it is used.
+#[derive(Clone, Copy, Debug)]
+struct JobStream {
+    /// The stream's seed ([`stream_seed`]).
+    seed: u64,
+    /// A Bernoulli draw with this probability, made from the stream (and true) before the job
+    /// was made: made again, so that the job goes on from where the stream was.
+    drawn: Option<f64>,
+}
+
+impl JobStream {
+    fn new(seed: u64) -> Self {
+        Self { seed, drawn: None }
+    }
+
+    /// The generator, where the job's first draw comes next.
+    fn rng(self) -> Rng {
+        let mut rng = from_stream_seed(self.seed);
+        if let Some(p) = self.drawn {
+            let again = rng.random_bool(p);
+            debug_assert!(again, "the draw made before the job was true");
+        }
+        rng
+    }
+}
+
 /// A member to be changed and evaluated, with its own random stream.
 pub(crate) struct Job<T> {
     ind: T,
-    rng: Rng,
+    stream: JobStream,
     op: Op,
     origin: JobOrigin,
     evaluations: u64,
@@ -86,18 +113,18 @@ pub(crate) struct Job<T> {
 
 impl<T: Member> Job<T> {
     /// A member whose genome a re-initialisation will draw, in a recycled member.
-    fn fresh(spare: &mut Vec<T>, rng: Rng, op: Op) -> Self {
-        Self { ind: spare.pop().unwrap_or_default(), rng, op, origin: JobOrigin::New, evaluations: 0 }
+    fn fresh(spare: &mut Vec<T>, stream: JobStream, op: Op) -> Self {
+        Self { ind: spare.pop().unwrap_or_default(), stream, op, origin: JobOrigin::New, evaluations: 0 }
     }
     /// A crossover child (built by [`Member::cross`] in a recycled member).
-    fn child(ind: T, receiver: usize, rng: Rng, op: Op) -> Self {
-        Self { ind, rng, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
+    fn child(ind: T, receiver: usize, stream: JobStream, op: Op) -> Self {
+        Self { ind, stream, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
     }
     /// A copy of `of`, in a recycled member.
-    fn copy(spare: &mut Vec<T>, of: &T, rng: Rng, op: Op) -> Self {
+    fn copy(spare: &mut Vec<T>, of: &T, stream: JobStream, op: Op) -> Self {
         let mut ind = spare.pop().unwrap_or_default();
         ind.clone_from(of);
-        Self { ind, rng, op, origin: JobOrigin::Copy, evaluations: 0 }
+        Self { ind, stream, op, origin: JobOrigin::Copy, evaluations: 0 }
     }
     fn execute(&mut self, pop: &[T], world: &T::World, run: &Variation, scratch: &mut EvalScratch) {
         let origin = match self.origin {
@@ -105,7 +132,8 @@ impl<T: Member> Job<T> {
             JobOrigin::Copy => Origin::Copy,
             JobOrigin::Child(receiver) => Origin::Child(&pop[receiver]),
         };
-        self.evaluations += self.ind.vary_and_evaluate(self.op, origin, world, run, scratch, &mut self.rng);
+        let mut rng = self.stream.rng();
+        self.evaluations += self.ind.vary_and_evaluate(self.op, origin, world, run, scratch, &mut rng);
     }
 }
 
@@ -155,8 +183,9 @@ pub(crate) struct Generation<'a, T: Member> {
 }
 
 impl<T: Member> Generation<'_, T> {
-    fn stream(&self, slot: usize) -> Rng {
-        stream(self.seed, Purpose::Individual, &[u64::from(self.iteration), slot as u64])
+    /// The stream of new member `slot` of this generation.
+    fn stream(&self, slot: usize) -> JobStream {
+        JobStream::new(stream_seed(self.seed, Purpose::Individual, &[u64::from(self.iteration), slot as u64]))
     }
 
     fn context(&self) -> Variation {
@@ -285,10 +314,11 @@ impl<T: Member> Generation<'_, T> {
                 families.push(Family::Cross { parents: [a, b], kids: start..jobs.len() });
             } else {
                 let mut member = |q: usize, jobs: &mut Vec<Job<T>>| {
-                    let mut s = self.stream(slot);
+                    let s = self.stream(slot);
                     slot += 1;
-                    if s.random_bool(e.p_mi.clamp(0.0, 1.0)) {
-                        jobs.push(Job::fresh(spare, s, Op::Reinit));
+                    let p_mi = e.p_mi.clamp(0.0, 1.0);
+                    if s.rng().random_bool(p_mi) {
+                        jobs.push(Job::fresh(spare, JobStream { drawn: Some(p_mi), ..s }, Op::Reinit));
                         Err(jobs.len() - 1)
                     } else {
                         Ok(q)

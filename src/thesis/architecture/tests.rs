@@ -1,4 +1,5 @@
 use super::*;
+use crate::ga::rng::stream;
 
 proptest::proptest! {
     /// The two survivors are the first two of a stable sort by descending fitness.
