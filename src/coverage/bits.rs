@@ -121,15 +121,49 @@ impl BitLayers {
         self.walls_id
     }
 
-    /// The free cells of `mask` in word `idx`.
+    /// Appends to `out` the free cells of every word of the swept rectangle of `a → b`, words
+    /// without free cells left out (what [`Self::apply_free_masks`] takes); returns the
+    /// rectangle's `[free cells, obstacle cells]`.
+    pub fn push_free_masks(&self, a: Point, b: Point, width: f64, out: &mut Vec<(u32, u64)>) -> [u32; 2] {
+        let start = out.len();
+        self.for_each_mask(a, b, width, |idx, mask| out.push((idx as u32, mask)));
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("popcnt") {
+            // SAFETY: the CPU has just been found to support `popcnt`.
+            return unsafe { self.keep_free_cells_popcnt(out, start) };
+        }
+        self.keep_free_cells(out, start)
+    }
+
+    /// Replaces the masks of `out[start..]` by their free cells, drops those left empty, and
+    /// returns the free and the obstacle cells counted. A pass of its own over the masks, so
+    /// that the scan of the rows (not compiled with `popcnt`) counts nothing.
     #[inline(always)]
-    pub fn free_cells(&self, idx: usize, mask: u64) -> u64 {
-        mask & self.free[idx]
+    fn keep_free_cells(&self, out: &mut Vec<(u32, u64)>, start: usize) -> [u32; 2] {
+        let (mut free, mut obstacle, mut kept) = (0, 0, start);
+        for k in start..out.len() {
+            let (idx, mask) = out[k];
+            let cells = mask & self.free[idx as usize];
+            free += cells.count_ones();
+            obstacle += (mask & !cells).count_ones();
+            if cells != 0 {
+                out[kept] = (idx, cells);
+                kept += 1;
+            }
+        }
+        out.truncate(kept);
+        [free, obstacle]
+    }
+
+    /// [`Self::keep_free_cells`] with the `popcnt` instruction; the same result.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "popcnt")]
+    unsafe fn keep_free_cells_popcnt(&self, out: &mut Vec<(u32, u64)>, start: usize) -> [u32; 2] {
+        self.keep_free_cells(out, start)
     }
 
     /// [`Self::apply`] for a segment given by the free cells of its words (from
-    /// [`Self::for_each_mask`] and [`Self::free_cells`], empty words left out) and its counts
-    /// `[free cells, obstacle cells]`.
+    /// [`Self::push_free_masks`]) and its counts `[free cells, obstacle cells]`.
     #[inline]
     pub fn apply_free_masks<const ADD: bool>(
         &self,

@@ -117,15 +117,7 @@ impl SegmentCache {
                 i = slot_of(&key);
             }
             let start = self.masks.len();
-            let (mut free, mut obstacle) = (0, 0);
-            layers.for_each_mask(a, b, width, |idx, mask| {
-                let f = layers.free_cells(idx, mask);
-                free += f.count_ones();
-                obstacle += (mask & !f).count_ones();
-                if f != 0 {
-                    self.masks.push((idx as u32, f));
-                }
-            });
+            let [free, obstacle] = layers.push_free_masks(a, b, width, &mut self.masks);
             let len = (self.masks.len() - start) as u32;
             self.slots[i] = Slot { key, start: start as u32, len, free, obstacle, epoch: self.epoch };
             self.filled += 1;
