@@ -17,6 +17,7 @@
 #   scripts/mutants.sh --in-diff <(git diff main)   # only mutants on changed lines
 #   MUTANTS_OUT=target/mutation-x scripts/mutants.sh # another output folder
 #   MUTANTS_STAGES=all scripts/mutants.sh …         # skip stage 1 (whole suite only)
+#   scripts/mutants.sh --check-pins                 # every pinned exclusion still names a mutant
 #
 # Results: $MUTANTS_OUT/mutants.out/{caught,previously_caught,missed,timeout,unviable}.txt and a
 # summary line at the end. Start again from nothing: rm -r target/mutation.
@@ -32,6 +33,21 @@ core=(
   src/waypoint/evaluate.rs src/waypoint/operators.rs
   src/study/stats.rs src/study/report.rs
 )
+if [ "${1:-}" = "--check-pins" ]; then
+  # A pin (`file:line:column: …` in .cargo/mutants.toml) goes stale when its line moves, and the
+  # mutant it meant is then tested again (and reported missed). Lists the pinned files' mutants
+  # without the exclusions and names every pin that matches none of them.
+  list=$(mktemp)
+  mapfile -t pinned < <(grep -o '"src/[^:"]*' .cargo/mutants.toml | tr -d '"' | sort -u)
+  cargo mutants --list --no-config "${pinned[@]/#/--file=}" > "$list"
+  stale=0
+  while IFS= read -r pin; do
+    grep -qE -- "$pin" "$list" || { echo "stale pin: $pin"; stale=1; }
+  done < <(grep -o '"src/[^"]*"' .cargo/mutants.toml | sed 's/^"//; s/"$//; s/\\\\/\\/g')
+  rm "$list"
+  [ "$stale" = 0 ] && echo "pins: all ${#pinned[@]} pinned files checked, none stale"
+  exit "$stale"
+fi
 out=${MUTANTS_OUT:-target/mutation}
 files=()
 if [[ " $* " != *" --file "* && " $* " != *" --in-diff "* ]]; then

@@ -251,13 +251,17 @@ fn edit(
 ) -> Tally {
     let (so, sn) = (old.len().saturating_sub(1), new.len().saturating_sub(1));
     let shared = so.min(sn);
+    // Segment `x` of both paths is the same while both its ends are. Each end is compared once:
+    // segment `x`'s start is segment `x − 1`'s end, and viewpoint `same.min(shared)` is shared.
     let mut x = same.min(shared);
-    while x < shared && old[x] == new[x] && old[x + 1] == new[x + 1] {
+    while x < shared && old[x + 1] == new[x + 1] {
         x += 1;
     }
     let mut y = 0;
-    while x + y < shared && old[so - y] == new[sn - y] && old[so - y - 1] == new[sn - y - 1] {
-        y += 1;
+    if x < shared && old[so] == new[sn] {
+        while x + y < shared && old[so - y - 1] == new[sn - y - 1] {
+            y += 1;
+        }
     }
     // The cache's slots of all the segments are fetched at once, not one miss after another.
     for i in x..so - y {
