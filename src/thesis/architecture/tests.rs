@@ -333,6 +333,27 @@ fn architecture_b_reinitialises_members_apart_with_p_mi() {
 }
 
 #[test]
+fn a_member_re_initialised_by_p_mi_goes_on_with_its_slot_s_stream() {
+    // P_mI = 0.5: a member apart is re-initialised when the first draw of its slot's stream
+    // says so, and its new genome is drawn from the same stream, after that draw.
+    let p = params(Selection::Elite, 0, 0, 16);
+    let out =
+        step(probes(&[0.5; 16]), &p, effective(0.0, 0.5, MutationRate::Fixed(0.1)), &no_crossover(), &mut main_rng());
+    let mut expected: Vec<u64> = (0..16)
+        .filter_map(|slot| {
+            let mut s = stream(SEED, Purpose::Individual, &[u64::from(ITERATION), slot as u64]);
+            s.random_bool(0.5).then(|| s.next_u64())
+        })
+        .collect();
+    let mut fresh: Vec<u64> = out.next.iter().filter(|m| m.made == Made::Fresh).map(|m| m.draw).collect();
+    expected.sort_unstable();
+    fresh.sort_unstable();
+    assert!(!fresh.is_empty() && fresh.len() < 16, "{} of 16 re-initialised", fresh.len());
+    assert_eq!(fresh, expected);
+    assert_eq!(out.evaluations, 3 * fresh.len() as u64);
+}
+
+#[test]
 fn architecture_b_families_keep_their_two_best_with_receivers_and_slots() {
     // Four children per family, fitter than both parents, the fittest last: each family keeps
     // children 3 and 2, received by the second and the first parent.
