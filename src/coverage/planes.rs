@@ -61,6 +61,13 @@ impl VisitPlanes {
         &self.planes[..self.top * self.words]
     }
 
+    /// [`Self::used_words`], writable.
+    #[inline(always)]
+    fn used_words_mut(&mut self, idx: usize) -> &mut [u64] {
+        assert!(idx < self.words);
+        &mut self.planes[..self.top * self.words]
+    }
+
     /// The cells of word `idx` visited at least once.
     #[inline(always)]
     fn occupied(&self, idx: usize) -> u64 {
@@ -85,8 +92,8 @@ impl VisitPlanes {
     /// unvisited before.
     #[inline(always)]
     pub(super) fn add(&mut self, idx: usize, mask: u64) -> u64 {
-        assert!(idx < self.words);
-        let (fresh, carry) = add_word(&mut self.planes[..self.top * self.words], self.words, idx, mask);
+        let words = self.words;
+        let (fresh, carry) = add_word(self.used_words_mut(idx), words, idx, mask);
         if carry != 0 {
             self.push_plane(idx, carry);
         }
@@ -97,8 +104,8 @@ impl VisitPlanes {
     /// the cells left unvisited.
     #[inline(always)]
     pub(super) fn remove(&mut self, idx: usize, mask: u64) -> u64 {
-        assert!(idx < self.words);
-        remove_word(&mut self.planes[..self.top * self.words], self.words, idx, mask)
+        let words = self.words;
+        remove_word(self.used_words_mut(idx), words, idx, mask)
     }
 
     /// Adds (`ADD`) or removes one visit to or from every cell of each `(word index, cells)`
