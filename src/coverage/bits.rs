@@ -188,9 +188,7 @@ impl BitLayers {
     /// or unvisited.
     #[inline(always)]
     fn changed_cells<const ADD: bool>(&self, visits: &mut VisitPlanes, masks: &[(u32, u64)]) -> u64 {
-        let mut changed = 0;
-        visits.edit::<ADD>(masks, |idx, flipped| changed += u64::from((flipped & self.countable[idx]).count_ones()));
-        changed
+        visits.edit::<ADD>(masks, &self.countable)
     }
 
     /// [`Self::changed_cells`] with the `popcnt` instruction (not in the default x86-64

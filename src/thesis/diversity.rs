@@ -107,13 +107,14 @@ fn thermometer(pl: &[u64], th: &mut [u64; LOW + 1]) {
     }
 }
 
-/// Every eighth word, asks for the words eight ahead in each of a map's `top` planes of `w`
-/// words. Reads nothing; which words it names changes only how long the reads wait.
+/// Every eighth word, asks for the planes of the eight words eight ahead (`top` cache lines
+/// of a map's word-major planes, `w` words of `top` planes). Reads nothing; which words it
+/// names changes only how long the reads wait.
 #[inline(always)]
 fn prefetch_ahead(data: &[u64], w: usize, top: usize, idx: usize) {
     if idx.is_multiple_of(8) && idx + 8 < w {
-        for p in 0..top {
-            if let Some(word) = data.get(p * w + idx + 8) {
+        for line in 0..top {
+            if let Some(word) = data.get((idx + 8) * top + line * 8) {
                 prefetch(word);
             }
         }
@@ -150,9 +151,9 @@ fn pair_distance_sum_kernel<'a>(
             }
             prefetch_ahead(data, w, top, idx);
             let mut occupied = 0;
-            for (p, v) in pl[..top].iter_mut().enumerate() {
-                *v = data[p * w + idx];
-                occupied |= *v;
+            for (v, &word) in pl[..top].iter_mut().zip(&data[idx * top..(idx + 1) * top]) {
+                *v = word;
+                occupied |= word;
             }
             if occupied == 0 {
                 continue;
