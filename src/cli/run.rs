@@ -73,7 +73,8 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     for (key, why) in ignored {
         eprintln!("warning: {origin}: `{key}` is ignored: {why}");
     }
-    exp.check_memory(&origin, crate::study::memory::memory_limit(a.max_memory), 1).map_err(CliError::input)?;
+    exp.check_memory(&origin, crate::study::memory::memory_limit(a.max_memory), 1, rayon::current_num_threads())
+        .map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
     let existed = dir.exists();
     std::fs::create_dir_all(&dir)

@@ -15,16 +15,18 @@ use super::bits::{BitLayers, Tally};
 use super::{planes::VisitPlanes, raster::RasterGrid};
 use crate::geom::Point;
 
-/// Masks kept before the cache starts afresh (16 bytes each: 4 MiB per worker thread). 2^19
-/// saves 18 % of the reference run's segment scans, yet measured no faster (the larger table
-/// misses the processor's caches more often) and holds twice the memory.
+/// Masks kept in one generation of the cache (16 bytes each: 4 MiB per generation).
 pub const CACHE_MASKS: usize = 1 << 18;
 
-/// Slots of the table (64 bytes each: 2 MiB per worker thread). At most half are filled
-/// before the cache starts afresh, which keeps linear probes short. In the reference run that
-/// comes before [`CACHE_MASKS`] (16 384 segments of about 12 masks); 2^16 slots measured no
-/// faster.
+/// Slots of one generation's table (64 bytes each: 2 MiB). At most half are filled before a
+/// new generation starts, which keeps linear probes short. In the reference run that comes
+/// before [`CACHE_MASKS`] (16 384 segments of about 12 masks); 2^16 slots measured no faster.
 const SLOTS: usize = 1 << 15;
+
+/// Bytes a cache holds at most once both its generations are full: what one worker thread
+/// of a thesis run adds to the run's memory.
+pub const CACHE_BYTES: usize =
+    2 * (SLOTS * std::mem::size_of::<Slot>() + CACHE_MASKS * std::mem::size_of::<(u32, u64)>());
 
 /// A segment and where its masks are kept: one cache line, so that a lookup costs one memory
 /// access (which [`SegmentCache::prefetch`] can start early).
@@ -65,12 +67,10 @@ fn same_key(a: &[u64; 5], b: &[u64; 5]) -> bool {
     (a[0] == b[0]) & (a[1] == b[1]) & (a[2] == b[2]) & (a[3] == b[3]) & (a[4] == b[4])
 }
 
-/// Swept segments of one grid as lists of `(word index, free cells)` with their cell counts,
-/// in an open-addressing table (linear probing), replayed by [`SegmentCache::apply`].
+/// One generation of the cache: swept segments as lists of `(word index, free cells)` with
+/// their cell counts, in an open-addressing table (linear probing).
 #[derive(Debug, Default)]
-pub struct SegmentCache {
-    /// The grid the masks belong to: its raster and the fingerprint of its walls.
-    grid: Option<(RasterGrid, u64)>,
+struct Generation {
     /// `SLOTS` slots once used (allocated on the first segment).
     slots: Vec<Slot>,
     /// The current filling; slots of other epochs are empty. Starts at 1 (0 is never used).
@@ -78,6 +78,72 @@ pub struct SegmentCache {
     /// Segments held.
     filled: usize,
     masks: Vec<(u32, u64)>,
+}
+
+impl Generation {
+    /// The slot holding `key` (`Ok`), or the empty slot where it would go (`Err`). The table
+    /// must be allocated.
+    #[inline(always)]
+    fn find(&self, key: &[u64; 5]) -> Result<usize, usize> {
+        let mut i = slot_of(key);
+        while self.slots[i].epoch == self.epoch {
+            if same_key(&self.slots[i].key, key) {
+                return Ok(i);
+            }
+            i = (i + 1) & (SLOTS - 1);
+        }
+        Err(i)
+    }
+
+    /// The masks of the segment in slot `i`.
+    #[inline(always)]
+    fn masks_of(&self, i: usize) -> &[(u32, u64)] {
+        let slot = &self.slots[i];
+        &self.masks[slot.start as usize..(slot.start + slot.len) as usize]
+    }
+
+    /// Forgets every segment (keeps the allocations; allocates the table and room for
+    /// `mask_limit` masks on first use, so that the masks never grow past it).
+    fn clear(&mut self, mask_limit: usize) {
+        if self.slots.is_empty() {
+            self.slots = vec![Slot::default(); SLOTS];
+            self.masks.reserve_exact(mask_limit);
+        }
+        if self.epoch == u32::MAX {
+            // Every epoch has been used: empty the slots for real and count again.
+            self.slots.fill(Slot::default());
+            self.epoch = 0;
+        }
+        self.epoch += 1;
+        self.filled = 0;
+        self.masks.clear();
+    }
+}
+
+/// Swept segments of one grid, replayed by [`SegmentCache::apply`], kept in two generations.
+/// New segments go into the current one; when it is full, it becomes the previous one and a
+/// new current one starts empty. A segment found only in the previous generation is copied
+/// into the current one, not scanned again: the segments still in use (those of the
+/// population) move along, and only those no longer met are dropped. A cache emptied at once
+/// when full had to scan every live segment again: 37 % of the reference run's scans.
+#[derive(Debug)]
+pub struct SegmentCache {
+    /// The grid the masks belong to: its raster and the fingerprint of its walls.
+    grid: Option<(RasterGrid, u64)>,
+    current: Generation,
+    previous: Generation,
+    /// Masks one generation holds at most ([`CACHE_MASKS`]; smaller in tests).
+    mask_limit: usize,
+    /// The masks of the segment being put in, before it is known which generation takes it.
+    fresh: Vec<(u32, u64)>,
+    /// Segments scanned (not found in either generation).
+    scans: u64,
+}
+
+impl Default for SegmentCache {
+    fn default() -> Self {
+        Self::with_mask_limit(CACHE_MASKS)
+    }
 }
 
 impl Clone for SegmentCache {
@@ -88,8 +154,23 @@ impl Clone for SegmentCache {
 }
 
 impl SegmentCache {
+    /// An empty cache whose generations hold at most `mask_limit` masks each (a segment of
+    /// more masks is applied without being kept). Nothing is allocated before the first
+    /// segment.
+    fn with_mask_limit(mask_limit: usize) -> Self {
+        Self {
+            grid: None,
+            current: Generation::default(),
+            previous: Generation::default(),
+            mask_limit,
+            fresh: Vec::new(),
+            scans: 0,
+        }
+    }
+
     /// Adds (`ADD`) or removes the swept rectangle of `a → b` to or from `visits`, as
     /// [`BitLayers::apply`] does, scanning the segment only the first time it is seen.
+    #[inline(always)]
     pub fn apply<const ADD: bool>(
         &mut self,
         layers: &BitLayers,
@@ -102,37 +183,75 @@ impl SegmentCache {
         // Masks hold the free cells of the grid they were scanned on: another grid (or the same
         // raster with other walls) starts afresh.
         let grid = Some((*layers.raster(), layers.walls_id()));
-        if self.grid != grid || self.slots.is_empty() {
+        if self.grid != grid || self.current.slots.is_empty() {
             self.clear();
             self.grid = grid;
         }
         let key = key_of(a, b, width);
-        let mut i = slot_of(&key);
-        while self.slots[i].epoch == self.epoch && !same_key(&self.slots[i].key, &key) {
-            i = (i + 1) & (SLOTS - 1);
-        }
-        if self.slots[i].epoch != self.epoch {
-            if self.masks.len() >= CACHE_MASKS || self.filled >= SLOTS / 2 {
-                self.clear();
-                i = slot_of(&key);
-            }
-            let start = self.masks.len();
-            let [free, obstacle] = layers.push_free_masks(a, b, width, &mut self.masks);
-            let len = (self.masks.len() - start) as u32;
-            self.slots[i] = Slot { key, start: start as u32, len, free, obstacle, epoch: self.epoch };
-            self.filled += 1;
-        }
-        let slot = &self.slots[i];
-        let masks = &self.masks[slot.start as usize..(slot.start + slot.len) as usize];
-        layers.apply_free_masks::<ADD>(visits, masks, [u64::from(slot.free), u64::from(slot.obstacle)], tally);
+        let i = match self.current.find(&key) {
+            Ok(i) => i,
+            Err(i) => match self.insert(layers, key, a, b, width, i) {
+                Ok(i) => i,
+                Err(counts) => return layers.apply_free_masks::<ADD>(visits, &self.fresh, counts, tally),
+            },
+        };
+        let slot = &self.current.slots[i];
+        let counts = [u64::from(slot.free), u64::from(slot.obstacle)];
+        layers.apply_free_masks::<ADD>(visits, self.current.masks_of(i), counts, tally);
     }
 
-    /// Asks the processor to fetch the slot where segment `a → b` would be, so that a later
-    /// [`Self::apply`] of it does not wait for memory. Changes nothing.
+    /// Puts segment `a → b` (key `key`, not in the current generation) into empty slot `i` of
+    /// the current generation, or of a new one if it is full, copied from the previous
+    /// generation or scanned; returns its slot. A segment of more masks than a generation
+    /// holds is left in `fresh`, and its counts returned (`Err`). Out of line: most segments
+    /// are found.
+    #[inline(never)]
+    fn insert(
+        &mut self,
+        layers: &BitLayers,
+        key: [u64; 5],
+        a: Point,
+        b: Point,
+        width: f64,
+        mut i: usize,
+    ) -> Result<usize, [u64; 2]> {
+        let previous = &self.previous;
+        let promoted = if previous.slots.is_empty() { None } else { previous.find(&key).ok() };
+        self.fresh.clear();
+        let [free, obstacle] = match promoted {
+            Some(j) => {
+                self.fresh.extend_from_slice(previous.masks_of(j));
+                [previous.slots[j].free, previous.slots[j].obstacle]
+            }
+            None => {
+                self.scans += 1;
+                layers.push_free_masks(a, b, width, &mut self.fresh)
+            }
+        };
+        let len = self.fresh.len();
+        if len > self.mask_limit {
+            return Err([u64::from(free), u64::from(obstacle)]);
+        }
+        if self.current.filled >= SLOTS / 2 || self.current.masks.len() + len > self.mask_limit {
+            std::mem::swap(&mut self.current, &mut self.previous);
+            self.current.clear(self.mask_limit);
+            i = slot_of(&key);
+        }
+        let current = &mut self.current;
+        let start = current.masks.len();
+        current.masks.extend_from_slice(&self.fresh);
+        current.slots[i] = Slot { key, start: start as u32, len: len as u32, free, obstacle, epoch: current.epoch };
+        current.filled += 1;
+        Ok(i)
+    }
+
+    /// Asks the processor to fetch the slot of the current generation where segment `a → b`
+    /// would be, so that a later [`Self::apply`] of it does not wait for memory. Changes
+    /// nothing.
     #[inline(always)]
     pub fn prefetch(&self, a: Point, b: Point, width: f64) {
         #[cfg(target_arch = "x86_64")]
-        if let Some(slot) = self.slots.get(slot_of(&key_of(a, b, width))) {
+        if let Some(slot) = self.current.slots.get(slot_of(&key_of(a, b, width))) {
             // SAFETY: a prefetch is a hint; it reads nothing and faults on no address.
             unsafe {
                 std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>((slot as *const Slot).cast());
@@ -142,29 +261,28 @@ impl SegmentCache {
         let _ = (a, b, width);
     }
 
-    /// Forgets every segment (keeps the allocations).
+    /// Forgets every segment of both generations (keeps the allocations).
     pub fn clear(&mut self) {
-        if self.slots.is_empty() {
-            self.slots = vec![Slot::default(); SLOTS];
+        self.current.clear(self.mask_limit);
+        if !self.previous.slots.is_empty() {
+            self.previous.clear(self.mask_limit);
         }
-        if self.epoch == u32::MAX {
-            // Every epoch has been used: empty the slots for real and count again.
-            self.slots.fill(Slot::default());
-            self.epoch = 0;
-        }
-        self.epoch += 1;
-        self.filled = 0;
-        self.masks.clear();
     }
 
-    /// Segments held.
+    /// Segments scanned so far: those found in neither generation (or not kept).
+    pub fn scans(&self) -> u64 {
+        self.scans
+    }
+
+    /// Segments held, in both generations (a segment promoted from the previous generation
+    /// counts twice).
     pub fn len(&self) -> usize {
-        self.filled
+        self.current.filled + self.previous.filled
     }
 
     /// Whether no segment is held.
     pub fn is_empty(&self) -> bool {
-        self.filled == 0
+        self.len() == 0
     }
 }
 
@@ -225,41 +343,100 @@ mod tests {
         assert!(u.cov_pix > 0);
     }
 
-    /// Past half its slots the cache starts afresh, and so it does when its epochs run out;
-    /// replays stay exact throughout.
+    /// Segment `k` of a family of distinct segments on thesis-1.
+    fn segment(k: usize) -> (Point, Point) {
+        let a = Point::new(1.0 + (k % 128) as f64 * 0.06, 1.0 + (k / 128) as f64 * 0.03);
+        (a, Point::new(a.x + 2.0, a.y + 1.0))
+    }
+
+    /// A cache and the scan side by side: every apply through one is done by the other.
+    struct Twin {
+        layers: BitLayers,
+        cache: SegmentCache,
+        cached: (VisitPlanes, Tally),
+        scanned: (VisitPlanes, Tally),
+    }
+
+    impl Twin {
+        fn new(cache: SegmentCache) -> Self {
+            let layers = BitLayers::new(&CoverageGrid::new(&preset("thesis-1").unwrap()));
+            let mut v = VisitPlanes::default();
+            v.reset(layers.plane_words());
+            Self { layers, cache, cached: (v.clone(), Tally::default()), scanned: (v, Tally::default()) }
+        }
+
+        fn apply<const ADD: bool>(&mut self, k: usize) {
+            let (a, b) = segment(k);
+            self.cache.apply::<ADD>(&self.layers, &mut self.cached.0, a, b, 0.6, &mut self.cached.1);
+            self.layers.apply::<ADD>(&mut self.scanned.0, a, b, 0.6, &mut self.scanned.1);
+            assert_eq!(self.cached.1, self.scanned.1, "segment {k}");
+        }
+    }
+
+    /// Past half its slots the current generation becomes the previous one and a new one
+    /// starts; a segment of the previous generation is copied, not scanned again; a third
+    /// generation drops the first. Replays stay exact throughout, and so they do when the
+    /// epochs run out.
     #[test]
-    fn a_full_table_starts_afresh_and_keeps_replaying_exactly() {
-        let layers = BitLayers::new(&CoverageGrid::new(&preset("thesis-1").unwrap()));
-        let mut cache = SegmentCache::default();
-        let (mut cached, mut scanned) = (VisitPlanes::default(), VisitPlanes::default());
-        cached.reset(layers.plane_words());
-        scanned.reset(layers.plane_words());
-        let (mut t_cached, mut t_scanned) = (Tally::default(), Tally::default());
-        let segment = |k: usize| {
-            let a = Point::new(1.0 + (k % 128) as f64 * 0.06, 1.0 + (k / 128) as f64 * 0.03);
-            (a, Point::new(a.x + 2.0, a.y + 1.0))
-        };
+    fn generations_keep_the_segments_in_use_and_replay_exactly() {
+        let mut twin = Twin::new(SegmentCache::default());
         for k in 0..SLOTS / 2 + 10 {
-            let (a, b) = segment(k);
-            cache.apply::<true>(&layers, &mut cached, a, b, 0.6, &mut t_cached);
-            layers.apply::<true>(&mut scanned, a, b, 0.6, &mut t_scanned);
+            twin.apply::<true>(k);
         }
-        assert_eq!(cache.len(), 10, "the table was emptied at its half and refilled with ten");
+        assert_eq!((twin.cache.current.filled, twin.cache.previous.filled), (10, SLOTS / 2), "a second generation");
+        assert_eq!(twin.cache.scans(), (SLOTS / 2 + 10) as u64);
         for k in [0, 5, SLOTS / 2 + 3] {
-            let (a, b) = segment(k);
-            cache.apply::<false>(&layers, &mut cached, a, b, 0.6, &mut t_cached);
-            layers.apply::<false>(&mut scanned, a, b, 0.6, &mut t_scanned);
+            twin.apply::<false>(k);
         }
-        assert_eq!(t_cached, t_scanned);
-        assert_eq!(cached, scanned);
-        cache.epoch = u32::MAX;
-        cache.clear();
-        assert_eq!((cache.epoch, cache.len()), (1, 0));
-        assert!(cache.slots.iter().all(|slot| slot.epoch == 0), "slots of the old epochs are emptied");
-        let (a, b) = segment(7);
-        cache.apply::<true>(&layers, &mut cached, a, b, 0.6, &mut t_cached);
-        layers.apply::<true>(&mut scanned, a, b, 0.6, &mut t_scanned);
-        assert_eq!((t_cached, cache.len()), (t_scanned, 1));
+        assert_eq!(twin.cache.scans(), (SLOTS / 2 + 10) as u64, "0 and 5 copied from the previous generation");
+        assert_eq!(twin.cache.current.filled, 12);
+        for k in SLOTS / 2 + 10..SLOTS + 8 {
+            twin.apply::<true>(k);
+        }
+        assert_eq!(twin.cache.current.filled, 10, "a third generation; the first is dropped");
+        let scans = twin.cache.scans();
+        twin.apply::<true>(0);
+        assert_eq!(twin.cache.scans(), scans, "0 moved on with the second generation");
+        twin.apply::<true>(7);
+        assert_eq!(twin.cache.scans(), scans + 1, "7 was in the first generation only");
+        assert_eq!(twin.cached.0, twin.scanned.0);
+        twin.cache.current.epoch = u32::MAX;
+        twin.cache.clear();
+        assert_eq!((twin.cache.current.epoch, twin.cache.len()), (1, 0));
+        assert!(twin.cache.current.slots.iter().all(|slot| slot.epoch == 0), "slots of the old epochs are emptied");
+        twin.apply::<true>(7);
+        assert_eq!(twin.cache.len(), 1);
+        assert_eq!(twin.cached.0, twin.scanned.0);
+    }
+
+    /// A generation holds at most its mask limit: a segment that does not fit starts a new
+    /// generation, one longer than the limit is applied without being kept, and the masks
+    /// never outgrow the room reserved for them.
+    #[test]
+    fn the_mask_limit_bounds_every_generation() {
+        let layers = BitLayers::new(&CoverageGrid::new(&preset("thesis-1").unwrap()));
+        let lens: Vec<usize> = (0..3)
+            .map(|k| {
+                let (a, b) = segment(k);
+                let mut masks = Vec::new();
+                layers.push_free_masks(a, b, 0.6, &mut masks);
+                masks.len()
+            })
+            .collect();
+        let per_segment = lens[0];
+        assert!(per_segment > 2 && lens.iter().all(|&n| n == per_segment), "{lens:?}");
+        let mut twin = Twin::new(SegmentCache::with_mask_limit(2 * per_segment + 1));
+        twin.apply::<true>(0);
+        twin.apply::<true>(1);
+        assert_eq!(twin.cache.current.filled, 2);
+        twin.apply::<true>(2);
+        assert_eq!((twin.cache.current.filled, twin.cache.previous.filled), (1, 2), "the third did not fit");
+        assert!(twin.cache.current.masks.capacity() <= 2 * per_segment + 1);
+        let mut small = Twin::new(SegmentCache::with_mask_limit(per_segment - 1));
+        small.apply::<true>(0);
+        small.apply::<true>(0);
+        assert_eq!((small.cache.len(), small.cache.scans()), (0, 2), "too long to keep: scanned each time");
+        assert_eq!(small.cached.0, small.scanned.0);
     }
 
     proptest! {

@@ -40,8 +40,8 @@ pub fn memory_limit(max_memory: Option<u64>) -> Option<u64> {
 }
 
 impl Experiment {
-    /// An upper estimate of the run's memory.
-    pub fn memory_estimate(&self) -> MemoryEstimate {
+    /// An upper estimate of the run's memory when it runs on `threads` threads.
+    pub fn memory_estimate(&self, threads: usize) -> MemoryEstimate {
         let map = &self.scenario.map;
         let cells = (map.rows() * map.cols()) as f64;
         let common = COMMON_BYTES_PER_CELL * cells;
@@ -49,7 +49,7 @@ impl Experiment {
             PlannerConfig::Thesis(t) => {
                 let p = &t.params;
                 MemoryEstimate {
-                    bytes: crate::thesis::config::memory_estimate(p, map.rows(), map.cols()),
+                    bytes: crate::thesis::config::memory_estimate(p, map.rows(), map.cols(), threads),
                     key: if p.initial_size() > p.pop_min { "thesis.init_individuals" } else { "thesis.pop_min" },
                     what: format!("{} individuals of up to {} actions", p.initial_size(), p.max_genome_len),
                 }
@@ -68,15 +68,17 @@ impl Experiment {
         e
     }
 
-    /// Refuses the run (naming the key, the estimate and the limit) when `parallel` runs like it
-    /// would need more than `limit` bytes; returns the estimate otherwise.
+    /// Refuses the run (naming the key, the estimate and the limit) when `parallel` runs like it,
+    /// each on `threads` threads, would need more than `limit` bytes; returns the estimate
+    /// otherwise.
     pub fn check_memory(
         &self,
         origin: &str,
         limit: Option<u64>,
         parallel: usize,
+        threads: usize,
     ) -> Result<MemoryEstimate, ConfigError> {
-        let e = self.memory_estimate();
+        let e = self.memory_estimate(threads);
         let Some(limit) = limit else { return Ok(e) };
         let parallel = parallel.max(1);
         let total = e.bytes * parallel as f64;

@@ -159,7 +159,8 @@ pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Ex
 }
 
 /// Validates the experiments of `runs` (maps loaded once through `maps`) and checks that
-/// `parallel` of the largest of them fit in the memory `limit` (see [`super::memory`]).
+/// `parallel` of the largest of them, each on one thread (as [`run_study`] runs them), fit in
+/// the memory `limit` (see [`super::memory`]).
 /// Returns the largest run's memory estimate in bytes.
 pub fn validate_runs(
     study: &Study,
@@ -172,7 +173,7 @@ pub fn validate_runs(
     runs.iter().try_fold(0.0f64, |largest, run| {
         let exp = experiment_of(study, run, maps)?;
         let origin = format!("{} (run {})", study.path.display(), run.id);
-        Ok(largest.max(exp.check_memory(&origin, limit, parallel)?.bytes))
+        Ok(largest.max(exp.check_memory(&origin, limit, parallel, 1)?.bytes))
     })
 }
 
@@ -292,47 +293,55 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let counter = AtomicUsize::new(0);
     let written = AtomicUsize::new(0);
     let abort_after: Option<usize> = std::env::var(ABORT_AFTER_ENV).ok().and_then(|v| v.parse().ok());
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.jobs.max(1))
-        .build()
-        .map_err(|e| StudyError::Run { id: String::new(), message: e.to_string() })?;
-    pool.install(|| {
-        use rayon::prelude::*;
-        pending.iter().par_bridge().for_each(|&run| {
-            if failed.load(Ordering::Relaxed) {
-                return;
-            }
-            let result = (|| -> Result<(f64, f64, f64), StudyError> {
-                let dir = opts.out.join("runs").join(&run.id);
-                let exp = experiment_of(study, run, &maps)?;
-                let summary = super::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
-                    super::output::OutputError::Planner(message) => StudyError::Planner { id: run.id.clone(), message },
-                    other => StudyError::Run { id: run.id.clone(), message: other.to_string() },
-                })?;
-                let line = csv_line(&row(run, &summary));
-                let mut w = writer.lock().expect("writer");
-                w.write_all(&line).map_err(io(&file))?;
-                w.flush().map_err(io(&file))?;
-                w.sync_data().map_err(io(&file))?;
-                let recorded = written.fetch_add(1, Ordering::SeqCst) + 1;
-                if abort_after == Some(recorded) {
-                    // Fault injection for crash-and-resume tests: die like a killed process,
-                    // with this run's row on disk and nothing cleaned up.
-                    std::process::abort();
+    let run_one = |run: &RunSpec| -> Result<(f64, f64, f64), StudyError> {
+        let dir = opts.out.join("runs").join(&run.id);
+        let exp = experiment_of(study, run, &maps)?;
+        let summary = super::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
+            super::output::OutputError::Planner(message) => StudyError::Planner { id: run.id.clone(), message },
+            other => StudyError::Run { id: run.id.clone(), message: other.to_string() },
+        })?;
+        let line = csv_line(&row(run, &summary));
+        let mut w = writer.lock().expect("writer");
+        w.write_all(&line).map_err(io(&file))?;
+        w.flush().map_err(io(&file))?;
+        w.sync_data().map_err(io(&file))?;
+        let recorded = written.fetch_add(1, Ordering::SeqCst) + 1;
+        if abort_after == Some(recorded) {
+            // Fault injection for crash-and-resume tests: die like a killed process,
+            // with this run's row on disk and nothing cleaned up.
+            std::process::abort();
+        }
+        Ok((summary.score.cov_final_reach, summary.score.t_final, summary.wall_s))
+    };
+    let fail = |e: StudyError| {
+        failed.store(true, Ordering::Relaxed);
+        first_error.lock().expect("error slot").get_or_insert(e);
+    };
+    // `jobs` workers take the runs in order, each run on one thread: the runs are what a study
+    // runs in parallel. A run given a pool of several threads keeps an evaluation scratch (with
+    // its segment cache, `coverage::segments::CACHE_BYTES`) per thread of the pool, `jobs²` in
+    // all. Each worker is a plain thread with a one-thread pool of its own, which the run's
+    // parallel loops see; results do not depend on the threads.
+    let next = AtomicUsize::new(0);
+    std::thread::scope(|scope| {
+        for _ in 0..opts.jobs.max(1) {
+            scope.spawn(|| {
+                let pool = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+                    Ok(pool) => pool,
+                    Err(e) => return fail(StudyError::Run { id: String::new(), message: e.to_string() }),
+                };
+                while !failed.load(Ordering::Relaxed) {
+                    let Some(&run) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else { break };
+                    match pool.install(|| run_one(run)) {
+                        Ok(r) => {
+                            let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
+                            (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result: r });
+                        }
+                        Err(e) => fail(e),
+                    }
                 }
-                Ok((summary.score.cov_final_reach, summary.score.t_final, summary.wall_s))
-            })();
-            match result {
-                Ok(r) => {
-                    let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
-                    (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result: r });
-                }
-                Err(e) => {
-                    failed.store(true, Ordering::Relaxed);
-                    first_error.lock().expect("error slot").get_or_insert(e);
-                }
-            }
-        });
+            });
+        }
     });
     if let Some(e) = first_error.into_inner().expect("error slot") {
         return Err(e);

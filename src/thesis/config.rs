@@ -225,13 +225,15 @@ impl ThesisConfig {
 /// An upper estimate of a run's memory in bytes: twice the initial population (parents and
 /// offspring), each individual `32·max_genome_len` bytes of genome and viewpoints plus its
 /// bit-sliced visit map: one bit per cell (rows padded to 64 columns) for each bit of the
-/// largest possible count, which is below `max_genome_len`.
-pub fn memory_estimate(params: &ThesisParams, rows: usize, cols: usize) -> f64 {
+/// largest possible count, which is below `max_genome_len`; and the segment cache of each of
+/// the run's `threads` evaluation threads.
+pub fn memory_estimate(params: &ThesisParams, rows: usize, cols: usize, threads: usize) -> f64 {
     let len = params.max_genome_len as f64;
     let planes = f64::from(usize::BITS - params.max_genome_len.leading_zeros());
     let plane_bytes = 8.0 * rows as f64 * cols.div_ceil(64) as f64;
     let per = 32.0 * len + plane_bytes * planes;
-    2.0 * params.initial_size().max(params.pop_min) as f64 * per
+    let caches = (crate::coverage::segments::CACHE_BYTES * threads.max(1)) as f64;
+    2.0 * params.initial_size().max(params.pop_min) as f64 * per + caches
 }
 
 /// Validates a `[thesis]` section into [`ThesisParams`].
