@@ -22,8 +22,8 @@ pub struct BitLayers {
     words: usize,
     free: Vec<u64>,
     countable: Vec<u64>,
-    /// A fingerprint of `free` (see [`Self::walls_id`]).
-    walls_id: u64,
+    /// A fingerprint of the raster and of `free` (see [`Self::layout_id`]).
+    layout_id: u64,
 }
 
 impl BitLayers {
@@ -45,8 +45,11 @@ impl BitLayers {
                 }
             }
         }
-        let walls_id = free.iter().fold(raster.rows as u64, |h, &w| crate::ga::rng::mix64(h ^ w));
-        Self { raster, words, free, countable, walls_id }
+        let mix = |h: u64, w: u64| crate::ga::rng::mix64(h ^ w);
+        let RasterGrid { cols, rows, resolution, origin_x, origin_y } = raster;
+        let geometry = [cols as u64, rows as u64, resolution.to_bits(), origin_x.to_bits(), origin_y.to_bits()];
+        let layout_id = free.iter().fold(geometry.into_iter().fold(0, mix), |h, &w| mix(h, w));
+        Self { raster, words, free, countable, layout_id }
     }
 
     /// Words in one bit plane (rows × words per row).
@@ -115,10 +118,11 @@ impl BitLayers {
         Self::settle::<ADD>(tally, counts);
     }
 
-    /// A 64-bit fingerprint of the free cells: grids of one raster with other walls differ in
-    /// it (but for a 2⁻⁶⁴ chance), so a cache of free-cell masks can tell them apart.
-    pub fn walls_id(&self) -> u64 {
-        self.walls_id
+    /// A 64-bit fingerprint of the raster geometry and the free cells: grids of other
+    /// geometries, or of one raster with other walls, differ in it (but for a 2⁻⁶⁴ chance), so
+    /// a cache of free-cell masks can tell them apart with one comparison.
+    pub fn layout_id(&self) -> u64 {
+        self.layout_id
     }
 
     /// Appends to `out` the free cells of every word of the swept rectangle of `a → b`, words

@@ -50,6 +50,19 @@ pub(super) fn floor_i(x: f64) -> i64 {
     if (i as f64) > x { i - 1 } else { i }
 }
 
+/// The larger of two numbers, neither of them NaN (one comparison; `f64::max` also handles
+/// NaN, which the scans never meet: their bounds are finite or ±∞ and never summed to NaN).
+#[inline(always)]
+pub(super) fn larger(a: f64, b: f64) -> f64 {
+    if a > b { a } else { b }
+}
+
+/// The smaller of two numbers, neither of them NaN (see [`larger`]).
+#[inline(always)]
+pub(super) fn smaller(a: f64, b: f64) -> f64 {
+    if a < b { a } else { b }
+}
+
 /// A cell centre closer than this (metres) to an interval end is settled with the exact test;
 /// farther ones are decided by the interval, whose rounding error is many orders smaller.
 pub(super) const SETTLE_MARGIN: f64 = 1e-6;
@@ -67,12 +80,13 @@ pub(super) fn settle_interval(
     inside: impl Fn(i64) -> bool,
 ) -> Option<(i64, i64)> {
     // First centre at or after f0, last at or before f1 (the ends kept finite).
-    let mut lo = -floor_i(-f0.max(-1.0));
-    let mut hi = floor_i(f1.min(last as f64 + 1.0));
+    let mut lo = -floor_i(-larger(f0, -1.0));
+    let mut hi = floor_i(smaller(f1, last as f64 + 1.0));
     let lo_near = always || (lo as f64 - f0) < margin || (f0 - (lo - 1) as f64) < margin;
     let hi_near = always || (f1 - hi as f64) < margin || ((hi + 1) as f64 - f1) < margin;
-    lo = lo.clamp(0, last + 1);
-    hi = hi.clamp(-1, last);
+    // As `clamp`, without its check that the bounds are in order (`last` ≥ 0 here).
+    lo = lo.max(0).min(last + 1);
+    hi = hi.max(-1).min(last);
     if lo_near {
         while lo > 0 && inside(lo - 1) {
             lo -= 1;

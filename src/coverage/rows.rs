@@ -9,7 +9,7 @@
 //! parallel to the rows) it is decided once per row instead, and interval ends that come
 //! within a small margin of a cell centre are settled with the exact membership test.
 
-use super::raster::{RASTER_EPS, RasterGrid, SETTLE_MARGIN, floor_i, settle_interval};
+use super::raster::{RASTER_EPS, RasterGrid, SETTLE_MARGIN, floor_i, larger, settle_interval, smaller};
 use crate::geom::{Point, ZERO_LENGTH};
 
 /// Below this magnitude a constraint's column coefficient is treated as unreliable: its
@@ -91,8 +91,8 @@ pub fn for_each_swept_row(grid: &RasterGrid, a: Point, b: Point, width: f64, mut
             let ss = -dx * uy + dy * ux;
             tt >= -RASTER_EPS && tt < t_hi && ss >= s_lo && ss < s_hi
         };
-        let f0 = (t.lo.0 + t.lo.1 * rf).max(s.lo.0 + s.lo.1 * rf);
-        let f1 = (t.hi.0 + t.hi.1 * rf).min(s.hi.0 + s.hi.1 * rf);
+        let f0 = larger(t.lo.0 + t.lo.1 * rf, s.lo.0 + s.lo.1 * rf);
+        let f1 = smaller(t.hi.0 + t.hi.1 * rf, s.hi.0 + s.hi.1 * rf);
         if any_flat {
             let (tv, sv) = (dy * uy, dy * ux);
             if (t.flat && !(tv >= -RASTER_EPS && tv < t_hi)) || (s.flat && !(sv >= s_lo && sv < s_hi)) {

@@ -12,7 +12,7 @@
 //! below against [`BitLayers::apply`]).
 
 use super::bits::{BitLayers, Tally};
-use super::{planes::VisitPlanes, raster::RasterGrid};
+use super::planes::VisitPlanes;
 use crate::geom::Point;
 
 /// Masks kept in one generation of the cache (16 bytes each: 4 MiB per generation).
@@ -128,8 +128,8 @@ impl Generation {
 /// when full had to scan every live segment again: 37 % of the reference run's scans.
 #[derive(Debug)]
 pub struct SegmentCache {
-    /// The grid the masks belong to: its raster and the fingerprint of its walls.
-    grid: Option<(RasterGrid, u64)>,
+    /// The grid the masks belong to: the fingerprint of its raster and walls.
+    grid: Option<u64>,
     current: Generation,
     previous: Generation,
     /// Masks one generation holds at most ([`CACHE_MASKS`]; smaller in tests).
@@ -182,7 +182,7 @@ impl SegmentCache {
     ) {
         // Masks hold the free cells of the grid they were scanned on: another grid (or the same
         // raster with other walls) starts afresh.
-        let grid = Some((*layers.raster(), layers.walls_id()));
+        let grid = Some(layers.layout_id());
         if self.grid != grid || self.current.slots.is_empty() {
             self.clear();
             self.grid = grid;
