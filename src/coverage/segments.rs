@@ -343,6 +343,14 @@ mod tests {
         assert!(u.cov_pix > 0);
     }
 
+    /// Two generations of 2^15 slots of 64 bytes (2 MiB) and 2^18 masks of 16 bytes (4 MiB):
+    /// the 12 MiB per evaluation thread the memory estimate counts.
+    #[test]
+    fn a_cache_holds_at_most_twelve_mebibytes() {
+        assert_eq!(std::mem::size_of::<Slot>(), 64);
+        assert_eq!(CACHE_BYTES, 12 << 20);
+    }
+
     /// Segment `k` of a family of distinct segments on thesis-1.
     fn segment(k: usize) -> (Point, Point) {
         let a = Point::new(1.0 + (k % 128) as f64 * 0.06, 1.0 + (k / 128) as f64 * 0.03);
