@@ -437,13 +437,20 @@ mod tests {
             .collect();
         let per_segment = lens[0];
         assert!(per_segment > 2 && lens.iter().all(|&n| n == per_segment), "{lens:?}");
-        let mut twin = Twin::new(SegmentCache::with_mask_limit(2 * per_segment + 1));
+        // Two segments fill the limit exactly, and a full generation still holds them both.
+        let mut twin = Twin::new(SegmentCache::with_mask_limit(2 * per_segment));
         twin.apply::<true>(0);
         twin.apply::<true>(1);
-        assert_eq!(twin.cache.current.filled, 2);
+        assert_eq!((twin.cache.current.filled, twin.cache.previous.filled), (2, 0), "both fit exactly");
         twin.apply::<true>(2);
         assert_eq!((twin.cache.current.filled, twin.cache.previous.filled), (1, 2), "the third did not fit");
-        assert!(twin.cache.current.masks.capacity() <= 2 * per_segment + 1);
+        assert_eq!(twin.cache.len(), 3, "both generations count");
+        assert!(twin.cache.current.masks.capacity() <= 2 * per_segment);
+        // A segment of exactly the limit is kept; one mask more than the limit is not.
+        let mut exact = Twin::new(SegmentCache::with_mask_limit(per_segment));
+        exact.apply::<true>(0);
+        exact.apply::<true>(0);
+        assert_eq!((exact.cache.len(), exact.cache.scans()), (1, 1), "as long as the limit: kept");
         let mut small = Twin::new(SegmentCache::with_mask_limit(per_segment - 1));
         small.apply::<true>(0);
         small.apply::<true>(0);
