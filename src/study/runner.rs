@@ -1,9 +1,10 @@
-//! Running a study: runs in parallel (rayon, `--jobs`), each finished run's files under
-//! `runs/<id>/` and its row appended to the runs file (write, flush, fsync), resumable (recorded
-//! ids are skipped, a half-written last line dropped), shardable (`--shard K/N` takes every N-th
-//! id in sorted order and writes `runs-shard-K-of-N.csv`). When all of a study's (or shard's)
-//! runs are recorded the file is rewritten sorted by run id, so its bytes do not depend on
-//! the number of jobs. Nothing is printed; progress goes to a callback.
+//! Running a study: `--jobs` runs at once (worker threads, each run on one thread of its
+//! own), each finished run's files under `runs/<id>/` and its row appended to the runs file
+//! (write, flush, fsync), resumable (recorded ids are skipped, a half-written last line
+//! dropped), shardable (`--shard K/N` takes every N-th id in sorted order and writes
+//! `runs-shard-K-of-N.csv`). When all of a study's (or shard's) runs are recorded the file is
+//! rewritten sorted by run id, so its bytes do not depend on the number of jobs. Nothing is
+//! printed; progress goes to a callback.
 
 use super::config::ConfigError;
 use super::experiment::Experiment;
