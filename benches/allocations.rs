@@ -7,7 +7,8 @@
 mod common;
 
 use common::{architecture_a, thesis1_ga};
-use covga::thesis::params::{Budget, Selection, ThesisParams};
+use covga::planner::Budget;
+use covga::thesis::params::{Selection, ThesisParams};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering};
 

@@ -8,8 +8,9 @@
 mod common;
 
 use common::{architecture_a, thesis1_ga};
+use covga::planner::Budget;
 use covga::thesis::crossover::ChildMode;
-use covga::thesis::params::{Budget, Selection, ThesisParams};
+use covga::thesis::params::{Selection, ThesisParams};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::time::Duration;
 

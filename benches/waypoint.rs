@@ -5,10 +5,11 @@
 //!
 //! `cargo bench --bench waypoint`
 
+use covga::experiment::file::ExperimentFile;
+use covga::experiment::registry::{PlannerConfig, PlannerKind};
 use covga::map::presets::preset;
-use covga::planner::{PlannerConfig, PlannerKind};
-use covga::study::experiment::ExperimentFile;
-use covga::waypoint::run::{Limits, run};
+use covga::planner::Budget;
+use covga::waypoint::run::run;
 use covga::waypoint::world::World;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::path::Path;
@@ -31,7 +32,7 @@ fn bench(c: &mut Criterion) {
     let world = World::build(&map, &plan.world, 1).expect("world");
     group.measurement_time(Duration::from_secs(60));
     group.bench_function("ga_1000_generations_100_organisms", |b| {
-        b.iter(|| run(&world, &plan.ga, 1, &Limits::default(), &mut |_, _, _, _| {}).best)
+        b.iter(|| run(&world, &plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {}).best)
     });
     let ring = ExperimentFile::read(Path::new("experiments/olson-ring.toml")).expect("olson-ring.toml");
     let ring = ring.validate("olson-ring", Path::new("experiments"), "olson-ring").expect("valid");
@@ -40,7 +41,7 @@ fn bench(c: &mut Criterion) {
     let ring_world = World::build(&ring.scenario.map, &ring_plan.world, 1).expect("world");
     group.measurement_time(Duration::from_secs(30));
     group.bench_function("ring_floor_100_generations", |b| {
-        b.iter(|| run(&ring_world, &ring_plan.ga, 1, &Limits::default(), &mut |_, _, _, _| {}).best)
+        b.iter(|| run(&ring_world, &ring_plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {}).best)
     });
     group.finish();
 }

@@ -2,12 +2,13 @@
 //! 2000 iterations, f2) with its time and result; `cargo run --release --example reference_run`.
 
 use covga::coverage::Footprint;
+use covga::coverage::fitness::Projection;
 use covga::ga::observer::Recorder;
 use covga::geom::Point;
 use covga::map::presets::preset;
-use covga::thesis::fitness::Projection;
+use covga::planner::Budget;
 use covga::thesis::individual::Scenario;
-use covga::thesis::params::{Budget, ThesisParams};
+use covga::thesis::params::ThesisParams;
 use covga::thesis::run::ThesisGa;
 
 fn main() {

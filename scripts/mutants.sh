@@ -27,11 +27,11 @@ command -v cargo-mutants >/dev/null || cargo install cargo-mutants --locked
 core=(
   src/coverage/bits.rs src/coverage/planes.rs src/coverage/rows.rs src/coverage/raster.rs src/coverage/sweep.rs src/coverage/score.rs
   src/coverage/segments.rs src/coverage/lanes.rs
-  src/thesis/fitness.rs src/thesis/crossover.rs src/thesis/mutation.rs src/thesis/genome.rs
+  src/coverage/fitness.rs src/thesis/crossover.rs src/thesis/mutation.rs src/thesis/genome.rs
   src/thesis/individual.rs src/thesis/diversity.rs src/thesis/architecture.rs
   src/ga/selection.rs src/ga/control.rs src/ga/pareto.rs src/ga/rng.rs src/ga/maximin.rs
   src/waypoint/evaluate.rs src/waypoint/operators.rs
-  src/study/stats.rs src/study/report.rs
+  src/report/stats.rs src/report/mod.rs
 )
 if [ "${1:-}" = "--check-pins" ]; then
   # A pin (`file:line:column: …` in .cargo/mutants.toml) goes stale when its line moves, and the

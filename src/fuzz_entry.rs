@@ -3,9 +3,9 @@
 //! command line does and discards the result: a fuzz input may make a loader return an error,
 //! never panic, hang or allocate without bound.
 
+use crate::experiment::file::ExperimentFile;
 use crate::geom::Point;
 use crate::map::ros::{PixelRule, decode_map_image, parse_ros_yaml};
-use crate::study::experiment::ExperimentFile;
 use crate::study::grid::Study;
 use std::path::Path;
 

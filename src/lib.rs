@@ -1,14 +1,36 @@
 #![warn(missing_docs)]
 //! covga: coverage path planning with genetic algorithms.
 //!
-//! The crate implements the action-encoded GA of 003 ([`thesis`]), pattern baselines
-//! ([`patterns`]), a common footprint scorer ([`coverage`]) on occupancy grid maps ([`map`]),
-//! experiment files and runs ([`study`]), figures ([`plot`]) and the `covga` command line
-//! ([`cli`]). Paper references (`003 eq. 3.13`) point into `shared/seeds` of the project's
-//! design documents.
+//! The crate implements the action-encoded GA of 003 ([`thesis`]), the waypoint-graph maximin
+//! planner of 000 ([`waypoint`]), pattern baselines ([`patterns`]), random search
+//! ([`random_search`]) and fleets ([`fleet`]), all scored by one common scorer ([`coverage`])
+//! on occupancy grid maps ([`map`]); experiments ([`experiment`]), grid studies ([`study`]),
+//! reports ([`report`]), figures ([`plot`]) and the `covga` command line ([`cli`]). Paper
+//! references (`003 eq. 3.13`) point into `shared/seeds` of the project's design documents.
+//!
+//! The modules form layers, bottom to top; each imports only from its own layer and those
+//! below (`tests/architecture.rs` holds the order):
+//!
+//! 1. [`geom`], [`io`], [`config`], [`ga`]: points and angles, files and numbers,
+//!    configuration errors and range checks, and what every GA shares (selection, control,
+//!    RNG streams, observers: it needs no map, and the coverage layer hashes with its streams);
+//! 2. [`map`]: grids, ROS files, presets, clearance and reachability;
+//! 3. [`coverage`]: the swept footprint, the camera, the thesis fitness equations and the
+//!    common scorer;
+//! 4. [`plot`]: figure primitives (maps, paths, charts, legends);
+//! 5. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
+//! 6. the planners — [`thesis`], [`waypoint`], [`patterns`], then [`random_search`] (the
+//!    thesis genome drawn at random) and [`fleet`] (teams planned by the others), each
+//!    validating its own section and drawing its own figures;
+//! 7. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
+//! 8. [`study`]: grids, the runner, records, merge, estimates, Slurm;
+//! 9. [`report`]: the sections of `covga report`;
+//! 10. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
 
 pub mod cli;
+pub mod config;
 pub mod coverage;
+pub mod experiment;
 pub mod fleet;
 pub mod fuzz_entry;
 pub mod ga;
@@ -18,6 +40,8 @@ pub mod map;
 pub mod patterns;
 pub mod planner;
 pub mod plot;
+pub mod random_search;
+pub mod report;
 pub mod study;
 pub mod thesis;
 pub mod waypoint;

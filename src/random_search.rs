@@ -4,14 +4,17 @@
 //! in batches of `Pop_min`, until the evaluation budget is spent, and keeps the fittest by the
 //! thesis fitness `f_obstacle`. Budget-matched to the GAs through `budget.evaluations`.
 
+use crate::config::ConfigError;
+use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::ga::rng::{Purpose, stream};
-use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
-use crate::study::config::ConfigError;
-use crate::study::experiment::ExperimentFile;
+use crate::planner::memory::{MemoryEstimate, bitset_bytes};
+use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario};
+use crate::thesis::config::ThesisSection;
 use crate::thesis::genome::random_genome;
-use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
-use crate::thesis::planner::{genome_csv, obstacle_violations, thesis_scenario};
+use crate::thesis::individual::{
+    Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario as ThesisScenario, correct_and_evaluate,
+};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -25,17 +28,29 @@ pub struct RandomSearch {
 }
 
 impl RandomSearch {
-    /// Reads the draw from `[thesis]`; the evaluation budget is required.
-    pub fn from_file(file: &ExperimentFile, origin: &str) -> Result<Self, ConfigError> {
-        let t = crate::thesis::config::validate_params(&file.thesis, origin)?;
-        if file.budget.evaluations == 0 {
+    /// Reads the draw from the `[thesis]` section; the evaluation budget is required.
+    pub fn validate(thesis: &ThesisSection, ctx: &Context) -> Result<Self, ConfigError> {
+        let t = crate::thesis::config::validate_params(thesis, ctx.origin)?;
+        if ctx.budget.evaluations.is_none() {
             return Err(ConfigError::new(
-                origin,
+                ctx.origin,
                 "budget.evaluations",
                 "= 0: random search needs an evaluation budget (the GAs' budget, for a fair comparison)",
             ));
         }
         Ok(Self { init: t.init, batch: t.pop_min })
+    }
+}
+
+impl RandomSearch {
+    /// An upper estimate of a run's memory on `map`: a batch of genomes with their visit maps.
+    pub fn memory_estimate(&self, map: &crate::map::GridMap) -> MemoryEstimate {
+        let cells = (map.rows() * map.cols()) as f64;
+        MemoryEstimate {
+            bytes: self.batch as f64 * (32.0 * self.init.actions as f64 + bitset_bytes(cells)),
+            key: "thesis.pop_min",
+            what: format!("batches of {} random genomes", self.batch),
+        }
     }
 }
 
@@ -52,16 +67,14 @@ impl Planner for RandomSearch {
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunOutcome, PlannerError> {
         let started = Instant::now();
-        let th = thesis_scenario(scenario);
-        let limit = budget.evaluations.unwrap_or(self.batch as u64);
+        let th = ThesisScenario::from_common(scenario);
+        // Without an evaluation budget (a library caller's), one batch.
+        let budget = Budget { evaluations: Some(budget.evaluations.unwrap_or(self.batch as u64)), ..*budget };
         let mut best: Option<Individual> = None;
         let (mut evaluations, mut iteration) = (0u64, 0u32);
         let stop = loop {
-            if evaluations >= limit {
-                break StopReason::Evaluations;
-            }
-            if budget.wall_clock.is_some_and(|w| started.elapsed() >= w) {
-                break StopReason::WallClock;
+            if let Some(stop) = budget.spent(evaluations, started) {
+                break stop;
             }
             let batch: Vec<(Individual, u64)> = (0..self.batch)
                 .into_par_iter()
@@ -124,7 +137,9 @@ impl Planner for RandomSearch {
             stop,
             wall_s: started.elapsed().as_secs_f64(),
             details,
-            files: vec![("best_genome.csv".into(), genome_csv(&best))],
+            files: vec![("best_genome.csv".into(), best.genome_csv())],
+            history: crate::planner::History::Generations,
+            agents: Vec::new(),
             artifacts: Box::new(()),
         })
     }

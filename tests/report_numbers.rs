@@ -214,7 +214,7 @@ fn the_library_call_writes_the_report_the_command_writes() {
     let (lib, cli) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
     fixture(lib.path());
     fixture(cli.path());
-    let path = covga::study::report::write_report(lib.path(), &["thesis.c_len".to_string()]).unwrap();
+    let path = covga::report::write_report(lib.path(), &["thesis.c_len".to_string()]).unwrap();
     assert_eq!(path, lib.path().join("report/summary.md"));
     let o = Command::new(env!("CARGO_BIN_EXE_covga"))
         .args(["report", cli.path().to_str().unwrap(), "--by", "thesis.c_len"])

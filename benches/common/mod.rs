@@ -3,10 +3,10 @@
 #![allow(dead_code)]
 
 use covga::coverage::Footprint;
+use covga::coverage::fitness::Projection;
 use covga::geom::Point;
 use covga::map::presets::preset;
 use covga::thesis::crossover::ChildMode;
-use covga::thesis::fitness::Projection;
 use covga::thesis::individual::Scenario;
 use covga::thesis::params::{Selection, ThesisParams};
 use covga::thesis::run::ThesisGa;

@@ -2,13 +2,13 @@
 //! fitness, print every metric and draw the path.
 
 use super::{CliError, parse_point};
+use crate::coverage::fitness::{Projection, ThesisScore, score};
 use crate::coverage::score::{Score, Scorer};
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
 use crate::map::ros::load_map;
 use crate::patterns::hand_made::{HandMade, hand_made};
 use crate::patterns::{self, Pattern};
 use crate::plot::path::PathFigure;
-use crate::thesis::fitness::{Projection, ThesisScore, score};
 use std::path::PathBuf;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -229,7 +229,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             let hand = match a.pattern {
                 Some(PatternName::ThesisBoustrophedon) => Some((HandMade::Boustrophedon, "thesis boustrophedon")),
                 Some(PatternName::ThesisSpiral) => Some((HandMade::Spiral, "thesis spiral")),
-                _ => None,
+                Some(PatternName::Boustrophedon | PatternName::Spiral) | None => None,
             };
             if let Some((kind, name)) = hand {
                 if end != start {
@@ -244,7 +244,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             } else {
                 let pattern = match a.pattern {
                     Some(PatternName::Spiral) => Pattern::Spiral,
-                    _ => Pattern::Boustrophedon { angle_deg: a.angle },
+                    Some(PatternName::Boustrophedon | PatternName::ThesisBoustrophedon | PatternName::ThesisSpiral)
+                    | None => Pattern::Boustrophedon { angle_deg: a.angle },
                 };
                 let planned =
                     patterns::plan(&map, pattern, robot.width, start, end, !a.no_complete).map_err(CliError::input)?;

@@ -69,7 +69,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     let (limit, parallel) = if a.slurm {
         (a.max_memory, a.cpus_per_task)
     } else {
-        (crate::study::memory::memory_limit(a.max_memory), a.jobs)
+        (crate::experiment::memory::memory_limit(a.max_memory), a.jobs)
     };
     let largest_run_bytes =
         crate::study::runner::validate_runs(&study, &all, &crate::study::runner::MapCache::default(), limit, parallel)
@@ -225,9 +225,9 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
         };
         filter.push((k.trim().to_string(), v.trim().to_string()));
     }
-    let opts = crate::study::report::ReportOptions { by: a.by, filter, name: a.name };
-    let path = crate::study::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
-        crate::study::report::ReportError::Input(m) => CliError::Input(m),
+    let opts = crate::report::ReportOptions { by: a.by, filter, name: a.name };
+    let path = crate::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
+        crate::report::ReportError::Input(m) => CliError::Input(m),
         other => CliError::internal(other),
     })?;
     println!("wrote {} and the figures beside it", path.display());

@@ -1,10 +1,10 @@
 //! `covga run`: one experiment, with a progress bar on a terminal.
 
 use super::CliError;
+use crate::experiment::file::ExperimentFile;
+use crate::experiment::output::{OutputError, run_experiment};
+use crate::experiment::registry::PlannerConfig;
 use crate::ga::observer::{GenerationRecord, Observer};
-use crate::planner::PlannerKind;
-use crate::study::experiment::ExperimentFile;
-use crate::study::output::{OutputError, run_experiment};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 
@@ -50,7 +50,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
             let origin = path.display().to_string();
             let text = ExperimentFile::read_text(path).map_err(CliError::input)?;
             let file = ExperimentFile::parse(&text, &origin).map_err(CliError::input)?;
-            let ignored = crate::study::ignored::ignored_in_text(&text, &file);
+            let ignored = crate::experiment::ignored::ignored_in_text(&text, &file);
             let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
             let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
             (file, origin, base, stem, ignored)
@@ -73,7 +73,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     for (key, why) in ignored {
         eprintln!("warning: {origin}: `{key}` is ignored: {why}");
     }
-    exp.check_memory(&origin, crate::study::memory::memory_limit(a.max_memory), 1, rayon::current_num_threads())
+    exp.check_memory(&origin, crate::experiment::memory::memory_limit(a.max_memory), 1, rayon::current_num_threads())
         .map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
     let existed = dir.exists();
@@ -87,12 +87,8 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         }
     };
     let show = !a.quiet && std::io::stderr().is_terminal();
-    let length = match (exp.file.planner, &exp.fleet) {
-        (PlannerKind::Waypoint, _) => exp.file.waypoint.generations,
-        (_, Some(f)) if f.mode != crate::fleet::config::FleetMode::Central => 0,
-        _ => exp.budget.iterations,
-    };
-    let mut progress = Progress(super::progress_bar(u64::from(length), "it", show));
+    let length = exp.planner.progress_length(&exp.budget);
+    let mut progress = Progress(super::progress_bar(length, "it", show));
     let summary = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| {
         discard_folder();
         match e {
@@ -130,7 +126,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
                 f.t_final
             );
         }
-        if exp.fleet.is_none() {
+        if !matches!(exp.planner, PlannerConfig::Fleet(_)) {
             println!(
                 "common score: cov_final {:.4} (reachable {:.4})  t_final {:.4}  camera walls {:.4}  length {:.1} m  time {:.0} s",
                 s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s

@@ -3,7 +3,7 @@
 //! Areas are computed in square metres from cell counts (eqs. 3.4–3.6) so that the formulas
 //! read as in the thesis; `M_res`, `R_speed` and `R_width` enter exactly where it puts them.
 
-use crate::coverage::{Footprint, PathMetrics, SweepCounts};
+use super::{Footprint, PathMetrics, SweepCounts};
 use serde::{Deserialize, Serialize};
 
 /// The projection `f(x, y)` of the two objectives onto one number (003 eqs. 3.14–3.15).
@@ -141,15 +141,13 @@ mod tests {
         (36, Projection::F2, 0.0124711, 0.962469, 0.932929),
     ];
 
-    /// F1 and F2 by hand (003 eqs. 3.14–3.15), and F2 as the default projection (spec §5).
+    /// F1 and F2 by hand (003 eqs. 3.14–3.15); the score uses the chosen one.
     #[test]
-    fn projections_by_hand_and_the_default() {
+    fn projections_by_hand() {
         for (t, cov, f1v, f2v) in [(0.5, 0.8, 0.65, 0.4), (1.0, 0.0, 0.5, 0.0), (0.25, 0.25, 0.25, 0.0625)] {
             assert!((Projection::F1.apply(t, cov) - f1v).abs() < 1e-15);
             assert!((Projection::F2.apply(t, cov) - f2v).abs() < 1e-15);
         }
-        assert_eq!(crate::thesis::config::ThesisSection::default().projection, Projection::F2);
-        assert_eq!(crate::thesis::config::ThesisSection::default().c_child, 2, "C_child = 2 (both) by default");
         // The score uses the chosen projection.
         let m = PathMetrics { cells_swept: 300, crossings: 30, area_cells: 2025, ..Default::default() };
         let s2 = score(&m, &Footprint::default(), 0.2, Projection::F2);

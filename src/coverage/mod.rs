@@ -1,10 +1,15 @@
 //! Coverage of a path on a grid map: the swept footprint of 003 §3.1 ([`raster`], [`sweep`])
-//! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`].
+//! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`]; the
+//! thesis fitness equations that turn them into `cov_final`, `t_final` and `f` ([`fitness`],
+//! 003 §3.2.1); the camera model of 000 on its working raster ([`camera`], [`work_map`]); and
+//! the common scorer every planner is compared by ([`score`]). Planners build on this layer;
+//! it depends on none of them.
 
 pub mod bits;
 pub mod camera;
 #[cfg(test)]
 pub(crate) mod exact;
+pub mod fitness;
 pub mod lanes;
 pub mod motion;
 pub mod planes;
@@ -13,6 +18,7 @@ pub mod rows;
 pub mod score;
 pub mod segments;
 pub mod sweep;
+pub mod work_map;
 
 pub use sweep::{CoverageGrid, SweepCounts, SweepScratch};
 

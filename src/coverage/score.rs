@@ -15,12 +15,12 @@
 
 use super::camera::Camera;
 use super::{CoverageGrid, Footprint, SweepScratch, motion};
+use crate::coverage::fitness::{Projection, f_obstacle};
+use crate::coverage::work_map::WorkMap;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
-use crate::thesis::fitness::{Projection, f_obstacle};
-use crate::waypoint::raster::WorkMap;
 
 /// Spacing of camera poses along a path in metres.
 pub const CAMERA_STEP_M: f64 = 1.0;
@@ -272,7 +272,7 @@ impl Scorer {
         let mut scratch = SweepScratch::new(&self.grid);
         let m = self.robot.measure_plan(&self.grid, &mut scratch, paths);
         let unique_reach = scratch.visit_counts().filter(|&(i, _)| self.reach.is_coverable(i as usize)).count() as u64;
-        let th = crate::thesis::fitness::score(&m, &self.robot, self.resolution, self.projection);
+        let th = crate::coverage::fitness::score(&m, &self.robot, self.resolution, self.projection);
         let reachable = self.reach.coverable_count() as u64;
         let cov_reach = unique_reach as f64 / reachable.max(1) as f64;
         let f_reach = f_obstacle(self.projection.apply(th.t_final, cov_reach), m.obstacle_cells);
@@ -312,6 +312,12 @@ impl Scorer {
             agent_time_s: times,
         }
     }
+}
+
+/// The violation of a plan that sweeps obstacle cells, in words (none when it sweeps none):
+/// such a path is not drivable, the thesis's only hard constraint.
+pub fn obstacle_violations(obstacle_cells: u64) -> Vec<String> {
+    if obstacle_cells == 0 { Vec::new() } else { vec![format!("the path sweeps {obstacle_cells} obstacle cells")] }
 }
 
 #[cfg(test)]

@@ -1,15 +1,18 @@
-//! Experiment files (TOML): one seeded run of a planner on a map with a robot. Parsed with
-//! unknown keys rejected, then validated once into an [`Experiment`]: the scenario, the chosen
-//! planner's typed parameters (each planner's section is converted beside its algorithm:
-//! `thesis/config.rs`, `waypoint/config.rs`, `patterns/planner.rs`), the seed, the budget and
-//! the output folder. Nothing downstream reads the raw file except to write `config.toml`.
+//! Experiment files (TOML): one seeded run of a planner on a map with a robot (or a fleet).
+//! Parsed with unknown keys rejected, then validated once into an [`Experiment`]: the scenario
+//! and budget from the sections of [`crate::planner::sections`], the chosen planner's typed
+//! parameters (each planner validates its own section beside its algorithm, through
+//! [`super::registry`]), the seed and the output folder. Nothing downstream reads the raw file
+//! except to write `config.toml`.
 
-use super::config::{ConfigError, check_range};
+use super::registry::{PlannerConfig, PlannerKind};
+use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::patterns::planner::PatternSection;
-use crate::planner::{Budget, PlannerConfig, PlannerKind, Scenario};
+use crate::planner::sections::{BudgetSection, MapSection, RobotSection, StationsSection};
+use crate::planner::{Budget, Context, Scenario};
 use crate::thesis::config::{RetrainSection, ThesisSection};
 use crate::waypoint::config::WaypointSection;
 use serde::{Deserialize, Serialize};
@@ -52,55 +55,6 @@ pub struct ExperimentFile {
     pub fleet: Option<crate::fleet::config::FleetSection>,
 }
 
-/// `[map]`.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct MapSection {
-    /// Preset name, ROS YAML or image path (relative paths from the experiment file's folder).
-    pub source: String,
-    /// Metres per pixel for a bare image.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub resolution: Option<f64>,
-}
-
-/// `[robot]` (003 Table 4.2).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RobotSection {
-    /// `R_width` in metres.
-    pub width: f64,
-    /// `R_speed` in m/s.
-    pub speed: f64,
-    /// `R_rot` in rad/s (0 = no rotation cost).
-    pub rot_speed: f64,
-}
-
-/// `[stations]` (spec R3).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct StationsSection {
-    /// `S_pos` in metres.
-    pub start: [f64; 2],
-    /// `E_pos` in metres (default: the start).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub end: Option<[f64; 2]>,
-}
-
-/// `[budget]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct BudgetSection {
-    /// `Iter_max` (total, including iterations after a retrain switch); the thesis GA's
-    /// iterations (the waypoint planner's generations are `waypoint.generations`).
-    pub iterations: u32,
-    /// Fitness evaluations (0 = no limit): the equal budget of a planner comparison.
-    pub evaluations: u64,
-    /// Wall-clock limit in seconds (0 = none).
-    pub wall_clock_s: f64,
-    /// Stop after this many iterations without a better best (0 = never).
-    pub stall_iterations: u32,
-}
-
 /// `[output]`.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
@@ -129,28 +83,6 @@ impl Default for ExperimentFile {
         }
     }
 }
-impl Default for MapSection {
-    fn default() -> Self {
-        Self { source: "thesis-1".into(), resolution: None }
-    }
-}
-impl Default for RobotSection {
-    fn default() -> Self {
-        let f = Footprint::default();
-        Self { width: f.width, speed: f.speed, rot_speed: f.rot_speed }
-    }
-}
-impl Default for StationsSection {
-    fn default() -> Self {
-        Self { start: [1.3, 1.3], end: None }
-    }
-}
-impl Default for BudgetSection {
-    fn default() -> Self {
-        Self { iterations: 2000, evaluations: 0, wall_clock_s: 0.0, stall_iterations: 0 }
-    }
-}
-
 /// Loads a map from `(source, resolution)`.
 pub type MapLoader<'a> = dyn Fn(&str, Option<f64>) -> Result<GridMap, crate::map::MapError> + 'a;
 
@@ -169,18 +101,9 @@ pub struct Experiment {
     pub budget: Budget,
     /// Results folder.
     pub output_dir: PathBuf,
-    /// The fleet and its negotiation, when the file has `[[robots]]`.
-    pub fleet: Option<crate::fleet::config::FleetRun>,
 }
 
 impl ExperimentFile {
-    /// Whether the plan ignores the seed: a deterministic planner, or a fleet planned by area
-    /// division. Grid studies run such a configuration once.
-    pub fn is_deterministic(&self) -> bool {
-        let divide = self.fleet.as_ref().is_some_and(|f| f.mode == crate::fleet::config::FleetMode::Divide);
-        self.planner.is_deterministic() || (!self.robots.is_empty() && divide)
-    }
-
     /// Parses TOML text; `origin` names the file in messages.
     /// A text that sets nothing (empty, or only comments) is refused: it is more often a wrong
     /// or truncated file than a wish for every default, which is said with one key, e.g.
@@ -275,17 +198,22 @@ impl ExperimentFile {
         robot.check_fits(&map).map_err(|m| err("robot.width", m))?;
         let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
         let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
-        crate::fleet::config::waypoint_team(&mut self, origin)?;
-        let planner = PlannerConfig::from_file(&self, origin, &scenario)?;
+        crate::fleet::config::waypoint_team(
+            &mut self.waypoint,
+            &self.robots,
+            self.fleet.as_ref(),
+            self.stations.start,
+            origin,
+        )?;
         let budget = Budget {
             iterations: b.iterations,
             evaluations: (b.evaluations > 0).then_some(b.evaluations),
             wall_clock: (b.wall_clock_s > 0.0).then(|| Duration::from_secs_f64(b.wall_clock_s)),
             stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
         };
+        let planner = PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget })?;
         let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
-        let fleet = crate::fleet::config::FleetRun::from_file(&self, origin, &scenario, &budget)?;
         self.stations.end = Some([end.x, end.y]);
-        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, fleet })
+        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir })
     }
 }

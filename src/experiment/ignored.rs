@@ -3,8 +3,8 @@
 //! `covga run` warns about the ones the file sets, and a grid refuses to sweep one, since its
 //! runs would differ only in a value nothing reads.
 
-use super::experiment::ExperimentFile;
-use crate::planner::PlannerKind;
+use super::file::ExperimentFile;
+use super::registry::PlannerKind;
 use crate::thesis::config::SelectionName;
 
 /// The `[thesis]` keys each selection scheme does not read (003 §3.4: Elite keeps the
@@ -39,10 +39,16 @@ fn within(key: &str, prefix: &str) -> bool {
 pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     let planner = file.planner;
     let name = planner.name();
-    if within(key, "retrain") && planner != PlannerKind::Thesis {
+    // Which of the planner-specific sections each planner reads besides its own.
+    let (reads_retrain, reads_pattern) = match planner {
+        PlannerKind::Thesis => (true, false),
+        PlannerKind::Boustrophedon | PlannerKind::Spiral => (false, true),
+        PlannerKind::Waypoint | PlannerKind::RandomSearch => (false, false),
+    };
+    if within(key, "retrain") && !reads_retrain {
         return Some(format!("only the thesis GA retrains; planner = \"{name}\""));
     }
-    if within(key, "pattern") && !matches!(planner, PlannerKind::Boustrophedon | PlannerKind::Spiral) {
+    if within(key, "pattern") && !reads_pattern {
         return Some(format!("only the boustrophedon and spiral patterns read [pattern]; planner = \"{name}\""));
     }
     if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
@@ -64,7 +70,9 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
                     ));
                 }
             }
-            _ => return Some(format!("planner = \"{name}\" does not read [thesis] (except projection)")),
+            PlannerKind::Waypoint | PlannerKind::Boustrophedon | PlannerKind::Spiral => {
+                return Some(format!("planner = \"{name}\" does not read [thesis] (except projection)"));
+            }
         }
     }
     None

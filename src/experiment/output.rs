@@ -4,10 +4,10 @@
 //! and details, and the common [`Score`]), `path.png/.svg` and the planner's own figures.
 //! Every file is written to a temporary name and renamed when complete.
 
-use super::experiment::Experiment;
+use super::file::Experiment;
 use crate::coverage::score::{Score, Scorer};
 use crate::ga::observer::{GenerationRecord, Observer};
-use crate::planner::{PlannerError, StopReason};
+use crate::planner::{Agent, History, PlannerError, RunOutcome, StopReason};
 use crate::plot::path::PathFigure;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -125,15 +125,44 @@ pub fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Scorer {
     Scorer::new(&s.map, s.robot, s.projection, &s.camera, &stations)
 }
 
-/// The fleet metrics of a plan of two agents or more, each agent the experiment's robot
-/// starting and ending where its path does.
-fn team_score(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Option<crate::fleet::metrics::FleetScore> {
-    if plan.len() < 2 || plan.iter().any(Vec::is_empty) {
-        return None;
-    }
-    let stations: Vec<_> = plan.iter().map(|p| (p[0], *p.last().expect("non-empty"))).collect();
-    let fleet = crate::fleet::Fleet::homogeneous(exp.scenario.robot, &stations)?;
+/// The fleet metrics of a plan: for a plan that names its robots (a fleet), each robot at its
+/// own width and stations; for any other plan of two agents or more, each agent the
+/// experiment's robot starting and ending where its path does.
+fn team_score(
+    exp: &Experiment,
+    plan: &[Vec<crate::geom::Point>],
+    agents: &[Agent],
+) -> Option<crate::fleet::metrics::FleetScore> {
+    let fleet = if agents.is_empty() {
+        if plan.len() < 2 || plan.iter().any(Vec::is_empty) {
+            return None;
+        }
+        let stations: Vec<_> = plan.iter().map(|p| (p[0], *p.last().expect("non-empty"))).collect();
+        crate::fleet::Fleet::homogeneous(exp.scenario.robot, &stations)?
+    } else {
+        crate::fleet::Fleet::from_agents(agents.to_vec())?
+    };
     crate::fleet::metrics::FleetScorer::new(&exp.scenario.map, &fleet).score(plan).ok()
+}
+
+/// The title of a run's path figure: the common score, or the fleet's union and makespan for
+/// a plan that names its robots.
+fn path_title(planner: &str, map: &str, summary: &Summary, outcome: &RunOutcome) -> String {
+    match (&summary.fleet, outcome.agents.is_empty()) {
+        (Some(f), false) => format!(
+            "{} robots on {map} ({planner}): union {:.3}, makespan {:.0} s",
+            outcome.agents.len(),
+            f.union_reach,
+            f.makespan_s
+        ),
+        _ => {
+            let s = &summary.score;
+            format!(
+                "{planner} on {map}: cov_final {:.3} (reachable {:.3}), t_final {:.3}",
+                s.cov_final_free, s.cov_final_reach, s.t_final
+            )
+        }
+    }
 }
 
 /// Runs the experiment, streaming history to `dir`, and writes every result file; `figures`
@@ -144,9 +173,6 @@ pub fn run_experiment(
     figures: bool,
     extra: &mut [&mut dyn Observer],
 ) -> Result<Summary, OutputError> {
-    if let Some(fleet) = &exp.fleet {
-        return crate::fleet::run::run_fleet(exp, fleet, dir, figures, extra);
-    }
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
     let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
     let planner = exp.planner.planner();
@@ -166,17 +192,29 @@ pub fn run_experiment(
             });
         }
     };
-    history.finish().map_err(io_err(dir))?;
+    match &outcome.history {
+        History::Generations => history.finish().map_err(io_err(dir))?,
+        History::Own(bytes) => {
+            history.discard();
+            crate::io::write_atomic(&dir.join("history.csv"), bytes).map_err(io_err(dir))?;
+        }
+        History::None => history.discard(),
+    }
     let config = toml::to_string_pretty(&exp.file).expect("experiment files serialise");
     crate::io::write_atomic(&dir.join("config.toml"), config.as_bytes()).map_err(io_err(dir))?;
     let write = |name: &str, bytes: &[u8]| crate::io::write_atomic(&dir.join(name), bytes).map_err(io_err(dir));
-    write("best_path.csv", &crate::io::path_csv(&outcome.plan))?;
+    let names: Vec<String> = outcome.agents.iter().map(|a| a.name.clone()).collect();
+    if names.is_empty() {
+        write("best_path.csv", &crate::io::path_csv(&outcome.plan))?;
+    } else {
+        write("best_path.csv", &crate::io::fleet_path_csv(&outcome.plan, &names))?;
+    }
     for (name, bytes) in &outcome.files {
         write(name, bytes)?;
     }
     let scorer = scorer_of(exp, &outcome.plan);
     let score = scorer.score(&outcome.plan);
-    let fleet = team_score(exp, &outcome.plan);
+    let fleet = team_score(exp, &outcome.plan, &outcome.agents);
     let summary = Summary {
         planner: planner.name(),
         map: exp.scenario.map.name().to_string(),
@@ -195,21 +233,13 @@ pub fn run_experiment(
     };
     write("summary.json", serde_json::to_string_pretty(&summary).expect("summary serialises").as_bytes())?;
     if figures {
-        let s = &summary.score;
         let figure = PathFigure {
             map: &exp.scenario.map,
             grid: scorer.grid(),
             paths: outcome.plan.clone(),
             width: exp.scenario.robot.width,
-            robots: Vec::new(),
-            title: format!(
-                "{} on {}: cov_final {:.3} (reachable {:.3}), t_final {:.3}",
-                planner.name(),
-                exp.scenario.map.name(),
-                s.cov_final_free,
-                s.cov_final_reach,
-                s.t_final
-            ),
+            robots: outcome.agents.iter().map(|a| (a.name.clone(), a.footprint.width)).collect(),
+            title: path_title(planner.name(), exp.scenario.map.name(), &summary, &outcome),
         };
         crate::plot::save(&figure, &dir.join("path"))?;
         planner.write_figures(&exp.scenario, &outcome, dir)?;

@@ -10,13 +10,13 @@
 //! negotiation or a single-robot run.
 
 use super::{Fleet, fleet_t_final, fleet_t_optimal};
+use crate::coverage::fitness::{Projection, ThesisScore, area_m2, cov_actual, cov_final, f_obstacle, f1, f2, t_actual};
 use crate::coverage::planes::VisitPlanes;
 use crate::ga::observer::RobotRecord;
 use crate::ga::rng::Rng;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::thesis::diversity::{DiversityScratch, max_distance_by, pair_distance_sum_by};
-use crate::thesis::fitness::{Projection, ThesisScore, area_m2, cov_actual, cov_final, f_obstacle, f1, f2, t_actual};
 use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual, Scenario};
 use crate::thesis::member::{Member, Op, Origin, Premark, Variation};
 use crate::thesis::params::ThesisParams;
@@ -101,7 +101,7 @@ fn robot_time_s(ind: &Individual, scenario: &Scenario) -> f64 {
 /// had already swept (all sweeps minus the union), eq. 3.10 over the union, `t_optimal` with
 /// the fleet's sweep rate ([`fleet_t_optimal`]) and eq. 3.13 with the slowest robot's
 /// eq. 3.12 time plus rotation time ([`fleet_t_final`]); the projection and eq. 3.16 with all
-/// robots' obstacle sweeps. For one robot this is [`crate::thesis::fitness::score_counts`].
+/// robots' obstacle sweeps. For one robot this is [`crate::coverage::fitness::score_counts`].
 pub fn crew_score(robots: &[Individual], union: u64, world: &FleetWorld) -> ThesisScore {
     let first = &world.robots[0];
     let res = first.map.resolution();
@@ -237,7 +237,7 @@ mod tests {
     use crate::fleet::config::FleetFile;
     use crate::fleet::metrics::FleetScorer;
     use crate::map::presets::preset;
-    use crate::thesis::params::Budget;
+    use crate::planner::Budget;
     use crate::thesis::run::{Ga, ThesisGa, ThesisOutcome};
 
     fn params(pop: usize, selection: &str) -> ThesisParams {

@@ -1,11 +1,15 @@
 //! `[[robots]]` entries of an experiment (or fleet) file and their validation into a [`Fleet`].
 //! Every field but the name defaults to the file's `[robot]` and `[stations]`.
 
+use super::negotiation::NegotiationParams;
 use super::{Fleet, Robot};
+use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::study::config::{ConfigError, check_range};
+use crate::planner::Context;
+use crate::thesis::params::ThesisParams;
+use crate::waypoint::config::{WaypointConfig, WaypointSection};
 use serde::{Deserialize, Serialize};
 
 /// Most robots a fleet may hold (a study of fleets goes to 5; the bound keeps a typo such as a
@@ -145,53 +149,75 @@ impl Default for FleetSection {
     }
 }
 
-/// A validated fleet run of an experiment file.
-#[derive(Clone, Debug, PartialEq)]
-pub struct FleetRun {
-    /// The robots.
-    pub fleet: Fleet,
-    /// How they plan.
-    pub mode: FleetMode,
-    /// The fleet's label, if any.
-    pub name: Option<String>,
-    /// The negotiation's rounds, budget and tolerance.
-    pub negotiation: super::negotiation::NegotiationParams,
-    /// The division's lane angle in degrees.
-    pub angle_deg: f64,
+/// How a validated fleet is planned, with what each method needs.
+#[derive(Clone, Debug)]
+pub enum FleetMethod {
+    /// The centralised fleet GA with the thesis GA's parameters.
+    Central(ThesisParams),
+    /// Decentralised negotiation: the thesis GA's parameters per robot and the rounds.
+    Negotiate(ThesisParams, NegotiationParams),
+    /// Area division, a boustrophedon per region at this lane angle in degrees.
+    Divide {
+        /// Lane angle in degrees.
+        angle_deg: f64,
+    },
+    /// The waypoint planner's team of identical robots, one agent per robot.
+    Waypoint(Box<WaypointConfig>),
 }
 
-impl FleetRun {
-    /// Validates `[[robots]]` and `[fleet]` of `file` (`None` without robots).
-    pub fn from_file(
-        file: &crate::study::experiment::ExperimentFile,
-        origin: &str,
-        scenario: &crate::planner::Scenario,
-        budget: &crate::planner::Budget,
-    ) -> Result<Option<Self>, ConfigError> {
-        if file.robots.is_empty() {
-            if file.fleet.is_some() {
-                return Err(ConfigError::new(origin, "fleet", "is set but there are no [[robots]] to plan for"));
+impl FleetMethod {
+    /// The mode's name in the experiment file.
+    pub fn mode(&self) -> FleetMode {
+        match self {
+            FleetMethod::Central(_) => FleetMode::Central,
+            FleetMethod::Negotiate(..) => FleetMode::Negotiate,
+            FleetMethod::Divide { .. } => FleetMode::Divide,
+            FleetMethod::Waypoint(_) => FleetMode::Waypoint,
+        }
+    }
+}
+
+/// The planner a fleet's experiment names, validated, as the fleet's method needs it.
+#[derive(Clone, Debug)]
+pub enum Team {
+    /// `planner = "thesis"`: central, negotiate or divide.
+    Thesis(ThesisParams),
+    /// `planner = "waypoint"`: the waypoint planner's teams.
+    Waypoint(Box<WaypointConfig>),
+}
+
+impl FleetSection {
+    /// Validates this section and the `[[robots]]` entries (`start` is the default start
+    /// station, `retrain` whether the file has a `[retrain]`) into the fleet planner, with
+    /// `team` the validated planner the file names; `planner` is that planner's name.
+    pub fn validate(
+        &self,
+        robots: &[RobotEntry],
+        start: [f64; 2],
+        retrain: bool,
+        team: Team,
+        ctx: &Context,
+    ) -> Result<super::planner::FleetPlanner, ConfigError> {
+        let (origin, scenario, budget) = (ctx.origin, ctx.scenario, ctx.budget);
+        let section = self;
+        let method = match (section.mode, team) {
+            (FleetMode::Central, Team::Thesis(t)) => FleetMethod::Central(t),
+            (FleetMode::Negotiate, Team::Thesis(t)) => FleetMethod::Negotiate(
+                t,
+                NegotiationParams {
+                    round_iterations: section.round_iterations,
+                    iterations: budget.iterations,
+                    evaluations: budget.evaluations,
+                    tolerance: section.tolerance,
+                },
+            ),
+            (FleetMode::Divide, Team::Thesis(_)) => FleetMethod::Divide { angle_deg: section.angle_deg },
+            (FleetMode::Waypoint, Team::Waypoint(w)) => FleetMethod::Waypoint(w),
+            (mode @ (FleetMode::Central | FleetMode::Negotiate | FleetMode::Divide), Team::Waypoint(_)) => {
+                return Err(wrong_planner(origin, "waypoint", mode));
             }
-            return Ok(None);
-        }
-        let section = file.fleet.clone().unwrap_or_default();
-        let wanted = match section.mode {
-            FleetMode::Waypoint => crate::planner::PlannerKind::Waypoint,
-            _ => crate::planner::PlannerKind::Thesis,
+            (mode @ FleetMode::Waypoint, Team::Thesis(_)) => return Err(wrong_planner(origin, "thesis", mode)),
         };
-        if file.planner != wanted {
-            return Err(ConfigError::new(
-                origin,
-                "planner",
-                format!(
-                    "= \"{}\" cannot plan for [[robots]] with fleet.mode = \"{}\": a fleet is planned by the thesis GA \
-                     (planner = \"thesis\", fleet.mode = \"central\" or \"negotiate\"), by area division (planner = \"thesis\", \
-                     fleet.mode = \"divide\") or by the waypoint planner's teams (planner = \"waypoint\", fleet.mode = \"waypoint\")",
-                    file.planner.name(),
-                    section.mode.planner_name().trim_start_matches("fleet-")
-                ),
-            ));
-        }
         if section.mode == FleetMode::Negotiate {
             for (set, key) in [
                 (budget.wall_clock.is_some(), "budget.wall_clock_s"),
@@ -206,7 +232,7 @@ impl FleetRun {
                 }
             }
         }
-        if file.retrain.is_some() {
+        if retrain {
             return Err(ConfigError::new(
                 origin,
                 "retrain",
@@ -234,7 +260,7 @@ impl FleetRun {
             ));
         }
         let r = scenario.robot;
-        let fleet = validate(&file.robots, r, file.stations.start, origin, &scenario.map)?;
+        let fleet = validate(robots, r, start, origin, &scenario.map)?;
         if section.mode == FleetMode::Waypoint
             && let Some(k) = fleet.robots().iter().position(|x| x.footprint != r)
         {
@@ -248,40 +274,48 @@ impl FleetRun {
                 ),
             ));
         }
-        Ok(Some(Self {
-            fleet,
-            mode: section.mode,
-            name: section.name,
-            negotiation: super::negotiation::NegotiationParams {
-                round_iterations: section.round_iterations,
-                iterations: budget.iterations,
-                evaluations: budget.evaluations,
-                tolerance: section.tolerance,
-            },
-            angle_deg: section.angle_deg,
-        }))
+        Ok(super::planner::FleetPlanner { fleet, name: section.name.clone(), method })
     }
 }
 
-/// For `fleet.mode = "waypoint"`: makes `[waypoint]` plan one agent per robot, each from
-/// the robot's start, before the planner is validated.
-pub fn waypoint_team(file: &mut crate::study::experiment::ExperimentFile, origin: &str) -> Result<(), ConfigError> {
-    if file.robots.is_empty() || file.fleet.as_ref().is_none_or(|f| f.mode != FleetMode::Waypoint) {
+/// The error for `planner = "<planner>"` where `mode` needs another planner.
+pub fn wrong_planner(origin: &str, planner: &str, mode: FleetMode) -> ConfigError {
+    ConfigError::new(
+        origin,
+        "planner",
+        format!(
+            "= \"{planner}\" cannot plan for [[robots]] with fleet.mode = \"{}\": a fleet is planned by the thesis GA \
+             (planner = \"thesis\", fleet.mode = \"central\" or \"negotiate\"), by area division (planner = \"thesis\", \
+             fleet.mode = \"divide\") or by the waypoint planner's teams (planner = \"waypoint\", fleet.mode = \"waypoint\")",
+            mode.planner_name().trim_start_matches("fleet-")
+        ),
+    )
+}
+
+/// For `fleet.mode = "waypoint"`: makes the `[waypoint]` section plan one agent per robot of
+/// `robots`, each from the robot's start (`start` by default), before it is validated.
+pub fn waypoint_team(
+    waypoint: &mut WaypointSection,
+    robots: &[RobotEntry],
+    fleet: Option<&FleetSection>,
+    start: [f64; 2],
+    origin: &str,
+) -> Result<(), ConfigError> {
+    if robots.is_empty() || fleet.is_none_or(|f| f.mode != FleetMode::Waypoint) {
         return Ok(());
     }
-    let start = file.stations.start;
-    let agents = file.robots.len().min(MAX_ROBOTS);
-    let starts: Vec<[f64; 2]> = file.robots.iter().take(agents).map(|r| r.start.unwrap_or(start)).collect();
-    let unset = file.waypoint.agents == 1 && file.waypoint.starts.is_empty();
-    if !unset && (file.waypoint.agents != agents || file.waypoint.starts != starts) {
+    let agents = robots.len().min(MAX_ROBOTS);
+    let starts: Vec<[f64; 2]> = robots.iter().take(agents).map(|r| r.start.unwrap_or(start)).collect();
+    let unset = waypoint.agents == 1 && waypoint.starts.is_empty();
+    if !unset && (waypoint.agents != agents || waypoint.starts != starts) {
         return Err(ConfigError::new(
             origin,
             "waypoint.agents",
             "and waypoint.starts come from [[robots]] with fleet.mode = \"waypoint\": leave them out",
         ));
     }
-    file.waypoint.agents = agents;
-    file.waypoint.starts = starts;
+    waypoint.agents = agents;
+    waypoint.starts = starts;
     Ok(())
 }
 
@@ -292,10 +326,10 @@ pub fn waypoint_team(file: &mut crate::study::experiment::ExperimentFile, origin
 pub struct FleetFile {
     /// Defaults of the robots' widths and speeds.
     #[serde(default)]
-    pub robot: crate::study::experiment::RobotSection,
+    pub robot: crate::planner::sections::RobotSection,
     /// Default start station.
     #[serde(default)]
-    pub stations: crate::study::experiment::StationsSection,
+    pub stations: crate::planner::sections::StationsSection,
     /// The robots.
     #[serde(default)]
     pub robots: Vec<RobotEntry>,

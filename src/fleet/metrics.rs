@@ -4,12 +4,12 @@
 //! the fleet's time taken as the makespan ([`super::fleet_t_final`]).
 
 use super::{Fleet, fleet_t_final, fleet_t_optimal};
+use crate::coverage::fitness::{area_m2, cov_actual, cov_final, t_actual};
 use crate::coverage::{CoverageGrid, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
-use crate::thesis::fitness::{area_m2, cov_actual, cov_final, t_actual};
 
 /// Everything measured of one fleet plan (one path per robot, in the fleet's order).
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
@@ -143,9 +143,9 @@ fn ratio(a: u64, b: u64) -> f64 {
 mod tests {
     use super::*;
     use crate::coverage::Footprint;
+    use crate::coverage::fitness::{Projection, score};
     use crate::fleet::config::{FleetFile, validate};
     use crate::map::presets::preset;
-    use crate::thesis::fitness::{Projection, score};
 
     fn p(x: f64, y: f64) -> Point {
         Point::new(x, y)

@@ -1,36 +1,23 @@
 //! Robot fleets (beyond 003, whose title names heterogeneous fleets and whose conclusion leaves
 //! them as the next step): several robots of their own width, speed and stations on one map.
-//! [`Fleet`] is the validated team; [`metrics`] scores a fleet's plan on one shared visit map.
+//! [`Fleet`] is the validated team; [`metrics`] scores a fleet's plan on one shared visit map;
+//! [`planner::FleetPlanner`] plans it through the common `Planner` interface — the
+//! centralised GA ([`central`]), the negotiation ([`negotiation`]), area division
+//! ([`division`]) or the waypoint planner's teams — as `[fleet]` ([`config`]) says.
 
 pub mod central;
 pub mod config;
 pub mod division;
 pub mod metrics;
 pub mod negotiation;
-pub mod run;
+pub mod planner;
 
 use crate::coverage::Footprint;
 use crate::geom::Point;
 
-/// One robot of a fleet.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Robot {
-    /// Name used in messages, files and legends.
-    pub name: String,
-    /// Width, speed and rotation speed (003 Table 4.2's `R_width`, `R_speed`, `R_rot`).
-    pub footprint: Footprint,
-    /// Start station `S_pos` (m).
-    pub start: Point,
-    /// End station `E_pos` (m).
-    pub end: Point,
-}
-
-impl Robot {
-    /// The robot's sweep rate `R_width · R_speed` in m²/s.
-    pub fn sweep_rate(&self) -> f64 {
-        self.footprint.width * self.footprint.speed
-    }
-}
+/// One robot of a fleet: the planner layer's [`Agent`](crate::planner::Agent), so that a
+/// fleet's plan hands its robots to the run's output as they are.
+pub use crate::planner::Agent as Robot;
 
 /// A validated, non-empty fleet with distinct robot names (see [`config`] for the checks).
 #[derive(Clone, Debug, PartialEq)]
@@ -50,6 +37,11 @@ impl Fleet {
                 .map(|(k, &(start, end))| Robot { name: format!("agent {k}"), footprint, start, end })
                 .collect(),
         })
+    }
+
+    /// The fleet of `robots`, as validated before (a plan's agents); `None` when empty.
+    pub fn from_agents(robots: Vec<Robot>) -> Option<Self> {
+        (!robots.is_empty()).then_some(Self { robots })
     }
 
     /// The robots, in the order of the experiment file.

@@ -9,11 +9,11 @@
 //! outcome does not depend on the number of threads.
 
 use super::Fleet;
+use crate::coverage::fitness::Projection;
 use crate::coverage::{CoverageGrid, SweepScratch};
 use crate::ga::rng::{Purpose, stream};
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::thesis::fitness::Projection;
 use crate::thesis::individual::Scenario;
 use crate::thesis::params::ThesisParams;
 use crate::thesis::run::{GaState, ThesisGa, best_index};
@@ -214,12 +214,8 @@ mod tests {
             params: p,
             seed: 11,
         };
-        let budget = crate::thesis::params::Budget {
-            iterations: 150,
-            evaluations: None,
-            wall_clock: None,
-            stall_iterations: None,
-        };
+        let budget =
+            crate::planner::Budget { iterations: 150, evaluations: None, wall_clock: None, stall_iterations: None };
         let alone = single.run(&budget, None, &mut []).unwrap();
         assert_eq!(negotiated.paths, vec![alone.best.points.clone()]);
         assert_eq!(negotiated.evaluations, alone.evaluations);

@@ -1,30 +1,27 @@
-//! Running an experiment file with `[[robots]]` (by `covga run` or in a grid study): the fleet
-//! is planned as `[fleet] mode` says, then its results folder is written — `config.toml`,
-//! `history.csv` (per generation for the centralised GA, with `robots_history.csv` per
-//! generation and robot; per round and robot for the negotiation), `best_path.csv` (with
-//! `agent` and `robot` columns), `summary.json` (the common summary with the fleet metrics)
-//! and, when asked, `path.png` / `path.svg` (one colour per robot).
+//! A fleet behind the common [`Planner`] interface: the robots of `[[robots]]` planned as
+//! `[fleet] mode` says — the centralised fleet GA (with `robots_history.csv` per generation and
+//! robot), the decentralised negotiation (its rounds as `history.csv`), area division, or the
+//! waypoint planner's teams. The outcome names its robots ([`RunOutcome::agents`]), so the run's
+//! output scores and draws each robot at its own width.
 
-use super::config::{FleetMode, FleetRun};
-use super::metrics::{FleetScore, FleetScorer};
-use crate::coverage::CoverageGrid;
-use crate::ga::observer::Observer;
-use crate::geom::Point;
-use crate::planner::{PlannerConfig, StopReason};
-use crate::plot::path::PathFigure;
-use crate::study::experiment::Experiment;
-use crate::study::output::{HistoryCsv, OutputError, Summary, scorer_of};
-use std::path::Path;
+use super::Fleet;
+use super::config::{FleetMethod, FleetMode};
+use super::metrics::FleetScorer;
+use crate::coverage::score::obstacle_violations;
+use crate::ga::observer::{GenerationRecord, Observer};
+use crate::planner::memory::MemoryEstimate;
+use crate::planner::{Budget, History, Planner, PlannerError, RunOutcome, Scenario, StopReason};
+use std::time::Instant;
 
-/// A fleet's plan and what its planner reports besides the fleet metrics.
-struct FleetPlan {
-    paths: Vec<Vec<Point>>,
-    evaluations: u64,
-    iterations: u32,
-    stop: StopReason,
-    details: serde_json::Value,
-    /// The planner's own constraint violations (the waypoint planner's), in words.
-    violations: Vec<String>,
+/// A validated fleet and how it is planned.
+#[derive(Clone, Debug)]
+pub struct FleetPlanner {
+    /// The robots.
+    pub fleet: Fleet,
+    /// The fleet's label in study tables, if any.
+    pub name: Option<String>,
+    /// How the robots are planned.
+    pub method: FleetMethod,
 }
 
 /// `robots_history.csv` of the centralised GA: per generation and robot of the best crew, its
@@ -35,7 +32,7 @@ struct RobotHistory {
 }
 
 impl RobotHistory {
-    fn new(fleet: &super::Fleet) -> Self {
+    fn new(fleet: &Fleet) -> Self {
         let mut out = csv::Writer::from_writer(Vec::new());
         out.write_record(["iteration", "robot", "genome_len", "swept_cells", "t_actual_s"]).expect("in memory");
         Self { names: fleet.robots().iter().map(|r| r.name.clone()).collect(), out }
@@ -46,7 +43,7 @@ impl RobotHistory {
 }
 
 impl Observer for RobotHistory {
-    fn generation(&mut self, record: &crate::ga::observer::GenerationRecord) -> std::io::Result<()> {
+    fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()> {
         for (name, r) in self.names.iter().zip(&record.robots) {
             let row = [
                 record.iteration.to_string(),
@@ -61,184 +58,203 @@ impl Observer for RobotHistory {
     }
 }
 
-fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
-    move |source| OutputError::Io { path: path.to_path_buf(), source }
+/// A fleet's plan and what its method reports besides the fleet metrics.
+struct FleetPlan {
+    paths: Vec<Vec<crate::geom::Point>>,
+    evaluations: u64,
+    iterations: u32,
+    stop: StopReason,
+    details: serde_json::Value,
+    violations: Vec<String>,
+    history: History,
+    files: Vec<(String, Vec<u8>)>,
 }
 
-/// Plans `run` for `exp`, writes the results folder `dir` (figures when `figures`) and returns
-/// the summary. `extra` observers see the centralised GA's generations.
-pub fn run_fleet(
-    exp: &Experiment,
-    run: &FleetRun,
-    dir: &Path,
-    figures: bool,
-    extra: &mut [&mut dyn Observer],
-) -> Result<Summary, OutputError> {
-    let started = std::time::Instant::now();
-    let thesis = || match &exp.planner {
-        PlannerConfig::Thesis(t) => t.params,
-        _ => unreachable!("fleets planned by the thesis GA are validated to configure it"),
-    };
-    let map = &exp.scenario.map;
-    let projection = exp.scenario.projection;
-    std::fs::create_dir_all(dir).map_err(io_err(dir))?;
-    let write = |name: &str, bytes: &[u8]| crate::io::write_atomic(&dir.join(name), bytes).map_err(io_err(dir));
-    let plan = match run.mode {
-        FleetMode::Central => {
-            let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
-            let mut robots = RobotHistory::new(&run.fleet);
-            let mut observers: Vec<&mut dyn Observer> = vec![&mut history, &mut robots];
-            observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
-            let mut ga = crate::thesis::run::Ga::<super::central::Crew> {
-                scenario: super::central::FleetWorld::new(map, &run.fleet, projection),
-                params: thesis(),
-                seed: exp.seed,
-            };
-            let out = ga.run(&exp.budget, None, &mut observers).map_err(io_err(dir))?;
-            history.finish().map_err(io_err(dir))?;
-            write("robots_history.csv", &robots.finish())?;
-            let best = &out.best;
-            FleetPlan {
-                paths: best.paths(),
-                evaluations: out.evaluations,
-                iterations: out.iterations,
-                stop: out.stop,
-                details: serde_json::json!({
-                    "fitness": best.score.fitness,
-                    "genome_len": best.robots.iter().map(|r| r.len()).collect::<Vec<_>>(),
-                }),
-                violations: Vec::new(),
-            }
-        }
-        FleetMode::Negotiate => {
-            let out = super::negotiation::negotiate(map, &run.fleet, &thesis(), projection, exp.seed, &run.negotiation);
-            let mut history = csv::Writer::from_writer(Vec::new());
-            for record in &out.history {
-                history.serialize(record).expect("records serialise");
-            }
-            write("history.csv", &history.into_inner().expect("in memory"))?;
-            let iterations = out.history.iter().map(|r| r.iteration).max().unwrap_or(0);
-            let stop = if out.converged {
-                StopReason::Settled
-            } else if run.negotiation.evaluations.is_some() && iterations < run.negotiation.iterations {
-                StopReason::Evaluations
-            } else {
-                StopReason::Iterations
-            };
-            let changes: Vec<f64> = out.history.iter().map(|r| r.change).collect();
-            FleetPlan {
-                paths: out.paths,
-                evaluations: out.evaluations,
-                iterations,
-                stop,
-                details: serde_json::json!({
-                    "rounds": out.rounds,
-                    "converged": out.converged,
-                    "last_round_change": changes.chunks(run.fleet.len()).last().map(|c| c.iter().copied().fold(0.0, f64::max)),
-                }),
-                violations: Vec::new(),
-            }
-        }
-        FleetMode::Waypoint => {
-            let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
-            let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
-            observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
-            let out = match exp.planner.planner().run(&exp.scenario, exp.seed, &exp.budget, &mut observers) {
-                Ok(out) => out,
-                Err(e) => {
-                    history.discard();
-                    return Err(match e {
-                        crate::planner::PlannerError::Input(m) => OutputError::Planner(m),
-                        crate::planner::PlannerError::Io(e) => {
-                            OutputError::Io { path: dir.join("history.csv"), source: e }
-                        }
-                    });
-                }
-            };
-            history.finish().map_err(io_err(dir))?;
-            FleetPlan {
-                paths: out.plan,
-                evaluations: out.evaluations,
-                iterations: out.iterations,
-                stop: out.stop,
-                details: serde_json::Value::Object(out.details),
-                violations: out.violations,
-            }
-        }
-        FleetMode::Divide => {
-            let (paths, division) = super::division::plan(map, &run.fleet, run.angle_deg)
-                .map_err(|e| OutputError::Planner(e.to_string()))?;
-            FleetPlan {
-                paths,
-                evaluations: 0,
-                iterations: 0,
-                stop: StopReason::Completed,
-                details: serde_json::json!({
-                    "region_cells": division.sizes,
-                    "region_targets": division.targets,
-                    "detached_cells": division.detached,
-                    "angle_deg": run.angle_deg,
-                }),
-                violations: Vec::new(),
-            }
-        }
-    };
-    let score: FleetScore = FleetScorer::new(map, &run.fleet).score(&plan.paths).expect("one path per robot");
-    write("config.toml", toml::to_string_pretty(&exp.file).expect("experiment files serialise").as_bytes())?;
-    let names: Vec<String> = run.fleet.robots().iter().map(|r| r.name.clone()).collect();
-    write("best_path.csv", &crate::io::fleet_path_csv(&plan.paths, &names))?;
-    let mut details = crate::planner::details(plan.details);
-    details.insert("mode".into(), serde_json::to_value(run.mode).expect("modes serialise"));
-    if let Some(name) = &run.name {
-        details.insert("fleet_name".into(), name.clone().into());
-    }
-    let mut violations = plan.violations;
-    violations.extend(crate::thesis::planner::obstacle_violations(score.obstacle_cells));
-    let feasible = violations.is_empty();
-    let summary = Summary {
-        planner: run.mode.planner_name(),
-        map: map.name().to_string(),
-        seed: exp.seed,
-        evaluations: plan.evaluations,
-        iterations: plan.iterations,
-        stop: plan.stop,
-        feasible,
-        violations,
-        warnings: Vec::new(),
-        objectives: [
-            ("union_reach", score.union_reach),
-            ("makespan_s", score.makespan_s),
-            ("cov_final", score.cov_final),
-            ("t_final", score.t_final),
-        ]
-        .into_iter()
-        .map(|(k, v)| (k.to_string(), v))
-        .collect(),
-        score: scorer_of(exp, &plan.paths).score(&plan.paths),
-        fleet: Some(score),
-        details,
-        wall_s: started.elapsed().as_secs_f64(),
-    };
-    write("summary.json", serde_json::to_string_pretty(&summary).expect("summaries serialise").as_bytes())?;
-    if figures {
-        let grid = CoverageGrid::new(map);
-        let f = summary.fleet.as_ref().expect("set above");
-        let figure = PathFigure {
-            map,
-            grid: &grid,
-            paths: plan.paths.clone(),
-            width: exp.scenario.robot.width,
-            robots: run.fleet.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect(),
-            title: format!(
-                "{} robots on {} ({}): union {:.3}, makespan {:.0} s",
-                run.fleet.len(),
-                map.name(),
-                run.mode.planner_name(),
-                f.union_reach,
-                f.makespan_s
-            ),
+impl FleetPlanner {
+    /// The centralised fleet GA: one genome per robot in every member.
+    fn central(
+        &self,
+        s: &Scenario,
+        params: &crate::thesis::params::ThesisParams,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<FleetPlan, PlannerError> {
+        let mut robots = RobotHistory::new(&self.fleet);
+        let mut all: Vec<&mut dyn Observer> = observers.iter_mut().map(|o| &mut **o as &mut dyn Observer).collect();
+        all.push(&mut robots);
+        let mut ga = crate::thesis::run::Ga::<super::central::Crew> {
+            scenario: super::central::FleetWorld::new(&s.map, &self.fleet, s.projection),
+            params: *params,
+            seed,
         };
-        crate::plot::save(&figure, &dir.join("path"))?;
+        let out = ga.run(budget, None, &mut all)?;
+        let best = &out.best;
+        Ok(FleetPlan {
+            paths: best.paths(),
+            evaluations: out.evaluations,
+            iterations: out.iterations,
+            stop: out.stop,
+            details: serde_json::json!({
+                "fitness": best.score.fitness,
+                "genome_len": best.robots.iter().map(|r| r.len()).collect::<Vec<_>>(),
+            }),
+            violations: Vec::new(),
+            history: History::Generations,
+            files: vec![("robots_history.csv".into(), robots.finish())],
+        })
     }
-    Ok(summary)
+
+    /// The decentralised negotiation; its rounds are the run's history.
+    fn negotiate(
+        &self,
+        s: &Scenario,
+        params: &crate::thesis::params::ThesisParams,
+        negotiation: &super::negotiation::NegotiationParams,
+        seed: u64,
+    ) -> FleetPlan {
+        let out = super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation);
+        let mut history = csv::Writer::from_writer(Vec::new());
+        for record in &out.history {
+            history.serialize(record).expect("records serialise");
+        }
+        let iterations = out.history.iter().map(|r| r.iteration).max().unwrap_or(0);
+        let stop = if out.converged {
+            StopReason::Settled
+        } else if negotiation.evaluations.is_some() && iterations < negotiation.iterations {
+            StopReason::Evaluations
+        } else {
+            StopReason::Iterations
+        };
+        let changes: Vec<f64> = out.history.iter().map(|r| r.change).collect();
+        FleetPlan {
+            paths: out.paths,
+            evaluations: out.evaluations,
+            iterations,
+            stop,
+            details: serde_json::json!({
+                "rounds": out.rounds,
+                "converged": out.converged,
+                "last_round_change": changes.chunks(self.fleet.len()).last().map(|c| c.iter().copied().fold(0.0, f64::max)),
+            }),
+            violations: Vec::new(),
+            history: History::Own(history.into_inner().expect("in memory")),
+            files: Vec::new(),
+        }
+    }
+}
+
+impl FleetPlanner {
+    /// An upper estimate of a run's memory on `map` with `threads` evaluation threads: the
+    /// thesis GA's population once per robot for the centralised GA (a member holds a genome and
+    /// visit map per robot) and for the negotiation (one GA per robot); the waypoint team's
+    /// world; nothing worth counting for area division.
+    pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
+        let robots = self.fleet.len() as f64;
+        match &self.method {
+            FleetMethod::Central(params) | FleetMethod::Negotiate(params, _) => {
+                let thesis = crate::thesis::config::ThesisConfig { params: *params, retrain: None };
+                let e = thesis.memory_estimate(map, threads);
+                MemoryEstimate { bytes: e.bytes * robots, what: format!("{} for each of {robots} robots", e.what), ..e }
+            }
+            FleetMethod::Divide { .. } => MemoryEstimate {
+                bytes: 0.0,
+                key: "robots",
+                what: format!("{robots} regions on {} cells", map.rows() * map.cols()),
+            },
+            FleetMethod::Waypoint(w) => w.memory_estimate(map),
+        }
+    }
+}
+
+impl Planner for FleetPlanner {
+    fn name(&self) -> &'static str {
+        self.method.mode().planner_name()
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let started = Instant::now();
+        let map = &scenario.map;
+        let plan = match &self.method {
+            FleetMethod::Central(params) => self.central(scenario, params, seed, budget, observers)?,
+            FleetMethod::Negotiate(params, negotiation) => self.negotiate(scenario, params, negotiation, seed),
+            FleetMethod::Waypoint(waypoint) => {
+                let out = waypoint.run(scenario, seed, budget, observers)?;
+                FleetPlan {
+                    paths: out.plan,
+                    evaluations: out.evaluations,
+                    iterations: out.iterations,
+                    stop: out.stop,
+                    details: serde_json::Value::Object(out.details),
+                    violations: out.violations,
+                    history: History::Generations,
+                    files: Vec::new(),
+                }
+            }
+            FleetMethod::Divide { angle_deg } => {
+                let (paths, division) = super::division::plan(map, &self.fleet, *angle_deg)
+                    .map_err(|e| PlannerError::Input(e.to_string()))?;
+                FleetPlan {
+                    paths,
+                    evaluations: 0,
+                    iterations: 0,
+                    stop: StopReason::Completed,
+                    details: serde_json::json!({
+                        "region_cells": division.sizes,
+                        "region_targets": division.targets,
+                        "detached_cells": division.detached,
+                        "angle_deg": angle_deg,
+                    }),
+                    violations: Vec::new(),
+                    history: History::None,
+                    files: Vec::new(),
+                }
+            }
+        };
+        let score = FleetScorer::new(map, &self.fleet).score(&plan.paths).expect("one path per robot");
+        let mut details = crate::planner::details(plan.details);
+        details.insert("mode".into(), serde_json::to_value(self.method.mode()).expect("modes serialise"));
+        if let Some(name) = &self.name {
+            details.insert("fleet_name".into(), name.clone().into());
+        }
+        let mut violations = plan.violations;
+        violations.extend(obstacle_violations(score.obstacle_cells));
+        Ok(RunOutcome {
+            plan: plan.paths,
+            objectives: vec![
+                ("union_reach", score.union_reach),
+                ("makespan_s", score.makespan_s),
+                ("cov_final", score.cov_final),
+                ("t_final", score.t_final),
+            ],
+            feasible: violations.is_empty(),
+            violations,
+            warnings: Vec::new(),
+            evaluations: plan.evaluations,
+            iterations: plan.iterations,
+            stop: plan.stop,
+            wall_s: started.elapsed().as_secs_f64(),
+            details,
+            files: plan.files,
+            history: plan.history,
+            agents: self.fleet.robots().to_vec(),
+            artifacts: Box::new(()),
+        })
+    }
+}
+
+impl FleetMode {
+    /// Whether a fleet planned this way ignores the seed (area division plans in one step).
+    pub fn is_deterministic(self) -> bool {
+        match self {
+            FleetMode::Divide => true,
+            FleetMode::Negotiate | FleetMode::Central | FleetMode::Waypoint => false,
+        }
+    }
 }

@@ -1,4 +1,4 @@
-//! What both GAs share: seeded random streams ([`rng`]), selection schemes ([`selection`]),
+//! What every GA shares: seeded random streams ([`rng`]), selection schemes ([`selection`]),
 //! parameter-control schedules ([`control`]) and per-generation statistics with their
 //! observers ([`observer`]).
 

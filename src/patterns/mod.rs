@@ -5,7 +5,6 @@ pub mod boustrophedon;
 mod complete;
 pub mod hand_made;
 pub mod planner;
-pub mod random_search;
 
 pub mod spiral;
 
@@ -190,9 +189,9 @@ pub fn plan(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::coverage::fitness::{Projection, score};
     use crate::coverage::{CoverageGrid, Footprint, SweepScratch};
     use crate::map::presets::preset;
-    use crate::thesis::fitness::{Projection, score};
 
     fn scored(map: &str, pattern: Pattern) -> (f64, f64, u64) {
         let m = preset(map).unwrap();

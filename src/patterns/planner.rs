@@ -2,10 +2,10 @@
 //! evaluation, feasible by construction; pockets the robot cannot reach are reported.
 
 use super::{Pattern, plan};
+use crate::config::{ConfigError, check_range};
 use crate::ga::observer::{GenerationRecord, Observer};
-use crate::planner::{Budget, Planner, PlannerError, PlannerKind, RunOutcome, Scenario, StopReason};
-use crate::study::config::{ConfigError, check_range};
-use crate::study::experiment::ExperimentFile;
+use crate::planner::memory::MemoryEstimate;
+use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
@@ -35,15 +35,36 @@ pub struct PatternConfig {
 }
 
 impl PatternConfig {
-    /// The pattern named by `file.planner`, with `[pattern]` checked.
-    pub fn from_file(file: &ExperimentFile, origin: &str) -> Result<Self, ConfigError> {
-        let a = file.pattern.angle_deg;
-        check_range(origin, "pattern.angle_deg", a, -360.0, 360.0, "[-360, 360] degrees")?;
-        let pattern = match file.planner {
-            PlannerKind::Spiral => Pattern::Spiral,
-            _ => Pattern::Boustrophedon { angle_deg: a },
+    /// An upper estimate of a run's own memory on `map` beyond what every run holds: none
+    /// worth counting (the lanes and the completion pass are small against the map's layers).
+    pub fn memory_estimate(&self, map: &crate::map::GridMap) -> MemoryEstimate {
+        MemoryEstimate {
+            bytes: 0.0,
+            key: "map.source",
+            what: format!("a pattern on {} cells", (map.rows() * map.cols()) as f64),
+        }
+    }
+}
+
+/// Which pattern an experiment asks for (its `planner = "…"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PatternKind {
+    /// Boustrophedon lanes at `pattern.angle_deg`.
+    Boustrophedon,
+    /// Contour-parallel inward rings.
+    Spiral,
+}
+
+impl PatternSection {
+    /// The pattern `kind` with this section checked.
+    pub fn validate(&self, kind: PatternKind, ctx: &Context) -> Result<PatternConfig, ConfigError> {
+        let a = self.angle_deg;
+        check_range(ctx.origin, "pattern.angle_deg", a, -360.0, 360.0, "[-360, 360] degrees")?;
+        let pattern = match kind {
+            PatternKind::Spiral => Pattern::Spiral,
+            PatternKind::Boustrophedon => Pattern::Boustrophedon { angle_deg: a },
         };
-        Ok(Self { pattern, complete: file.pattern.complete })
+        Ok(PatternConfig { pattern, complete: self.complete })
     }
 }
 
@@ -53,10 +74,6 @@ impl Planner for PatternConfig {
             Pattern::Boustrophedon { .. } => "boustrophedon",
             Pattern::Spiral => "spiral",
         }
-    }
-
-    fn deterministic(&self) -> bool {
-        true
     }
 
     fn run(
@@ -72,7 +89,7 @@ impl Planner for PatternConfig {
             .map_err(|e| PlannerError::Input(format!("{} on map `{}`: {e}", self.name(), s.map.name())))?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &planned.points);
-        let sc = crate::thesis::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
+        let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
         let record = GenerationRecord {
             iteration: 0,
             evaluations: 1,
@@ -107,6 +124,8 @@ impl Planner for PatternConfig {
             wall_s: started.elapsed().as_secs_f64(),
             details,
             files: Vec::new(),
+            history: crate::planner::History::Generations,
+            agents: Vec::new(),
             artifacts: Box::new(()),
         })
     }

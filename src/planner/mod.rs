@@ -1,31 +1,30 @@
-//! One interface for every planner, and the one place where planners are registered.
+//! The layer every planner is built on: one interface for every planner and what it plans for.
 //!
 //! A planner gets a [`Scenario`] (map, robot, stations, camera), a seed and a [`Budget`], hands
 //! per-generation records to observers and returns a [`RunOutcome`]: the plan (one path per
-//! agent), its own objectives, whether the plan meets the planner's constraints, and the effort
-//! spent. Studies compare planners only through the common scorer
+//! agent), the robots that fly it, its own objectives, whether the plan meets the planner's
+//! constraints, and the effort spent. Studies compare planners only through the common scorer
 //! ([`crate::coverage::score::Scorer`]), never through these objectives.
 //!
-//! Why a trait plus one registry enum: each planner keeps its typed, validated parameters and
-//! its state inside its own module and implements [`Planner`]; everything downstream (run
-//! loop, output files, study runner, estimates) sees only `&dyn Planner`. The registry
-//! ([`PlannerKind`] for the names in the experiment file and [`PlannerConfig`] for the
-//! validated parameters) is a closed enum, so the compiler checks every `match` on it when a
-//! planner is added. A new planner touches its own module and this file (plus, if it has
-//! parameters of its own, one section field of the experiment file).
+//! Why a trait here and the registry above the planners: each planner keeps its typed,
+//! validated parameters, its section's validation ([`Context`]) and its state inside its own
+//! module and implements [`Planner`]; everything downstream (the run loop, output files, study
+//! runner) sees only `&dyn Planner`. The closed list of planners lives one layer up, in
+//! the registry of the experiment layer, so that this layer depends on no planner.
 
+pub mod memory;
+pub mod sections;
+
+use crate::config::ConfigError;
 use crate::coverage::Footprint;
+use crate::coverage::fitness::Projection;
 use crate::coverage::score::CameraSpec;
 use crate::ga::observer::Observer;
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::study::config::ConfigError;
-use crate::study::experiment::ExperimentFile;
-use crate::thesis::fitness::Projection;
 use std::any::Any;
 use std::path::Path;
-
-pub use crate::thesis::params::Budget;
+use std::time::{Duration, Instant};
 
 /// What every planner plans for: the map, the robot, the stations and the camera.
 #[derive(Clone, Debug)]
@@ -46,6 +45,80 @@ pub struct Scenario {
 
 /// A plan: one path per agent, points in metres.
 pub type Plan = Vec<Vec<Point>>;
+
+/// One robot of a plan that names its robots (a fleet): who flies each path, at which width
+/// and speed, between which stations.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Agent {
+    /// Name used in messages, files and legends.
+    pub name: String,
+    /// Width, speed and rotation speed (003 Table 4.2's `R_width`, `R_speed`, `R_rot`).
+    pub footprint: Footprint,
+    /// Start station `S_pos` (m).
+    pub start: Point,
+    /// End station `E_pos` (m).
+    pub end: Point,
+}
+
+impl Agent {
+    /// The robot's sweep rate `R_width · R_speed` in m²/s.
+    pub fn sweep_rate(&self) -> f64 {
+        self.footprint.width * self.footprint.speed
+    }
+}
+
+/// When a run stops (any planner: iterations are generations for the GAs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Budget {
+    /// `Iter_max`.
+    pub iterations: u32,
+    /// Optional limit on fitness evaluations (equal budgets across planners).
+    pub evaluations: Option<u64>,
+    /// Optional wall-clock limit (the thesis used 20 minutes).
+    pub wall_clock: Option<Duration>,
+    /// Optional stall limit: stop after this many iterations without a better best.
+    pub stall_iterations: Option<u32>,
+}
+
+impl Budget {
+    /// No limit but `iterations`.
+    pub fn iterations(iterations: u32) -> Self {
+        Self { iterations, evaluations: None, wall_clock: None, stall_iterations: None }
+    }
+
+    /// The one stop rule every planner checks before an iteration (generation, batch): the
+    /// evaluation budget once `evaluations` reach it, then the wall clock once it has passed
+    /// since `started`. The iteration count and the stall limit are the loop's own.
+    pub fn spent(&self, evaluations: u64, started: Instant) -> Option<StopReason> {
+        if self.evaluations.is_some_and(|limit| evaluations >= limit) {
+            Some(StopReason::Evaluations)
+        } else if self.wall_clock.is_some_and(|limit| started.elapsed() >= limit) {
+            Some(StopReason::WallClock)
+        } else {
+            None
+        }
+    }
+}
+
+/// What a planner's section is validated against: the file it came from (named in messages),
+/// the scenario and the budget. Each planner validates its own section with it
+/// (`XSection::validate(&self, &Context)`), never the whole experiment file.
+#[derive(Clone, Copy, Debug)]
+pub struct Context<'a> {
+    /// The file (or a description of the source), named in every message.
+    pub origin: &'a str,
+    /// Map, robot, stations and camera.
+    pub scenario: &'a Scenario,
+    /// Stop conditions.
+    pub budget: &'a Budget,
+}
+
+impl Context<'_> {
+    /// A configuration error at `key` of this file.
+    pub fn error(&self, key: &str, message: impl Into<String>) -> ConfigError {
+        ConfigError::new(self.origin, key, message)
+    }
+}
 
 /// Why a run ended.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
@@ -89,8 +162,25 @@ pub struct RunOutcome {
     pub details: serde_json::Map<String, serde_json::Value>,
     /// Planner-specific result files: name and bytes.
     pub files: Vec<(String, Vec<u8>)>,
+    /// The run's history when the planner records it itself (a negotiation's rounds, say)
+    /// instead of through generation records, or records none.
+    pub history: History,
+    /// The robots that fly the plan, one per path, when the experiment names them (a fleet);
+    /// empty when every path is flown by the scenario's robot.
+    pub agents: Vec<Agent>,
     /// Whatever the planner needs later to draw its own figures.
     pub artifacts: Box<dyn Any + Send>,
+}
+
+/// Where a run's `history.csv` comes from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum History {
+    /// The generation records handed to the observers (every GA).
+    Generations,
+    /// The planner's own CSV bytes.
+    Own(Vec<u8>),
+    /// No history (a planner that plans in one step without generations).
+    None,
 }
 
 /// The fields of a JSON object literal as `details` of a [`RunOutcome`].
@@ -116,11 +206,6 @@ pub enum PlannerError {
 pub trait Planner: Send + Sync {
     /// The name used in experiment files and `runs.csv`.
     fn name(&self) -> &'static str;
-    /// Whether the plan depends on the seed (deterministic planners run once per
-    /// configuration in studies).
-    fn deterministic(&self) -> bool {
-        false
-    }
     /// Plans within `budget`, handing every generation's record to `observers`.
     fn run(
         &self,
@@ -138,83 +223,5 @@ pub trait Planner: Send + Sync {
         _dir: &Path,
     ) -> Result<(), crate::plot::PlotError> {
         Ok(())
-    }
-}
-
-/// Planner names as written in experiment files (`planner = "…"`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
-pub enum PlannerKind {
-    /// The action-encoded GA of 003 (`[thesis]`).
-    #[default]
-    Thesis,
-    /// The waypoint-graph maximin planner of 000 (`[waypoint]`).
-    Waypoint,
-    /// Boustrophedon lanes (`[pattern]`).
-    Boustrophedon,
-    /// Inward spiral (`[pattern]`).
-    Spiral,
-    /// Budget-matched random action genomes (the thesis's initial-population draw).
-    RandomSearch,
-}
-
-impl PlannerKind {
-    /// The name as written in experiment files.
-    pub fn name(self) -> &'static str {
-        match self {
-            PlannerKind::Thesis => "thesis",
-            PlannerKind::Waypoint => "waypoint",
-            PlannerKind::Boustrophedon => "boustrophedon",
-            PlannerKind::Spiral => "spiral",
-            PlannerKind::RandomSearch => "random_search",
-        }
-    }
-
-    /// Whether the planner ignores the seed.
-    pub fn is_deterministic(self) -> bool {
-        matches!(self, PlannerKind::Boustrophedon | PlannerKind::Spiral)
-    }
-}
-
-/// The validated parameters of the chosen planner.
-#[derive(Clone, Debug)]
-pub enum PlannerConfig {
-    /// The thesis GA.
-    Thesis(crate::thesis::config::ThesisConfig),
-    /// The waypoint planner.
-    Waypoint(crate::waypoint::config::WaypointConfig),
-    /// Boustrophedon or spiral.
-    Pattern(crate::patterns::planner::PatternConfig),
-    /// Random search.
-    RandomSearch(crate::patterns::random_search::RandomSearch),
-}
-
-impl PlannerConfig {
-    /// Validates the section of the file's planner; `origin` names the file in messages.
-    pub fn from_file(file: &ExperimentFile, origin: &str, scenario: &Scenario) -> Result<Self, ConfigError> {
-        Ok(match file.planner {
-            PlannerKind::Thesis => {
-                PlannerConfig::Thesis(crate::thesis::config::ThesisConfig::from_file(file, origin, scenario)?)
-            }
-            PlannerKind::Waypoint => {
-                PlannerConfig::Waypoint(crate::waypoint::config::WaypointConfig::from_file(file, origin, scenario)?)
-            }
-            PlannerKind::Boustrophedon | PlannerKind::Spiral => {
-                PlannerConfig::Pattern(crate::patterns::planner::PatternConfig::from_file(file, origin)?)
-            }
-            PlannerKind::RandomSearch => {
-                PlannerConfig::RandomSearch(crate::patterns::random_search::RandomSearch::from_file(file, origin)?)
-            }
-        })
-    }
-
-    /// The planner.
-    pub fn planner(&self) -> &dyn Planner {
-        match self {
-            PlannerConfig::Thesis(p) => p,
-            PlannerConfig::Waypoint(p) => p,
-            PlannerConfig::Pattern(p) => p,
-            PlannerConfig::RandomSearch(p) => p,
-        }
     }
 }

@@ -1,13 +1,12 @@
-//! Figures, drawn with plotters and written as PNG and SVG.
+//! Figure primitives, drawn with plotters and written as PNG and SVG: the map with paths
+//! ([`path`]), a run's history ([`history`]), and the charts, legends and text sizes every
+//! figure shares. Each planner draws its own figures and the reports theirs with these.
 //!
 //! Text uses DejaVu Sans embedded in the binary (plotters' `ab_glyph` backend), so building
 //! needs no system font libraries (DESIGN "Plots and fonts"). Files are written atomically.
 
-pub mod ablation;
 pub mod history;
 pub mod path;
-pub mod report;
-pub mod waypoint;
 
 use plotters::coord::Shift;
 use plotters::coord::types::RangedCoordf64;

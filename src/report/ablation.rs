@@ -4,12 +4,12 @@
 //! the best path of each planner on each map, and findings in plain words derived from those
 //! numbers. Planners are compared only through the common scorer's columns.
 
-use super::records::RunsTable;
-use super::report::{ReportError, param_columns};
+use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
 use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
+use super::{ReportError, param_columns};
 use crate::coverage::CoverageGrid;
-use crate::plot::ablation::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
 use crate::plot::path::PathFigure;
+use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -106,7 +106,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             maps.push(r[mc].clone());
         }
     }
-    let order = ["thesis", "waypoint", "random_search", "boustrophedon", "spiral"];
+    let order: Vec<&str> = crate::experiment::registry::PlannerKind::ALL.iter().map(|k| k.name()).collect();
     let mut variants: Vec<String> = label.clone();
     variants.sort_by_key(|l| (order.iter().position(|o| l.starts_with(o)).unwrap_or(order.len()), l.clone()));
     variants.dedup();
@@ -313,7 +313,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                 continue;
             };
             let run_dir = dir.join("runs").join(&t.rows[best][0]);
-            let cfg = super::experiment::ExperimentFile::read(&run_dir.join("config.toml")).ok();
+            let cfg = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")).ok();
             let paths = crate::io::read_path_csv(&run_dir.join("best_path.csv")).ok();
             let panel = cfg.zip(paths).and_then(|(cfg, paths)| {
                 let m = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution).ok()?;

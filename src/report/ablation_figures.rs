@@ -2,8 +2,8 @@
 //! curves (best footprint coverage against fitness evaluations, median and interquartile band
 //! over seeds), and the best path of every planner on every map side by side.
 
-use super::path::{PathFigure, draw_map_paths};
-use super::{Figure, err, text};
+use crate::plot::path::{PathFigure, draw_map_paths};
+use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -59,7 +59,7 @@ impl Figure for BoxFigure {
                 .build_cartesian_2d(0.0..n as f64, (lo - pad)..(hi + pad))
                 .map_err(err)?;
             let labels: Vec<String> = boxes.iter().map(|b| b.label.clone()).collect();
-            let decimals = super::tick_decimals(hi - lo);
+            let decimals = crate::plot::tick_decimals(hi - lo);
             chart
                 .configure_mesh()
                 .disable_x_mesh()
@@ -84,7 +84,7 @@ impl Figure for BoxFigure {
                 if b.values.is_empty() {
                     continue;
                 }
-                let (q1, med, q3) = crate::study::stats::quartiles(&b.values);
+                let (q1, med, q3) = super::stats::quartiles(&b.values);
                 let min = b.values.iter().copied().fold(f64::INFINITY, f64::min);
                 let max = b.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
                 let (x0, x1, xc) = (k as f64 + 0.2, k as f64 + 0.8, k as f64 + 0.5);

@@ -2,7 +2,7 @@
 //! each metric's spread, and how much is left to the seed.
 
 use super::anova::{Anova, Factor, TermSpec, anova, replicate_spread};
-use super::records::RunsTable;
+use crate::study::records::RunsTable;
 use std::fmt::Write as _;
 
 /// Largest model (columns) the report fits; beyond it the interactions are left out.

@@ -9,8 +9,8 @@
 //! the diagonal `abs(cov_final − t_final)`, and outliers (`cov_final` below `Q1 − 1.5·IQR` of the
 //! figure panel the run belongs to).
 
-use super::records::RunsTable;
 use super::stats::{a12_magnitude, mann_whitney_u, quartiles};
+use crate::study::records::RunsTable;
 use statrs::distribution::{ContinuousCDF, Normal};
 use std::fmt::Write as _;
 use std::path::Path;

@@ -2,8 +2,8 @@
 //! diversity over iterations of the front runs (median and range per group), and the best
 //! path of each group as a grid of small maps (003 Figs. A.17/A.18).
 
-use super::path::{PathFigure, draw_map_paths};
-use super::{Figure, err, text};
+use crate::plot::path::{PathFigure, draw_map_paths};
+use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -50,8 +50,9 @@ impl Figure for ParetoFigure {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root =
-            root.titled(PARETO_TITLE, super::fitting_text(PARETO_TITLE, root.dim_in_pixel().0, 20.0)).map_err(err)?;
+        let root = root
+            .titled(PARETO_TITLE, crate::plot::fitting_text(PARETO_TITLE, root.dim_in_pixel().0, 20.0))
+            .map_err(err)?;
         let (r, c) = self.shape();
         let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
         for f in &self.facets {
@@ -62,9 +63,9 @@ impl Figure for ParetoFigure {
         }
         let (lo_x, lo_y) = ((lo_x - 0.05).max(0.0), (lo_y - 0.05).max(0.0));
         for (area, facet) in root.split_evenly((r, c)).iter().zip(&self.facets) {
-            let caption = super::panel_label(&facet.label);
+            let caption = crate::plot::panel_label(&facet.label);
             let mut chart = ChartBuilder::on(area)
-                .caption(&caption, super::fitting_text(&caption, area.dim_in_pixel().0, 16.0))
+                .caption(&caption, crate::plot::fitting_text(&caption, area.dim_in_pixel().0, 16.0))
                 .margin(8)
                 .x_label_area_size(40)
                 .y_label_area_size(55)
@@ -92,7 +93,7 @@ impl Figure for ParetoFigure {
                 .map_err(err)?
                 .label(format!("non-dominated ({})", front.len()))
                 .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
-            super::series_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
+            crate::plot::series_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
         }
         Ok(())
     }
@@ -123,22 +124,22 @@ impl Figure for DiversityFigure {
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let title = "Diversity of the runs on each group's front (median, band = min..max)";
-        let root = root.titled(title, super::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
+        let root = root.titled(title, crate::plot::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
         let x_max = self.groups.iter().flat_map(|g| g.curve.last().map(|c| c.0)).max().unwrap_or(1).max(1);
         let panels = root.split_evenly((self.groups.len().max(1), 1));
         for (k, (area, g)) in panels.iter().zip(&self.groups).enumerate() {
             let last = k + 1 == self.groups.len();
             let y_max = g.curve.iter().map(|c| c.3).fold(1.0f64, f64::max) * 1.05;
-            let label = super::panel_label(&g.label);
+            let label = crate::plot::panel_label(&g.label);
             let mut chart = ChartBuilder::on(area)
-                .caption(format!("{label} ({} runs)", g.runs), super::fitting_text(&label, 800, 14.0))
+                .caption(format!("{label} ({} runs)", g.runs), crate::plot::fitting_text(&label, 800, 14.0))
                 .margin(8)
                 .margin_right(24)
                 .x_label_area_size(if last { 45 } else { 25 })
                 .y_label_area_size(80)
                 .build_cartesian_2d(0u32..x_max, 0.0..y_max)
                 .map_err(err)?;
-            let decimals = super::tick_decimals(y_max);
+            let decimals = crate::plot::tick_decimals(y_max);
             chart
                 .configure_mesh()
                 .y_label_formatter(&|v| format!("{v:.decimals$}"))
@@ -155,7 +156,7 @@ impl Figure for DiversityFigure {
             chart.draw_series([Polygon::new(band, colour.mix(0.18).filled())]).map_err(err)?;
             let one_px = y_max / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
             let median: Vec<(u32, f64)> = g.curve.iter().map(|c| (c.0, c.1)).collect();
-            super::draw_series_line(&mut chart, &median, RGBColor(colour.0, colour.1, colour.2), one_px)?;
+            crate::plot::draw_series_line(&mut chart, &median, RGBColor(colour.0, colour.1, colour.2), one_px)?;
         }
         Ok(())
     }
@@ -174,15 +175,16 @@ impl Figure for PathsGridFigure<'_> {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root =
-            root.titled(PATHS_TITLE, super::fitting_text(PATHS_TITLE, root.dim_in_pixel().0, 18.0)).map_err(err)?;
+        let root = root
+            .titled(PATHS_TITLE, crate::plot::fitting_text(PATHS_TITLE, root.dim_in_pixel().0, 18.0))
+            .map_err(err)?;
         let (r, c) = grid_shape(self.panels.len());
         for (area, panel) in root.split_evenly((r, c)).iter().zip(&self.panels) {
             // A caption too wide for one line goes on two: the group, then the scores.
             let width = area.dim_in_pixel().0;
             match panel.title.split_once(": ") {
-                Some((group, scores)) if !super::fits(&panel.title, width, 13.0) => {
-                    let below = area.titled(group, super::fitting_text(group, width, 14.0)).map_err(err)?;
+                Some((group, scores)) if !crate::plot::fits(&panel.title, width, 13.0) => {
+                    let below = area.titled(group, crate::plot::fitting_text(group, width, 14.0)).map_err(err)?;
                     draw_map_paths(&below, &PathFigure { title: scores.to_string(), ..panel.clone() }, (13.0, 11.0))?;
                 }
                 _ => {

@@ -4,9 +4,9 @@
 //! plan); the makespan speed-up with fleet size; the negotiation's convergence. Methods are
 //! compared only through the fleet metrics of the common scorer ([`crate::fleet::metrics`]).
 
-use super::records::RunsTable;
-use super::report::ReportError;
+use super::ReportError;
 use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, sign_test, vargha_delaney_a12};
+use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;

@@ -2,13 +2,31 @@
 //! with hypervolume, diversity of the front runs, best paths, the best configuration and run
 //! durations per group (003 Tables A.1/A.2, 4.4), means with 95 % confidence intervals over
 //! seeds, Kruskal–Wallis tests per swept parameter and the ANOVA of 003 §5.3.
+//!
+//! The reports layer reads a study's records (`crate::study::records`) and nothing runs here.
+//! One module per report section: the planner comparison ([`ablation`]), the fleet study
+//! ([`fleet_report`]), the thesis's tables and claims ([`thesis_report`], [`claims`]), the
+//! ANOVA ([`anova`], [`anova_report`]) and the group tables; [`stats`] holds the tests they
+//! share, [`figures`] and [`ablation_figures`] the figures drawn with `crate::plot`'s
+//! primitives.
 
-use super::records::RunsTable;
-use super::stats::mean_ci95;
+pub mod ablation;
+pub mod ablation_figures;
+pub mod anova;
+pub mod anova_report;
+pub mod claims;
+pub mod figures;
+pub mod fleet_report;
+mod report_tables;
+pub mod stats;
+pub mod thesis_report;
+
 use crate::coverage::CoverageGrid;
 use crate::ga::pareto::non_dominated;
 use crate::plot::path::PathFigure;
-use crate::plot::report::{DiversityFigure, DiversityGroup, ParetoFacet, ParetoFigure, PathsGridFigure};
+use crate::study::records::RunsTable;
+use figures::{DiversityFigure, DiversityGroup, ParetoFacet, ParetoFigure, PathsGridFigure};
+use stats::mean_ci95;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
@@ -39,7 +57,7 @@ pub(super) struct Group {
 /// `planner` key has the same name as the metric column `planner`, so the metric block is found
 /// by its length).
 pub fn param_columns(t: &RunsTable) -> Vec<String> {
-    let metrics = super::records::metric_columns().len();
+    let metrics = crate::study::records::metric_columns().len();
     match t.col("seed") {
         Some(a) if t.header.len() >= a + 1 + metrics => t.header[a + 1..t.header.len() - metrics].to_vec(),
         _ => Vec::new(),
@@ -170,8 +188,8 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         None => dir.join("report"),
     };
     std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
-    if super::fleet_report::applies(&t) {
-        super::fleet_report::write(dir, &t, &out)?;
+    if self::fleet_report::applies(&t) {
+        self::fleet_report::write(dir, &t, &out)?;
         return Ok(out);
     }
     let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
@@ -263,7 +281,7 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     let mut loaded = Vec::new();
     for (g, &r) in groups.iter().zip(&best) {
         let run_dir = dir.join("runs").join(get(r, "run_id"));
-        let Ok(cfg) = super::experiment::ExperimentFile::read(&run_dir.join("config.toml")) else { continue };
+        let Ok(cfg) = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")) else { continue };
         let Ok(paths) = crate::io::read_path_csv(&run_dir.join("best_path.csv")) else { continue };
         let Ok(map) = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution) else { continue };
         let mut grid = CoverageGrid::new(&map);
@@ -348,10 +366,10 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     if wrote_paths {
         let _ = writeln!(md, "![Best path per group](best_paths.png)\n");
     }
-    if super::ablation::applies(&t) {
-        md.push_str(&super::ablation::compare(dir, &t, &out)?.markdown);
+    if self::ablation::applies(&t) {
+        md.push_str(&self::ablation::compare(dir, &t, &out)?.markdown);
     }
-    super::report_tables::GroupTables {
+    self::report_tables::GroupTables {
         t: &t,
         groups: &groups,
         best: &best,
@@ -360,10 +378,10 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         params: &params,
     }
     .write(&mut md);
-    if super::thesis_report::applies(&t) {
-        md.push_str(&super::thesis_report::sections(dir, &t));
+    if self::thesis_report::applies(&t) {
+        md.push_str(&self::thesis_report::sections(dir, &t));
     }
-    md.push_str(&super::anova_report::section(&t, &params));
+    md.push_str(&self::anova_report::section(&t, &params));
     let path = out.join("summary.md");
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
     Ok(path)

@@ -3,11 +3,11 @@
 //! with confidence intervals, and Kruskal–Wallis tests per swept parameter with the median of
 //! each value.
 
-use super::records::RunsTable;
-use super::report::{ConfigRow, Group, cmp_group_values};
+use super::figures::ParetoFacet;
 use super::stats::{kruskal_wallis, mean_ci95, mean_min_max, quartiles};
+use super::{ConfigRow, Group, cmp_group_values};
 use crate::ga::pareto::hypervolume_2d;
-use crate::plot::report::ParetoFacet;
+use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 

@@ -1,7 +1,7 @@
 //! Thesis-specific tables of `covga report`, added when the runs table has a
 //! `thesis.selection` column: run durations per selection scheme beside 003 Table 4.4.
 
-use super::records::RunsTable;
+use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 

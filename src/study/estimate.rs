@@ -106,7 +106,7 @@ pub fn calibrate(study: &Study) -> Result<Vec<BranchTime>, StudyError> {
             let exp = experiment_of(study, run, &maps)?;
             let dir = scratch.join(&run.id);
             let started = Instant::now();
-            let result = pool.install(|| super::output::run_experiment(&exp, &dir, false, &mut []));
+            let result = pool.install(|| crate::experiment::output::run_experiment(&exp, &dir, false, &mut []));
             times.push(started.elapsed().as_secs_f64());
             let _ = std::fs::remove_dir_all(&dir);
             result.map_err(|e| StudyError::Run { id: run.id.clone(), message: e.to_string() })?;

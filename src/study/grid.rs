@@ -3,8 +3,8 @@
 //! Table 4.3). Expansion is deterministic; every run gets a stable id from its resolved
 //! configuration and replicate.
 
-use super::config::ConfigError;
-use super::experiment::ExperimentFile;
+use crate::config::ConfigError;
+use crate::experiment::file::ExperimentFile;
 use crate::ga::rng::{Purpose, derive};
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -340,7 +340,7 @@ impl Study {
             for ((k, v), multi) in columns.iter().zip(&r.params).zip(&multi) {
                 if *multi
                     && v.is_some()
-                    && let Some(why) = super::ignored::why_ignored(&r.file, k)
+                    && let Some(why) = crate::experiment::ignored::why_ignored(&r.file, k)
                 {
                     return Err(ConfigError::new(
                         &origin,

@@ -1,22 +1,12 @@
-//! Experiment files, their validation and running one experiment with all its outputs.
+//! Grid studies: a grid file of axes over a base experiment expanded into runs with stable
+//! ids ([`grid`]), the runner that executes them in parallel, resumably and by shards
+//! ([`runner`]), their records in `runs.csv` ([`records`]), merging shard outputs ([`merge`]),
+//! time estimates ([`estimate`]) and Slurm job arrays ([`slurm`]). Each run is an experiment
+//! of `crate::experiment`; reading the records back into reports is `crate::report`'s.
 
-pub mod ablation;
-pub mod anova;
-pub mod anova_report;
-pub mod claims;
-pub mod config;
 pub mod estimate;
-pub mod experiment;
-pub mod fleet_report;
 pub mod grid;
-pub mod ignored;
-pub mod memory;
 pub mod merge;
-pub mod output;
 pub mod records;
-pub mod report;
-mod report_tables;
 pub mod runner;
 pub mod slurm;
-pub mod stats;
-pub mod thesis_report;

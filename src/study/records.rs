@@ -2,7 +2,7 @@
 //! its own column named by its dotted key, then the final metrics and timing.
 
 use super::grid::RunSpec;
-use super::output::Summary;
+use crate::experiment::output::Summary;
 use std::collections::BTreeMap;
 
 /// Columns before the swept parameters.

@@ -6,10 +6,10 @@
 //! rewritten sorted by run id, so its bytes do not depend on the number of jobs. Nothing is
 //! printed; progress goes to a callback.
 
-use super::config::ConfigError;
-use super::experiment::Experiment;
 use super::grid::{RunSpec, Study};
 use super::records::{RunsTable, csv_line, header, row};
+use crate::config::ConfigError;
+use crate::experiment::file::Experiment;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -161,7 +161,7 @@ pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Ex
 
 /// Validates the experiments of `runs` (maps loaded once through `maps`) and checks that
 /// `parallel` of the largest of them, each on one thread (as [`run_study`] runs them), fit in
-/// the memory `limit` (see [`super::memory`]).
+/// the memory `limit` (see [`crate::experiment::memory`]).
 /// Returns the largest run's memory estimate in bytes.
 pub fn validate_runs(
     study: &Study,
@@ -268,7 +268,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     // Validate everything before the first run starts: bad input loses nothing. The validated
     // experiments are not kept (memory stays flat); each worker validates its run again.
     let maps = MapCache::default();
-    validate_runs(study, &selected, &maps, super::memory::memory_limit(opts.max_memory), opts.jobs)?;
+    validate_runs(study, &selected, &maps, crate::experiment::memory::memory_limit(opts.max_memory), opts.jobs)?;
     check_identity(study, &opts.out)?;
     std::fs::create_dir_all(&opts.out).map_err(|source| StudyError::Folder { path: opts.out.clone(), source })?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
@@ -297,8 +297,10 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let run_one = |run: &RunSpec| -> Result<(f64, f64, f64), StudyError> {
         let dir = opts.out.join("runs").join(&run.id);
         let exp = experiment_of(study, run, &maps)?;
-        let summary = super::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
-            super::output::OutputError::Planner(message) => StudyError::Planner { id: run.id.clone(), message },
+        let summary = crate::experiment::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
+            crate::experiment::output::OutputError::Planner(message) => {
+                StudyError::Planner { id: run.id.clone(), message }
+            }
             other => StudyError::Run { id: run.id.clone(), message: other.to_string() },
         })?;
         let line = csv_line(&row(run, &summary));

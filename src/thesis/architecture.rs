@@ -8,7 +8,7 @@
 
 use super::individual::EvalScratch;
 use super::member::{Member, Op, Origin, Variation};
-use super::params::{Selection, ThesisParams};
+use super::params::{Draw, ThesisParams};
 use crate::ga::rng::{Purpose, Rng, from_stream_seed, stream_seed};
 use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
 use rand::Rng as _;
@@ -216,6 +216,7 @@ impl<T: Member> Generation<'_, T> {
     /// contents overwritten); the members that do not pass on are put there.
     pub fn step_a(
         &self,
+        draw: Draw,
         pop: Vec<T>,
         rng: &mut Rng,
         scratches: &mut [EvalScratch],
@@ -225,14 +226,14 @@ impl<T: Member> Generation<'_, T> {
         let n = pop.len();
         let fit: Vec<f64> = pop.iter().map(T::fitness).collect();
         let elite = best_k(&fit, p.keep.min(n));
-        let wheel = match p.selection {
-            Selection::Prws => cumulative(&proportionate_probabilities(&fit)),
-            Selection::Rrws { .. } => cumulative(&rank_probabilities(&fit, e.pressure)),
-            _ => Vec::new(),
+        let wheel = match draw {
+            Draw::Prws => cumulative(&proportionate_probabilities(&fit)),
+            Draw::Rrws => cumulative(&rank_probabilities(&fit, e.pressure)),
+            Draw::Tournament => Vec::new(),
         };
-        let pick = |rng: &mut Rng| match p.selection {
-            Selection::Tournament { .. } => tournament(&fit, e.tournament_size, rng),
-            _ => spin(&wheel, rng),
+        let pick = |rng: &mut Rng| match draw {
+            Draw::Tournament => tournament(&fit, e.tournament_size, rng),
+            Draw::Prws | Draw::Rrws => spin(&wheel, rng),
         };
         let mut jobs: Vec<Job<T>> = Vec::with_capacity(4 * p.select);
         let mut kids = Vec::with_capacity(4);

@@ -1,14 +1,15 @@
 //! The `[thesis]` and `[retrain]` sections of an experiment file and their validation into the
 //! thesis GA's typed parameters (003 Tables 4.1–4.3 ranges, spec §14.2). Library users get the
-//! same checks through [`ThesisConfig::from_file`].
+//! same checks through [`ThesisSection::validate`].
 
 use super::crossover::{ChildMode, ShortGenomes};
-use super::fitness::Projection;
 use super::individual::{EvaluationMode, InitParams};
 use super::params::{Control, Retrain, Selection, ThesisParams};
+use crate::config::{ConfigError, check_range, check_unit};
+use crate::coverage::fitness::Projection;
 use crate::ga::control::AdaptiveConstants;
-use crate::study::config::{ConfigError, check_range, check_unit};
-use crate::study::experiment::ExperimentFile;
+use crate::planner::Context;
+use crate::planner::memory::MemoryEstimate;
 use serde::{Deserialize, Serialize};
 
 /// `[thesis]`: the parameters of 003 Tables 4.1–4.3.
@@ -176,17 +177,13 @@ pub struct ThesisConfig {
     pub retrain: Option<Retrain>,
 }
 
-impl ThesisConfig {
-    /// Validates `[thesis]` and `[retrain]` of `file`; `origin` names the file in messages.
-    pub fn from_file(
-        file: &ExperimentFile,
-        origin: &str,
-        scenario: &crate::planner::Scenario,
-    ) -> Result<Self, ConfigError> {
+impl ThesisSection {
+    /// Validates this section and the experiment's `[retrain]` (if any) into the thesis GA.
+    pub fn validate(&self, retrain: Option<&RetrainSection>, ctx: &Context) -> Result<ThesisConfig, ConfigError> {
+        let (origin, scenario, b) = (ctx.origin, ctx.scenario, ctx.budget);
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-        let params = validate_params(&file.thesis, origin)?;
-        let b = file.budget;
-        let retrain = match file.retrain {
+        let params = validate_params(self, origin)?;
+        let retrain = match retrain.copied() {
             None => None,
             Some(rt) => {
                 if rt.at_iteration >= b.iterations {
@@ -218,7 +215,7 @@ impl ThesisConfig {
                 Some(Retrain { at_iteration: rt.at_iteration, region: rt.region })
             }
         };
-        Ok(Self { params, retrain })
+        Ok(ThesisConfig { params, retrain })
     }
 }
 
@@ -234,6 +231,19 @@ pub fn memory_estimate(params: &ThesisParams, rows: usize, cols: usize, threads:
     let per = 32.0 * len + plane_bytes * planes;
     let caches = (crate::coverage::segments::CACHE_BYTES * threads.max(1)) as f64;
     2.0 * params.initial_size().max(params.pop_min) as f64 * per + caches
+}
+
+impl ThesisConfig {
+    /// An upper estimate of a run's memory on `map` with `threads` evaluation threads
+    /// ([`memory_estimate`]), with the key that drives it.
+    pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
+        let p = &self.params;
+        MemoryEstimate {
+            bytes: memory_estimate(p, map.rows(), map.cols(), threads),
+            key: if p.initial_size() > p.pop_min { "thesis.init_individuals" } else { "thesis.pop_min" },
+            what: format!("{} individuals of up to {} actions", p.initial_size(), p.max_genome_len),
+        }
+    }
 }
 
 /// Validates a `[thesis]` section into [`ThesisParams`].
@@ -265,7 +275,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
             Selection::Rrws { pressure: t.selection_pressure }
         }
     };
-    if selection != Selection::Elite {
+    if selection.draw().is_some() {
         count("thesis.init_individuals", t.init_individuals, t.pop_min, 10_000_000)?;
         count("thesis.keep", t.keep, 0, t.pop_min)?;
         count("thesis.select", t.select, 1, t.pop_min)?;
@@ -276,7 +286,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
             let (lo, hi, what) = match selection {
                 Selection::Rrws { .. } => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
                 Selection::Tournament { .. } => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
-                _ => {
+                Selection::Elite | Selection::Prws => {
                     return Err(err(
                         "thesis.control.kind",
                         "= \"ramp\" needs selection \"rrws\" or \"tournament\"".into(),
@@ -313,4 +323,16 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
         evaluation: t.evaluation,
     };
     Ok(params)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// F2 is the default projection (spec §5) and `C_child` = 2 (both) the default child mode.
+    #[test]
+    fn the_thesis_defaults() {
+        assert_eq!(ThesisSection::default().projection, crate::coverage::fitness::Projection::F2);
+        assert_eq!(ThesisSection::default().c_child, 2, "C_child = 2 (both) by default");
+    }
 }

@@ -1,9 +1,9 @@
 //! Evaluated individuals, the scenario they are scored in, and the correction procedures that
 //! follow every creation or change of a genome (003 §3.3.4, spec §9, order of R17).
 
-use super::fitness::{Projection, ThesisScore, score_counts};
 use super::genome::{Action, Frame, decode, decode_from, live, random_genome, same_bits};
 use crate::coverage::bits::{BitLayers, Tally};
+use crate::coverage::fitness::{Projection, ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
 use crate::coverage::segments::SegmentCache;
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
@@ -30,6 +30,12 @@ pub struct Scenario {
 }
 
 impl Scenario {
+    /// The thesis scenario (visit grid, clamping frame) of the common scenario every planner
+    /// plans for.
+    pub fn from_common(s: &crate::planner::Scenario) -> Self {
+        Self::new(s.map.clone(), s.robot, s.start, s.end, s.projection)
+    }
+
     /// A scenario on `map` with stations `start` / `end` (already checked to be free).
     pub fn new(map: GridMap, robot: Footprint, start: Point, end: Point, projection: Projection) -> Self {
         let min = map.origin();
@@ -108,6 +114,22 @@ impl Clone for Individual {
 }
 
 impl Individual {
+    /// `best_genome.csv`: one row per action with its role, move and viewpoint.
+    pub fn genome_csv(&self) -> Vec<u8> {
+        let n = self.genome.len();
+        let mut s = String::from("index,role,alpha_deg,dist_m,x_m,y_m\n");
+        for (i, (a, p)) in self.genome.iter().zip(&self.points).enumerate() {
+            let role = match i {
+                0 => "start",
+                _ if i == n - 1 => "end",
+                _ if i == n - 2 => "connector",
+                _ => "action",
+            };
+            s.push_str(&format!("{i},{role},{},{},{},{}\n", a.alpha_deg(), a.dist_m(), p.x, p.y));
+        }
+        s.into_bytes()
+    }
+
     /// The complete footprint metrics of the path (length and turning included), measured
     /// anew; the evaluation itself keeps only what the fitness reads.
     pub fn path_metrics(&self, scenario: &Scenario) -> PathMetrics {

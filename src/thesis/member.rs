@@ -5,11 +5,11 @@
 
 use super::crossover::{ChildBuffers, Parent, crossover_into};
 use super::diversity::{DiversityScratch, diversity, max_distance};
-use super::fitness::ThesisScore;
 use super::genome::{Action, random_genome};
 use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario, correct_and_evaluate};
 use super::mutation::{Mutation, mutate, mutate_action};
 use super::params::ThesisParams;
+use crate::coverage::fitness::ThesisScore;
 use crate::ga::rng::Rng;
 use crate::geom::Point;
 use rand::Rng as _;

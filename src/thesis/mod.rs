@@ -1,12 +1,12 @@
-//! The action-encoded variable-length GA of 003 (§3.2–3.5): fitness, genome and decoding,
-//! crossover, mutation and corrections, diversity, the two architectures, parameters and the
-//! run loop with retraining.
+//! The action-encoded variable-length GA of 003 (§3.2–3.5): genome and decoding, crossover,
+//! mutation and corrections, diversity, the two architectures, parameters, the `[thesis]`
+//! section's validation and the run loop with retraining. Its fitness equations are the
+//! common scorer's (`crate::coverage::fitness`).
 
 pub mod architecture;
 pub mod config;
 pub mod crossover;
 pub mod diversity;
-pub mod fitness;
 pub mod genome;
 pub mod individual;
 pub mod member;

@@ -4,7 +4,6 @@
 use super::crossover::{ChildMode, ShortGenomes};
 use super::individual::{EvaluationMode, InitParams};
 use crate::ga::control::AdaptiveConstants;
-use std::time::Duration;
 
 /// Selection scheme and its parameter (003 §3.4, spec §10).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,7 +24,28 @@ pub enum Selection {
     },
 }
 
+/// How architecture (a) draws its parents: every selection scheme but Elite's families.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Draw {
+    /// A tournament of the effective size `TS`.
+    Tournament,
+    /// Spins of the proportionate wheel.
+    Prws,
+    /// Spins of the rank wheel at the effective pressure `SP`.
+    Rrws,
+}
+
 impl Selection {
+    /// The parent draw of architecture (a), or `None` for Elite's families (architecture (b)).
+    pub fn draw(&self) -> Option<Draw> {
+        match self {
+            Selection::Elite => None,
+            Selection::Tournament { .. } => Some(Draw::Tournament),
+            Selection::Prws => Some(Draw::Prws),
+            Selection::Rrws { .. } => Some(Draw::Rrws),
+        }
+    }
+
     /// Short name used in files (`elite`, `tournament`, `prws`, `rrws`).
     pub fn name(&self) -> &'static str {
         match self {
@@ -130,22 +150,9 @@ impl ThesisParams {
     pub fn initial_size(&self) -> usize {
         match self.selection {
             Selection::Elite => self.pop_min,
-            _ => self.init_individuals,
+            Selection::Tournament { .. } | Selection::Prws | Selection::Rrws { .. } => self.init_individuals,
         }
     }
-}
-
-/// When a run stops (any planner: iterations are generations for the GAs).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Budget {
-    /// `Iter_max`.
-    pub iterations: u32,
-    /// Optional limit on fitness evaluations (equal budgets across planners).
-    pub evaluations: Option<u64>,
-    /// Optional wall-clock limit (the thesis used 20 minutes).
-    pub wall_clock: Option<Duration>,
-    /// Optional stall limit: stop after this many iterations without a better best.
-    pub stall_iterations: Option<u32>,
 }
 
 /// The changing-environment retrain (003 §3.5.3, spec §13, R25).

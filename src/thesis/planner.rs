@@ -12,32 +12,6 @@ use crate::plot::history::HistoryFigure;
 use crate::plot::path::PathFigure;
 use std::path::Path;
 
-/// `best_genome.csv`: one row per action with its role, move and viewpoint.
-pub fn genome_csv(ind: &Individual) -> Vec<u8> {
-    let n = ind.genome.len();
-    let mut s = String::from("index,role,alpha_deg,dist_m,x_m,y_m\n");
-    for (i, (a, p)) in ind.genome.iter().zip(&ind.points).enumerate() {
-        let role = match i {
-            0 => "start",
-            _ if i == n - 1 => "end",
-            _ if i == n - 2 => "connector",
-            _ => "action",
-        };
-        s.push_str(&format!("{i},{role},{},{},{},{}\n", a.alpha_deg(), a.dist_m(), p.x, p.y));
-    }
-    s.into_bytes()
-}
-
-/// A path that sweeps obstacle cells is not drivable: the thesis's only hard constraint.
-pub fn obstacle_violations(obstacle_cells: u64) -> Vec<String> {
-    if obstacle_cells == 0 { Vec::new() } else { vec![format!("the path sweeps {obstacle_cells} obstacle cells")] }
-}
-
-/// The thesis scenario (visit grid, clamping frame) of a common scenario.
-pub fn thesis_scenario(s: &Scenario) -> ThesisScenario {
-    ThesisScenario::new(s.map.clone(), s.robot, s.start, s.end, s.projection)
-}
-
 impl Planner for ThesisConfig {
     fn name(&self) -> &'static str {
         "thesis"
@@ -50,7 +24,7 @@ impl Planner for ThesisConfig {
         budget: &Budget,
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunOutcome, PlannerError> {
-        let mut ga = ThesisGa { scenario: thesis_scenario(scenario), params: self.params, seed };
+        let mut ga = ThesisGa { scenario: ThesisScenario::from_common(scenario), params: self.params, seed };
         let out = ga.run(budget, self.retrain.as_ref(), observers)?;
         let best = &out.best;
         let sc = best.score;
@@ -74,13 +48,15 @@ impl Planner for ThesisConfig {
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
             feasible: best.sweep.obj_pix == 0,
             warnings: Vec::new(),
-            violations: obstacle_violations(best.sweep.obj_pix),
+            violations: crate::coverage::score::obstacle_violations(best.sweep.obj_pix),
             evaluations: out.evaluations,
             iterations: out.iterations,
             stop: out.stop,
             wall_s: out.wall_s,
             details,
-            files: vec![("best_genome.csv".into(), genome_csv(best))],
+            files: vec![("best_genome.csv".into(), best.genome_csv())],
+            history: crate::planner::History::Generations,
+            agents: Vec::new(),
             artifacts: Box::new((out, seed)),
         })
     }

@@ -7,11 +7,12 @@ use super::architecture::{Effective, Generation, MutationRate};
 use super::diversity::DiversityScratch;
 use super::individual::{EvalScratch, Individual};
 use super::member::{Member, Premark};
-use super::params::{Budget, Control, Retrain, Selection, ThesisParams};
+use super::params::{Control, Retrain, Selection, ThesisParams};
 use crate::ga::control;
 use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
 use crate::ga::rng::{Purpose, Rng, stream};
-pub use crate::planner::StopReason;
+use crate::planner::Budget;
+use crate::planner::StopReason;
 use std::time::Instant;
 
 /// The algorithm: what stays fixed during a run. `T` is what the population holds: one
@@ -94,7 +95,7 @@ impl<T: Member> Ga<T> {
         let (tournament_size, pressure) = match p.selection {
             Selection::Tournament { size } => (size, 0.0),
             Selection::Rrws { pressure } => (0, pressure),
-            _ => (0, 0.0),
+            Selection::Elite | Selection::Prws => (0, 0.0),
         };
         Effective { p_c: p.p_c, p_mi: p.p_mi, p_ma: MutationRate::Fixed(p.p_ma), tournament_size, pressure }
     }
@@ -110,7 +111,8 @@ impl<T: Member> Ga<T> {
                     e.tournament_size = ts.min(state.population.len());
                 }
                 Selection::Rrws { .. } => e.pressure = control::linear_ramp(iteration, iter_max, min, max),
-                _ => {}
+                // Validation allows a ramp only for the tournament and RRWS.
+                Selection::Elite | Selection::Prws => {}
             },
             Control::Adaptive(c) => {
                 let fit = state.population.iter().map(T::fitness);
@@ -167,9 +169,9 @@ impl<T: Member> Ga<T> {
         state.iteration += 1;
         let generation = self.generation(state.iteration, effective);
         let pop = std::mem::take(&mut state.population);
-        let (next, evaluations) = match self.params.selection {
-            Selection::Elite => generation.step_b(pop, &mut state.rng, scratches, &mut state.spare),
-            _ => generation.step_a(pop, &mut state.rng, scratches, &mut state.spare),
+        let (next, evaluations) = match self.params.selection.draw() {
+            None => generation.step_b(pop, &mut state.rng, scratches, &mut state.spare),
+            Some(draw) => generation.step_a(draw, pop, &mut state.rng, scratches, &mut state.spare),
         };
         state.population = next;
         state.evaluations += evaluations;
@@ -229,12 +231,8 @@ impl<T: Member> Ga<T> {
         let mut best_before_retrain = None;
         let mut stop = StopReason::Iterations;
         while state.iteration < budget.iterations {
-            if budget.wall_clock.is_some_and(|limit| started.elapsed() >= limit) {
-                stop = StopReason::WallClock;
-                break;
-            }
-            if budget.evaluations.is_some_and(|limit| state.evaluations >= limit) {
-                stop = StopReason::Evaluations;
+            if let Some(spent) = budget.spent(state.evaluations, started) {
+                stop = spent;
                 break;
             }
             if let Some(r) = retrain.filter(|r| r.at_iteration == state.iteration) {

@@ -1,10 +1,11 @@
 //! The `[waypoint]` section of an experiment file (000 Table I as reconciled, spec §18–19) and
 //! its validation into the waypoint planner's typed parameters.
 
+use crate::config::{ConfigError, check_range, check_unit};
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::study::config::{ConfigError, check_range, check_unit};
-use crate::study::experiment::ExperimentFile;
+use crate::planner::Context;
+use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use serde::{Deserialize, Serialize};
 
 /// `[waypoint]`: 000 Table I as reconciled (spec §18–19); metres, degrees.
@@ -209,18 +210,48 @@ pub fn camera_spec(
     })
 }
 
-impl WaypointConfig {
-    /// Validates `[waypoint]` of `file` against the scenario's map and start.
-    pub fn from_file(
-        file: &ExperimentFile,
-        origin: &str,
-        scenario: &crate::planner::Scenario,
-    ) -> Result<Self, ConfigError> {
-        let mut c = validate(&file.waypoint, origin, &scenario.map, scenario.start)?;
-        if file.waypoint.objective == super::world::ObjectiveKind::Footprint {
+impl WaypointSection {
+    /// Validates this section against the scenario's map and start.
+    pub fn validate(&self, ctx: &Context) -> Result<WaypointConfig, ConfigError> {
+        let scenario = ctx.scenario;
+        let mut c = validate(self, ctx.origin, &scenario.map, scenario.start)?;
+        if self.objective == super::world::ObjectiveKind::Footprint {
             c.world.objective = super::world::Objective::Footprint { width: scenario.robot.width };
         }
         Ok(c)
+    }
+}
+
+impl WaypointConfig {
+    /// An upper estimate of the planner's memory on `map`: at most one waypoint per (grid step
+    /// or anti-crowding distance, the smaller)² of free space, each with at most 16 directed
+    /// edges (its nearest neighbour per octant, and the reverse of its neighbours' choices:
+    /// `waypoint::graph`), each edge holding two views stored as the words between their first
+    /// and last pixel (a view spans at most `2·d_max` rows, a swept edge `max_traverse + width`
+    /// rows); and the population's paths.
+    pub fn memory_estimate(&self, map: &GridMap) -> MemoryEstimate {
+        use super::world::Objective;
+        let w = self;
+        let p = &w.world;
+        let px = map.resolution() / p.scale; // work-raster pixels per map cell (per axis)
+        let (cols, rows) = (map.cols() as f64 * px, map.rows() as f64 * px);
+        let step_px = (p.geometry.grid_step.min(p.geometry.merge) / p.scale).max(1.0);
+        let free_px = map.free_count() as f64 * px * px;
+        let waypoints = (free_px / (step_px * step_px)).ceil().max(1.0);
+        let degree = 16f64.min(waypoints - 1.0).max(1.0);
+        let span_rows = match p.objective {
+            Objective::Camera => 2.0 * p.d_max / p.scale + 1.0,
+            Objective::Footprint { width } => (p.max_traverse + width) / p.scale + 1.0,
+        }
+        .min(rows);
+        let view_bytes = bitset_bytes(span_rows * cols) + 16.0;
+        let edges = waypoints * degree;
+        let paths = w.ga.population as f64 * 2.0 * w.ga.agents as f64 * 4.0 * (w.ga.l_init as f64 + 64.0);
+        MemoryEstimate {
+            bytes: edges * 2.0 * (view_bytes + 48.0) + 4.0 * bitset_bytes(cols * rows) + paths,
+            key: "waypoint.hallway",
+            what: format!("up to {waypoints:.0} waypoints with {edges:.0} edge views"),
+        }
     }
 }
 

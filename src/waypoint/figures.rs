@@ -2,9 +2,9 @@
 //! (000 Fig. 15), the coverage map (Fig. 5), Pareto-front snapshots (Fig. 11) and average
 //! objectives over generations (Fig. 12).
 
-use super::{Figure, err, text};
-use crate::waypoint::raster::WorkMap;
-use crate::waypoint::run::WaypointStats;
+use super::run::WaypointStats;
+use crate::coverage::work_map::WorkMap;
+use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
@@ -34,7 +34,7 @@ fn raster_chart<'a, DB: DrawingBackend>(
 > {
     let (ox, oy) = map.origin;
     let (w, h) = (map.width as f64 * map.scale, map.height as f64 * map.scale);
-    let mut chart = super::equal_scale_chart(area, title, 18.0, (40, 50), 10, ox..ox + w, oy..oy + h)?;
+    let mut chart = crate::plot::equal_scale_chart(area, title, 18.0, (40, 50), 10, ox..ox + w, oy..oy + h)?;
     chart
         .configure_mesh()
         .disable_mesh()
@@ -44,7 +44,7 @@ fn raster_chart<'a, DB: DrawingBackend>(
         .axis_desc_style(text(15.0))
         .draw()
         .map_err(err)?;
-    let rects = super::cell_runs(map.width, map.height, class).into_iter().map(|(r, c0, c1, colour)| {
+    let rects = crate::plot::cell_runs(map.width, map.height, class).into_iter().map(|(r, c0, c1, colour)| {
         let (x0, y0) = (ox + c0 as f64 * map.scale, oy + r as f64 * map.scale);
         Rectangle::new([(x0, y0), (ox + c1 as f64 * map.scale, y0 + map.scale)], colour.filled())
     });
@@ -103,7 +103,7 @@ impl Figure for PathsFigure<'_> {
         entries.push((RED, format!("self loop closure ({})", self.self_closures.len())));
         entries.push((MAGENTA, format!("inter-agent closure ({})", self.shared_closures.len())));
         entries.push((OBSTACLE, "obstacle".into()));
-        super::legend(&side, &entries, 60)
+        crate::plot::legend(&side, &entries, 60)
     }
 }
 
@@ -162,7 +162,7 @@ impl Figure for GraphFigure<'_> {
             (LOST, "wall band out of view".to_string()),
             (OBSTACLE, "obstacle".to_string()),
         ];
-        super::legend(&side, &entries, 60)
+        crate::plot::legend(&side, &entries, 60)
     }
 }
 
@@ -204,7 +204,7 @@ impl Figure for CoverageFigure<'_> {
             (OPEN, "unexplored open space"),
             (WALL, "unexplored wall band"),
         ];
-        super::legend(&side, &entries.iter().map(|(c, s)| (*c, s.to_string())).collect::<Vec<_>>(), 60)
+        crate::plot::legend(&side, &entries.iter().map(|(c, s)| (*c, s.to_string())).collect::<Vec<_>>(), 60)
     }
 }
 
@@ -214,7 +214,7 @@ pub struct SnapshotsFigure<'a> {
     /// speed (turning surcharges, lengths in 000, are flown at that speed too).
     pub seconds_per_px: f64,
     /// `(generation, [(coverage, flight time, feasible)])`.
-    pub snapshots: &'a [crate::waypoint::run::Snapshot],
+    pub snapshots: &'a [super::run::Snapshot],
 }
 
 impl Figure for SnapshotsFigure<'_> {
@@ -318,12 +318,12 @@ impl Figure for ObjectivesFigure<'_> {
             let pad = ((hi - lo) * 0.05).max(1e-3);
             let mut chart = ChartBuilder::on(area)
                 .margin(10)
-                .margin_right(super::SIDE_LEGEND_W)
+                .margin_right(crate::plot::SIDE_LEGEND_W)
                 .x_label_area_size(40)
                 .y_label_area_size(70)
                 .build_cartesian_2d(0u32..x_max, (lo - pad)..(hi + pad))
                 .map_err(err)?;
-            let decimals = super::tick_decimals(hi - lo);
+            let decimals = crate::plot::tick_decimals(hi - lo);
             chart
                 .configure_mesh()
                 .y_label_formatter(&|v| format!("{v:.decimals$}"))
@@ -338,10 +338,10 @@ impl Figure for ObjectivesFigure<'_> {
             let mut legend = Vec::new();
             for &(name, colour, f) in lines {
                 let points: Vec<(u32, f64)> = self.history.iter().map(|s| (s.generation, f(s) * scale)).collect();
-                super::draw_series_line(&mut chart, &points, colour, one_px)?;
+                crate::plot::draw_series_line(&mut chart, &points, colour, one_px)?;
                 legend.push((name, colour));
             }
-            super::side_legend(area, &legend)?;
+            crate::plot::side_legend(area, &legend)?;
         }
         Ok(())
     }

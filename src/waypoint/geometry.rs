@@ -4,8 +4,8 @@
 //! driver's choice (spec §3, §19).
 
 use super::config::WaypointSection;
+use crate::config::{ConfigError, check_range};
 use crate::map::GridMap;
-use crate::study::config::{ConfigError, check_range};
 
 /// How the waypoint grid step follows from the narrowest hallway `h_min`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]

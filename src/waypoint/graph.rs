@@ -3,7 +3,7 @@
 //! touches an occluded pixel or that exceed the maximum traverse distance are removed, and only
 //! the component(s) of the start waypoint(s) are kept.
 
-use super::raster::WorkMap;
+use crate::coverage::work_map::WorkMap;
 
 /// Waypoints and undirected edges (adjacency lists, sorted).
 #[derive(Clone, Debug)]

@@ -6,8 +6,8 @@
 //! passage, until the graph reaches it or both fail.
 
 use super::graph::Graph;
-use super::raster::WorkMap;
 use super::waypoints::{fits_mask, geodesic, pixel_index};
+use crate::coverage::work_map::WorkMap;
 
 /// At most this many passage waypoints are added to one map.
 const MAX_ADDED: usize = 512;
@@ -117,7 +117,7 @@ mod tests {
                 closed.occluded[i] = true;
             }
         }
-        closed.dist = crate::waypoint::raster::distance_transform(closed.width, closed.height, &closed.occluded);
+        closed.dist = crate::coverage::work_map::distance_transform(closed.width, closed.height, &closed.occluded);
         let (graph, added) = connect(&closed, vec![(20.5, 45.5), (110.5, 45.5)], (20.5, 45.5), 200.0, 10.0, 2.5);
         assert_eq!(added, 0);
         assert!(!graph.component(0)[1]);

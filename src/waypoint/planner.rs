@@ -6,14 +6,14 @@
 
 use super::config::WaypointConfig;
 use super::evaluate::{LoopClosureRule, add_views, laplacian_zero_eigenvalues, required_coverage};
+use super::figures::{CoverageFigure, GraphFigure, ObjectivesFigure, PathsFigure, SnapshotsFigure};
 use super::precompute::Union;
-use super::run::{Limits, Organism, WaypointOutcome, WaypointStats, run};
+use super::run::{Organism, WaypointOutcome, WaypointStats, run};
 use super::world::World;
 use crate::coverage::{CoverageGrid, SweepScratch};
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::geom::Point;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario};
-use crate::plot::waypoint::{CoverageFigure, GraphFigure, ObjectivesFigure, PathsFigure, SnapshotsFigure};
 use std::path::Path;
 use std::time::Instant;
 
@@ -113,9 +113,8 @@ impl Planner for WaypointConfig {
         let mut scratch = SweepScratch::new(&grid);
         let mut history = Vec::new();
         let mut failed: Option<std::io::Error> = None;
-        let limits = Limits { evaluations: budget.evaluations, wall_clock: budget.wall_clock };
         let outcome =
-            run(&world, &self.ga, seed, &limits, &mut |s: &WaypointStats, pop: &[Organism], best, evaluations| {
+            run(&world, &self.ga, seed, budget, &mut |s: &WaypointStats, pop: &[Organism], best, evaluations| {
                 history.push(*s);
                 if failed.is_some() || observers.is_empty() {
                     return;
@@ -216,6 +215,8 @@ impl Planner for WaypointConfig {
             wall_s: started.elapsed().as_secs_f64(),
             details,
             files: Vec::new(),
+            history: crate::planner::History::Generations,
+            agents: Vec::new(),
             artifacts: Box::new(Artifacts { world, outcome, history }),
         })
     }

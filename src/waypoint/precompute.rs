@@ -5,8 +5,8 @@
 //! free pixels the ground robot's footprint sweeps along the edge (003 §3.1's swept rectangle).
 
 use super::graph::Graph;
-use super::raster::WorkMap;
 use crate::coverage::camera::Camera;
+use crate::coverage::work_map::WorkMap;
 
 /// A bitset over the raster stored as the words between its first and last set bit.
 #[derive(Clone, Debug, Default)]

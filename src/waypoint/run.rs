@@ -10,6 +10,7 @@ use super::world::World;
 use crate::ga::maximin::maximin;
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::ga::selection::low_variance_sample;
+use crate::planner::Budget;
 use rand::Rng as _;
 use rand::seq::SliceRandom;
 use rayon::prelude::*;
@@ -106,15 +107,6 @@ pub struct WaypointOutcome {
 /// the evaluations so far.
 pub type GenerationCallback<'a> = dyn FnMut(&WaypointStats, &[Organism], usize, u64) + 'a;
 
-/// Limits beyond the generation count: an evaluation budget and a wall-clock limit.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Limits {
-    /// Stop before a generation that would start at or beyond this many evaluations.
-    pub evaluations: Option<u64>,
-    /// Stop once this much time has passed.
-    pub wall_clock: Option<std::time::Duration>,
-}
-
 /// The organism a run reports at generation `g`: the feasible one with the highest coverage
 /// `C` (ties: shorter flight time, then lower index); when none is feasible, the one with the
 /// fewest violated constraint types, then the highest coverage. History and summary use this
@@ -179,13 +171,15 @@ pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
     w.iter().map(|x| x / total).collect()
 }
 
-/// Runs the GA on a built world; `on_generation` receives each generation's statistics, the
-/// population, the index of the reported organism and the evaluations so far.
+/// Runs the GA on a built world for `p.generations`, within the evaluation and wall-clock
+/// limits of `limits` (its iteration count is not read: the generations are `p.generations`);
+/// `on_generation` receives each generation's statistics, the population, the index of the
+/// reported organism and the evaluations so far.
 pub fn run(
     world: &World,
     p: &GaParams,
     seed: u64,
-    limits: &Limits,
+    limits: &Budget,
     on_generation: &mut GenerationCallback<'_>,
 ) -> WaypointOutcome {
     let started = std::time::Instant::now();
@@ -273,12 +267,8 @@ pub fn run(
     let mut generations = 0;
     let mut stop = crate::planner::StopReason::Iterations;
     for gen_ in 1..=p.generations {
-        if limits.evaluations.is_some_and(|e| evaluations >= e) {
-            stop = crate::planner::StopReason::Evaluations;
-            break;
-        }
-        if limits.wall_clock.is_some_and(|w| started.elapsed() >= w) {
-            stop = crate::planner::StopReason::WallClock;
+        if let Some(spent) = limits.spent(evaluations, started) {
+            stop = spent;
             break;
         }
         let c_req = required_coverage(&p.objectives, gen_);

@@ -3,7 +3,7 @@
 //! cannot fit), crowded points merged into centroids, and space left without a waypoint filled
 //! again, so that no corridor or room loses all its waypoints.
 
-use super::raster::WorkMap;
+use crate::coverage::work_map::WorkMap;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 

@@ -3,9 +3,9 @@
 
 use super::graph::Graph;
 use super::precompute::{Sensing, Traversals, bitset};
-use super::raster::WorkMap;
 use super::{passages, waypoints};
 use crate::coverage::camera::{Camera, ViewShape};
+use crate::coverage::work_map::WorkMap;
 use crate::map::GridMap;
 
 /// Which waypoints are used (spec §3.5).

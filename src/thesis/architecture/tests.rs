@@ -1,5 +1,6 @@
 use super::*;
 use crate::ga::rng::stream;
+use crate::thesis::params::Selection;
 
 proptest::proptest! {
     /// The two survivors are the first two of a stable sort by descending fitness.
@@ -41,8 +42,8 @@ fn adaptive_rate_spares_the_best() {
 // a test can check by value who was selected, who received which child, which stream each job
 // drew from, what passed on and what was put aside.
 
+use crate::coverage::fitness::ThesisScore;
 use crate::thesis::diversity::DiversityScratch;
-use crate::thesis::fitness::ThesisScore;
 use crate::thesis::individual::EvaluationMode;
 use rand::{RngCore, SeedableRng};
 
@@ -179,9 +180,9 @@ fn step(pop: Vec<Probe>, p: &ThesisParams, e: Effective, world: &World, rng: &mu
     let generation = Generation { scenario: world, params: p, effective: e, seed: SEED, iteration: ITERATION };
     let mut spare = Vec::new();
     let mut scratches = vec![EvalScratch::default(); 2];
-    let (next, evaluations) = match p.selection {
-        Selection::Elite => generation.step_b(pop, rng, &mut scratches, &mut spare),
-        _ => generation.step_a(pop, rng, &mut scratches, &mut spare),
+    let (next, evaluations) = match p.selection.draw() {
+        None => generation.step_b(pop, rng, &mut scratches, &mut spare),
+        Some(draw) => generation.step_a(draw, pop, rng, &mut scratches, &mut spare),
     };
     Outcome { next, evaluations, spare }
 }

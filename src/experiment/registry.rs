@@ -1,0 +1,163 @@
+//! The one registry of planners: the names an experiment file may give `planner = "…"`, and
+//! for each its validated parameters, whether it ignores the seed, which sections it reads
+//! ([`super::ignored`]) and its memory estimate. Every `match` on [`PlannerKind`] and
+//! [`PlannerConfig`] is exhaustive, so adding a planner is: its own module, a variant here
+//! (the compiler then lists every arm to fill) and, if it has parameters of its own, one
+//! section field of the experiment file.
+
+use super::file::ExperimentFile;
+use crate::config::ConfigError;
+use crate::fleet::config::Team;
+use crate::fleet::planner::FleetPlanner;
+use crate::patterns::planner::{PatternConfig, PatternKind};
+use crate::planner::memory::MemoryEstimate;
+use crate::planner::{Context, Planner};
+use crate::random_search::RandomSearch;
+use crate::thesis::config::ThesisConfig;
+use crate::waypoint::config::WaypointConfig;
+
+/// Planner names as written in experiment files (`planner = "…"`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum PlannerKind {
+    /// The action-encoded GA of 003 (`[thesis]`).
+    #[default]
+    Thesis,
+    /// The waypoint-graph maximin planner of 000 (`[waypoint]`).
+    Waypoint,
+    /// Boustrophedon lanes (`[pattern]`).
+    Boustrophedon,
+    /// Inward spiral (`[pattern]`).
+    Spiral,
+    /// Budget-matched random action genomes (the thesis's initial-population draw).
+    RandomSearch,
+}
+
+impl PlannerKind {
+    /// Every planner, in the order studies list them.
+    pub const ALL: [PlannerKind; 5] = [
+        PlannerKind::Thesis,
+        PlannerKind::Waypoint,
+        PlannerKind::RandomSearch,
+        PlannerKind::Boustrophedon,
+        PlannerKind::Spiral,
+    ];
+
+    /// The name as written in experiment files.
+    pub fn name(self) -> &'static str {
+        match self {
+            PlannerKind::Thesis => "thesis",
+            PlannerKind::Waypoint => "waypoint",
+            PlannerKind::Boustrophedon => "boustrophedon",
+            PlannerKind::Spiral => "spiral",
+            PlannerKind::RandomSearch => "random_search",
+        }
+    }
+
+    /// Whether the planner ignores the seed (a grid runs such a configuration once).
+    pub fn is_deterministic(self) -> bool {
+        match self {
+            PlannerKind::Boustrophedon | PlannerKind::Spiral => true,
+            PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch => false,
+        }
+    }
+}
+
+/// The validated parameters of the chosen planner.
+#[derive(Clone, Debug)]
+pub enum PlannerConfig {
+    /// The thesis GA.
+    Thesis(ThesisConfig),
+    /// The waypoint planner.
+    Waypoint(Box<WaypointConfig>),
+    /// Boustrophedon or spiral.
+    Pattern(PatternConfig),
+    /// Random search.
+    RandomSearch(RandomSearch),
+    /// A fleet of `[[robots]]`, planned as `[fleet] mode` says by the file's planner.
+    Fleet(Box<FleetPlanner>),
+}
+
+impl PlannerConfig {
+    /// Validates the section of the file's planner, and its fleet when the file has
+    /// `[[robots]]`.
+    pub fn from_file(file: &ExperimentFile, ctx: &Context) -> Result<Self, ConfigError> {
+        let single = match file.planner {
+            PlannerKind::Thesis => PlannerConfig::Thesis(file.thesis.validate(file.retrain.as_ref(), ctx)?),
+            PlannerKind::Waypoint => PlannerConfig::Waypoint(Box::new(file.waypoint.validate(ctx)?)),
+            PlannerKind::Boustrophedon => {
+                PlannerConfig::Pattern(file.pattern.validate(PatternKind::Boustrophedon, ctx)?)
+            }
+            PlannerKind::Spiral => PlannerConfig::Pattern(file.pattern.validate(PatternKind::Spiral, ctx)?),
+            PlannerKind::RandomSearch => PlannerConfig::RandomSearch(RandomSearch::validate(&file.thesis, ctx)?),
+        };
+        if file.robots.is_empty() {
+            if file.fleet.is_some() {
+                return Err(ctx.error("fleet", "is set but there are no [[robots]] to plan for"));
+            }
+            return Ok(single);
+        }
+        let section = file.fleet.clone().unwrap_or_default();
+        let team = match single {
+            PlannerConfig::Thesis(t) => Team::Thesis(t.params),
+            PlannerConfig::Waypoint(w) => Team::Waypoint(w),
+            PlannerConfig::Pattern(_) | PlannerConfig::RandomSearch(_) | PlannerConfig::Fleet(_) => {
+                return Err(crate::fleet::config::wrong_planner(ctx.origin, file.planner.name(), section.mode));
+            }
+        };
+        let fleet = section.validate(&file.robots, file.stations.start, file.retrain.is_some(), team, ctx)?;
+        Ok(PlannerConfig::Fleet(Box::new(fleet)))
+    }
+
+    /// The planner.
+    pub fn planner(&self) -> &dyn Planner {
+        match self {
+            PlannerConfig::Thesis(p) => p,
+            PlannerConfig::Waypoint(p) => p.as_ref(),
+            PlannerConfig::Pattern(p) => p,
+            PlannerConfig::RandomSearch(p) => p,
+            PlannerConfig::Fleet(p) => p.as_ref(),
+        }
+    }
+
+    /// An upper estimate of the planner's own memory on `map` with `threads` evaluation
+    /// threads (what every run holds besides is added by the experiment).
+    pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
+        match self {
+            PlannerConfig::Thesis(t) => t.memory_estimate(map, threads),
+            PlannerConfig::Waypoint(w) => w.memory_estimate(map),
+            PlannerConfig::Pattern(p) => p.memory_estimate(map),
+            PlannerConfig::RandomSearch(r) => r.memory_estimate(map),
+            PlannerConfig::Fleet(f) => f.memory_estimate(map, threads),
+        }
+    }
+
+    /// The length of a run's progress, in the units its generation records count: the
+    /// waypoint planner's generations, the GAs' iterations, nothing for planners that plan in
+    /// one step or report rounds of their own.
+    pub fn progress_length(&self, budget: &crate::planner::Budget) -> u64 {
+        use crate::fleet::config::FleetMethod;
+        match self {
+            PlannerConfig::Thesis(_) | PlannerConfig::RandomSearch(_) => u64::from(budget.iterations),
+            PlannerConfig::Waypoint(w) => w.ga.generations as u64,
+            PlannerConfig::Pattern(_) => u64::from(budget.iterations),
+            PlannerConfig::Fleet(f) => match &f.method {
+                FleetMethod::Central(_) => u64::from(budget.iterations),
+                FleetMethod::Waypoint(w) => w.ga.generations as u64,
+                FleetMethod::Negotiate(..) | FleetMethod::Divide { .. } => 0,
+            },
+        }
+    }
+}
+
+impl ExperimentFile {
+    /// Whether the plan ignores the seed: a deterministic planner, or a fleet whose mode plans
+    /// in one step (area division). Grid studies run such a configuration once.
+    pub fn is_deterministic(&self) -> bool {
+        if self.robots.is_empty() {
+            self.planner.is_deterministic()
+        } else {
+            self.fleet.as_ref().map_or(crate::fleet::config::FleetMode::default(), |f| f.mode).is_deterministic()
+        }
+    }
+}
