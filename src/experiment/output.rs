@@ -37,7 +37,7 @@ fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
 
 /// Streams `history.csv` row by row into a temporary file, renamed by [`HistoryCsv::finish`];
 /// the header comes from the first record (neutral columns, then that planner's extras).
-pub struct HistoryCsv {
+struct HistoryCsv {
     tmp: PathBuf,
     path: PathBuf,
     out: std::io::BufWriter<std::fs::File>,
@@ -118,7 +118,7 @@ pub struct Summary {
 
 /// The common scorer of an experiment: its map, robot, projection and camera, with the
 /// stations and every agent's start as the places reachability is measured from.
-pub fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Scorer {
+fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Scorer {
     let s = &exp.scenario;
     let mut stations = vec![s.start];
     stations.extend(plan.iter().filter_map(|p| p.first().copied()));

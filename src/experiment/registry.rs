@@ -138,9 +138,10 @@ impl PlannerConfig {
     pub fn progress_length(&self, budget: &crate::planner::Budget) -> u64 {
         use crate::fleet::config::FleetMethod;
         match self {
-            PlannerConfig::Thesis(_) | PlannerConfig::RandomSearch(_) => u64::from(budget.iterations),
+            PlannerConfig::Thesis(_) | PlannerConfig::RandomSearch(_) | PlannerConfig::Pattern(_) => {
+                u64::from(budget.iterations)
+            }
             PlannerConfig::Waypoint(w) => w.ga.generations as u64,
-            PlannerConfig::Pattern(_) => u64::from(budget.iterations),
             PlannerConfig::Fleet(f) => match &f.method {
                 FleetMethod::Central(_) => u64::from(budget.iterations),
                 FleetMethod::Waypoint(w) => w.ga.generations as u64,

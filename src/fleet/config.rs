@@ -124,6 +124,14 @@ impl FleetMode {
             FleetMode::Waypoint => "fleet-waypoint",
         }
     }
+
+    /// Whether a fleet planned this way ignores the seed (area division plans in one step).
+    pub fn is_deterministic(self) -> bool {
+        match self {
+            FleetMode::Divide => true,
+            FleetMode::Negotiate | FleetMode::Central | FleetMode::Waypoint => false,
+        }
+    }
 }
 
 /// `[fleet]` of an experiment file.
@@ -199,26 +207,25 @@ impl FleetSection {
         ctx: &Context,
     ) -> Result<super::planner::FleetPlanner, ConfigError> {
         let (origin, scenario, budget) = (ctx.origin, ctx.scenario, ctx.budget);
-        let section = self;
-        let method = match (section.mode, team) {
+        let method = match (self.mode, team) {
             (FleetMode::Central, Team::Thesis(t)) => FleetMethod::Central(t),
             (FleetMode::Negotiate, Team::Thesis(t)) => FleetMethod::Negotiate(
                 t,
                 NegotiationParams {
-                    round_iterations: section.round_iterations,
+                    round_iterations: self.round_iterations,
                     iterations: budget.iterations,
                     evaluations: budget.evaluations,
-                    tolerance: section.tolerance,
+                    tolerance: self.tolerance,
                 },
             ),
-            (FleetMode::Divide, Team::Thesis(_)) => FleetMethod::Divide { angle_deg: section.angle_deg },
+            (FleetMode::Divide, Team::Thesis(_)) => FleetMethod::Divide { angle_deg: self.angle_deg },
             (FleetMode::Waypoint, Team::Waypoint(w)) => FleetMethod::Waypoint(w),
             (mode @ (FleetMode::Central | FleetMode::Negotiate | FleetMode::Divide), Team::Waypoint(_)) => {
                 return Err(wrong_planner(origin, "waypoint", mode));
             }
             (mode @ FleetMode::Waypoint, Team::Thesis(_)) => return Err(wrong_planner(origin, "thesis", mode)),
         };
-        if section.mode == FleetMode::Negotiate {
+        if self.mode == FleetMode::Negotiate {
             for (set, key) in [
                 (budget.wall_clock.is_some(), "budget.wall_clock_s"),
                 (budget.stall_iterations.is_some(), "budget.stall_iterations"),
@@ -239,16 +246,16 @@ impl FleetSection {
                 "is not available for fleets (the negotiation pre-marks cells itself)",
             ));
         }
-        if section.round_iterations == 0 || section.round_iterations > 1_000_000 {
+        if self.round_iterations == 0 || self.round_iterations > 1_000_000 {
             return Err(ConfigError::new(
                 origin,
                 "fleet.round_iterations",
-                format!("= {} is out of range [1, 1000000]", section.round_iterations),
+                format!("= {} is out of range [1, 1000000]", self.round_iterations),
             ));
         }
-        check_range(origin, "fleet.tolerance", section.tolerance, 0.0, 1.0, "[0, 1]")?;
-        check_range(origin, "fleet.angle_deg", section.angle_deg, -360.0, 360.0, "[-360, 360] degrees")?;
-        if let Some(name) = &section.name
+        check_range(origin, "fleet.tolerance", self.tolerance, 0.0, 1.0, "[0, 1]")?;
+        check_range(origin, "fleet.angle_deg", self.angle_deg, -360.0, 360.0, "[-360, 360] degrees")?;
+        if let Some(name) = &self.name
             && (name.trim().is_empty() || name.len() > 64 || name.chars().any(|c| matches!(c, ',' | '"' | '\n' | '\r')))
         {
             return Err(ConfigError::new(
@@ -261,7 +268,7 @@ impl FleetSection {
         }
         let r = scenario.robot;
         let fleet = validate(robots, r, start, origin, &scenario.map)?;
-        if section.mode == FleetMode::Waypoint
+        if self.mode == FleetMode::Waypoint
             && let Some(k) = fleet.robots().iter().position(|x| x.footprint != r)
         {
             return Err(ConfigError::new(
@@ -274,7 +281,7 @@ impl FleetSection {
                 ),
             ));
         }
-        Ok(super::planner::FleetPlanner { fleet, name: section.name.clone(), method })
+        Ok(super::planner::FleetPlanner { fleet, name: self.name.clone(), method })
     }
 }
 

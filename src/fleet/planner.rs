@@ -5,7 +5,7 @@
 //! output scores and draws each robot at its own width.
 
 use super::Fleet;
-use super::config::{FleetMethod, FleetMode};
+use super::config::FleetMethod;
 use super::metrics::FleetScorer;
 use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer};
@@ -246,15 +246,5 @@ impl Planner for FleetPlanner {
             agents: self.fleet.robots().to_vec(),
             artifacts: Box::new(()),
         })
-    }
-}
-
-impl FleetMode {
-    /// Whether a fleet planned this way ignores the seed (area division plans in one step).
-    pub fn is_deterministic(self) -> bool {
-        match self {
-            FleetMode::Divide => true,
-            FleetMode::Negotiate | FleetMode::Central | FleetMode::Waypoint => false,
-        }
     }
 }
