@@ -288,3 +288,78 @@ fn area_division_plans_one_region_per_robot() {
     expect_input_error(&["eval", "--fleet", &d("shared.toml"), "--divide", "--out", &d("o2")], "distinct start");
     expect_input_error(&["eval", "--fleet", &d("fleet.toml"), "--out", &d("o3")], "--path FILE");
 }
+
+/// Two 5 m rooms at 0.1 m with a closed wall at x = 5 m: an end station behind the wall is
+/// refused before planning (exit 2), instead of a plan that drives through the wall.
+#[test]
+fn an_end_behind_a_closed_wall_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cols, rows) = (100usize, 60usize);
+    let mut pgm = format!("P5\n{cols} {rows}\n255\n").into_bytes();
+    for _ in 0..rows {
+        pgm.extend((0..cols).map(|c| if c == 50 { 0u8 } else { 254 }));
+    }
+    std::fs::write(dir.path().join("rooms.pgm"), pgm).unwrap();
+    std::fs::write(
+        dir.path().join("rooms.yaml"),
+        "image: rooms.pgm\nresolution: 0.1\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
+    .unwrap();
+    let map = dir.path().join("rooms.yaml");
+    let map = map.to_str().unwrap();
+    expect_input_error(
+        &["eval", "--map", map, "--pattern", "boustrophedon", "--start", "2,3", "--end", "8,3"],
+        "--end: (8, 3) m cannot be reached from the start (2, 3) m",
+    );
+    let exp = dir.path().join("rooms.toml");
+    std::fs::write(
+        &exp,
+        format!(
+            "planner = \"boustrophedon\"\n[map]\nsource = {map:?}\n[stations]\nstart = [2.0, 3.0]\nend = [8.0, 3.0]\n"
+        ),
+    )
+    .unwrap();
+    expect_input_error(&["run", exp.to_str().unwrap(), "--quiet"], "stations.end");
+    // In the start's room the same end is fine.
+    let ok = covga(&[
+        "eval",
+        "--map",
+        map,
+        "--pattern",
+        "boustrophedon",
+        "--start",
+        "2,3",
+        "--end",
+        "4,3",
+        "--json",
+        "--out",
+        dir.path().join("ok").to_str().unwrap(),
+    ]);
+    let s = json_of(&ok);
+    assert_eq!(s["common"]["obstacle_cells"], 0);
+    assert_eq!(s["common"]["executable"], true);
+}
+
+/// A heterogeneous fleet's headline sweeps each robot at its own width: the area division's
+/// plan sweeps no obstacle cell in the headline, as in its fleet block.
+#[test]
+fn the_fleet_headline_scores_each_robot_at_its_own_width() {
+    let dir = tempfile::tempdir().unwrap();
+    let fleet = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("experiments/fleets/thesis1-hetero.toml");
+    let out = covga(&[
+        "eval",
+        "--map",
+        "thesis-1",
+        "--fleet",
+        fleet.to_str().unwrap(),
+        "--divide",
+        "--json",
+        "--out",
+        dir.path().to_str().unwrap(),
+    ]);
+    let s = json_of(&out);
+    assert_eq!(s["fleet"]["obstacle_cells"], 0, "{s}");
+    assert_eq!(s["common"]["obstacle_cells"], 0, "{s}");
+    assert_eq!(s["common"]["executable"], true);
+    assert_eq!(s["obstacle_cells"], 0, "the headline metrics");
+}

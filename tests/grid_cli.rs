@@ -333,10 +333,23 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
         "time_s",
         "makespan_s",
         "evaluations",
-        "feasible",
+        "executable",
+        "planner_feasible",
     ] {
         for r in &rows {
             assert!(!r[col(metric)].is_empty(), "{metric} empty for {}", r[col("planner")]);
+        }
+    }
+    // One executability rule for every planner: a row whose plan sweeps obstacle cells is not
+    // executable, whatever its planner's own constraints say; every plan starts and ends at
+    // the start station (1.3, 1.3).
+    for r in &rows {
+        let obstacles: u64 = r[col("obstacle_cells")].parse().unwrap();
+        assert_eq!(r[col("executable")] == "true", obstacles == 0, "{}", r[col("planner")]);
+        let path = std::fs::read_to_string(out.join("runs").join(&r[0]).join("best_path.csv")).unwrap();
+        let points: Vec<&str> = path.lines().skip(1).collect();
+        for p in [points[0], points[points.len() - 1]] {
+            assert!(p.ends_with(",1.3,1.3"), "{}: {p}", r[col("planner")]);
         }
     }
     // The GAs respect the evaluation budget (they stop at the first iteration past it).

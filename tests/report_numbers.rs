@@ -29,8 +29,9 @@ fn fixture(dir: &std::path::Path) {
             ("thesis.c_len", c_len.to_string()),
             ("planner", "thesis".to_string()),
             ("map", "thesis-1".to_string()),
-            // One infeasible run, counted in its group's row.
-            ("feasible", (id != "a3").to_string()),
+            // One run a robot cannot drive: counted in its group's row, left out of its means.
+            ("executable", (id != "a3").to_string()),
+            ("planner_feasible", (id != "a3").to_string()),
             ("violations", if id == "a3" { "the path sweeps 1 obstacle cells".to_string() } else { String::new() }),
             ("cov_final_free", cov.to_string()),
             ("cov_final_reach", cov.to_string()),
@@ -63,9 +64,10 @@ fn report_numbers_match_hand_and_independent_computations() {
         // Best run per group by f = t·cov: a2 (0.31 against 0.30 and 0.28), b3 (0.432).
         "| thesis.c_len=0.1 | a2 | 0.1 | 0.620000 | 0.500000 | 0.310000 |",
         "| thesis.c_len=0.4 | b3 | 0.4 | 0.720000 | 0.600000 | 0.432000 |",
-        // Every point is on its group's front. Hypervolume from (0, 0), by t ascending:
-        // A: 0.4·0.7 + 0.1·0.62 + 0.1·0.5 = 0.392; B: 0.5·0.8 + 0.1·0.72 + 0.1·0.6 = 0.532.
-        "| thesis.c_len=0.1 | 3 | 3 | 0.3920 | 2.000 | 1.000 | 3.000 |",
+        // Every executable point is on its group's front (a3, not executable, is on none).
+        // Hypervolume from (0, 0), by t ascending: A: 0.5·0.62 + 0.1·0.5 = 0.36;
+        // B: 0.5·0.8 + 0.1·0.72 + 0.1·0.6 = 0.532.
+        "| thesis.c_len=0.1 | 3 | 2 | 0.3600 | 2.000 | 1.000 | 3.000 |",
         "| thesis.c_len=0.4 | 3 | 3 | 0.5320 | 5.000 | 4.000 | 6.000 |",
         // Best configuration per group over seeds (each group here is one configuration).
         "| thesis.c_len=0.4 | 0.4 | 3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 | 0.4173 |",
@@ -78,9 +80,11 @@ fn report_numbers_match_hand_and_independent_computations() {
         "| thesis.c_len | cov_final_free | 2 | 1.190 | 1 | 2.752e-1 | 0.2381 | 0.1: 0.6200 · 0.4: 0.7200 |",
         "| thesis.c_len | t_final | 2 | 1.263 | 1 | 2.612e-1 | 0.2525 | 0.1: 0.5000 · 0.4: 0.6000 |",
         "| thesis.c_len | f_free | 2 | 3.857 | 1 | 4.953e-2 | 0.7714 | 0.1: 0.3000 · 0.4: 0.4200 |",
-        // Per group, f = cov·t: 0.30, 0.31, 0.28 → 0.2967 ± t(0.975, 2)·0.015275/√3.
-        "| thesis.c_len=0.1 | 3 | 1 | 0.6067 ± 0.2501 | 0.5000 ± 0.2484 | 0.2967 ± 0.0379 |",
-        "| thesis.c_len=0.4 | 3 | 0 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 | 0.4173 ± ",
+        // Per group over the executable runs (a1 and a2 of group A: cov 0.56 ± t(0.975, 1)·0.06 =
+        // 12.7062·0.06, t 0.55 ± 12.7062·0.05, f = cov·t 0.305 ± 12.7062·0.005), then cov over
+        // all three runs (0.6067 ± 0.2501, as in the configuration rows).
+        "| thesis.c_len=0.1 | 3 | 2/3 | 0.5600 ± 0.7624 | 0.5500 ± 0.6353 | 0.3050 ± 0.0635 | 0.6067 ± 0.2501 |",
+        "| thesis.c_len=0.4 | 3 | 3/3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 | 0.4173 ± ",
         // One-way ANOVA of cov: SS_between = 6·0.05² = 0.015, SS_within = 2·0.020267 = 0.040533,
         // η² = 0.015/0.055533, F = 0.015/(0.040533/4) = 1.48; P(F(1, 4) > F) = P(|T₄| > √F),
         // from the closed form of Student's t with 4 df: 0.2906. On ranks (A 1, 3, 4; B 6, 2, 5):
@@ -113,7 +117,7 @@ fn where_filters_the_runs_and_name_keeps_reports_apart() {
     let md = std::fs::read_to_string(dir.path().join("report-c-len-04/summary.md")).unwrap();
     assert!(md.contains("Runs with thesis.c_len = 0.40 only."), "{md}");
     assert!(md.contains("3 runs, 1 configurations, 3 replicate(s)"), "{md}");
-    assert!(md.contains("| all runs | 3 | 0 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 |"), "{md}");
+    assert!(md.contains("| all runs | 3 | 3/3 | 0.7067 ± 0.2501 | 0.6000 ± 0.2484 |"), "{md}");
     assert!(!dir.path().join("report").exists(), "the default report folder is left alone");
     for (args, needle) in [
         (vec!["--where", "nothing=1"], "--where `nothing` is not a column"),
@@ -164,7 +168,8 @@ fn the_claims_of_section_5_1_get_their_verdicts() {
             ("thesis.p_mi", "0".to_string()),
             ("thesis.tournament_size", ts.to_string()),
             ("planner", "thesis".to_string()),
-            ("feasible", "true".to_string()),
+            ("executable", "true".to_string()),
+            ("planner_feasible", "true".to_string()),
             ("cov_final_free", "0.7".to_string()),
             ("t_final", "0.8".to_string()),
             ("f_free", "0.56".to_string()),

@@ -269,10 +269,11 @@ fn every_planner_runs_alone_and_random_search_is_deterministic() {
     assert!((2000..2000 + 80).contains(&e), "{e}");
     assert_eq!(s["stop"], "evaluations");
     // Patterns on thesis-2 report their pockets (none: the disc leaves no pocket a 0.6 m robot
-    // cannot reach) and are feasible.
+    // cannot reach), meet their own constraints and are executable.
     let s = summary_without_time(&dir.path().join("spiral-1"));
     assert_eq!(s["pockets"], 0);
-    assert_eq!(s["feasible"], true);
+    assert_eq!(s["planner_feasible"], true);
+    assert_eq!(s["score"]["executable"], true);
 }
 
 /// The budget's other stops: no better best for `stall_iterations`, and the wall clock; the

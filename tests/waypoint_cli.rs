@@ -90,8 +90,8 @@ fn three_agents_share_loop_closures() {
     let loops_ok = (0..3).all(|i| closures[i][i] >= 2);
     assert_eq!(s["loop_closures_ok"], loops_ok);
     let coverage = s["coverage"].as_f64().unwrap();
-    assert_eq!(s["feasible"], loops_ok && coverage >= 0.8);
-    assert_eq!(s["feasible"], true);
+    assert_eq!(s["planner_feasible"], loops_ok && coverage >= 0.8);
+    assert_eq!(s["planner_feasible"], true);
     assert!(s["violations"].as_array().unwrap().is_empty());
     let initial = s["initial_feasible"].as_u64().unwrap();
     assert!(initial <= 20, "at most the population: {initial}");

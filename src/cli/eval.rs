@@ -226,6 +226,12 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             };
             map.check_station(start, "--start").map_err(CliError::Input)?;
             map.check_station(end, "--end").map_err(CliError::Input)?;
+            if end != start {
+                let clear = crate::map::clearance::Clearance::new(&map, robot.width);
+                if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {
+                    return Err(CliError::Input(format!("--end: {why}")));
+                }
+            }
             let hand = match a.pattern {
                 Some(PatternName::ThesisBoustrophedon) => Some((HandMade::Boustrophedon, "thesis boustrophedon")),
                 Some(PatternName::ThesisSpiral) => Some((HandMade::Spiral, "thesis spiral")),
@@ -266,8 +272,15 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         ),
         None => None,
     };
+    // A fleet's robots sweep at their own widths and drive at their own speeds, in the headline
+    // as in the fleet block; any other plan is the command line's robot on every path.
+    let robots: Vec<crate::coverage::Footprint> = match &fleet {
+        Some((_, f)) => f.robots().iter().map(|r| r.footprint).collect(),
+        None => vec![robot; paths.len()],
+    };
+    let widths: Vec<f64> = robots.iter().map(|r| r.width).collect();
     let grid = CoverageGrid::new(&map);
-    let mut metrics = robot.measure_plan(&grid, &mut SweepScratch::new(&grid), &paths);
+    let mut metrics = robot.measure_fleet(&grid, &mut SweepScratch::new(&grid), &paths, &widths);
     if a.obstacle_in_area {
         metrics.area_cells += placed as u64;
     }
@@ -275,7 +288,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let camera =
         crate::waypoint::config::camera_spec(&Default::default(), "default camera", &map).map_err(CliError::input)?;
     let stations: Vec<crate::geom::Point> = paths.iter().filter_map(|p| p.first().copied()).collect();
-    let common = Scorer::new(&map, robot, projection, &camera, &stations).score(&paths);
+    let common = Scorer::for_widths(&map, robot, &widths, projection, &camera, &stations).score_agents(&paths, &robots);
     let report = Report {
         map: map.name(),
         source,

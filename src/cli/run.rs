@@ -132,10 +132,18 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
                 s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
             );
         }
-        if summary.feasible {
-            println!("feasible: yes");
+        if s.executable {
+            println!("executable: yes");
         } else {
-            println!("feasible: NO ({})", summary.violations.join("; "));
+            println!(
+                "executable: NO (the plan sweeps {} obstacle or unknown cells or leaves the map)",
+                s.obstacle_cells
+            );
+        }
+        if summary.planner_feasible {
+            println!("planner constraints: met");
+        } else {
+            println!("planner constraints: NOT met ({})", summary.violations.join("; "));
         }
         println!("wrote {}", dir.display());
     }

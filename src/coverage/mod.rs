@@ -98,13 +98,23 @@ impl Footprint {
     /// rotation times add up.
     pub fn measure_plan(&self, grid: &CoverageGrid, scratch: &mut SweepScratch, paths: &[Vec<Point>]) -> PathMetrics {
         let counts = scratch.sweep_all(grid, paths, self.width);
-        let (mut length, mut turn, mut turns) = (0.0, 0.0, 0);
-        for p in paths {
-            let (t, n) = motion::turning(p);
-            length += motion::path_length(p);
-            turn += t;
-            turns += n;
-        }
+        let (length, turn, turns) = motion::plan_totals(paths);
+        self.metrics(grid, counts, length, turn, turns)
+    }
+
+    /// Measures a plan whose path `k` sweeps at `widths[k]` (a team of robots of different
+    /// widths) on one shared visit grid; lengths and turns add up, rotation at this robot's
+    /// speed. With every width this robot's, it equals [`Footprint::measure_plan`].
+    pub fn measure_fleet(
+        &self,
+        grid: &CoverageGrid,
+        scratch: &mut SweepScratch,
+        paths: &[Vec<Point>],
+        widths: &[f64],
+    ) -> PathMetrics {
+        let mut shares = vec![SweepCounts::default(); paths.len()];
+        let counts = scratch.sweep_fleet(grid, paths, widths, &mut shares);
+        let (length, turn, turns) = motion::plan_totals(paths);
         self.metrics(grid, counts, length, turn, turns)
     }
 

@@ -45,6 +45,18 @@ pub fn rotation_time(total_turn_rad: f64, r_rot: f64) -> f64 {
     if r_rot > 0.0 { total_turn_rad / r_rot } else { 0.0 }
 }
 
+/// Length (m), total absolute turn (rad) and non-zero turns of a plan, summed over its paths.
+pub fn plan_totals(paths: &[Vec<Point>]) -> (f64, f64, usize) {
+    let (mut length, mut turn, mut turns) = (0.0, 0.0, 0);
+    for p in paths {
+        let (t, n) = turning(p);
+        length += path_length(p);
+        turn += t;
+        turns += n;
+    }
+    (length, turn, turns)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -49,6 +49,9 @@ pub struct CameraSpec {
 pub struct Score {
     /// Paths in the plan.
     pub agents: usize,
+    /// Whether a robot can drive the plan: its footprint sweeps no obstacle or unknown cell
+    /// and stays on the map (the one executability rule of every planner's plans).
+    pub executable: bool,
     /// `cov_final` over all free cells (003 eq. 3.6 with `A_pix` = free cells).
     pub cov_final_free: f64,
     /// `cov_final` over the cells the footprint can reach.
@@ -105,6 +108,7 @@ impl Score {
     pub fn columns(&self) -> Vec<(&'static str, String)> {
         vec![
             ("agents", self.agents.to_string()),
+            ("executable", self.executable.to_string()),
             ("cov_final_free", self.cov_final_free.to_string()),
             ("cov_final_reach", self.cov_final_reach.to_string()),
             ("t_final", self.t_final.to_string()),
@@ -224,6 +228,7 @@ impl CameraLayer {
 /// Scores plans on one map for one robot, camera and set of stations.
 pub struct Scorer {
     grid: CoverageGrid,
+    bounds: (Point, Point),
     robot: Footprint,
     resolution: f64,
     projection: Projection,
@@ -240,9 +245,26 @@ impl Scorer {
         camera: &CameraSpec,
         stations: &[Point],
     ) -> Self {
-        let reach = Reach::new(&Clearance::new(map, robot.width), stations);
+        Self::for_widths(map, robot, &[robot.width], projection, camera, stations)
+    }
+
+    /// As [`Scorer::new`] for a team whose robots have the widths `widths`: the reachable
+    /// cells are those of the narrowest (it can sweep every cell a wider robot can from the
+    /// same stations); `robot` gives the speeds of eq. 3.10.
+    pub fn for_widths(
+        map: &GridMap,
+        robot: Footprint,
+        widths: &[f64],
+        projection: Projection,
+        camera: &CameraSpec,
+        stations: &[Point],
+    ) -> Self {
+        let narrowest = widths.iter().copied().fold(robot.width, f64::min);
+        let reach = Reach::new(&Clearance::new(map, narrowest), stations);
+        let far = map.origin() + nalgebra::Vector2::new(map.width_m(), map.height_m());
         Self {
             grid: CoverageGrid::new(map),
+            bounds: (map.origin(), far),
             robot,
             resolution: map.resolution(),
             projection,
@@ -267,25 +289,35 @@ impl Scorer {
         counts.unique() as f64 / self.grid.area_cells().max(1) as f64
     }
 
-    /// Every metric of a plan (one path per agent).
+    /// Every metric of a plan (one path per agent), every agent the scorer's robot.
     pub fn score(&self, paths: &[Vec<Point>]) -> Score {
+        self.score_agents(paths, &vec![self.robot; paths.len()])
+    }
+
+    /// Every metric of a plan whose path `k` is driven by `robots[k]` (its width, speed and
+    /// rotation speed): the swept cells, executability and times each at that robot's own.
+    pub fn score_agents(&self, paths: &[Vec<Point>], robots: &[Footprint]) -> Score {
+        assert_eq!(paths.len(), robots.len(), "one robot per path");
         let mut scratch = SweepScratch::new(&self.grid);
-        let m = self.robot.measure_plan(&self.grid, &mut scratch, paths);
+        let widths: Vec<f64> = robots.iter().map(|r| r.width).collect();
+        let m = self.robot.measure_fleet(&self.grid, &mut scratch, paths, &widths);
         let unique_reach = scratch.visit_counts().filter(|&(i, _)| self.reach.is_coverable(i as usize)).count() as u64;
         let th = crate::coverage::fitness::score(&m, &self.robot, self.resolution, self.projection);
         let reachable = self.reach.coverable_count() as u64;
         let cov_reach = unique_reach as f64 / reachable.max(1) as f64;
         let f_reach = f_obstacle(self.projection.apply(th.t_final, cov_reach), m.obstacle_cells);
         let (mut lengths, mut times) = (Vec::new(), Vec::new());
-        for p in paths {
+        for (p, r) in paths.iter().zip(robots) {
             let len = motion::path_length(p);
             let (turn, _) = motion::turning(p);
             lengths.push(len);
-            times.push(len / self.robot.speed + motion::rotation_time(turn, self.robot.rot_speed));
+            times.push(len / r.speed + motion::rotation_time(turn, r.rot_speed));
         }
+        let on_map = paths.iter().zip(&widths).all(|(p, &w)| footprint_on_map(self.bounds, p, w));
         let [cam_walls_free, cam_open_free, cam_walls_reach, cam_open_reach] = self.camera.coverage(paths);
         Score {
             agents: paths.len(),
+            executable: m.obstacle_cells == 0 && on_map,
             cov_final_free: th.cov_final,
             cov_final_reach: cov_reach,
             t_final: th.t_final,
@@ -312,6 +344,28 @@ impl Scorer {
             agent_time_s: times,
         }
     }
+}
+
+/// Whether the footprint of width `width` swept along `path` stays inside the map's
+/// rectangle `bounds` (corner, far corner), to 1e-6 m (the slack of the planners' clearance
+/// test, so that lanes half a width off the edge stay on): every swept rectangle's corners (a
+/// rectangle is convex), and a path of one point lies on the map.
+pub fn footprint_on_map(bounds: (Point, Point), path: &[Point], width: f64) -> bool {
+    const EPS: f64 = 1e-6;
+    let (lo, hi) = bounds;
+    let inside = |p: Point| p.x >= lo.x - EPS && p.y >= lo.y - EPS && p.x <= hi.x + EPS && p.y <= hi.y + EPS;
+    if path.len() == 1 {
+        return inside(path[0]);
+    }
+    path.windows(2).all(|w| {
+        let d = w[1] - w[0];
+        let len = d.norm();
+        if len < crate::geom::ZERO_LENGTH {
+            return inside(w[0]);
+        }
+        let n = nalgebra::Vector2::new(-d.y, d.x) * (0.5 * width / len);
+        [w[0] + n, w[0] - n, w[1] + n, w[1] - n].into_iter().all(inside)
+    })
 }
 
 /// The violation of a plan that sweeps obstacle cells, in words (none when it sweeps none):
@@ -430,16 +484,17 @@ mod tests {
     fn score_columns_are_named_and_ordered_with_their_values() {
         let sc = Score { agents: 3, cov_final_free: 0.25, crossings: 17, makespan_s: 12.5, ..Score::default() };
         let cols = sc.columns();
-        assert_eq!(cols.len(), 23);
+        assert_eq!(cols.len(), 24);
         assert_eq!(cols[0], ("agents", "3".to_string()));
-        assert_eq!(cols[1], ("cov_final_free", "0.25".to_string()));
-        assert_eq!(cols[9], ("crossings", "17".to_string()));
-        assert_eq!(cols[22], ("makespan_s", "12.5".to_string()));
+        assert_eq!(cols[1], ("executable", "false".to_string()));
+        assert_eq!(cols[2], ("cov_final_free", "0.25".to_string()));
+        assert_eq!(cols[10], ("crossings", "17".to_string()));
+        assert_eq!(cols[23], ("makespan_s", "12.5".to_string()));
         assert_eq!(Score::column_names(), cols.iter().map(|(k, _)| *k).collect::<Vec<_>>());
         let mut names = Score::column_names();
         names.sort_unstable();
         names.dedup();
-        assert_eq!(names.len(), 23, "no column twice");
+        assert_eq!(names.len(), 24, "no column twice");
     }
 
     #[test]

@@ -196,6 +196,12 @@ impl ExperimentFile {
         map.check_station(end, "end").map_err(|m| err("stations.end", m))?;
         let robot = Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed };
         robot.check_fits(&map).map_err(|m| err("robot.width", m))?;
+        if end != start {
+            let clear = crate::map::clearance::Clearance::new(&map, robot.width);
+            if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {
+                return Err(err("stations.end", why));
+            }
+        }
         let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
         let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
         crate::fleet::config::waypoint_team(

@@ -95,9 +95,11 @@ pub struct Summary {
     pub iterations: u32,
     /// Why the run stopped.
     pub stop: StopReason,
-    /// Whether the plan meets the planner's constraints.
-    pub feasible: bool,
-    /// The constraints it violates, in words.
+    /// Whether the plan meets the planner's own constraints (the waypoint planner's ramp and
+    /// loop closures, the thesis GA's obstacle-free rule, …); whether a robot can drive it at
+    /// all is the common scorer's `score.executable`.
+    pub planner_feasible: bool,
+    /// The planner's constraints it violates, in words.
     pub violations: Vec<String>,
     /// Warnings about the run's set-up, in words.
     pub warnings: Vec<String>,
@@ -117,12 +119,25 @@ pub struct Summary {
 }
 
 /// The common scorer of an experiment: its map, robot, projection and camera, with the
-/// stations and every agent's start as the places reachability is measured from.
-fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>]) -> Scorer {
+/// stations and every agent's start as the places reachability is measured from; for a plan
+/// that names its robots, the narrowest robot's reachable cells.
+fn scorer_of(exp: &Experiment, plan: &[Vec<crate::geom::Point>], agents: &[Agent]) -> Scorer {
     let s = &exp.scenario;
     let mut stations = vec![s.start];
     stations.extend(plan.iter().filter_map(|p| p.first().copied()));
-    Scorer::new(&s.map, s.robot, s.projection, &s.camera, &stations)
+    let widths: Vec<f64> = agents.iter().map(|a| a.footprint.width).collect();
+    Scorer::for_widths(&s.map, s.robot, &widths, s.projection, &s.camera, &stations)
+}
+
+/// The common score of a plan: each named robot at its own width and speeds, any other plan
+/// with the experiment's robot on every path.
+fn common_score(scorer: &Scorer, plan: &[Vec<crate::geom::Point>], agents: &[Agent]) -> Score {
+    if agents.len() == plan.len() && !agents.is_empty() {
+        let robots: Vec<_> = agents.iter().map(|a| a.footprint).collect();
+        scorer.score_agents(plan, &robots)
+    } else {
+        scorer.score(plan)
+    }
 }
 
 /// The fleet metrics of a plan: for a plan that names its robots (a fleet), each robot at its
@@ -212,8 +227,8 @@ pub fn run_experiment(
     for (name, bytes) in &outcome.files {
         write(name, bytes)?;
     }
-    let scorer = scorer_of(exp, &outcome.plan);
-    let score = scorer.score(&outcome.plan);
+    let scorer = scorer_of(exp, &outcome.plan, &outcome.agents);
+    let score = common_score(&scorer, &outcome.plan, &outcome.agents);
     let fleet = team_score(exp, &outcome.plan, &outcome.agents);
     let summary = Summary {
         planner: planner.name(),
@@ -222,7 +237,7 @@ pub fn run_experiment(
         evaluations: outcome.evaluations,
         iterations: outcome.iterations,
         stop: outcome.stop,
-        feasible: outcome.feasible,
+        planner_feasible: outcome.feasible,
         violations: outcome.violations.clone(),
         warnings: outcome.warnings.clone(),
         objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
@@ -238,7 +253,13 @@ pub fn run_experiment(
             grid: scorer.grid(),
             paths: outcome.plan.clone(),
             width: exp.scenario.robot.width,
-            robots: outcome.agents.iter().map(|a| (a.name.clone(), a.footprint.width)).collect(),
+            // A team without named robots (000's multi-agent plans) is drawn one colour per
+            // agent as well.
+            robots: if outcome.agents.is_empty() && outcome.plan.len() > 1 {
+                (0..outcome.plan.len()).map(|k| (format!("agent {k}"), exp.scenario.robot.width)).collect()
+            } else {
+                outcome.agents.iter().map(|a| (a.name.clone(), a.footprint.width)).collect()
+            },
             title: path_title(planner.name(), exp.scenario.map.name(), &summary, &outcome),
         };
         crate::plot::save(&figure, &dir.join("path"))?;

@@ -6,6 +6,7 @@
 //! on load and save. Unknown cells are not free.
 
 pub mod clearance;
+pub mod coverable;
 pub mod presets;
 pub mod reach;
 pub mod ros;

@@ -3,10 +3,11 @@
 //! sweep from there, and the free pockets it cannot (SLAM maps have many: gaps behind pillars,
 //! specks of free space inside walls, rooms behind doors narrower than the robot).
 //!
-//! This is the fair denominator for coverage on real maps: a path cannot sweep a cell that no
-//! reachable pose of the footprint touches. A cell counts as coverable when its centre lies
-//! within the robot's half width of a reachable centre (a pose exists, in some heading, whose
-//! swept rectangle of 003 §3.1 contains the cell centre).
+//! This is the fair denominator for coverage on real maps: a wall-free path cannot sweep a cell
+//! that no reachable pose of the footprint touches. The robot centres are read at cell centres
+//! (the pattern planners' moves); the coverable cells from the continuous positions with
+//! clearance ≥ width/2 ([`super::coverable`]), so that lanes half a width off a wall, which
+//! sit between cell centres, count.
 
 use super::clearance::Clearance;
 use crate::geom::Point;
@@ -21,6 +22,54 @@ pub struct Reach {
     cell_area_m2: f64,
 }
 
+/// The cell centres the robot's disc can occupy in the stations' component: flood-filled from
+/// each station's nearest fitting centre (8-connected, no corner cutting, as the connecting
+/// moves of the patterns). One flag per cell, row-major.
+pub fn reachable_centres(clear: &Clearance, stations: &[Point]) -> Vec<bool> {
+    let map = clear.map();
+    let mut centres = vec![false; map.rows() * map.cols()];
+    let mut stack: Vec<usize> = stations.iter().filter_map(|&p| clear.snap(p)).collect();
+    for &s in &stack {
+        centres[s] = true;
+    }
+    while let Some(i) = stack.pop() {
+        for (j, _) in clear.steps(i) {
+            if !centres[j] {
+                centres[j] = true;
+                stack.push(j);
+            }
+        }
+    }
+    centres
+}
+
+/// Why `end` is no place to end a plan that starts at `start` for a robot of the
+/// clearance's width, if it is none: the disc does not fit there, or no path of its centre
+/// from `start` keeps clear of every wall.
+pub fn unreachable_end(clear: &Clearance, start: Point, end: Point) -> Option<String> {
+    let width = 2.0 * clear.radius();
+    if !clear.fits_geometry(end) {
+        return Some(format!(
+            "a {width} m robot does not fit at ({}, {}) m: its centre must keep {} m from every wall and the map's edge",
+            end.x,
+            end.y,
+            clear.radius()
+        ));
+    }
+    let centres = reachable_centres(clear, &[start]);
+    match clear.snap(end) {
+        Some(i) if centres[i] => None,
+        _ => Some(format!(
+            "({}, {}) m cannot be reached from the start ({}, {}) m by a {width} m robot: no path of its centre keeps {} m from every wall",
+            end.x,
+            end.y,
+            start.x,
+            start.y,
+            clear.radius()
+        )),
+    }
+}
+
 impl Reach {
     /// Flood-fills the fitting cell centres from each station (8-connected, no corner cutting,
     /// as the connecting moves of the patterns), then marks the coverable free cells and groups
@@ -28,38 +77,12 @@ impl Reach {
     pub fn new(clear: &Clearance, stations: &[Point]) -> Self {
         let map = clear.map();
         let n = map.rows() * map.cols();
-        let mut centres = vec![false; n];
-        let mut stack: Vec<usize> = stations.iter().filter_map(|&p| clear.snap(p)).collect();
-        for &s in &stack {
-            centres[s] = true;
-        }
-        while let Some(i) = stack.pop() {
-            for (j, _) in clear.steps(i) {
-                if !centres[j] {
-                    centres[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
+        let centres = reachable_centres(clear, stations);
         let res = map.resolution();
-        let r_cells = clear.radius() / res;
-        let k = r_cells.floor() as isize;
-        let offsets: Vec<(isize, isize)> = (-k..=k)
-            .flat_map(|dr| (-k..=k).map(move |dc| (dr, dc)))
-            .filter(|&(dr, dc)| ((dr * dr + dc * dc) as f64) <= r_cells * r_cells + 1e-9)
-            .collect();
         let (rows, cols) = (map.rows() as isize, map.cols() as isize);
-        let mut coverable = vec![false; n];
-        for (i, _) in centres.iter().enumerate().filter(|(_, c)| **c) {
-            let (r, c) = ((i / map.cols()) as isize, (i % map.cols()) as isize);
-            for &(dr, dc) in &offsets {
-                let (nr, nc) = (r + dr, c + dc);
-                if nr >= 0 && nc >= 0 && nr < rows && nc < cols {
-                    let j = (nr * cols + nc) as usize;
-                    coverable[j] |= map.is_free(nr as usize, nc as usize);
-                }
-            }
-        }
+        let seeds: Vec<Point> =
+            (0..n).filter(|&i| centres[i]).map(|i| map.cell_centre(i / map.cols(), i % map.cols())).collect();
+        let coverable = super::coverable::coverable_cells(map, clear.radius(), &seeds);
         let coverable_count = coverable.iter().filter(|c| **c).count();
         // Pockets: connected groups of free cells that are not coverable.
         let mut seen = coverable.clone();

@@ -188,7 +188,21 @@ pub fn draw_map_paths<DB: DrawingBackend>(
         }
     }
     let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
-    Ok(f64::from(b.0 - a.0))
+    let px_per_m = f64::from(b.0 - a.0);
+    // Walls and swept obstacle cells once more on top of the paths, each at least a pixel
+    // wide, so that thin walls and doors stay visible in small panels and a reader can judge
+    // whether a path crosses a wall.
+    let pad = if px_per_m > 0.0 { (0.5 / px_per_m - 0.5 * res).max(0.0) } else { 0.0 };
+    let on_top = super::cell_runs(map.cols(), map.rows(), |i| match classes[i] {
+        Class::Obstacle | Class::Hit => classes[i],
+        _ => Class::Never,
+    });
+    let walls = on_top.into_iter().filter(|run| run.3 != Class::Never).map(|(r, c0, c1, class)| {
+        let (xa, ya) = (ox + c0 as f64 * res, oy + r as f64 * res);
+        Rectangle::new([(xa - pad, ya - pad), (ox + c1 as f64 * res + pad, ya + res + pad)], class.colour().filled())
+    });
+    chart.draw_series(walls).map_err(err)?;
+    Ok(px_per_m)
 }
 
 /// A round scale-bar length (1, 2 or 5 × 10^k m) near a fifth of `extent`.

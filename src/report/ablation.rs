@@ -110,8 +110,15 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
     let mut variants: Vec<String> = label.clone();
     variants.sort_by_key(|l| (order.iter().position(|o| l.starts_with(o)).unwrap_or(order.len()), l.clone()));
     variants.dedup();
-    let rows_of = |map: &str, v: &str| -> Vec<usize> {
+    let flag = |r: usize, c: &str| t.col(c).is_some_and(|i| t.rows[r][i] == "true");
+    let all_rows_of = |map: &str, v: &str| -> Vec<usize> {
         (0..t.rows.len()).filter(|&r| t.rows[r][mc] == map && label[r] == v).collect()
+    };
+    // Tables, tests and findings compare executable plans only (plans a robot can drive:
+    // no obstacle or unknown cell swept, on the map); the share and the all-plans coverage
+    // stand beside them.
+    let rows_of = |map: &str, v: &str| -> Vec<usize> {
+        all_rows_of(map, v).into_iter().filter(|&r| flag(r, "executable")).collect()
     };
     let mut md = String::new();
     let mut csv = String::from("map,planner,metric,n,median,q1,q3,mean\n");
@@ -119,7 +126,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
     let _ = writeln!(md, "## Planner comparison\n");
     let _ = writeln!(
         md,
-        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. Values are median [q1, q3] over the replicates (deterministic planners run once). All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
+        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. `executable`: plans a robot can drive (no obstacle or unknown cell swept, on the map); `planner-feasible`: plans that also meet their planner's own constraints. Metric values are median [q1, q3] over the executable plans of the replicates (deterministic planners run once); `cov (all plans)` is the median reachable coverage over every plan, executable or not. Tests and findings compare executable plans only. All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
     );
     let _ = writeln!(
         md,
@@ -134,16 +141,22 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         let _ = writeln!(md, "### {name}\n");
         let _ = writeln!(
             md,
-            "| planner | runs | feasible | {} |",
+            "| planner | runs | executable | planner-feasible | {} | cov (all plans) |",
             TABLE.iter().map(|(_, h, _)| *h).collect::<Vec<_>>().join(" | ")
         );
-        let _ = writeln!(md, "|---|---|---|{}", "---|".repeat(TABLE.len()));
-        for v in &present {
+        let _ = writeln!(md, "|---|---|---|---|{}---|", "---|".repeat(TABLE.len()));
+        let present_all: Vec<&String> = variants.iter().filter(|v| !all_rows_of(map, v).is_empty()).collect();
+        for v in &present_all {
+            let all = all_rows_of(map, v);
             let rows = rows_of(map, v);
-            let feasible = rows.iter().filter(|&&r| t.rows[r][t.col("feasible").unwrap_or(0)] == "true").count();
+            let feasible = all.iter().filter(|&&r| flag(r, "planner_feasible")).count();
             let mut cells = Vec::new();
             for (c, _, d) in TABLE {
                 let vals: Vec<f64> = rows.iter().map(|&r| num(r, c)).collect();
+                if vals.is_empty() {
+                    cells.push("–".to_string());
+                    continue;
+                }
                 let (q1, med, q3) = quartiles(&vals);
                 let mean = vals.iter().sum::<f64>() / vals.len() as f64;
                 let _ = writeln!(csv, "{name},{v},{c},{},{med},{q1},{q3},{mean}", vals.len());
@@ -153,7 +166,14 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                     format!("{med:.d$}")
                 });
             }
-            let _ = writeln!(md, "| {v} | {} | {feasible}/{} | {} |", rows.len(), rows.len(), cells.join(" | "));
+            let cov_all = quartiles(&all.iter().map(|&r| num(r, "cov_final_reach")).collect::<Vec<_>>()).1;
+            let _ = writeln!(
+                md,
+                "| {v} | {n} | {}/{n} | {feasible}/{n} | {} | {cov_all:.3} |",
+                rows.len(),
+                cells.join(" | "),
+                n = all.len()
+            );
         }
         // Pairwise tests.
         let _ = writeln!(
@@ -234,17 +254,27 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                 med(first, "time_s"),
             ));
         }
-        let infeasible: Vec<String> = present
-            .iter()
-            .filter_map(|v| {
-                let rows = rows_of(map, v);
-                let bad = rows.iter().filter(|&&r| t.rows[r][t.col("feasible").unwrap_or(0)] != "true").count();
-                (bad > 0).then(|| format!("{v} {bad}/{}", rows.len()))
-            })
-            .collect();
+        let count_of = |f: &dyn Fn(usize) -> bool| -> Vec<String> {
+            present_all
+                .iter()
+                .filter_map(|v| {
+                    let all = all_rows_of(map, v);
+                    let bad = all.iter().filter(|&&r| f(r)).count();
+                    (bad > 0).then(|| format!("{v} {bad}/{}", all.len()))
+                })
+                .collect()
+        };
+        let not_executable = count_of(&|r| !flag(r, "executable"));
+        if !not_executable.is_empty() {
+            findings.push(format!(
+                "On {name}, plans a robot cannot drive (they sweep obstacle or unknown cells or leave the map), left out of the medians, tests and rankings above: {}.",
+                not_executable.join(", ")
+            ));
+        }
+        let infeasible = count_of(&|r| flag(r, "executable") && !flag(r, "planner_feasible"));
         if !infeasible.is_empty() {
             findings.push(format!(
-                "On {name}, plans that break their planner's own constraints (obstacle cells swept for the thesis GA and random search; loop closures, connectivity or the coverage ramp for the waypoint planner): {}.",
+                "On {name}, executable plans that break their planner's own constraints (loop closures, connectivity or the coverage ramp for the waypoint planner): {}.",
                 infeasible.join(", ")
             ));
         }
@@ -263,8 +293,13 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                     .map(|v| BoxSeries {
                         label: v.clone(),
                         values: rows_of(map, v).iter().map(|&r| num(r, metric)).collect(),
+                        excluded: all_rows_of(map, v)
+                            .into_iter()
+                            .filter(|&r| !flag(r, "executable"))
+                            .map(|r| num(r, metric))
+                            .collect(),
                     })
-                    .filter(|b| !b.values.is_empty())
+                    .filter(|b| !b.values.is_empty() || !b.excluded.is_empty())
                     .collect();
                 (short_map(map), series)
             })

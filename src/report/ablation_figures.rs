@@ -11,8 +11,10 @@ use plotters::prelude::*;
 pub struct BoxSeries {
     /// Planner label.
     pub label: String,
-    /// The values (one per run).
+    /// The values of its executable plans (one per run): the box.
     pub values: Vec<f64>,
+    /// The values of its plans that are not executable: drawn as crosses beside the box.
+    pub excluded: Vec<f64>,
 }
 
 /// Box plots of one metric: one panel per map, one box per planner.
@@ -36,20 +38,33 @@ fn colour(k: usize) -> RGBColor {
 impl Figure for BoxFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = shape(self.panels.len());
-        // Each box needs room for its label (up to ~18 characters at 12 pt).
+        // Each box needs room for its label (up to ~26 characters at 12 pt, with its
+        // executable share).
         let boxes = self.panels.iter().map(|(_, b)| b.len()).max().unwrap_or(1) as u32;
-        (c as u32 * (150 * boxes + 80).max(720), r as u32 * 420 + 40)
+        (c as u32 * (190 * boxes + 80).max(720), r as u32 * 420 + 40)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
-            .titled(&format!("{} per planner (box = IQR, line = median, whiskers = min..max)", self.metric), text(16.0))
+            .titled(
+                &format!(
+                    "{} per planner (box = IQR, line = median, whiskers = min..max of the executable plans; grey × = plans that are not executable; (k/n) = executable share)",
+                    self.metric
+                ),
+                text(16.0),
+            )
             .map_err(err)?;
+        // One y range for every panel, so that the maps compare at a glance.
+        let all: Vec<f64> = self
+            .panels
+            .iter()
+            .flat_map(|(_, boxes)| boxes.iter().flat_map(|b| b.values.iter().chain(&b.excluded).copied()))
+            .filter(|v| v.is_finite())
+            .collect();
+        let (lo, hi) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
+        let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (0.0, 1.0) };
+        let pad = ((hi - lo) * 0.08).max(1e-3);
         for (area, (map, boxes)) in root.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
-            let all: Vec<f64> = boxes.iter().flat_map(|b| b.values.iter().copied()).filter(|v| v.is_finite()).collect();
-            let (lo, hi) = all.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| (l.min(v), h.max(v)));
-            let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (0.0, 1.0) };
-            let pad = ((hi - lo) * 0.08).max(1e-3);
             let n = boxes.len().max(1);
             let mut chart = ChartBuilder::on(area)
                 .caption(map, text(15.0))
@@ -58,7 +73,16 @@ impl Figure for BoxFigure {
                 .y_label_area_size(60)
                 .build_cartesian_2d(0.0..n as f64, (lo - pad)..(hi + pad))
                 .map_err(err)?;
-            let labels: Vec<String> = boxes.iter().map(|b| b.label.clone()).collect();
+            let labels: Vec<String> = boxes
+                .iter()
+                .map(|b| {
+                    if b.excluded.is_empty() {
+                        b.label.clone()
+                    } else {
+                        format!("{} ({}/{})", b.label, b.values.len(), b.values.len() + b.excluded.len())
+                    }
+                })
+                .collect();
             let decimals = crate::plot::tick_decimals(hi - lo);
             chart
                 .configure_mesh()
@@ -81,6 +105,10 @@ impl Figure for BoxFigure {
                 .draw()
                 .map_err(err)?;
             for (k, b) in boxes.iter().enumerate() {
+                let grey = RGBColor(120, 120, 120);
+                chart
+                    .draw_series(b.excluded.iter().map(|&v| Cross::new((k as f64 + 0.85, v), 4, grey.stroke_width(1))))
+                    .map_err(err)?;
                 if b.values.is_empty() {
                     continue;
                 }
@@ -205,7 +233,7 @@ impl Figure for PlannerPathsFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(
-                "Best run of each planner on each map (green once, orange 2+ times, red obstacle swept)",
+                "Best executable run of each planner on each map (cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)",
                 text(18.0),
             )
             .map_err(err)?;

@@ -66,6 +66,59 @@ fn table(md: &mut String, a: &Anova, spread: (f64, f64)) {
     let _ = writeln!(md, "| of which between replicates of one configuration | | {:.4} | | | |\n", spread.1);
 }
 
+/// The swept key that picks the fitness function.
+pub const PROJECTION: &str = "thesis.projection";
+
+/// The projections of a study that sweeps them, when `metric` is an `f` (which then must be
+/// compared within one projection only); `None` otherwise.
+pub fn projection_levels(t: &RunsTable, metric: &str) -> Option<Vec<String>> {
+    if !metric.starts_with("f_") {
+        return None;
+    }
+    let c = t.col(PROJECTION)?;
+    let levels: std::collections::BTreeSet<String> =
+        t.rows.iter().map(|r| r[c].clone()).filter(|v| !v.is_empty()).collect();
+    (levels.len() > 1).then(|| levels.into_iter().collect())
+}
+
+/// The rows of `t` whose `column` is `value`.
+pub fn subset(t: &RunsTable, column: &str, value: &str) -> RunsTable {
+    let c = t.col(column).expect("a column of the table");
+    RunsTable { header: t.header.clone(), rows: t.rows.iter().filter(|r| r[c] == value).cloned().collect() }
+}
+
+/// One metric's ANOVA table under `heading`.
+fn analyse(md: &mut String, t: &RunsTable, factors: &[Factor], terms: &[TermSpec], metric: &str, heading: &str) {
+    let configs: Vec<String> = match t.col("config_id") {
+        Some(c) => t.rows.iter().map(|r| r[c].clone()).collect(),
+        None => (0..t.rows.len()).map(|i| i.to_string()).collect(),
+    };
+    let y: Vec<f64> = t.rows.iter().map(|r| t.num(r, metric).unwrap_or(f64::NAN)).collect();
+    if y.iter().any(|v| !v.is_finite()) {
+        let _ = writeln!(md, "### {heading}\n\nSome runs have no value: not analysed.\n");
+        return;
+    }
+    if factors.is_empty() {
+        let _ = writeln!(md, "### {heading}\n\nNo other parameter takes two or more values: nothing to analyse.\n");
+        return;
+    }
+    match anova(factors, terms, &y) {
+        Ok(a) => {
+            let normal = if a.normality_p < 1e-3 {
+                let p = if a.normality_p > 0.0 { format!("{:.1e}", a.normality_p) } else { "< 1e-15".into() };
+                format!("residuals far from normal (Jarque–Bera p = {p}): read the rank p-values")
+            } else {
+                format!("residuals close to normal (Jarque–Bera p = {:.3})", a.normality_p)
+            };
+            let _ = writeln!(md, "### {heading}\n\n{} runs; {normal}.\n", a.n);
+            table(md, &a, replicate_spread(&configs, &y));
+        }
+        Err(e) => {
+            let _ = writeln!(md, "### {heading}\n\nNot analysed: {e}.\n");
+        }
+    }
+}
+
 /// The markdown section, or a line saying why there is none.
 pub fn section(t: &RunsTable, params: &[String]) -> String {
     let mut md = String::from("\n## Analysis of variance (003 §5.3)\n\n");
@@ -89,29 +142,28 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
             "; too many columns for the interactions, which are left out"
         }
     );
-    let configs: Vec<String> = match t.col("config_id") {
-        Some(c) => t.rows.iter().map(|r| r[c].clone()).collect(),
-        None => (0..t.rows.len()).map(|i| i.to_string()).collect(),
-    };
     for metric in METRICS {
-        let y: Vec<f64> = t.rows.iter().map(|r| t.num(r, metric).unwrap_or(f64::NAN)).collect();
-        if y.iter().any(|v| !v.is_finite()) {
-            let _ = writeln!(md, "### {metric}\n\nSome runs have no value: not analysed.\n");
-            continue;
-        }
-        match anova(&factors, &terms, &y) {
-            Ok(a) => {
-                let normal = if a.normality_p < 1e-3 {
-                    let p = if a.normality_p > 0.0 { format!("{:.1e}", a.normality_p) } else { "< 1e-15".into() };
-                    format!("residuals far from normal (Jarque–Bera p = {p}): read the rank p-values")
-                } else {
-                    format!("residuals close to normal (Jarque–Bera p = {:.3})", a.normality_p)
-                };
-                let _ = writeln!(md, "### {metric}\n\n{} runs; {normal}.\n", a.n);
-                table(&mut md, &a, replicate_spread(&configs, &y));
-            }
-            Err(e) => {
-                let _ = writeln!(md, "### {metric}\n\nNot analysed: {e}.\n");
+        match projection_levels(t, metric) {
+            None => analyse(&mut md, t, &factors, &terms, metric, metric),
+            Some(levels) => {
+                // f1 and f2 are different functions: f is analysed within each projection.
+                let _ = writeln!(
+                    md,
+                    "### {metric}\n\nf1 (003 eq. 3.14) and f2 (eq. 3.15) are different functions, so {metric} is analysed within each projection, over the other parameters.\n"
+                );
+                let others: Vec<String> = params.iter().filter(|p| *p != PROJECTION).cloned().collect();
+                for level in levels {
+                    let sub = subset(t, PROJECTION, &level);
+                    let (factors, terms, _) = model(&sub, &others);
+                    analyse(
+                        &mut md,
+                        &sub,
+                        &factors,
+                        &terms,
+                        metric,
+                        &format!("{metric} within {PROJECTION} = {level}"),
+                    );
+                }
             }
         }
     }

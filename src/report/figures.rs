@@ -15,6 +15,10 @@ pub struct ParetoFacet {
     pub points: Vec<(f64, f64)>,
     /// Indices of the non-dominated points.
     pub front: Vec<usize>,
+    /// The runs table's row of each point.
+    pub rows: Vec<usize>,
+    /// `(t_final, cov_final)` of the runs whose plan is not executable (no part of the front).
+    pub excluded: Vec<(f64, f64)>,
 }
 
 /// Pareto scatter, one panel per group.
@@ -38,7 +42,8 @@ fn grid_shape(n: usize) -> (usize, usize) {
 }
 
 const PARETO_TITLE: &str = "Best individual per run: coverage vs time efficiency (front in red)";
-const PATHS_TITLE: &str = "Best path per group (green once, orange 2+ times, red obstacle swept)";
+const PATHS_TITLE: &str =
+    "Best path per group (cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)";
 
 const RUN: RGBColor = RGBColor(120, 150, 200);
 const FRONT: RGBColor = RGBColor(210, 40, 30);
@@ -56,7 +61,7 @@ impl Figure for ParetoFigure {
         let (r, c) = self.shape();
         let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
         for f in &self.facets {
-            for p in &f.points {
+            for p in f.points.iter().chain(&f.excluded) {
                 lo_x = lo_x.min(p.0);
                 lo_y = lo_y.min(p.1);
             }
@@ -83,8 +88,16 @@ impl Figure for ParetoFigure {
             chart
                 .draw_series(facet.points.iter().map(|&p| Circle::new(p, 3, RUN.filled())))
                 .map_err(err)?
-                .label(format!("runs ({})", facet.points.len()))
+                .label(format!("executable runs ({})", facet.points.len()))
                 .legend(|(x, y)| Circle::new((x + 8, y), 4, RUN.filled()));
+            if !facet.excluded.is_empty() {
+                let grey = RGBColor(120, 120, 120);
+                chart
+                    .draw_series(facet.excluded.iter().map(|&p| Cross::new(p, 4, grey.stroke_width(1))))
+                    .map_err(err)?
+                    .label(format!("not executable ({})", facet.excluded.len()))
+                    .legend(move |(x, y)| Cross::new((x + 8, y), 4, grey.stroke_width(1)));
+            }
             let mut front: Vec<(f64, f64)> = facet.front.iter().map(|&i| facet.points[i]).collect();
             front.sort_by(|a, b| a.0.total_cmp(&b.0));
             chart.draw_series(LineSeries::new(front.iter().copied(), FRONT.stroke_width(1))).map_err(err)?;

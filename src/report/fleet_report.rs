@@ -76,7 +76,12 @@ pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportErro
         let method = planner.map_or("", |c| t.rows[r][c].as_str()).trim_start_matches("fleet-").to_string();
         cells.entry(m).or_default().entry(f).or_default().entry(method).or_default().rows.push(r);
     }
-    let values = |c: &Cell, metric: &str| -> Vec<f64> { c.rows.iter().map(|&r| num(r, metric)).collect() };
+    // Medians and tests over the executable plans (each robot at its own width: no obstacle or
+    // unknown cell swept, on the map); the table gives their share.
+    let executable = |r: usize| text(r, "executable") == "true";
+    let values = |c: &Cell, metric: &str| -> Vec<f64> {
+        c.rows.iter().filter(|&&r| executable(r)).map(|&r| num(r, metric)).collect()
+    };
     let mut md = String::new();
     let _ = writeln!(md, "# Fleet study\n");
     let _ = writeln!(
@@ -85,8 +90,9 @@ pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportErro
          plans exchanged every `fleet.round_iterations`), `divide` (area division + boustrophedon; deterministic, one run), \
          `waypoint` (000's multi-agent planner, homogeneous fleets only). Union = swept cells any robot can reach over \
          the cells the robots can reach; makespan = the slowest robot's time (length / speed + turning / rotation speed). \
-         Medians [IQR] over seeds; `feasible` counts plans without obstacle sweeps (and, for the waypoint teams, \
-         meeting the planner's own constraints).\n",
+         Medians [IQR] over the executable plans of the seeds; `executable` counts the plans every robot can drive at \
+         its own width (no obstacle or unknown cell swept, on the map), `planner-feasible` those that also meet the \
+         method's own constraints (the waypoint teams' loop closures and connectivity).\n",
         t.rows.len(),
         dir.display()
     );
@@ -95,25 +101,27 @@ pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportErro
         let _ = writeln!(md, "### {m}\n");
         let _ = writeln!(
             md,
-            "| fleet | method | runs | union (reachable) | makespan [s] | overlap | balance | feasible |\n|---|---|---|---|---|---|---|---|"
+            "| fleet | method | runs | union (reachable) | makespan [s] | overlap | balance | executable | planner-feasible |\n|---|---|---|---|---|---|---|---|---|"
         );
         for (f, methods) in fleets {
             for (method, c) in methods {
-                let feasible = c.rows.iter().filter(|&&r| text(r, "feasible") == "true").count();
+                let feasible = c.rows.iter().filter(|&&r| text(r, "planner_feasible") == "true").count();
+                let drivable = c.rows.iter().filter(|&&r| executable(r)).count();
                 let _ = writeln!(
                     md,
-                    "| {f} | {method} | {} | {} | {} | {} | {} | {feasible}/{} |",
+                    "| {f} | {method} | {} | {} | {} | {} | {} | {drivable}/{n} | {feasible}/{n} |",
                     c.rows.len(),
                     iqr(&values(c, "union_reach"), 3),
                     iqr(&values(c, "fleet_makespan_s"), 0),
                     iqr(&values(c, "overlap_fraction"), 3),
                     iqr(&values(c, "balance").into_iter().filter(|b| b.is_finite()).collect::<Vec<_>>(), 2),
-                    c.rows.len()
+                    n = c.rows.len()
                 );
             }
         }
         let _ = writeln!(md);
     }
+    md.push_str(&findings(&cells, &values));
     md.push_str(&pairwise(&cells, &values));
     md.push_str(&speed_up(&cells, &values));
     md.push_str(&convergence(dir, t, &cells));
@@ -178,6 +186,42 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
 }
 
 /// Median makespan of one robot over that of `n` identical robots, per map and method.
+/// Findings in words, per map and fleet, from the executable plans: which method covers the
+/// most and which is fastest, and the methods without an executable plan.
+fn findings(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
+    let mut md = String::from("## Findings (executable plans only; medians over seeds)\n\n");
+    for (m, fleets) in cells {
+        for (f, methods) in fleets {
+            let medians: Vec<(&String, f64, f64)> = methods
+                .iter()
+                .filter_map(|(method, c)| {
+                    let union = values(c, "union_reach");
+                    (!union.is_empty())
+                        .then(|| (method, quartiles(&union).1, quartiles(&values(c, "fleet_makespan_s")).1))
+                })
+                .collect();
+            let none: Vec<&str> =
+                methods.iter().filter(|(_, c)| values(c, "union_reach").is_empty()).map(|(k, _)| k.as_str()).collect();
+            let most = medians.iter().max_by(|a, b| a.1.total_cmp(&b.1));
+            let fastest = medians.iter().min_by(|a, b| a.2.total_cmp(&b.2));
+            let mut line = format!("- {m}, {f}:");
+            if let (Some(most), Some(fastest)) = (most, fastest) {
+                let _ = write!(
+                    line,
+                    " {} covers the most ({:.3} of the reachable cells, makespan {:.0} s); {} has the shortest makespan ({:.0} s, covering {:.3}).",
+                    most.0, most.1, most.2, fastest.0, fastest.2, fastest.1
+                );
+            }
+            if !none.is_empty() {
+                let _ = write!(line, " No executable plan: {}.", none.join(", "));
+            }
+            let _ = writeln!(md, "{line}");
+        }
+    }
+    md.push('\n');
+    md
+}
+
 fn speed_up(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
     let mut md = String::new();
     let _ = writeln!(

@@ -223,19 +223,32 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         _ => None,
     };
     // Pareto facets.
+    // Fronts over the plans a robot can drive; the others are drawn apart. A table without
+    // the column (written before executability was reported) counts every run.
+    let executable = |r: usize| t.col("executable").is_none_or(|i| t.rows[r][i] == "true");
     let facets: Vec<ParetoFacet> = groups
         .iter()
         .map(|g| {
-            let points: Vec<(f64, f64)> = g.rows.iter().map(|&r| point(r)).collect();
-            let front = non_dominated(&points);
-            ParetoFacet { label: g.label.clone(), points, front }
+            let rows: Vec<usize> = g.rows.iter().copied().filter(|&r| executable(r)).collect();
+            let points: Vec<(f64, f64)> = rows.iter().map(|&r| point(r)).collect();
+            let excluded = g.rows.iter().filter(|&&r| !executable(r)).map(|&r| point(r)).collect();
+            // A plan that covers nothing (t_final 1 at coverage 0) is no coverage plan, though
+            // nothing dominates it: it is drawn, not put on the front.
+            let front = non_dominated(&points).into_iter().filter(|&k| points[k].1 > 0.0).collect();
+            ParetoFacet { label: g.label.clone(), points, front, rows, excluded }
         })
         .collect();
     crate::plot::save(
         &ParetoFigure {
             facets: facets
                 .iter()
-                .map(|f| ParetoFacet { label: f.label.clone(), points: f.points.clone(), front: f.front.clone() })
+                .map(|f| ParetoFacet {
+                    label: f.label.clone(),
+                    points: f.points.clone(),
+                    front: f.front.clone(),
+                    rows: f.rows.clone(),
+                    excluded: f.excluded.clone(),
+                })
                 .collect(),
             shape,
         },
@@ -248,7 +261,7 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             .front
             .iter()
             .filter_map(|&k| {
-                read_history_diversity(&dir.join("runs").join(get(g.rows[k], "run_id")).join("history.csv"))
+                read_history_diversity(&dir.join("runs").join(get(f.rows[k], "run_id")).join("history.csv"))
             })
             .collect();
         if curves.is_empty() {
@@ -275,7 +288,10 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     let best: Vec<usize> = groups
         .iter()
         .map(|g| {
-            *g.rows.iter().max_by(|&&a, &&b| num(a, "f_free").total_cmp(&num(b, "f_free"))).expect("non-empty group")
+            // The best executable run; a group without one shows its best run all the same.
+            let pool: Vec<usize> = g.rows.iter().copied().filter(|&r| executable(r)).collect();
+            let pool = if pool.is_empty() { g.rows.clone() } else { pool };
+            *pool.iter().max_by(|&&a, &&b| num(a, "f_free").total_cmp(&num(b, "f_free"))).expect("non-empty group")
         })
         .collect();
     let mut loaded = Vec::new();

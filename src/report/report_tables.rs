@@ -3,6 +3,7 @@
 //! with confidence intervals, and Kruskal–Wallis tests per swept parameter with the median of
 //! each value.
 
+use super::anova_report::{PROJECTION, projection_levels};
 use super::figures::ParetoFacet;
 use super::stats::{kruskal_wallis, mean_ci95, mean_min_max, quartiles};
 use super::{ConfigRow, Group, cmp_group_values};
@@ -80,7 +81,10 @@ impl GroupTables<'_> {
                 let _ = writeln!(md, "| {} | {}", g.label, config_cells(c));
             }
         }
-        let _ = writeln!(md, "\n## Fronts, hypervolume (reference point (0, 0)) and run durations per group\n");
+        let _ = writeln!(
+            md,
+            "\n## Fronts of the executable runs, hypervolume (reference point (0, 0)) and run durations per group\n"
+        );
         let _ = writeln!(
             md,
             "| group | runs | front size | hypervolume | wall s mean | min | max |\n|---|---|---|---|---|---|---|"
@@ -103,38 +107,60 @@ impl GroupTables<'_> {
         let _ = writeln!(md, "\n## Per group: mean ± 95 % CI over its runs\n");
         let _ = writeln!(
             md,
-            "Infeasible: runs whose best plan breaks a constraint (`feasible = false` in runs.csv, e.g. a path that sweeps obstacle cells); their metrics are in the means.\n"
+            "Executable: runs whose best plan a robot can drive (`executable = true` in runs.csv: no obstacle or unknown cell swept, on the map). cov_final, t_final and f are over the executable runs; `cov_final (all)` over every run.\n"
         );
-        let _ = writeln!(md, "| group | runs | infeasible | cov_final | t_final | f |\n|---|---|---|---|---|---|");
+        let _ = writeln!(
+            md,
+            "| group | runs | executable | cov_final | t_final | f | cov_final (all) |\n|---|---|---|---|---|---|---|"
+        );
         for g in groups {
-            let ci = |c: &str| mean_ci95(&g.rows.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
+            let drivable: Vec<usize> = g.rows.iter().copied().filter(|&r| get(r, "executable") == "true").collect();
+            let ci = |c: &str| mean_ci95(&drivable.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
             let (c, tf, f) = (ci("cov_final_free"), ci("t_final"), ci("f_free"));
-            let infeasible = g.rows.iter().filter(|&&r| get(r, "feasible") == "false").count();
+            let all = mean_ci95(&g.rows.iter().map(|&r| num(r, "cov_final_free")).collect::<Vec<_>>());
             let _ = writeln!(
                 md,
-                "| {} | {} | {infeasible} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} |",
+                "| {} | {} | {}/{} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} |",
                 g.label,
+                g.rows.len(),
+                drivable.len(),
                 g.rows.len(),
                 c.0,
                 c.1,
                 tf.0,
                 tf.1,
                 f.0,
-                f.1
+                f.1,
+                all.0,
+                all.1
             );
         }
-        let _ = writeln!(
-            md,
-            "\n## Across seeds: the 20 configurations with the highest mean f (all in configurations.csv)\n"
-        );
-        let _ = writeln!(
-            md,
-            "| {} | n | cov_final mean ± 95 % CI | t_final mean ± 95 % CI | mean f |\n|{}---|---|---|---|",
-            params.join(" | "),
-            "---|".repeat(params.len())
-        );
-        for c in conf_rows.iter().take(20) {
-            let _ = writeln!(md, "| {}", config_cells(c));
+        // f1 and f2 are different functions: configurations are ranked by f within one
+        // projection only.
+        let scopes: Vec<(String, Vec<&ConfigRow>)> = match projection_levels(t, "f_free") {
+            None => vec![(String::new(), conf_rows.iter().collect())],
+            Some(levels) => levels
+                .into_iter()
+                .map(|l| {
+                    let rows = conf_rows.iter().filter(|c| get(c.1[0], PROJECTION) == l).collect();
+                    (format!(" with {PROJECTION} = {l}"), rows)
+                })
+                .collect(),
+        };
+        for (scope, rows) in scopes {
+            let _ = writeln!(
+                md,
+                "\n## Across seeds: the 20 configurations{scope} with the highest mean f (all in configurations.csv)\n"
+            );
+            let _ = writeln!(
+                md,
+                "| {} | n | cov_final mean ± 95 % CI | t_final mean ± 95 % CI | mean f |\n|{}---|---|---|---|",
+                params.join(" | "),
+                "---|".repeat(params.len())
+            );
+            for c in rows.into_iter().take(20) {
+                let _ = writeln!(md, "| {}", config_cells(c));
+            }
         }
         let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
         let _ = writeln!(
@@ -147,27 +173,49 @@ impl GroupTables<'_> {
         );
         for p in params {
             for metric in ["cov_final_free", "t_final", "f_free"] {
-                let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-                for r in 0..t.rows.len() {
-                    let v = get(r, p);
-                    if !v.is_empty() {
-                        by_value.entry(v).or_default().push(num(r, metric));
-                    }
-                }
-                let mut values: Vec<(String, Vec<f64>)> = by_value.into_iter().collect();
-                values.sort_by(|(a, _), (b, _)| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
-                let medians: Vec<String> =
-                    values.iter().map(|(v, runs)| format!("{v}: {:.4}", quartiles(runs).1)).collect();
-                let k = values.len();
-                let stats = match kruskal_wallis(&values.into_iter().map(|(_, runs)| runs).collect::<Vec<_>>()) {
-                    Some(kw) => {
-                        let p = if kw.p_value > 0.0 { format!("{:.3e}", kw.p_value) } else { "< 1e-300".into() };
-                        format!("{:.3} | {} | {p} | {:.4}", kw.h, kw.df, kw.epsilon_squared)
-                    }
-                    None => "– | – | – | –".to_string(),
+                // f is tested within one projection (f1 and f2 are different functions), and
+                // not at all against the projection itself.
+                let scopes: Vec<(String, Vec<usize>)> = match projection_levels(t, metric) {
+                    None => vec![(metric.to_string(), (0..t.rows.len()).collect())],
+                    Some(_) if p == PROJECTION => continue,
+                    Some(levels) => levels
+                        .into_iter()
+                        .map(|l| {
+                            let rows = (0..t.rows.len()).filter(|&r| get(r, PROJECTION) == l).collect();
+                            (format!("{metric} ({l})"), rows)
+                        })
+                        .collect(),
                 };
-                let _ = writeln!(md, "| {p} | {metric} | {k} | {stats} | {} |", medians.join(" · "));
+                for (label, rows) in scopes {
+                    self.kruskal_row(md, p, &label, metric, &rows);
+                }
             }
         }
+    }
+
+    /// One Kruskal–Wallis row: does `p`'s value shift `metric` over `rows`?
+    fn kruskal_row(&self, md: &mut String, p: &str, label: &str, metric: &str, rows: &[usize]) {
+        let t = self.t;
+        let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
+        let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
+        let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+        for &r in rows {
+            let v = get(r, p);
+            if !v.is_empty() {
+                by_value.entry(v).or_default().push(num(r, metric));
+            }
+        }
+        let mut values: Vec<(String, Vec<f64>)> = by_value.into_iter().collect();
+        values.sort_by(|(a, _), (b, _)| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
+        let medians: Vec<String> = values.iter().map(|(v, runs)| format!("{v}: {:.4}", quartiles(runs).1)).collect();
+        let k = values.len();
+        let stats = match kruskal_wallis(&values.into_iter().map(|(_, runs)| runs).collect::<Vec<_>>()) {
+            Some(kw) => {
+                let p = if kw.p_value > 0.0 { format!("{:.3e}", kw.p_value) } else { "< 1e-300".into() };
+                format!("{:.3} | {} | {p} | {:.4}", kw.h, kw.df, kw.epsilon_squared)
+            }
+            None => "– | – | – | –".to_string(),
+        };
+        let _ = writeln!(md, "| {p} | {label} | {k} | {stats} | {} |", medians.join(" · "));
     }
 }

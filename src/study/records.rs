@@ -8,8 +8,8 @@ use std::collections::BTreeMap;
 /// Columns before the swept parameters.
 pub const ID_COLUMNS: [&str; 4] = ["run_id", "config_id", "replicate", "seed"];
 /// Columns after the swept parameters and before the scorer's: which planner on which map,
-/// and whether its plan meets the planner's constraints.
-pub const RUN_COLUMNS: [&str; 4] = ["planner", "map", "feasible", "violations"];
+/// and whether its plan meets the planner's own constraints (executability is the scorer's).
+pub const RUN_COLUMNS: [&str; 4] = ["planner", "map", "planner_feasible", "violations"];
 /// Columns after the scorer's: effort and timing.
 pub const EFFORT_COLUMNS: [&str; 4] = ["evaluations", "iterations", "stop", "wall_s"];
 /// Columns of a fleet's plan (two agents or more; empty for a single robot): the fleet's
@@ -56,7 +56,7 @@ pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
     out.extend([
         summary.planner.to_string(),
         run.file.map.source.clone(),
-        summary.feasible.to_string(),
+        summary.planner_feasible.to_string(),
         summary.violations.join("; "),
     ]);
     out.extend(summary.score.columns().into_iter().map(|(_, v)| v));

@@ -199,7 +199,14 @@ impl Planner for WaypointConfig {
             "precompute_s": precompute_s,
         }));
         Ok(RunOutcome {
-            plan: paths_m(&world, best),
+            // Every agent starts and ends at the stations, as every other planner's plan does.
+            plan: paths_m(&world, best)
+                .iter()
+                .map(|p| {
+                    let w = scenario.robot.width;
+                    crate::planner::legs::with_station_legs(&scenario.map, w, scenario.start, scenario.end, p)
+                })
+                .collect(),
             objectives: vec![
                 ("coverage", e.coverage),
                 ("wall_coverage", e.walls),

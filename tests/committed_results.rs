@@ -1,0 +1,129 @@
+//! Committed results re-run exactly: for every study under `results/` (a folder with
+//! `study.json` and `runs.csv` or `runs.csv.xz`), the grid file it names still expands to the
+//! same runs, and the cheapest committed row of each (planner, map) pair, run again with
+//! today's code, gives the committed row in every column but the timings.
+//!
+//! When a change alters a result, this test fails until the affected study is re-run and
+//! re-committed in the same change.
+
+use covga::study::grid::Study;
+use covga::study::records::{RunsTable, TIMING_COLUMNS, row};
+use covga::study::runner::{MapCache, experiment_of, grid_hash};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+/// Committed rows whose recorded run took longer than this are not re-run (seconds).
+const MAX_ROW_SECONDS: f64 = 25.0;
+
+fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The committed `runs.csv` of a study folder (decompressing `runs.csv.xz` with `xz`).
+fn committed_runs(dir: &Path) -> RunsTable {
+    let plain = dir.join("runs.csv");
+    let text = if plain.exists() {
+        std::fs::read_to_string(&plain).expect("read runs.csv")
+    } else {
+        let packed = dir.join("runs.csv.xz");
+        let out = std::process::Command::new("xz")
+            .arg("-dc")
+            .arg(&packed)
+            .output()
+            .unwrap_or_else(|e| panic!("{}: needs the xz tool to read: {e}", packed.display()));
+        assert!(out.status.success(), "{}: xz failed", packed.display());
+        String::from_utf8(out.stdout).expect("utf-8")
+    };
+    RunsTable::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+}
+
+/// The study folders under `results/`.
+fn study_dirs() -> Vec<PathBuf> {
+    let mut dirs: Vec<PathBuf> = std::fs::read_dir(repo().join("results"))
+        .expect("results/")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.join("study.json").exists())
+        .collect();
+    dirs.sort();
+    dirs
+}
+
+/// Run ids to re-run: the cheapest committed row (smallest `wall_s` under
+/// [`MAX_ROW_SECONDS`]) of each planner and of each map, so that every planner and every map
+/// kind of the study is re-run at least once.
+fn cheap_rows(table: &RunsTable) -> Vec<String> {
+    let col = |n: &str| table.col(n).unwrap_or_else(|| panic!("runs.csv has no {n} column"));
+    // The metric `planner` column, not a swept `planner` key of the same name before it.
+    let planner = table.header.iter().rposition(|h| h == "planner").expect("a planner column");
+    let (id, map, wall) = (col("run_id"), col("map"), col("wall_s"));
+    let mut best: BTreeMap<(u8, String), (f64, String)> = BTreeMap::new();
+    for r in &table.rows {
+        let secs: f64 = r[wall].parse().unwrap_or(f64::INFINITY);
+        if secs > MAX_ROW_SECONDS {
+            continue;
+        }
+        for key in [(0, r[planner].clone()), (1, r[map].clone())] {
+            let slot = best.entry(key).or_insert((secs, r[id].clone()));
+            if (secs, &r[id]) < (slot.0, &slot.1) {
+                *slot = (secs, r[id].clone());
+            }
+        }
+    }
+    let mut picked: Vec<String> = best.into_values().map(|(_, id)| id).collect();
+    picked.sort();
+    picked.dedup();
+    picked
+}
+
+#[test]
+fn committed_study_rows_re_run_exactly() {
+    let dirs = study_dirs();
+    assert!(dirs.len() >= 4, "expected the committed studies under results/, found {dirs:?}");
+    let scratch = tempfile::tempdir().expect("tempdir");
+    let mut failures = Vec::new();
+    let mut checked = 0;
+    for dir in dirs {
+        let name = dir.file_name().unwrap().to_string_lossy().into_owned();
+        let meta: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("study.json")).unwrap()).unwrap();
+        let grid_file = repo().join(meta["grid_file"].as_str().expect("study.json names its grid file"));
+        let study = Study::load(&grid_file).unwrap_or_else(|e| panic!("{name}: {e}"));
+        if grid_hash(&study) != meta["grid_hash"].as_str().unwrap_or_default() {
+            failures.push(format!("{name}: {} no longer expands to the committed runs", grid_file.display()));
+            continue;
+        }
+        let table = committed_runs(&dir);
+        if table.header != covga::study::records::header(&study.columns) {
+            failures.push(format!("{name}: runs.csv's columns differ from today's"));
+            continue;
+        }
+        let committed = table.by_id();
+        let maps = MapCache::default();
+        for id in cheap_rows(&table) {
+            let run = study.runs.iter().find(|r| r.id == id).unwrap_or_else(|| panic!("{name}: no run {id}"));
+            let exp = experiment_of(&study, run, &maps).unwrap_or_else(|e| panic!("{name} {id}: {e}"));
+            let out = scratch.path().join(&name).join(&id);
+            let summary = covga::experiment::output::run_experiment(&exp, &out, false, &mut [])
+                .unwrap_or_else(|e| panic!("{name} {id}: {e}"));
+            let fresh = row(run, &summary);
+            let old = committed[&id];
+            for ((h, a), b) in table.header.iter().zip(old).zip(&fresh) {
+                if !TIMING_COLUMNS.contains(&h.as_str()) && a != b {
+                    failures.push(format!(
+                        "{name} {id} ({}, {}): {h} committed {a}, today {b}",
+                        fresh[table.col("planner").unwrap()],
+                        fresh[table.col("map").unwrap()]
+                    ));
+                }
+            }
+            eprintln!(
+                "{name} {id}: re-run ({}, {})",
+                fresh[table.col("planner").unwrap()],
+                fresh[table.col("map").unwrap()]
+            );
+            checked += 1;
+        }
+    }
+    assert!(failures.is_empty(), "{} differences over {checked} re-run rows:\n{}", failures.len(), failures.join("\n"));
+    assert!(checked >= 20, "only {checked} rows re-run");
+}
