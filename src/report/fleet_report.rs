@@ -149,6 +149,10 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
                     let (a, b) = (&methods[names[i]], &methods[names[j]]);
                     for (metric, better) in [("union_reach", Better::Higher), ("fleet_makespan_s", Better::Lower)] {
                         let (va, vb) = (oriented(&values(a, metric), better), oriented(&values(b, metric), better));
+                        if va.is_empty() || vb.is_empty() {
+                            // A method without an executable plan is compared with none.
+                            continue;
+                        }
                         let a12 = vargha_delaney_a12(&va, &vb);
                         let (p, test) = match (va.len(), vb.len()) {
                             (1, _) => (sign_test(&vb, va[0]), "sign"),
@@ -185,7 +189,6 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
     md
 }
 
-/// Median makespan of one robot over that of `n` identical robots, per map and method.
 /// Findings in words, per map and fleet, from the executable plans: which method covers the
 /// most and which is fastest, and the methods without an executable plan.
 fn findings(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
@@ -222,6 +225,7 @@ fn findings(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
     md
 }
 
+/// Median makespan of one robot over that of `n` identical robots, per map and method.
 fn speed_up(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
     let mut md = String::new();
     let _ = writeln!(
@@ -239,14 +243,15 @@ fn speed_up(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
             let cols: Vec<String> = [2, 3, 5]
                 .iter()
                 .map(|n| match fleets.get(&format!("homo-{n}")).and_then(|f| f.get(method)) {
-                    Some(c) => {
+                    // Without executable plans on either side there is nothing to compare.
+                    Some(c) if base.is_finite() && !values(c, "fleet_makespan_s").is_empty() => {
                         format!(
                             "{:.2}× (union {:.3})",
                             base / med(values(c, "fleet_makespan_s")),
                             med(values(c, "union_reach"))
                         )
                     }
-                    None => "–".into(),
+                    Some(_) | None => "–".into(),
                 })
                 .collect();
             let _ = writeln!(md, "| {m} | {method} | {} |", cols.join(" | "));
