@@ -92,6 +92,12 @@ pub fn validate(
         let end = e.end.map_or(s, |p| Point::new(p[0], p[1]));
         map.check_station(s, "the start").map_err(|m| ConfigError::new(origin, &named("start"), m))?;
         map.check_station(end, "the end").map_err(|m| ConfigError::new(origin, &named("end"), m))?;
+        if end != s {
+            let clear = crate::map::clearance::Clearance::new(map, width);
+            if let Some(why) = crate::map::reach::unreachable_end(&clear, s, end) {
+                return Err(ConfigError::new(origin, &named("end"), why));
+            }
+        }
         robots.push(Robot { name: e.name.clone(), footprint, start: s, end });
     }
     Ok(Fleet { robots })

@@ -196,6 +196,29 @@ mod tests {
     }
 
     #[test]
+    fn an_end_must_fit_and_connect_to_the_start() {
+        let map = room_and_pocket();
+        let clear = Clearance::new(&map, 0.3);
+        let start = Point::new(0.35, 0.35);
+        let cases: [(Point, Option<&str>); 3] = [
+            (Point::new(0.55, 0.45), None),
+            (Point::new(0.95, 0.35), Some("cannot be reached from the start")),
+            (Point::new(0.15, 0.35), Some("does not fit")),
+        ];
+        for (end, expected) in cases {
+            let got = unreachable_end(&clear, start, end);
+            match expected {
+                None => assert_eq!(got, None, "{end:?}"),
+                Some(words) => assert!(got.as_deref().is_some_and(|m| m.contains(words)), "{end:?}: {got:?}"),
+            }
+        }
+        // A 0.2 m robot fits in the pocket, but the slot does not let it through.
+        let narrow = Clearance::new(&map, 0.2);
+        let got = unreachable_end(&narrow, start, Point::new(0.95, 0.35)).unwrap();
+        assert!(got.contains("cannot be reached from the start"), "{got}");
+    }
+
+    #[test]
     fn restricted_clearance_stays_in_the_stations_component() {
         let map = room_and_pocket();
         let mut clear = Clearance::new(&map, 0.2);
