@@ -234,9 +234,15 @@ impl Figure for PathFigure<'_> {
             (OBSTACLE, "obstacle"),
             (UNKNOWN, "unknown"),
         ];
-        // A fleet's cells are tinted by robot: "covered once" does not apply.
-        let mut entries: Vec<(RGBColor, String)> =
-            entries.iter().filter(|(c, _)| !fleet || *c != ONCE).map(|(c, s)| (*c, s.to_string())).collect();
+        // Only the classes the figure shows (a fleet's cells are tinted by robot, so "covered
+        // once" never applies to it).
+        let classes = self.classes();
+        let shown = |colour: RGBColor| classes.iter().any(|c| c.colour() == colour);
+        let mut entries: Vec<(RGBColor, String)> = entries
+            .iter()
+            .filter(|(c, _)| (!fleet || *c != ONCE) && shown(*c))
+            .map(|(c, s)| (*c, s.to_string()))
+            .collect();
         if fleet {
             for (k, (name, width)) in self.robots.iter().enumerate() {
                 entries.push((robot_tint(k), format!("{name} ({width} m), alone")));
