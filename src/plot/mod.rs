@@ -141,11 +141,36 @@ pub fn panel_label(label: &str) -> String {
     label
         .split(", ")
         .map(|part| match part.split_once('=') {
-            Some((key, value)) => format!("{}={value}", key.rsplit('.').next().unwrap_or(key)),
+            // A map file is named by its stem (`../shared/maps/basement.yaml` → `basement`).
+            Some((key, value)) => {
+                let value = if value.contains('/') {
+                    std::path::Path::new(value).file_stem().map_or(value.into(), |s| s.to_string_lossy())
+                } else {
+                    value.into()
+                };
+                format!("{}={value}", key.rsplit('.').next().unwrap_or(key))
+            }
             None => part.to_string(),
         })
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// Colours of data series, told apart in print and by readers with colour-vision deficiency
+/// (Okabe & Ito's palette without its yellow, which vanishes on white).
+pub const SERIES: [RGBColor; 7] = [
+    RGBColor(213, 94, 0),
+    RGBColor(0, 114, 178),
+    RGBColor(0, 158, 115),
+    RGBColor(204, 121, 167),
+    RGBColor(230, 159, 0),
+    RGBColor(86, 180, 233),
+    RGBColor(0, 0, 0),
+];
+
+/// The colour of data series `k` (cycling through [`SERIES`]).
+pub fn series_colour(k: usize) -> RGBColor {
+    SERIES[k % SERIES.len()]
 }
 
 /// Whether `title` fits `width_px` at `size` px (the estimate of [`fitting_text`]).

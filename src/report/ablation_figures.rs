@@ -31,8 +31,7 @@ fn shape(n: usize) -> (usize, usize) {
 }
 
 fn colour(k: usize) -> RGBColor {
-    let c = Palette99::pick(k).to_rgba();
-    RGBColor(c.0, c.1, c.2)
+    crate::plot::series_colour(k)
 }
 
 impl Figure for BoxFigure {

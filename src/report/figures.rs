@@ -136,7 +136,7 @@ impl Figure for DiversityFigure {
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let title = "Diversity of the runs on each group's front (median, band = min..max)";
+        let title = "Diversity of each group's front runs (median, band = min..max; patterns record none)";
         let root = root.titled(title, crate::plot::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
         let x_max = self.groups.iter().flat_map(|g| g.curve.last().map(|c| c.0)).max().unwrap_or(1).max(1);
         let panels = root.split_evenly((self.groups.len().max(1), 1));
@@ -163,13 +163,13 @@ impl Figure for DiversityFigure {
                 .axis_desc_style(text(14.0))
                 .draw()
                 .map_err(err)?;
-            let colour = Palette99::pick(k).to_rgba();
+            let colour = crate::plot::series_colour(k);
             let band: Vec<(u32, f64)> =
                 g.curve.iter().map(|c| (c.0, c.3)).chain(g.curve.iter().rev().map(|c| (c.0, c.2))).collect();
             chart.draw_series([Polygon::new(band, colour.mix(0.18).filled())]).map_err(err)?;
             let one_px = y_max / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
             let median: Vec<(u32, f64)> = g.curve.iter().map(|c| (c.0, c.1)).collect();
-            crate::plot::draw_series_line(&mut chart, &median, RGBColor(colour.0, colour.1, colour.2), one_px)?;
+            crate::plot::draw_series_line(&mut chart, &median, colour, one_px)?;
         }
         Ok(())
     }

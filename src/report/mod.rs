@@ -294,6 +294,10 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             *pool.iter().max_by(|&&a, &&b| num(a, "f_free").total_cmp(&num(b, "f_free"))).expect("non-empty group")
         })
         .collect();
+    let by_planner_varies =
+        t.header.iter().rposition(|h| h == "planner").is_some_and(|c| {
+            t.rows.iter().map(|row| row[c].as_str()).collect::<std::collections::BTreeSet<_>>().len() > 1
+        });
     let mut loaded = Vec::new();
     for (g, &r) in groups.iter().zip(&best) {
         let run_dir = dir.join("runs").join(get(r, "run_id"));
@@ -305,9 +309,15 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             let [x0, y0, x1, y1] = rt.region;
             grid.premark_rect(x0, y0, x1, y1);
         }
+        // The planner too, where a study compares several.
+        let planner = t.header.iter().rposition(|h| h == "planner").map(|c| t.rows[r][c].as_str());
+        let label = match planner {
+            Some(p) if !g.label.contains(p) && by_planner_varies => format!("{}, {p}", g.label),
+            _ => g.label.clone(),
+        };
         let title = format!(
             "{}: cov {:.3}, t {:.3}",
-            crate::plot::panel_label(&g.label),
+            crate::plot::panel_label(&label),
             num(r, "cov_final_free"),
             num(r, "t_final")
         );
