@@ -9,28 +9,49 @@ use crate::map::GridMap;
 use crate::map::clearance::Clearance;
 use crate::map::reach::reachable_centres;
 
-/// `path` with a leg from `start` to its first point and one from its last point to `end`,
-/// each the shortest wall-free route found for a robot of `width`; where none exists, the
-/// straight leg (which the common scorer then reports as not executable). An empty path
-/// becomes the route from `start` to `end`.
+/// The wall-free routes of one robot width from one start station, built once per run and
+/// used for every agent's legs.
+pub struct StationLegs<'m> {
+    clear: Clearance<'m>,
+    start: Point,
+}
+
+impl<'m> StationLegs<'m> {
+    /// Prepares the clearance of a robot of `width` on `map`, restricted to the part reachable
+    /// from `start`.
+    pub fn new(map: &'m GridMap, width: f64, start: Point) -> Self {
+        let mut clear = Clearance::new(map, width);
+        clear.restrict(reachable_centres(&clear, &[start]));
+        Self { clear, start }
+    }
+
+    /// `path` with a leg from the start to its first point and one from its last point to
+    /// `end`, each the shortest wall-free route found; where none exists, the straight leg
+    /// (which the common scorer then reports as not executable). An empty path becomes the
+    /// route from the start to `end`.
+    pub fn around(&self, path: &[Point], end: Point) -> Vec<Point> {
+        let leg = |a: Point, b: Point| -> Vec<Point> {
+            if (a - b).norm() < crate::geom::ZERO_LENGTH {
+                return Vec::new();
+            }
+            self.clear.connect(a, b).unwrap_or_else(|| vec![b])
+        };
+        let mut out = vec![self.start];
+        let (Some(&first), Some(&last)) = (path.first(), path.last()) else {
+            out.extend(leg(self.start, end));
+            return out;
+        };
+        out.extend(leg(self.start, first));
+        out.extend_from_slice(&path[1..]);
+        out.extend(leg(last, end));
+        out
+    }
+}
+
+/// `path` with the legs of [`StationLegs::around`] for a robot of `width` from `start` to
+/// `end` (one path; a run with several builds one [`StationLegs`] for all).
 pub fn with_station_legs(map: &GridMap, width: f64, start: Point, end: Point, path: &[Point]) -> Vec<Point> {
-    let mut clear = Clearance::new(map, width);
-    clear.restrict(reachable_centres(&clear, &[start]));
-    let leg = |a: Point, b: Point| -> Vec<Point> {
-        if (a - b).norm() < crate::geom::ZERO_LENGTH {
-            return Vec::new();
-        }
-        clear.connect(a, b).unwrap_or_else(|| vec![b])
-    };
-    let mut out = vec![start];
-    let (Some(&first), Some(&last)) = (path.first(), path.last()) else {
-        out.extend(leg(start, end));
-        return out;
-    };
-    out.extend(leg(start, first));
-    out.extend_from_slice(&path[1..]);
-    out.extend(leg(last, end));
-    out
+    StationLegs::new(map, width, start).around(path, end)
 }
 
 #[cfg(test)]

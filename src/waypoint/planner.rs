@@ -200,13 +200,10 @@ impl Planner for WaypointConfig {
         }));
         Ok(RunOutcome {
             // Every agent starts and ends at the stations, as every other planner's plan does.
-            plan: paths_m(&world, best)
-                .iter()
-                .map(|p| {
-                    let w = scenario.robot.width;
-                    crate::planner::legs::with_station_legs(&scenario.map, w, scenario.start, scenario.end, p)
-                })
-                .collect(),
+            plan: {
+                let legs = crate::planner::legs::StationLegs::new(&scenario.map, scenario.robot.width, scenario.start);
+                paths_m(&world, best).iter().map(|p| legs.around(p, scenario.end)).collect()
+            },
             objectives: vec![
                 ("coverage", e.coverage),
                 ("wall_coverage", e.walls),
