@@ -19,7 +19,8 @@
 //!    common scorer;
 //! 4. [`plot`]: figure primitives (maps, paths, charts, legends);
 //! 5. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
-//! 6. the planners — [`thesis`], [`waypoint`], [`patterns`], then [`random_search`] (the
+//! 6. the planners — [`thesis`], [`waypoint`], [`patterns`], [`cell_order`] (a GA over the
+//!    patterns' cells), then [`random_search`] (the
 //!    thesis genome drawn at random) and [`fleet`] (teams planned by the others), each
 //!    validating its own section and drawing its own figures;
 //! 7. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
@@ -27,6 +28,7 @@
 //! 9. [`report`]: the sections of `covga report`;
 //! 10. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
 
+pub mod cell_order;
 pub mod cli;
 pub mod config;
 pub mod coverage;

@@ -18,7 +18,7 @@ const LAYERS: &[&[&str]] = &[
     &["coverage"],
     &["plot"],
     &["planner"],
-    &["thesis", "waypoint", "patterns"],
+    &["thesis", "waypoint", "patterns", "cell_order"],
     &["random_search"],
     &["fleet"],
     &["experiment"],

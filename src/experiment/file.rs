@@ -6,6 +6,7 @@
 //! except to write `config.toml`.
 
 use super::registry::{PlannerConfig, PlannerKind};
+use crate::cell_order::config::CellOrderSection;
 use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
@@ -25,7 +26,8 @@ use std::time::Duration;
 pub struct ExperimentFile {
     /// The run's seed.
     pub seed: u64,
-    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral` or `random_search`.
+    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral`, `cell_order` or
+    /// `random_search`.
     pub planner: PlannerKind,
     /// The map.
     pub map: MapSection,
@@ -39,6 +41,8 @@ pub struct ExperimentFile {
     pub waypoint: WaypointSection,
     /// Pattern planner settings.
     pub pattern: PatternSection,
+    /// Cell-order planner settings.
+    pub cell_order: CellOrderSection,
     /// When to stop.
     pub budget: BudgetSection,
     /// Optional changing-environment retrain (thesis GA).
@@ -75,6 +79,7 @@ impl Default for ExperimentFile {
             thesis: ThesisSection::default(),
             waypoint: WaypointSection::default(),
             pattern: PatternSection::default(),
+            cell_order: CellOrderSection::default(),
             budget: BudgetSection::default(),
             retrain: None,
             output: OutputSection::default(),

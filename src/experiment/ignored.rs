@@ -40,16 +40,20 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     let planner = file.planner;
     let name = planner.name();
     // Which of the planner-specific sections each planner reads besides its own.
-    let (reads_retrain, reads_pattern) = match planner {
-        PlannerKind::Thesis => (true, false),
-        PlannerKind::Boustrophedon | PlannerKind::Spiral => (false, true),
-        PlannerKind::Waypoint | PlannerKind::RandomSearch => (false, false),
+    let (reads_retrain, reads_pattern, reads_cell_order) = match planner {
+        PlannerKind::Thesis => (true, false, false),
+        PlannerKind::Boustrophedon | PlannerKind::Spiral => (false, true, false),
+        PlannerKind::CellOrder => (false, false, true),
+        PlannerKind::Waypoint | PlannerKind::RandomSearch => (false, false, false),
     };
     if within(key, "retrain") && !reads_retrain {
         return Some(format!("only the thesis GA retrains; planner = \"{name}\""));
     }
     if within(key, "pattern") && !reads_pattern {
         return Some(format!("only the boustrophedon and spiral patterns read [pattern]; planner = \"{name}\""));
+    }
+    if within(key, "cell_order") && !reads_cell_order {
+        return Some(format!("only the cell-order planner reads [cell_order]; planner = \"{name}\""));
     }
     if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
         return Some("waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into());
@@ -70,7 +74,7 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
                     ));
                 }
             }
-            PlannerKind::Waypoint | PlannerKind::Boustrophedon | PlannerKind::Spiral => {
+            PlannerKind::Waypoint | PlannerKind::Boustrophedon | PlannerKind::Spiral | PlannerKind::CellOrder => {
                 return Some(format!("planner = \"{name}\" does not read [thesis] (except projection)"));
             }
         }

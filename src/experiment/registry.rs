@@ -6,6 +6,7 @@
 //! section field of the experiment file.
 
 use super::file::ExperimentFile;
+use crate::cell_order::config::CellOrderConfig;
 use crate::config::ConfigError;
 use crate::fleet::config::Team;
 use crate::fleet::planner::FleetPlanner;
@@ -31,16 +32,19 @@ pub enum PlannerKind {
     Spiral,
     /// Budget-matched random action genomes (the thesis's initial-population draw).
     RandomSearch,
+    /// The GA over boustrophedon cells' order, direction and entry (`[cell_order]`).
+    CellOrder,
 }
 
 impl PlannerKind {
     /// Every planner, in the order studies list them.
-    pub const ALL: [PlannerKind; 5] = [
+    pub const ALL: [PlannerKind; 6] = [
         PlannerKind::Thesis,
         PlannerKind::Waypoint,
         PlannerKind::RandomSearch,
         PlannerKind::Boustrophedon,
         PlannerKind::Spiral,
+        PlannerKind::CellOrder,
     ];
 
     /// The name as written in experiment files.
@@ -51,6 +55,7 @@ impl PlannerKind {
             PlannerKind::Boustrophedon => "boustrophedon",
             PlannerKind::Spiral => "spiral",
             PlannerKind::RandomSearch => "random_search",
+            PlannerKind::CellOrder => "cell_order",
         }
     }
 
@@ -58,7 +63,7 @@ impl PlannerKind {
     pub fn is_deterministic(self) -> bool {
         match self {
             PlannerKind::Boustrophedon | PlannerKind::Spiral => true,
-            PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch => false,
+            PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch | PlannerKind::CellOrder => false,
         }
     }
 }
@@ -74,6 +79,8 @@ pub enum PlannerConfig {
     Pattern(PatternConfig),
     /// Random search.
     RandomSearch(RandomSearch),
+    /// The cell-order GA (or its exact solver).
+    CellOrder(CellOrderConfig),
     /// A fleet of `[[robots]]`, planned as `[fleet] mode` says by the file's planner.
     Fleet(Box<FleetPlanner>),
 }
@@ -90,6 +97,7 @@ impl PlannerConfig {
             }
             PlannerKind::Spiral => PlannerConfig::Pattern(file.pattern.validate(PatternKind::Spiral, ctx)?),
             PlannerKind::RandomSearch => PlannerConfig::RandomSearch(RandomSearch::validate(&file.thesis, ctx)?),
+            PlannerKind::CellOrder => PlannerConfig::CellOrder(file.cell_order.validate(ctx)?),
         };
         if file.robots.is_empty() {
             if file.fleet.is_some() {
@@ -101,7 +109,10 @@ impl PlannerConfig {
         let team = match single {
             PlannerConfig::Thesis(t) => Team::Thesis(t.params),
             PlannerConfig::Waypoint(w) => Team::Waypoint(w),
-            PlannerConfig::Pattern(_) | PlannerConfig::RandomSearch(_) | PlannerConfig::Fleet(_) => {
+            PlannerConfig::Pattern(_)
+            | PlannerConfig::RandomSearch(_)
+            | PlannerConfig::CellOrder(_)
+            | PlannerConfig::Fleet(_) => {
                 return Err(crate::fleet::config::wrong_planner(ctx.origin, file.planner.name(), section.mode));
             }
         };
@@ -116,6 +127,7 @@ impl PlannerConfig {
             PlannerConfig::Waypoint(p) => p.as_ref(),
             PlannerConfig::Pattern(p) => p,
             PlannerConfig::RandomSearch(p) => p,
+            PlannerConfig::CellOrder(p) => p,
             PlannerConfig::Fleet(p) => p.as_ref(),
         }
     }
@@ -128,6 +140,7 @@ impl PlannerConfig {
             PlannerConfig::Waypoint(w) => w.memory_estimate(map),
             PlannerConfig::Pattern(p) => p.memory_estimate(map),
             PlannerConfig::RandomSearch(r) => r.memory_estimate(map),
+            PlannerConfig::CellOrder(c) => c.memory_estimate(map, threads),
             PlannerConfig::Fleet(f) => f.memory_estimate(map, threads),
         }
     }
@@ -138,9 +151,10 @@ impl PlannerConfig {
     pub fn progress_length(&self, budget: &crate::planner::Budget) -> u64 {
         use crate::fleet::config::FleetMethod;
         match self {
-            PlannerConfig::Thesis(_) | PlannerConfig::RandomSearch(_) | PlannerConfig::Pattern(_) => {
-                u64::from(budget.iterations)
-            }
+            PlannerConfig::Thesis(_)
+            | PlannerConfig::RandomSearch(_)
+            | PlannerConfig::Pattern(_)
+            | PlannerConfig::CellOrder(_) => u64::from(budget.iterations),
             PlannerConfig::Waypoint(w) => w.ga.generations as u64,
             PlannerConfig::Fleet(f) => match &f.method {
                 FleetMethod::Central(_) => u64::from(budget.iterations),

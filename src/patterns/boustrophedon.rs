@@ -11,7 +11,7 @@ use crate::geom::{Point, Vector};
 
 /// One fitting piece of a lane: its two ends.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct Piece {
+pub struct Piece {
     /// The end at the low lane coordinate.
     pub a: Point,
     /// The end at the high lane coordinate.
@@ -23,7 +23,7 @@ pub(super) struct Piece {
 }
 
 /// The lane pieces of the map at `angle_deg`, one robot width apart.
-pub(super) fn lane_pieces(clear: &Clearance, width: f64, angle_deg: f64) -> Vec<Vec<Piece>> {
+pub fn lane_pieces(clear: &Clearance, width: f64, angle_deg: f64) -> Vec<Vec<Piece>> {
     let map = clear.map();
     let u = Vector::new(angle_deg.to_radians().cos(), angle_deg.to_radians().sin());
     let n = Vector::new(-u.y, u.x);
@@ -77,7 +77,7 @@ pub(super) fn lane_pieces(clear: &Clearance, width: f64, angle_deg: f64) -> Vec<
 
 /// Groups lane pieces into boustrophedon cells: a cell grows while its last piece overlaps
 /// exactly one piece of the next lane and that piece overlaps only it.
-pub(super) fn decompose(lanes: &[Vec<Piece>]) -> Vec<Vec<Piece>> {
+pub fn decompose(lanes: &[Vec<Piece>]) -> Vec<Vec<Piece>> {
     let overlaps = |p: &Piece, q: &Piece| p.lo < q.hi && q.lo < p.hi;
     let mut done: Vec<Vec<Piece>> = Vec::new();
     let mut open: Vec<Vec<Piece>> = Vec::new();
@@ -112,6 +112,13 @@ pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Resu
     if cells.is_empty() {
         return Err(PatternError::NoRoom { width });
     }
+    Ok(sweep_cells(clear, &cells, start))
+}
+
+/// Mows `cells` back and forth from `start`: next the unvisited cell with the entry corner
+/// nearest to where the robot is (nearest neighbour), each cell lane by lane from that corner,
+/// joined by collision-free connecting moves.
+pub fn sweep_cells(clear: &Clearance, cells: &[Vec<Piece>], start: Point) -> Route {
     let mut route = Route::new(start);
     let mut visited = vec![false; cells.len()];
     for _ in 0..cells.len() {
@@ -139,5 +146,5 @@ pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Resu
             flip = !flip;
         }
     }
-    Ok(route)
+    route
 }

@@ -15,7 +15,7 @@ use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 
 /// Visits the uncovered coverable cells after `route`'s pattern.
-pub(super) fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route) {
+pub fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route) {
     let map = clear.map();
     let grid = CoverageGrid::new(map);
     let raster = *grid.raster();

@@ -2,7 +2,7 @@
 //! inward spiral ([`spiral`]), both built on collision-free connections ([`clearance`]).
 
 pub mod boustrophedon;
-mod complete;
+pub mod complete;
 pub mod hand_made;
 pub mod planner;
 
@@ -111,10 +111,34 @@ pub struct Route {
 }
 
 impl Route {
-    fn new(start: Point) -> Self {
+    /// A route standing at `start`.
+    pub fn new(start: Point) -> Self {
         Self { points: vec![start], skipped: 0 }
     }
-    fn last(&self) -> Point {
+    /// The points so far, the start first.
+    pub fn points(&self) -> &[Point] {
+        &self.points
+    }
+    /// Targets skipped because no collision-free connection reached them.
+    pub fn skipped(&self) -> usize {
+        self.skipped
+    }
+    /// The points, giving the route up.
+    pub fn into_points(self) -> Vec<Point> {
+        self.points
+    }
+    /// Drives along `points` as they are (a sweep planned collision-free beforehand), after a
+    /// connecting move to the first; `false` when that move found no connection.
+    pub fn drive(&mut self, clear: &Clearance, points: &[Point]) -> bool {
+        let Some((&first, rest)) = points.split_first() else { return true };
+        if !self.go(clear, first) {
+            return false;
+        }
+        self.points.extend_from_slice(rest);
+        true
+    }
+    /// Where the route stands.
+    pub fn last(&self) -> Point {
         *self.points.last().expect("a route has a start")
     }
     /// Moves to `p` along a collision-free connection (repeated points are dropped); `false`
@@ -133,14 +157,14 @@ impl Route {
         }
     }
     /// [`Route::connect`], counting a target that cannot be reached as skipped.
-    fn go(&mut self, clear: &Clearance, p: Point) -> bool {
+    pub fn go(&mut self, clear: &Clearance, p: Point) -> bool {
         let reached = self.connect(clear, p);
         self.skipped += usize::from(!reached);
         reached
     }
     /// Returns to the end station: through the fitting cell nearest to it when the station
     /// itself is too close to a wall for the disc (stations are free cells, checked at load).
-    fn finish(&mut self, clear: &Clearance, end: Point) {
+    pub fn finish(&mut self, clear: &Clearance, end: Point) {
         if self.connect(clear, end) {
             return;
         }

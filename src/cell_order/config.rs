@@ -1,0 +1,174 @@
+//! `[cell_order]`: the cell-order planner's settings as written, validated once into
+//! [`CellOrderConfig`].
+
+use super::search::{GaParams, Selection};
+use crate::config::{ConfigError, check_range};
+use crate::planner::Context;
+use crate::planner::memory::MemoryEstimate;
+use serde::{Deserialize, Serialize};
+
+/// Which solver orders the cells.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Solver {
+    /// The genetic search (optionally memetic).
+    Ga,
+    /// Held–Karp dynamic programming: the optimum, for maps of a few cells.
+    Exact,
+}
+
+/// Parent selection as written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SelectionName {
+    /// Elite families: parents from the `select` best.
+    Elite,
+    /// Tournament of `tournament_size`.
+    Tournament,
+    /// Proportionate roulette wheel.
+    Prws,
+    /// Rank-based roulette wheel with pressure `sp`.
+    Rrws,
+}
+
+/// `[cell_order]` as written.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CellOrderSection {
+    /// `"ga"` or `"exact"`.
+    pub solver: Solver,
+    /// Lane directions offered to every cell, in degrees.
+    pub directions: Vec<f64>,
+    /// Individuals per generation.
+    pub population: usize,
+    /// Parent selection.
+    pub selection: SelectionName,
+    /// Tournament size `TS`.
+    pub tournament_size: usize,
+    /// Selection pressure `SP` of the rank-based wheel.
+    pub sp: f64,
+    /// Elite families: how many of the best may be parents.
+    pub select: usize,
+    /// The best carried over unchanged each generation.
+    pub keep: usize,
+    /// Crossover probability.
+    pub p_c: f64,
+    /// Probability of an order mutation per child.
+    pub p_m: f64,
+    /// Per-cell probability of a new sweep choice (default 1 / cells).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub p_choice: Option<f64>,
+    /// Local search (best choices, Or-opt, 2-opt) on the best child of every generation.
+    pub memetic: bool,
+    /// Visit the strips the lanes leave uncovered afterwards (the patterns' completion pass).
+    pub complete: bool,
+    /// Completion driving charged per square metre a sweep leaves in its cell, in metres
+    /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
+    pub completion_m_per_m2: f64,
+}
+
+impl Default for CellOrderSection {
+    fn default() -> Self {
+        Self {
+            solver: Solver::Ga,
+            directions: vec![0.0, 45.0, 90.0, 135.0],
+            population: 100,
+            selection: SelectionName::Tournament,
+            tournament_size: 3,
+            sp: 1.7,
+            select: 20,
+            keep: 2,
+            p_c: 0.9,
+            p_m: 0.5,
+            p_choice: None,
+            memetic: true,
+            complete: true,
+            completion_m_per_m2: 20.0,
+        }
+    }
+}
+
+/// The validated planner.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CellOrderConfig {
+    /// The solver.
+    pub solver: Solver,
+    /// Lane directions in degrees.
+    pub directions: Vec<f64>,
+    /// The GA's parameters.
+    pub ga: GaParams,
+    /// Coverage completion after the tour.
+    pub complete: bool,
+    /// Completion driving charged per square metre a sweep leaves, in metres.
+    pub completion_m_per_m2: f64,
+    /// The robot's width (for the memory estimate).
+    pub width: f64,
+}
+
+impl CellOrderSection {
+    /// Checks every key against its range.
+    pub fn validate(&self, ctx: &Context) -> Result<CellOrderConfig, ConfigError> {
+        let o = ctx.origin;
+        if self.directions.is_empty() || self.directions.len() > 36 {
+            return Err(ctx.error("cell_order.directions", "needs 1 to 36 lane directions in degrees"));
+        }
+        for &d in &self.directions {
+            check_range(o, "cell_order.directions", d, -360.0, 360.0, "[-360, 360] degrees")?;
+        }
+        let count = |key: &str, v: usize, lo: usize, hi: usize| {
+            check_range(o, key, v as f64, lo as f64, hi as f64, &format!("integers {lo}..={hi}"))
+        };
+        count("cell_order.population", self.population, 2, 100_000)?;
+        count("cell_order.tournament_size", self.tournament_size, 1, self.population)?;
+        count("cell_order.select", self.select, 1, self.population)?;
+        count("cell_order.keep", self.keep, 0, self.population - 1)?;
+        check_range(o, "cell_order.sp", self.sp, 1.0, 2.0, "[1, 2]")?;
+        check_range(o, "cell_order.p_c", self.p_c, 0.0, 1.0, "[0, 1]")?;
+        check_range(o, "cell_order.p_m", self.p_m, 0.0, 1.0, "[0, 1]")?;
+        check_range(o, "cell_order.completion_m_per_m2", self.completion_m_per_m2, 0.0, 1e4, "[0, 10000] m per m²")?;
+        if let Some(p) = self.p_choice {
+            check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
+        }
+        let selection = match self.selection {
+            SelectionName::Elite => Selection::Elite { select: self.select },
+            SelectionName::Tournament => Selection::Tournament { size: self.tournament_size },
+            SelectionName::Prws => Selection::Prws,
+            SelectionName::Rrws => Selection::Rrws { pressure: self.sp },
+        };
+        Ok(CellOrderConfig {
+            solver: self.solver,
+            directions: self.directions.clone(),
+            ga: GaParams {
+                population: self.population,
+                selection,
+                keep: self.keep,
+                p_c: self.p_c,
+                p_m: self.p_m,
+                p_choice: self.p_choice,
+                memetic: self.memetic,
+            },
+            complete: self.complete,
+            completion_m_per_m2: self.completion_m_per_m2,
+            width: ctx.scenario.robot.width,
+        })
+    }
+}
+
+impl CellOrderConfig {
+    /// An estimate of a run's own memory on `map`: the leg-time matrix over candidate sweeps
+    /// (cells taken as at least two widths square, four entries per direction; the run
+    /// refuses more than [`super::MAX_CANDIDATES`] candidates) and one Dijkstra buffer per
+    /// thread.
+    pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
+        let free_m2 = map.free_count() as f64 * map.resolution().powi(2);
+        let cells = (free_m2 / (4.0 * self.width * self.width)).ceil();
+        let candidates = (cells * 4.0 * self.directions.len() as f64).min(super::MAX_CANDIDATES as f64);
+        let legs = 4.0 * candidates * candidates;
+        let dijkstra = 16.0 * (map.rows() * map.cols()) as f64 * threads.max(1) as f64;
+        MemoryEstimate {
+            bytes: legs + dijkstra,
+            key: "cell_order.directions",
+            what: format!("leg times between about {candidates:.0} candidate sweeps"),
+        }
+    }
+}

@@ -1,0 +1,240 @@
+//! The cell-order planner: a GA over the combinatorial layer of a boustrophedon decomposition
+//! (which cell next, at which lane direction, entered from which corner), the view of
+//! Bähnemann et al. (2019) that boustrophedon coverage is a generalised travelling-salesman
+//! problem. Cells and their candidate sweeps come from [`sweeps`], wall-free transit costs
+//! between sweep ends from [`transit`], the tour problem from [`tour`]; the GA ([`search`],
+//! operators in [`operators`], the memetic step in [`local`]) or the exact Held–Karp solver
+//! ([`exact`]) orders them. The plan drives the chosen sweeps joined by
+//! [`crate::map::clearance::Clearance::connect`] routes, then the patterns' completion pass,
+//! then to the end station: executable by construction.
+
+pub mod config;
+pub mod exact;
+pub mod local;
+pub mod operators;
+pub mod search;
+pub mod sweeps;
+pub mod tour;
+pub mod transit;
+
+use crate::coverage::motion::rotation_time;
+use crate::ga::observer::{GenerationRecord, Observer};
+use crate::geom::{Point, Vector};
+use crate::map::clearance::Clearance;
+use crate::map::reach::Reach;
+use crate::patterns::Route;
+use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
+use config::{CellOrderConfig, Solver};
+use std::time::Instant;
+use sweeps::CellSweeps;
+use tour::{Candidate, Instance, Tour, leg_time, leg_turn_rad};
+use transit::{Transit, distinct};
+
+/// The most candidate sweeps a run accepts (cells × directions × 4 entries): the leg-time
+/// matrix holds the square of it in `f32`, 1.6 GB at this bound.
+pub const MAX_CANDIDATES: usize = 20_000;
+
+/// A map prepared for tours: the reachable clearance, the cells and their sweeps, the tour
+/// problem with every leg time.
+pub struct Prepared<'m> {
+    /// The clearance, restricted to the part reachable from the start.
+    pub clear: Clearance<'m>,
+    /// Reachable and coverable cells.
+    pub reach: Reach,
+    /// The cells and their candidate sweeps.
+    pub sweeps: CellSweeps,
+    /// The tour problem.
+    pub instance: Instance,
+}
+
+/// Decomposes the map of `scenario`, builds every candidate sweep at `directions` and the leg
+/// times between them (wall-free transit at `robot.speed`, turning at `robot.rot_speed`). A
+/// sweep's cost is its own time plus the completion it leaves: `completion_m_per_m2` metres
+/// of driving per square metre of its region it does not sweep.
+pub fn prepare<'m>(
+    scenario: &'m Scenario,
+    directions: &[f64],
+    completion_m_per_m2: f64,
+) -> Result<Prepared<'m>, String> {
+    let s = scenario;
+    let width = s.robot.width;
+    let mut clear = Clearance::new(&s.map, width);
+    let reach = Reach::new(&clear, &[s.start]);
+    if reach.centres().iter().all(|c| !c) {
+        return Err(format!("no free area reachable from the start fits a robot {width} m wide"));
+    }
+    clear.restrict(reach.centres().to_vec());
+    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable());
+    if sweeps.is_empty() {
+        return Err(format!("no lane of a robot {width} m wide fits the area reachable from the start"));
+    }
+    let count: usize = sweeps.cells.iter().map(Vec::len).sum();
+    if count > MAX_CANDIDATES {
+        return Err(format!(
+            "{} cells with {count} candidate sweeps exceed the limit of {MAX_CANDIDATES}; use fewer \
+             cell_order.directions",
+            sweeps.len()
+        ));
+    }
+    let flat: Vec<&sweeps::Sweep> = sweeps.cells.iter().flatten().collect();
+    let (exits, exit_id) = distinct(&flat.iter().map(|w| w.end()).chain([s.start]).collect::<Vec<_>>());
+    let (entries, entry_id) = distinct(&flat.iter().map(|w| w.start()).chain([s.end]).collect::<Vec<_>>());
+    let transit = Transit::new(&clear, &exits, &entries);
+    let (speed, rot) = (s.robot.speed, s.robot.rot_speed);
+    let candidates: Vec<Vec<Candidate>> = sweeps
+        .cells
+        .iter()
+        .map(|cell| {
+            cell.iter()
+                .map(|w| Candidate {
+                    time_s: w.length_m / speed
+                        + rotation_time(w.turn_rad, rot)
+                        + completion_m_per_m2 * w.missed_cells as f64 * s.map.resolution().powi(2) / speed,
+                    entry: (w.start(), w.start_heading),
+                    exit: (w.end(), w.end_heading),
+                })
+                .collect()
+        })
+        .collect();
+    let all: Vec<Candidate> = candidates.iter().flatten().copied().collect();
+    let n = all.len();
+    let instance = Instance::new(&candidates, |a, b| {
+        let from = a.map_or((s.start, Vector::zeros()), |a| all[a].exit);
+        let to = b.map_or((s.end, Vector::zeros()), |b| all[b].entry);
+        let metres = transit.metres(exit_id[a.unwrap_or(n)] as usize, entry_id[b.unwrap_or(n)] as usize);
+        let turn = if rot > 0.0 { leg_turn_rad(from, to) } else { 0.0 };
+        leg_time(metres, turn, speed, rot)
+    });
+    Ok(Prepared { clear, reach, sweeps, instance })
+}
+
+impl Prepared<'_> {
+    /// The chosen sweeps of `tour` in order.
+    pub fn sweeps_of<'a>(&'a self, tour: &'a Tour) -> impl Iterator<Item = &'a sweeps::Sweep> + 'a {
+        tour.order.iter().map(|&k| &self.sweeps.cells[k as usize][tour.choice[k as usize] as usize])
+    }
+
+    /// The path of `tour`: from `start` through the chosen sweeps, joined by wall-free routes,
+    /// then (with `complete`) the strips left uncovered, then to `end`; with the targets it
+    /// had to skip.
+    pub fn path(&self, tour: &Tour, width: f64, start: Point, end: Point, complete: bool) -> (Vec<Point>, usize) {
+        let mut route = Route::new(start);
+        for w in self.sweeps_of(tour) {
+            route.drive(&self.clear, &w.points);
+        }
+        if complete {
+            crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route);
+        }
+        route.finish(&self.clear, end);
+        let skipped = route.skipped();
+        (route.into_points(), skipped)
+    }
+}
+
+impl Planner for CellOrderConfig {
+    fn name(&self) -> &'static str {
+        "cell_order"
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let started = Instant::now();
+        let s = scenario;
+        let input = |e: String| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name()));
+        let prepared = prepare(s, &self.directions, self.completion_m_per_m2).map_err(input)?;
+        let inst = &prepared.instance;
+        let grid = crate::coverage::CoverageGrid::new(&s.map);
+        let mut scratch = crate::coverage::SweepScratch::new(&grid);
+        // Lane coverage of the best tour (its sweeps without transit), recomputed when it changes.
+        let mut lanes: Option<(Tour, f64)> = None;
+        let mut lane_coverage = |tour: &Tour| -> f64 {
+            if let Some((t, c)) = &lanes
+                && t == tour
+            {
+                return *c;
+            }
+            let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
+            let c = scratch.sweep_all(&grid, &paths, s.robot.width).unique() as f64 / grid.area_cells().max(1) as f64;
+            lanes = Some((tour.clone(), c));
+            c
+        };
+        let (best, evaluations, iterations, stop, nearest, exact) = match self.solver {
+            Solver::Ga => {
+                let out = search::search(inst, &self.ga, seed, budget, |g| {
+                    let record = GenerationRecord {
+                        iteration: g.iteration,
+                        evaluations: g.evaluations,
+                        best_fitness: g.fitness.0,
+                        mean_fitness: g.fitness.1,
+                        best_coverage: lane_coverage(g.best.0),
+                        feasible: None,
+                        diversity: None,
+                        extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
+                        robots: Vec::new(),
+                    };
+                    observers.iter_mut().try_for_each(|o| o.generation(&record))
+                })?;
+                (out.best, out.evaluations, out.iterations, out.stop, out.nearest_time_s, None)
+            }
+            Solver::Exact => {
+                let (tour, t) = exact::held_karp(inst).ok_or_else(|| {
+                    input(format!(
+                        "cell_order.solver = \"exact\" takes at most {} cells; this map has {} (use \"ga\")",
+                        exact::MAX_EXACT_CELLS,
+                        inst.cells()
+                    ))
+                })?;
+                let nearest = inst.time(&search::nearest_neighbour(inst));
+                let states = (1u64 << inst.cells()) * (0..inst.cells()).map(|k| inst.choices(k) as u64).sum::<u64>();
+                ((tour, t), states, 0, StopReason::Completed, nearest, Some(t))
+            }
+        };
+        let (tour, tour_time) = best;
+        let (path, skipped) = prepared.path(&tour, s.robot.width, s.start, s.end, self.complete);
+        let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
+        let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
+        let sweeps_chosen: Vec<serde_json::Value> = prepared
+            .sweeps_of(&tour)
+            .zip(&tour.order)
+            .map(|(w, k)| serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry}))
+            .collect();
+        let mut details = crate::planner::details(serde_json::json!({
+            "cells": inst.cells(),
+            "candidates": (0..inst.cells()).map(|k| inst.choices(k)).sum::<usize>(),
+            "base_direction_deg": prepared.sweeps.base_direction_deg,
+            "tour_cost_s": tour_time,
+            "nearest_neighbour_cost_s": nearest,
+            "skipped_targets": skipped,
+            "pockets": prepared.reach.pocket_count(),
+            "tour": sweeps_chosen,
+        }));
+        if let Some(t) = exact {
+            details.insert("exact_cost_s".into(), t.into());
+        }
+        Ok(RunOutcome {
+            plan: vec![path],
+            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("tour_cost_s", tour_time)],
+            feasible: true,
+            warnings: Vec::new(),
+            violations: Vec::new(),
+            evaluations,
+            iterations,
+            stop,
+            wall_s: started.elapsed().as_secs_f64(),
+            details,
+            files: Vec::new(),
+            history: if self.solver == Solver::Ga {
+                crate::planner::History::Generations
+            } else {
+                crate::planner::History::None
+            },
+            agents: Vec::new(),
+            artifacts: Box::new(()),
+        })
+    }
+}

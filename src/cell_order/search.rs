@@ -1,0 +1,308 @@
+//! The genetic search over tours: a generational GA whose parents are drawn by covga's
+//! selection schemes ([`crate::ga::selection`]), with the `keep` best carried over unchanged,
+//! order crossover and uniform choice crossover, order and choice mutation, and optionally the
+//! memetic step ([`super::local::improve`]) on the best child and one random child of every
+//! generation. The first
+//! individual is the nearest-neighbour tour (the greedy rule today's boustrophedon uses), so
+//! the search starts from the baseline's way of ordering cells and can only improve on it.
+
+use super::local::improve;
+use super::operators::{choice_mutation, cuts, mutate_order, order_crossover, uniform_choices};
+use super::tour::{Instance, Tour};
+use crate::ga::rng::{Purpose, stream};
+use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
+use crate::planner::{Budget, StopReason};
+use rand::Rng;
+use rand::seq::SliceRandom;
+use std::time::Instant;
+
+/// How parents are drawn (the schemes of 003 §2.2.1, from [`crate::ga::selection`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Selection {
+    /// Elite families: parents drawn uniformly from the `select` best.
+    Elite {
+        /// How many of the best may be parents.
+        select: usize,
+    },
+    /// Tournament of `size`.
+    Tournament {
+        /// `TS`.
+        size: usize,
+    },
+    /// Proportionate roulette wheel over fitness `T_NN / T`.
+    Prws,
+    /// Rank-based roulette wheel with pressure `SP`.
+    Rrws {
+        /// `SP` in [1, 2].
+        pressure: f64,
+    },
+}
+
+/// The GA's parameters.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GaParams {
+    /// Individuals per generation.
+    pub population: usize,
+    /// Parent selection.
+    pub selection: Selection,
+    /// The best carried over unchanged each generation.
+    pub keep: usize,
+    /// Crossover probability.
+    pub p_c: f64,
+    /// Probability that a child's order is mutated (inversion, insertion or swap).
+    pub p_m: f64,
+    /// Per-cell probability that a child's sweep choice is redrawn (`None`: 1 / cells).
+    pub p_choice: Option<f64>,
+    /// Local search on the best and one random child of every generation (memetic step).
+    pub memetic: bool,
+}
+
+/// One generation as the search reports it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Generation<'a> {
+    /// Generation number (0: the initial population).
+    pub iteration: u32,
+    /// Evaluations so far (local search charged by the legs it reads).
+    pub evaluations: u64,
+    /// The best tour so far and its time.
+    pub best: (&'a Tour, f64),
+    /// Mean time of the population.
+    pub mean_time_s: f64,
+    /// Fitness `T_NN / T` of the best and the population mean.
+    pub fitness: (f64, f64),
+}
+
+/// How a search ended.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Searched {
+    /// The best tour found and its time.
+    pub best: (Tour, f64),
+    /// Evaluations spent.
+    pub evaluations: u64,
+    /// Generations completed.
+    pub iterations: u32,
+    /// Why it stopped.
+    pub stop: StopReason,
+    /// The nearest-neighbour tour's time (the fitness scale).
+    pub nearest_time_s: f64,
+}
+
+/// The nearest-neighbour tour: from the start, the candidate of an unswept cell with the
+/// shortest leg (then the shortest own time), until every cell is swept.
+pub fn nearest_neighbour(inst: &Instance) -> Tour {
+    let n = inst.cells();
+    let mut done = vec![false; n];
+    let mut tour = Tour { order: Vec::with_capacity(n), choice: vec![0; n] };
+    let mut here: Option<usize> = None;
+    for _ in 0..n {
+        let mut best: Option<(f64, f64, usize, usize)> = None;
+        for k in (0..n).filter(|&k| !done[k]) {
+            for c in 0..inst.choices(k) {
+                let g = inst.flat(k, c);
+                let key = (inst.leg(here, Some(g)), inst.own(g));
+                if best.is_none_or(|b| key.0 < b.0 - 1e-12 || (key.0 <= b.0 + 1e-12 && key.1 < b.1 - 1e-12)) {
+                    best = Some((key.0, key.1, k, c));
+                }
+            }
+        }
+        let (_, _, k, c) = best.expect("an unswept cell remains");
+        done[k] = true;
+        tour.order.push(k as u32);
+        tour.choice[k] = c as u16;
+        here = Some(inst.flat(k, c));
+    }
+    tour
+}
+
+/// Runs the GA on `inst` from `seed` within `budget`, handing every generation to `report`.
+pub fn search<E>(
+    inst: &Instance,
+    params: &GaParams,
+    seed: u64,
+    budget: &Budget,
+    mut report: impl FnMut(&Generation) -> Result<(), E>,
+) -> Result<Searched, E> {
+    let started = Instant::now();
+    let n = inst.cells();
+    let counts: Vec<usize> = (0..n).map(|k| inst.choices(k)).collect();
+    let p_choice = params.p_choice.unwrap_or(1.0 / n.max(1) as f64);
+    let mut rng = stream(seed, Purpose::Main, &[]);
+    let mut charged = 0.0f64;
+    let legs_per_tour = (n + 1) as f64;
+    let nearest = nearest_neighbour(inst);
+    let nearest_time_s = inst.time(&nearest);
+    let scale = nearest_time_s.max(f64::MIN_POSITIVE);
+    let mut pop: Vec<(Tour, f64)> = Vec::with_capacity(params.population);
+    let mut first = nearest;
+    if params.memetic {
+        charged += improve(inst, &mut first, ROUNDS) as f64 / legs_per_tour;
+    }
+    let t = inst.time(&first);
+    pop.push((first, t));
+    while pop.len() < params.population {
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        order.shuffle(&mut rng);
+        let choice = counts.iter().map(|&c| rng.random_range(0..c.max(1)) as u16).collect();
+        let tour = Tour { order, choice };
+        let t = inst.time(&tour);
+        pop.push((tour, t));
+    }
+    charged += params.population as f64;
+    let mut best = best_of(&pop);
+    let mut since_better = 0u32;
+    let mut iteration = 0u32;
+    let stop = loop {
+        let fitness: Vec<f64> = pop.iter().map(|(_, t)| scale / t).collect();
+        let mean_time_s = pop.iter().map(|(_, t)| t).sum::<f64>() / pop.len() as f64;
+        report(&Generation {
+            iteration,
+            evaluations: charged.ceil() as u64,
+            best: (&best.0, best.1),
+            mean_time_s,
+            fitness: (scale / best.1, fitness.iter().sum::<f64>() / fitness.len() as f64),
+        })?;
+        if let Some(reason) = budget.spent(charged.ceil() as u64, started) {
+            break reason;
+        }
+        if iteration >= budget.iterations {
+            break StopReason::Iterations;
+        }
+        if budget.stall_iterations.is_some_and(|s| since_better >= s) {
+            break StopReason::Stall;
+        }
+        iteration += 1;
+        let parents = Parents::new(&fitness, params.selection);
+        let mut next: Vec<(Tour, f64)> =
+            best_k(&fitness, params.keep.min(pop.len())).into_iter().map(|i| pop[i].clone()).collect();
+        let first_child = next.len();
+        while next.len() < params.population {
+            let (a, b) = (&pop[parents.draw(&mut rng)].0, &pop[parents.draw(&mut rng)].0);
+            let mut child = if n > 1 && rng.random::<f64>() < params.p_c {
+                let (i, j) = cuts(n, &mut rng);
+                Tour {
+                    order: order_crossover(&a.order, &b.order, i, j),
+                    choice: uniform_choices(&a.choice, &b.choice, &mut rng),
+                }
+            } else {
+                a.clone()
+            };
+            if rng.random::<f64>() < params.p_m {
+                mutate_order(&mut child.order, &mut rng);
+            }
+            choice_mutation(&mut child.choice, &counts, p_choice, &mut rng);
+            let t = inst.time(&child);
+            next.push((child, t));
+        }
+        charged += (params.population - first_child) as f64;
+        if params.memetic && first_child < next.len() {
+            // The best child, and one drawn at random so that orders whose choices are still
+            // poor get their chance too.
+            let best_child = first_child + best_index(&next[first_child..]);
+            let drawn = rng.random_range(first_child..next.len());
+            for k in if drawn == best_child { vec![best_child] } else { vec![best_child, drawn] } {
+                charged += improve(inst, &mut next[k].0, ROUNDS) as f64 / legs_per_tour;
+                next[k].1 = inst.time(&next[k].0);
+            }
+        }
+        pop = next;
+        let candidate = best_of(&pop);
+        if candidate.1 < best.1 - 1e-9 {
+            best = candidate;
+            since_better = 0;
+        } else {
+            since_better += 1;
+        }
+    };
+    Ok(Searched { best, evaluations: charged.ceil() as u64, iterations: iteration, stop, nearest_time_s })
+}
+
+/// Rounds of local search allowed per memetic step (a bound; it usually stops far earlier).
+const ROUNDS: usize = 10_000;
+
+fn best_index(pop: &[(Tour, f64)]) -> usize {
+    (0..pop.len()).fold(0, |b, i| if pop[i].1 < pop[b].1 { i } else { b })
+}
+
+fn best_of(pop: &[(Tour, f64)]) -> (Tour, f64) {
+    pop[best_index(pop)].clone()
+}
+
+/// A parent draw prepared once per generation.
+enum Parents<'f> {
+    Uniform(Vec<usize>),
+    Tournament(&'f [f64], usize),
+    Wheel(Vec<f64>),
+}
+
+impl<'f> Parents<'f> {
+    fn new(fitness: &'f [f64], selection: Selection) -> Self {
+        match selection {
+            Selection::Elite { select } => Parents::Uniform(best_k(fitness, select.clamp(1, fitness.len()))),
+            Selection::Tournament { size } => Parents::Tournament(fitness, size),
+            Selection::Prws => Parents::Wheel(cumulative(&proportionate_probabilities(fitness))),
+            Selection::Rrws { pressure } => Parents::Wheel(cumulative(&rank_probabilities(fitness, pressure))),
+        }
+    }
+
+    fn draw<R: Rng + ?Sized>(&self, rng: &mut R) -> usize {
+        match self {
+            Parents::Uniform(best) => best[rng.random_range(0..best.len())],
+            Parents::Tournament(fitness, size) => tournament(fitness, *size, rng),
+            Parents::Wheel(cum) => spin(cum, rng),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::tour::tests::line;
+    use super::*;
+
+    fn params(selection: Selection, memetic: bool) -> GaParams {
+        GaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic }
+    }
+
+    #[test]
+    fn the_ga_sorts_a_shuffled_line_and_never_loses_its_best() {
+        let inst = line(8);
+        let optimum = super::super::exact::held_karp(&inst).unwrap().1;
+        for selection in [
+            Selection::Elite { select: 10 },
+            Selection::Tournament { size: 3 },
+            Selection::Prws,
+            Selection::Rrws { pressure: 1.8 },
+        ] {
+            let mut last = f64::INFINITY;
+            let out = search(&inst, &params(selection, false), 7, &Budget::iterations(300), |g| {
+                assert!(g.best.1 <= last + 1e-12, "the best never gets worse");
+                last = g.best.1;
+                Ok::<(), ()>(())
+            })
+            .unwrap();
+            assert!((out.best.1 - optimum).abs() < 1e-9, "{selection:?}: {} vs {optimum}", out.best.1);
+            assert!(out.best.1 <= out.nearest_time_s);
+        }
+    }
+
+    #[test]
+    fn same_seed_same_search() {
+        let inst = line(9);
+        let run = |seed| {
+            search(&inst, &params(Selection::Tournament { size: 2 }, true), seed, &Budget::iterations(20), |_| {
+                Ok::<(), ()>(())
+            })
+            .unwrap()
+        };
+        assert_eq!(run(3), run(3));
+        let mut evals = 0;
+        let budget = Budget { evaluations: Some(500), ..Budget::iterations(1_000_000) };
+        let out = search(&inst, &params(Selection::Prws, true), 4, &budget, |g| {
+            assert!(g.evaluations >= evals);
+            evals = g.evaluations;
+            Ok::<(), ()>(())
+        })
+        .unwrap();
+        assert_eq!(out.stop, StopReason::Evaluations);
+        assert!(out.evaluations >= 500 && out.evaluations < 500 + 40 + 200, "{}", out.evaluations);
+    }
+}
