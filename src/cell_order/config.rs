@@ -17,6 +17,19 @@ pub enum Solver {
     Exact,
 }
 
+/// What the plan does about the cells its sweeps leave uncovered.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Completion {
+    /// Boundary chains along the walls near uncovered cells, then the greedy pass
+    /// ([`super::boundary`]).
+    Boundary,
+    /// The patterns' greedy pass alone (what boustrophedon and spiral do).
+    Greedy,
+    /// Nothing: the sweeps only.
+    None,
+}
+
 /// Parent selection as written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -60,8 +73,8 @@ pub struct CellOrderSection {
     pub p_choice: Option<f64>,
     /// Local search (best choices, Or-opt, 2-opt) on the best child of every generation.
     pub memetic: bool,
-    /// Visit the strips the lanes leave uncovered afterwards (the patterns' completion pass).
-    pub complete: bool,
+    /// `"boundary"`, `"greedy"` or `"none"`: how the strips the lanes leave are visited.
+    pub completion: Completion,
     /// Completion driving charged per square metre a sweep leaves in its cell, in metres
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
     pub completion_m_per_m2: f64,
@@ -82,7 +95,7 @@ impl Default for CellOrderSection {
             p_m: 0.5,
             p_choice: None,
             memetic: true,
-            complete: true,
+            completion: Completion::Boundary,
             completion_m_per_m2: 20.0,
         }
     }
@@ -98,7 +111,7 @@ pub struct CellOrderConfig {
     /// The GA's parameters.
     pub ga: GaParams,
     /// Coverage completion after the tour.
-    pub complete: bool,
+    pub completion: Completion,
     /// Completion driving charged per square metre a sweep leaves, in metres.
     pub completion_m_per_m2: f64,
     /// The robot's width (for the memory estimate).
@@ -147,7 +160,7 @@ impl CellOrderSection {
                 p_choice: self.p_choice,
                 memetic: self.memetic,
             },
-            complete: self.complete,
+            completion: self.completion,
             completion_m_per_m2: self.completion_m_per_m2,
             width: ctx.scenario.robot.width,
         })

@@ -8,6 +8,7 @@
 //! [`crate::map::clearance::Clearance::connect`] routes, then the patterns' completion pass,
 //! then to the end station: executable by construction.
 
+pub mod boundary;
 pub mod config;
 pub mod exact;
 pub mod local;
@@ -24,7 +25,7 @@ use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 use crate::patterns::Route;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
-use config::{CellOrderConfig, Solver};
+use config::{CellOrderConfig, Completion, Solver};
 use std::time::Instant;
 use sweeps::CellSweeps;
 use tour::{Candidate, Instance, Tour, leg_time, leg_turn_rad};
@@ -115,15 +116,44 @@ impl Prepared<'_> {
     }
 
     /// The path of `tour`: from `start` through the chosen sweeps, joined by wall-free routes,
-    /// then (with `complete`) the strips left uncovered, then to `end`; with the targets it
+    /// then the strips left uncovered as `completion` says, then to `end`; with the targets it
     /// had to skip.
-    pub fn path(&self, tour: &Tour, width: f64, start: Point, end: Point, complete: bool) -> (Vec<Point>, usize) {
+    pub fn path(
+        &self,
+        tour: &Tour,
+        robot: &crate::coverage::Footprint,
+        stations: (Point, Point),
+        completion: Completion,
+    ) -> (Vec<Point>, usize) {
+        let (start, end) = stations;
+        let width = robot.width;
         let mut route = Route::new(start);
         for w in self.sweeps_of(tour) {
             route.drive(&self.clear, &w.points);
         }
-        if complete {
-            crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route);
+        match completion {
+            Completion::None => {}
+            Completion::Greedy => crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route),
+            Completion::Boundary => {
+                let map = self.clear.map();
+                let grid = crate::coverage::CoverageGrid::new(map);
+                let mut covered = vec![false; grid.len()];
+                for w in route.points().windows(2) {
+                    crate::coverage::raster::for_each_swept_cell(grid.raster(), w[0], w[1], width, |i| {
+                        covered[i] = true
+                    });
+                }
+                // Every uncovered coverable cell: the plan aims at full coverage of the
+                // reachable space; the greedy pass takes what the chains leave.
+                let targets: Vec<bool> = covered.iter().zip(self.reach.coverable()).map(|(&c, &k)| k && !c).collect();
+                let chains = boundary::chains(&self.clear, &targets);
+                for chain in boundary::order(&chains, route.last(), end, robot.speed) {
+                    for p in chain {
+                        route.go(&self.clear, p);
+                    }
+                }
+                crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route);
+            }
         }
         route.finish(&self.clear, end);
         let skipped = route.skipped();
@@ -195,7 +225,7 @@ impl Planner for CellOrderConfig {
             }
         };
         let (tour, tour_time) = best;
-        let (path, skipped) = prepared.path(&tour, s.robot.width, s.start, s.end, self.complete);
+        let (path, skipped) = prepared.path(&tour, &s.robot, (s.start, s.end), self.completion);
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
         let sweeps_chosen: Vec<serde_json::Value> = prepared

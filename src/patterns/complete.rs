@@ -16,6 +16,11 @@ use crate::map::reach::Reach;
 
 /// Visits the uncovered coverable cells after `route`'s pattern.
 pub fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route) {
+    complete_patches(clear, reach, width, route, min_patch(clear.map(), width));
+}
+
+/// [`complete`], visiting uncovered patches of at least `min_patch` cells.
+pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route, min_patch: usize) {
     let map = clear.map();
     let grid = CoverageGrid::new(map);
     let raster = *grid.raster();
@@ -28,7 +33,6 @@ pub fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route)
     };
     sweep(&mut covered, &route.points);
     let centre = |i: usize| map.cell_centre(i / cols, i % cols);
-    let min_patch = ((width / map.resolution()).powi(2)).ceil() as usize;
     let mut open = patches(map, &covered, reach, min_patch);
     let window = (clear.radius() / map.resolution()).ceil() as isize + 2;
     let near = |i: usize, k: isize| {
@@ -83,8 +87,13 @@ pub fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route)
     }
 }
 
+/// The smallest uncovered patch the pass visits, in cells: one robot square.
+pub fn min_patch(map: &crate::map::GridMap, width: f64) -> usize {
+    ((width / map.resolution()).powi(2)).ceil() as usize
+}
+
 /// The uncovered coverable cells in 8-connected patches of at least `min_patch` cells.
-fn patches(map: &crate::map::GridMap, covered: &[bool], reach: &Reach, min_patch: usize) -> Vec<usize> {
+pub fn patches(map: &crate::map::GridMap, covered: &[bool], reach: &Reach, min_patch: usize) -> Vec<usize> {
     let (rows, cols) = (map.rows() as isize, map.cols() as isize);
     let open = |i: usize| reach.is_coverable(i) && !covered[i];
     let mut seen = vec![false; covered.len()];
