@@ -117,3 +117,48 @@ fn the_exact_solver_refuses_large_maps_with_the_key() {
     let e = bad.validate(&ctx).unwrap_err().to_string();
     assert!(e.contains("f.toml") && e.contains("cell_order.directions"), "{e}");
 }
+
+/// The shipped `experiments/cell-order-basement.toml`: an executable plan that covers at least
+/// the coverage of every boustrophedon direction on basement less 0.005 and takes at most 0.86
+/// of the fastest direction's time, for the same robot (skipped where the map is not beside the
+/// checkout).
+#[test]
+fn the_shipped_basement_experiment_beats_every_boustrophedon_direction() {
+    use covga::experiment::file::ExperimentFile;
+    use covga::patterns::{Pattern, plan};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    if !root.join("../shared/maps/basement.yaml").exists() {
+        eprintln!("skipped: ../shared/maps/basement.yaml is not beside the checkout");
+        return;
+    }
+    let file = root.join("experiments/cell-order-basement.toml");
+    let dir = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["run", "--quiet", "--out"])
+        .arg(dir.path())
+        .arg(&file)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
+    let score = &summary["score"];
+    assert_eq!(score["obstacle_cells"], 0);
+    assert_eq!(score["executable"], true);
+    let (cov, time) = (score["cov_final_reach"].as_f64().unwrap(), score["time_s"].as_f64().unwrap());
+    let exp = ExperimentFile::read(&file).unwrap().validate("basement", &root.join("experiments"), "x").unwrap();
+    let s = &exp.scenario;
+    let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
+    let baselines: Vec<(f64, f64)> = [0.0, 45.0, 90.0, 135.0]
+        .iter()
+        .map(|&angle_deg| {
+            let p = plan(&s.map, Pattern::Boustrophedon { angle_deg }, s.robot.width, s.start, s.end, true).unwrap();
+            let sc = scorer.score(&[p.points]);
+            (sc.cov_final_reach, sc.time_s)
+        })
+        .collect();
+    let fastest = baselines.iter().map(|b| b.1).fold(f64::INFINITY, f64::min);
+    let best_cov = baselines.iter().map(|b| b.0).fold(0.0, f64::max);
+    assert!(cov >= best_cov - 0.005, "coverage {cov} vs the best direction's {best_cov}");
+    assert!(time <= 0.86 * fastest, "time {time} vs the fastest direction's {fastest}");
+}

@@ -71,7 +71,8 @@ pub struct CellOrderSection {
     /// Per-cell probability of a new sweep choice (default 1 / cells).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub p_choice: Option<f64>,
-    /// Local search (best choices, Or-opt, 2-opt) on the best child of every generation.
+    /// Local search (best choices, Or-opt, 2-opt) on the best and one random child of every
+    /// generation.
     pub memetic: bool,
     /// `"boundary"`, `"greedy"` or `"none"`: how the strips the lanes leave are visited.
     pub completion: Completion,

@@ -161,40 +161,48 @@ impl Prepared<'_> {
     }
 }
 
-impl Planner for CellOrderConfig {
-    fn name(&self) -> &'static str {
-        "cell_order"
-    }
+/// A solved tour and what it cost to find.
+struct Solved {
+    tour: Tour,
+    cost: f64,
+    evaluations: u64,
+    iterations: u32,
+    stop: StopReason,
+    nearest: f64,
+    exact: Option<f64>,
+}
 
-    fn run(
+impl CellOrderConfig {
+    /// Orders the cells with the configured solver, handing the GA's generations to
+    /// `observers` (with the lane coverage of each generation's best tour).
+    fn solve(
         &self,
+        prepared: &Prepared,
         scenario: &Scenario,
         seed: u64,
         budget: &Budget,
         observers: &mut [&mut dyn Observer],
-    ) -> Result<RunOutcome, PlannerError> {
-        let started = Instant::now();
-        let s = scenario;
-        let input = |e: String| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name()));
-        let prepared = prepare(s, &self.directions, self.completion_m_per_m2).map_err(input)?;
+    ) -> Result<Solved, PlannerError> {
         let inst = &prepared.instance;
-        let grid = crate::coverage::CoverageGrid::new(&s.map);
-        let mut scratch = crate::coverage::SweepScratch::new(&grid);
-        // Lane coverage of the best tour (its sweeps without transit), recomputed when it changes.
-        let mut lanes: Option<(Tour, f64)> = None;
-        let mut lane_coverage = |tour: &Tour| -> f64 {
-            if let Some((t, c)) = &lanes
-                && t == tour
-            {
-                return *c;
-            }
-            let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
-            let c = scratch.sweep_all(&grid, &paths, s.robot.width).unique() as f64 / grid.area_cells().max(1) as f64;
-            lanes = Some((tour.clone(), c));
-            c
-        };
-        let (best, evaluations, iterations, stop, nearest, exact) = match self.solver {
+        match self.solver {
             Solver::Ga => {
+                let grid = crate::coverage::CoverageGrid::new(&scenario.map);
+                let mut scratch = crate::coverage::SweepScratch::new(&grid);
+                // Lane coverage of the best tour (its sweeps without transit), recomputed when
+                // the best changes.
+                let mut lanes: Option<(Tour, f64)> = None;
+                let mut lane_coverage = |tour: &Tour| -> f64 {
+                    if let Some((t, c)) = &lanes
+                        && t == tour
+                    {
+                        return *c;
+                    }
+                    let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
+                    let swept = scratch.sweep_all(&grid, &paths, scenario.robot.width).unique();
+                    let c = swept as f64 / grid.area_cells().max(1) as f64;
+                    lanes = Some((tour.clone(), c));
+                    c
+                };
                 let out = search::search(inst, &self.ga, seed, budget, |g| {
                     let record = GenerationRecord {
                         iteration: g.iteration,
@@ -209,59 +217,103 @@ impl Planner for CellOrderConfig {
                     };
                     observers.iter_mut().try_for_each(|o| o.generation(&record))
                 })?;
-                (out.best, out.evaluations, out.iterations, out.stop, out.nearest_time_s, None)
+                let (tour, cost) = out.best;
+                Ok(Solved {
+                    tour,
+                    cost,
+                    evaluations: out.evaluations,
+                    iterations: out.iterations,
+                    stop: out.stop,
+                    nearest: out.nearest_time_s,
+                    exact: None,
+                })
             }
             Solver::Exact => {
-                let (tour, t) = exact::held_karp(inst).ok_or_else(|| {
-                    input(format!(
-                        "cell_order.solver = \"exact\" takes at most {} cells; this map has {} (use \"ga\")",
+                let (tour, cost) = exact::held_karp(inst).ok_or_else(|| {
+                    PlannerError::Input(format!(
+                        "cell_order on map `{}`: cell_order.solver = \"exact\" takes at most {} cells; this map has {} \
+                         (use \"ga\")",
+                        scenario.map.name(),
                         exact::MAX_EXACT_CELLS,
                         inst.cells()
                     ))
                 })?;
-                let nearest = inst.time(&search::nearest_neighbour(inst));
+                // The states the dynamic programme fills stand in for evaluations.
                 let states = (1u64 << inst.cells()) * (0..inst.cells()).map(|k| inst.choices(k) as u64).sum::<u64>();
-                ((tour, t), states, 0, StopReason::Completed, nearest, Some(t))
+                Ok(Solved {
+                    tour,
+                    cost,
+                    evaluations: states,
+                    iterations: 0,
+                    stop: StopReason::Completed,
+                    nearest: inst.time(&search::nearest_neighbour(inst)),
+                    exact: Some(cost),
+                })
             }
-        };
-        let (tour, tour_time) = best;
-        let (path, skipped) = prepared.path(&tour, &s.robot, (s.start, s.end), self.completion);
+        }
+    }
+}
+
+/// The planner's own fields of `summary.json`.
+fn details_of(prepared: &Prepared, solved: &Solved, skipped: usize) -> serde_json::Map<String, serde_json::Value> {
+    let inst = &prepared.instance;
+    let tour: Vec<serde_json::Value> = prepared
+        .sweeps_of(&solved.tour)
+        .zip(&solved.tour.order)
+        .map(|(w, k)| serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry}))
+        .collect();
+    let mut details = crate::planner::details(serde_json::json!({
+        "cells": inst.cells(),
+        "candidates": (0..inst.cells()).map(|k| inst.choices(k)).sum::<usize>(),
+        "base_direction_deg": prepared.sweeps.base_direction_deg,
+        "tour_cost_s": solved.cost,
+        "nearest_neighbour_cost_s": solved.nearest,
+        "skipped_targets": skipped,
+        "pockets": prepared.reach.pocket_count(),
+        "tour": tour,
+    }));
+    if let Some(t) = solved.exact {
+        details.insert("exact_cost_s".into(), t.into());
+    }
+    details
+}
+
+impl Planner for CellOrderConfig {
+    fn name(&self) -> &'static str {
+        "cell_order"
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let started = Instant::now();
+        let s = scenario;
+        let prepared = prepare(s, &self.directions, self.completion_m_per_m2)
+            .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
+        let solved = self.solve(&prepared, s, seed, budget, observers)?;
+        let (path, skipped) = prepared.path(&solved.tour, &s.robot, (s.start, s.end), self.completion);
+        let grid = crate::coverage::CoverageGrid::new(&s.map);
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
-        let sweeps_chosen: Vec<serde_json::Value> = prepared
-            .sweeps_of(&tour)
-            .zip(&tour.order)
-            .map(|(w, k)| serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry}))
-            .collect();
-        let mut details = crate::planner::details(serde_json::json!({
-            "cells": inst.cells(),
-            "candidates": (0..inst.cells()).map(|k| inst.choices(k)).sum::<usize>(),
-            "base_direction_deg": prepared.sweeps.base_direction_deg,
-            "tour_cost_s": tour_time,
-            "nearest_neighbour_cost_s": nearest,
-            "skipped_targets": skipped,
-            "pockets": prepared.reach.pocket_count(),
-            "tour": sweeps_chosen,
-        }));
-        if let Some(t) = exact {
-            details.insert("exact_cost_s".into(), t.into());
-        }
         Ok(RunOutcome {
             plan: vec![path],
-            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("tour_cost_s", tour_time)],
+            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("tour_cost_s", solved.cost)],
             feasible: true,
             warnings: Vec::new(),
             violations: Vec::new(),
-            evaluations,
-            iterations,
-            stop,
+            evaluations: solved.evaluations,
+            iterations: solved.iterations,
+            stop: solved.stop,
             wall_s: started.elapsed().as_secs_f64(),
-            details,
+            details: details_of(&prepared, &solved, skipped),
             files: Vec::new(),
-            history: if self.solver == Solver::Ga {
-                crate::planner::History::Generations
-            } else {
-                crate::planner::History::None
+            history: match self.solver {
+                Solver::Ga => crate::planner::History::Generations,
+                Solver::Exact => crate::planner::History::None,
             },
             agents: Vec::new(),
             artifacts: Box::new(()),

@@ -41,8 +41,10 @@ pub struct ExperimentFile {
     pub waypoint: WaypointSection,
     /// Pattern planner settings.
     pub pattern: PatternSection,
-    /// Cell-order planner settings.
-    pub cell_order: CellOrderSection,
+    /// Cell-order planner settings; absent from files that do not set them, so that the
+    /// written file (and a study's run ids, which hash it) of other planners stays as it was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub cell_order: Option<CellOrderSection>,
     /// When to stop.
     pub budget: BudgetSection,
     /// Optional changing-environment retrain (thesis GA).
@@ -79,7 +81,7 @@ impl Default for ExperimentFile {
             thesis: ThesisSection::default(),
             waypoint: WaypointSection::default(),
             pattern: PatternSection::default(),
-            cell_order: CellOrderSection::default(),
+            cell_order: None,
             budget: BudgetSection::default(),
             retrain: None,
             output: OutputSection::default(),
@@ -152,6 +154,10 @@ impl ExperimentFile {
         load: &MapLoader<'_>,
     ) -> Result<Experiment, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+        if self.planner == PlannerKind::CellOrder && self.cell_order.is_none() {
+            // The written config.toml shows every setting of the planner that ran.
+            self.cell_order = Some(CellOrderSection::default());
+        }
         if self.seed > i64::MAX as u64 {
             return Err(err(
                 "seed",

@@ -97,7 +97,9 @@ impl PlannerConfig {
             }
             PlannerKind::Spiral => PlannerConfig::Pattern(file.pattern.validate(PatternKind::Spiral, ctx)?),
             PlannerKind::RandomSearch => PlannerConfig::RandomSearch(RandomSearch::validate(&file.thesis, ctx)?),
-            PlannerKind::CellOrder => PlannerConfig::CellOrder(file.cell_order.validate(ctx)?),
+            PlannerKind::CellOrder => {
+                PlannerConfig::CellOrder(file.cell_order.clone().unwrap_or_default().validate(ctx)?)
+            }
         };
         if file.robots.is_empty() {
             if file.fleet.is_some() {

@@ -1,0 +1,41 @@
+//! The cell-order planner's speed targets on `../shared/maps/basement.yaml` (skipped with a
+//! message where the map is not beside the checkout): the set-up (decomposition, candidate
+//! sweeps, transit matrix, leg times) and one evaluation of a tour, whose inverse is the
+//! evaluations per second of the GA. Run on one core for the figures:
+//!
+//! `RAYON_NUM_THREADS=1 cargo bench --bench cell_order`
+
+use covga::cell_order::config::CellOrderSection;
+use covga::cell_order::prepare;
+use covga::cell_order::search::nearest_neighbour;
+use covga::experiment::file::ExperimentFile;
+use covga::experiment::registry::PlannerKind;
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::path::Path;
+use std::time::Duration;
+
+fn bench(c: &mut Criterion) {
+    let map = Path::new("../shared/maps/basement.yaml");
+    if !map.exists() {
+        eprintln!("cell_order bench: {} is not beside the checkout; nothing to measure", map.display());
+        return;
+    }
+    let mut file = ExperimentFile { planner: PlannerKind::CellOrder, ..ExperimentFile::default() };
+    file.map.source = map.display().to_string();
+    file.stations.start = [0.0, 0.0];
+    let exp = file.validate("bench", Path::new("."), "bench").expect("valid");
+    let directions = CellOrderSection::default().directions;
+    let mut group = c.benchmark_group("cell_order");
+    group.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(30));
+    group.bench_function("setup_basement", |b| {
+        b.iter(|| prepare(&exp.scenario, &directions, 20.0).expect("prepared").instance.cells())
+    });
+    let prepared = prepare(&exp.scenario, &directions, 20.0).expect("prepared");
+    let tour = nearest_neighbour(&prepared.instance);
+    group.measurement_time(Duration::from_secs(5));
+    group.bench_function("evaluate_tour_basement", |b| b.iter(|| prepared.instance.time(&tour)));
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
