@@ -8,7 +8,9 @@ reads OUT/runs.csv and, for the cell-order runs, OUT/runs/<run_id>/summary.json 
 own tour cost, the nearest-neighbour tour's and the exact optimum's); writes RESULTS/runs.csv,
 RESULTS/tours.csv (those numbers) and RESULTS/summary.md. With RESULTS alone
 (`python3 scripts/cell-order-summary.py - results/cell-order`) it rewrites summary.md from the
-two CSV files.
+two CSV files. With a third argument FIGURE it also writes a study folder FIGURE with the
+fastest run of the default setting on basement for the turning robot and the fastest
+boustrophedon direction there, for `covga report FIGURE --by planner` to draw side by side.
 
 The baseline of each map and robot is the boustrophedon at the fastest of its four lane
 directions (lowest time_s; the strictest bar for time). Targets (issue): coverage >= the
@@ -261,13 +263,36 @@ def summarise(results):
         f.write("\n".join(out))
 
 
+def figure_folder(out, dst):
+    with open(os.path.join(out, "runs.csv")) as f:
+        lines = f.read().split("\n")
+    head = next(csv.reader([lines[0]]))
+    rows = [(line, next(csv.reader([line]))) for line in lines[1:] if line]
+    col = lambda r, name: r[head.index(name)]
+    on_map = [(l, r) for l, r in rows if col(r, "map.source").endswith("basement.yaml") and float(col(r, "robot.rot_speed")) == 0.5]
+    default = [(l, r) for l, r in on_map if col(r, "planner") == "cell_order" and method(dict(zip(head, r))) == DEFAULT]
+    patterns = [(l, r) for l, r in on_map if col(r, "planner") == "boustrophedon"]
+    chosen = [min(patterns, key=lambda x: float(col(x[1], "time_s"))), min(default, key=lambda x: float(col(x[1], "time_s")))]
+    if os.path.exists(dst):
+        shutil.rmtree(dst)
+    os.makedirs(os.path.join(dst, "runs"))
+    for name in ["study.json", "grid.toml"]:
+        shutil.copyfile(os.path.join(out, name), os.path.join(dst, name))
+    with open(os.path.join(dst, "runs.csv"), "w") as f:
+        f.write("\n".join([lines[0]] + [l for l, _ in chosen]) + "\n")
+    for _, r in chosen:
+        shutil.copytree(os.path.join(out, "runs", col(r, "run_id")), os.path.join(dst, "runs", col(r, "run_id")))
+
+
 def main():
-    if len(sys.argv) != 3:
+    if len(sys.argv) not in (3, 4):
         sys.exit(__doc__)
     out, results = sys.argv[1], sys.argv[2]
     if out != "-":
         collect(out, results)
     summarise(results)
+    if len(sys.argv) == 4:
+        figure_folder(out, sys.argv[3])
 
 
 if __name__ == "__main__":

@@ -31,8 +31,8 @@ pub fn held_karp(inst: &Instance) -> Option<(Tour, f64)> {
             if here.is_infinite() || mask & (1 << cell_of[g]) == 0 {
                 continue;
             }
-            for h in 0..m {
-                let bit = 1 << cell_of[h];
+            for (h, &cell) in cell_of.iter().enumerate() {
+                let bit = 1 << cell;
                 if mask & bit != 0 {
                     continue;
                 }

@@ -68,7 +68,7 @@ pub fn or_opt(inst: &Instance, tour: &mut Tour) -> (bool, u64) {
             let removed = inst.leg(prev, first) + inst.leg(last, next) - inst.leg(prev, next);
             // Insert between positions p and p + 1 of the tour without the run.
             for p in -1..n {
-                if p >= i - 1 && p <= i + len - 1 {
+                if p >= i - 1 && p < i + len {
                     continue;
                 }
                 let (a, b) = (at(tour, p), at(tour, p + 1));
