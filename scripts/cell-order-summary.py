@@ -276,8 +276,12 @@ def figure_folder(out, dst):
     if os.path.exists(dst):
         shutil.rmtree(dst)
     os.makedirs(os.path.join(dst, "runs"))
-    for name in ["study.json", "grid.toml"]:
-        shutil.copyfile(os.path.join(out, name), os.path.join(dst, name))
+    shutil.copyfile(os.path.join(out, "grid.toml"), os.path.join(dst, "grid.toml"))
+    with open(os.path.join(out, "study.json")) as f:
+        meta = json.load(f)
+    meta["runs"] = len(chosen)  # the folder holds these runs only; its report is complete
+    with open(os.path.join(dst, "study.json"), "w") as f:
+        json.dump(meta, f, indent=2)
     with open(os.path.join(dst, "runs.csv"), "w") as f:
         f.write("\n".join([lines[0]] + [l for l, _ in chosen]) + "\n")
     for _, r in chosen:

@@ -34,11 +34,40 @@ pub struct PathFileError {
     pub message: String,
 }
 
+/// The largest experiment, grid, fleet or map YAML file read (bytes): far above any real one,
+/// and a bound for a path that names a device (`/dev/zero`) or a runaway file.
+pub const MAX_TEXT_FILE_BYTES: u64 = 16 << 20;
+/// The largest map image read (bytes): a compressed floor plan is a few MiB.
+pub const MAX_IMAGE_FILE_BYTES: u64 = 128 << 20;
+/// The largest path file read (bytes): about four million points.
+pub const MAX_PATH_FILE_BYTES: u64 = 128 << 20;
+
+/// The bytes of `path`, refused when there are more than `limit`: never more than `limit + 1`
+/// bytes are held, whatever the file is (an endless device included).
+pub fn read_bounded(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)?.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("larger than {} MiB, the most this kind of file may hold", limit >> 20),
+        ));
+    }
+    Ok(bytes)
+}
+
+/// [`read_bounded`] as UTF-8 text.
+pub fn read_text_bounded(path: &Path, limit: u64) -> std::io::Result<String> {
+    String::from_utf8(read_bounded(path, limit)?)
+        .map_err(|_| std::io::Error::new(std::io::ErrorKind::InvalidData, "not UTF-8 text"))
+}
+
 /// Reads a path file: CSV with header `x_m,y_m` (metres, one point per row), optionally an
 /// `agent` column (non-negative integer) that splits the rows into one path per agent, and an
 /// `index` column that is ignored. Returns the paths in ascending agent order.
 pub fn read_path_csv(path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
-    let text = std::fs::read_to_string(path).map_err(|e| PathFileError {
+    let text = read_text_bounded(path, MAX_PATH_FILE_BYTES).map_err(|e| PathFileError {
         path: path.to_path_buf(),
         line: 0,
         message: format!("cannot read path file: {e}"),

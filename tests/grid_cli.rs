@@ -472,3 +472,63 @@ fn merge_refuses_missing_shards_unless_partial() {
     assert!(err.contains("runs of another study"), "{err}");
     assert!(!out.join("runs.csv").exists(), "nothing merged");
 }
+
+/// `--jobs` far above the run count starts no idle workers (clamped), `--shard` with `--slurm`
+/// is refused (the array tasks are the shards), and an `--array-size` above Slurm's default
+/// `MaxArraySize` warns.
+#[test]
+fn jobs_are_clamped_shards_and_slurm_exclude_each_other_and_large_arrays_warn() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("tiny.toml");
+    std::fs::write(
+        &grid,
+        "seed = 1\n[base]\nplanner = \"boustrophedon\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n[axes]\n\"pattern.angle_deg\" = [0.0, 90.0]\n",
+    )
+    .unwrap();
+    let g = grid.to_str().unwrap();
+    let out = dir.path().join("out");
+    let started = std::time::Instant::now();
+    ok(&covga(&["grid", g, "--jobs", "100000", "--out", out.to_str().unwrap()]));
+    assert!(started.elapsed().as_secs_f64() < 5.0, "{:?}", started.elapsed());
+    let both = covga(&["grid", g, "--shard", "0/2", "--slurm", "--out", dir.path().join("s").to_str().unwrap()]);
+    assert_eq!(both.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&both.stderr).contains("cannot be used with"), "{both:?}");
+    let large = covga(&["grid", g, "--slurm", "--array-size", "2000", "--out", dir.path().join("a").to_str().unwrap()]);
+    ok(&large);
+    assert!(String::from_utf8_lossy(&large.stderr).contains("MaxArraySize of 1001"), "{large:?}");
+}
+
+/// A report of a study with runs missing says so first; a runs.csv with a metric that is not a
+/// finite number is refused, naming the run and the column.
+#[test]
+fn reports_mark_incomplete_studies_and_refuse_non_finite_metrics() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("tiny.toml");
+    std::fs::write(
+        &grid,
+        "seed = 1\n[base]\nplanner = \"boustrophedon\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n[axes]\n\"pattern.angle_deg\" = [0.0, 90.0]\n",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    ok(&covga(&["grid", grid.to_str().unwrap(), "--out", o]));
+    ok(&covga(&["report", o]));
+    let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    assert!(!summary.contains("Incomplete"), "{summary}");
+    // One run lost (as after kill -9 before it was recorded).
+    let runs = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let lines: Vec<&str> = runs.lines().collect();
+    std::fs::write(out.join("runs.csv"), format!("{}\n{}\n", lines[0], lines[1])).unwrap();
+    ok(&covga(&["report", o]));
+    let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    assert!(summary.contains("**Incomplete: 1 of 2 runs recorded.**"), "{summary}");
+    // A metric that is not a number.
+    let header: Vec<&str> = lines[0].split(',').collect();
+    let k = header.iter().position(|h| *h == "time_s").unwrap();
+    let mut cells: Vec<String> = lines[1].split(',').map(String::from).collect();
+    cells[k] = "NaN".into();
+    std::fs::write(out.join("runs.csv"), format!("{}\n{}\n", lines[0], cells.join(","))).unwrap();
+    let bad = covga(&["report", o]);
+    assert_eq!(bad.status.code(), Some(2), "{bad:?}");
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("`time_s` = NaN"), "{bad:?}");
+}

@@ -410,3 +410,27 @@ fn short_genomes_keep_crossing_unless_the_literal_rule_is_asked_for() {
     assert_eq!(evaluations_late("literal"), 0.0, "the literal rule freezes this population");
     assert!(evaluations_late("clamp") > 1000.0, "clamped, short genomes still cross");
 }
+
+/// A file that never ends (`/dev/zero`, or a map that names it) is read only up to its kind's
+/// limit and refused with exit 2, quickly and without growing.
+#[test]
+fn endless_input_files_are_refused_at_their_limit() {
+    if !Path::new("/dev/zero").exists() {
+        return;
+    }
+    let started = std::time::Instant::now();
+    let o = covga(&["run", "/dev/zero"], "1");
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("larger than 16 MiB"), "{o:?}");
+    let dir = tempfile::tempdir().unwrap();
+    let yaml = write(
+        dir.path(),
+        "zero.yaml",
+        "image: /dev/zero\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    );
+    let exp = write(dir.path(), "e.toml", &format!("[map]\nsource = \"{}\"\n", yaml.display()));
+    let o = covga(&["run", exp.to_str().unwrap()], "1");
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("larger than 128 MiB"), "{o:?}");
+    assert!(started.elapsed().as_secs_f64() < 5.0, "{:?}", started.elapsed());
+}

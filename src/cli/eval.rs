@@ -161,7 +161,8 @@ struct Report<'a> {
 /// Reads and validates `--fleet`.
 fn read_fleet(file: &std::path::Path, map: &crate::map::GridMap) -> Result<crate::fleet::Fleet, CliError> {
     let origin = file.display().to_string();
-    let text = std::fs::read_to_string(file).map_err(|e| CliError::Input(format!("{origin}: cannot read: {e}")))?;
+    let text = crate::io::read_text_bounded(file, crate::io::MAX_TEXT_FILE_BYTES)
+        .map_err(|e| CliError::Input(format!("{origin}: cannot read: {e}")))?;
     crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)
 }
 

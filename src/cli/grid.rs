@@ -13,11 +13,12 @@ use std::path::PathBuf;
 pub struct GridArgs {
     /// Grid file (TOML).
     file: PathBuf,
-    /// Runs in parallel.
+    /// Runs in parallel (at most the number of runs: more would idle).
     #[arg(long, default_value_t = 1)]
     jobs: usize,
-    /// Run only shard K of N (0 <= K < N): every N-th run in sorted id order.
-    #[arg(long)]
+    /// Run only shard K of N (0 <= K < N): every N-th run in sorted id order. Not with
+    /// --slurm, whose array tasks are the shards.
+    #[arg(long, conflicts_with = "slurm")]
     shard: Option<String>,
     /// Study folder (default out/<grid stem>).
     #[arg(long)]
@@ -69,7 +70,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     let (limit, parallel) = if a.slurm {
         (a.max_memory, a.cpus_per_task)
     } else {
-        (crate::experiment::memory::memory_limit(a.max_memory), a.jobs)
+        (crate::experiment::memory::memory_limit(a.max_memory), a.jobs.min(all.len().max(1)))
     };
     let largest_run_bytes =
         crate::study::runner::validate_runs(&study, &all, &crate::study::runner::MapCache::default(), limit, parallel)
@@ -156,10 +157,22 @@ fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), Cli
     Ok(())
 }
 
+/// Slurm's default `MaxArraySize`: array indices run from 0 to one less.
+const SLURM_MAX_ARRAY_SIZE: usize = 1001;
+
 fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str, largest_run_bytes: f64) -> Result<(), CliError> {
     check_time(&a.time).map_err(CliError::Input)?;
     if a.array_size == 0 || a.cpus_per_task == 0 {
         return Err(CliError::Input("--array-size and --cpus-per-task must be at least 1".into()));
+    }
+    if a.array_size > SLURM_MAX_ARRAY_SIZE {
+        eprintln!(
+            "warning: --array-size {} asks for --array=0-{}, beyond Slurm's default MaxArraySize of {SLURM_MAX_ARRAY_SIZE} \
+             (tasks 0-{}); sbatch refuses it unless the cluster raised the limit (scontrol show config | grep MaxArraySize)",
+            a.array_size,
+            a.array_size - 1,
+            SLURM_MAX_ARRAY_SIZE - 1
+        );
     }
     let abs =
         |p: &std::path::Path| std::path::absolute(p).map_err(|e| CliError::Internal(format!("{}: {e}", p.display())));

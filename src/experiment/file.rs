@@ -135,7 +135,7 @@ impl ExperimentFile {
 
     /// The text of an experiment file (for [`Self::parse`] and for checks on what it sets).
     pub fn read_text(path: &Path) -> Result<String, ConfigError> {
-        std::fs::read_to_string(path)
+        crate::io::read_text_bounded(path, crate::io::MAX_TEXT_FILE_BYTES)
             .map_err(|e| ConfigError::new(path.display(), "", format!("cannot read experiment file: {e}")))
     }
 

@@ -175,17 +175,20 @@ pub fn parse_ros_yaml(text: &str, path: &Path) -> Result<RosMeta, MapError> {
 
 /// Loads a ROS map_server YAML file and the image it names (relative to the YAML's folder).
 pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
-    let text = std::fs::read_to_string(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
+    let text = crate::io::read_text_bounded(path, crate::io::MAX_TEXT_FILE_BYTES)
+        .map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
     let meta = parse_ros_yaml(&text, path)?;
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    let bytes = std::fs::read(&meta.image).map_err(|source| MapError::Io { path: meta.image.clone(), source })?;
+    let bytes = crate::io::read_bounded(&meta.image, crate::io::MAX_IMAGE_FILE_BYTES)
+        .map_err(|source| MapError::Io { path: meta.image.clone(), source })?;
     decode_map_image(&bytes, &meta.image, &name, meta.resolution, meta.origin, meta.rule)
 }
 
 /// Loads a bare PGM/PNG image at `resolution` m per pixel, origin (0, 0), default thresholds.
 pub fn load_image(path: &Path, resolution: f64) -> Result<GridMap, MapError> {
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    let bytes = std::fs::read(path).map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
+    let bytes = crate::io::read_bounded(path, crate::io::MAX_IMAGE_FILE_BYTES)
+        .map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
     decode_map_image(&bytes, path, &name, resolution, Point::origin(), PixelRule::default())
 }
 

@@ -63,7 +63,7 @@ fn oriented(v: &[f64], better: Better) -> Vec<f64> {
 }
 
 /// The fleet section of the study report, written to `summary.md` in `out`.
-pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportError> {
+pub fn write(dir: &Path, t: &RunsTable, out: &Path, incomplete: Option<&str>) -> Result<String, ReportError> {
     let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
     let text = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
     // The metric `planner` column, not a swept `planner` key of the same name before it.
@@ -84,6 +84,9 @@ pub fn write(dir: &Path, t: &RunsTable, out: &Path) -> Result<String, ReportErro
     };
     let mut md = String::new();
     let _ = writeln!(md, "# Fleet study\n");
+    if let Some(note) = incomplete {
+        let _ = writeln!(md, "{note}\n");
+    }
     let _ = writeln!(
         md,
         "{} runs from `{}`. Methods: `central` (the centralised fleet GA), `negotiate` (one thesis GA per robot, \

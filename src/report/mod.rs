@@ -115,6 +115,37 @@ fn cell_matches(cell: &str, want: &str) -> bool {
     }
 }
 
+/// A metric of runs.csv that is not a finite number (a hand-edited or damaged file): the
+/// report would print `NaN ± NaN` or an infinite hypervolume as if they were results.
+fn check_finite(t: &RunsTable) -> Result<(), String> {
+    let id = t.col("run_id");
+    for name in crate::coverage::score::Score::column_names() {
+        let Some(c) = t.col(name) else { continue };
+        for row in &t.rows {
+            if row[c].parse::<f64>().is_ok_and(|v| !v.is_finite()) {
+                return Err(format!(
+                    "run {} has `{name}` = {}: every metric must be a finite number (was the file edited by hand?)",
+                    id.map_or("?", |i| row[i].as_str()),
+                    row[c]
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The note a report of a study with fewer recorded runs than its grid holds begins with.
+pub fn incomplete_note(dir: &Path, recorded: usize) -> Option<String> {
+    let meta: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("study.json")).ok()?).ok()?;
+    let total = meta.get("runs")?.as_u64()? as usize;
+    (recorded < total).then(|| {
+        format!(
+            "**Incomplete: {recorded} of {total} runs recorded.** Every table and figure below covers the recorded runs only; \
+             resume the study (the same `covga grid` command) for the rest."
+        )
+    })
+}
+
 /// Writes `<dir>/report/` (grouped by `by`) and returns the path of `summary.md`.
 pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, ReportError> {
     write_report_with(dir, &ReportOptions { by: by.to_vec(), ..Default::default() })
@@ -145,6 +176,8 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         }
     })?;
     let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
+    check_finite(&t).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
+    let recorded = t.rows.len();
     let mut selected = Vec::new();
     for (key, want) in &opts.filter {
         let Some(c) = t.col(key) else {
@@ -188,8 +221,9 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         None => dir.join("report"),
     };
     std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
+    let incomplete = incomplete_note(dir, recorded);
     if self::fleet_report::applies(&t) {
-        self::fleet_report::write(dir, &t, &out)?;
+        self::fleet_report::write(dir, &t, &out, incomplete.as_deref())?;
         return Ok(out);
     }
     let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
@@ -374,6 +408,9 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         .collect::<std::collections::BTreeSet<_>>()
         .len();
     let _ = writeln!(md, "# Study report: {}\n", dir.display());
+    if let Some(note) = &incomplete {
+        let _ = writeln!(md, "{note}\n");
+    }
     if !selected.is_empty() {
         let _ = writeln!(md, "Runs with {} only.\n", selected.join(", "));
     }

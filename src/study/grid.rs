@@ -168,7 +168,7 @@ fn check_key(base: &Table, key: &str, sample: &Value, origin: &str, section: &st
 impl Study {
     /// Reads and expands a grid file.
     pub fn load(path: &Path) -> Result<Self, ConfigError> {
-        let text = std::fs::read_to_string(path)
+        let text = crate::io::read_text_bounded(path, crate::io::MAX_TEXT_FILE_BYTES)
             .map_err(|e| ConfigError::new(path.display(), "", format!("cannot read grid file: {e}")))?;
         Self::parse(&text, path)
     }
@@ -181,7 +181,7 @@ impl Study {
             BaseRef::Inline(t) => t.clone(),
             BaseRef::Path(p) => {
                 let full = path.parent().unwrap_or(Path::new(".")).join(p);
-                let body = std::fs::read_to_string(&full)
+                let body = crate::io::read_text_bounded(&full, crate::io::MAX_TEXT_FILE_BYTES)
                     .map_err(|e| ConfigError::new(&origin, "base", format!("cannot read {}: {e}", full.display())))?;
                 let t: Table = toml::from_str(&body)
                     .map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?;
@@ -293,6 +293,26 @@ impl Study {
                     continue;
                 }
                 applied[next_cond] = true;
+                // A key an earlier conditional already set in this run: the later one would
+                // silently replace its values (and fold its configurations into one).
+                if let Some((k, _)) = cax.iter().find(|(k, _)| params.iter().any(|(p, _)| p == k)) {
+                    let earlier = (0..next_cond)
+                        .rev()
+                        .find(|&m| grid.conditional[m].axes.contains_key(k.as_str()))
+                        .map_or_else(|| "an earlier conditional".to_string(), |m| format!("conditional[{m}]"));
+                    return Err(ConfigError::new(
+                        &origin,
+                        &format!("conditional[{next_cond}].axes.\"{k}\""),
+                        format!(
+                            "is also set by {earlier}, and both apply to the runs with {}: conditional axes that set the same key must not both apply (make their `when` tables exclusive, or merge their values into one conditional)",
+                            params
+                                .iter()
+                                .map(|(k, v)| format!("{k} = {}", scalar_text(v)))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ));
+                }
                 let mut b = branch.clone();
                 b.push(when.iter().map(|(k, v)| format!("{k}={}", scalar_text(v))).collect::<Vec<_>>().join(","));
                 let mut expanded = vec![(t, params)];
@@ -460,7 +480,19 @@ mod tests {
             "{BASE}[axes]\n\"thesis.selection\" = [\"elite\", \"prws\"]\n[[conditional]]\nwhen = {{ \"thesis.selection\" = \"prws\" }}\naxes = {{ \"thesis.p_mi\" = [0.1, 0.2] }}\n[[conditional]]\nwhen = {{ \"thesis.selection\" = \"prws\" }}\naxes = {{ \"thesis.p_mi\" = [0.3] }}\n"
         );
         let e = parse(&text).unwrap_err();
-        assert!(e.message.contains("one configuration"), "{e}");
+        assert!(e.key.contains("conditional[1].axes") && e.message.contains("must not both apply"), "{e}");
+    }
+
+    /// Two conditionals that apply to the same run and set one key with single values: the
+    /// second used to replace the first silently (one configuration, the second's value).
+    #[test]
+    fn two_conditionals_setting_one_key_for_one_run_are_refused() {
+        let text = format!(
+            "{BASE}[axes]\n\"thesis.c_len\" = [0.1]\n[[conditional]]\nwhen = {{ \"thesis.c_len\" = 0.1 }}\naxes = {{ \"thesis.p_ma\" = [0.1] }}\n[[conditional]]\nwhen = {{ \"thesis.c_len\" = 0.1 }}\naxes = {{ \"thesis.p_ma\" = [0.2] }}\n"
+        );
+        let e = parse(&text).unwrap_err();
+        assert_eq!(e.key, "conditional[1].axes.\"thesis.p_ma\"", "{e}");
+        assert!(e.message.contains("conditional[0]") && e.message.contains("thesis.c_len = 0.1"), "{e}");
     }
 
     #[test]

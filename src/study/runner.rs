@@ -268,7 +268,9 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     // Validate everything before the first run starts: bad input loses nothing. The validated
     // experiments are not kept (memory stays flat); each worker validates its run again.
     let maps = MapCache::default();
-    validate_runs(study, &selected, &maps, crate::experiment::memory::memory_limit(opts.max_memory), opts.jobs)?;
+    // More workers than runs would only start idle threads (and count their memory).
+    let jobs = opts.jobs.clamp(1, selected.len().max(1));
+    validate_runs(study, &selected, &maps, crate::experiment::memory::memory_limit(opts.max_memory), jobs)?;
     check_identity(study, &opts.out)?;
     std::fs::create_dir_all(&opts.out).map_err(|source| StudyError::Folder { path: opts.out.clone(), source })?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
@@ -327,7 +329,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     // parallel loops see; results do not depend on the threads.
     let next = AtomicUsize::new(0);
     std::thread::scope(|scope| {
-        for _ in 0..opts.jobs.max(1) {
+        for _ in 0..jobs {
             scope.spawn(|| {
                 let pool = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
                     Ok(pool) => pool,
