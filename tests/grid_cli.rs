@@ -473,6 +473,9 @@ fn merge_refuses_missing_shards_unless_partial() {
     assert!(!out.join("runs.csv").exists(), "nothing merged");
 }
 
+/// A grid of two boustrophedon runs on thesis-1 (deterministic, well under a second).
+const TWO_PATTERN_RUNS: &str = "seed = 1\n[base]\nplanner = \"boustrophedon\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n[axes]\n\"pattern.angle_deg\" = [0.0, 90.0]\n";
+
 /// `--jobs` far above the run count starts no idle workers (clamped), `--shard` with `--slurm`
 /// is refused (the array tasks are the shards), and an `--array-size` above Slurm's default
 /// `MaxArraySize` warns.
@@ -480,11 +483,7 @@ fn merge_refuses_missing_shards_unless_partial() {
 fn jobs_are_clamped_shards_and_slurm_exclude_each_other_and_large_arrays_warn() {
     let dir = tempfile::tempdir().unwrap();
     let grid = dir.path().join("tiny.toml");
-    std::fs::write(
-        &grid,
-        "seed = 1\n[base]\nplanner = \"boustrophedon\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n[axes]\n\"pattern.angle_deg\" = [0.0, 90.0]\n",
-    )
-    .unwrap();
+    std::fs::write(&grid, TWO_PATTERN_RUNS).unwrap();
     let g = grid.to_str().unwrap();
     let out = dir.path().join("out");
     let started = std::time::Instant::now();
@@ -504,11 +503,7 @@ fn jobs_are_clamped_shards_and_slurm_exclude_each_other_and_large_arrays_warn() 
 fn reports_mark_incomplete_studies_and_refuse_non_finite_metrics() {
     let dir = tempfile::tempdir().unwrap();
     let grid = dir.path().join("tiny.toml");
-    std::fs::write(
-        &grid,
-        "seed = 1\n[base]\nplanner = \"boustrophedon\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n[axes]\n\"pattern.angle_deg\" = [0.0, 90.0]\n",
-    )
-    .unwrap();
+    std::fs::write(&grid, TWO_PATTERN_RUNS).unwrap();
     let out = dir.path().join("out");
     let o = out.to_str().unwrap();
     ok(&covga(&["grid", grid.to_str().unwrap(), "--out", o]));
