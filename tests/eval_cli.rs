@@ -363,3 +363,13 @@ fn the_fleet_headline_scores_each_robot_at_its_own_width() {
     assert_eq!(s["common"]["executable"], true);
     assert_eq!(s["obstacle_cells"], 0, "the headline metrics");
 }
+
+/// `covga eval --help` names every preset map.
+#[test]
+fn eval_help_lists_every_preset() {
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga")).args(["eval", "--help"]).output().unwrap();
+    let help = String::from_utf8_lossy(&o.stdout);
+    for name in covga::map::presets::PRESET_NAMES {
+        assert!(help.contains(name), "{name} missing from:\n{help}");
+    }
+}

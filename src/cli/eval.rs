@@ -31,7 +31,8 @@ enum ProjectionName {
 /// Arguments of `covga eval`.
 #[derive(clap::Args, Debug)]
 pub struct EvalArgs {
-    /// Map: a preset (thesis-1, thesis-2, office), a ROS map YAML, or a PGM/PNG image with --resolution.
+    /// Map: a preset (thesis-1, thesis-2, office, office-large, office-ring), a ROS map YAML, or
+    /// a PGM/PNG image with --resolution.
     #[arg(long, default_value = "thesis-1")]
     map: String,
     /// Metres per pixel for a bare image map.
