@@ -373,3 +373,29 @@ fn eval_help_lists_every_preset() {
         assert!(help.contains(name), "{name} missing from:\n{help}");
     }
 }
+
+/// A robot so narrow that a pattern would need lanes without end is refused at once, naming
+/// the key and the narrowest width allowed, in `eval` and in `run`.
+#[test]
+fn a_robot_too_narrow_for_lanes_is_refused_at_once() {
+    let started = std::time::Instant::now();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["eval", "--map", "thesis-1", "--width", "1e-12"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("--width") && err.contains("at least 1.556e-4 m"), "{err}");
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("narrow.toml");
+    std::fs::write(&file, "planner = \"boustrophedon\"\n[robot]\nwidth = 1e-6\n[stations]\nstart = [1.3, 1.3]\n")
+        .unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["run", file.to_str().unwrap(), "--out", dir.path().join("out").to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("`robot.width`"), "{o:?}");
+    assert!(!dir.path().join("out").join("best_path.csv").exists(), "nothing half written");
+    assert!(started.elapsed().as_secs_f64() < 5.0);
+}

@@ -228,6 +228,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             };
             map.check_station(start, "--start").map_err(CliError::Input)?;
             map.check_station(end, "--end").map_err(CliError::Input)?;
+            patterns::check_lane_count(&map, robot.width).map_err(|e| CliError::Input(format!("--width: {e}")))?;
             if end != start {
                 let clear = crate::map::clearance::Clearance::new(&map, robot.width);
                 if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {

@@ -21,6 +21,38 @@ pub enum PatternError {
         /// The robot width.
         width: f64,
     },
+    /// The robot is so narrow that the lanes across the map would not fit in memory or time.
+    #[error(
+        "a robot {width} m wide needs about {lanes:.3e} lanes across map `{map}` ({across:.1} m); at most {MAX_LANES} \
+         are planned (a width of at least {min_width:.3e} m)"
+    )]
+    TooManyLanes {
+        /// The robot width.
+        width: f64,
+        /// The map's name.
+        map: String,
+        /// Its diagonal in metres.
+        across: f64,
+        /// Lanes one width apart across the diagonal.
+        lanes: f64,
+        /// The narrowest width within the limit.
+        min_width: f64,
+    },
+}
+
+/// The most lanes a pattern lays across a map (at any direction): far above any real floor plan
+/// at a real robot's width (basement, 30 m across at 0.6 m: 71), and a bound that keeps a
+/// mistyped width from allocating lanes without end.
+pub const MAX_LANES: f64 = 100_000.0;
+
+/// Refuses a width that would lay more than [`MAX_LANES`] lanes across `map`'s diagonal.
+pub fn check_lane_count(map: &GridMap, width: f64) -> Result<(), PatternError> {
+    let across = map.width_m().hypot(map.height_m());
+    let lanes = across / width;
+    if lanes.is_finite() && lanes <= MAX_LANES {
+        return Ok(());
+    }
+    Err(PatternError::TooManyLanes { width, map: map.name().to_string(), across, lanes, min_width: across / MAX_LANES })
 }
 
 /// A coverage pattern.
@@ -61,6 +93,7 @@ pub fn plan_region(
     start: Point,
     end: Point,
 ) -> Result<PatternPlan, PatternError> {
+    check_lane_count(map, width)?;
     let mut lanes = Clearance::new(region, width);
     let region_reach = crate::map::reach::Reach::new(&lanes, &[start]);
     let mut whole = Clearance::new(map, width);
@@ -187,6 +220,7 @@ pub fn plan(
     end: Point,
     complete: bool,
 ) -> Result<PatternPlan, PatternError> {
+    check_lane_count(map, width)?;
     let mut clear = Clearance::new(map, width);
     let reach = crate::map::reach::Reach::new(&clear, &[start]);
     if reach.centres().iter().all(|c| !c) {

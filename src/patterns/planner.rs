@@ -60,6 +60,8 @@ impl PatternSection {
     pub fn validate(&self, kind: PatternKind, ctx: &Context) -> Result<PatternConfig, ConfigError> {
         let a = self.angle_deg;
         check_range(ctx.origin, "pattern.angle_deg", a, -360.0, 360.0, "[-360, 360] degrees")?;
+        super::check_lane_count(&ctx.scenario.map, ctx.scenario.robot.width)
+            .map_err(|e| ctx.error("robot.width", e.to_string()))?;
         let pattern = match kind {
             PatternKind::Spiral => Pattern::Spiral,
             PatternKind::Boustrophedon => Pattern::Boustrophedon { angle_deg: a },
