@@ -41,6 +41,24 @@ pub enum DivisionError {
         /// End y.
         y: f64,
     },
+    /// A robot's region holds no lane: its share of the area, by sweep rate, is too small.
+    #[error(
+        "robot \"{robot}\" was given {area_m2:.2} m² ({cells} cells): its share of the area by width × speed, \
+         {share_pct:.2} % of the team's sweep rate, is too small for one lane of a robot {width} m wide; give it more \
+         speed or width, or plan without it"
+    )]
+    RegionTooSmall {
+        /// The robot.
+        robot: String,
+        /// Cells of its region.
+        cells: usize,
+        /// Their area.
+        area_m2: f64,
+        /// Its sweep rate over the team's, in per cent.
+        share_pct: f64,
+        /// Its width.
+        width: f64,
+    },
     /// The boustrophedon of a region failed.
     #[error("robot \"{robot}\": {source}")]
     Pattern {
@@ -317,7 +335,20 @@ pub fn plan(map: &GridMap, fleet: &Fleet, angle_deg: f64) -> Result<(Vec<Vec<Poi
                 robot.start,
                 robot.end,
             )
-            .map_err(|source| DivisionError::Pattern { robot: robot.name.clone(), source })?;
+            .map_err(|source| match source {
+                // The region, not the map, is what holds no lane for this robot.
+                PatternError::NoRoom { width } => {
+                    let team: f64 = fleet.robots().iter().map(|r| r.sweep_rate()).sum();
+                    DivisionError::RegionTooSmall {
+                        robot: robot.name.clone(),
+                        cells: division.sizes[k],
+                        area_m2: division.sizes[k] as f64 * map.resolution().powi(2),
+                        share_pct: 100.0 * robot.sweep_rate() / team,
+                        width,
+                    }
+                }
+                PatternError::TooManyLanes { .. } => DivisionError::Pattern { robot: robot.name.clone(), source },
+            })?;
             let time = robot_time(&planned.points, &robot.footprint);
             if best.as_ref().is_none_or(|(t, _)| time < *t) {
                 best = Some((time, planned.points));
@@ -337,6 +368,22 @@ mod tests {
 
     fn fleet(text: &str, map: &GridMap) -> Fleet {
         FleetFile::parse(text, "f.toml", map).unwrap()
+    }
+
+    /// A robot so slow that its share of the area holds no lane is told so, not that the map
+    /// has no room for it.
+    #[test]
+    fn a_share_too_small_for_a_lane_names_the_share() {
+        let map = preset("thesis-1").unwrap();
+        let f = fleet(
+            "[[robots]]\nname = \"slow\"\nwidth = 0.6\nspeed = 0.001\nstart = [1.5, 1.5]\n\
+             [[robots]]\nname = \"fast\"\nwidth = 0.6\nspeed = 0.2\nstart = [9.5, 9.5]\n",
+            &map,
+        );
+        let e = plan(&map, &f, 0.0).unwrap_err();
+        assert!(matches!(&e, DivisionError::RegionTooSmall { robot, .. } if robot == "slow"), "{e}");
+        let text = e.to_string();
+        assert!(text.contains("0.50 % of the team's sweep rate") && text.contains("more"), "{text}");
     }
 
     #[test]
