@@ -174,7 +174,10 @@ pub fn human_bytes(bytes: f64) -> String {
         b if b >= 1e12 => format!("{:.3e} bytes", b),
         b if b >= 1e9 => format!("{:.1} GB", b / 1e9),
         b if b >= 1e6 => format!("{:.1} MB", b / 1e6),
-        b => format!("{:.0} kB", b / 1e3),
+        b if b >= 1e3 => format!("{:.0} kB", b / 1e3),
+        // Below a kilobyte (a limit such as `--max-memory 1`): whole bytes, never "0 kB".
+        b if b.round() == 1.0 => "1 byte".to_string(),
+        b => format!("{:.0} bytes", b),
     }
 }
 
@@ -224,6 +227,9 @@ mod tests {
         assert_eq!(human_bytes(10.6e9), "10.6 GB");
         assert_eq!(human_bytes(15.2e6), "15.2 MB");
         assert_eq!(human_bytes(6.4e13), "6.400e13 bytes");
+        assert_eq!(human_bytes(2048.0), "2 kB");
+        assert_eq!(human_bytes(1.0), "1 byte");
+        assert_eq!(human_bytes(512.0), "512 bytes");
         assert!(available_memory().is_none_or(|b| b > 0));
     }
 

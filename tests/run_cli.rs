@@ -434,3 +434,22 @@ fn endless_input_files_are_refused_at_their_limit() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("larger than 128 MiB"), "{o:?}");
     assert!(started.elapsed().as_secs_f64() < 5.0, "{:?}", started.elapsed());
 }
+
+/// Out-of-range values are refused with the real bound, not "> 0" (table of key, value, bound).
+#[test]
+fn range_messages_name_the_real_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("[robot]\nwidth = 5e-324\n", "robot.width", ">= 1e-6 metres"),
+        ("[robot]\nspeed = 1e-300\n", "robot.speed", ">= 1e-9 m/s"),
+        ("[thesis]\ninit_dist_max = 1e18\n", "thesis.init_dist_max", "[1e-9, 1e6] metres"),
+    ];
+    for (k, (text, key, bound)) in cases.iter().enumerate() {
+        let file = write(dir.path(), &format!("e{k}.toml"), text);
+        let o =
+            covga(&["run", file.to_str().unwrap(), "--out", dir.path().join(format!("o{k}")).to_str().unwrap()], "1");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{key}: {err}");
+        assert!(err.contains(key) && err.contains(bound), "{key}: {err}");
+    }
+}

@@ -165,8 +165,8 @@ impl ExperimentFile {
             ));
         }
         let r = self.robot;
-        check_range(origin, "robot.width", r.width, 1e-6, f64::MAX, "> 0 metres")?;
-        check_range(origin, "robot.speed", r.speed, 1e-9, f64::MAX, "> 0 m/s")?;
+        check_range(origin, "robot.width", r.width, 1e-6, f64::MAX, ">= 1e-6 metres")?;
+        check_range(origin, "robot.speed", r.speed, 1e-9, f64::MAX, ">= 1e-9 m/s")?;
         check_range(
             origin,
             "robot.rot_speed",
@@ -198,7 +198,7 @@ impl ExperimentFile {
             ));
         }
         if let Some(res) = self.map.resolution {
-            check_range(origin, "map.resolution", res, 1e-9, 1e6, "> 0 metres per pixel")?;
+            check_range(origin, "map.resolution", res, 1e-9, 1e6, "[1e-9, 1e6] metres per pixel")?;
         }
         let map = load(&source, self.map.resolution).map_err(|e| err("map.source", e.to_string()))?;
         let start = Point::new(self.stations.start[0], self.stations.start[1]);

@@ -260,7 +260,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
     count("thesis.pop_min", t.pop_min, 1, 1_000_000)?;
     count("thesis.init_actions", t.init_actions, 1, 100_000)?;
     count("thesis.max_genome_len", t.max_genome_len, t.init_actions + 2, 1_000_000)?;
-    check_range(origin, "thesis.init_dist_max", t.init_dist_max, 1e-9, 1e6, "> 0 metres")?;
+    check_range(origin, "thesis.init_dist_max", t.init_dist_max, 1e-9, 1e6, "[1e-9, 1e6] metres")?;
     let child = ChildMode::from_index(t.c_child)
         .ok_or_else(|| err("thesis.c_child", format!("= {} is out of range {{0, 1, 2}}", t.c_child)))?;
     let selection = match t.selection {

@@ -178,7 +178,7 @@ pub fn camera_spec(
 ) -> Result<crate::coverage::score::CameraSpec, ConfigError> {
     let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
-    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "> 0 metres")?;
+    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "[1e-4, 100] metres")?;
     check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, ">= 0 metres")?;
     if !(w.d_max.is_finite() && w.d_max > w.d_min) {
         return Err(err(
@@ -261,7 +261,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
     // Scale, UAV width and the camera: the same checks as the scorer's camera.
     camera_spec(w, origin, map)?;
     let geometry = super::geometry::Geometry::resolve(w, origin, map)?;
-    check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "> 0 metres")?;
+    check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "[1e-4, 1e6] metres")?;
     if w.agents == 0 || w.agents > 64 {
         return Err(err("waypoint.agents", format!("= {} is out of range [1, 64]", w.agents)));
     }
