@@ -399,3 +399,15 @@ fn a_robot_too_narrow_for_lanes_is_refused_at_once() {
     assert!(!dir.path().join("out").join("best_path.csv").exists(), "nothing half written");
     assert!(started.elapsed().as_secs_f64() < 5.0);
 }
+
+/// `covga maps` writes only where it is told: without `--out` it refuses (exit 2) and writes
+/// nothing.
+#[test]
+fn maps_needs_an_out_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let o =
+        std::process::Command::new(env!("CARGO_BIN_EXE_covga")).arg("maps").current_dir(dir.path()).output().unwrap();
+    assert_eq!(o.status.code(), Some(2), "{o:?}");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--out"), "{o:?}");
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
+}

@@ -7,8 +7,9 @@ use std::path::PathBuf;
 /// Arguments of `covga maps`.
 #[derive(clap::Args, Debug)]
 pub struct MapsArgs {
-    /// Folder to write `<preset>.yaml` + `<preset>.pgm` into.
-    #[arg(long, default_value = "experiments/maps")]
+    /// Folder to write `<preset>.yaml` + `<preset>.pgm` into (required: the command overwrites
+    /// files of those names, so it writes only where it is told).
+    #[arg(long)]
     out: PathBuf,
 }
 
