@@ -168,11 +168,19 @@ impl Figure for ConvergenceFigure {
             .map_err(err)?;
         // One legend for all panels, below them, where it hides no curve.
         let (panels, strip) = root.split_vertically(root.dim_in_pixel().1 - LEGEND_STRIP);
-        let widest = self.panels.iter().map(|(_, c)| c).max_by_key(|c| c.len());
+        // Every series in the order it first appears; its colour is its place here in every
+        // panel, so that a planner missing from one panel does not shift the others' colours.
+        let mut series: Vec<&Curve> = Vec::new();
+        for c in self.panels.iter().flat_map(|(_, c)| c) {
+            if !series.iter().any(|s| s.label == c.label) {
+                series.push(c);
+            }
+        }
+        let colour_of = |label: &str| colour(series.iter().position(|s| s.label == label).unwrap_or(0));
         let runs: std::collections::BTreeSet<usize> =
             self.panels.iter().flat_map(|(_, c)| c.iter().map(|c| c.runs)).collect();
         let mut x = 20;
-        for (k, c) in widest.into_iter().flatten().enumerate() {
+        for (k, c) in series.iter().enumerate() {
             let label = match runs.len() {
                 1 => format!("{} ({} runs)", c.label, c.runs),
                 _ => c.label.clone(),
@@ -203,8 +211,8 @@ impl Figure for ConvergenceFigure {
                 .axis_desc_style(text(13.0))
                 .draw()
                 .map_err(err)?;
-            for (k, c) in curves.iter().enumerate() {
-                let col = colour(k);
+            for c in curves {
+                let col = colour_of(&c.label);
                 let band: Vec<(f64, f64)> =
                     c.points.iter().map(|p| (p.0, p.3)).chain(c.points.iter().rev().map(|p| (p.0, p.1))).collect();
                 chart.draw_series([Polygon::new(band, col.mix(0.2).filled())]).map_err(err)?;
