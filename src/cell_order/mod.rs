@@ -174,11 +174,12 @@ struct Solved {
 
 impl CellOrderConfig {
     /// Orders the cells with the configured solver, handing the GA's generations to
-    /// `observers` (with the lane coverage of each generation's best tour).
+    /// `observers` (with the lane coverage of each generation's best tour, swept on `grid`).
     fn solve(
         &self,
         prepared: &Prepared,
         scenario: &Scenario,
+        grid: &crate::coverage::CoverageGrid,
         seed: u64,
         budget: &Budget,
         observers: &mut [&mut dyn Observer],
@@ -186,8 +187,7 @@ impl CellOrderConfig {
         let inst = &prepared.instance;
         match self.solver {
             Solver::Ga => {
-                let grid = crate::coverage::CoverageGrid::new(&scenario.map);
-                let mut scratch = crate::coverage::SweepScratch::new(&grid);
+                let mut scratch = crate::coverage::SweepScratch::new(grid);
                 // Lane coverage of the best tour (its sweeps without transit), recomputed when
                 // the best changes.
                 let mut lanes: Option<(Tour, f64)> = None;
@@ -198,7 +198,7 @@ impl CellOrderConfig {
                         return *c;
                     }
                     let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
-                    let swept = scratch.sweep_all(&grid, &paths, scenario.robot.width).unique();
+                    let swept = scratch.sweep_all(grid, &paths, scenario.robot.width).unique();
                     let c = swept as f64 / grid.area_cells().max(1) as f64;
                     lanes = Some((tour.clone(), c));
                     c
@@ -294,9 +294,9 @@ impl Planner for CellOrderConfig {
         let s = scenario;
         let prepared = prepare(s, &self.directions, self.completion_m_per_m2)
             .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
-        let solved = self.solve(&prepared, s, seed, budget, observers)?;
-        let (path, skipped) = prepared.path(&solved.tour, &s.robot, (s.start, s.end), self.completion);
         let grid = crate::coverage::CoverageGrid::new(&s.map);
+        let solved = self.solve(&prepared, s, &grid, seed, budget, observers)?;
+        let (path, skipped) = prepared.path(&solved.tour, &s.robot, (s.start, s.end), self.completion);
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
         Ok(RunOutcome {
