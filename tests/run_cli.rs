@@ -51,6 +51,7 @@ fn run_writes_every_result_file_and_improves() {
         "config.toml",
         "best_path.csv",
         "best_genome.csv",
+        "population.csv",
         "history.csv",
         "summary.json",
         "path.png",
@@ -73,6 +74,13 @@ fn run_writes_every_result_file_and_improves() {
     assert!(best_f[200] > best_f[0], "best f {} should beat the initial best {}", best_f[200], best_f[0]);
     assert_eq!(s["planner"], "thesis");
     assert_eq!(s["score"]["cov_final_free"], s["cov_final"], "the common scorer agrees with the GA on map 1");
+    // population.csv: the final population (Elite keeps pop_min), its fittest is the best.
+    let population = read(&out.join("population.csv"));
+    let fitness = column(&population, "fitness");
+    assert_eq!(fitness.len(), 40);
+    let fittest = fitness.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    assert_eq!(Some(fittest), s["fitness"].as_f64());
+    assert_eq!(column(&population, "genome_len").iter().filter(|&&g| g >= 3.0).count(), 40);
     // The best path is scored identically by `covga eval`.
     let ev = covga(
         &[

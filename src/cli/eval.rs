@@ -226,15 +226,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
                 Some(e) => parse_point(e).map_err(|m| CliError::Input(format!("--end: {m}")))?,
                 None => start,
             };
-            map.check_station(start, "--start").map_err(CliError::Input)?;
-            map.check_station(end, "--end").map_err(CliError::Input)?;
-            patterns::check_lane_count(&map, robot.width).map_err(|e| CliError::Input(format!("--width: {e}")))?;
-            if end != start {
-                let clear = crate::map::clearance::Clearance::new(&map, robot.width);
-                if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {
-                    return Err(CliError::Input(format!("--end: {why}")));
-                }
-            }
+            patterns::check_plan_inputs(&map, robot.width, start, end, ["--start", "--end", "--width"])
+                .map_err(CliError::Input)?;
             let hand = match a.pattern {
                 Some(PatternName::ThesisBoustrophedon) => Some((HandMade::Boustrophedon, "thesis boustrophedon")),
                 Some(PatternName::ThesisSpiral) => Some((HandMade::Spiral, "thesis spiral")),

@@ -101,7 +101,14 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
             );
         }
     };
-    let opts = RunnerOptions { jobs: a.jobs, shard, out: out.clone(), max_memory: a.max_memory, on_done: &on_done };
+    let opts = RunnerOptions {
+        jobs: a.jobs,
+        shard,
+        out: out.clone(),
+        max_memory: a.max_memory,
+        on_done: &on_done,
+        stop: None,
+    };
     let outcome = run_study(&study, &opts).map_err(|e| match e {
         crate::study::runner::StudyError::Config(c) => CliError::input(c),
         crate::study::runner::StudyError::Mismatch { .. }

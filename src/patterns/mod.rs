@@ -209,6 +209,24 @@ impl Route {
     }
 }
 
+/// Checks the inputs of [`plan`] as a user gives them, naming the input that is wrong with
+/// `names` (`[start, end, width]`, e.g. `["--start", "--end", "--width"]`): both stations on
+/// free cells of the map, a lane count within [`MAX_LANES`], and an end the robot can reach
+/// from the start.
+pub fn check_plan_inputs(map: &GridMap, width: f64, start: Point, end: Point, names: [&str; 3]) -> Result<(), String> {
+    let [start_name, end_name, width_name] = names;
+    map.check_station(start, start_name)?;
+    map.check_station(end, end_name)?;
+    check_lane_count(map, width).map_err(|e| format!("{width_name}: {e}"))?;
+    if end != start {
+        let clear = Clearance::new(map, width);
+        if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {
+            return Err(format!("{end_name}: {why}"));
+        }
+    }
+    Ok(())
+}
+
 /// Plans `pattern` on `map` for a robot `width` metres wide, from `start` back to `end`, over
 /// the part of the map the robot can reach from `start` ([`crate::map::reach::Reach`]); with
 /// `complete`, the strips the pattern left are visited afterwards (coverage completion).

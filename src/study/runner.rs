@@ -62,6 +62,13 @@ pub enum StudyError {
         /// What failed.
         message: String,
     },
+    /// The caller asked the runner to stop (`RunnerOptions::stop`); the runs finished before
+    /// are recorded, and running the study again resumes it.
+    #[error("stopped after {recorded} new runs; run the study again to resume it")]
+    Stopped {
+        /// Runs recorded by this invocation before it stopped.
+        recorded: usize,
+    },
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> StudyError + '_ {
@@ -123,6 +130,9 @@ pub struct RunnerOptions<'a> {
     pub max_memory: Option<u64>,
     /// Called after each finished run (from worker threads).
     pub on_done: &'a (dyn Fn(RunDone) + Sync),
+    /// When set (from another thread), no further run starts; the runs in progress finish and
+    /// are recorded, and the runner returns [`StudyError::Stopped`].
+    pub stop: Option<&'a AtomicBool>,
 }
 
 /// What a study invocation did.
@@ -335,7 +345,8 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
                     Ok(pool) => pool,
                     Err(e) => return fail(StudyError::Run { id: String::new(), message: e.to_string() }),
                 };
-                while !failed.load(Ordering::Relaxed) {
+                let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
+                while !failed.load(Ordering::Relaxed) && !stopped() {
                     let Some(&run) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else { break };
                     match pool.install(|| run_one(run)) {
                         Ok(r) => {
@@ -350,6 +361,9 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     });
     if let Some(e) = first_error.into_inner().expect("error slot") {
         return Err(e);
+    }
+    if opts.stop.is_some_and(|s| s.load(Ordering::Relaxed)) && counter.load(Ordering::SeqCst) < pending.len() {
+        return Err(StudyError::Stopped { recorded: counter.load(Ordering::SeqCst) });
     }
     // Complete: rewrite sorted by run id, atomically.
     let text = std::fs::read_to_string(&file).map_err(io(&file))?;

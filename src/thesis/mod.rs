@@ -4,6 +4,7 @@
 //! common scorer's (`crate::coverage::fitness`).
 
 pub mod architecture;
+pub mod batch;
 pub mod config;
 pub mod crossover;
 pub mod diversity;

@@ -1,16 +1,29 @@
 //! The thesis GA behind the common [`Planner`] interface: the run loop of [`super::run`] on
-//! the scenario, its best individual as the plan, `best_genome.csv` as an extra file, and the
-//! history figure of 003 Fig. 4.8 (plus the path before a retrain) as its own figures.
+//! the scenario, its best individual as the plan, `best_genome.csv` and `population.csv` as
+//! extra files, and the history figure of 003 Fig. 4.8 (plus the path before a retrain) as
+//! its own figures.
 
 use super::config::ThesisConfig;
 use super::individual::{Individual, Scenario as ThesisScenario};
 use super::run::{ThesisGa, ThesisOutcome};
 use crate::coverage::CoverageGrid;
+use crate::coverage::fitness::ThesisScore;
 use crate::ga::observer::Observer;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario};
 use crate::plot::history::HistoryFigure;
 use crate::plot::path::PathFigure;
 use std::path::Path;
+
+/// `population.csv`: the final population, one row per individual in population order, with
+/// both objectives of 003 (eqs. 3.6, 3.10), both projections (eqs. 3.14-3.15), `f_obstacle`
+/// (eq. 3.16) and `G_len`: the points of 003's Pareto figures.
+pub fn population_csv(population: &[(ThesisScore, usize)]) -> Vec<u8> {
+    let mut s = String::from("index,cov_final,t_final,f1,f2,fitness,genome_len\n");
+    for (i, (sc, len)) in population.iter().enumerate() {
+        s.push_str(&format!("{i},{},{},{},{},{},{len}\n", sc.cov_final, sc.t_final, sc.f1, sc.f2, sc.fitness));
+    }
+    s.into_bytes()
+}
 
 impl Planner for ThesisConfig {
     fn name(&self) -> &'static str {
@@ -54,7 +67,10 @@ impl Planner for ThesisConfig {
             stop: out.stop,
             wall_s: out.wall_s,
             details,
-            files: vec![("best_genome.csv".into(), best.genome_csv())],
+            files: vec![
+                ("best_genome.csv".into(), best.genome_csv()),
+                ("population.csv".into(), population_csv(&out.final_population)),
+            ],
             history: crate::planner::History::Generations,
             agents: Vec::new(),
             artifacts: Box::new((out, seed)),

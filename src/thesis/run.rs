@@ -8,6 +8,7 @@ use super::diversity::DiversityScratch;
 use super::individual::{EvalScratch, Individual};
 use super::member::{Member, Premark};
 use super::params::{Control, Retrain, Selection, ThesisParams};
+use crate::coverage::fitness::ThesisScore;
 use crate::ga::control;
 use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
 use crate::ga::rng::{Purpose, Rng, stream};
@@ -64,6 +65,9 @@ pub struct ThesisOutcome<T = Individual> {
     pub history: Vec<GenerationStats>,
     /// Iterations at which the environment changed.
     pub changes: Vec<u32>,
+    /// The final population's scores and genome lengths, in population order (its front is
+    /// what 003's Pareto figures show).
+    pub final_population: Vec<(ThesisScore, usize)>,
 }
 
 /// Index of the fittest individual (first on ties).
@@ -268,7 +272,9 @@ impl<T: Member> Ga<T> {
             }
         }
         let best = state.population[best_index(&state.population)].clone();
+        let final_population = state.population.iter().map(|m| (m.score(), m.genome_len())).collect();
         Ok(ThesisOutcome {
+            final_population,
             history,
             changes,
             best,

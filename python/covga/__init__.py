@@ -1,0 +1,258 @@
+"""covga from Python: maps, the common scorer, patterns, runs and grid studies.
+
+The Rust library does the work; this package converts. Arrays are numpy arrays in metres;
+tables are pandas DataFrames when pandas is installed, else dicts of numpy arrays. Bad input
+raises :class:`ConfigError` (a ``ValueError``) with the command line's message; a fault
+inside covga raises ``RuntimeError``. Long calls release the GIL, and Ctrl-C stops them.
+
+>>> import covga
+>>> m = covga.load_map("thesis-1")
+>>> path = covga.pattern(m, "boustrophedon", start=(1.3, 1.3), width=0.6)
+>>> covga.score(m, path, width=0.6)["cov_final_reach"]
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _covga, thesis
+from ._arrays import rows_of_pairs
+from ._covga import ConfigError, Map
+from ._tables import read_study, read_table
+
+__all__ = [
+    "ConfigError",
+    "Map",
+    "Result",
+    "grid",
+    "load_map",
+    "pattern",
+    "read_study",
+    "report",
+    "run",
+    "score",
+    "thesis",
+]
+__version__ = _covga.__version__
+
+# map_server's default thresholds on the occupancy percentages of a ROS OccupancyGrid.
+_OCCUPIED_ABOVE = 65.0
+_FREE_BELOW = 19.6
+
+
+def _cell_states(occupancy: np.ndarray) -> np.ndarray:
+    """Cell states (0 free, 1 occupied, 2 unknown) of an occupancy array."""
+    if occupancy.dtype == np.bool_:
+        return occupancy.astype(np.int8)
+    if not np.issubdtype(occupancy.dtype, np.number):
+        raise ConfigError(f"occupancy array of dtype {occupancy.dtype}: expected bool or numbers")
+    values = occupancy.astype(np.float64)
+    bad = ~np.isfinite(values) | (values > 100.0)
+    if bad.any():
+        r, c = np.argwhere(bad)[0]
+        raise ConfigError(
+            f"occupancy {values[r, c]} at [{r}, {c}] is out of range: expected -1 (unknown) or a percentage in [0, 100]"
+        )
+    states = np.full(values.shape, 2, dtype=np.int8)
+    states[(values >= 0.0) & (values < _FREE_BELOW)] = 0
+    states[values > _OCCUPIED_ABOVE] = 1
+    return states
+
+
+def load_map(
+    source: Union[str, os.PathLike, np.ndarray, Map],
+    resolution: Optional[float] = None,
+    origin: Sequence[float] = (0.0, 0.0),
+    name: str = "array",
+) -> Map:
+    """Loads a map.
+
+    ``source`` is a preset name (``thesis-1``, ``thesis-2``, ``office``, ``office-large``,
+    ``office-ring``), a ROS map YAML, a PGM/PNG image (with ``resolution`` in metres per pixel),
+    or a 2-D occupancy array indexed ``[row, col]`` with row 0 at the bottom (smallest y), as a
+    ROS ``OccupancyGrid`` stores it: bool (``True`` occupied), or percentages (negative unknown,
+    above 65 occupied, below 19.6 free, between unknown, as map_server thresholds them). An
+    array needs ``resolution``; ``origin`` is its lower-left corner in metres.
+    """
+    if isinstance(source, Map):
+        return source
+    if isinstance(source, (str, os.PathLike)):
+        return _covga.load_map(os.fspath(source), None if resolution is None else float(resolution))
+    occupancy = np.asarray(source)
+    if occupancy.ndim != 2:
+        raise ConfigError(f"occupancy array of shape {occupancy.shape}: expected 2-D (rows, cols)")
+    if resolution is None:
+        raise ConfigError("resolution: an occupancy array needs its metres per cell (resolution=...)")
+    x, y = (float(v) for v in origin)
+    return _covga.map_from_states(_cell_states(occupancy), float(resolution), (x, y), name)
+
+
+def _paths(path: Any) -> list:
+    """One ``(N, 2)`` float array per agent."""
+    if isinstance(path, (list, tuple)) and len(path) > 0 and np.ndim(path[0]) == 2:
+        items = list(path)
+    else:
+        items = [path]
+    return [rows_of_pairs(p, f"path {k}", "N", "metres") for k, p in enumerate(items)]
+
+
+def score(
+    map: Map,
+    path: Any,
+    width: float = 0.6,
+    speed: float = 0.2,
+    rot_speed: float = 0.0,
+    camera: Optional[Mapping[str, Any]] = None,
+    projection: str = "f1",
+) -> dict:
+    """The common scorer's metrics of a plan, as ``covga eval`` reports them (``common``).
+
+    ``path`` is an ``(N, 2)`` array of metres, or a list of them (one per agent, all with this
+    robot). ``camera`` holds ``[waypoint]`` camera keys (``scale``, ``d_min``, ``d_max``,
+    ``fov_deg``, ``sections``, ...); by default the experiment file's camera.
+    """
+    camera_json = None if camera is None else json.dumps(dict(camera))
+    text = _covga.score(
+        load_map(map), _paths(path), float(width), float(speed), float(rot_speed), camera_json, projection
+    )
+    return json.loads(text)
+
+
+def pattern(
+    map: Map,
+    kind: str = "boustrophedon",
+    start: Sequence[float] = (1.3, 1.3),
+    width: float = 0.6,
+    angle: float = 0.0,
+    end: Optional[Sequence[float]] = None,
+    complete: bool = True,
+) -> np.ndarray:
+    """A ``boustrophedon`` (lanes at ``angle`` degrees from +x) or ``spiral`` plan from
+    ``start`` back to ``end`` (default: the start), as an ``(N, 2)`` array of metres; with
+    ``complete``, the strips the pattern leaves are visited afterwards (as ``covga eval``)."""
+    s = tuple(float(v) for v in start)
+    e = None if end is None else tuple(float(v) for v in end)
+    return _covga.pattern(load_map(map), kind, s, float(width), float(angle), e, bool(complete))
+
+
+@dataclass
+class Result:
+    """One run: ``summary`` (``summary.json``), ``history`` (``history.csv``: a DataFrame with
+    pandas, else a dict of arrays), ``plan`` (one ``(N, 2)`` array per agent), ``path`` (the
+    first agent's), ``population`` (the thesis GA's final population, ``population.csv``;
+    ``None`` for other planners), ``dir`` (the results folder, ``None`` when not kept) and
+    ``warnings``."""
+
+    summary: dict
+    history: Any
+    plan: list
+    population: Any = None
+    dir: Optional[Path] = None
+    warnings: list = field(default_factory=list)
+
+    @property
+    def path(self) -> np.ndarray:
+        """The first (for one robot, the only) agent's path."""
+        return self.plan[0]
+
+    def __repr__(self) -> str:
+        s, nan = self.summary.get("score", {}), float("nan")
+        return (
+            f"Result({self.summary.get('planner')} on {self.summary.get('map')}, seed {self.summary.get('seed')}: "
+            f"cov_final_reach {s.get('cov_final_reach', nan):.4f}, t_final {s.get('t_final', nan):.4f}, "
+            f"executable {s.get('executable')})"
+        )
+
+
+def _experiment(experiment: Any) -> tuple:
+    """``(kind, payload)`` of a TOML path, TOML text or dict."""
+    if isinstance(experiment, Mapping):
+        return "json", json.dumps(experiment)
+    if isinstance(experiment, os.PathLike):
+        return "path", os.fspath(experiment)
+    if isinstance(experiment, str):
+        if "=" in experiment and not os.path.isfile(experiment):
+            return "text", experiment
+        return "path", experiment
+    raise ConfigError(f"experiment of type {type(experiment).__name__}: expected a TOML path, TOML text or a dict")
+
+
+def _read_plan(csv_path: Path) -> list:
+    table = np.genfromtxt(csv_path, delimiter=",", names=True, dtype=np.float64)
+    table = np.atleast_1d(table)
+    agents = table["agent"].astype(np.int64) if "agent" in table.dtype.names else np.zeros(len(table), np.int64)
+    points = np.column_stack([table["x_m"], table["y_m"]])
+    return [points[agents == k] for k in range(int(agents.max()) + 1 if len(agents) else 0)]
+
+
+def _read_result(folder: Path, kept: bool, messages: list) -> Result:
+    summary = json.loads((folder / "summary.json").read_text())
+    tables = {}
+    for name in ("history", "population"):
+        csv_file = folder / f"{name}.csv"
+        tables[name] = read_table(csv_file) if csv_file.is_file() else None
+    plan = _read_plan(folder / "best_path.csv")
+    return Result(summary, tables["history"], plan, tables["population"], folder if kept else None, messages)
+
+
+def run(
+    experiment: Any,
+    seed: Optional[int] = None,
+    out: Optional[Union[str, os.PathLike]] = None,
+    figures: Optional[bool] = None,
+) -> Result:
+    """Runs one experiment: a TOML file path, TOML text, or a dict with the experiment file's
+    keys (``{"planner": "thesis", "map": {"source": "thesis-1"}, ...}``). ``seed`` overrides the
+    file's. With ``out``, the run's folder is written there as ``covga run --out`` writes it
+    (figures too unless ``figures=False``); without, it is read back and removed. The GIL is
+    released while it runs; Ctrl-C stops it and raises ``KeyboardInterrupt``."""
+    kind, payload = _experiment(experiment)
+    if seed is not None and not (isinstance(seed, (int, np.integer)) and 0 <= int(seed) <= 2**63 - 1):
+        raise ConfigError(f"seed = {seed!r} is out of range: expected an integer in [0, {2**63 - 1}]")
+    seed = None if seed is None else int(seed)
+    if out is None:
+        with tempfile.TemporaryDirectory(prefix="covga-run-") as tmp:
+            folder = Path(tmp) / "run"
+            messages = _covga.run_experiment(kind, payload, seed, str(folder), bool(figures))
+            result = _read_result(folder, False, messages)
+    else:
+        folder = Path(out)
+        messages = _covga.run_experiment(kind, payload, seed, str(folder), figures is None or bool(figures))
+        result = _read_result(folder, True, messages)
+    for m in messages:
+        warnings.warn(m, stacklevel=2)
+    return result
+
+
+def grid(file: Union[str, os.PathLike], jobs: Optional[int] = None, out: Optional[Union[str, os.PathLike]] = None):
+    """Runs (or resumes) a grid study as ``covga grid`` does, ``jobs`` runs at a time (default:
+    one per CPU), into ``out`` (default ``out/<grid stem>``); returns :func:`read_study` of it.
+    Ctrl-C stops it after the runs in progress, which stay recorded: call again to resume."""
+    file = Path(file)
+    folder = Path(out) if out is not None else Path("out") / file.stem
+    n = (os.cpu_count() or 1) if jobs is None else jobs
+    if not isinstance(n, (int, np.integer)) or n < 1:
+        raise ConfigError(f"jobs = {jobs!r} is out of range: at least 1")
+    _covga.run_grid(str(file), int(n), str(folder))
+    return read_study(folder)
+
+
+def report(
+    dir: Union[str, os.PathLike],
+    by: Union[str, Sequence[str]] = (),
+    where: Optional[Mapping[str, Any]] = None,
+    name: Optional[str] = None,
+) -> Path:
+    """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
+    runs ``where`` each column equals its value; returns the path of ``summary.md``."""
+    by = [by] if isinstance(by, str) else list(by)
+    pairs = [(str(k), str(v).lower() if isinstance(v, bool) else str(v)) for k, v in (where or {}).items()]
+    return Path(_covga.write_report(os.fspath(dir), by, pairs, name))

@@ -1,0 +1,72 @@
+"""The thesis GA's fitness (003 eqs. 3.1-3.16) for genomes made outside covga.
+
+A genome is its live actions: an ``(L, 2)`` array of (heading in degrees from +x, distance in
+metres), S's move first. Each is decoded as the GA decodes its own (moves that leave the map
+are clamped, 003 eqs. 3.7-3.8), joined to the end station by the connector, and scored with
+the GA's fitness, so a pymoo or DEAP population is compared with covga's GA on equal terms.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _covga
+from ._arrays import rows_of_pairs
+from ._covga import ConfigError
+
+#: The columns of :func:`evaluate`'s result.
+COLUMNS = tuple(_covga.THESIS_COLUMNS)
+
+
+def _genomes(genomes: Any) -> Any:
+    """An ``(n, L, 2)`` float array as it is, else a list of ``(L, 2)`` float arrays."""
+    if isinstance(genomes, np.ndarray) and genomes.ndim == 3:
+        return np.asarray(genomes, dtype=np.float64)
+    if isinstance(genomes, np.ndarray) and genomes.ndim == 2:
+        raise ConfigError(
+            f"genomes of shape {genomes.shape}: expected (n, L, 2), or a list of (L, 2) arrays; "
+            "for one genome, pass [genome]"
+        )
+    unit = "numbers (heading in degrees, distance in metres)"
+    return [rows_of_pairs(g, f"genome {i}", "L", unit) for i, g in enumerate(genomes)]
+
+
+def evaluate(
+    map: Any,
+    genomes: Any,
+    width: float = 0.6,
+    speed: float = 0.2,
+    rot_speed: float = 0.0,
+    start: Sequence[float] = (1.3, 1.3),
+    end: Optional[Sequence[float]] = None,
+    projection: str = "f2",
+) -> np.ndarray:
+    """Scores a batch of genomes with the thesis GA's fitness, in parallel in Rust.
+
+    ``genomes``: an ``(n, L, 2)`` array or a list of ``(L_i, 2)`` arrays. Returns an ``(n, 4)``
+    array with the columns :data:`COLUMNS`: ``cov_final``, ``t_final``, ``f`` (``f_obstacle``
+    with ``projection``, maximised) and ``obstacle_cells`` (0 for a plan that stays in free
+    space). ``end`` defaults to ``start``.
+    """
+    from . import load_map
+
+    s = tuple(float(v) for v in start)
+    e = None if end is None else tuple(float(v) for v in end)
+    return _covga.thesis_evaluate(
+        load_map(map), _genomes(genomes), float(width), float(speed), float(rot_speed), s, e, projection
+    )
+
+
+def read_genome(run_dir: Union[str, os.PathLike]) -> np.ndarray:
+    """The live actions of a thesis run's best genome (``best_genome.csv``: the start's move
+    and every action, without the connector and the end) as an ``(L, 2)`` array."""
+    path = Path(run_dir) / "best_genome.csv"
+    if not path.is_file():
+        raise ConfigError(f"{run_dir}: no best_genome.csv (only thesis runs write one)")
+    table = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8"))
+    live = np.isin(table["role"], ["start", "action"])
+    return np.column_stack([table["alpha_deg"][live], table["dist_m"][live]]).astype(np.float64)

@@ -1,0 +1,67 @@
+//! `covga._covga`: the compiled part of the `covga` Python package.
+//!
+//! The bindings only convert: numpy arrays and Python values in, the covga library's calls,
+//! numpy arrays and JSON-shaped values out. The pure-Python layer (`python/covga/`) adds the
+//! pandas conversions and reads result folders. Every error of the user's input is raised as
+//! `covga.ConfigError` (a `ValueError`) with the command line's message; a panic inside covga is
+//! raised as `RuntimeError` and never crosses into the interpreter.
+
+mod maps;
+mod runs;
+mod scoring;
+
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+create_exception!(
+    covga,
+    ConfigError,
+    PyValueError,
+    "Bad input to covga: the message names the file, key or argument and the allowed range."
+);
+
+/// A `ConfigError` with `message`.
+pub(crate) fn config_error(message: impl std::fmt::Display) -> PyErr {
+    ConfigError::new_err(message.to_string())
+}
+
+/// The `RuntimeError` of a panic inside covga.
+pub(crate) fn panic_error(payload: Box<dyn std::any::Any + Send>) -> PyErr {
+    let what = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown cause".into());
+    PyRuntimeError::new_err(format!("internal error in covga (please report it): {what}"))
+}
+
+/// Runs `work` with the interpreter released; a panic becomes a `RuntimeError`.
+pub(crate) fn released<T: Send>(py: Python<'_>, work: impl FnOnce() -> PyResult<T> + Send) -> PyResult<T> {
+    py.detach(|| catch_unwind(AssertUnwindSafe(work))).unwrap_or_else(|p| Err(panic_error(p)))
+}
+
+/// Runs `work` while holding the interpreter; a panic becomes a `RuntimeError`.
+pub(crate) fn guarded<T>(work: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    catch_unwind(AssertUnwindSafe(work)).unwrap_or_else(|p| Err(panic_error(p)))
+}
+
+/// The module.
+#[pymodule]
+fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("ConfigError", m.py().get_type::<ConfigError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add_class::<maps::Map>()?;
+    m.add_function(wrap_pyfunction!(maps::load_map, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::map_from_states, m)?)?;
+    m.add_function(wrap_pyfunction!(scoring::score, m)?)?;
+    m.add_function(wrap_pyfunction!(scoring::pattern, m)?)?;
+    m.add_function(wrap_pyfunction!(scoring::thesis_evaluate, m)?)?;
+    m.add("THESIS_COLUMNS", covga::thesis::batch::COLUMNS.to_vec())?;
+    m.add_function(wrap_pyfunction!(runs::run_experiment, m)?)?;
+    m.add_function(wrap_pyfunction!(runs::run_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(runs::write_report, m)?)?;
+    m.add_function(wrap_pyfunction!(runs::raise_panic, m)?)?;
+    Ok(())
+}

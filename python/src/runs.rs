@@ -1,0 +1,189 @@
+//! Experiments, grid studies and reports, run with the interpreter released; Ctrl-C stops them.
+//!
+//! The work runs on a thread of its own while the calling thread waits with the interpreter
+//! released, waking every few milliseconds to let Python see its signals. On Ctrl-C a stop flag
+//! is set: a run ends at its next generation and writes nothing more; a study starts no
+//! further run, keeps the rows of the runs it finished, and resumes when run again.
+
+use crate::{config_error, guarded, panic_error};
+use covga::experiment::file::ExperimentFile;
+use covga::experiment::output::OutputError;
+use covga::ga::observer::{GenerationRecord, Observer};
+use covga::study::runner::{RunDone, RunnerOptions, StudyError, run_study};
+use pyo3::exceptions::PyRuntimeError;
+use pyo3::prelude::*;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+/// Runs `work` on its own thread until it ends or Python raises a signal's exception (Ctrl-C's
+/// `KeyboardInterrupt`); then `stop` is set, the work is waited for, and the exception returned.
+fn interruptible<T: Send>(py: Python<'_>, stop: &AtomicBool, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    std::thread::scope(|scope| {
+        let handle = scope.spawn(work);
+        let mut signal = None;
+        while !handle.is_finished() {
+            py.detach(|| std::thread::sleep(Duration::from_millis(10)));
+            if signal.is_none()
+                && let Err(e) = py.check_signals()
+            {
+                stop.store(true, Ordering::SeqCst);
+                signal = Some(e);
+            }
+        }
+        let result = handle.join().map_err(panic_error)?;
+        match signal {
+            Some(e) => Err(e),
+            None => Ok(result),
+        }
+    })
+}
+
+/// Ends a run at its next generation once `stop` is set.
+struct StopAt<'a>(&'a AtomicBool);
+
+impl Observer for StopAt<'_> {
+    fn generation(&mut self, _: &GenerationRecord) -> std::io::Result<()> {
+        if self.0.load(Ordering::Relaxed) {
+            return Err(std::io::Error::new(std::io::ErrorKind::Interrupted, "stopped by the caller"));
+        }
+        Ok(())
+    }
+}
+
+/// The experiment text, its origin in messages, the folder relative map paths start from, and
+/// the default folder name, of `payload` read as `kind` (`path`, `text` or `json`).
+fn experiment_text(kind: &str, payload: &str) -> PyResult<(String, String, PathBuf, String)> {
+    match kind {
+        "path" => {
+            let path = Path::new(payload);
+            let text = ExperimentFile::read_text(path).map_err(config_error)?;
+            let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+            let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
+            Ok((text, payload.to_string(), base, stem))
+        }
+        "text" => Ok((payload.to_string(), "experiment text".into(), PathBuf::from("."), "experiment".into())),
+        "json" => {
+            let origin = "experiment dict";
+            let value: toml::Value =
+                serde_json::from_str(payload).map_err(|e| config_error(format!("{origin}: {e}")))?;
+            let text = toml::to_string(&value).map_err(|e| config_error(format!("{origin}: {e}")))?;
+            Ok((text, origin.into(), PathBuf::from("."), "experiment".into()))
+        }
+        other => Err(config_error(format!("experiment kind '{other}': expected path, text or json"))),
+    }
+}
+
+/// Runs one experiment into `out` (with figures when `figures`); returns the warnings about it
+/// in words. `summary.json`, `history.csv` and `best_path.csv` are in `out` afterwards.
+#[pyfunction]
+#[pyo3(signature = (kind, payload, seed, out, figures))]
+pub fn run_experiment(
+    py: Python<'_>,
+    kind: &str,
+    payload: &str,
+    seed: Option<u64>,
+    out: &str,
+    figures: bool,
+) -> PyResult<Vec<String>> {
+    let (exp, origin, mut warnings) = guarded(|| {
+        let (text, origin, base, stem) = experiment_text(kind, payload)?;
+        let mut file = ExperimentFile::parse(&text, &origin).map_err(config_error)?;
+        let ignored = covga::experiment::ignored::ignored_in_text(&text, &file);
+        if let Some(seed) = seed {
+            file.seed = seed;
+        }
+        let exp = file.validate(&origin, &base, &stem).map_err(config_error)?;
+        let limit = covga::experiment::memory::memory_limit(None);
+        exp.check_memory(&origin, limit, 1, rayon::current_num_threads()).map_err(config_error)?;
+        let warnings: Vec<String> =
+            ignored.into_iter().map(|(key, why)| format!("{origin}: `{key}` is ignored: {why}")).collect();
+        Ok((exp, origin, warnings))
+    })?;
+    let dir = PathBuf::from(out);
+    let existed = dir.exists();
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| config_error(format!("{}: cannot create the results folder: {e}", dir.display())))?;
+    let stop = AtomicBool::new(false);
+    let outcome = interruptible(py, &stop, || {
+        covga::experiment::output::run_experiment(&exp, &dir, figures, &mut [&mut StopAt(&stop)])
+    });
+    let summary = match outcome {
+        Ok(Ok(summary)) => summary,
+        failed => {
+            // A refused or stopped run leaves no folder behind that it made itself.
+            if !existed {
+                let _ = std::fs::remove_dir(&dir);
+            }
+            return Err(match failed {
+                Err(e) => e,
+                Ok(Err(OutputError::Planner(m))) => config_error(format!("{origin}: {m}")),
+                Ok(Err(other)) => PyRuntimeError::new_err(other.to_string()),
+                Ok(Ok(_)) => unreachable!("handled above"),
+            });
+        }
+    };
+    warnings.extend(summary.warnings.iter().map(|w| format!("{origin}: {w}")));
+    Ok(warnings)
+}
+
+/// Runs (or resumes) the grid study `file` into `out` with `jobs` runs at a time; returns the
+/// runs selected, already recorded and completed now.
+#[pyfunction]
+#[pyo3(signature = (file, jobs, out))]
+pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str) -> PyResult<(usize, usize, usize)> {
+    let study = guarded(|| {
+        if jobs == 0 {
+            return Err(config_error("jobs = 0 is out of range: at least 1"));
+        }
+        covga::study::grid::Study::load(Path::new(file)).map_err(config_error)
+    })?;
+    let stop = AtomicBool::new(false);
+    let on_done = |_: RunDone| {};
+    let opts = RunnerOptions {
+        jobs,
+        shard: None,
+        out: PathBuf::from(out),
+        max_memory: None,
+        on_done: &on_done,
+        stop: Some(&stop),
+    };
+    match interruptible(py, &stop, || run_study(&study, &opts))? {
+        Ok(o) => Ok((o.selected, o.skipped, o.completed)),
+        Err(
+            e @ (StudyError::Config(_)
+            | StudyError::Mismatch { .. }
+            | StudyError::Planner { .. }
+            | StudyError::Folder { .. }),
+        ) => Err(config_error(e)),
+        Err(e @ (StudyError::Io { .. } | StudyError::Run { .. } | StudyError::Stopped { .. })) => {
+            Err(PyRuntimeError::new_err(e.to_string()))
+        }
+    }
+}
+
+/// `covga report`: writes the report of study folder `dir` and returns the path of its
+/// `summary.md`.
+#[pyfunction]
+#[pyo3(signature = (dir, by, filter, name))]
+pub fn write_report(
+    py: Python<'_>,
+    dir: &str,
+    by: Vec<String>,
+    filter: Vec<(String, String)>,
+    name: Option<String>,
+) -> PyResult<String> {
+    let opts = covga::report::ReportOptions { by, filter, name };
+    crate::released(py, || match covga::report::write_report_with(Path::new(dir), &opts) {
+        Ok(path) => Ok(path.display().to_string()),
+        Err(covga::report::ReportError::Input(m)) => Err(config_error(m)),
+        Err(other) => Err(PyRuntimeError::new_err(other.to_string())),
+    })
+}
+
+/// Panics inside the guard, for the tests that prove a panic reaches Python as a
+/// `RuntimeError` and leaves the interpreter running.
+#[pyfunction]
+pub fn raise_panic(py: Python<'_>) -> PyResult<()> {
+    crate::released(py, || -> PyResult<()> { panic!("a deliberate panic to test the guard") })
+}

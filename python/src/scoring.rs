@@ -1,0 +1,206 @@
+//! The common scorer, the patterns and the thesis GA's fitness, over numpy arrays.
+
+use crate::maps::Map;
+use crate::{config_error, guarded, released};
+use covga::coverage::Footprint;
+use covga::coverage::fitness::Projection;
+use covga::coverage::score::Scorer;
+use covga::geom::Point;
+use covga::patterns::{self, Pattern};
+use covga::thesis::batch::{COLUMNS, evaluate_genomes, genome_of};
+use covga::thesis::individual::Scenario;
+use covga::waypoint::config::WaypointSection;
+use numpy::ndarray::Array2;
+use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, ToPyArray};
+use pyo3::prelude::*;
+
+/// The robot of `width`, `speed` and `rot_speed`, checked as `covga eval` checks them.
+fn robot(map: &Map, width: f64, speed: f64, rot_speed: f64) -> PyResult<Footprint> {
+    for (name, v) in [("width", width), ("speed", speed)] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(config_error(format!("{name} = {v} is out of range: expected a finite number > 0")));
+        }
+    }
+    if !(rot_speed.is_finite() && rot_speed >= 0.0) {
+        return Err(config_error(format!(
+            "rot_speed = {rot_speed} is out of range: expected a finite number >= 0 (0 disables the rotation cost)"
+        )));
+    }
+    let footprint = Footprint { width, speed, rot_speed };
+    footprint.check_fits(&map.inner).map_err(|m| config_error(format!("width {m}")))?;
+    Ok(footprint)
+}
+
+fn projection(name: &str) -> PyResult<Projection> {
+    match name {
+        "f1" => Ok(Projection::F1),
+        "f2" => Ok(Projection::F2),
+        other => Err(config_error(format!("projection = '{other}': expected 'f1' or 'f2' (003 eqs. 3.14-3.15)"))),
+    }
+}
+
+fn point(what: &str, p: (f64, f64)) -> PyResult<Point> {
+    if p.0.is_finite() && p.1.is_finite() {
+        Ok(Point::new(p.0, p.1))
+    } else {
+        Err(config_error(format!("{what} = ({}, {}) is not a finite position in metres", p.0, p.1)))
+    }
+}
+
+/// The rows of an `(N, 2)` array of metres as points, named `what` in messages.
+fn points(what: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Point>> {
+    let a = a.as_array();
+    if a.ncols() != 2 || a.nrows() == 0 {
+        return Err(config_error(format!("{what}: shape {:?}, expected (N, 2) metres with N >= 1", a.dim())));
+    }
+    a.rows().into_iter().enumerate().map(|(i, r)| point(&format!("{what} point {i}"), (r[0], r[1]))).collect()
+}
+
+fn array_of(points: &[Point]) -> Array2<f64> {
+    Array2::from_shape_fn((points.len(), 2), |(i, k)| if k == 0 { points[i].x } else { points[i].y })
+}
+
+/// The common scorer's metrics (as JSON text) of `paths`, one per agent of this robot, as
+/// `covga eval` reports them under `common`.
+#[pyfunction]
+#[pyo3(signature = (map, paths, width, speed, rot_speed, camera_json, projection_name))]
+#[allow(clippy::too_many_arguments)]
+pub fn score(
+    py: Python<'_>,
+    map: &Map,
+    paths: Vec<PyReadonlyArray2<'_, f64>>,
+    width: f64,
+    speed: f64,
+    rot_speed: f64,
+    camera_json: Option<&str>,
+    projection_name: &str,
+) -> PyResult<String> {
+    let plan = guarded(|| {
+        if paths.is_empty() {
+            return Err(config_error("path: no path given (an (N, 2) array, or a list of them for agents)"));
+        }
+        paths.iter().enumerate().map(|(k, p)| points(&format!("path {k}"), p)).collect::<PyResult<Vec<_>>>()
+    })?;
+    let m = &map.inner;
+    released(py, || {
+        let robot = robot(map, width, speed, rot_speed)?;
+        let projection = projection(projection_name)?;
+        for (k, p) in plan.iter().enumerate() {
+            m.check_station(p[0], &format!("path {k} start")).map_err(config_error)?;
+            m.check_station(*p.last().expect("checked non-empty"), &format!("path {k} end")).map_err(config_error)?;
+        }
+        let section: WaypointSection = match camera_json {
+            Some(text) => serde_json::from_str(text).map_err(|e| config_error(format!("camera: {e}")))?,
+            None => WaypointSection::default(),
+        };
+        let camera = covga::waypoint::config::camera_spec(&section, "camera", m).map_err(config_error)?;
+        let stations: Vec<Point> = plan.iter().map(|p| p[0]).collect();
+        let widths = vec![width; plan.len()];
+        let score = Scorer::for_widths(m, robot, &widths, projection, &camera, &stations)
+            .score_agents(&plan, &vec![robot; plan.len()]);
+        serde_json::to_string(&score).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
+    })
+}
+
+/// A boustrophedon or spiral plan from `start` to `end` (default: back to the start), as
+/// `covga eval --pattern` plans it.
+#[pyfunction]
+#[pyo3(signature = (map, kind, start, width, angle, end, complete))]
+#[allow(clippy::too_many_arguments)]
+pub fn pattern<'py>(
+    py: Python<'py>,
+    map: &Map,
+    kind: &str,
+    start: (f64, f64),
+    width: f64,
+    angle: f64,
+    end: Option<(f64, f64)>,
+    complete: bool,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let m = &map.inner;
+    let planned = released(py, || {
+        let robot = robot(map, width, 1.0, 0.0)?;
+        let pattern = match kind {
+            "boustrophedon" if angle.is_finite() => Pattern::Boustrophedon { angle_deg: angle },
+            "boustrophedon" => return Err(config_error(format!("angle = {angle} is not a finite number of degrees"))),
+            "spiral" => Pattern::Spiral,
+            other => return Err(config_error(format!("pattern '{other}': expected 'boustrophedon' or 'spiral'"))),
+        };
+        let start = point("start", start)?;
+        let end = match end {
+            Some(e) => point("end", e)?,
+            None => start,
+        };
+        patterns::check_plan_inputs(m, robot.width, start, end, ["start", "end", "width"]).map_err(config_error)?;
+        patterns::plan(m, pattern, robot.width, start, end, complete).map_err(config_error)
+    })?;
+    Ok(array_of(&planned.points).to_pyarray(py))
+}
+
+/// The thesis GA's fitness of a batch of genomes (an `(n, L, 2)` array, or a list of `(L, 2)`
+/// arrays), each genome its live moves (heading in degrees, distance in metres; S's move first,
+/// the connector to E added), as an `(n, 4)` array with the columns of `THESIS_COLUMNS`;
+/// evaluated in parallel.
+#[pyfunction]
+#[pyo3(signature = (map, genomes, width, speed, rot_speed, start, end, projection_name))]
+#[allow(clippy::too_many_arguments)]
+pub fn thesis_evaluate<'py>(
+    py: Python<'py>,
+    map: &Map,
+    genomes: Bound<'py, PyAny>,
+    width: f64,
+    speed: f64,
+    rot_speed: f64,
+    start: (f64, f64),
+    end: Option<(f64, f64)>,
+    projection_name: &str,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let built = guarded(|| {
+        // One (n, L, 2) array is read in place; a list is read array by array.
+        if let Ok(batch) = genomes.extract::<PyReadonlyArray3<'py, f64>>() {
+            let a = batch.as_array();
+            if a.dim().2 != 2 {
+                return Err(config_error(format!("genomes: shape {:?}, expected (n, L, 2)", a.dim())));
+            }
+            return a
+                .outer_iter()
+                .enumerate()
+                .map(|(i, g)| {
+                    let moves: Vec<(f64, f64)> = g.rows().into_iter().map(|r| (r[0], r[1])).collect();
+                    genome_of(i, &moves).map_err(config_error)
+                })
+                .collect::<PyResult<Vec<_>>>();
+        }
+        let list: Vec<PyReadonlyArray2<'py, f64>> = genomes.extract()?;
+        list.iter()
+            .enumerate()
+            .map(|(i, g)| {
+                let a = g.as_array();
+                if a.ncols() != 2 {
+                    return Err(config_error(format!(
+                        "genome {i}: shape {:?}, expected (L, 2): heading in degrees and distance in metres",
+                        a.dim()
+                    )));
+                }
+                let moves: Vec<(f64, f64)> = a.rows().into_iter().map(|r| (r[0], r[1])).collect();
+                genome_of(i, &moves).map_err(config_error)
+            })
+            .collect::<PyResult<Vec<_>>>()
+    })?;
+    let m = &map.inner;
+    let rows = released(py, || {
+        let robot = robot(map, width, speed, rot_speed)?;
+        let projection = projection(projection_name)?;
+        let start = point("start", start)?;
+        let end = match end {
+            Some(e) => point("end", e)?,
+            None => start,
+        };
+        m.check_station(start, "start").map_err(config_error)?;
+        m.check_station(end, "end").map_err(config_error)?;
+        let scenario = Scenario::new(m.clone(), robot, start, end, projection);
+        Ok(evaluate_genomes(&scenario, built))
+    })?;
+    let out = Array2::from_shape_fn((rows.len(), COLUMNS.len()), |(i, k)| rows[i].row()[k]);
+    Ok(out.to_pyarray(py))
+}

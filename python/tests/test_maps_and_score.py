@@ -1,0 +1,147 @@
+"""Maps, patterns and the common scorer against `covga eval` and `covga maps`."""
+
+import json
+
+import numpy as np
+import pytest
+
+import covga
+
+
+@pytest.mark.parametrize(
+    "preset,shape,resolution",
+    [("thesis-1", (55, 55), 0.2), ("thesis-2", (55, 55), 0.2), ("office", None, None)],
+)
+def test_presets_load_with_their_frame(preset, shape, resolution):
+    m = covga.load_map(preset)
+    assert m.name == preset
+    if shape is not None:
+        assert m.shape == shape and m.resolution == resolution
+    assert m.free.shape == m.shape and m.free.dtype == bool
+    assert int(m.free.sum()) == m.free_cells
+    x0, x1, y0, y1 = m.extent
+    assert x1 - x0 == pytest.approx(m.shape[1] * m.resolution)
+    assert y1 - y0 == pytest.approx(m.shape[0] * m.resolution)
+
+
+def test_image_is_the_map_upside_down_in_map_server_values():
+    m = covga.load_map("office")
+    image = m.to_image()
+    states = m.states
+    assert image.shape == m.shape and image.dtype == np.uint8
+    expected = np.choose(states, [254, 0, 205])[::-1]
+    assert np.array_equal(image, expected)
+
+
+def test_map_from_arrays_and_ros_files_agree(tmp_path, cli):
+    cli("maps", "--out", tmp_path)
+    from_file = covga.load_map(tmp_path / "office.yaml")
+    office = covga.load_map("office")
+    assert np.array_equal(from_file.states, office.states)
+    occupied = office.states == 1
+    from_bool = covga.load_map(occupied, resolution=office.resolution, origin=office.origin)
+    assert np.array_equal(from_bool.free, ~occupied)
+    percent = np.where(office.states == 0, 0, np.where(office.states == 1, 100, -1))
+    from_percent = covga.load_map(percent, resolution=office.resolution, origin=office.origin)
+    assert np.array_equal(from_percent.states, office.states)
+
+
+@pytest.mark.parametrize(
+    "value,state",
+    [(0, 0), (19, 0), (19.6, 2), (50, 2), (65, 2), (66, 1), (100, 1), (-1, 2)],
+)
+def test_occupancy_percent_thresholds(value, state):
+    grid = np.zeros((4, 4))
+    grid[1, 2] = value
+    assert covga.load_map(grid, resolution=0.5).states[1, 2] == state
+
+
+@pytest.mark.parametrize(
+    "source,kwargs,message",
+    [
+        (np.zeros((3, 3)), {}, "resolution: an occupancy array needs"),
+        (np.zeros((3, 3, 3)), {"resolution": 0.1}, "expected 2-D"),
+        (np.full((3, 3), 150.0), {"resolution": 0.1}, "occupancy 150.0 at [0, 0] is out of range"),
+        (np.full((3, 3), np.nan), {"resolution": 0.1}, "occupancy nan at [0, 0]"),
+        (np.ones((3, 3), dtype=bool), {"resolution": 0.1}, "no free cell"),
+        (np.zeros((3, 3)), {"resolution": -0.1}, "resolution"),
+        ("no-such-map", {}, "unknown map `no-such-map`"),
+        ("room.png", {}, "a bare image needs --resolution"),
+    ],
+)
+def test_bad_maps_raise_config_error(source, kwargs, message):
+    with pytest.raises(covga.ConfigError) as e:
+        covga.load_map(source, **kwargs)
+    assert message in str(e.value)
+    assert isinstance(e.value, ValueError)
+
+
+@pytest.mark.parametrize("kind,angle", [("boustrophedon", 0.0), ("boustrophedon", 45.0), ("spiral", 0.0)])
+def test_pattern_and_score_equal_covga_eval(tmp_path, cli, kind, angle):
+    m = covga.load_map("thesis-2")
+    path = covga.pattern(m, kind, start=(1.3, 1.3), width=0.6, angle=angle)
+    out = tmp_path / "eval"
+    done = cli("eval", "--map", "thesis-2", "--pattern", kind, "--angle", angle, "--json", "--out", out)
+    report = json.loads(done.stdout)
+    eval_path = np.genfromtxt(out / "path.csv", delimiter=",", names=True)
+    assert np.array_equal(path, np.column_stack([eval_path["x_m"], eval_path["y_m"]]))
+    assert covga.score(m, path, width=0.6) == report["common"]
+
+
+def test_score_of_a_path_file_and_of_agents_equals_covga_eval(tmp_path, cli):
+    m = covga.load_map("thesis-1")
+    a = covga.pattern(m, "boustrophedon", start=(1.3, 1.3), width=0.6)
+    b = covga.pattern(m, "spiral", start=(9.7, 9.7), width=0.6)
+    csv = tmp_path / "plan.csv"
+    rows = ["agent,index,x_m,y_m"] + [
+        f"{k},{i},{float(x)!r},{float(y)!r}" for k, p in enumerate([a, b]) for i, (x, y) in enumerate(p)
+    ]
+    csv.write_text("\n".join(rows) + "\n")
+    args = ("eval", "--map", "thesis-1", "--path", csv, "--rot-speed", 0.5, "--projection", "f2", "--json")
+    report = json.loads(cli(*args, "--out", tmp_path / "e").stdout)
+    mine = covga.score(m, [a, b], width=0.6, rot_speed=0.5, projection="f2")
+    assert mine == report["common"]
+    assert mine["agents"] == 2 and len(mine["agent_time_s"]) == 2
+
+
+def test_a_plan_through_a_wall_is_not_executable():
+    m = covga.load_map("thesis-2")
+    straight = np.array([[1.3, 1.3], [9.7, 9.7], [1.3, 1.3]])
+    s = covga.score(m, straight)
+    assert s["executable"] is False and s["obstacle_cells"] > 0
+
+
+def test_camera_keys_are_checked_and_change_the_camera_metrics():
+    m = covga.load_map("thesis-1")
+    p = covga.pattern(m, "boustrophedon", start=(1.3, 1.3))
+    narrow = covga.score(m, p, camera={"fov_deg": 10.0, "d_max": 1.0})
+    wide = covga.score(m, p, camera={"fov_deg": 120.0, "d_max": 1.0})
+    assert narrow["cam_walls_free"] < wide["cam_walls_free"]
+    with pytest.raises(covga.ConfigError, match="fov_deg"):
+        covga.score(m, p, camera={"fov_deg": 720.0})
+    with pytest.raises(covga.ConfigError, match="unknown field `zoom`"):
+        covga.score(m, p, camera={"zoom": 2})
+
+
+@pytest.mark.parametrize(
+    "call,message",
+    [
+        (lambda m, p: covga.score(m, p, width=0.0), "width = 0 is out of range"),
+        (lambda m, p: covga.score(m, p, speed=float("nan")), "speed = NaN is out of range"),
+        (lambda m, p: covga.score(m, p, rot_speed=-1), "rot_speed = -1 is out of range"),
+        (lambda m, p: covga.score(m, p, projection="f3"), "projection = 'f3'"),
+        (lambda m, p: covga.score(m, p[:, :1]), "path 0: shape (32, 1)"),
+        (lambda m, p: covga.score(m, np.array([[50.0, 50.0]])), "path 0 start (50, 50) m is outside map"),
+        (lambda m, p: covga.score(m, np.array([[1.0, np.inf]])), "path 0 point 0"),
+        (lambda m, p: covga.score(m, p, width=20.0), "wider than the map"),
+        (lambda m, p: covga.pattern(m, "zigzag"), "pattern 'zigzag'"),
+        (lambda m, p: covga.pattern(m, start=(0.0, 0.0)), "start (0, 0)"),
+        (lambda m, p: covga.pattern(m, width=1e-5), "width: a robot 0.00001 m wide"),
+    ],
+)
+def test_bad_arguments_raise_config_error(call, message):
+    m = covga.load_map("thesis-1")
+    p = covga.pattern(m, "boustrophedon", start=(1.3, 1.3))
+    with pytest.raises(covga.ConfigError) as e:
+        call(m, p)
+    assert message in str(e.value)

@@ -1,0 +1,179 @@
+"""Runs, studies and reports from Python against the command line."""
+
+import _thread
+import json
+import threading
+
+import numpy as np
+import pytest
+from conftest import SHORT_THESIS
+
+import covga
+
+
+def _summary(folder):
+    s = json.loads((folder / "summary.json").read_text())
+    s.pop("wall_s")
+    return s
+
+
+def test_run_from_python_writes_the_clis_files(tmp_path, cli, short_thesis):
+    cli("run", short_thesis, "--seed", 9, "--quiet", "--out", tmp_path / "cli")
+    result = covga.run(short_thesis, seed=9, out=tmp_path / "py")
+    for name in ["history.csv", "best_path.csv", "best_genome.csv", "config.toml"]:
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert _summary(tmp_path / "py") == _summary(tmp_path / "cli")
+    assert (tmp_path / "py" / "path.png").is_file()
+    assert result.dir == tmp_path / "py"
+    assert result.summary["seed"] == 9
+    assert np.array_equal(result.path, result.plan[0]) and result.path.shape[1] == 2
+    assert result.path[0].tolist() == [1.3, 1.3]
+
+
+def test_text_dict_and_file_give_the_same_run(tmp_path, short_thesis):
+    from_file = covga.run(short_thesis)
+    from_text = covga.run(SHORT_THESIS)
+    from_dict = covga.run(
+        {
+            "seed": 5,
+            "planner": "thesis",
+            "map": {"source": "thesis-1"},
+            "thesis": {"pop_min": 30, "init_actions": 30},
+            "budget": {"iterations": 40},
+        }
+    )
+    for other in (from_text, from_dict):
+        assert np.array_equal(other.path, from_file.path)
+        assert other.summary["score"] == from_file.summary["score"]
+    assert from_file.dir is None
+    history = from_file.history
+    assert list(history["iteration"]) == list(range(41))
+    assert history["best_fitness"].dtype == np.float64
+
+
+def test_patterns_and_fleets_run_with_one_path_per_agent(tmp_path):
+    spiral = covga.run({"planner": "spiral", "map": {"source": "thesis-2"}}, figures=False)
+    assert len(spiral.plan) == 1 and spiral.summary["score"]["executable"] is True
+    fleet = covga.run(
+        {
+            "planner": "thesis",
+            "map": {"source": "thesis-1"},
+            "robots": [{"name": "a", "start": [1.3, 1.3]}, {"name": "b", "start": [9.7, 9.7]}],
+            "fleet": {"mode": "central"},
+            "thesis": {"pop_min": 20, "init_actions": 20},
+            "budget": {"iterations": 5},
+        }
+    )
+    assert len(fleet.plan) == 2
+    assert fleet.plan[1][0].tolist() == [9.7, 9.7]
+
+
+@pytest.mark.parametrize(
+    "text,message",
+    [
+        ('planner = "thesis"\n[thesis]\np_ma = 2.0\n', "thesis.p_ma"),
+        ('planner = "thesis"\n[thesis]\nbogus = 1\n', "unknown field `bogus`"),
+        ('planner = "nope"\n', "unknown variant `nope`"),
+        ('planner = "thesis"\n[map]\nsource = "nowhere.yaml"\n', "nowhere.yaml"),
+    ],
+)
+def test_bad_experiments_raise_the_clis_message(tmp_path, cli, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    done = cli("run", path, "--quiet", "--out", tmp_path / "never", check=False)
+    assert done.returncode == 2
+    with pytest.raises(covga.ConfigError) as e:
+        covga.run(path, out=tmp_path / "never")
+    assert message in str(e.value)
+    assert str(e.value) in done.stderr
+    assert not (tmp_path / "never").exists()
+
+
+def test_bad_run_arguments_raise_config_error(short_thesis):
+    with pytest.raises(covga.ConfigError, match="seed = -1 is out of range"):
+        covga.run(short_thesis, seed=-1)
+    with pytest.raises(covga.ConfigError, match="expected a TOML path, TOML text or a dict"):
+        covga.run(42)
+    with pytest.raises(covga.ConfigError, match="cannot read experiment file"):
+        covga.run("no/such/file.toml")
+    with pytest.raises(covga.ConfigError, match="experiment dict"):
+        covga.run({"planner": "thesis", "map": {"source": None}})
+
+
+def test_ignored_keys_warn(short_thesis):
+    text = SHORT_THESIS.replace("init_actions = 30", "init_actions = 30\nkeep = 2")
+    with pytest.warns(UserWarning, match="`thesis.keep` is ignored"):
+        covga.run(text)
+
+
+def _interrupt_after(seconds):
+    timer = threading.Timer(seconds, _thread.interrupt_main)
+    timer.start()
+    return timer
+
+
+def test_ctrl_c_stops_a_run_and_leaves_no_folder(tmp_path):
+    long_run = {"planner": "thesis", "map": {"source": "thesis-1"}, "budget": {"iterations": 100000}}
+    timer = _interrupt_after(0.5)
+    with pytest.raises(KeyboardInterrupt):
+        covga.run(long_run, out=tmp_path / "stopped")
+    timer.join()
+    assert not (tmp_path / "stopped").exists()
+    # The interpreter and the library go on as before.
+    assert covga.run(SHORT_THESIS).summary["iterations"] == 40
+
+
+GRID = """\
+seed = 3
+seeds = 2
+[base]
+planner = "thesis"
+[base.map]
+source = "thesis-1"
+[base.thesis]
+pop_min = 30
+init_actions = 30
+[base.budget]
+iterations = 60
+[axes]
+"thesis.selection" = ["elite", "tournament"]
+"thesis.projection" = ["f1", "f2"]
+"""
+
+
+def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
+    grid_file = tmp_path / "tiny.toml"
+    grid_file.write_text(GRID)
+    cli("grid", grid_file, "--out", tmp_path / "cli", "--jobs", 2)
+    runs = covga.grid(grid_file, jobs=2, out=tmp_path / "py")
+    assert _same_rows_but_wall_time(tmp_path)
+    assert len(runs) == 8
+    assert all(isinstance(i, str) and len(i) == 16 for i in runs["run_id"]) and runs["seed"].dtype == np.int64
+    assert runs["executable"].dtype == bool and runs["cov_final_reach"].dtype == np.float64
+    assert list(runs.columns).count("planner") == 1
+    assert sorted(set(runs["thesis.selection"])) == ["elite", "tournament"]
+    summary = covga.report(tmp_path / "py", by="thesis.selection", where={"thesis.projection": "f2"})
+    assert summary.name == "summary.md" and "elite" in summary.read_text()
+    with pytest.raises(covga.ConfigError, match="not a study folder"):
+        covga.report(tmp_path / "nothing")
+    with pytest.raises(covga.ConfigError, match="not a study folder"):
+        covga.read_study(tmp_path / "nothing")
+
+
+def _same_rows_but_wall_time(tmp_path):
+    """runs.csv rows of the two folders, equal in every column but `wall_s`."""
+    py, cli_runs = (covga.read_study(tmp_path / d).drop(columns="wall_s") for d in ("py", "cli"))
+    return py.equals(cli_runs)
+
+
+def test_ctrl_c_stops_a_study_which_then_resumes(tmp_path):
+    grid_file = tmp_path / "slow.toml"
+    grid_file.write_text(GRID.replace("iterations = 60", "iterations = 2000"))
+    timer = _interrupt_after(0.5)
+    with pytest.raises(KeyboardInterrupt):
+        covga.grid(grid_file, jobs=1, out=tmp_path / "study")
+    timer.join()
+    recorded = (tmp_path / "study" / "runs.csv").read_text().splitlines()
+    assert 1 <= len(recorded) < 9, "stopped part-way, with the header and the finished runs"
+    runs = covga.grid(grid_file, jobs=2, out=tmp_path / "study")
+    assert len(runs) == 8 and runs["run_id"].is_unique

@@ -1,0 +1,52 @@
+//! A study asked to stop (`RunnerOptions::stop`, set from another thread as the Python
+//! package does on Ctrl-C) starts no further run, keeps the rows of the runs it finished, and
+//! resumes to the same rows a study run at once records.
+
+use covga::study::grid::Study;
+use covga::study::runner::{RunDone, RunnerOptions, StudyError, run_study};
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+const GRID: &str = "seed = 2\n[base]\nplanner = \"boustrophedon\"\n[axes]\n\"map.source\" = [\"thesis-1\", \"thesis-2\"]\n\
+                    \"pattern.angle_deg\" = [0.0, 45.0, 90.0]\n";
+
+/// The rows of `runs.csv` without the wall-time column.
+fn rows(dir: &Path) -> Vec<String> {
+    let text = std::fs::read_to_string(dir.join("runs.csv")).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let wall = header.iter().position(|h| *h == "wall_s").unwrap();
+    lines.map(|l| l.split(',').enumerate().filter(|(i, _)| *i != wall).map(|(_, v)| v).collect()).collect()
+}
+
+#[test]
+fn a_stopped_study_keeps_its_finished_runs_and_resumes_to_the_same_rows() {
+    let tmp = tempfile::tempdir().unwrap();
+    let grid = tmp.path().join("angles.toml");
+    std::fs::write(&grid, GRID).unwrap();
+    let study = Study::load(&grid).unwrap();
+    assert_eq!(study.runs.len(), 6);
+    let stop = AtomicBool::new(false);
+    let stop_after_first = |_: RunDone| stop.store(true, Ordering::SeqCst);
+    let quiet = |_: RunDone| {};
+    let folder = tmp.path().join("stopped");
+    let opts = |out: &Path| RunnerOptions {
+        jobs: 1,
+        shard: None,
+        out: out.to_path_buf(),
+        max_memory: None,
+        on_done: &quiet,
+        stop: None,
+    };
+    let stopping = RunnerOptions { on_done: &stop_after_first, stop: Some(&stop), ..opts(&folder) };
+    match run_study(&study, &stopping) {
+        Err(StudyError::Stopped { recorded }) => assert_eq!(recorded, 1),
+        other => panic!("expected a stop, got {other:?}"),
+    }
+    assert_eq!(rows(&folder).len(), 1, "the finished run is recorded, the others are not");
+    let resumed = run_study(&study, &opts(&folder)).unwrap();
+    assert_eq!((resumed.skipped, resumed.completed), (1, 5));
+    let at_once = tmp.path().join("at-once");
+    run_study(&study, &opts(&at_once)).unwrap();
+    assert_eq!(rows(&folder), rows(&at_once));
+}
