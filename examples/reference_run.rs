@@ -35,7 +35,7 @@ fn main() {
     if let Some(v) = env("C_CHILD") {
         params.c_child = covga::thesis::crossover::ChildMode::from_index(v as u8).expect("0..2");
     }
-    let mut ga = ThesisGa { scenario, params, seed };
+    let mut ga = ThesisGa { scenario, params, seed, seeds: (Vec::new(), 0) };
     let mut rec = Recorder::default();
     let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
     // NO_OBSERVER=1: no observer, hence no diversity measured (as in `cargo bench --bench thesis_run`).

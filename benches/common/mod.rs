@@ -15,7 +15,7 @@ use covga::thesis::run::ThesisGa;
 pub fn thesis1_ga(params: ThesisParams) -> ThesisGa {
     let s = Point::new(1.3, 1.3);
     let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
-    ThesisGa { scenario, params, seed: 1 }
+    ThesisGa { scenario, params, seed: 1, seeds: (Vec::new(), 0) }
 }
 
 /// Architecture (a) with `selection`, as in the Table 4.3 grid: `Init_I` 1000, `keep` 10,

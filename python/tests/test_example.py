@@ -15,4 +15,5 @@ def test_pymoo_nsga2_example_runs(tmp_path):
     assert done.returncode == 0, done.stderr
     assert "pymoo NSGA-II: 20000 evaluations" in done.stdout
     assert "thesis GA (Elite, f2):" in done.stdout
+    assert "thesis GA with covga's NSGA-II selection:" in done.stdout
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

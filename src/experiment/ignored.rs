@@ -21,6 +21,13 @@ fn unread_by_selection(s: SelectionName) -> &'static [&'static str] {
         SelectionName::Tournament => &["thesis.selection_pressure"],
         SelectionName::Prws => &["thesis.tournament_size", "thesis.selection_pressure"],
         SelectionName::Rrws => &["thesis.tournament_size"],
+        SelectionName::Nsga2 => &[
+            "thesis.init_individuals",
+            "thesis.keep",
+            "thesis.select",
+            "thesis.tournament_size",
+            "thesis.selection_pressure",
+        ],
     }
 }
 
@@ -41,7 +48,8 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     let name = planner.name();
     // Which of the planner-specific sections each planner reads besides its own.
     let (reads_retrain, reads_pattern, reads_cell_order) = match planner {
-        PlannerKind::Thesis => (true, false, false),
+        // The thesis GA reads [pattern] for the plans that seed its population.
+        PlannerKind::Thesis => (true, !file.thesis.seed_population.is_empty(), false),
         PlannerKind::Boustrophedon | PlannerKind::Spiral => (false, true, false),
         PlannerKind::CellOrder => (false, false, true),
         PlannerKind::Waypoint | PlannerKind::RandomSearch => (false, false, false),
@@ -50,7 +58,9 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
         return Some(format!("only the thesis GA retrains; planner = \"{name}\""));
     }
     if within(key, "pattern") && !reads_pattern {
-        return Some(format!("only the boustrophedon and spiral patterns read [pattern]; planner = \"{name}\""));
+        return Some(format!(
+            "only the boustrophedon and spiral patterns (and the thesis GA's seed plans) read [pattern]; planner = \"{name}\""
+        ));
     }
     if within(key, "cell_order") && !reads_cell_order {
         return Some(format!("only the cell-order planner reads [cell_order]; planner = \"{name}\""));
@@ -62,6 +72,9 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
         match planner {
             PlannerKind::Thesis => {
                 let selection = file.thesis.selection;
+                if key == "thesis.seed_share" && file.thesis.seed_population.is_empty() {
+                    return Some("thesis.seed_population names no pattern to seed with".into());
+                }
                 if unread_by_selection(selection).contains(&key) {
                     return Some(format!("thesis.selection = \"{}\" does not use it", selection.name()));
                 }
@@ -119,6 +132,8 @@ mod tests {
     fn unread_keys_by_planner_and_selection() {
         let elite = file("[thesis]\nselection = \"elite\"\n");
         let rrws = file("[thesis]\nselection = \"rrws\"\n");
+        let nsga2 = file("[thesis]\nselection = \"nsga2\"\n");
+        let seeded = file("[thesis]\nseed_population = [\"boustrophedon\"]\n");
         let waypoint = file("planner = \"waypoint\"\n");
         let random = file("planner = \"random_search\"\n");
         for (f, key, ignored) in [
@@ -129,6 +144,12 @@ mod tests {
             (&rrws, "thesis.selection_pressure", false),
             (&rrws, "thesis.tournament_size", true),
             (&rrws, "thesis.init_individuals", false),
+            (&nsga2, "thesis.keep", true),
+            (&nsga2, "thesis.tournament_size", true),
+            (&nsga2, "thesis.p_ma", false),
+            (&nsga2, "thesis.c_len", false),
+            (&seeded, "pattern.angle_deg", false),
+            (&seeded, "thesis.seed_share", false),
             (&elite, "retrain", false),
             (&waypoint, "retrain", true),
             (&waypoint, "thesis.c_len", true),

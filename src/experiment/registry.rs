@@ -90,7 +90,9 @@ impl PlannerConfig {
     /// `[[robots]]`.
     pub fn from_file(file: &ExperimentFile, ctx: &Context) -> Result<Self, ConfigError> {
         let single = match file.planner {
-            PlannerKind::Thesis => PlannerConfig::Thesis(file.thesis.validate(file.retrain.as_ref(), ctx)?),
+            PlannerKind::Thesis => {
+                PlannerConfig::Thesis(file.thesis.validate(file.retrain.as_ref(), &file.pattern, ctx)?)
+            }
             PlannerKind::Waypoint => PlannerConfig::Waypoint(Box::new(file.waypoint.validate(ctx)?)),
             PlannerKind::Boustrophedon => {
                 PlannerConfig::Pattern(file.pattern.validate(PatternKind::Boustrophedon, ctx)?)
@@ -109,6 +111,12 @@ impl PlannerConfig {
         }
         let section = file.fleet.clone().unwrap_or_default();
         let team = match single {
+            PlannerConfig::Thesis(t) if !t.seeds.is_empty() => {
+                return Err(ctx.error(
+                    "thesis.seed_population",
+                    "seeds the GA of one robot; a fleet's GAs start from random genomes (leave it out)",
+                ));
+            }
             PlannerConfig::Thesis(t) => Team::Thesis(t.params),
             PlannerConfig::Waypoint(w) => Team::Waypoint(w),
             PlannerConfig::Pattern(_)

@@ -134,6 +134,9 @@ impl Member for Crew {
     fn genome_len(&self) -> usize {
         self.robots.iter().map(Individual::len).sum()
     }
+    fn obstacle_cells(&self) -> u64 {
+        self.robots.iter().map(|r| r.sweep.obj_pix).sum()
+    }
     fn robot_records(&self, world: &FleetWorld) -> Vec<RobotRecord> {
         self.robots
             .iter()
@@ -260,7 +263,12 @@ mod tests {
         [[robots]]\nname = \"large\"\nwidth = 0.9\nspeed = 0.5\nstart = [5.5, 9.5]\n";
 
     fn central(map: &GridMap, fleet: &Fleet, p: ThesisParams, seed: u64, iterations: u32) -> ThesisOutcome<Crew> {
-        let mut ga = Ga::<Crew> { scenario: FleetWorld::new(map, fleet, Projection::F2), params: p, seed };
+        let mut ga = Ga::<Crew> {
+            scenario: FleetWorld::new(map, fleet, Projection::F2),
+            params: p,
+            seed,
+            seeds: (Vec::new(), 0),
+        };
         ga.run(&budget(iterations), None, &mut []).unwrap()
     }
 
@@ -274,7 +282,9 @@ mod tests {
             let crew = central(&map, &fleet, p, 5, 120);
             let r = &fleet.robots()[0];
             let scenario = Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2);
-            let alone = ThesisGa { scenario, params: p, seed: 5 }.run(&budget(120), None, &mut []).unwrap();
+            let alone = ThesisGa { scenario, params: p, seed: 5, seeds: (Vec::new(), 0) }
+                .run(&budget(120), None, &mut [])
+                .unwrap();
             assert_eq!(crew.best.robots[0].genome, alone.best.genome, "{selection}");
             assert_eq!(crew.best.score.fitness.to_bits(), alone.best.score.fitness.to_bits(), "{selection}");
             assert_eq!(crew.evaluations, alone.evaluations, "{selection}");
@@ -293,7 +303,9 @@ mod tests {
         let world = FleetWorld::new(&map, &fleet, Projection::F2);
         let scorer = FleetScorer::new(&map, &fleet);
         let mut checked = 0;
-        let pop = Ga::<Crew> { scenario: world, params: params(20, "elite"), seed: 9 }.init(false).population;
+        let pop = Ga::<Crew> { scenario: world, params: params(20, "elite"), seed: 9, seeds: (Vec::new(), 0) }
+            .init(false)
+            .population;
         for crew in pop.iter().chain(std::iter::once(&out.best)) {
             let s = scorer.score(&crew.paths()).unwrap();
             assert_eq!(crew.union_cells, s.union_cells);
@@ -410,7 +422,9 @@ mod tests {
         // Each robot alone, same settings and iterations, planning the whole map.
         for r in fleet.robots() {
             let scenario = Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2);
-            let alone = ThesisGa { scenario, params: p, seed: 2 }.run(&budget(300), None, &mut []).unwrap();
+            let alone = ThesisGa { scenario, params: p, seed: 2, seeds: (Vec::new(), 0) }
+                .run(&budget(300), None, &mut [])
+                .unwrap();
             let m = alone.best.path_metrics(&Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2));
             let time = m.length_m / r.footprint.speed;
             let cov = alone.best.score.cov_final;

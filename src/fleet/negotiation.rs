@@ -116,6 +116,7 @@ pub fn negotiate(
             scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, projection),
             params: *params,
             seed: robot_seed(seed, k),
+            seeds: (Vec::new(), 0),
         })
         .collect();
     let mut states: Vec<GaState> = gas.par_iter().map(|ga| ga.init(false)).collect();
@@ -213,6 +214,7 @@ mod tests {
             scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F1),
             params: p,
             seed: 11,
+            seeds: (Vec::new(), 0),
         };
         let budget =
             crate::planner::Budget { iterations: 150, evaluations: None, wall_clock: None, stall_iterations: None };

@@ -87,6 +87,7 @@ impl FleetPlanner {
             scenario: super::central::FleetWorld::new(&s.map, &self.fleet, s.projection),
             params: *params,
             seed,
+            seeds: (Vec::new(), 0),
         };
         let out = ga.run(budget, None, &mut all)?;
         let best = &out.best;
@@ -153,7 +154,12 @@ impl FleetPlanner {
         let robots = self.fleet.len() as f64;
         match &self.method {
             FleetMethod::Central(params) | FleetMethod::Negotiate(params, _) => {
-                let thesis = crate::thesis::config::ThesisConfig { params: *params, retrain: None };
+                let thesis = crate::thesis::config::ThesisConfig {
+                    params: *params,
+                    retrain: None,
+                    seeds: Vec::new(),
+                    seeded: 0,
+                };
                 let e = thesis.memory_estimate(map, threads);
                 MemoryEstimate { bytes: e.bytes * robots, what: format!("{} for each of {robots} robots", e.what), ..e }
             }

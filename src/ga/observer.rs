@@ -112,6 +112,9 @@ pub struct GenerationStats {
     pub sp: f64,
     /// Population size.
     pub population: u32,
+    /// Hypervolume of the population's plans without obstacle sweeps over
+    /// (`cov_final`, `t_final`) from (0, 0), for Pareto selection (NSGA-II) only.
+    pub hypervolume: Option<f64>,
 }
 
 /// Events of a run other than a finished generation.
@@ -127,7 +130,7 @@ pub enum RunEvent {
 impl GenerationStats {
     /// The planner-neutral record, the thesis's own statistics as extras.
     pub fn record(&self) -> GenerationRecord {
-        GenerationRecord {
+        let mut r = GenerationRecord {
             iteration: self.iteration,
             evaluations: self.evaluations,
             best_fitness: self.best_fitness,
@@ -153,7 +156,11 @@ impl GenerationStats {
                 ("sp", self.sp),
                 ("population", f64::from(self.population)),
             ],
+        };
+        if let Some(h) = self.hypervolume {
+            r.extras.push(("hypervolume", h));
         }
+        r
     }
 }
 

@@ -202,10 +202,15 @@ impl<T: Member> Generation<'_, T> {
         T::cross(&pop[a], &pop[b], self.params, self.scenario, rng, kids)
     }
 
-    /// Initial population of `size` random genomes, evaluated (spec §6).
-    pub fn initial(&self, size: usize, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
-        let mut jobs: Vec<Job<T>> =
-            (0..size).map(|s| Job::fresh(&mut Vec::new(), self.stream(s), Op::Reinit)).collect();
+    /// Initial population of `size` genomes, evaluated (spec §6): the first `seeded` are
+    /// `seeds` in turn, as they are; the others random.
+    pub fn initial(&self, size: usize, seeds: &[T], seeded: usize, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
+        let mut jobs: Vec<Job<T>> = (0..size)
+            .map(|s| match seeds.get(s % seeds.len().max(1)) {
+                Some(seed) if s < seeded => Job::fresh(&mut vec![seed.clone()], self.stream(s), Op::Evaluate),
+                _ => Job::fresh(&mut Vec::new(), self.stream(s), Op::Reinit),
+            })
+            .collect();
         let evaluations = run_jobs(&mut jobs, &[], self.scenario, &self.context(), scratches);
         (jobs.into_iter().map(|j| j.ind).collect(), evaluations)
     }
@@ -246,19 +251,7 @@ impl<T: Member> Generation<'_, T> {
                 }
                 p2 = pick(rng);
             }
-            let crossing = rng.random_bool(e.p_c.clamp(0.0, 1.0));
-            if crossing && self.cross(&pop, (p1, p2), rng, &mut kids, spare) {
-                for (k, ind) in kids.drain(..).enumerate() {
-                    let receiver = if k % 2 == 0 { p1 } else { p2 };
-                    let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
-                    jobs.push(Job::child(ind, receiver, self.stream(jobs.len()), op));
-                }
-            } else {
-                for q in [p1, p2] {
-                    let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[q]) };
-                    jobs.push(Job::copy(spare, &pop[q], self.stream(jobs.len()), op));
-                }
-            }
+            self.mate(&pop, &fit, (p1, p2), rng, &mut jobs, &mut kids, spare);
         }
         spare.append(&mut kids);
         let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
@@ -275,6 +268,36 @@ impl<T: Member> Generation<'_, T> {
         }
         recycle(spare, old.into_iter().flatten(), next.len().max(made));
         (next, evaluations)
+    }
+
+    /// Crosses `pop[p1]` and `pop[p2]` with `P_c` into child jobs, or else copies both parents;
+    /// every new member is then mutated with `P_mI` and `P_mA` (`fit`: the parents' fitness,
+    /// which adaptive control reads). Architecture (a) and NSGA-II make their offspring so.
+    #[allow(clippy::too_many_arguments)]
+    fn mate(
+        &self,
+        pop: &[T],
+        fit: &[f64],
+        (p1, p2): (usize, usize),
+        rng: &mut Rng,
+        jobs: &mut Vec<Job<T>>,
+        kids: &mut Vec<T>,
+        spare: &mut Vec<T>,
+    ) {
+        let e = self.effective;
+        let crossing = rng.random_bool(e.p_c.clamp(0.0, 1.0));
+        if crossing && self.cross(pop, (p1, p2), rng, kids, spare) {
+            for (k, ind) in kids.drain(..).enumerate() {
+                let receiver = if k % 2 == 0 { p1 } else { p2 };
+                let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[receiver]) };
+                jobs.push(Job::child(ind, receiver, self.stream(jobs.len()), op));
+            }
+        } else {
+            for q in [p1, p2] {
+                let op = Op::Mutate { p_mi: e.p_mi, p_ma: e.p_ma.for_fitness(fit[q]) };
+                jobs.push(Job::copy(spare, &pop[q], self.stream(jobs.len()), op));
+            }
+        }
     }
 
     /// Architecture (b) (spec §11.2): random families of two; crossing families keep their two
@@ -378,5 +401,7 @@ fn recycle<T>(spare: &mut Vec<T>, dropped: impl Iterator<Item = T>, limit: usize
     spare.truncate(limit);
 }
 
+mod nsga2;
+pub(crate) use nsga2::objectives;
 #[cfg(test)]
 mod tests;

@@ -3,11 +3,14 @@
 //! same checks through [`ThesisSection::validate`].
 
 use super::crossover::{ChildMode, ShortGenomes};
+use super::genome::Action;
 use super::individual::{EvaluationMode, InitParams};
 use super::params::{Control, Retrain, Selection, ThesisParams};
+use super::seeding::{SeedPlans, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::coverage::fitness::Projection;
 use crate::ga::control::AdaptiveConstants;
+use crate::patterns::planner::PatternSection;
 use crate::planner::Context;
 use crate::planner::memory::MemoryEstimate;
 use serde::{Deserialize, Serialize};
@@ -56,6 +59,14 @@ pub struct ThesisSection {
     /// `incremental` (default) or `full`: how children are evaluated. Both give identical
     /// results; `full` sweeps every path whole and exists to check that.
     pub evaluation: EvaluationMode,
+    /// Patterns whose plans (with the file's `[pattern]` settings) seed the initial population
+    /// as action genomes; none by default (003's random start).
+    #[serde(skip_serializing_if = "SeedPlans::is_empty")]
+    pub seed_population: SeedPlans,
+    /// Share of the initial population that is seeded, in (0, 1] (default 0.1; at least one
+    /// member per pattern).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub seed_share: Option<f64>,
 }
 
 /// Selection scheme names.
@@ -70,6 +81,8 @@ pub enum SelectionName {
     Prws,
     /// Rank-based roulette wheel.
     Rrws,
+    /// NSGA-II (Pareto fronts and crowding over `cov_final` and `t_final`).
+    Nsga2,
 }
 
 impl SelectionName {
@@ -80,6 +93,7 @@ impl SelectionName {
             SelectionName::Tournament => "tournament",
             SelectionName::Prws => "prws",
             SelectionName::Rrws => "rrws",
+            SelectionName::Nsga2 => "nsga2",
         }
     }
 }
@@ -161,9 +175,15 @@ impl Default for ThesisSection {
             selection_pressure: 2.0,
             control: ControlSection::None,
             evaluation: EvaluationMode::Incremental,
+            seed_population: SeedPlans::default(),
+            seed_share: None,
         }
     }
 }
+/// The share of the initial population that is seeded when `thesis.seed_population` is set
+/// and `thesis.seed_share` is not.
+pub const DEFAULT_SEED_SHARE: f64 = 0.1;
+
 /// `Init_I` of 003 Table 4.2 for the non-Elite schemes, the default of
 /// `thesis.init_individuals` (Elite starts from `Pop_min` individuals and ignores it).
 pub const INIT_INDIVIDUALS: usize = 1000;
@@ -175,11 +195,21 @@ pub struct ThesisConfig {
     pub params: ThesisParams,
     /// The changing-environment retrain, if any.
     pub retrain: Option<Retrain>,
+    /// The genomes that seed the initial population, one per pattern (empty: none).
+    pub seeds: Vec<Vec<Action>>,
+    /// Members of the initial population that are seeds (cycling through `seeds`).
+    pub seeded: usize,
 }
 
 impl ThesisSection {
     /// Validates this section and the experiment's `[retrain]` (if any) into the thesis GA.
-    pub fn validate(&self, retrain: Option<&RetrainSection>, ctx: &Context) -> Result<ThesisConfig, ConfigError> {
+    /// `pattern` is the file's `[pattern]`, the settings of the seed plans.
+    pub fn validate(
+        &self,
+        retrain: Option<&RetrainSection>,
+        pattern: &PatternSection,
+        ctx: &Context,
+    ) -> Result<ThesisConfig, ConfigError> {
         let (origin, scenario, b) = (ctx.origin, ctx.scenario, ctx.budget);
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let params = validate_params(self, origin)?;
@@ -215,7 +245,32 @@ impl ThesisSection {
                 Some(Retrain { at_iteration: rt.at_iteration, region: rt.region })
             }
         };
-        Ok(ThesisConfig { params, retrain })
+        let (seeds, seeded) = self.seeds(&params, pattern, ctx)?;
+        Ok(ThesisConfig { params, retrain, seeds, seeded })
+    }
+
+    /// The seed genomes and how many initial members are seeds.
+    fn seeds(
+        &self,
+        params: &ThesisParams,
+        pattern: &PatternSection,
+        ctx: &Context,
+    ) -> Result<(Vec<Vec<Action>>, usize), ConfigError> {
+        if self.seed_population.is_empty() {
+            if self.seed_share.is_some() {
+                return Err(ctx.error("thesis.seed_share", "is set but thesis.seed_population names no pattern"));
+            }
+            return Ok((Vec::new(), 0));
+        }
+        let share = self.seed_share.unwrap_or(DEFAULT_SEED_SHARE);
+        if !(share > 0.0 && share <= 1.0) {
+            return Err(ctx.error("thesis.seed_share", format!("= {share} is out of range (0, 1]")));
+        }
+        let genomes = seed_genomes(self.seed_population, pattern, ctx.scenario, params.max_genome_len)
+            .map_err(|m| ctx.error("thesis.seed_population", m))?;
+        let size = params.initial_size();
+        let seeded = ((share * size as f64).ceil() as usize).max(genomes.len()).min(size);
+        Ok((genomes.into_iter().map(|(_, g)| g).collect(), seeded))
     }
 }
 
@@ -274,6 +329,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
             check_range(origin, "thesis.selection_pressure", t.selection_pressure, 1.0, 2.0, "[1, 2]")?;
             Selection::Rrws { pressure: t.selection_pressure }
         }
+        SelectionName::Nsga2 => Selection::Nsga2,
     };
     if selection.draw().is_some() {
         count("thesis.init_individuals", t.init_individuals, t.pop_min, 10_000_000)?;
@@ -286,7 +342,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
             let (lo, hi, what) = match selection {
                 Selection::Rrws { .. } => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
                 Selection::Tournament { .. } => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
-                Selection::Elite | Selection::Prws => {
+                Selection::Elite | Selection::Prws | Selection::Nsga2 => {
                     return Err(err(
                         "thesis.control.kind",
                         "= \"ramp\" needs selection \"rrws\" or \"tournament\"".into(),

@@ -31,6 +31,8 @@ pub enum Op {
     },
     /// A fresh random genome (`randInit`).
     Reinit,
+    /// The genome as it is (a seed plan): corrected and evaluated, not varied.
+    Evaluate,
 }
 
 /// What a member's genome was made from, for incremental evaluation.
@@ -63,6 +65,9 @@ pub trait Member: Clone + Default + Send + Sync {
     fn score(&self) -> ThesisScore;
     /// Genes in all (`G_len`; summed over a fleet's robots).
     fn genome_len(&self) -> usize;
+    /// `obj_pix`: sweeps of obstacle cells (summed over a fleet's robots); 0 for a plan that
+    /// stays in free space.
+    fn obstacle_cells(&self) -> u64;
     /// The modified dual-point crossover of `a` and `b` (003 §3.3.2), written into `kids`:
     /// recycled members, resized to the number of children (`C_child`), each made an
     /// unevaluated member holding one child's genes. Their buffers are reused; the evaluation
@@ -127,6 +132,7 @@ pub fn vary(genome: &mut Vec<Action>, op: Op, init: &InitParams, rng: &mut Rng) 
             random_genome(rng, init.actions, init.dist_max, genome);
             Mutation::Reinit
         }
+        Op::Evaluate => Mutation::None,
     }
 }
 
@@ -140,6 +146,9 @@ impl Member for Individual {
     }
     fn genome_len(&self) -> usize {
         self.genome.len()
+    }
+    fn obstacle_cells(&self) -> u64 {
+        self.sweep.obj_pix
     }
     fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng, kids: &mut Vec<Self>) -> bool {
         fn parent(x: &Individual) -> Parent<'_> {

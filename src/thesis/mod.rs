@@ -15,3 +15,4 @@ pub mod mutation;
 pub mod params;
 pub mod planner;
 pub mod run;
+pub mod seeding;

@@ -22,6 +22,10 @@ pub enum Selection {
         /// `SP` in [1, 2].
         pressure: f64,
     },
+    /// NSGA-II over 003's two objectives (`cov_final`, `t_final`) with the swept obstacle
+    /// cells as the constraint: crowded binary tournaments for mating, `Pop_min` survivors of
+    /// parents and offspring by front and crowding distance (003 §5.3's combined selection).
+    Nsga2,
 }
 
 /// How architecture (a) draws its parents: every selection scheme but Elite's families.
@@ -36,10 +40,11 @@ pub enum Draw {
 }
 
 impl Selection {
-    /// The parent draw of architecture (a), or `None` for Elite's families (architecture (b)).
+    /// The parent draw of architecture (a), or `None` for Elite's families (architecture (b))
+    /// and NSGA-II (its crowded tournaments).
     pub fn draw(&self) -> Option<Draw> {
         match self {
-            Selection::Elite => None,
+            Selection::Elite | Selection::Nsga2 => None,
             Selection::Tournament { .. } => Some(Draw::Tournament),
             Selection::Prws => Some(Draw::Prws),
             Selection::Rrws { .. } => Some(Draw::Rrws),
@@ -53,6 +58,7 @@ impl Selection {
             Selection::Tournament { .. } => "tournament",
             Selection::Prws => "prws",
             Selection::Rrws { .. } => "rrws",
+            Selection::Nsga2 => "nsga2",
         }
     }
 }
@@ -146,10 +152,11 @@ impl ThesisParams {
         }
     }
 
-    /// Size of the initial population: `Pop_min` for Elite, `Init_I` otherwise (Sec. 4.1.1).
+    /// Size of the initial population: `Pop_min` for Elite (and NSGA-II), `Init_I` otherwise
+    /// (Sec. 4.1.1).
     pub fn initial_size(&self) -> usize {
         match self.selection {
-            Selection::Elite => self.pop_min,
+            Selection::Elite | Selection::Nsga2 => self.pop_min,
             Selection::Tournament { .. } | Selection::Prws | Selection::Rrws { .. } => self.init_individuals,
         }
     }

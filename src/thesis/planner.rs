@@ -17,12 +17,27 @@ use std::path::Path;
 /// `population.csv`: the final population, one row per individual in population order, with
 /// both objectives of 003 (eqs. 3.6, 3.10), both projections (eqs. 3.14-3.15), `f_obstacle`
 /// (eq. 3.16) and `G_len`: the points of 003's Pareto figures.
-pub fn population_csv(population: &[(ThesisScore, usize)]) -> Vec<u8> {
-    let mut s = String::from("index,cov_final,t_final,f1,f2,fitness,genome_len\n");
-    for (i, (sc, len)) in population.iter().enumerate() {
-        s.push_str(&format!("{i},{},{},{},{},{},{len}\n", sc.cov_final, sc.t_final, sc.f1, sc.f2, sc.fitness));
+pub fn population_csv(population: &[(ThesisScore, usize, u64)]) -> Vec<u8> {
+    let mut s = String::from("index,cov_final,t_final,f1,f2,fitness,genome_len,obstacle_cells\n");
+    for (i, (sc, len, obj)) in population.iter().enumerate() {
+        let (cov, t, f1, f2, f) = (sc.cov_final, sc.t_final, sc.f1, sc.f2, sc.fitness);
+        s.push_str(&format!("{i},{cov},{t},{f1},{f2},{f},{len},{obj}\n"));
     }
     s.into_bytes()
+}
+
+/// The final first front of a Pareto run under constrained domination, as
+/// `[cov_final, t_final, fitness, genome_len]` rows sorted by `cov_final` (for `summary.json`).
+fn final_front(population: &[(ThesisScore, usize, u64)]) -> serde_json::Value {
+    let points: Vec<(f64, f64)> = population.iter().map(|(s, _, _)| (s.cov_final, s.t_final)).collect();
+    let violation: Vec<f64> = population.iter().map(|(_, _, obj)| *obj as f64).collect();
+    let rank = crate::ga::selection::nsga2::front_ranks(&points, &violation);
+    let mut front: Vec<usize> = (0..population.len()).filter(|&i| rank[i] == 0).collect();
+    front.sort_by(|&a, &b| points[a].0.total_cmp(&points[b].0).then(a.cmp(&b)));
+    front
+        .iter()
+        .map(|&i| serde_json::json!([points[i].0, points[i].1, population[i].0.fitness, population[i].1]))
+        .collect()
 }
 
 impl Planner for ThesisConfig {
@@ -37,7 +52,13 @@ impl Planner for ThesisConfig {
         budget: &Budget,
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunOutcome, PlannerError> {
-        let mut ga = ThesisGa { scenario: ThesisScenario::from_common(scenario), params: self.params, seed };
+        let seeds = self.seeds.iter().map(|g| Individual { genome: g.clone(), ..Default::default() }).collect();
+        let mut ga = ThesisGa {
+            scenario: ThesisScenario::from_common(scenario),
+            params: self.params,
+            seed,
+            seeds: (seeds, self.seeded),
+        };
         let out = ga.run(budget, self.retrain.as_ref(), observers)?;
         let best = &out.best;
         let sc = best.score;
@@ -50,6 +71,12 @@ impl Planner for ThesisConfig {
             "genome_len": best.len(),
             "metrics": best.path_metrics(&ga.scenario),
         }));
+        if matches!(self.params.selection, super::params::Selection::Nsga2) {
+            details.insert("front".into(), final_front(&out.final_population));
+            details
+                .insert("front_columns".into(), serde_json::json!(["cov_final", "t_final", "fitness", "genome_len"]));
+            details.insert("plan".into(), "the knee of the final front".into());
+        }
         if let Some(b) = &out.best_before_retrain {
             details.insert(
                 "before_retrain".into(),

@@ -25,6 +25,9 @@ pub struct Ga<T: Member> {
     pub params: ThesisParams,
     /// The run's seed.
     pub seed: u64,
+    /// Unevaluated members whose genomes seed the initial population (a pattern's plan,
+    /// `thesis.seed_population`), and how many initial slots they fill, cycling through them.
+    pub seeds: (Vec<T>, usize),
 }
 
 /// The thesis GA of 003: a population of single-robot genomes.
@@ -49,7 +52,8 @@ pub struct GaState<T = Individual> {
 
 /// The result of a run of the thesis GA.
 pub struct ThesisOutcome<T = Individual> {
-    /// Best individual of the final population (R30).
+    /// Best individual of the final population (R30); under Pareto selection, the knee of
+    /// its first front ([`knee_index`]).
     pub best: T,
     /// Best individual just before the environment changed, if it did.
     pub best_before_retrain: Option<T>,
@@ -65,9 +69,9 @@ pub struct ThesisOutcome<T = Individual> {
     pub history: Vec<GenerationStats>,
     /// Iterations at which the environment changed.
     pub changes: Vec<u32>,
-    /// The final population's scores and genome lengths, in population order (its front is
-    /// what 003's Pareto figures show).
-    pub final_population: Vec<(ThesisScore, usize)>,
+    /// The final population's scores, genome lengths and obstacle sweeps, in population order
+    /// (its front is what 003's Pareto figures show).
+    pub final_population: Vec<(ThesisScore, usize, u64)>,
 }
 
 /// Index of the fittest individual (first on ties).
@@ -86,6 +90,11 @@ impl<T: Member> Ga<T> {
         (0..rayon::current_num_threads().max(1)).map(|_| EvalScratch::default()).collect()
     }
 
+    /// Whether the selection is Pareto selection (NSGA-II).
+    fn pareto(&self) -> bool {
+        matches!(self.params.selection, Selection::Nsga2)
+    }
+
     fn adaptive(&self) -> bool {
         matches!(self.params.control, Control::Adaptive(_))
     }
@@ -99,7 +108,7 @@ impl<T: Member> Ga<T> {
         let (tournament_size, pressure) = match p.selection {
             Selection::Tournament { size } => (size, 0.0),
             Selection::Rrws { pressure } => (0, pressure),
-            Selection::Elite | Selection::Prws => (0, 0.0),
+            Selection::Elite | Selection::Prws | Selection::Nsga2 => (0, 0.0),
         };
         Effective { p_c: p.p_c, p_mi: p.p_mi, p_ma: MutationRate::Fixed(p.p_ma), tournament_size, pressure }
     }
@@ -116,7 +125,7 @@ impl<T: Member> Ga<T> {
                 }
                 Selection::Rrws { .. } => e.pressure = control::linear_ramp(iteration, iter_max, min, max),
                 // Validation allows a ramp only for the tournament and RRWS.
-                Selection::Elite | Selection::Prws => {}
+                Selection::Elite | Selection::Prws | Selection::Nsga2 => {}
             },
             Control::Adaptive(c) => {
                 let fit = state.population.iter().map(T::fitness);
@@ -140,7 +149,9 @@ impl<T: Member> Ga<T> {
     pub fn init(&self, measure_diversity: bool) -> GaState<T> {
         let mut scratches = self.scratches();
         let size = self.params.initial_size();
-        let (population, evaluations) = self.generation(0, self.fixed_effective()).initial(size, &mut scratches);
+        let (seeds, seeded) = (&self.seeds.0, self.seeds.1.min(size));
+        let (population, evaluations) =
+            self.generation(0, self.fixed_effective()).initial(size, &seeds[..], seeded, &mut scratches);
         let mut state = GaState {
             population,
             iteration: 0,
@@ -173,9 +184,14 @@ impl<T: Member> Ga<T> {
         state.iteration += 1;
         let generation = self.generation(state.iteration, effective);
         let pop = std::mem::take(&mut state.population);
-        let (next, evaluations) = match self.params.selection.draw() {
-            None => generation.step_b(pop, &mut state.rng, scratches, &mut state.spare),
-            Some(draw) => generation.step_a(draw, pop, &mut state.rng, scratches, &mut state.spare),
+        let (rng, spare) = (&mut state.rng, &mut state.spare);
+        let (next, evaluations) = match self.params.selection {
+            Selection::Nsga2 => generation.step_nsga2(pop, rng, scratches, spare),
+            Selection::Elite => generation.step_b(pop, rng, scratches, spare),
+            Selection::Tournament { .. } | Selection::Prws | Selection::Rrws { .. } => {
+                let draw = self.params.selection.draw().expect("architecture (a) draws its parents");
+                generation.step_a(draw, pop, rng, scratches, spare)
+            }
         };
         state.population = next;
         state.evaluations += evaluations;
@@ -225,7 +241,7 @@ impl<T: Member> Ga<T> {
         let mut scratches = self.scratches();
         let mut div = DiversityScratch::default();
         let fixed = self.fixed_effective();
-        let first = stats(&state, &fixed);
+        let first = stats(&state, &fixed, self.pareto());
         for o in observers.iter_mut() {
             o.generation(&record(&first, &state, &self.scenario))?;
         }
@@ -251,7 +267,7 @@ impl<T: Member> Ga<T> {
             }
             let effective = self.effective(&state, state.iteration + 1, budget.iterations);
             self.step(&mut state, effective, &mut scratches, wants_diversity.then_some(&mut div));
-            let now = stats(&state, &effective);
+            let now = stats(&state, &effective, self.pareto());
             if !observers.is_empty() {
                 let r = record(&now, &state, &self.scenario);
                 for o in observers.iter_mut() {
@@ -271,8 +287,10 @@ impl<T: Member> Ga<T> {
                 break;
             }
         }
-        let best = state.population[best_index(&state.population)].clone();
-        let final_population = state.population.iter().map(|m| (m.score(), m.genome_len())).collect();
+        let reported = if self.pareto() { knee_index(&state.population) } else { best_index(&state.population) };
+        let best = state.population[reported].clone();
+        let final_population =
+            state.population.iter().map(|m| (m.score(), m.genome_len(), m.obstacle_cells())).collect();
         Ok(ThesisOutcome {
             final_population,
             history,
@@ -303,8 +321,9 @@ fn record<T: Member>(stats: &GenerationStats, state: &GaState<T>, world: &T::Wor
     r
 }
 
-/// Statistics of the current population (spec §17).
-pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective) -> GenerationStats {
+/// Statistics of the current population (spec §17); with `pareto`, the hypervolume of its
+/// plans without obstacle sweeps too.
+pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective, pareto: bool) -> GenerationStats {
     let pop = &state.population;
     let n = pop.len() as f64;
     let best = &pop[best_index(pop)];
@@ -347,5 +366,23 @@ pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective) -> Generation
         p_ma: p_ma_sum / n,
         sp: if effective.tournament_size > 0 { effective.tournament_size as f64 } else { effective.pressure },
         population: pop.len() as u32,
+        hypervolume: pareto.then(|| {
+            let clean: Vec<(f64, f64)> = pop
+                .iter()
+                .filter(|m| m.obstacle_cells() == 0)
+                .map(|m| (m.score().cov_final, m.score().t_final))
+                .collect();
+            crate::ga::pareto::hypervolume_2d(&clean, (0.0, 0.0))
+        }),
     }
+}
+
+/// The member a Pareto run reports: the knee ([`crate::ga::selection::nsga2::knee`]) of the
+/// first front under constrained domination (the plans without obstacle sweeps, when there
+/// are any).
+pub fn knee_index<T: Member>(pop: &[T]) -> usize {
+    let (points, violation) = super::architecture::objectives(pop);
+    let rank = crate::ga::selection::nsga2::front_ranks(&points, &violation);
+    let front: Vec<usize> = (0..pop.len()).filter(|&i| rank[i] == 0).collect();
+    crate::ga::selection::nsga2::knee(&points, &front).expect("a population has a first front")
 }

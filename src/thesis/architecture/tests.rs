@@ -95,6 +95,9 @@ impl Member for Probe {
     fn genome_len(&self) -> usize {
         1
     }
+    fn obstacle_cells(&self) -> u64 {
+        0
+    }
     fn cross(a: &Self, b: &Self, _: &ThesisParams, world: &World, _: &mut Rng, kids: &mut Vec<Self>) -> bool {
         let Some(c) = world.children else { return false };
         kids.resize_with(c, Default::default);
@@ -116,7 +119,7 @@ impl Member for Probe {
         self.rates = match op {
             Op::Mutate { p_mi, p_ma } => Some((p_mi, p_ma)),
             Op::MutateAction { p_ma } => Some((f64::NAN, p_ma)),
-            Op::Reinit => None,
+            Op::Reinit | Op::Evaluate => None,
         };
         self.made = match origin {
             Origin::New => Made::Fresh,

@@ -1,0 +1,58 @@
+//! `thesis.seed_population`: the initial population seeded with a pattern's plan.
+
+use covga::experiment::file::ExperimentFile;
+use covga::experiment::output::run_experiment;
+use std::path::Path;
+
+fn summary(text: &str) -> serde_json::Value {
+    let tmp = tempfile::tempdir().unwrap();
+    let exp = ExperimentFile::parse(text, "test").unwrap().validate("test", Path::new("."), "t").unwrap();
+    run_experiment(&exp, tmp.path(), false, &mut []).unwrap();
+    serde_json::from_str(&std::fs::read_to_string(tmp.path().join("summary.json")).unwrap()).unwrap()
+}
+
+fn refused(text: &str) -> String {
+    match ExperimentFile::parse(text, "test").and_then(|f| f.validate("test", Path::new("."), "t")) {
+        Ok(_) => panic!("accepted: {text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const SEEDED: &str = "seed = 4\nplanner = \"thesis\"\n[map]\nsource = \"thesis-2\"\n[robot]\nrot_speed = 0.5\n\
+                      [thesis]\npop_min = 40\ninit_actions = 30\nmax_genome_len = 400\n\
+                      seed_population = [\"boustrophedon\"]\n[pattern]\nangle_deg = 90.0\n[budget]\niterations = 150\n";
+
+#[test]
+fn an_elite_run_seeded_with_a_pattern_ends_at_least_as_fit_as_the_pattern() {
+    let pattern = summary(&SEEDED.replace("planner = \"thesis\"", "planner = \"boustrophedon\""));
+    let seeded = summary(SEEDED);
+    let (p, s) = (pattern["objectives"]["fitness"].as_f64().unwrap(), seeded["fitness"].as_f64().unwrap());
+    // Elite keeps the seed genome unless a fitter member replaces it; the seed scores as the
+    // pattern up to a few cells of overlap (see `thesis::seeding`'s tests).
+    assert!(s >= p * (1.0 - 1e-3), "seeded GA {s} below its seed {p}");
+    assert_eq!(seeded["score"]["executable"], true);
+    // Without the seed, the same short run stays far below the pattern.
+    let unseeded = summary(&SEEDED.replace("seed_population = [\"boustrophedon\"]\n", ""));
+    assert!(unseeded["fitness"].as_f64().unwrap() < p, "{unseeded}");
+}
+
+#[test]
+fn seeding_checks_its_keys() {
+    let cases = [
+        ("seed_share = 0.0\n", "thesis.seed_share` = 0 is out of range (0, 1]"),
+        ("seed_share = 1.5\n", "(0, 1]"),
+        ("max_genome_len = 40\n", "raise it to at least"),
+    ];
+    for (extra, message) in cases {
+        let text = SEEDED.replace("max_genome_len = 400\n", "").replace("[pattern]", &format!("{extra}[pattern]"));
+        let e = refused(&text);
+        assert!(e.contains(message) && e.contains("thesis."), "{e}");
+    }
+    let e = refused(&SEEDED.replace("[\"boustrophedon\"]", "[\"spiral\", \"spiral\"]"));
+    assert!(e.contains("listed twice"), "{e}");
+    let e = refused(&SEEDED.replace("seed_population = [\"boustrophedon\"]\n", "seed_share = 0.2\n"));
+    assert!(e.contains("thesis.seed_share") && e.contains("names no pattern"), "{e}");
+    let fleet = format!("{SEEDED}[[robots]]\nname = \"a\"\n[[robots]]\nname = \"b\"\nstart = [9.7, 1.3]\n");
+    let e = refused(&fleet);
+    assert!(e.contains("thesis.seed_population") && e.contains("fleet"), "{e}");
+}
