@@ -68,6 +68,7 @@ fn thesis_grids_expand_to_table_4_3() {
         ("thesis-table-4-3.toml", 3 * 18144),
         ("thesis-extended.toml", 27216),
         ("smoke.toml", 36),
+        ("thesis-seeding.toml", 24),
     ] {
         let o = covga(&["grid", root.join(file).to_str().unwrap(), "--dry-run"]);
         ok(&o);
