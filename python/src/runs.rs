@@ -107,22 +107,18 @@ pub fn run_experiment(
     let stop = AtomicBool::new(false);
     let outcome = interruptible(py, &stop, || {
         covga::experiment::output::run_experiment(&exp, &dir, figures, &mut [&mut StopAt(&stop)])
+    })
+    .and_then(|run| {
+        run.map_err(|e| match e {
+            OutputError::Planner(m) => config_error(format!("{origin}: {m}")),
+            other => PyRuntimeError::new_err(other.to_string()),
+        })
     });
-    let summary = match outcome {
-        Ok(Ok(summary)) => summary,
-        failed => {
-            // A refused or stopped run leaves no folder behind that it made itself.
-            if !existed {
-                let _ = std::fs::remove_dir(&dir);
-            }
-            return Err(match failed {
-                Err(e) => e,
-                Ok(Err(OutputError::Planner(m))) => config_error(format!("{origin}: {m}")),
-                Ok(Err(other)) => PyRuntimeError::new_err(other.to_string()),
-                Ok(Ok(_)) => unreachable!("handled above"),
-            });
-        }
-    };
+    if outcome.is_err() && !existed {
+        // A refused or stopped run leaves no folder behind that it made itself.
+        let _ = std::fs::remove_dir(&dir);
+    }
+    let summary = outcome?;
     warnings.extend(summary.warnings.iter().map(|w| format!("{origin}: {w}")));
     Ok(warnings)
 }

@@ -10,7 +10,7 @@ use covga::patterns::{self, Pattern};
 use covga::thesis::batch::{COLUMNS, evaluate_genomes, genome_of};
 use covga::thesis::individual::Scenario;
 use covga::waypoint::config::WaypointSection;
-use numpy::ndarray::Array2;
+use numpy::ndarray::{Array2, ArrayView2};
 use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, ToPyArray};
 use pyo3::prelude::*;
 
@@ -58,6 +58,18 @@ fn points(what: &str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<Point>> {
 
 fn array_of(points: &[Point]) -> Array2<f64> {
     Array2::from_shape_fn((points.len(), 2), |(i, k)| if k == 0 { points[i].x } else { points[i].y })
+}
+
+/// The genome of `rows` (heading in degrees, distance in metres per row), genome `i` of a batch.
+fn genome_of_rows(i: usize, rows: ArrayView2<'_, f64>) -> PyResult<Vec<covga::thesis::genome::Action>> {
+    if rows.ncols() != 2 {
+        return Err(config_error(format!(
+            "genome {i}: shape {:?}, expected (L, 2): heading in degrees and distance in metres",
+            rows.dim()
+        )));
+    }
+    let moves: Vec<(f64, f64)> = rows.rows().into_iter().map(|r| (r[0], r[1])).collect();
+    genome_of(i, &moves).map_err(config_error)
 }
 
 /// The common scorer's metrics (as JSON text) of `paths`, one per agent of this robot, as
@@ -162,30 +174,10 @@ pub fn thesis_evaluate<'py>(
             if a.dim().2 != 2 {
                 return Err(config_error(format!("genomes: shape {:?}, expected (n, L, 2)", a.dim())));
             }
-            return a
-                .outer_iter()
-                .enumerate()
-                .map(|(i, g)| {
-                    let moves: Vec<(f64, f64)> = g.rows().into_iter().map(|r| (r[0], r[1])).collect();
-                    genome_of(i, &moves).map_err(config_error)
-                })
-                .collect::<PyResult<Vec<_>>>();
+            return a.outer_iter().enumerate().map(|(i, g)| genome_of_rows(i, g)).collect::<PyResult<Vec<_>>>();
         }
         let list: Vec<PyReadonlyArray2<'py, f64>> = genomes.extract()?;
-        list.iter()
-            .enumerate()
-            .map(|(i, g)| {
-                let a = g.as_array();
-                if a.ncols() != 2 {
-                    return Err(config_error(format!(
-                        "genome {i}: shape {:?}, expected (L, 2): heading in degrees and distance in metres",
-                        a.dim()
-                    )));
-                }
-                let moves: Vec<(f64, f64)> = a.rows().into_iter().map(|r| (r[0], r[1])).collect();
-                genome_of(i, &moves).map_err(config_error)
-            })
-            .collect::<PyResult<Vec<_>>>()
+        list.iter().enumerate().map(|(i, g)| genome_of_rows(i, g.as_array())).collect::<PyResult<Vec<_>>>()
     })?;
     let m = &map.inner;
     let rows = released(py, || {

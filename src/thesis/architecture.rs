@@ -116,6 +116,10 @@ impl<T: Member> Job<T> {
     fn fresh(spare: &mut Vec<T>, stream: JobStream, op: Op) -> Self {
         Self { ind: spare.pop().unwrap_or_default(), stream, op, origin: JobOrigin::New, evaluations: 0 }
     }
+    /// A seed member (a pattern's genome), evaluated as it is.
+    fn seed(ind: T, stream: JobStream) -> Self {
+        Self { ind, stream, op: Op::Evaluate, origin: JobOrigin::New, evaluations: 0 }
+    }
     /// A crossover child (built by [`Member::cross`] in a recycled member).
     fn child(ind: T, receiver: usize, stream: JobStream, op: Op) -> Self {
         Self { ind, stream, op, origin: JobOrigin::Child(receiver), evaluations: 0 }
@@ -207,7 +211,7 @@ impl<T: Member> Generation<'_, T> {
     pub fn initial(&self, size: usize, seeds: &[T], seeded: usize, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
         let mut jobs: Vec<Job<T>> = (0..size)
             .map(|s| match seeds.get(s % seeds.len().max(1)) {
-                Some(seed) if s < seeded => Job::fresh(&mut vec![seed.clone()], self.stream(s), Op::Evaluate),
+                Some(seed) if s < seeded => Job::seed(seed.clone(), self.stream(s)),
                 _ => Job::fresh(&mut Vec::new(), self.stream(s), Op::Reinit),
             })
             .collect();
