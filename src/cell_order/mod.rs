@@ -16,9 +16,9 @@ pub mod operators;
 pub mod search;
 pub mod sweeps;
 pub mod tour;
-pub mod transit;
 
 use crate::coverage::motion::rotation_time;
+use crate::coverage::transit::{Transit, distinct};
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::geom::{Point, Vector};
 use crate::map::clearance::Clearance;
@@ -29,7 +29,6 @@ use config::{CellOrderConfig, Completion, Solver};
 use std::time::Instant;
 use sweeps::CellSweeps;
 use tour::{Candidate, Instance, Tour, leg_time, leg_turn_rad};
-use transit::{Transit, distinct};
 
 /// The most candidate sweeps a run accepts (cells × directions × 4 entries): the leg-time
 /// matrix holds the square of it in `f32`, 1.6 GB at this bound.

@@ -118,6 +118,14 @@ impl BitLayers {
         Self::settle::<ADD>(tally, counts);
     }
 
+    /// The obstacle cells (cells not free) in the swept rectangle of `a → b`: the segment's
+    /// share of `obj_pix`, without touching any visit map.
+    pub fn obstacle_cells(&self, a: Point, b: Point, width: f64) -> u64 {
+        let mut n = 0u64;
+        self.for_each_mask(a, b, width, |idx, mask| n += u64::from((mask & !self.free[idx]).count_ones()));
+        n
+    }
+
     /// A 64-bit fingerprint of the raster geometry and the free cells: grids of other
     /// geometries, or of one raster with other walls, differ in it (but for a 2⁻⁶⁴ chance), so
     /// a cache of free-cell masks can tell them apart with one comparison.

@@ -2,8 +2,9 @@
 //! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`]; the
 //! thesis fitness equations that turn them into `cov_final`, `t_final` and `f` ([`fitness`],
 //! 003 §3.2.1); the camera model of 000 on its working raster ([`camera`], [`work_map`]); and
-//! the common scorer every planner is compared by ([`score`]). Planners build on this layer;
-//! it depends on none of them.
+//! the common scorer every planner is compared by ([`score`]); and wall-free transit between
+//! points for a robot of a given width ([`transit`]: the cell-order GA's cost matrix and the
+//! thesis GA's routed moves). Planners build on this layer; it depends on none of them.
 
 pub mod bits;
 pub mod camera;
@@ -14,10 +15,12 @@ pub mod lanes;
 pub mod motion;
 pub mod planes;
 pub mod raster;
+pub mod routes;
 pub mod rows;
 pub mod score;
 pub mod segments;
 pub mod sweep;
+pub mod transit;
 pub mod work_map;
 
 pub use sweep::{CoverageGrid, SweepCounts, SweepScratch};

@@ -117,6 +117,12 @@ impl PlannerConfig {
                     "seeds the GA of one robot; a fleet's GAs start from random genomes (leave it out)",
                 ));
             }
+            PlannerConfig::Thesis(t) if !t.moves.is_straight() => {
+                return Err(ctx.error(
+                    "thesis.moves",
+                    "= \"routed\" is built for the GA of one robot; a fleet's GAs drive straight moves (leave it out)",
+                ));
+            }
             PlannerConfig::Thesis(t) => Team::Thesis(t.params),
             PlannerConfig::Waypoint(w) => Team::Waypoint(w),
             PlannerConfig::Pattern(_)

@@ -159,6 +159,7 @@ impl FleetPlanner {
                     retrain: None,
                     seeds: Vec::new(),
                     seeded: 0,
+                    moves: crate::thesis::individual::Moves::Straight,
                 };
                 let e = thesis.memory_estimate(map, threads);
                 MemoryEstimate { bytes: e.bytes * robots, what: format!("{} for each of {robots} robots", e.what), ..e }

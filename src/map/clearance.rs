@@ -5,6 +5,7 @@
 
 use crate::geom::Point;
 use crate::map::GridMap;
+use std::borrow::Cow;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -12,8 +13,11 @@ use std::collections::BinaryHeap;
 const CLEARANCE_EPS: f64 = 1e-6;
 
 /// Clearance queries for a robot of radius `width / 2` on one map.
+#[derive(Clone, Debug)]
 pub struct Clearance<'m> {
-    map: &'m GridMap,
+    /// Borrowed by the planners that build one per run; owned by a [`Clearance::owned`] kept
+    /// in a scenario.
+    map: Cow<'m, GridMap>,
     radius: f64,
     window: isize,
     centre_ok: Vec<bool>,
@@ -24,13 +28,24 @@ pub struct Clearance<'m> {
 impl<'m> Clearance<'m> {
     /// Precomputes which cell centres the robot can occupy.
     pub fn new(map: &'m GridMap, width: f64) -> Self {
+        Self::of(Cow::Borrowed(map), width)
+    }
+
+    /// [`Clearance::new`] on a map it keeps.
+    pub fn owned(map: GridMap, width: f64) -> Clearance<'static> {
+        Clearance::of(Cow::Owned(map), width)
+    }
+
+    fn of(map: Cow<'m, GridMap>, width: f64) -> Self {
         let radius = 0.5 * width;
         let window = (radius / map.resolution()).ceil() as isize + 1;
         let mut c = Self { map, radius, window, centre_ok: Vec::new(), reachable: None };
-        c.centre_ok = (0..map.rows())
+        let map = &*c.map;
+        let centre_ok = (0..map.rows())
             .flat_map(|r| (0..map.cols()).map(move |col| (r, col)))
             .map(|(r, col)| c.fits_geometry(map.cell_centre(r, col)))
             .collect();
+        c.centre_ok = centre_ok;
         c
     }
 
@@ -62,7 +77,7 @@ impl<'m> Clearance<'m> {
 
     fn near_reachable(&self, p: Point) -> bool {
         let Some(reach) = &self.reachable else { return true };
-        let m = self.map;
+        let m = &*self.map;
         let Some((r, c)) = m.cell_at(p) else { return false };
         let (r, c) = (r as isize, c as isize);
         (-1..=1).any(|dr| {
@@ -79,17 +94,26 @@ impl<'m> Clearance<'m> {
 
     /// The map.
     pub fn map(&self) -> &GridMap {
-        self.map
+        &self.map
     }
 
     /// Whether the robot disc centred at `p` stays on the map and off every non-free cell.
     pub fn fits_geometry(&self, p: Point) -> bool {
-        let m = self.map;
-        let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
+        let m = &*self.map;
+        let (ox, oy) = (m.origin().x, m.origin().y);
         let lim = self.radius - CLEARANCE_EPS;
         if p.x - ox < lim || p.y - oy < lim || ox + m.width_m() - p.x < lim || oy + m.height_m() - p.y < lim {
             return false;
         }
+        self.clear_of_cells(p)
+    }
+
+    /// Whether the robot disc centred at `p` keeps clear of every non-free cell of the map (the
+    /// map's edge not counted: a disc may reach past it).
+    pub fn clear_of_cells(&self, p: Point) -> bool {
+        let m = &*self.map;
+        let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
+        let lim = self.radius - CLEARANCE_EPS;
         let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
         for r in (cr - self.window).max(0)..=(cr + self.window).min(m.rows() as isize - 1) {
             for c in (cc - self.window).max(0)..=(cc + self.window).min(m.cols() as isize - 1) {
@@ -154,8 +178,11 @@ impl<'m> Clearance<'m> {
 
     /// The fitting cell centre (row-major index) nearest to `p`, if any cell fits.
     pub fn snap(&self, p: Point) -> Option<usize> {
-        let m = self.map;
-        let (r0, c0) = m.cell_at(m.clamp(p)).unwrap_or((0, 0));
+        let m = &*self.map;
+        // The map's upper edges belong to its last row and column.
+        let cell = |v: f64, o: f64, n: usize| (((v - o) / m.resolution()).floor().max(0.0) as usize).min(n - 1);
+        let q = m.clamp(p);
+        let (r0, c0) = (cell(q.y, m.origin().y, m.rows()), cell(q.x, m.origin().x, m.cols()));
         // Nearest fitting cell centre by growing square rings.
         let max_ring = m.rows().max(m.cols()) as isize;
         for ring in 0..max_ring {
@@ -224,7 +251,7 @@ impl<'m> Clearance<'m> {
     /// The 8 neighbours of cell `i` that a robot centred on `i` can step to: fitting centres,
     /// and for diagonal steps both orthogonal neighbours fitting too (no corner cutting).
     pub fn steps(&self, i: usize) -> impl Iterator<Item = (usize, f64)> + '_ {
-        let m = self.map;
+        let m = &*self.map;
         let cols = m.cols() as isize;
         let (r, c) = ((i / m.cols()) as isize, (i % m.cols()) as isize);
         [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)].into_iter().filter_map(
@@ -247,7 +274,7 @@ impl<'m> Clearance<'m> {
     }
 
     fn astar(&self, from: usize, to: usize) -> Option<Vec<usize>> {
-        let m = self.map;
+        let m = &*self.map;
         let n = self.centre_ok.len();
         let h = |i: usize| {
             let (dr, dc) =

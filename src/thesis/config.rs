@@ -4,7 +4,7 @@
 
 use super::crossover::{ChildMode, ShortGenomes};
 use super::genome::Action;
-use super::individual::{EvaluationMode, InitParams};
+use super::individual::{EvaluationMode, InitParams, Moves};
 use super::params::{Control, Retrain, Selection, ThesisParams};
 use super::seeding::{SeedPlans, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
@@ -59,6 +59,10 @@ pub struct ThesisSection {
     /// `incremental` (default) or `full`: how children are evaluated. Both give identical
     /// results; `full` sweeps every path whole and exists to check that.
     pub evaluation: EvaluationMode,
+    /// `straight` (default, 003) or `routed`: a move whose straight segment would sweep an
+    /// obstacle drives around it on a wall-free route (003 §5.3's future work).
+    #[serde(skip_serializing_if = "Moves::is_straight")]
+    pub moves: Moves,
     /// Patterns whose plans (with the file's `[pattern]` settings) seed the initial population
     /// as action genomes; none by default (003's random start).
     #[serde(skip_serializing_if = "SeedPlans::is_empty")]
@@ -175,6 +179,7 @@ impl Default for ThesisSection {
             selection_pressure: 2.0,
             control: ControlSection::None,
             evaluation: EvaluationMode::Incremental,
+            moves: Moves::Straight,
             seed_population: SeedPlans::default(),
             seed_share: None,
         }
@@ -199,6 +204,8 @@ pub struct ThesisConfig {
     pub seeds: Vec<Vec<Action>>,
     /// Members of the initial population that are seeds (cycling through `seeds`).
     pub seeded: usize,
+    /// How the robot drives from one viewpoint to the next.
+    pub moves: Moves,
 }
 
 impl ThesisSection {
@@ -246,7 +253,7 @@ impl ThesisSection {
             }
         };
         let (seeds, seeded) = self.seeds(&params, pattern, ctx)?;
-        Ok(ThesisConfig { params, retrain, seeds, seeded })
+        Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves })
     }
 
     /// The seed genomes and how many initial members are seeds.
@@ -293,8 +300,12 @@ impl ThesisConfig {
     /// ([`memory_estimate`]), with the key that drives it.
     pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
         let p = &self.params;
+        let routes = match self.moves {
+            Moves::Straight => 0.0,
+            Moves::Routed => crate::coverage::routes::Router::memory_estimate(map.rows() * map.cols(), threads),
+        };
         MemoryEstimate {
-            bytes: memory_estimate(p, map.rows(), map.cols(), threads),
+            bytes: memory_estimate(p, map.rows(), map.cols(), threads) + routes,
             key: if p.initial_size() > p.pop_min { "thesis.init_individuals" } else { "thesis.pop_min" },
             what: format!("{} individuals of up to {} actions", p.initial_size(), p.max_genome_len),
         }

@@ -5,12 +5,14 @@ use super::genome::{Action, Frame, decode, decode_from, live, random_genome, sam
 use crate::coverage::bits::{BitLayers, Tally};
 use crate::coverage::fitness::{Projection, ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
+use crate::coverage::routes::{RouteScratch, Router};
 use crate::coverage::segments::SegmentCache;
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
 use crate::map::GridMap;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
+use std::sync::Arc;
 
 /// Everything an evaluation reads: the map layers, the robot, the stations and the projection.
 #[derive(Clone, Debug)]
@@ -27,6 +29,9 @@ pub struct Scenario {
     pub frame: Frame,
     /// `f1` or `f2`.
     pub projection: Projection,
+    /// With routed moves, how the robot drives from one viewpoint to the next (`None`: straight,
+    /// as 003).
+    pub routes: Option<Arc<Router>>,
 }
 
 impl Scenario {
@@ -42,7 +47,32 @@ impl Scenario {
         let max = Point::new(min.x + map.width_m(), min.y + map.height_m());
         let grid = CoverageGrid::new(&map);
         let layers = BitLayers::new(&grid);
-        Self { grid, layers, robot, frame: Frame::new(start, end, min, max), projection, map }
+        Self { grid, layers, robot, frame: Frame::new(start, end, min, max), projection, map, routes: None }
+    }
+
+    /// The same scenario with moves driven as `moves` says.
+    pub fn with_moves(mut self, moves: Moves) -> Self {
+        self.routes = match moves {
+            Moves::Straight => None,
+            Moves::Routed => {
+                let stations = [self.frame.start, self.frame.end];
+                Some(Arc::new(Router::new(&self.map, self.robot.width, &stations)))
+            }
+        };
+        self
+    }
+
+    /// The path the robot drives through `points` (a genome's viewpoints): the viewpoints
+    /// themselves with straight moves, else the routes between them.
+    pub fn driven(&self, points: &[Point]) -> Vec<Point> {
+        match &self.routes {
+            None => points.to_vec(),
+            Some(router) => {
+                let mut out = Vec::new();
+                router.expand(&self.layers, points, &mut RouteScratch::default(), &mut out);
+                out
+            }
+        }
     }
 
     /// Replaces the pre-marks by the flagged free cells (see
@@ -57,6 +87,24 @@ impl Scenario {
     pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
         self.grid.premark_rect(x0, y0, x1, y1);
         self.layers = BitLayers::new(&self.grid);
+    }
+}
+
+/// How the robot drives from one viewpoint to the next (`thesis.moves`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Moves {
+    /// Straight segments, as 003: a move into a wall sweeps it and is penalised (eq. 3.16).
+    #[default]
+    Straight,
+    /// Around obstacles (003 §5.3's future work): see [`crate::coverage::routes`].
+    Routed,
+}
+
+impl Moves {
+    /// Whether these are 003's straight moves.
+    pub fn is_straight(&self) -> bool {
+        matches!(self, Moves::Straight)
     }
 }
 
@@ -134,7 +182,7 @@ impl Individual {
     /// anew; the evaluation itself keeps only what the fitness reads.
     pub fn path_metrics(&self, scenario: &Scenario) -> PathMetrics {
         let grid = &scenario.grid;
-        let metrics = scenario.robot.measure(grid, &mut SweepScratch::new(grid), &self.points);
+        let metrics = scenario.robot.measure(grid, &mut SweepScratch::new(grid), &scenario.driven(&self.points));
         debug_assert_eq!(metrics.counts(), self.sweep, "the evaluator and the cell sweep agree");
         metrics
     }
@@ -183,6 +231,10 @@ pub struct EvalScratch {
     points: Vec<Point>,
     /// Segments already swept, replayed by incremental evaluations.
     segments: SegmentCache,
+    /// Routes already found (routed moves).
+    routes: RouteScratch,
+    /// The driven path (routed moves).
+    driven: Vec<Point>,
 }
 
 /// Decodes with correction (written back) and evaluates, in place (spec §9 steps 1–2).
@@ -219,20 +271,27 @@ pub fn evaluate(
     };
     ind.stable_genes = stable;
     let (layers, width) = (&scenario.layers, scenario.robot.width);
-    let cache = &mut scratch.segments;
+    let EvalScratch { segments: cache, routes, driven, .. } = scratch;
+    let mut router = scenario.routes.as_deref().map(|r| (r, &mut *routes));
     let tally = match (mode, base) {
-        (EvaluationMode::Full, _) => layers.sweep(&mut ind.visits, &points, width),
+        (EvaluationMode::Full, _) => match &mut router {
+            None => layers.sweep(&mut ind.visits, &points, width),
+            Some((r, routes)) => {
+                r.expand(layers, &points, routes, driven);
+                layers.sweep(&mut ind.visits, driven, width)
+            }
+        },
         (EvaluationMode::Incremental, Base::None) => {
             ind.visits.reset(layers.plane_words());
-            edit(layers, cache, &mut ind.visits, Tally::default(), &[], &points, 0, width)
+            edit(layers, cache, router, &mut ind.visits, Tally::default(), &[], &points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Own) => {
             let t = ind.tally();
-            edit(layers, cache, &mut ind.visits, t, &ind.points, &points, 0, width)
+            edit(layers, cache, router, &mut ind.visits, t, &ind.points, &points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             ind.visits.copy_from(&p.visits);
-            edit(layers, cache, &mut ind.visits, p.tally(), &p.points, &points, shared, width)
+            edit(layers, cache, router, &mut ind.visits, p.tally(), &p.points, &points, shared, width)
         }
     };
     if keep_old {
@@ -246,7 +305,14 @@ pub fn evaluate(
     }
     ind.sweep = tally.counts();
     let rot = scenario.robot.rot_speed;
-    ind.t_rot_s = if rot > 0.0 { motion::rotation_time(motion::turning(&ind.points).0, rot) } else { 0.0 };
+    ind.t_rot_s = match (rot > 0.0, scenario.routes.as_deref()) {
+        (false, _) => 0.0,
+        (true, None) => motion::rotation_time(motion::turning(&ind.points).0, rot),
+        (true, Some(r)) => {
+            r.expand(&scenario.layers, &ind.points, &mut scratch.routes, &mut scratch.driven);
+            motion::rotation_time(motion::turning(&scratch.driven).0, rot)
+        }
+    };
     let res = scenario.map.resolution();
     ind.score = score_counts(
         &ind.sweep,
@@ -258,12 +324,40 @@ pub fn evaluate(
     );
 }
 
+/// Adds (`ADD`) or removes move `a → b`: its straight segment, or with a router its route.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn apply_move<const ADD: bool>(
+    layers: &BitLayers,
+    cache: &mut SegmentCache,
+    router: &mut Option<(&Router, &mut RouteScratch)>,
+    visits: &mut VisitPlanes,
+    a: Point,
+    b: Point,
+    width: f64,
+    tally: &mut Tally,
+) {
+    match router {
+        None => cache.apply::<ADD>(layers, visits, a, b, width, tally),
+        Some((r, routes)) => {
+            let route = r.route(layers, a, b, routes);
+            let mut from = route.start;
+            for &p in route.points {
+                cache.apply::<ADD>(layers, visits, from, p, width, tally);
+                from = p;
+            }
+        }
+    }
+}
+
 /// Turns the visit map of path `old` (with counts `tally`) into that of path `new`, whose first
-/// `same + 1` viewpoints are known to be `old`'s.
+/// `same + 1` viewpoints are known to be `old`'s. A routed move depends on its two viewpoints
+/// only, so moves are shared exactly as straight segments are.
 #[allow(clippy::too_many_arguments)]
 fn edit(
     layers: &BitLayers,
     cache: &mut SegmentCache,
+    mut router: Option<(&Router, &mut RouteScratch)>,
     visits: &mut VisitPlanes,
     mut tally: Tally,
     old: &[Point],
@@ -285,18 +379,20 @@ fn edit(
             y += 1;
         }
     }
-    // The cache's slots of all the segments are fetched at once, not one miss after another.
+    if router.is_none() {
+        // The cache's slots of all the segments are fetched at once, not one miss after another.
+        for i in x..so - y {
+            cache.prefetch(old[i], old[i + 1], width);
+        }
+        for i in x..sn - y {
+            cache.prefetch(new[i], new[i + 1], width);
+        }
+    }
     for i in x..so - y {
-        cache.prefetch(old[i], old[i + 1], width);
+        apply_move::<false>(layers, cache, &mut router, visits, old[i], old[i + 1], width, &mut tally);
     }
     for i in x..sn - y {
-        cache.prefetch(new[i], new[i + 1], width);
-    }
-    for i in x..so - y {
-        cache.apply::<false>(layers, visits, old[i], old[i + 1], width, &mut tally);
-    }
-    for i in x..sn - y {
-        cache.apply::<true>(layers, visits, new[i], new[i + 1], width, &mut tally);
+        apply_move::<true>(layers, cache, &mut router, visits, new[i], new[i + 1], width, &mut tally);
     }
     tally
 }
@@ -519,7 +615,8 @@ mod tests {
             for (from, to) in [(&old[..], &path[..]), (&path[..], &old[..])] {
                 let mut visits = VisitPlanes::default();
                 let tally = layers.sweep(&mut visits, from, width);
-                let edited = edit(layers, &mut SegmentCache::default(), &mut visits, tally, from, to, *same, width);
+                let edited =
+                    edit(layers, &mut SegmentCache::default(), None, &mut visits, tally, from, to, *same, width);
                 let mut fresh = VisitPlanes::default();
                 assert_eq!(edited, layers.sweep(&mut fresh, to, width), "case {i}");
                 assert_eq!(counts(&visits), counts(&fresh), "case {i}");

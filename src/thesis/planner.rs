@@ -54,7 +54,7 @@ impl Planner for ThesisConfig {
     ) -> Result<RunOutcome, PlannerError> {
         let seeds = self.seeds.iter().map(|g| Individual { genome: g.clone(), ..Default::default() }).collect();
         let mut ga = ThesisGa {
-            scenario: ThesisScenario::from_common(scenario),
+            scenario: ThesisScenario::from_common(scenario).with_moves(self.moves),
             params: self.params,
             seed,
             seeds: (seeds, self.seeded),
@@ -71,6 +71,9 @@ impl Planner for ThesisConfig {
             "genome_len": best.len(),
             "metrics": best.path_metrics(&ga.scenario),
         }));
+        if !self.moves.is_straight() {
+            details.insert("moves".into(), "routed: the plan drives around obstacles between viewpoints".into());
+        }
         if matches!(self.params.selection, super::params::Selection::Nsga2) {
             details.insert("front".into(), final_front(&out.final_population));
             details
@@ -84,7 +87,7 @@ impl Planner for ThesisConfig {
             );
         }
         Ok(RunOutcome {
-            plan: vec![best.points.clone()],
+            plan: vec![ga.scenario.driven(&best.points)],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
             feasible: best.sweep.obj_pix == 0,
             warnings: Vec::new(),
@@ -121,6 +124,8 @@ impl Planner for ThesisConfig {
                 ind.len()
             )
         };
+        let routed = (!self.moves.is_straight()).then(|| ThesisScenario::from_common(scenario).with_moves(self.moves));
+        let driven = |ind: &Individual| routed.as_ref().map_or_else(|| ind.points.clone(), |s| s.driven(&ind.points));
         let mut grid = CoverageGrid::new(map);
         if let Some(r) = &self.retrain {
             let [x0, y0, x1, y1] = r.region;
@@ -129,7 +134,7 @@ impl Planner for ThesisConfig {
             let figure = PathFigure {
                 map,
                 grid: &grid,
-                paths: vec![out.best.points.clone()],
+                paths: vec![driven(&out.best)],
                 width: scenario.robot.width,
                 robots: Vec::new(),
                 title: title(&out.best, "best path"),
@@ -141,7 +146,7 @@ impl Planner for ThesisConfig {
             let figure = PathFigure {
                 map,
                 grid: &plain,
-                paths: vec![before.points.clone()],
+                paths: vec![driven(before)],
                 width: scenario.robot.width,
                 robots: Vec::new(),
                 title: title(before, "best before retrain"),

@@ -1,0 +1,480 @@
+//! Routed moves: the wall-free way a robot of a given width drives from one viewpoint of a
+//! thesis genome to the next, the remedy 003 §5.3 names for moves that run into obstacles.
+//!
+//! A move `a → b` is driven straight, exactly as 003 sweeps it, when both viewpoints are places
+//! the robot can stand ([`Router::position`]) and the swept rectangle of the segment holds no
+//! obstacle cell. Otherwise the robot drives from where it stands near `a` to where it stands
+//! near `b` (a viewpoint inside a wall or an unreachable pocket is replaced by the nearest
+//! reachable cell centre the robot fits on) along a path of robot centres with clearance ≥
+//! width/2: weighted A* over the cell centres of the stations' component, 8-connected without
+//! corner cutting (the moves of [`Clearance::steps`], as the cell-order GA's transit
+//! matrix in [`super::transit`]), shortened by line of sight where the straight segment's
+//! swept rectangle holds no obstacle cell. The heuristic is the larger of the octile distance
+//! and a landmark bound, weighted by [`HEURISTIC_WEIGHT`]: a grid route at most that factor
+//! longer than the shortest, found some five times faster on the office floor plan; the
+//! line-of-sight pass then straightens it. Each move's route depends on its two viewpoints
+//! only, so a routed path is the concatenation of its moves' routes and the incremental
+//! evaluator's segment-by-segment bookkeeping holds unchanged; routes are cached per worker.
+//!
+//! On a map with no obstacle cells every viewpoint is a place to stand and every segment is
+//! clear, so routed moves are the straight moves bit for bit.
+
+use super::bits::BitLayers;
+use crate::geom::Point;
+use crate::map::GridMap;
+use crate::map::clearance::Clearance;
+use crate::map::reach::Reach;
+use std::cmp::Reverse;
+use std::collections::{BinaryHeap, HashMap};
+
+/// Routes kept per worker before the cache starts again (about 24 bytes each plus points).
+const CACHE_ROUTES: usize = 1 << 17;
+/// Route points kept per worker before the cache starts again (16 bytes each).
+const CACHE_POINTS: usize = 1 << 21;
+/// Weight of the A* heuristic: routes at most this factor longer than the shortest grid path.
+pub const HEURISTIC_WEIGHT: f64 = 1.5;
+/// Landmarks of the A* heuristic (one cache line of `f32` distances per cell).
+const LANDMARKS: usize = 16;
+
+/// Where a robot of one width can stand and how it gets around on one map, from its stations.
+#[derive(Clone, Debug)]
+pub struct Router {
+    clear: Clearance<'static>,
+    /// Free cells some reachable pose of the robot sweeps (row-major).
+    coverable: Vec<bool>,
+    width: f64,
+    /// For every cell, the reachable centre the robot fits on nearest to it (by 8-connected
+    /// grid distance through all cells; `u32::MAX` when there is none).
+    nearest: Vec<u32>,
+    /// Grid distances (in cells) from each landmark to every reachable centre, `LANDMARKS` per
+    /// cell; `f32::INFINITY` off the component.
+    landmarks: Vec<f32>,
+}
+
+/// A move's route: where it starts (where the robot stands at its first viewpoint) and the
+/// points it drives through, the last one where the robot stands at its second viewpoint.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Route<'s> {
+    /// The robot's position at the move's first viewpoint.
+    pub start: Point,
+    /// The points after `start`, ending at the robot's position at the second viewpoint.
+    pub points: &'s [Point],
+}
+
+/// Reusable buffers of routing, one per worker: the A* arrays (reset by stamps, not cleared)
+/// and the cache of routes already found.
+#[derive(Debug, Default)]
+pub struct RouteScratch {
+    g: Vec<f64>,
+    parent: Vec<u32>,
+    stamp: Vec<u32>,
+    closed: Vec<u32>,
+    epoch: u32,
+    heap: BinaryHeap<Reverse<(u64, u64, u32)>>,
+    raw: Vec<Point>,
+    /// Routes by the bits of their two viewpoints: start and the range of their points.
+    cache: HashMap<[u64; 4], (Point, u32, u32)>,
+    points: Vec<Point>,
+    /// Routes searched so far (cache misses).
+    searches: u64,
+}
+
+impl Clone for RouteScratch {
+    /// A clone starts empty: a cache is a per-worker speed-up, never state.
+    fn clone(&self) -> Self {
+        Self::default()
+    }
+}
+
+impl RouteScratch {
+    /// Routes computed so far (not found in the cache).
+    pub fn searches(&self) -> u64 {
+        self.searches
+    }
+}
+
+impl Router {
+    /// An upper estimate of a router's bytes on a map of `cells` cells used by `threads`
+    /// worker threads: the landmark distances and tables, and each worker's search arrays and
+    /// full route cache.
+    pub fn memory_estimate(cells: usize, threads: usize) -> f64 {
+        let shared = cells * (LANDMARKS * 4 + 4 + 8);
+        let per_thread = cells * 20 + CACHE_ROUTES * 48 + CACHE_POINTS * 16;
+        (shared + per_thread * threads.max(1)) as f64
+    }
+
+    /// The router of a robot `width` metres wide on `map`, whose plans start and end at
+    /// `stations`: it stays in the stations' component.
+    pub fn new(map: &GridMap, width: f64, stations: &[Point]) -> Self {
+        let mut clear = Clearance::owned(map.clone(), width);
+        let reach = Reach::new(&clear, stations);
+        clear.restrict(reach.centres().to_vec());
+        let landmarks = landmark_distances(&clear, stations);
+        let nearest = nearest_centres(&clear);
+        Self { clear, coverable: reach.coverable().to_vec(), width, nearest, landmarks }
+    }
+
+    /// The robot width the routes are planned for.
+    pub fn width(&self) -> f64 {
+        self.width
+    }
+
+    /// Whether the robot can stand at `p`: its cell is swept by some reachable pose and the disc
+    /// centred at `p` keeps clear of every non-free cell.
+    pub fn can_stand(&self, p: Point) -> bool {
+        self.cell_of(p).is_some_and(|i| self.coverable[i] && self.clear.clear_of_cells(p))
+    }
+
+    /// The cell holding `p` (the map's upper edges belong to its last row and column, where
+    /// decoded viewpoints are clamped), if `p` lies on the map.
+    fn cell_of(&self, p: Point) -> Option<usize> {
+        let map = self.clear.map();
+        if !map.contains(p) {
+            return None;
+        }
+        let cell = |v: f64, o: f64, n: usize| (((v - o) / map.resolution()).floor() as usize).min(n - 1);
+        Some(map.index(cell(p.y, map.origin().y, map.rows()), cell(p.x, map.origin().x, map.cols())))
+    }
+
+    /// The reachable centre the robot fits on nearest to `p` (see [`Router::nearest`]).
+    fn nearest_centre(&self, p: Point) -> Option<usize> {
+        let map = self.clear.map();
+        let i = self.cell_of(map.clamp(p))?;
+        (self.nearest[i] != u32::MAX).then_some(self.nearest[i] as usize)
+    }
+
+    /// Where the robot stands when aimed at `p`: `p` itself where it can stand there, else the
+    /// nearest reachable cell centre it fits on (`p` if there is none).
+    pub fn position(&self, p: Point) -> Point {
+        if self.can_stand(p) {
+            return p;
+        }
+        let map = self.clear.map();
+        self.nearest_centre(p).map_or(p, |i| map.cell_centre(i / map.cols(), i % map.cols()))
+    }
+
+    /// The route of the move `a → b` (cached in `scratch`). `layers` are the map's bit rows,
+    /// which tell whether a segment's swept rectangle holds obstacle cells.
+    pub fn route<'s>(&self, layers: &BitLayers, a: Point, b: Point, scratch: &'s mut RouteScratch) -> Route<'s> {
+        let key = [a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits()];
+        let (start, from, len) = match scratch.cache.get(&key) {
+            Some(&hit) => hit,
+            None => {
+                if scratch.cache.len() >= CACHE_ROUTES || scratch.points.len() >= CACHE_POINTS {
+                    scratch.cache.clear();
+                    scratch.points.clear();
+                }
+                scratch.searches += 1;
+                let from = scratch.points.len();
+                let start = self.search(layers, a, b, scratch);
+                let entry = (start, from as u32, (scratch.points.len() - from) as u32);
+                scratch.cache.insert(key, entry);
+                entry
+            }
+        };
+        Route { start, points: &scratch.points[from as usize..(from + len) as usize] }
+    }
+
+    /// The driven path of the viewpoints `points`: the robot's position at the first, then each
+    /// move's route, into `out` (cleared first).
+    pub fn expand(&self, layers: &BitLayers, points: &[Point], scratch: &mut RouteScratch, out: &mut Vec<Point>) {
+        out.clear();
+        let Some(&first) = points.first() else { return };
+        out.push(self.position(first));
+        for w in points.windows(2) {
+            out.extend_from_slice(self.route(layers, w[0], w[1], scratch).points);
+        }
+    }
+
+    /// Finds the route of `a → b`, appends its points to `scratch.points` and returns its start.
+    fn search(&self, layers: &BitLayers, a: Point, b: Point, scratch: &mut RouteScratch) -> Point {
+        let clear_segment = |p: Point, q: Point| layers.obstacle_cells(p, q, self.width) == 0;
+        let (pa, pb) = (self.position(a), self.position(b));
+        if (pa == a && pb == b && clear_segment(a, b)) || pa == pb || clear_segment(pa, pb) {
+            scratch.points.push(pb);
+            return pa;
+        }
+        let map = self.clear.map();
+        let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
+        let found = match (self.nearest_centre(pa), self.nearest_centre(pb)) {
+            (Some(s), Some(t)) => self.astar(s, t, scratch),
+            _ => false,
+        };
+        if !found {
+            // No wall-free way (a station off the component): drive straight and let the
+            // obstacle cells count.
+            scratch.points.push(pb);
+            return pa;
+        }
+        // `scratch.raw` holds the cell centres from `pa`'s to `pb`'s; the ends join them.
+        let mut raw = std::mem::take(&mut scratch.raw);
+        // Only the cells where the route turns can be anchors worth keeping: straight runs
+        // between them add line-of-sight tests and nothing else.
+        let cells: Vec<usize> = raw.iter().map(|p| p.x as usize).collect();
+        raw.clear();
+        raw.push(pa);
+        for (k, &i) in cells.iter().enumerate() {
+            let turns = k == 0 || k + 1 == cells.len() || {
+                let step = |x: usize, y: usize| y as isize - x as isize;
+                step(cells[k - 1], i) != step(i, cells[k + 1])
+            };
+            if turns {
+                raw.push(centre(i));
+            }
+        }
+        raw.push(pb);
+        // Line of sight, forwards: from each anchor go on while the rectangle stays clear.
+        let mut anchor = 0;
+        while anchor + 1 < raw.len() {
+            let mut next = anchor + 1;
+            while next + 1 < raw.len() && clear_segment(raw[anchor], raw[next + 1]) {
+                next += 1;
+            }
+            scratch.points.push(raw[next]);
+            anchor = next;
+        }
+        raw.clear();
+        scratch.raw = raw;
+        pa
+    }
+
+    /// A* from cell `from` to cell `to` over the fitting reachable centres; on success the cells
+    /// of the path, in order, are left in `scratch.raw` (cell index in `x`, to be replaced by
+    /// the centre).
+    fn astar(&self, from: usize, to: usize, scratch: &mut RouteScratch) -> bool {
+        let map = self.clear.map();
+        let (cols, n) = (map.cols(), map.rows() * map.cols());
+        if scratch.g.len() != n {
+            scratch.g = vec![f64::INFINITY; n];
+            scratch.parent = vec![u32::MAX; n];
+            scratch.stamp = vec![0; n];
+            scratch.closed = vec![0; n];
+            scratch.epoch = 0;
+        }
+        if scratch.epoch == u32::MAX {
+            scratch.stamp.fill(0);
+            scratch.closed.fill(0);
+            scratch.epoch = 0;
+        }
+        scratch.epoch += 1;
+        let epoch = scratch.epoch;
+        let (tr, tc) = ((to / cols) as f64, (to % cols) as f64);
+        let target = &self.landmarks[to * LANDMARKS..(to + 1) * LANDMARKS];
+        // The larger of two lower bounds of the grid distance: the octile distance (exact on an
+        // empty grid) and the landmarks' triangle inequality, which sees walls (ALT: Goldberg
+        // and Harrelson 2005); weighted, so that far fewer cells are expanded.
+        let h = |i: usize| {
+            let (dr, dc) = (((i / cols) as f64 - tr).abs(), ((i % cols) as f64 - tc).abs());
+            let octile = dr.max(dc) + (std::f64::consts::SQRT_2 - 1.0) * dr.min(dc);
+            let here = &self.landmarks[i * LANDMARKS..(i + 1) * LANDMARKS];
+            let alt = here.iter().zip(target).fold(0.0f32, |m, (a, b)| m.max((a - b).abs()));
+            // f32 distances round: a thousandth of a cell below keeps the bound a bound.
+            HEURISTIC_WEIGHT * octile.max(f64::from(alt) - 1e-3)
+        };
+        // Keys in 1e-6 cell units keep the order total and deterministic; among equal keys the
+        // cell farthest from the start goes first, which spares the many ties of open floors.
+        let key = |f: f64| (f * 1e6) as u64;
+        let RouteScratch { g, parent, stamp, closed, heap, raw, .. } = scratch;
+        heap.clear();
+        stamp[from] = epoch;
+        g[from] = 0.0;
+        parent[from] = u32::MAX;
+        heap.push(Reverse((key(h(from)), u64::MAX, from as u32)));
+        while let Some(Reverse((_, _, i))) = heap.pop() {
+            let i = i as usize;
+            if closed[i] == epoch {
+                continue; // a stale entry
+            }
+            closed[i] = epoch;
+            if i == to {
+                raw.clear();
+                let mut k = to;
+                while k != from {
+                    raw.push(Point::new(k as f64, 0.0));
+                    k = parent[k] as usize;
+                }
+                raw.push(Point::new(from as f64, 0.0));
+                raw.reverse();
+                return true;
+            }
+            for (j, step) in self.clear.steps(i) {
+                let cand = g[i] + step;
+                if closed[j] != epoch && (stamp[j] != epoch || cand < g[j] - 1e-12) {
+                    stamp[j] = epoch;
+                    g[j] = cand;
+                    parent[j] = i as u32;
+                    heap.push(Reverse((key(cand + h(j)), u64::MAX - key(cand), j as u32)));
+                }
+            }
+        }
+        false
+    }
+}
+
+/// Grid distances from [`LANDMARKS`] landmarks spread over the stations' component, `LANDMARKS`
+/// per cell (cell-major): the first is the centre farthest from the first station, each next
+/// one the centre farthest from those chosen (ties to the lowest index), so that they sit in
+/// the far corners and rooms where the triangle inequality bounds best.
+fn landmark_distances(clear: &Clearance, stations: &[Point]) -> Vec<f32> {
+    let map = clear.map();
+    let n = map.rows() * map.cols();
+    let mut out = vec![f32::INFINITY; n * LANDMARKS];
+    let Some(first) = stations.first().and_then(|&p| clear.snap(p)) else { return out };
+    let farthest =
+        |d: &[f32]| (0..n).filter(|&i| d[i].is_finite()).fold(first, |best, i| if d[i] > d[best] { i } else { best });
+    let mut nearest = dijkstra(clear, first);
+    for l in 0..LANDMARKS {
+        let landmark = farthest(&nearest);
+        let d = dijkstra(clear, landmark);
+        for (i, v) in d.iter().enumerate() {
+            out[i * LANDMARKS + l] = *v;
+            nearest[i] = if l == 0 { *v } else { nearest[i].min(*v) };
+        }
+    }
+    out
+}
+
+/// For every cell, the fitting reachable centre nearest to it by 8-connected grid distance
+/// through all cells (walls included: a viewpoint inside a wall goes to the nearer side), ties
+/// to the lower index; `u32::MAX` everywhere when no centre fits. One multi-source Dijkstra.
+fn nearest_centres(clear: &Clearance) -> Vec<u32> {
+    let map = clear.map();
+    let (rows, cols) = (map.rows() as isize, map.cols() as isize);
+    let n = map.rows() * map.cols();
+    let mut dist = vec![f64::INFINITY; n];
+    let mut source = vec![u32::MAX; n];
+    let mut heap = BinaryHeap::new();
+    for i in (0..n).filter(|&i| clear.centre_fits(i)) {
+        dist[i] = 0.0;
+        source[i] = i as u32;
+        heap.push(Reverse(((0.0f64).to_bits(), i as u32, i)));
+    }
+    while let Some(Reverse((d, src, i))) = heap.pop() {
+        let d = f64::from_bits(d);
+        if d > dist[i] || src != source[i] {
+            continue;
+        }
+        let (r, c) = ((i as isize) / cols, (i as isize) % cols);
+        for (dr, dc) in [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)] {
+            let (nr, nc) = (r + dr, c + dc);
+            if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                continue;
+            }
+            let j = (nr * cols + nc) as usize;
+            let nd = d + if dr != 0 && dc != 0 { std::f64::consts::SQRT_2 } else { 1.0 };
+            if nd < dist[j] || (nd == dist[j] && src < source[j]) {
+                dist[j] = nd;
+                source[j] = src;
+                heap.push(Reverse((nd.to_bits(), src, j)));
+            }
+        }
+    }
+    source
+}
+
+/// Grid distances in cells from cell `from` over the fitting centres ([`Clearance::steps`]).
+fn dijkstra(clear: &Clearance, from: usize) -> Vec<f32> {
+    let map = clear.map();
+    let mut dist = vec![f64::INFINITY; map.rows() * map.cols()];
+    let mut heap = BinaryHeap::new();
+    dist[from] = 0.0;
+    heap.push(Reverse(((0.0f64).to_bits(), from)));
+    while let Some(Reverse((d, i))) = heap.pop() {
+        let d = f64::from_bits(d);
+        if d > dist[i] {
+            continue;
+        }
+        for (j, step) in clear.steps(i) {
+            if d + step < dist[j] {
+                dist[j] = d + step;
+                heap.push(Reverse(((d + step).to_bits(), j)));
+            }
+        }
+    }
+    dist.into_iter().map(|d| d as f32).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::CoverageGrid;
+    use crate::map::presets::preset;
+    use crate::map::{CellState, GridMap};
+
+    fn layers(map: &GridMap) -> BitLayers {
+        BitLayers::new(&CoverageGrid::new(map))
+    }
+
+    #[test]
+    fn a_move_through_the_disc_goes_around_it_and_sweeps_no_obstacle() {
+        let map = preset("thesis-2").unwrap();
+        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]), layers(&map));
+        let (a, b) = (Point::new(2.0, 5.5), Point::new(9.0, 5.5));
+        assert!(bits.obstacle_cells(a, b, 0.6) > 0);
+        let mut scratch = RouteScratch::default();
+        let route = router.route(&bits, a, b, &mut scratch);
+        assert_eq!((route.start, *route.points.last().unwrap()), (a, b));
+        assert!(route.points.len() >= 2, "a detour, not the straight segment");
+        let mut prev = route.start;
+        let mut length = 0.0;
+        for &p in route.points {
+            assert_eq!(bits.obstacle_cells(prev, p, 0.6), 0, "{prev:?} → {p:?}");
+            length += (p - prev).norm();
+            prev = p;
+        }
+        // Around a 2 m disc with 0.3 m clearance: longer than 7 m, far shorter than the way
+        // round the map.
+        assert!(length > 7.0 && length < 10.0, "{length}");
+        // The cache returns the same route.
+        let again: Vec<Point> = router.route(&bits, a, b, &mut scratch).points.to_vec();
+        assert_eq!(scratch.searches(), 1);
+        let fresh = router.route(&bits, a, b, &mut RouteScratch::default()).points.to_vec();
+        assert_eq!(again, fresh);
+    }
+
+    #[test]
+    fn a_clear_move_is_the_straight_segment() {
+        let map = preset("thesis-2").unwrap();
+        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]), layers(&map));
+        let (a, b) = (Point::new(1.5, 1.5), Point::new(8.5, 1.5));
+        let mut scratch = RouteScratch::default();
+        assert_eq!(router.route(&bits, a, b, &mut scratch), Route { start: a, points: &[b] });
+    }
+
+    #[test]
+    fn targets_in_walls_and_closed_rooms_are_replaced_by_reachable_places() {
+        // Two rooms of 4 m at 0.1 m with a closed wall between them (x in [4, 4.2)).
+        let (cols, rows) = (84, 40);
+        let cells: Vec<CellState> = (0..rows * cols)
+            .map(|i| if (40..42).contains(&(i % cols)) { CellState::Occupied } else { CellState::Free })
+            .collect();
+        let map = GridMap::new("two-rooms", cols, rows, 0.1, Point::origin(), cells).unwrap();
+        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.0, 1.0)]), layers(&map));
+        let wall = Point::new(4.1, 2.0);
+        let closed = Point::new(6.0, 2.0);
+        for p in [wall, closed] {
+            let q = router.position(p);
+            assert!(router.can_stand(q), "{p:?} → {q:?}");
+            assert!(q.x < 4.0 - 0.3 + 1e-9, "{q:?} is on the stations' side");
+        }
+        let mut scratch = RouteScratch::default();
+        let route = router.route(&bits, Point::new(1.0, 2.0), closed, &mut scratch);
+        let mut prev = route.start;
+        for &p in route.points {
+            assert_eq!(bits.obstacle_cells(prev, p, 0.6), 0);
+            prev = p;
+        }
+        assert_eq!(prev, router.position(closed));
+    }
+
+    #[test]
+    fn on_a_map_without_obstacles_every_move_is_straight() {
+        let map = GridMap::new("open", 40, 30, 0.2, Point::origin(), vec![CellState::Free; 1200]).unwrap();
+        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.0, 1.0)]), layers(&map));
+        let mut scratch = RouteScratch::default();
+        for (a, b) in [((0.0, 0.0), (8.0, 6.0)), ((0.05, 5.9), (7.9, 0.1)), ((4.0, 3.0), (4.0, 3.0))] {
+            let (a, b) = (Point::new(a.0, a.1), Point::new(b.0, b.1));
+            assert_eq!(router.route(&bits, a, b, &mut scratch), Route { start: a, points: &[b] });
+        }
+    }
+}
