@@ -44,20 +44,22 @@ def evaluate(
     start: Sequence[float] = (1.3, 1.3),
     end: Optional[Sequence[float]] = None,
     projection: str = "f2",
+    moves: str = "straight",
 ) -> np.ndarray:
     """Scores a batch of genomes with the thesis GA's fitness, in parallel in Rust.
 
     ``genomes``: an ``(n, L, 2)`` array or a list of ``(L_i, 2)`` arrays. Returns an ``(n, 4)``
     array with the columns :data:`COLUMNS`: ``cov_final``, ``t_final``, ``f`` (``f_obstacle``
     with ``projection``, maximised) and ``obstacle_cells`` (0 for a plan that stays in free
-    space). ``end`` defaults to ``start``.
+    space). ``end`` defaults to ``start``. ``moves``: ``"straight"`` (003) or ``"routed"`` (a move
+    that would sweep an obstacle drives around it, as ``thesis.moves = "routed"``).
     """
     from . import load_map
 
     s = tuple(float(v) for v in start)
     e = None if end is None else tuple(float(v) for v in end)
     return _covga.thesis_evaluate(
-        load_map(map), _genomes(genomes), float(width), float(speed), float(rot_speed), s, e, projection
+        load_map(map), _genomes(genomes), float(width), float(speed), float(rot_speed), s, e, projection, moves
     )
 
 

@@ -8,7 +8,7 @@ use covga::coverage::score::Scorer;
 use covga::geom::Point;
 use covga::patterns::{self, Pattern};
 use covga::thesis::batch::{COLUMNS, evaluate_genomes, genome_of};
-use covga::thesis::individual::Scenario;
+use covga::thesis::individual::{Moves, Scenario};
 use covga::waypoint::config::WaypointSection;
 use numpy::ndarray::{Array2, ArrayView2};
 use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, ToPyArray};
@@ -36,6 +36,16 @@ fn projection(name: &str) -> PyResult<Projection> {
         "f1" => Ok(Projection::F1),
         "f2" => Ok(Projection::F2),
         other => Err(config_error(format!("projection = '{other}': expected 'f1' or 'f2' (003 eqs. 3.14-3.15)"))),
+    }
+}
+
+fn moves(name: &str) -> PyResult<Moves> {
+    match name {
+        "straight" => Ok(Moves::Straight),
+        "routed" => Ok(Moves::Routed),
+        other => Err(config_error(format!(
+            "moves = '{other}': expected 'straight' (003) or 'routed' (around obstacles, thesis.moves)"
+        ))),
     }
 }
 
@@ -152,9 +162,9 @@ pub fn pattern<'py>(
 /// The thesis GA's fitness of a batch of genomes (an `(n, L, 2)` array, or a list of `(L, 2)`
 /// arrays), each genome its live moves (heading in degrees, distance in metres; S's move first,
 /// the connector to E added), as an `(n, 4)` array with the columns of `THESIS_COLUMNS`;
-/// evaluated in parallel.
+/// evaluated in parallel, with straight or routed moves (`thesis.moves`).
 #[pyfunction]
-#[pyo3(signature = (map, genomes, width, speed, rot_speed, start, end, projection_name))]
+#[pyo3(signature = (map, genomes, width, speed, rot_speed, start, end, projection_name, moves_name))]
 #[allow(clippy::too_many_arguments)]
 pub fn thesis_evaluate<'py>(
     py: Python<'py>,
@@ -166,6 +176,7 @@ pub fn thesis_evaluate<'py>(
     start: (f64, f64),
     end: Option<(f64, f64)>,
     projection_name: &str,
+    moves_name: &str,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let built = guarded(|| {
         // One (n, L, 2) array is read in place; a list is read array by array.
@@ -183,6 +194,7 @@ pub fn thesis_evaluate<'py>(
     let rows = released(py, || {
         let robot = robot(map, width, speed, rot_speed)?;
         let projection = projection(projection_name)?;
+        let moves = moves(moves_name)?;
         let start = point("start", start)?;
         let end = match end {
             Some(e) => point("end", e)?,
@@ -190,7 +202,7 @@ pub fn thesis_evaluate<'py>(
         };
         m.check_station(start, "start").map_err(config_error)?;
         m.check_station(end, "end").map_err(config_error)?;
-        let scenario = Scenario::new(m.clone(), robot, start, end, projection);
+        let scenario = Scenario::new(m.clone(), robot, start, end, projection).with_moves(moves);
         Ok(evaluate_genomes(&scenario, built))
     })?;
     let out = Array2::from_shape_fn((rows.len(), COLUMNS.len()), |(i, k)| rows[i].row()[k]);

@@ -13,6 +13,7 @@ from covga import thesis
         {},
         {"robot": {"width": 0.6, "speed": 0.2, "rot_speed": 0.5}, "thesis": {"projection": "f1"}},
         {"map": {"source": "thesis-2"}, "stations": {"start": [1.3, 1.3], "end": [9.7, 1.3]}},
+        {"map": {"source": "thesis-2"}, "thesis": {"moves": "routed"}},
     ],
 )
 def test_batch_evaluation_equals_the_gas_fitness_of_its_best_genome(tmp_path, setting):
@@ -31,6 +32,7 @@ def test_batch_evaluation_equals_the_gas_fitness_of_its_best_genome(tmp_path, se
         start=stations.get("start", (1.3, 1.3)),
         end=stations.get("end"),
         projection=setting.get("thesis", {}).get("projection", "f2"),
+        moves=setting.get("thesis", {}).get("moves", "straight"),
     )
     assert scores.shape == (1, 4) and thesis.COLUMNS == ("cov_final", "t_final", "f", "obstacle_cells")
     objectives = result.summary["objectives"]
@@ -60,6 +62,9 @@ def test_a_move_into_the_wall_is_penalised():
     scores = thesis.evaluate(m, [[[0.0, 2.0]], [[180.0, 5.0]]])
     assert scores[0, 3] == 0 and scores[1, 3] > 0
     assert scores[1, 2] < scores[0, 2]
+    # Routed, the move into the wall ends where the robot can stand and sweeps no wall.
+    routed = thesis.evaluate(m, [[[0.0, 2.0]], [[180.0, 5.0]]], moves="routed")
+    assert np.array_equal(routed[0], scores[0]) and routed[1, 3] == 0
 
 
 @pytest.mark.parametrize(
@@ -75,6 +80,7 @@ def test_a_move_into_the_wall_is_penalised():
         ([[["a", 1.0]]], {}, "genome 0: not an array of numbers"),
         ([[[0.0, 1.0]]], {"start": (-5.0, 1.0)}, "start (-5, 1) m is outside map"),
         ([[[0.0, 1.0]]], {"projection": "f9"}, "projection = 'f9'"),
+        ([[[0.0, 1.0]]], {"moves": "curved"}, "moves = 'curved': expected 'straight'"),
         ([[[0.0, 1.0]]], {"width": -0.6}, "width = -0.6 is out of range"),
     ],
 )

@@ -325,7 +325,13 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
                 f.makespan_s
             ),
             None => {
-                format!("{} on {}: cov_final {:.3}, t_final {:.3}", report.source, map.name(), sc.cov_final, sc.t_final)
+                format!(
+                    "{} on {}: cov_final {:.3}, t_final {:.3}",
+                    short(&report.source),
+                    map.name(),
+                    sc.cov_final,
+                    sc.t_final
+                )
             }
         },
     };
@@ -387,6 +393,33 @@ fn print_table(r: &Report) {
         ];
         for (k, v) in rows {
             println!("  {k:<26} {v}");
+        }
+    }
+}
+
+/// A path file named by its last two components (its folder and name), so that a long path
+/// does not run off the figure's title; a pattern's name as it is.
+fn short(source: &str) -> String {
+    let parts: Vec<&str> = source.split(['/', '\\']).filter(|p| !p.is_empty()).collect();
+    match parts.len() {
+        0..=2 => source.to_string(),
+        n => format!(".../{}/{}", parts[n - 2], parts[n - 1]),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::short;
+
+    #[test]
+    fn titles_name_a_path_by_its_folder_and_file() {
+        let cases = [
+            ("out/study/runs/6f13/best_path.csv", ".../6f13/best_path.csv"),
+            ("runs/best_path.csv", "runs/best_path.csv"),
+            ("boustrophedon 0°", "boustrophedon 0°"),
+        ];
+        for (source, shown) in cases {
+            assert_eq!(short(source), shown);
         }
     }
 }
