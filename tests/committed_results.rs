@@ -16,6 +16,9 @@ use std::path::{Path, PathBuf};
 /// Committed rows whose recorded run took longer than this are not re-run (seconds).
 const MAX_ROW_SECONDS: f64 = 25.0;
 
+/// The same for the rows picked to cover each value of a swept key (seconds).
+const MAX_VALUE_ROW_SECONDS: f64 = 6.0;
+
 fn repo() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -55,19 +58,27 @@ fn study_dirs() -> Vec<PathBuf> {
 
 /// Run ids to re-run: the cheapest committed row (smallest `wall_s` under
 /// [`MAX_ROW_SECONDS`]) of each planner and of each map, so that every planner and every map
-/// kind of the study is re-run at least once.
-fn cheap_rows(table: &RunsTable) -> Vec<String> {
+/// kind of the study is re-run at least once; and the cheapest row under
+/// [`MAX_VALUE_ROW_SECONDS`] of each value of each swept key (`columns`), so that an option a
+/// study sweeps (routed moves, a seeded population, a selection scheme) is re-run too.
+fn cheap_rows(table: &RunsTable, columns: &[String]) -> Vec<String> {
     let col = |n: &str| table.col(n).unwrap_or_else(|| panic!("runs.csv has no {n} column"));
     // The metric `planner` column, not a swept `planner` key of the same name before it.
     let planner = table.header.iter().rposition(|h| h == "planner").expect("a planner column");
     let (id, map, wall) = (col("run_id"), col("map"), col("wall_s"));
+    // A swept key's column is the first of that name (a metric column can share it).
+    let swept: Vec<usize> = columns.iter().map(|c| col(c)).collect();
     let mut best: BTreeMap<(u8, String), (f64, String)> = BTreeMap::new();
     for r in &table.rows {
         let secs: f64 = r[wall].parse().unwrap_or(f64::INFINITY);
         if secs > MAX_ROW_SECONDS {
             continue;
         }
-        for key in [(0, r[planner].clone()), (1, r[map].clone())] {
+        let values = swept
+            .iter()
+            .filter(|&&c| secs <= MAX_VALUE_ROW_SECONDS && !r[c].is_empty())
+            .map(|&c| (2, format!("{}={}", table.header[c], r[c])));
+        for key in [(0, r[planner].clone()), (1, r[map].clone())].into_iter().chain(values) {
             let slot = best.entry(key).or_insert((secs, r[id].clone()));
             if (secs, &r[id]) < (slot.0, &slot.1) {
                 *slot = (secs, r[id].clone());
@@ -106,7 +117,7 @@ fn committed_study_rows_re_run_exactly() {
         // The metric `planner` column, not a swept `planner` key of the same name before it.
         let metric_planner = table.header.iter().rposition(|h| h == "planner").expect("a planner column");
         let maps = MapCache::default();
-        for id in cheap_rows(&table) {
+        for id in cheap_rows(&table, &study.columns) {
             let run = study.runs.iter().find(|r| r.id == id).unwrap_or_else(|| panic!("{name}: no run {id}"));
             if map_missing(&run.file.map.source) {
                 eprintln!("{name} {id}: skipped, its map {} is not beside this checkout", run.file.map.source);

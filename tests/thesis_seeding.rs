@@ -56,3 +56,33 @@ fn seeding_checks_its_keys() {
     let e = refused(&fleet);
     assert!(e.contains("thesis.seed_population") && e.contains("fleet"), "{e}");
 }
+
+/// The cell-order seed: the cell-order planner's local-optimum tour (no GA), written as a
+/// genome. An Elite run seeded with it ends at least as fit as that plan, scored on its own.
+#[test]
+fn an_elite_run_seeded_with_the_cell_order_plan_ends_at_least_as_fit_as_the_plan() {
+    let text = SEEDED.replace("[\"boustrophedon\"]", "[\"cell_order\"]").replace("[pattern]\nangle_deg = 90.0\n", "");
+    let exp = ExperimentFile::parse(&text, "test").unwrap().validate("test", Path::new("."), "t").unwrap();
+    let s = &exp.scenario;
+    let plan = covga::cell_order::local_optimum_plan(s, &Default::default()).unwrap();
+    let grid = covga::coverage::CoverageGrid::new(&s.map);
+    let metrics = s.robot.measure(&grid, &mut covga::coverage::SweepScratch::new(&grid), &plan);
+    let alone = covga::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
+    assert_eq!(metrics.obstacle_cells, 0, "the cell-order plan is wall-free");
+    let seeded = summary(&text);
+    let f = seeded["fitness"].as_f64().unwrap();
+    assert!(f >= alone.fitness * (1.0 - 1e-3), "seeded GA {f} below its seed {}", alone.fitness);
+    assert_eq!(seeded["score"]["executable"], true);
+    // Two patterns seed together, one member each at least.
+    let both = summary(&text.replace("[\"cell_order\"]", "[\"boustrophedon\", \"cell_order\"]"));
+    assert!(both["fitness"].as_f64().unwrap() >= alone.fitness * (1.0 - 1e-3), "{both}");
+}
+
+#[test]
+fn the_cell_order_seed_checks_its_section() {
+    let text = SEEDED.replace("[\"boustrophedon\"]", "[\"cell_order\"]");
+    let e = refused(&format!("{text}[cell_order]\ndirections = []\n"));
+    assert!(e.contains("cell_order.directions"), "{e}");
+    let e = refused(&text.replace("max_genome_len = 400\n", "max_genome_len = 40\n"));
+    assert!(e.contains("cell_order seed") && e.contains("raise it to at least"), "{e}");
+}

@@ -160,6 +160,19 @@ impl Prepared<'_> {
     }
 }
 
+/// The cell-order plan without its GA: the nearest-neighbour tour improved by the memetic
+/// step's local search (best choices, Or-opt, 2-opt) until none improves, which is the memetic
+/// GA's first individual, driven as [`Prepared::path`] drives a tour with the section's
+/// `directions`, `completion_m_per_m2` and `completion`. It reads no random stream, so every
+/// run of a configuration gets the same plan; the thesis GA seeds its population with it
+/// (`thesis.seed_population = ["cell_order"]`).
+pub fn local_optimum_plan(scenario: &Scenario, section: &config::CellOrderSection) -> Result<Vec<Point>, String> {
+    let prepared = prepare(scenario, &section.directions, section.completion_m_per_m2)?;
+    let mut tour = search::nearest_neighbour(&prepared.instance);
+    local::improve(&prepared.instance, &mut tour, search::ROUNDS);
+    Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)
+}
+
 /// A solved tour and what it cost to find.
 struct Solved {
     tour: Tour,

@@ -217,7 +217,7 @@ pub fn search<E>(
 }
 
 /// Rounds of local search allowed per memetic step (a bound; it usually stops far earlier).
-const ROUNDS: usize = 10_000;
+pub const ROUNDS: usize = 10_000;
 
 fn best_index(pop: &[(Tour, f64)]) -> usize {
     (0..pop.len()).fold(0, |b, i| if pop[i].1 < pop[b].1 { i } else { b })

@@ -6,6 +6,7 @@
 use super::file::ExperimentFile;
 use super::registry::PlannerKind;
 use crate::thesis::config::SelectionName;
+use crate::thesis::seeding::SeedPlan;
 
 /// The `[thesis]` keys each selection scheme does not read (003 §3.4: Elite keeps the
 /// `Pop_min` best of parents and children; the others draw `Select` parents).
@@ -36,6 +37,10 @@ fn unread_by_selection(s: SelectionName) -> &'static [&'static str] {
 const READ_BY_RANDOM_SEARCH: [&str; 5] =
     ["thesis.pop_min", "thesis.init_actions", "thesis.init_dist_max", "thesis.max_genome_len", "thesis.projection"];
 
+/// The `[cell_order]` keys the thesis GA's `cell_order` seed plan reads (it runs no GA).
+const READ_BY_CELL_ORDER_SEED: [&str; 3] =
+    ["cell_order.directions", "cell_order.completion", "cell_order.completion_m_per_m2"];
+
 /// Whether `key` (dotted) lies in the section or key `prefix`.
 fn within(key: &str, prefix: &str) -> bool {
     key == prefix || key.strip_prefix(prefix).is_some_and(|rest| rest.starts_with('.'))
@@ -48,8 +53,12 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     let name = planner.name();
     // Which of the planner-specific sections each planner reads besides its own.
     let (reads_retrain, reads_pattern, reads_cell_order) = match planner {
-        // The thesis GA reads [pattern] for the plans that seed its population.
-        PlannerKind::Thesis => (true, !file.thesis.seed_population.is_empty(), false),
+        // The thesis GA reads [pattern] and [cell_order] for the plans that seed its population.
+        PlannerKind::Thesis => {
+            let plans = file.thesis.seed_population.plans();
+            let pattern = plans.iter().any(|p| matches!(p, SeedPlan::Boustrophedon | SeedPlan::Spiral));
+            (true, pattern, plans.contains(&SeedPlan::CellOrder))
+        }
         PlannerKind::Boustrophedon | PlannerKind::Spiral => (false, true, false),
         PlannerKind::CellOrder => (false, false, true),
         PlannerKind::Waypoint | PlannerKind::RandomSearch => (false, false, false),
@@ -63,7 +72,16 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
         ));
     }
     if within(key, "cell_order") && !reads_cell_order {
-        return Some(format!("only the cell-order planner reads [cell_order]; planner = \"{name}\""));
+        return Some(format!(
+            "only the cell-order planner (and the thesis GA's cell_order seed plan) reads [cell_order]; planner = \"{name}\""
+        ));
+    }
+    if planner == PlannerKind::Thesis
+        && within(key, "cell_order")
+        && key != "cell_order"
+        && !READ_BY_CELL_ORDER_SEED.iter().any(|k| within(key, k))
+    {
+        return Some(format!("the thesis GA's cell_order seed plan reads only {}", READ_BY_CELL_ORDER_SEED.join(", ")));
     }
     if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
         return Some("waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into());
@@ -134,6 +152,7 @@ mod tests {
         let rrws = file("[thesis]\nselection = \"rrws\"\n");
         let nsga2 = file("[thesis]\nselection = \"nsga2\"\n");
         let seeded = file("[thesis]\nseed_population = [\"boustrophedon\"]\n");
+        let cell_seeded = file("[thesis]\nseed_population = [\"cell_order\"]\n");
         let waypoint = file("planner = \"waypoint\"\n");
         let random = file("planner = \"random_search\"\n");
         for (f, key, ignored) in [
@@ -150,6 +169,13 @@ mod tests {
             (&nsga2, "thesis.c_len", false),
             (&seeded, "pattern.angle_deg", false),
             (&seeded, "thesis.seed_share", false),
+            (&seeded, "cell_order.directions", true),
+            (&cell_seeded, "cell_order", false),
+            (&cell_seeded, "cell_order.directions", false),
+            (&cell_seeded, "cell_order.completion_m_per_m2", false),
+            (&cell_seeded, "cell_order.population", true),
+            (&cell_seeded, "cell_order.memetic", true),
+            (&cell_seeded, "pattern.angle_deg", true),
             (&elite, "retrain", false),
             (&waypoint, "retrain", true),
             (&waypoint, "thesis.c_len", true),

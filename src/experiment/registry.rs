@@ -91,7 +91,12 @@ impl PlannerConfig {
     pub fn from_file(file: &ExperimentFile, ctx: &Context) -> Result<Self, ConfigError> {
         let single = match file.planner {
             PlannerKind::Thesis => {
-                PlannerConfig::Thesis(file.thesis.validate(file.retrain.as_ref(), &file.pattern, ctx)?)
+                let default_cell_order = crate::cell_order::config::CellOrderSection::default();
+                let settings = crate::thesis::seeding::SeedSettings {
+                    pattern: &file.pattern,
+                    cell_order: file.cell_order.as_ref().unwrap_or(&default_cell_order),
+                };
+                PlannerConfig::Thesis(file.thesis.validate(file.retrain.as_ref(), settings, ctx)?)
             }
             PlannerKind::Waypoint => PlannerConfig::Waypoint(Box::new(file.waypoint.validate(ctx)?)),
             PlannerKind::Boustrophedon => {

@@ -169,7 +169,8 @@ pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Ex
     run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r))
 }
 
-/// Validates the experiments of `runs` (maps loaded once through `maps`) and checks that
+/// Validates the experiments of `runs` (maps loaded once through `maps`; one replicate per
+/// configuration) and checks that
 /// `parallel` of the largest of them, each on one thread (as [`run_study`] runs them), fit in
 /// the memory `limit` (see [`crate::experiment::memory`]).
 /// Returns the largest run's memory estimate in bytes.
@@ -181,7 +182,11 @@ pub fn validate_runs(
     parallel: usize,
 ) -> Result<f64, ConfigError> {
     let parallel = parallel.min(runs.len());
-    runs.iter().try_fold(0.0f64, |largest, run| {
+    // Replicates differ only in their seed, which no check reads (run seeds are kept below
+    // 2^63): one run per configuration is validated, so a pattern-seeded GA plans its seed
+    // once per configuration, not once per replicate.
+    let mut seen = std::collections::HashSet::new();
+    runs.iter().filter(|run| seen.insert(run.config_id.as_str())).try_fold(0.0f64, |largest, run| {
         let exp = experiment_of(study, run, maps)?;
         let origin = format!("{} (run {})", study.path.display(), run.id);
         Ok(largest.max(exp.check_memory(&origin, limit, parallel, 1)?.bytes))

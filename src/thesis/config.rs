@@ -6,11 +6,10 @@ use super::crossover::{ChildMode, ShortGenomes};
 use super::genome::Action;
 use super::individual::{EvaluationMode, InitParams, Moves};
 use super::params::{Control, Retrain, Selection, ThesisParams};
-use super::seeding::{SeedPlans, seed_genomes};
+use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::coverage::fitness::Projection;
 use crate::ga::control::AdaptiveConstants;
-use crate::patterns::planner::PatternSection;
 use crate::planner::Context;
 use crate::planner::memory::MemoryEstimate;
 use serde::{Deserialize, Serialize};
@@ -210,11 +209,11 @@ pub struct ThesisConfig {
 
 impl ThesisSection {
     /// Validates this section and the experiment's `[retrain]` (if any) into the thesis GA.
-    /// `pattern` is the file's `[pattern]`, the settings of the seed plans.
+    /// `settings` are the file's `[pattern]` and `[cell_order]`, the settings of the seed plans.
     pub fn validate(
         &self,
         retrain: Option<&RetrainSection>,
-        pattern: &PatternSection,
+        settings: SeedSettings,
         ctx: &Context,
     ) -> Result<ThesisConfig, ConfigError> {
         let (origin, scenario, b) = (ctx.origin, ctx.scenario, ctx.budget);
@@ -252,7 +251,7 @@ impl ThesisSection {
                 Some(Retrain { at_iteration: rt.at_iteration, region: rt.region })
             }
         };
-        let (seeds, seeded) = self.seeds(&params, pattern, ctx)?;
+        let (seeds, seeded) = self.seeds(&params, settings, ctx)?;
         Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves })
     }
 
@@ -260,7 +259,7 @@ impl ThesisSection {
     fn seeds(
         &self,
         params: &ThesisParams,
-        pattern: &PatternSection,
+        settings: SeedSettings,
         ctx: &Context,
     ) -> Result<(Vec<Vec<Action>>, usize), ConfigError> {
         if self.seed_population.is_empty() {
@@ -273,7 +272,11 @@ impl ThesisSection {
         if !(share > 0.0 && share <= 1.0) {
             return Err(ctx.error("thesis.seed_share", format!("= {share} is out of range (0, 1]")));
         }
-        let genomes = seed_genomes(self.seed_population, pattern, ctx.scenario, params.max_genome_len)
+        if self.seed_population.plans().contains(&SeedPlan::CellOrder) {
+            // The section's own range checks, under its own keys.
+            settings.cell_order.validate(ctx)?;
+        }
+        let genomes = seed_genomes(self.seed_population, settings, ctx.scenario, params.max_genome_len)
             .map_err(|m| ctx.error("thesis.seed_population", m))?;
         let size = params.initial_size();
         let seeded = ((share * size as f64).ceil() as usize).max(genomes.len()).min(size);

@@ -4,6 +4,8 @@
 //! an elitist selection. 003 §5.3 names better starting points among its future work.
 
 use super::genome::{Action, MIN_GENOME_LEN};
+use crate::cell_order::config::CellOrderSection;
+use crate::cell_order::local_optimum_plan;
 use crate::geom::{Point, polar_deg};
 use crate::patterns::planner::PatternSection;
 use crate::patterns::{Pattern, plan};
@@ -18,6 +20,10 @@ pub enum SeedPlan {
     Boustrophedon,
     /// The spiral (with the file's `pattern.complete`).
     Spiral,
+    /// The cell-order plan of the file's `[cell_order]` (its `directions`, `completion` and
+    /// `completion_m_per_m2`) without its GA: the nearest-neighbour tour of the cells improved
+    /// by local search ([`crate::cell_order::local_optimum_plan`]).
+    CellOrder,
 }
 
 impl SeedPlan {
@@ -26,6 +32,7 @@ impl SeedPlan {
         match self {
             SeedPlan::Boustrophedon => "boustrophedon",
             SeedPlan::Spiral => "spiral",
+            SeedPlan::CellOrder => "cell_order",
         }
     }
 }
@@ -36,6 +43,7 @@ impl SeedPlan {
 pub struct SeedPlans {
     boustrophedon: bool,
     spiral: bool,
+    cell_order: bool,
 }
 
 impl TryFrom<Vec<SeedPlan>> for SeedPlans {
@@ -46,6 +54,7 @@ impl TryFrom<Vec<SeedPlan>> for SeedPlans {
             let slot = match p {
                 SeedPlan::Boustrophedon => &mut set.boustrophedon,
                 SeedPlan::Spiral => &mut set.spiral,
+                SeedPlan::CellOrder => &mut set.cell_order,
             };
             if *slot {
                 return Err(format!("`{}` is listed twice", p.name()));
@@ -69,10 +78,14 @@ impl SeedPlans {
     }
     /// The patterns, in a fixed order.
     pub fn plans(&self) -> Vec<SeedPlan> {
-        [(self.boustrophedon, SeedPlan::Boustrophedon), (self.spiral, SeedPlan::Spiral)]
-            .into_iter()
-            .filter_map(|(on, p)| on.then_some(p))
-            .collect()
+        [
+            (self.boustrophedon, SeedPlan::Boustrophedon),
+            (self.spiral, SeedPlan::Spiral),
+            (self.cell_order, SeedPlan::CellOrder),
+        ]
+        .into_iter()
+        .filter_map(|(on, p)| on.then_some(p))
+        .collect()
     }
 }
 
@@ -96,26 +109,42 @@ pub fn genome_of_path(points: &[Point]) -> Vec<Action> {
     genome
 }
 
+/// The settings the seed plans are made with: the file's `[pattern]` and `[cell_order]` (the
+/// latter's defaults when the file has none).
+#[derive(Clone, Copy, Debug)]
+pub struct SeedSettings<'a> {
+    /// `[pattern]`: the boustrophedon's and spiral's settings.
+    pub pattern: &'a PatternSection,
+    /// `[cell_order]`: the cell-order plan's settings.
+    pub cell_order: &'a CellOrderSection,
+}
+
 /// The genome of each pattern's plan on the scenario, or why it cannot seed: the pattern
 /// cannot be planned, or its genome exceeds `max_genome_len` (named with the length needed).
 pub fn seed_genomes(
     plans: SeedPlans,
-    pattern: &PatternSection,
+    settings: SeedSettings,
     scenario: &Scenario,
     max_genome_len: usize,
 ) -> Result<Vec<(SeedPlan, Vec<Action>)>, String> {
     let s = scenario;
+    let pattern = settings.pattern;
     plans
         .plans()
         .into_iter()
         .map(|p| {
-            let kind = match p {
-                SeedPlan::Boustrophedon => Pattern::Boustrophedon { angle_deg: pattern.angle_deg },
-                SeedPlan::Spiral => Pattern::Spiral,
+            let in_map = |e: String| format!("the {} seed on map `{}`: {e}", p.name(), s.map.name());
+            let pattern_plan = |kind| {
+                plan(&s.map, kind, s.robot.width, s.start, s.end, pattern.complete)
+                    .map(|planned| planned.points)
+                    .map_err(|e| in_map(e.to_string()))
             };
-            let planned = plan(&s.map, kind, s.robot.width, s.start, s.end, pattern.complete)
-                .map_err(|e| format!("the {} seed on map `{}`: {e}", p.name(), s.map.name()))?;
-            let genome = genome_of_path(&planned.points);
+            let points = match p {
+                SeedPlan::Boustrophedon => pattern_plan(Pattern::Boustrophedon { angle_deg: pattern.angle_deg })?,
+                SeedPlan::Spiral => pattern_plan(Pattern::Spiral)?,
+                SeedPlan::CellOrder => local_optimum_plan(s, settings.cell_order).map_err(in_map)?,
+            };
+            let genome = genome_of_path(&points);
             if genome.len() > max_genome_len {
                 return Err(format!(
                     "the {} seed is a genome of {} genes, more than thesis.max_genome_len = {max_genome_len}; \
