@@ -150,7 +150,7 @@ def summarise(results):
             if not st or not ro:
                 continue
             cs, cr = statistics.median(num(st, "cov_final_reach")), statistics.median(num(ro, "cov_final_reach"))
-            ex = sum(r["executable"] == "true" for r in ro)
+            ex = len(executable(ro))
             ok = cr >= 0.80 and ex == len(ro)
             met.append(ok)
             out.append(f"| {m} | {sel} | {cs:.4f} | {cr:.4f} | {ex}/{len(ro)} | {'yes' if ok else 'no'} |")
