@@ -33,6 +33,15 @@ const CACHE_ROUTES: usize = 1 << 17;
 const CACHE_POINTS: usize = 1 << 21;
 /// Weight of the A* heuristic: routes at most this factor longer than the shortest grid path.
 pub const HEURISTIC_WEIGHT: f64 = 1.5;
+/// Extra slack of the standing test ([`Router::can_stand`]) over the planners' clearance
+/// slack. The patterns put lane ends exactly at the clearance limit, and a pattern written
+/// as a thesis genome decodes to viewpoints that the viewpoint lattice
+/// (`thesis::genome::LATTICE_M`, 2⁻³⁶ m) and the chain of moves put up to about 7·10⁻¹⁰ m
+/// (measured on a 1 305-point boustrophedon of the office floor plan) past that limit; without
+/// a slack such a viewpoint counts as a place the robot cannot stand and is moved to a cell
+/// centre centimetres away. 10⁻⁸ m is ten times that drift and a hundred times below the
+/// planners' own slack: no point a random genome decodes to is practically ever that close.
+pub const STAND_SLACK_M: f64 = 1e-8;
 /// Landmarks of the A* heuristic (one cache line of `f32` distances per cell).
 const LANDMARKS: usize = 16;
 
@@ -120,9 +129,9 @@ impl Router {
     }
 
     /// Whether the robot can stand at `p`: its cell is swept by some reachable pose and the disc
-    /// centred at `p` keeps clear of every non-free cell.
+    /// centred at `p` keeps clear of every non-free cell (to [`STAND_SLACK_M`]).
     pub fn can_stand(&self, p: Point) -> bool {
-        self.cell_of(p).is_some_and(|i| self.coverable[i] && self.clear.clear_of_cells(p))
+        self.cell_of(p).is_some_and(|i| self.coverable[i] && self.clear.clear_of_cells_within(p, STAND_SLACK_M))
     }
 
     /// The cell holding `p` (the map's upper edges belong to its last row and column, where

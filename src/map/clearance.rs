@@ -111,9 +111,16 @@ impl<'m> Clearance<'m> {
     /// Whether the robot disc centred at `p` keeps clear of every non-free cell of the map (the
     /// map's edge not counted: a disc may reach past it).
     pub fn clear_of_cells(&self, p: Point) -> bool {
+        self.clear_of_cells_within(p, 0.0)
+    }
+
+    /// [`Clearance::clear_of_cells`] with `slack` metres more tolerance than the planners'
+    /// own, for points that a planner put at the clearance limit and a later computation moved
+    /// by a rounding error (see `coverage::routes::STAND_SLACK_M`).
+    pub fn clear_of_cells_within(&self, p: Point, slack: f64) -> bool {
         let m = &*self.map;
         let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
-        let lim = self.radius - CLEARANCE_EPS;
+        let lim = self.radius - CLEARANCE_EPS - slack;
         let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
         for r in (cr - self.window).max(0)..=(cr + self.window).min(m.rows() as isize - 1) {
             for c in (cc - self.window).max(0)..=(cc + self.window).min(m.cols() as isize - 1) {

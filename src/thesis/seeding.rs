@@ -203,6 +203,46 @@ mod tests {
         assert!((ind.score.fitness / expected.fitness - 1.0).abs() < 1e-3, "{:?} vs {expected:?}", ind.score);
     }
 
+    /// Under routed moves the seed genome must drive the pattern itself: the boustrophedon puts
+    /// lane ends at the clearance limit and decoding moves them by rounding errors, which the
+    /// router's standing test tolerates (`routes::STAND_SLACK_M`) instead of moving those
+    /// viewpoints to cell centres centimetres away.
+    #[test]
+    fn a_pattern_genome_under_routed_moves_drives_the_pattern() {
+        use crate::coverage::routes::Router;
+        use crate::thesis::individual::Moves;
+        for (name, start) in [("thesis-2", Point::new(1.3, 1.3)), ("office", Point::new(2.0, 2.0))] {
+            let map = preset(name).unwrap();
+            let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
+            let planned = plan(&map, Pattern::Boustrophedon { angle_deg: 0.0 }, 0.6, start, start, true).unwrap();
+            let mut genome = genome_of_path(&planned.points);
+            let scenario =
+                ThesisScenario::new(map.clone(), robot, start, start, Projection::F2).with_moves(Moves::Routed);
+            let mut points = Vec::new();
+            decode(&mut genome, &scenario.frame, &mut points);
+            let router = Router::new(&map, 0.6, &[start, start]);
+            let moved = points.iter().filter(|&&p| router.position(p) != p).count();
+            assert_eq!(moved, 0, "{name}: {moved} of {} seed viewpoints moved", points.len());
+            let mut ind = Individual { genome, ..Default::default() };
+            crate::thesis::individual::evaluate(
+                &mut ind,
+                &scenario,
+                Base::None,
+                EvaluationMode::Full,
+                &mut EvalScratch::default(),
+            );
+            let grid = CoverageGrid::new(&map);
+            let metrics = robot.measure(&grid, &mut SweepScratch::new(&grid), &planned.points);
+            let expected = score(&metrics, &robot, map.resolution(), Projection::F2);
+            assert_eq!(ind.sweep.obj_pix, 0, "{name}");
+            assert!(
+                (ind.score.cov_final - expected.cov_final).abs() < 1e-12,
+                "{name}: {:?} vs {expected:?}",
+                ind.score
+            );
+        }
+    }
+
     #[test]
     fn short_paths_and_the_set_of_names() {
         let p = Point::new(1.0, 1.0);
