@@ -50,6 +50,17 @@ pub fn applies(t: &RunsTable) -> bool {
     t.rows.iter().map(|r| &r[c]).collect::<std::collections::BTreeSet<_>>().len() > 1
 }
 
+/// A swept value as it reads in a label: a list's items joined by `+` without brackets or
+/// quotes (`["boustrophedon"]` → `boustrophedon`, `[]` → nothing), anything else as it is.
+fn label_part(v: &str) -> String {
+    match v.strip_prefix('[').and_then(|v| v.strip_suffix(']')) {
+        Some(items) => {
+            items.split(',').map(|i| i.trim().trim_matches('"')).filter(|i| !i.is_empty()).collect::<Vec<_>>().join("+")
+        }
+        None => v.to_string(),
+    }
+}
+
 /// A planner's label: its name plus the text values of the swept keys that tell its variants
 /// apart on one map (e.g. `thesis-prws`); numeric values and map-wide settings are left out.
 fn labels(t: &RunsTable) -> Vec<String> {
@@ -71,10 +82,10 @@ fn labels(t: &RunsTable) -> Vec<String> {
         .map(|r| {
             let mut l = r[pc].clone();
             for &c in &varying {
-                let v = &r[c];
-                if !v.is_empty() && v.parse::<f64>().is_err() && *v != r[pc] {
+                let v = label_part(&r[c]);
+                if !v.is_empty() && v.parse::<f64>().is_err() && v != r[pc] {
                     l.push('-');
-                    l.push_str(v);
+                    l.push_str(&v);
                 }
             }
             l
@@ -389,4 +400,22 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
     }
     let _ = writeln!(md);
     Ok(Comparison { markdown: md })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::label_part;
+
+    #[test]
+    fn list_values_read_as_their_items() {
+        for (value, label) in [
+            (r#"["boustrophedon"]"#, "boustrophedon"),
+            (r#"["boustrophedon", "spiral"]"#, "boustrophedon+spiral"),
+            ("[]", ""),
+            ("prws", "prws"),
+            ("0.5", "0.5"),
+        ] {
+            assert_eq!(label_part(value), label, "{value}");
+        }
+    }
 }
