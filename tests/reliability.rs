@@ -111,6 +111,36 @@ const CASES: &[Case] = &[
         needle: "e.toml: waypoint planner on map `thesis-1`: the start at (1.30, 1.30) m reaches only 1 of 1 waypoints",
     },
     Case {
+        name: "waypoint paths of ten million waypoints",
+        files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nl_max = 10000000\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`waypoint.l_max` = 10000000 is out of range [l_init, 100000]",
+    },
+    Case {
+        name: "a billion shortcut tries per mutation",
+        files: &[(
+            "e.toml",
+            "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nb_instances = 1000000000\n",
+        )],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`waypoint.b_instances` = 1000000000 is out of range [0, 10000]",
+    },
+    Case {
+        name: "a fan view deeper than the map",
+        files: &[(
+            "e.toml",
+            "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nview_shape = \"fan\"\nd_max = 1000\n",
+        )],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`waypoint.d_max` = 1000 m is beyond the map's diagonal of 15.56 m",
+    },
+    Case {
+        name: "a wall clock spent in the waypoint precompute",
+        files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[budget]\nwall_clock_s = 1e-6\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "the wall clock of 0.000001 s (`budget.wall_clock_s`) ran out while precomputing",
+    },
+    Case {
         name: "path point outside the map",
         files: &[("p.csv", "x_m,y_m\n1.3,1.3\n100,100\n")],
         args: &["eval", "--path", "p.csv", "--map", "thesis-1", "--out", "OUT"],

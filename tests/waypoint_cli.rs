@@ -134,3 +134,36 @@ fn bad_waypoint_settings_are_rejected() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("inside an obstacle"));
 }
+
+/// A camera depth far beyond the map sees what one reaching just past it sees, and costs no
+/// more: views are computed with `d_max` capped at the map (thesis-1 is 11 m square, 15.6 m
+/// across).
+#[test]
+fn a_camera_depth_beyond_the_map_sees_the_same_and_runs_quickly() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = |d_max: &str| {
+        format!(
+            "seed = 5\nplanner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[stations]\nstart = [1.3, 1.3]\n[waypoint]\npopulation = 10\ngenerations = 5\nl_init = 40\nl_min = 20\nd_max = {d_max}\n"
+        )
+    };
+    let mut outs = Vec::new();
+    for d_max in ["16.0", "1000.0"] {
+        let sub = dir.path().join(d_max);
+        std::fs::create_dir_all(&sub).unwrap();
+        let exp = write(&sub, &text(d_max));
+        let out = sub.join("out");
+        let started = std::time::Instant::now();
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(started.elapsed().as_secs() < 30, "d_max = {d_max} took {:?}", started.elapsed());
+        outs.push(out);
+    }
+    for f in ["history.csv", "best_path.csv"] {
+        assert_eq!(std::fs::read(outs[0].join(f)).unwrap(), std::fs::read(outs[1].join(f)).unwrap(), "{f}");
+    }
+    let (mut a, mut b) = (summary_without_time(&outs[0]), summary_without_time(&outs[1]));
+    for s in [&mut a, &mut b] {
+        s.as_object_mut().unwrap().remove("config");
+    }
+    assert_eq!(a, b);
+}

@@ -59,6 +59,23 @@ impl Camera {
         Some((((phi + half) / (self.fov / self.sections as f64)).floor() as usize).min(self.sections - 1))
     }
 
+    /// The depth range a view from `pos` on a `width × height` raster is computed with: with
+    /// [`ViewShape::Sections`], `d_max` capped at two pixels beyond the raster corner farthest
+    /// from `pos`, so that a `d_max` far beyond the map costs no more than one spanning it.
+    /// The views are the same: every raster pixel lies within that distance of `pos`, and an
+    /// occluder beyond it (off the raster) only caps a section's depth at a range where no
+    /// raster pixel lies. A fan's chords depend on the ray ends, so a fan keeps `d_max`.
+    pub fn effective_d_max(&self, width: usize, height: usize, pos: (f64, f64)) -> f64 {
+        match self.shape {
+            ViewShape::Sections => {
+                let dx = pos.0.abs().max((width as f64 - pos.0).abs());
+                let dy = pos.1.abs().max((height as f64 - pos.1).abs());
+                self.d_max.min(dx.hypot(dy) + 2.0)
+            }
+            ViewShape::Fan => self.d_max,
+        }
+    }
+
     /// Calls `visible(index)` for every explorable pixel seen from `pos` (px) with heading `psi`:
     /// in the field of view, at range `d_min ≤ r ≤ d_view` of its section. `occluded(col, row)`
     /// must be true outside the raster.
@@ -77,7 +94,7 @@ impl Camera {
         psi: f64,
         visible: impl FnMut(usize),
     ) {
-        self.view_filtered(width, height, occluded, pos, psi, true, visible);
+        self.view_filtered(width, height, occluded, pos, psi, true, true, visible);
     }
 
     /// [`Self::view`]; with `prefilter`, pixels that are certainly out of range or out of the
@@ -93,9 +110,11 @@ impl Camera {
         pos: (f64, f64),
         psi: f64,
         prefilter: bool,
+        capped: bool,
         mut visible: impl FnMut(usize),
     ) {
-        let reach = self.d_max.ceil() as i64 + 1;
+        let d_max = if capped { self.effective_d_max(width, height, pos) } else { self.d_max };
+        let reach = d_max.ceil() as i64 + 1;
         let (pc, pr) = (pos.0.floor() as i64, pos.1.floor() as i64);
         let mut nearest = vec![f64::INFINITY; self.sections];
         let polar = |c: i64, r: i64| {
@@ -103,7 +122,7 @@ impl Camera {
             (dx.hypot(dy), wrap(dy.atan2(dx) - psi))
         };
         // No pixel beyond d_max counts, and none is seen beyond max(d_max, d_min) (eq. 1).
-        let range_skip = (self.d_max.max(self.d_min) * (1.0 + 1e-9)).powi(2);
+        let range_skip = (d_max.max(self.d_min) * (1.0 + 1e-9)).powi(2);
         let half = 0.5 * self.fov;
         let cone = half < 0.5 * std::f64::consts::PI - 1e-6;
         let (sin_psi, cos_psi) = psi.sin_cos();
@@ -127,7 +146,7 @@ impl Camera {
             for c in pc - reach..=pc + reach {
                 if occluded(c, r) && !passed_over(c, r) {
                     let (d, phi) = polar(c, r);
-                    if d <= self.d_max
+                    if d <= d_max
                         && let Some(i) = self.section(phi)
                     {
                         nearest[i] = nearest[i].min(d);
@@ -135,7 +154,7 @@ impl Camera {
                 }
             }
         }
-        let limit: Vec<f64> = nearest.iter().map(|&o| d_view(self.d_max, self.d_min, o)).collect();
+        let limit: Vec<f64> = nearest.iter().map(|&o| d_view(d_max, self.d_min, o)).collect();
         if self.shape == ViewShape::Fan {
             self.fill_fan(width, height, &occluded, pos, psi, &limit, visible);
             return;
@@ -308,7 +327,30 @@ mod tests {
             let camera = Camera { d_min, d_max, fov: fov_deg.to_radians(), sections, shape };
             let seen = |prefilter: bool| {
                 let mut v = Vec::new();
-                camera.view_filtered(w, h, occ, pos, psi, prefilter, |i| v.push(i));
+                camera.view_filtered(w, h, occ, pos, psi, prefilter, true, |i| v.push(i));
+                v
+            };
+            proptest::prop_assert_eq!(seen(true), seen(false));
+        }
+
+        /// A `d_max` far beyond the raster, capped to it, changes no viewed pixel: random walls,
+        /// poses anywhere on the raster, headings, fields of view, sections and depth ranges.
+        #[test]
+        fn capping_d_max_at_the_raster_changes_no_view(
+            seed in 0u64..1_000_000, x in 0.0..12.0f64, y in 0.0..12.0f64,
+            psi in -7.0..7.0f64, fov_deg in 1.0..360.0f64, sections in 1usize..40,
+            d_min in 0.0..20.0f64, d_max in 1.0..120.0f64,
+        ) {
+            use rand::{Rng, SeedableRng};
+            let (w, h) = (12usize, 9usize);
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let walls: Vec<bool> = (0..w * h).map(|_| rng.random_bool(0.1)).collect();
+            let occ = |c: i64, r: i64| c < 0 || r < 0 || c >= w as i64 || r >= h as i64 || walls[r as usize * w + c as usize];
+            let camera = Camera { d_min, d_max: d_max.max(d_min + 0.1), fov: fov_deg.to_radians(), sections, shape: ViewShape::Sections };
+            let pos = (x, y.min(h as f64));
+            let seen = |capped: bool| {
+                let mut v = Vec::new();
+                camera.view_filtered(w, h, occ, pos, psi, true, capped, |i| v.push(i));
                 v
             };
             proptest::prop_assert_eq!(seen(true), seen(false));

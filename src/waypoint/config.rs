@@ -159,6 +159,12 @@ impl Default for WaypointSection {
     }
 }
 
+/// The longest path `waypoint.l_max` allows: 400 times 000's 250, far beyond any map here,
+/// and a bound on the work of one generation.
+pub const MAX_PATH_WAYPOINTS: usize = 100_000;
+/// The most shortcut tries of one mutation B (`waypoint.b_instances`): 500 times 000's 20.
+pub const MAX_B_INSTANCES: usize = 10_000;
+
 /// The validated waypoint planner: world geometry and GA parameters.
 #[derive(Clone, Debug)]
 pub struct WaypointConfig {
@@ -246,12 +252,15 @@ impl WaypointConfig {
         .min(rows);
         let view_bytes = bitset_bytes(span_rows * cols) + 16.0;
         let edges = waypoints * degree;
-        let paths = w.ga.population as f64 * 2.0 * w.ga.agents as f64 * 4.0 * (w.ga.l_init as f64 + 64.0);
-        MemoryEstimate {
-            bytes: edges * 2.0 * (view_bytes + 48.0) + 4.0 * bitset_bytes(cols * rows) + paths,
-            key: "waypoint.hallway",
-            what: format!("up to {waypoints:.0} waypoints with {edges:.0} edge views"),
-        }
+        // Paths grow up to l_max waypoints (mutation A extends them to a length in [len, l_max]).
+        let paths = w.ga.population as f64 * 2.0 * w.ga.agents as f64 * 4.0 * (w.ga.ops.l_max as f64 + 64.0);
+        let views = edges * 2.0 * (view_bytes + 48.0) + 4.0 * bitset_bytes(cols * rows);
+        let (key, what) = if paths > views {
+            ("waypoint.l_max", format!("{} paths of up to {} waypoints per agent", 2 * w.ga.population, w.ga.ops.l_max))
+        } else {
+            ("waypoint.hallway", format!("up to {waypoints:.0} waypoints with {edges:.0} edge views"))
+        };
+        MemoryEstimate { bytes: views + paths, key, what }
     }
 }
 
@@ -294,6 +303,28 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
         return Err(err(
             "waypoint.l_init",
             format!("needs 2 <= l_min ({}) <= l_init ({}) <= l_max ({})", w.l_min, w.l_init, w.l_max),
+        ));
+    }
+    if w.l_max > MAX_PATH_WAYPOINTS {
+        return Err(err(
+            "waypoint.l_max",
+            format!("= {} is out of range [l_init, {MAX_PATH_WAYPOINTS}] waypoints per path", w.l_max),
+        ));
+    }
+    if w.b_instances > MAX_B_INSTANCES {
+        return Err(err(
+            "waypoint.b_instances",
+            format!("= {} is out of range [0, {MAX_B_INSTANCES}] shortcut tries per mutation B", w.b_instances),
+        ));
+    }
+    let diagonal = map.width_m().hypot(map.height_m());
+    if w.view_shape == crate::coverage::camera::ViewShape::Fan && w.d_max > diagonal {
+        return Err(err(
+            "waypoint.d_max",
+            format!(
+                "= {} m is beyond the map's diagonal of {diagonal:.2} m; a fan view is drawn through its ray ends at d_max, so with view_shape = \"fan\" it must be at most {diagonal:.2} m (with \"sections\" a longer d_max is capped at the map and sees the same)",
+                w.d_max
+            ),
         ));
     }
     check_range(origin, "waypoint.lambda", w.lambda, 0.0, 100.0, "[0, 100]")?;

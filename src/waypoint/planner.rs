@@ -106,9 +106,12 @@ impl Planner for WaypointConfig {
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunOutcome, PlannerError> {
         let started = Instant::now();
-        let world = World::build(&scenario.map, &self.world, self.ga.agents)
+        let limit = budget.wall_clock.map(|d| (started, d));
+        let world = World::build_within(&scenario.map, &self.world, self.ga.agents, limit)
             .map_err(|e| PlannerError::Input(format!("waypoint planner on map `{}`: {e}", scenario.map.name())))?;
         let precompute_s = started.elapsed().as_secs_f64();
+        // The wall clock counts the precompute too: the GA gets what is left of it.
+        let budget = &Budget { wall_clock: budget.wall_clock.map(|d| d.saturating_sub(started.elapsed())), ..*budget };
         let grid = CoverageGrid::new(&scenario.map);
         let mut scratch = SweepScratch::new(&grid);
         let mut history = Vec::new();

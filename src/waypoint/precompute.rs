@@ -76,11 +76,18 @@ impl Traversals {
         all
     }
 
-    /// Computes every traversal's data.
-    pub fn compute(map: &WorkMap, graph: &Graph, sensing: &Sensing) -> Self {
+    /// Computes every traversal's data, or, once `deadline` has passed, stops and returns how
+    /// many waypoints' edges were done.
+    pub fn compute(
+        map: &WorkMap,
+        graph: &Graph,
+        sensing: &Sensing,
+        deadline: Option<std::time::Instant>,
+    ) -> Result<Self, usize> {
         use crate::coverage::raster::{RasterGrid, for_each_swept_cell};
         use crate::geom::Point;
         use rayon::prelude::*;
+        use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
         let occ = |c: i64, r: i64| map.is_occluded(c, r);
         let raster = RasterGrid { cols: map.width, rows: map.height, resolution: 1.0, origin_x: 0.0, origin_y: 0.0 };
         let view = |p: (f64, f64), psi: f64| match sensing {
@@ -103,9 +110,15 @@ impl Traversals {
             }
             Sensing::Camera(_) => Mask::default(),
         };
-        let edges = (0..graph.points.len())
+        let (late, done) = (AtomicBool::new(false), AtomicUsize::new(0));
+        let edges: Vec<Vec<Traversal>> = (0..graph.points.len())
             .into_par_iter()
             .map(|i| {
+                if late.load(Ordering::Relaxed) || deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                    late.store(true, Ordering::Relaxed);
+                    return Vec::new();
+                }
+                done.fetch_add(1, Ordering::Relaxed);
                 graph.adj[i]
                     .iter()
                     .map(|&j| {
@@ -124,7 +137,10 @@ impl Traversals {
                     .collect()
             })
             .collect();
-        Self { edges, words: (map.width * map.height).div_ceil(64) }
+        if late.into_inner() {
+            return Err(done.into_inner());
+        }
+        Ok(Self { edges, words: (map.width * map.height).div_ceil(64) })
     }
 
     /// The traversal `i → j` (must be an edge).

@@ -93,6 +93,18 @@ pub enum WorldError {
         /// Waypoints placed.
         total: usize,
     },
+    /// The wall clock ran out while the views of the graph's edges were computed.
+    #[error(
+        "the wall clock of {limit_s} s (`budget.wall_clock_s`) ran out while precomputing the views of {done} of {total} waypoints' edges, before any plan; raise it or coarsen `waypoint.scale`"
+    )]
+    OutOfTime {
+        /// The wall-clock limit (s).
+        limit_s: f64,
+        /// Waypoints whose edges were done.
+        done: usize,
+        /// Waypoints of the graph.
+        total: usize,
+    },
 }
 
 /// Everything precomputed.
@@ -129,6 +141,17 @@ pub struct World {
 impl World {
     /// Builds the world for `agents` agents.
     pub fn build(map: &GridMap, p: &WorldParams, agents: usize) -> Result<Self, WorldError> {
+        Self::build_within(map, p, agents, None)
+    }
+
+    /// [`World::build`] that gives up with [`WorldError::OutOfTime`] once `limit` (a wall-clock
+    /// limit and when it started) has passed.
+    pub fn build_within(
+        map: &GridMap,
+        p: &WorldParams,
+        agents: usize,
+        limit: Option<(std::time::Instant, std::time::Duration)>,
+    ) -> Result<Self, WorldError> {
         let wm = WorkMap::new(map, p.scale);
         let geo = &p.geometry;
         let spacing = waypoints::Spacing {
@@ -179,7 +202,9 @@ impl World {
             Objective::Camera => Sensing::Camera(camera),
             Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
         };
-        let traversals = Traversals::compute(&wm, &graph, &sensing);
+        let traversals = Traversals::compute(&wm, &graph, &sensing, limit.map(|(t, d)| t + d)).map_err(|done| {
+            WorldError::OutOfTime { limit_s: limit.map_or(0.0, |l| l.1.as_secs_f64()), done, total: graph.points.len() }
+        })?;
         let band_px = geo.wall_band / p.scale;
         let band_flags = wm.band(band_px);
         let band_count = band_flags.iter().filter(|x| **x).count() as u64;
