@@ -478,8 +478,8 @@ fn merge_refuses_missing_shards_unless_partial() {
 const TWO_PATTERN_RUNS: &str = "seed = 1\n[base]\nplanner = \"boustrophedon\"\n[base.map]\nsource = \"thesis-1\"\n[base.stations]\nstart = [1.3, 1.3]\n[axes]\n\"pattern.angle_deg\" = [0.0, 90.0]\n";
 
 /// `--jobs` far above the run count starts no idle workers (clamped), `--shard` with `--slurm`
-/// is refused (the array tasks are the shards), and an `--array-size` above Slurm's default
-/// `MaxArraySize` warns.
+/// is refused (the array tasks are the shards), an `--array-size` above the run count is
+/// clamped to it, and one above Slurm's default `MaxArraySize` warns.
 #[test]
 fn jobs_are_clamped_shards_and_slurm_exclude_each_other_and_large_arrays_warn() {
     let dir = tempfile::tempdir().unwrap();
@@ -493,7 +493,24 @@ fn jobs_are_clamped_shards_and_slurm_exclude_each_other_and_large_arrays_warn() 
     let both = covga(&["grid", g, "--shard", "0/2", "--slurm", "--out", dir.path().join("s").to_str().unwrap()]);
     assert_eq!(both.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&both.stderr).contains("cannot be used with"), "{both:?}");
-    let large = covga(&["grid", g, "--slurm", "--array-size", "2000", "--out", dir.path().join("a").to_str().unwrap()]);
+    // More tasks than runs: clamped to one task per run.
+    let small = covga(&["grid", g, "--slurm", "--array-size", "2000", "--out", dir.path().join("a").to_str().unwrap()]);
+    ok(&small);
+    assert!(String::from_utf8_lossy(&small.stderr).contains("clamped to the study's 2 runs"), "{small:?}");
+    let script = std::fs::read_to_string(dir.path().join("a/study.sbatch")).unwrap();
+    assert!(script.contains("#SBATCH --array=0-1\n"), "{script}");
+    // A study of 1 200 runs asked for 1 100 tasks: beyond Slurm's default limit, warned.
+    let many = dir.path().join("many.toml");
+    std::fs::write(&many, "seeds = 1200\n[base]\n[base.thesis]\npop_min = 20\ninit_actions = 20\n[base.budget]\niterations = 3\n[axes]\n\"thesis.c_len\" = [0.1]\n").unwrap();
+    let large = covga(&[
+        "grid",
+        many.to_str().unwrap(),
+        "--slurm",
+        "--array-size",
+        "1100",
+        "--out",
+        dir.path().join("b").to_str().unwrap(),
+    ]);
     ok(&large);
     assert!(String::from_utf8_lossy(&large.stderr).contains("MaxArraySize of 1001"), "{large:?}");
 }

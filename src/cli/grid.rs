@@ -79,7 +79,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
         return dry_run(&study, &a, &out);
     }
     if a.slurm {
-        return write_slurm(&a, &out, &stem, largest_run_bytes);
+        return write_slurm(&a, &out, &stem, largest_run_bytes, all.len());
     }
     let terminal = std::io::stderr().is_terminal();
     let bar = super::progress_bar(0, "runs", terminal);
@@ -167,17 +167,27 @@ fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), Cli
 /// Slurm's default `MaxArraySize`: array indices run from 0 to one less.
 const SLURM_MAX_ARRAY_SIZE: usize = 1001;
 
-fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str, largest_run_bytes: f64) -> Result<(), CliError> {
+fn write_slurm(
+    a: &GridArgs,
+    out: &std::path::Path,
+    stem: &str,
+    largest_run_bytes: f64,
+    runs: usize,
+) -> Result<(), CliError> {
     check_time(&a.time).map_err(CliError::Input)?;
     if a.array_size == 0 || a.cpus_per_task == 0 {
         return Err(CliError::Input("--array-size and --cpus-per-task must be at least 1".into()));
     }
-    if a.array_size > SLURM_MAX_ARRAY_SIZE {
+    // A task beyond the number of runs would get an empty shard.
+    let array_size = a.array_size.min(runs.max(1));
+    if array_size < a.array_size {
+        eprintln!("note: --array-size {} clamped to the study's {runs} runs (one task per run at most)", a.array_size);
+    }
+    if array_size > SLURM_MAX_ARRAY_SIZE {
         eprintln!(
-            "warning: --array-size {} asks for --array=0-{}, beyond Slurm's default MaxArraySize of {SLURM_MAX_ARRAY_SIZE} \
+            "warning: --array-size {array_size} asks for --array=0-{}, beyond Slurm's default MaxArraySize of {SLURM_MAX_ARRAY_SIZE} \
              (tasks 0-{}); sbatch refuses it unless the cluster raised the limit (scontrol show config | grep MaxArraySize)",
-            a.array_size,
-            a.array_size - 1,
+            array_size - 1,
             SLURM_MAX_ARRAY_SIZE - 1
         );
     }
@@ -188,7 +198,7 @@ fn write_slurm(a: &GridArgs, out: &std::path::Path, stem: &str, largest_run_byte
     std::fs::create_dir_all(out_abs.join("slurm"))
         .map_err(|e| CliError::Internal(format!("{}: {e}", out_abs.display())))?;
     let opts = SlurmOptions {
-        array_size: a.array_size,
+        array_size,
         time: a.time.clone(),
         cpus_per_task: a.cpus_per_task,
         mem_bytes: a.max_memory.unwrap_or_else(|| task_memory(largest_run_bytes, a.cpus_per_task)),
