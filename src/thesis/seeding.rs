@@ -169,6 +169,27 @@ mod tests {
     use crate::thesis::genome::decode;
     use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, Scenario as ThesisScenario};
 
+    /// The genome evaluated by the thesis GA on `scenario`, and the plan `points` scored by the
+    /// common scorer with the scenario's robot.
+    fn genome_and_plan_scores(
+        genome: Vec<Action>,
+        scenario: &ThesisScenario,
+        points: &[Point],
+    ) -> (Individual, crate::coverage::fitness::ThesisScore) {
+        let mut ind = Individual { genome, ..Default::default() };
+        crate::thesis::individual::evaluate(
+            &mut ind,
+            scenario,
+            Base::None,
+            EvaluationMode::Full,
+            &mut EvalScratch::default(),
+        );
+        let (map, robot) = (&scenario.map, scenario.robot);
+        let grid = CoverageGrid::new(map);
+        let metrics = robot.measure(&grid, &mut SweepScratch::new(&grid), points);
+        (ind, score(&metrics, &robot, map.resolution(), Projection::F2))
+    }
+
     #[test]
     fn a_pattern_genome_decodes_to_the_pattern_and_scores_as_it() {
         let map = preset("thesis-2").unwrap();
@@ -184,17 +205,7 @@ mod tests {
         for (a, b) in points.iter().zip(&planned.points) {
             assert!((*a - *b).norm() < 1e-9, "{a:?} vs {b:?}");
         }
-        let mut ind = Individual { genome, ..Default::default() };
-        crate::thesis::individual::evaluate(
-            &mut ind,
-            &scenario,
-            Base::None,
-            EvaluationMode::Full,
-            &mut EvalScratch::default(),
-        );
-        let grid = CoverageGrid::new(&map);
-        let metrics = robot.measure(&grid, &mut SweepScratch::new(&grid), &planned.points);
-        let expected = score(&metrics, &robot, map.resolution(), Projection::F2);
+        let (ind, expected) = genome_and_plan_scores(genome, &scenario, &planned.points);
         assert_eq!(ind.sweep.obj_pix, 0);
         // Equal coverage; the sweep counts behind t_final may differ by a few cells: lanes lie
         // on cell centres, and the viewpoint lattice (2^-36 m, see `genome::snap`) can move a
@@ -223,17 +234,7 @@ mod tests {
             let router = Router::new(&map, 0.6, &[start, start]);
             let moved = points.iter().filter(|&&p| router.position(p) != p).count();
             assert_eq!(moved, 0, "{name}: {moved} of {} seed viewpoints moved", points.len());
-            let mut ind = Individual { genome, ..Default::default() };
-            crate::thesis::individual::evaluate(
-                &mut ind,
-                &scenario,
-                Base::None,
-                EvaluationMode::Full,
-                &mut EvalScratch::default(),
-            );
-            let grid = CoverageGrid::new(&map);
-            let metrics = robot.measure(&grid, &mut SweepScratch::new(&grid), &planned.points);
-            let expected = score(&metrics, &robot, map.resolution(), Projection::F2);
+            let (ind, expected) = genome_and_plan_scores(genome, &scenario, &planned.points);
             assert_eq!(ind.sweep.obj_pix, 0, "{name}");
             assert!(
                 (ind.score.cov_final - expected.cov_final).abs() < 1e-12,
