@@ -108,7 +108,31 @@ const CASES: &[Case] = &[
         name: "waypoint hallway too wide for the map",
         files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nhallway = 30\n")],
         args: &["run", "e.toml", "--out", "OUT"],
-        needle: "e.toml: waypoint planner on map `thesis-1`: the start at (1.30, 1.30) m reaches only 1 of 1 waypoints",
+        needle: "`waypoint.hallway` = 30 m is out of range: allowed [max(2 x scale, map resolution), the map's longer side = 11 m]",
+    },
+    Case {
+        name: "waypoint hallway of infinite width",
+        files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nhallway = inf\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`waypoint.hallway` = inf m is out of range",
+    },
+    Case {
+        name: "waypoint paths shorter than two waypoints",
+        files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nl_min = 0\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`waypoint.l_min` needs 2 <= l_min (0) <= l_init (150)",
+    },
+    Case {
+        name: "a wall clock beyond its bound names the bound",
+        files: &[("e.toml", "[budget]\nwall_clock_s = 1e18\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`budget.wall_clock_s` = 1e18 is out of range: allowed [0, 1e9] seconds",
+    },
+    Case {
+        name: "a camera range beyond its bound names the bound",
+        files: &[("e.toml", "[waypoint]\nd_min = 1e18\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`waypoint.d_min` = 1e18 is out of range: allowed [0, 1e6] metres",
     },
     Case {
         name: "waypoint paths of ten million waypoints",

@@ -176,7 +176,7 @@ impl ExperimentFile {
             ">= 0 rad/s (0 disables the rotation cost)",
         )?;
         let b = self.budget;
-        check_range(origin, "budget.wall_clock_s", b.wall_clock_s, 0.0, 1e9, ">= 0 seconds (0 = no limit)")?;
+        check_range(origin, "budget.wall_clock_s", b.wall_clock_s, 0.0, 1e9, "[0, 1e9] seconds (0 = no limit)")?;
         if b.evaluations > i64::MAX as u64 {
             return Err(err("budget.evaluations", format!("= {} is out of range [0, {}]", b.evaluations, i64::MAX)));
         }

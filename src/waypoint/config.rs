@@ -185,7 +185,7 @@ pub fn camera_spec(
     let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
     check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "[1e-4, 100] metres")?;
-    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, ">= 0 metres")?;
+    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, "[0, 1e6] metres")?;
     if !(w.d_max.is_finite() && w.d_max > w.d_min) {
         return Err(err(
             "waypoint.d_max",
@@ -301,7 +301,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
     }
     if !(2 <= w.l_min && w.l_min <= w.l_init && w.l_init <= w.l_max) {
         return Err(err(
-            "waypoint.l_init",
+            if w.l_min < 2 { "waypoint.l_min" } else { "waypoint.l_init" },
             format!("needs 2 <= l_min ({}) <= l_init ({}) <= l_max ({})", w.l_min, w.l_init, w.l_max),
         ));
     }
@@ -329,7 +329,7 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
     }
     check_range(origin, "waypoint.lambda", w.lambda, 0.0, 100.0, "[0, 100]")?;
     check_range(origin, "waypoint.rho", w.rho, 0.0, 100.0, "[0, 100]")?;
-    check_range(origin, "waypoint.penalty", w.penalty, 0.0, 1e12, ">= 0")?;
+    check_range(origin, "waypoint.penalty", w.penalty, 0.0, 1e12, "[0, 1e12]")?;
     let starts: Vec<(f64, f64)> =
         if w.starts.is_empty() { vec![(start.x, start.y)] } else { w.starts.iter().map(|s| (s[0], s[1])).collect() };
     use super::evaluate::ObjectiveParams;

@@ -49,7 +49,17 @@ impl Geometry {
     /// Resolves and checks the geometry keys of `w` on `map`.
     pub fn resolve(w: &WaypointSection, origin: &str, map: &GridMap) -> Result<Self, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-        if !(w.hallway.is_finite() && w.hallway >= 2.0 * w.scale && w.hallway >= map.resolution()) {
+        let longest = map.width_m().max(map.height_m());
+        if !(w.hallway.is_finite() && w.hallway <= longest) {
+            return Err(err(
+                "waypoint.hallway",
+                format!(
+                    "= {} m is out of range: allowed [max(2 x scale, map resolution), the map's longer side = {longest} m]",
+                    crate::io::short_number(w.hallway)
+                ),
+            ));
+        }
+        if w.hallway < 2.0 * w.scale || w.hallway < map.resolution() {
             return Err(err(
                 "waypoint.hallway",
                 format!(
@@ -60,7 +70,6 @@ impl Geometry {
                 ),
             ));
         }
-        let longest = map.width_m().max(map.height_m());
         let grid_step = grid_step_m(w.grid_step, w.hallway, w.scale);
         let half_uav = w.uav_width / 2.0;
         let buffer = match w.safety_buffer {
