@@ -66,12 +66,11 @@ fn against_seed(
     }
     let (cp, tp) = (num(p, "cov_final_reach"), num(p, "time_s"));
     let median = |c: &str| quartiles(&runs.iter().map(|&r| num(r, c)).collect::<Vec<_>>()).1;
+    let (cov, time) = (median("cov_final_reach"), median("time_s"));
     let both = runs.iter().filter(|&&r| num(r, "cov_final_reach") >= cp && num(r, "time_s") <= tp).count();
     Some(format!(
-        "On {map}, {variant}, whose initial population holds the {seed} plan, against that plan: median coverage {:.3} against {cp:.3}, median time {:.0} s against {tp:.0} s ({:+.1} %); {both} of {} plans at least as good on both.",
-        median("cov_final_reach"),
-        median("time_s"),
-        100.0 * (median("time_s") / tp - 1.0),
+        "On {map}, {variant}, whose initial population holds the {seed} plan, against that plan: median coverage {cov:.3} against {cp:.3}, median time {time:.0} s against {tp:.0} s ({:+.1} %); {both} of {} plans at least as good on both.",
+        100.0 * (time / tp - 1.0),
         runs.len()
     ))
 }

@@ -118,8 +118,7 @@ impl Traversals {
                     late.store(true, Ordering::Relaxed);
                     return Vec::new();
                 }
-                done.fetch_add(1, Ordering::Relaxed);
-                graph.adj[i]
+                let traversals: Vec<Traversal> = graph.adj[i]
                     .iter()
                     .map(|&j| {
                         let (a, b) = (graph.points[i], graph.points[j as usize]);
@@ -134,7 +133,9 @@ impl Traversals {
                             arrive: view(b, heading),
                         }
                     })
-                    .collect()
+                    .collect();
+                done.fetch_add(1, Ordering::Relaxed);
+                traversals
             })
             .collect();
         if late.into_inner() {
