@@ -17,6 +17,9 @@ const SMALL: &str =
 /// A small valid grid over two C_len values.
 const GRID: &str = "[base]\n[base.thesis]\npop_min = 20\ninit_actions = 20\n[base.budget]\niterations = 3\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n";
 
+/// Thesis map 1 as a bare image, for cases that set its resolution.
+const THESIS_1_PGM: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/experiments/maps/thesis-1.pgm");
+
 struct Case {
     /// What the case is about.
     name: &'static str,
@@ -207,7 +210,7 @@ const CASES: &[Case] = &[
         name: "absurd grid counted before it is expanded",
         files: &[(
             "g.toml",
-            "[base]\n[axes]\n\"seed\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.pop_min\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.init_actions\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.p_c\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.c_len\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.p_ma\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.p_mi\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n",
+            "[base]\n[axes]\n\"robot.speed\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.pop_min\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.init_actions\" = [1,2,3,4,5,6,7,8,9,10]\n\"thesis.p_c\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.c_len\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.p_ma\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n\"thesis.p_mi\" = [0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1.0]\n",
         )],
         args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
         needle: "expands to up to 1.000e7 runs",
@@ -217,6 +220,75 @@ const CASES: &[Case] = &[
         files: &[("g.toml", GRID), ("taken", "x")],
         args: &["grid", "g.toml", "--out", "taken/OUT"],
         needle: "taken/OUT",
+    },
+    Case {
+        name: "an axis that lists one value twice",
+        files: &[("g.toml", "[base]\n[axes]\n\"thesis.c_len\" = [0.1, 0.1]\n")],
+        args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
+        needle: "`axes.\"thesis.c_len\"` lists the value 0.1 twice",
+    },
+    Case {
+        name: "an axis whose values read as one setting",
+        files: &[("g.toml", "[base]\n[axes]\n\"thesis.p_c\" = [1, 1.0]\n")],
+        args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
+        needle: "`axes` two runs resolve to one configuration",
+    },
+    Case {
+        name: "the seed swept as an axis",
+        files: &[("g.toml", "[base]\n[axes]\n\"seed\" = [1, 2]\n")],
+        args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
+        needle: "`axes.\"seed\"` cannot be swept: the grid derives each run's seed",
+    },
+    Case {
+        name: "the output folder swept as an axis",
+        files: &[("g.toml", "[base]\n[axes]\n\"output.dir\" = [\"a\", \"b\"]\n")],
+        args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
+        needle: "`axes.\"output.dir\"` cannot be swept",
+    },
+    Case {
+        name: "D1: a bare image at a billion metres per pixel",
+        files: &[],
+        args: &["eval", "--map", THESIS_1_PGM, "--resolution", "1e9", "--start", "2.5e10,2.5e10", "--out", "OUT"],
+        needle: "has cells of 1e9 m: the camera coverage eval reports",
+    },
+    Case {
+        name: "D10: eval on a map of 10 m cells names the resolution, not a waypoint key",
+        files: &[],
+        args: &["eval", "--map", THESIS_1_PGM, "--resolution", "10", "--start", "50,50", "--out", "OUT"],
+        needle: "needs cells of at most 1.5 m; give a finer map (`--resolution`",
+    },
+    Case {
+        name: "D2: a robot a picometre wide (eval)",
+        files: &[],
+        args: &["eval", "--map", "thesis-1", "--width", "1e-12", "--out", "OUT"],
+        needle: "a robot 1e-12 m wide needs about 1.556e13 lanes",
+    },
+    Case {
+        name: "D2: a robot a micrometre wide (run)",
+        files: &[("e.toml", "planner = \"boustrophedon\"\n[robot]\nwidth = 1e-6\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`robot.width` a robot 1e-6 m wide needs about 1.556e7 lanes",
+    },
+    Case {
+        name: "D4: two conditionals that both apply",
+        files: &[(
+            "g.toml",
+            "[base]\n[axes]\n\"thesis.c_len\" = [0.1]\n[[conditional]]\nwhen = { \"thesis.c_len\" = 0.1 }\naxes = { \"thesis.p_ma\" = [0.1] }\n[[conditional]]\nwhen = { \"thesis.c_len\" = 0.1 }\naxes = { \"thesis.p_ma\" = [0.2] }\n",
+        )],
+        args: &["grid", "g.toml", "--dry-run", "--out", "OUT"],
+        needle: "`conditional[1].axes.\"thesis.p_ma\"` is also set by conditional[0]",
+    },
+    Case {
+        name: "D9: an experiment file that never ends",
+        files: &[],
+        args: &["run", "/dev/zero", "--out", "OUT"],
+        needle: "/dev/zero: cannot read experiment file: larger than 16 MiB",
+    },
+    Case {
+        name: "D13: a shard of a Slurm array",
+        files: &[("g.toml", GRID)],
+        args: &["grid", "g.toml", "--shard", "1/2", "--slurm", "--out", "OUT"],
+        needle: "'--shard <SHARD>' cannot be used with '--slurm'",
     },
     Case { name: "merge of a folder with no shards", files: &[], args: &["merge", "."], needle: "no runs.csv" },
     Case {
@@ -267,8 +339,11 @@ fn every_bad_input_exits_2_with_one_line_and_writes_nothing() {
         let problems = [
             (o.status.code() != Some(2)).then(|| format!("exit {:?}", o.status.code())),
             (!err.contains(case.needle)).then(|| format!("no `{}`", case.needle)),
-            // (The argument parser adds its usual pointer to --help after its one line.)
-            (err.trim().lines().filter(|l| !l.trim().is_empty() && !l.starts_with("For more information")).count()
+            // (The argument parser adds its usage line and pointer to --help after its one line.)
+            (err.trim()
+                .lines()
+                .filter(|l| !l.trim().is_empty() && !l.starts_with("For more information") && !l.starts_with("Usage: "))
+                .count()
                 != 1)
                 .then(|| "not one line".to_string()),
             err.contains("panicked").then(|| "panicked".to_string()),
@@ -280,6 +355,49 @@ fn every_bad_input_exits_2_with_one_line_and_writes_nothing() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+    // The largest child this test process has waited for: every refusal above stayed below it.
+    let peak = children_peak_rss_bytes();
+    assert!(peak < 500 << 20, "a refusal peaked at {} MB of resident memory (bound 500 MB)", peak >> 20);
+}
+
+/// D14: a path of a million points is refused at once with the bound and a way out, and a
+/// tenth of it (a dense log of lanes) is scored with a figure that draws only what shows.
+#[test]
+fn a_path_of_a_million_points_is_refused_and_a_dense_log_is_scored() {
+    let dir = tempfile::tempdir().unwrap();
+    let lanes = |n: usize| {
+        let mut text = String::from("x_m,y_m\n");
+        for i in 0..n {
+            let (lane, t) = (i * 14 / n, (i % (n / 14)) as f64 / (n / 14) as f64);
+            let x = 1.5 + 8.0 * if lane % 2 == 0 { t } else { 1.0 - t };
+            text.push_str(&format!("{x:.6},{:.6}\n", 1.5 + 0.6 * lane as f64));
+        }
+        text
+    };
+    std::fs::write(dir.path().join("million.csv"), lanes(1_000_000)).unwrap();
+    let started = std::time::Instant::now();
+    let args = |f: &str, out: &str| ["eval", "--path", f, "--out", out].map(String::from).to_vec();
+    let o = covga(dir.path(), &args("million.csv", "OUT"));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("would pose the camera") && err.contains("at most 200000 poses"), "{err}");
+    assert!(started.elapsed().as_secs() < 5, "refused after {:?}", started.elapsed());
+    assert!(!dir.path().join("OUT").exists());
+    std::fs::write(dir.path().join("log.csv"), lanes(60_000)).unwrap();
+    let o = covga(dir.path(), &args("log.csv", "scored"));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let svg = std::fs::metadata(dir.path().join("scored/path.svg")).unwrap().len();
+    assert!(svg < 4 << 20, "path.svg of {svg} bytes for a path one figure pixel wide");
+}
+
+/// The peak resident set size of the largest child process waited for so far, in bytes
+/// (`getrusage(RUSAGE_CHILDREN)`; Linux reports kilobytes).
+fn children_peak_rss_bytes() -> u64 {
+    // SAFETY: `getrusage` only writes the zeroed struct it is given.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let rc = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) };
+    assert_eq!(rc, 0, "getrusage failed");
+    u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024
 }
 
 /// Every file below `dir` with its size.

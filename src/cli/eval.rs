@@ -167,6 +167,10 @@ fn read_fleet(file: &std::path::Path, map: &crate::map::GridMap) -> Result<crate
     crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)
 }
 
+/// The most camera poses `eval --path` scores: each costs up to about 9 000 pixel tests with
+/// 000's default camera, so this bounds a scoring at about half a minute on one core.
+pub const MAX_CAMERA_POSES: u64 = 200_000;
+
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let robot = check_robot(&a)?;
     if let Some(r) = a.resolution
@@ -175,6 +179,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
     }
     let mut map = load_map(&a.map, a.resolution).map_err(CliError::input)?;
+    let camera = eval_camera(&map, &a.map)?;
     let unobstructed = map.clone();
     if a.obstacle_in_area && a.obstacles.is_empty() {
         return Err(CliError::Input("--obstacle-in-area needs at least one --obstacle X0,Y0,X1,Y1".into()));
@@ -213,6 +218,16 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         }
         Some(file) => {
             let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;
+            let poses = crate::coverage::score::camera_poses(&paths);
+            if poses > MAX_CAMERA_POSES {
+                let points: usize = paths.iter().map(Vec::len).sum();
+                return Err(CliError::Input(format!(
+                    "{}: scoring its {points} points would pose the camera {poses} times (at both ends of each segment and every {} m between); eval scores at most {MAX_CAMERA_POSES} poses: thin the path first (e.g. keep one point in {})",
+                    file.display(),
+                    crate::coverage::score::CAMERA_STEP_M,
+                    poses.div_ceil(MAX_CAMERA_POSES).max(2)
+                )));
+            }
             for (k, p) in paths.iter().enumerate() {
                 let what = |end: &str| format!("{}: agent {k} {end}", file.display());
                 map.check_station(p[0], &what("start")).map_err(CliError::Input)?;
@@ -281,8 +296,6 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         metrics.area_cells += placed as u64;
     }
     let sc = score(&metrics, &robot, map.resolution(), projection);
-    let camera =
-        crate::waypoint::config::camera_spec(&Default::default(), "default camera", &map).map_err(CliError::input)?;
     let stations: Vec<crate::geom::Point> = paths.iter().filter_map(|p| p.first().copied()).collect();
     let common = Scorer::for_widths(&map, robot, &widths, projection, &camera, &stations).score_agents(&paths, &robots);
     let report = Report {
@@ -422,4 +435,20 @@ mod tests {
             assert_eq!(short(source), shown);
         }
     }
+}
+
+/// The camera of the common scorer's `cov_cam`: 000's default. Its narrowest hallway bounds the
+/// map's cell size, and `eval` has no camera flags, so a coarser map is blamed on its resolution.
+fn eval_camera(map: &crate::map::GridMap, source: &str) -> Result<crate::coverage::score::CameraSpec, CliError> {
+    let defaults = crate::waypoint::config::WaypointSection::default();
+    let finest_needed = defaults.hallway;
+    if map.resolution() > finest_needed {
+        return Err(CliError::Input(format!(
+            "map `{source}` has cells of {} m: the camera coverage eval reports (000's default camera, narrowest hallway {} m) needs cells of at most {} m; give a finer map (`--resolution` for a bare image, `resolution:` in a ROS map YAML)",
+            crate::io::short_number(map.resolution()),
+            crate::io::short_number(defaults.hallway),
+            crate::io::short_number(finest_needed)
+        )));
+    }
+    crate::waypoint::config::camera_spec(&defaults, "default camera", map).map_err(CliError::input)
 }

@@ -94,7 +94,35 @@ impl Camera {
         psi: f64,
         visible: impl FnMut(usize),
     ) {
-        self.view_filtered(width, height, occluded, pos, psi, true, true, visible);
+        self.view_filtered(width, height, occluded, pos, psi, true, true, |_| false, visible);
+    }
+
+    /// Adds the pixels of [`Self::view`] to the union `seen` (one flag per raster pixel). A
+    /// pixel already in the union is passed over before its range and bearing are computed:
+    /// it could only be marked again, so the union is the same as marking every view in full
+    /// (tested), at a fraction of the cost along densely posed paths.
+    pub fn view_into(
+        &self,
+        width: usize,
+        height: usize,
+        occluded: impl Fn(i64, i64) -> bool,
+        pos: (f64, f64),
+        psi: f64,
+        seen: &mut [bool],
+    ) {
+        assert_eq!(seen.len(), width * height, "one flag per raster pixel");
+        let marked = std::cell::RefCell::new(seen);
+        self.view_filtered(
+            width,
+            height,
+            occluded,
+            pos,
+            psi,
+            true,
+            true,
+            |i| marked.borrow()[i],
+            |i| marked.borrow_mut()[i] = true,
+        );
     }
 
     /// [`Self::view`]; with `prefilter`, pixels that are certainly out of range or out of the
@@ -111,6 +139,7 @@ impl Camera {
         psi: f64,
         prefilter: bool,
         capped: bool,
+        already_seen: impl Fn(usize) -> bool,
         mut visible: impl FnMut(usize),
     ) {
         let d_max = if capped { self.effective_d_max(width, height, pos) } else { self.d_max };
@@ -161,7 +190,7 @@ impl Camera {
         }
         for r in (pr - reach).max(0)..=(pr + reach).min(height as i64 - 1) {
             for c in (pc - reach).max(0)..=(pc + reach).min(width as i64 - 1) {
-                if occluded(c, r) || passed_over(c, r) {
+                if occluded(c, r) || already_seen(r as usize * width + c as usize) || passed_over(c, r) {
                     continue;
                 }
                 let (d, phi) = polar(c, r);
@@ -327,7 +356,7 @@ mod tests {
             let camera = Camera { d_min, d_max, fov: fov_deg.to_radians(), sections, shape };
             let seen = |prefilter: bool| {
                 let mut v = Vec::new();
-                camera.view_filtered(w, h, occ, pos, psi, prefilter, true, |i| v.push(i));
+                camera.view_filtered(w, h, occ, pos, psi, prefilter, true, |_| false, |i| v.push(i));
                 v
             };
             proptest::prop_assert_eq!(seen(true), seen(false));
@@ -350,10 +379,31 @@ mod tests {
             let pos = (x, y.min(h as f64));
             let seen = |capped: bool| {
                 let mut v = Vec::new();
-                camera.view_filtered(w, h, occ, pos, psi, true, capped, |i| v.push(i));
+                camera.view_filtered(w, h, occ, pos, psi, true, capped, |_| false, |i| v.push(i));
                 v
             };
             proptest::prop_assert_eq!(seen(true), seen(false));
+        }
+
+        /// Marking views into a union, passing over the pixels already in it, gives the union
+        /// of the full views: random walls, up to eight poses, headings and depth ranges.
+        #[test]
+        fn the_union_of_views_skips_nothing_it_needs(
+            seed in 0u64..1_000_000, poses in proptest::collection::vec((0.0..30.0f64, 0.0..30.0f64, -7.0..7.0f64), 1..8),
+            fov_deg in 1.0..360.0f64, sections in 1usize..20, d_min in 0.0..4.0f64, d_max in 1.0..20.0f64,
+        ) {
+            use rand::{Rng, SeedableRng};
+            let (w, h) = (30usize, 30usize);
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+            let walls: Vec<bool> = (0..w * h).map(|_| rng.random_bool(0.08)).collect();
+            let occ = |c: i64, r: i64| c < 0 || r < 0 || c >= w as i64 || r >= h as i64 || walls[r as usize * w + c as usize];
+            let camera = Camera { d_min, d_max: d_max.max(d_min + 0.1), fov: fov_deg.to_radians(), sections, shape: ViewShape::Sections };
+            let (mut full, mut union) = (vec![false; w * h], vec![false; w * h]);
+            for &(x, y, psi) in &poses {
+                camera.view(w, h, occ, (x, y), psi, |i| full[i] = true);
+                camera.view_into(w, h, occ, (x, y), psi, &mut union);
+            }
+            proptest::prop_assert_eq!(full, union);
         }
     }
 }

@@ -25,6 +25,20 @@ use crate::map::reach::Reach;
 /// Spacing of camera poses along a path in metres.
 pub const CAMERA_STEP_M: f64 = 1.0;
 
+/// How many times the common scorer poses the camera along `paths`: at both ends of every
+/// segment longer than a nanometre and every [`CAMERA_STEP_M`] between (as `coverage` does),
+/// so that callers can bound the work before scoring.
+pub fn camera_poses(paths: &[Vec<Point>]) -> u64 {
+    paths
+        .iter()
+        .flat_map(|path| path.windows(2))
+        .map(|w| {
+            let len = (w[1] - w[0]).norm();
+            if len < 1e-9 { 0 } else { (len / CAMERA_STEP_M).ceil() as u64 + 1 }
+        })
+        .sum()
+}
+
 /// 000's camera as the scorer uses it (metres and degrees), with the working raster's scale
 /// and the width of the wall band whose coverage is reported.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -209,7 +223,7 @@ impl CameraLayer {
                 for k in 0..=steps {
                     let p = w[0] + d * (k as f64 / steps as f64);
                     let pos = wm.to_px(p.x, p.y);
-                    self.camera.view(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, psi, |i| seen[i] = true);
+                    self.camera.view_into(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, psi, &mut seen);
                 }
             }
         }
@@ -421,6 +435,7 @@ mod tests {
             (walls, open)
         };
         let lane = vec![Point::new(1.0, 1.0), Point::new(5.0, 1.0)];
+        assert_eq!(camera_poses(std::slice::from_ref(&lane)), 5);
         let [walls, open, _, _] = layer.coverage(std::slice::from_ref(&lane));
         assert_eq!((walls, open), views(&[1.0, 2.0, 3.0, 4.0, 5.0]));
         assert!(open > views(&[1.0, 5.0]).1, "the poses between the ends see more");

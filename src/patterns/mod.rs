@@ -23,8 +23,9 @@ pub enum PatternError {
     },
     /// The robot is so narrow that the lanes across the map would not fit in memory or time.
     #[error(
-        "a robot {width} m wide needs about {lanes:.3e} lanes across map `{map}` ({across:.1} m); at most {MAX_LANES} \
-         are planned (a width of at least {min_width:.3e} m)"
+        "a robot {} m wide needs about {lanes:.3e} lanes across map `{map}` ({across:.1} m); at most {MAX_LANES} \
+         are planned (a width of at least {min_width:.3e} m)",
+        crate::io::short_number(*width)
     )]
     TooManyLanes {
         /// The robot width.

@@ -127,6 +127,21 @@ impl PathFigure<'_> {
     }
 }
 
+/// The points of `path` that a drawing can tell apart: each kept point lies at least `min_step_m`
+/// from the previous kept one, and the first and last are always kept. A dense path (a robot's
+/// log of a million points) then draws as fast, and its SVG as small, as the line it looks like.
+pub fn thinned(path: &[Point], min_step_m: f64) -> Vec<Point> {
+    let mut kept: Vec<Point> = Vec::with_capacity(path.len().min(1 << 16));
+    for (i, &p) in path.iter().enumerate() {
+        let last = i + 1 == path.len();
+        match kept.last() {
+            Some(&q) if !last && (p - q).norm() < min_step_m => {}
+            _ => kept.push(p),
+        }
+    }
+    kept
+}
+
 /// Draws the map, coverage classes and paths of `fig` into `area` at one scale on both axes
 /// (metres); `(title, labels)` are font sizes. Returns the pixels per metre, for a scale bar
 /// beside the map.
@@ -167,7 +182,10 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     });
     chart.draw_series(rects).map_err(err)?;
     let dot = if small { 1 } else { 2 };
+    let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
+    let half_px_m = if b.0 > a.0 { 0.5 / f64::from(b.0 - a.0) } else { 0.0 };
     for (k, path) in fig.paths.iter().enumerate() {
+        let path = &thinned(path, half_px_m);
         let colour = if fig.robots.is_empty() { PATH } else { ROBOTS[k % ROBOTS.len()] };
         // Segment by segment: a thick polyline is joined with mitres, and a path that turns
         // back on itself would grow a spike far past its viewpoints.
@@ -278,6 +296,22 @@ impl Figure for PathFigure<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Points closer than the step to the last kept one are dropped; the ends always stay.
+    #[test]
+    fn thinning_keeps_the_ends_and_every_visible_step() {
+        let p = |xs: &[f64]| xs.iter().map(|&x| Point::new(x, 0.0)).collect::<Vec<_>>();
+        for (input, step, kept) in [
+            (vec![], 0.1, vec![]),
+            (vec![0.0], 0.1, vec![0.0]),
+            (vec![0.0, 0.01, 0.02, 0.15, 0.16, 0.3], 0.1, vec![0.0, 0.15, 0.3]),
+            (vec![0.0, 0.01, 0.02], 0.1, vec![0.0, 0.02]),
+            (vec![0.0, 0.01, 0.02], 0.0, vec![0.0, 0.01, 0.02]),
+            (vec![0.0, 5.0, 0.0], 0.1, vec![0.0, 5.0, 0.0]),
+        ] {
+            assert_eq!(thinned(&p(&input), step), p(&kept), "{input:?} at {step}");
+        }
+    }
 
     /// One metre is the same number of pixels on both axes of a map figure.
     #[test]

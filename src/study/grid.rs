@@ -131,7 +131,30 @@ pub fn scalar_text(v: &Value) -> String {
 fn values_of(axes: &Table, origin: &str, section: &str) -> Result<Vec<(String, Vec<Value>)>, ConfigError> {
     axes.iter()
         .map(|(k, v)| match v {
-            Value::Array(a) if !a.is_empty() => Ok((k.clone(), a.clone())),
+            // The grid sets these itself: one seed per replicate, one folder per run.
+            _ if k == "seed" => Err(ConfigError::new(
+                origin,
+                &format!("{section}.\"seed\""),
+                "cannot be swept: the grid derives each run's seed from its top-level `seed` (the study seed) and `seeds` (replicates per configuration); set `seeds = N` for N replicates",
+            )),
+            _ if k == "output" || k.starts_with("output.") => Err(ConfigError::new(
+                origin,
+                &format!("{section}.\"{k}\""),
+                "cannot be swept: a study writes each run to its own folder under `--out` (runs/<run id>)",
+            )),
+            Value::Array(a) if !a.is_empty() => {
+                let texts: Vec<String> = a.iter().map(scalar_text).collect();
+                match texts.iter().enumerate().find(|(i, t)| texts[..*i].contains(t)) {
+                    Some((_, t)) => Err(ConfigError::new(
+                        origin,
+                        &format!("{section}.\"{k}\""),
+                        format!(
+                            "lists the value {t} twice; each value of an axis must differ (replicates come from `seeds`)"
+                        ),
+                    )),
+                    None => Ok((k.clone(), a.clone())),
+                }
+            }
             Value::Array(_) => Err(ConfigError::new(
                 origin,
                 &format!("{section}.\"{k}\""),
@@ -377,12 +400,30 @@ impl Study {
         let mut seen: std::collections::HashMap<&str, &RunSpec> = std::collections::HashMap::new();
         for r in &runs {
             if let Some(first) = seen.insert(&r.id, r) {
+                let setting = |run: &RunSpec| {
+                    let set: Vec<String> = columns
+                        .iter()
+                        .zip(&run.params)
+                        .filter_map(|(k, v)| v.as_ref().map(|v| format!("{k} = {v}")))
+                        .collect();
+                    format!("{} (branch `{}`)", set.join(", "), run.branch)
+                };
+                let (key, why) = if grid.conditional.is_empty() {
+                    ("axes", "two values of an axis that read as one setting (such as 1 and 1.0) fold into one run")
+                } else {
+                    (
+                        "conditional",
+                        "conditional axes that set the same key must not both apply, and two values that read as one setting (such as 1 and 1.0) fold into one run",
+                    )
+                };
                 return Err(ConfigError::new(
                     &origin,
-                    "conditional",
+                    key,
                     format!(
-                        "two runs resolve to one configuration (run id {}: branches `{}` and `{}`); conditional axes that set the same key must not both apply",
-                        r.id, first.branch, r.branch
+                        "two runs resolve to one configuration (run id {}): {} and {}; {why}",
+                        r.id,
+                        setting(first),
+                        setting(r)
                     ),
                 ));
             }
