@@ -13,7 +13,7 @@ use std::path::Path;
 pub fn experiment_toml(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else { return };
     let Ok(file) = ExperimentFile::parse(text, "fuzz.toml") else { return };
-    let presets_only = |source: &str, _res: Option<f64>| {
+    let presets_only = |source: &str, _image: &crate::map::ros::BareImage| {
         crate::map::presets::preset(source)
             .ok_or_else(|| crate::map::MapError::UnknownMap { name: source.to_string(), presets: String::new() })
     };

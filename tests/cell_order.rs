@@ -146,7 +146,7 @@ fn the_shipped_basement_experiment_beats_every_boustrophedon_direction() {
     assert_eq!(score["obstacle_cells"], 0);
     assert_eq!(score["executable"], true);
     let (cov, time) = (score["cov_final_reach"].as_f64().unwrap(), score["time_s"].as_f64().unwrap());
-    let exp = ExperimentFile::read(&file).unwrap().validate("basement", &root.join("experiments"), "x").unwrap();
+    let exp = ExperimentFile::read(&file).unwrap().validate("basement", root, "x").unwrap();
     let s = &exp.scenario;
     let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
     let baselines: Vec<(f64, f64)> = [0.0, 45.0, 90.0, 135.0]

@@ -461,3 +461,38 @@ fn range_messages_name_the_real_bound() {
         assert!(err.contains(key) && err.contains(bound), "{key}: {err}");
     }
 }
+
+/// One rule for relative map paths: read from the working directory, whether a run file or a
+/// grid's base file (in a folder of its own) names them; the run's `config.toml` keeps the
+/// path as written, so it runs again from the same directory.
+#[test]
+fn relative_map_paths_are_read_from_the_working_directory() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("maps")).unwrap();
+    std::fs::create_dir_all(dir.path().join("experiments")).unwrap();
+    let mut pgm = b"P5\n30 20\n255\n".to_vec();
+    pgm.extend(std::iter::repeat_n(254u8, 600));
+    std::fs::write(dir.path().join("maps/room.pgm"), pgm).unwrap();
+    let text = "planner = \"boustrophedon\"\n[map]\nsource = \"maps/room.pgm\"\nresolution = 0.2\n[stations]\nstart = [1.0, 1.0]\n";
+    write(&dir.path().join("experiments"), "e.toml", text);
+    write(dir.path(), "g.toml", "base = \"experiments/e.toml\"\n[axes]\n\"robot.width\" = [0.4, 0.6]\n");
+    let at_root = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir.path()).args(args).output().expect("covga runs")
+    };
+    for args in [
+        vec!["run", "experiments/e.toml", "--out", "r1", "--quiet"],
+        vec!["run", "r1/config.toml", "--out", "r2", "--quiet"],
+        vec!["grid", "g.toml", "--out", "study", "--jobs", "1"],
+    ] {
+        let o = at_root(&args);
+        assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+    }
+    // From inside the run file's folder the same path names nothing, and the message says which.
+    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .current_dir(dir.path().join("experiments"))
+        .args(["run", "e.toml", "--out", "r3"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("maps/room.pgm"), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -72,6 +72,7 @@ def load_map(
     resolution: Optional[float] = None,
     origin: Sequence[float] = (0.0, 0.0),
     name: str = "array",
+    free_threshold: Optional[int] = None,
 ) -> Map:
     """Loads a map.
 
@@ -81,11 +82,19 @@ def load_map(
     ROS ``OccupancyGrid`` stores it: bool (``True`` occupied), or percentages (negative unknown,
     above 65 occupied, below 19.6 free, between unknown, as map_server thresholds them). An
     array needs ``resolution``; ``origin`` is its lower-left corner in metres.
+
+    A bare image is read with map_server's default thresholds (grey >= 206 free, <= 89
+    occupied, unknown between) unless ``free_threshold`` is given: then grey values at or above
+    it are free and darker ones occupied (the ipa room-segmentation benchmark uses 250).
     """
     if isinstance(source, Map):
         return source
     if isinstance(source, (str, os.PathLike)):
-        return _covga.load_map(os.fspath(source), None if resolution is None else float(resolution))
+        return _covga.load_map(
+            os.fspath(source),
+            None if resolution is None else float(resolution),
+            None if free_threshold is None else int(free_threshold),
+        )
     occupancy = np.asarray(source)
     if occupancy.ndim != 2:
         raise ConfigError(f"occupancy array of shape {occupancy.shape}: expected 2-D (rows, cols)")

@@ -92,17 +92,26 @@ impl Map {
     }
 }
 
-/// Loads a preset, a ROS map YAML, or a PGM/PNG image (with `resolution`).
+/// Loads a preset, a ROS map YAML, or a PGM/PNG image (with `resolution`; `free_threshold`
+/// splits its grey values into free, at or above it, and occupied, as the CLI's
+/// `--free-threshold`).
 #[pyfunction]
-#[pyo3(signature = (source, resolution=None))]
-pub fn load_map(source: &str, resolution: Option<f64>) -> PyResult<Map> {
+#[pyo3(signature = (source, resolution=None, free_threshold=None))]
+pub fn load_map(source: &str, resolution: Option<f64>, free_threshold: Option<i64>) -> PyResult<Map> {
     guarded(|| {
         if let Some(r) = resolution
             && !(r.is_finite() && r > 0.0)
         {
             return Err(config_error(format!("resolution = {r} is out of range: expected metres per pixel > 0")));
         }
-        let inner = covga::map::ros::load_map(source, resolution).map_err(config_error)?;
+        let free_threshold = match free_threshold {
+            None => None,
+            Some(t) => Some(u8::try_from(t).ok().filter(|&t| t >= 1).ok_or_else(|| {
+                config_error(format!("free_threshold = {t} is out of range: allowed [1, 255] grey values"))
+            })?),
+        };
+        let image = covga::map::ros::BareImage { resolution, free_threshold };
+        let inner = covga::map::ros::load_map(source, &image).map_err(config_error)?;
         Ok(Map { inner })
     })
 }

@@ -58,7 +58,8 @@ fn experiment_text(kind: &str, payload: &str) -> PyResult<(String, String, PathB
         "path" => {
             let path = Path::new(payload);
             let text = ExperimentFile::read_text(path).map_err(config_error)?;
-            let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+            // Relative map paths are read from the working directory, as the CLI reads them.
+            let base = PathBuf::from(".");
             let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
             Ok((text, payload.to_string(), base, stem))
         }

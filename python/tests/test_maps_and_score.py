@@ -145,3 +145,19 @@ def test_bad_arguments_raise_config_error(call, message):
     with pytest.raises(covga.ConfigError) as e:
         call(m, p)
     assert message in str(e.value)
+
+
+def test_a_bare_image_is_read_with_map_servers_thresholds_or_a_free_threshold(tmp_path):
+    greys = [0, 89, 90, 205, 206, 249, 250, 255]
+    image = tmp_path / "row.pgm"
+    image.write_bytes(b"P5\n%d 1\n255\n" % len(greys) + bytes(greys))
+    # 0 free, 1 occupied, 2 unknown
+    ros = covga.load_map(image, resolution=0.1).states[0].tolist()
+    assert ros == [1, 1, 2, 2, 0, 0, 0, 0]
+    ipa = covga.load_map(image, resolution=0.1, free_threshold=250).states[0].tolist()
+    assert ipa == [1, 1, 1, 1, 1, 1, 0, 0]
+    for bad in (0, 256, -1):
+        with pytest.raises(ValueError, match="free_threshold"):
+            covga.load_map(image, resolution=0.1, free_threshold=bad)
+    with pytest.raises(ValueError, match="applies to a bare PGM/PNG image only"):
+        covga.load_map("office", free_threshold=250)

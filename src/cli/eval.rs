@@ -38,6 +38,11 @@ pub struct EvalArgs {
     /// Metres per pixel for a bare image map.
     #[arg(long)]
     resolution: Option<f64>,
+    /// For a bare image map: grey values at or above this are free and darker ones occupied
+    /// (the ipa room-segmentation benchmark uses 250). Without it, map_server's default
+    /// thresholds apply: grey ≥ 206 free, ≤ 89 occupied, unknown between.
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..))]
+    free_threshold: Option<u8>,
     /// Plan this pattern (the default when no --path is given is boustrophedon).
     #[arg(long, conflicts_with = "path")]
     pattern: Option<PatternName>,
@@ -178,7 +183,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     {
         return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
     }
-    let mut map = load_map(&a.map, a.resolution).map_err(CliError::input)?;
+    let image = crate::map::ros::BareImage { resolution: a.resolution, free_threshold: a.free_threshold };
+    let mut map = load_map(&a.map, &image).map_err(CliError::input)?;
     let camera = eval_camera(&map, &a.map)?;
     let unobstructed = map.clone();
     if a.obstacle_in_area && a.obstacles.is_empty() {
@@ -420,6 +426,22 @@ fn short(source: &str) -> String {
     }
 }
 
+/// The camera of the common scorer's `cov_cam`: 000's default. Its narrowest hallway bounds the
+/// map's cell size, and `eval` has no camera flags, so a coarser map is blamed on its resolution.
+fn eval_camera(map: &crate::map::GridMap, source: &str) -> Result<crate::coverage::score::CameraSpec, CliError> {
+    let defaults = crate::waypoint::config::WaypointSection::default();
+    let finest_needed = defaults.hallway;
+    if map.resolution() > finest_needed {
+        return Err(CliError::Input(format!(
+            "map `{source}` has cells of {} m: the camera coverage eval reports (000's default camera, narrowest hallway {} m) needs cells of at most {} m; give a finer map (`--resolution` for a bare image, `resolution:` in a ROS map YAML)",
+            crate::io::short_number(map.resolution()),
+            crate::io::short_number(defaults.hallway),
+            crate::io::short_number(finest_needed)
+        )));
+    }
+    crate::waypoint::config::camera_spec(&defaults, "default camera", map).map_err(CliError::input)
+}
+
 #[cfg(test)]
 mod tests {
     use super::short;
@@ -435,20 +457,4 @@ mod tests {
             assert_eq!(short(source), shown);
         }
     }
-}
-
-/// The camera of the common scorer's `cov_cam`: 000's default. Its narrowest hallway bounds the
-/// map's cell size, and `eval` has no camera flags, so a coarser map is blamed on its resolution.
-fn eval_camera(map: &crate::map::GridMap, source: &str) -> Result<crate::coverage::score::CameraSpec, CliError> {
-    let defaults = crate::waypoint::config::WaypointSection::default();
-    let finest_needed = defaults.hallway;
-    if map.resolution() > finest_needed {
-        return Err(CliError::Input(format!(
-            "map `{source}` has cells of {} m: the camera coverage eval reports (000's default camera, narrowest hallway {} m) needs cells of at most {} m; give a finer map (`--resolution` for a bare image, `resolution:` in a ROS map YAML)",
-            crate::io::short_number(map.resolution()),
-            crate::io::short_number(defaults.hallway),
-            crate::io::short_number(finest_needed)
-        )));
-    }
-    crate::waypoint::config::camera_spec(&defaults, "default camera", map).map_err(CliError::input)
 }

@@ -6,7 +6,7 @@ use crate::experiment::output::{OutputError, run_experiment};
 use crate::experiment::registry::PlannerConfig;
 use crate::ga::observer::{GenerationRecord, Observer};
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// The built-in experiment run when no file is given.
 pub const DEFAULT_EXPERIMENT: &str = include_str!("../../experiments/thesis-map1-elite.toml");
@@ -51,7 +51,10 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
             let text = ExperimentFile::read_text(path).map_err(CliError::input)?;
             let file = ExperimentFile::parse(&text, &origin).map_err(CliError::input)?;
             let ignored = crate::experiment::ignored::ignored_in_text(&text, &file);
-            let base = path.parent().unwrap_or(Path::new(".")).to_path_buf();
+            // One rule for relative map paths in run and grid files: the working directory.
+            // A run's config.toml, a study's runs and `covga report` re-read the same path
+            // from there, wherever the file that first named it lies.
+            let base = PathBuf::from(".");
             let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
             (file, origin, base, stem, ignored)
         }

@@ -90,8 +90,8 @@ impl Default for ExperimentFile {
         }
     }
 }
-/// Loads a map from `(source, resolution)`.
-pub type MapLoader<'a> = dyn Fn(&str, Option<f64>) -> Result<GridMap, crate::map::MapError> + 'a;
+/// Loads a map from its resolved source and how a bare image is read.
+pub type MapLoader<'a> = dyn Fn(&str, &crate::map::ros::BareImage) -> Result<GridMap, crate::map::MapError> + 'a;
 
 /// A validated experiment, ready to run.
 #[derive(Clone, Debug)]
@@ -139,10 +139,13 @@ impl ExperimentFile {
             .map_err(|e| ConfigError::new(path.display(), "", format!("cannot read experiment file: {e}")))
     }
 
-    /// Validates every value and loads the map. `base` resolves relative map paths; `origin`
+    /// Validates every value and loads the map. `base` resolves relative map paths (the CLI and
+    /// Python pass the working directory, one rule for run and grid files); `origin`
     /// names the file in messages; `stem` names the default output folder.
     pub fn validate(self, origin: &str, base: &Path, stem: &str) -> Result<Experiment, ConfigError> {
-        self.validate_with(origin, base, stem, &|src: &str, res: Option<f64>| crate::map::ros::load_map(src, res))
+        self.validate_with(origin, base, stem, &|src: &str, image: &crate::map::ros::BareImage| {
+            crate::map::ros::load_map(src, image)
+        })
     }
 
     /// [`Self::validate`] with a map loader (studies share one cache of loaded maps).
@@ -180,7 +183,7 @@ impl ExperimentFile {
         if b.evaluations > i64::MAX as u64 {
             return Err(err("budget.evaluations", format!("= {} is out of range [0, {}]", b.evaluations, i64::MAX)));
         }
-        // The map, relative to the experiment file; presets by name.
+        // The map: a preset by name, else a path (relative ones read from `base`).
         let source =
             if crate::map::presets::preset(&self.map.source).is_some() || Path::new(&self.map.source).is_absolute() {
                 self.map.source.clone()
@@ -200,7 +203,14 @@ impl ExperimentFile {
         if let Some(res) = self.map.resolution {
             check_range(origin, "map.resolution", res, 1e-9, 1e6, "[1e-9, 1e6] metres per pixel")?;
         }
-        let map = load(&source, self.map.resolution).map_err(|e| err("map.source", e.to_string()))?;
+        if self.map.free_threshold == Some(0) {
+            return Err(err(
+                "map.free_threshold",
+                "= 0 is out of range: allowed [1, 255] (grey values at or above it are free; 0 would free every pixel)"
+                    .into(),
+            ));
+        }
+        let map = load(&source, &self.map.bare_image()).map_err(|e| err("map.source", e.to_string()))?;
         let start = Point::new(self.stations.start[0], self.stations.start[1]);
         let end = self.stations.end.map_or(start, |e| Point::new(e[0], e[1]));
         map.check_station(start, "start").map_err(|m| err("stations.start", m))?;

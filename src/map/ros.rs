@@ -23,6 +23,33 @@ pub enum PixelMode {
     Scale,
     /// The pixel value is the occupancy in percent.
     Raw,
+    /// Two classes, for bare images drawn without an unknown class (the ipa room-segmentation
+    /// benchmark counts grey below 250 as obstacle): grey at or above `free_from` is free,
+    /// anything darker occupied. Set by `map.free_threshold` / `--free-threshold`, never by a
+    /// YAML.
+    #[serde(skip)]
+    Threshold {
+        /// The darkest grey value that is free.
+        free_from: u8,
+    },
+}
+
+/// How a map given as a bare PGM/PNG image (no ROS YAML beside it) is read.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BareImage {
+    /// Metres per pixel; required for a bare image.
+    pub resolution: Option<f64>,
+    /// With `Some(t)`: grey ≥ `t` is free and darker pixels are occupied ([`PixelMode::Threshold`]);
+    /// `None`: map_server's default thresholds (occupancy 0.65 / 0.196, i.e. grey ≥ 206 free,
+    /// ≤ 89 occupied, unknown between).
+    pub free_threshold: Option<u8>,
+}
+
+impl BareImage {
+    /// A bare image at `resolution` read with map_server's default thresholds.
+    pub fn at(resolution: Option<f64>) -> Self {
+        Self { resolution, free_threshold: None }
+    }
 }
 
 /// Reads `negate` written either as `0`/`1` or as a boolean.
@@ -77,6 +104,9 @@ impl Default for PixelRule {
 impl PixelRule {
     /// Classifies one pixel (grey value and alpha).
     pub fn classify(&self, value: u8, alpha: u8) -> CellState {
+        if let PixelMode::Threshold { free_from } = self.mode {
+            return if value >= free_from { CellState::Free } else { CellState::Occupied };
+        }
         if self.mode == PixelMode::Scale && alpha == 0 {
             return CellState::Unknown;
         }
@@ -184,12 +214,17 @@ pub fn load_ros_yaml(path: &Path) -> Result<GridMap, MapError> {
     decode_map_image(&bytes, &meta.image, &name, meta.resolution, meta.origin, meta.rule)
 }
 
-/// Loads a bare PGM/PNG image at `resolution` m per pixel, origin (0, 0), default thresholds.
-pub fn load_image(path: &Path, resolution: f64) -> Result<GridMap, MapError> {
+/// Loads a bare PGM/PNG image at `resolution` m per pixel, origin (0, 0): map_server's default
+/// thresholds, or two classes split at `free_threshold` ([`BareImage`]).
+pub fn load_image(path: &Path, resolution: f64, free_threshold: Option<u8>) -> Result<GridMap, MapError> {
     let name = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
     let bytes = crate::io::read_bounded(path, crate::io::MAX_IMAGE_FILE_BYTES)
         .map_err(|source| MapError::Io { path: path.to_path_buf(), source })?;
-    decode_map_image(&bytes, path, &name, resolution, Point::origin(), PixelRule::default())
+    let rule = match free_threshold {
+        Some(free_from) => PixelRule { mode: PixelMode::Threshold { free_from }, ..PixelRule::default() },
+        None => PixelRule::default(),
+    };
+    decode_map_image(&bytes, path, &name, resolution, Point::origin(), rule)
 }
 
 /// Decodes the bytes of a PGM or PNG image (read from `path`, named in messages) into a map.
@@ -235,17 +270,28 @@ pub fn decode_map_image(
     })
 }
 
-/// Resolves `--map`: a preset name, a ROS YAML file, or an image with a resolution.
-pub fn load_map(spec: &str, resolution: Option<f64>) -> Result<GridMap, MapError> {
+/// Resolves `--map`: a preset name, a ROS YAML file, or a bare image read as `image` says.
+/// A free threshold is refused for anything but a bare image: a YAML carries its own thresholds.
+pub fn load_map(spec: &str, image: &BareImage) -> Result<GridMap, MapError> {
+    let path = PathBuf::from(spec);
+    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    if let Some(t) = image.free_threshold
+        && (preset(spec).is_some() || !matches!(ext.as_str(), "pgm" | "png"))
+    {
+        return Err(MapError::OutOfRange {
+            source_name: spec.to_string(),
+            field: "free_threshold",
+            value: t.to_string(),
+            allowed: "a free threshold applies to a bare PGM/PNG image only (a ROS map YAML sets free_thresh and occupied_thresh; presets are drawn in three classes)",
+        });
+    }
     if let Some(m) = preset(spec) {
         return Ok(m);
     }
-    let path = PathBuf::from(spec);
-    let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
     match ext.as_str() {
         "yaml" | "yml" => load_ros_yaml(&path),
-        "pgm" | "png" => match resolution {
-            Some(r) => load_image(&path, r),
+        "pgm" | "png" => match image.resolution {
+            Some(r) => load_image(&path, r, image.free_threshold),
             None => Err(MapError::OutOfRange {
                 source_name: spec.to_string(),
                 field: "resolution",
@@ -301,6 +347,30 @@ mod tests {
         assert_eq!(raw.classify(0, 255), CellState::Free);
         assert_eq!(raw.classify(100, 255), CellState::Occupied);
         assert_eq!(raw.classify(255, 255), CellState::Unknown);
+    }
+
+    /// map_server's defaults leave grey 90–205 unknown; a free threshold splits at its value
+    /// into two classes, whatever the alpha.
+    #[test]
+    fn a_free_threshold_reads_two_classes() {
+        use CellState::{Free as F, Occupied as O, Unknown as U};
+        let ros = PixelRule::default();
+        let ipa = PixelRule { mode: PixelMode::Threshold { free_from: 250 }, ..ros };
+        for (grey, by_ros, by_ipa) in
+            [(0, O, O), (89, O, O), (90, U, O), (205, U, O), (206, F, O), (249, F, O), (250, F, F), (255, F, F)]
+        {
+            assert_eq!((ros.classify(grey, 255), ipa.classify(grey, 0)), (by_ros, by_ipa), "grey {grey}");
+        }
+    }
+
+    /// A free threshold is refused where no bare image is read.
+    #[test]
+    fn a_free_threshold_needs_a_bare_image() {
+        let image = BareImage { resolution: None, free_threshold: Some(250) };
+        for source in ["office", "map.yaml"] {
+            let e = load_map(source, &image).unwrap_err().to_string();
+            assert!(e.contains("`free_threshold` = 250 is out of range: a free threshold applies to a bare"), "{e}");
+        }
     }
 
     #[test]

@@ -10,11 +10,24 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MapSection {
-    /// Preset name, ROS YAML or image path (relative paths from the experiment file's folder).
+    /// Preset name, ROS YAML or image path (a relative path is read from the working directory,
+    /// in run and grid files alike).
     pub source: String,
     /// Metres per pixel for a bare image.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub resolution: Option<f64>,
+    /// For a bare image: grey values at or above this are free, darker ones occupied (the ipa
+    /// room-segmentation benchmark uses 250). Unset: map_server's default thresholds (grey
+    /// ≥ 206 free, ≤ 89 occupied, unknown between).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub free_threshold: Option<u8>,
+}
+
+impl MapSection {
+    /// How a bare image of this section is read.
+    pub fn bare_image(&self) -> crate::map::ros::BareImage {
+        crate::map::ros::BareImage { resolution: self.resolution, free_threshold: self.free_threshold }
+    }
 }
 
 /// `[robot]` (003 Table 4.2).
@@ -57,7 +70,7 @@ pub struct BudgetSection {
 
 impl Default for MapSection {
     fn default() -> Self {
-        Self { source: "thesis-1".into(), resolution: None }
+        Self { source: "thesis-1".into(), resolution: None, free_threshold: None }
     }
 }
 impl Default for RobotSection {

@@ -408,7 +408,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             let cfg = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")).ok();
             let paths = crate::io::read_path_csv(&run_dir.join("best_path.csv")).ok();
             let panel = cfg.zip(paths).and_then(|(cfg, paths)| {
-                let m = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution).ok()?;
+                let m = crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()).ok()?;
                 let g = CoverageGrid::new(&m);
                 let title = format!(
                     "{v}, {}: cov {:.3}, t {:.3}",

@@ -337,7 +337,7 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         let run_dir = dir.join("runs").join(get(r, "run_id"));
         let Ok(cfg) = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")) else { continue };
         let Ok(paths) = crate::io::read_path_csv(&run_dir.join("best_path.csv")) else { continue };
-        let Ok(map) = crate::map::ros::load_map(&cfg.map.source, cfg.map.resolution) else { continue };
+        let Ok(map) = crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()) else { continue };
         let mut grid = CoverageGrid::new(&map);
         if let Some(rt) = cfg.retrain {
             let [x0, y0, x1, y1] = rt.region;

@@ -206,20 +206,8 @@ impl Study {
                 let full = path.parent().unwrap_or(Path::new(".")).join(p);
                 let body = crate::io::read_text_bounded(&full, crate::io::MAX_TEXT_FILE_BYTES)
                     .map_err(|e| ConfigError::new(&origin, "base", format!("cannot read {}: {e}", full.display())))?;
-                let t: Table = toml::from_str(&body)
-                    .map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?;
-                // Relative map paths in the base are relative to the base file.
-                if let Some(Value::String(src)) = get(&t, "map.source").cloned()
-                    && crate::map::presets::preset(&src).is_none()
-                    && !Path::new(&src).is_absolute()
-                {
-                    let mut t = t;
-                    let rel = full.parent().unwrap_or(Path::new(".")).join(&src);
-                    set(&mut t, "map.source", Value::String(rel.display().to_string())).expect("map is a table");
-                    t
-                } else {
-                    t
-                }
+                // Its map path, like every relative map path, is read from the working directory.
+                toml::from_str(&body).map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?
             }
         };
         base.remove("output");

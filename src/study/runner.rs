@@ -148,16 +148,23 @@ pub struct StudyOutcome {
 
 /// Maps loaded once per study and shared by its runs.
 #[derive(Default)]
-pub struct MapCache(Mutex<std::collections::HashMap<(String, Option<u64>), crate::map::GridMap>>);
+pub struct MapCache(Mutex<std::collections::HashMap<MapKey, crate::map::GridMap>>);
+
+/// A map's source with the bits of its bare-image resolution and its free threshold.
+type MapKey = (String, Option<u64>, Option<u8>);
 
 impl MapCache {
     /// Loads a map, or clones the one loaded before.
-    pub fn load(&self, source: &str, resolution: Option<f64>) -> Result<crate::map::GridMap, crate::map::MapError> {
-        let key = (source.to_string(), resolution.map(f64::to_bits));
+    pub fn load(
+        &self,
+        source: &str,
+        image: &crate::map::ros::BareImage,
+    ) -> Result<crate::map::GridMap, crate::map::MapError> {
+        let key = (source.to_string(), image.resolution.map(f64::to_bits), image.free_threshold);
         if let Some(m) = self.0.lock().expect("map cache").get(&key) {
             return Ok(m.clone());
         }
-        let m = crate::map::ros::load_map(source, resolution)?;
+        let m = crate::map::ros::load_map(source, image)?;
         self.0.lock().expect("map cache").insert(key, m.clone());
         Ok(m)
     }
