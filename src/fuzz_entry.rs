@@ -45,14 +45,58 @@ pub fn path_csv(data: &[u8]) {
     let _ = crate::io::parse_path_csv(text, Path::new("fuzz.csv"));
 }
 
+/// `covga eval` alone, for [`eval_args`].
+#[derive(clap::Parser)]
+struct EvalCommand {
+    #[command(flatten)]
+    args: crate::cli::eval::EvalArgs,
+}
+
+/// `covga eval`'s arguments: NUL-separated words (at most 32), parsed as the command line
+/// parses them and run. So that an input neither reads nor writes the user's files, `--path`,
+/// `--fleet` and `--out` are dropped with their values, a `--map` that is not a preset becomes
+/// `thesis-1`, and results go to a folder of this process under the system's temporary folder.
+pub fn eval_args(data: &[u8]) {
+    use clap::Parser;
+    let Ok(text) = std::str::from_utf8(data) else { return };
+    let mut argv = vec!["eval".to_string()];
+    let mut words = text.split('\0').take(32).peekable();
+    while let Some(word) = words.next() {
+        let (flag, inline) = match word.split_once('=') {
+            Some((f, v)) if f.starts_with("--") => (f, Some(v)),
+            _ => (word, None),
+        };
+        match flag {
+            "--path" | "--fleet" | "--out" => {
+                if inline.is_none() {
+                    words.next();
+                }
+            }
+            "--map" => {
+                let value = inline.map(str::to_string).or_else(|| words.next().map(str::to_string));
+                let value = value.filter(|v| crate::map::presets::preset(v).is_some());
+                argv.extend(["--map".to_string(), value.unwrap_or_else(|| "thesis-1".into())]);
+            }
+            _ => argv.push(word.to_string()),
+        }
+    }
+    let out = std::env::temp_dir().join(format!("covga-fuzz-eval-{}", std::process::id()));
+    argv.extend(["--out".to_string(), out.display().to_string()]);
+    if let Ok(command) = EvalCommand::try_parse_from(argv) {
+        let _ = crate::cli::eval::run(command.args);
+    }
+    let _ = std::fs::remove_dir_all(&out);
+}
+
 /// A loader run on raw bytes.
 pub type Entry = fn(&[u8]);
 
 /// The targets by name, as the fuzz crate and the corpus replay know them.
-pub const TARGETS: [(&str, Entry); 5] = [
+pub const TARGETS: [(&str, Entry); 6] = [
     ("experiment_toml", experiment_toml),
     ("grid_toml", grid_toml),
     ("ros_yaml", ros_yaml),
     ("map_image", map_image),
     ("path_csv", path_csv),
+    ("eval_args", eval_args),
 ];

@@ -24,7 +24,8 @@ const LAYERS: &[&[&str]] = &[
     &["experiment"],
     &["study"],
     &["report"],
-    &["cli", "fuzz_entry"],
+    &["cli"],
+    &["fuzz_entry"],
 ];
 
 /// The layer of a top-level module, or `None` for one the order does not name.

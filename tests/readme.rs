@@ -202,3 +202,52 @@ fn the_completion_figures_are_what_eval_prints() {
         assert!(flat.contains(&claim), "the README should say `{claim}`");
     }
 }
+
+/// The central-fleet example's figures and the area division's makespan beside them.
+#[test]
+fn the_central_fleet_figures_are_what_the_example_gives() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("central");
+    let o = covga(&["run", "experiments/fleet-thesis1-hetero-central.toml", "--quiet", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let f = |k: &str| summary["fleet"][k].as_f64().unwrap_or_else(|| panic!("no fleet.{k}"));
+    let central = format!(
+        "union {:.1} %, overlap {:.1} %, makespan {:.0} s, balance {:.2}",
+        100.0 * f("union_free"),
+        100.0 * f("overlap_fraction"),
+        f("makespan_s"),
+        f("balance")
+    );
+    let divided = dir.path().join("divided");
+    let o = covga(&[
+        "eval",
+        "--fleet",
+        "experiments/fleets/thesis1-hetero.toml",
+        "--divide",
+        "--json",
+        "--out",
+        divided.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let division = format!("against {:.0} s by area division", v["fleet"]["makespan_s"].as_f64().unwrap());
+    let flat = readme().replace('\n', " ");
+    for claim in [central, division] {
+        assert!(flat.contains(&claim), "the README should say `{claim}`");
+    }
+}
+
+/// `eval --help` names every preset, and `covga maps` writes nowhere unless told where.
+#[test]
+fn eval_help_names_every_preset_and_maps_needs_a_folder() {
+    let help = String::from_utf8_lossy(&covga(&["eval", "--help"]).stdout).into_owned();
+    for name in covga::map::presets::PRESET_NAMES {
+        assert!(help.contains(name), "eval --help does not name the preset {name}");
+    }
+    let dir = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir.path()).arg("maps").output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "covga maps without --out wrote files");
+}

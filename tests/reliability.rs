@@ -290,6 +290,15 @@ const CASES: &[Case] = &[
         args: &["grid", "g.toml", "--shard", "1/2", "--slurm", "--out", "OUT"],
         needle: "'--shard <SHARD>' cannot be used with '--slurm'",
     },
+    Case {
+        name: "D11: area division with a robot too slow for one lane",
+        files: &[(
+            "fleet.toml",
+            "[[robots]]\nname = \"slow\"\nwidth = 0.6\nspeed = 0.001\nstart = [1.3, 1.3]\n[[robots]]\nname = \"fast\"\nwidth = 0.6\nspeed = 0.2\nstart = [9.7, 1.3]\n",
+        )],
+        args: &["eval", "--fleet", "fleet.toml", "--divide", "--out", "OUT"],
+        needle: "robot \"slow\" was given 0.44 m² (11 cells): its share of the area by width × speed",
+    },
     Case { name: "merge of a folder with no shards", files: &[], args: &["merge", "."], needle: "no runs.csv" },
     Case {
         name: "merge of a folder that is not a study",

@@ -136,7 +136,7 @@ def test_camera_keys_are_checked_and_change_the_camera_metrics():
         (lambda m, p: covga.score(m, p, width=20.0), "wider than the map"),
         (lambda m, p: covga.pattern(m, "zigzag"), "pattern 'zigzag'"),
         (lambda m, p: covga.pattern(m, start=(0.0, 0.0)), "start (0, 0)"),
-        (lambda m, p: covga.pattern(m, width=1e-5), "width: a robot 0.00001 m wide"),
+        (lambda m, p: covga.pattern(m, width=1e-5), "width: a robot 1e-5 m wide"),
     ],
 )
 def test_bad_arguments_raise_config_error(call, message):

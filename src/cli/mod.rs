@@ -1,6 +1,6 @@
 //! The `covga` command line. The only place that prints for humans.
 
-mod eval;
+pub(crate) mod eval;
 mod grid;
 mod maps;
 mod run;

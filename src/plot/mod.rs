@@ -278,6 +278,11 @@ pub fn side_legend<DB: DrawingBackend>(
     Ok(())
 }
 
+/// A metre tick label in its shortest form (`5`, `2.5`), never `5.0`.
+pub fn metre_tick(v: &f64) -> String {
+    format!("{}", (v * 1e6).round() / 1e6 + 0.0)
+}
+
 /// Tick labels with as many decimals as the range `span` needs (counts need none).
 pub fn tick_decimals(span: f64) -> usize {
     if span >= 20.0 {
@@ -314,6 +319,14 @@ pub fn cell_runs<C: PartialEq + Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Metre ticks print without a trailing `.0` and without a negative zero.
+    #[test]
+    fn metre_ticks_are_short() {
+        for (v, label) in [(5.0, "5"), (2.5, "2.5"), (-0.0, "0"), (-17.4, "-17.4"), (0.1 + 0.2, "0.3")] {
+            assert_eq!(metre_tick(&v), label);
+        }
+    }
 
     #[test]
     fn text_sizes_snap_to_clean_sizes() {

@@ -159,7 +159,7 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     let labels = if small { (34, 50) } else { (45, 62) };
     let mut chart =
         super::equal_scale_chart(area, &fig.title, fonts.0, labels, if small { 14 } else { 16 }, ox..x1, oy..y1)?;
-    let tick = |v: &f64| format!("{}", (v * 1e6).round() / 1e6);
+    let tick = super::metre_tick;
     chart
         .configure_mesh()
         .disable_mesh()

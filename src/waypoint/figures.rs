@@ -9,7 +9,40 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 const OBSTACLE: RGBColor = RGBColor(70, 70, 70);
+const UNKNOWN: RGBColor = RGBColor(175, 175, 175);
 const FREE: RGBColor = RGBColor(250, 250, 250);
+
+/// The working pixels whose centre lies on an unknown cell of `map`. The planner treats them as
+/// occluded like walls; the figures draw them grey, as `path.png` draws unknown cells, so that a
+/// reader tells unmapped space from walls.
+pub fn unknown_pixels(work: &WorkMap, map: &crate::map::GridMap) -> Vec<bool> {
+    let mut out = vec![false; work.width * work.height];
+    for row in 0..work.height {
+        for col in 0..work.width {
+            let centre = crate::geom::Point::new(
+                work.origin.0 + (col as f64 + 0.5) * work.scale,
+                work.origin.1 + (row as f64 + 0.5) * work.scale,
+            );
+            out[row * work.width + col] =
+                map.cell_at(centre).is_some_and(|(r, c)| map.state(r, c) == crate::map::CellState::Unknown);
+        }
+    }
+    out
+}
+
+/// The colour of an occluded working pixel: unknown space or obstacle.
+fn occluded_colour(unknown: &[bool], i: usize) -> RGBColor {
+    if unknown[i] { UNKNOWN } else { OBSTACLE }
+}
+
+/// The legend entries of the occluded classes present.
+fn occluded_entries(unknown: &[bool]) -> Vec<(RGBColor, String)> {
+    let mut entries = vec![(OBSTACLE, "obstacle".to_string())];
+    if unknown.iter().any(|&u| u) {
+        entries.push((UNKNOWN, "unknown (unmapped)".to_string()));
+    }
+    entries
+}
 
 fn agent_colour(k: usize) -> RGBColor {
     [
@@ -38,6 +71,8 @@ fn raster_chart<'a, DB: DrawingBackend>(
     chart
         .configure_mesh()
         .disable_mesh()
+        .x_label_formatter(&crate::plot::metre_tick)
+        .y_label_formatter(&crate::plot::metre_tick)
         .x_desc("x [m]")
         .y_desc("y [m]")
         .label_style(text(14.0))
@@ -68,6 +103,8 @@ pub struct PathsFigure<'a> {
     pub self_closures: Vec<((f64, f64), (f64, f64))>,
     /// Edges shared between agents (metres).
     pub shared_closures: Vec<((f64, f64), (f64, f64))>,
+    /// Occluded pixels that are unknown space ([`unknown_pixels`]).
+    pub unknown: Vec<bool>,
     /// Title.
     pub title: String,
 }
@@ -78,8 +115,9 @@ impl Figure for PathsFigure<'_> {
     }
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let (area, side) = root.split_horizontally(860);
-        let mut chart =
-            raster_chart(&area, self.map, &self.title, |i| if self.map.occluded[i] { OBSTACLE } else { FREE })?;
+        let mut chart = raster_chart(&area, self.map, &self.title, |i| {
+            if self.map.occluded[i] { occluded_colour(&self.unknown, i) } else { FREE }
+        })?;
         for (k, p) in self.paths.iter().enumerate() {
             // Segment by segment: thick polylines are joined with mitres, which spike where a
             // path turns back on itself.
@@ -102,7 +140,7 @@ impl Figure for PathsFigure<'_> {
             (0..self.paths.len()).map(|k| (agent_colour(k), format!("agent {k} path"))).collect();
         entries.push((RED, format!("self loop closure ({})", self.self_closures.len())));
         entries.push((MAGENTA, format!("inter-agent closure ({})", self.shared_closures.len())));
-        entries.push((OBSTACLE, "obstacle".into()));
+        entries.extend(occluded_entries(&self.unknown));
         crate::plot::legend(&side, &entries, 60)
     }
 }
@@ -122,6 +160,8 @@ pub struct GraphFigure<'a> {
     pub band_seen: Vec<bool>,
     /// Wall band pixels.
     pub band: Vec<bool>,
+    /// Occluded pixels that are unknown space ([`unknown_pixels`]).
+    pub unknown: Vec<bool>,
     /// Title.
     pub title: String,
 }
@@ -137,7 +177,7 @@ impl Figure for GraphFigure<'_> {
         let (area, side) = root.split_horizontally(860);
         let mut chart = raster_chart(&area, self.map, &self.title, |i| {
             if self.map.occluded[i] {
-                OBSTACLE
+                occluded_colour(&self.unknown, i)
             } else if self.band[i] && !self.band_seen[i] {
                 LOST
             } else if self.band[i] {
@@ -154,14 +194,14 @@ impl Figure for GraphFigure<'_> {
         chart
             .draw_series(self.starts.iter().map(|&s| TriangleMarker::new(s, 9, agent_colour(1).filled())))
             .map_err(err)?;
-        let entries = [
+        let mut entries = vec![
             (dot, format!("waypoint ({})", self.points.len())),
             (EDGE, format!("edge ({})", self.edges.len())),
             (agent_colour(1), "start".to_string()),
             (BAND, "wall band in view".to_string()),
             (LOST, "wall band out of view".to_string()),
-            (OBSTACLE, "obstacle".to_string()),
         ];
+        entries.extend(occluded_entries(&self.unknown));
         crate::plot::legend(&side, &entries, 60)
     }
 }
@@ -174,6 +214,8 @@ pub struct CoverageFigure<'a> {
     pub seen: Vec<bool>,
     /// Wall band pixels.
     pub band: Vec<bool>,
+    /// Occluded pixels that are unknown space ([`unknown_pixels`]).
+    pub unknown: Vec<bool>,
     /// Title.
     pub title: String,
 }
@@ -189,7 +231,7 @@ impl Figure for CoverageFigure<'_> {
         let (area, side) = root.split_horizontally(860);
         raster_chart(&area, self.map, &self.title, |i| {
             if self.map.occluded[i] {
-                OBSTACLE
+                occluded_colour(&self.unknown, i)
             } else if self.seen[i] {
                 SEEN
             } else if self.band[i] {
@@ -198,13 +240,13 @@ impl Figure for CoverageFigure<'_> {
                 OPEN
             }
         })?;
-        let entries = [
-            (OBSTACLE, "obstacle"),
-            (SEEN, "explored"),
-            (OPEN, "unexplored open space"),
-            (WALL, "unexplored wall band"),
-        ];
-        crate::plot::legend(&side, &entries.iter().map(|(c, s)| (*c, s.to_string())).collect::<Vec<_>>(), 60)
+        let mut entries = occluded_entries(&self.unknown);
+        entries.extend([
+            (SEEN, "explored".to_string()),
+            (OPEN, "unexplored open space".to_string()),
+            (WALL, "unexplored wall band".to_string()),
+        ]);
+        crate::plot::legend(&side, &entries, 60)
     }
 }
 

@@ -242,6 +242,7 @@ impl Planner for WaypointConfig {
         let paths: Vec<Vec<(f64, f64)>> = best.rows.iter().map(|r| r.iter().map(|&i| to_m(i)).collect()).collect();
         let (self_cl, shared_cl) = closure_edges(&best.rows, self.ga.objectives.lc_separation);
         let seg = |(a, b): (u32, u32)| (to_m(a), to_m(b));
+        let unknown = super::figures::unknown_pixels(&world.map, &scenario.map);
         let title = format!(
             "{} agent(s) on {}: walls {:.1} %, open {:.1} %",
             best.rows.len(),
@@ -255,6 +256,7 @@ impl Planner for WaypointConfig {
                 paths,
                 self_closures: self_cl.into_iter().map(seg).collect(),
                 shared_closures: shared_cl.into_iter().map(seg).collect(),
+                unknown: unknown.clone(),
                 title: title.clone(),
             },
             &dir.join("paths"),
@@ -274,6 +276,7 @@ impl Planner for WaypointConfig {
                 starts: world.starts.iter().map(|&s| to_m(s)).collect(),
                 band_seen: (0..world.map.occluded.len()).map(|i| reach.contains(i)).collect(),
                 band: band.clone(),
+                unknown: unknown.clone(),
                 title: format!(
                     "{} waypoints on {}: {:.1} % of the wall band seen from the graph",
                     g.points.len(),
@@ -288,7 +291,7 @@ impl Planner for WaypointConfig {
             add_views(r, &world.graph, &world.traversals, &mut u);
         }
         let seen = (0..world.map.occluded.len()).map(|i| u.contains(i)).collect();
-        crate::plot::save(&CoverageFigure { map: &world.map, seen, band, title }, &dir.join("coverage"))?;
+        crate::plot::save(&CoverageFigure { map: &world.map, seen, band, unknown, title }, &dir.join("coverage"))?;
         let seconds_per_px = self.world.scale / scenario.robot.speed;
         crate::plot::save(
             &SnapshotsFigure { snapshots: &out.snapshots, seconds_per_px },
