@@ -144,8 +144,27 @@ pub struct Curve {
     pub points: Vec<(f64, f64, f64, f64)>,
 }
 
-/// Height of the legend strip below the convergence panels, in pixels.
-const LEGEND_STRIP: u32 = 40;
+/// Height of one line of the legend below the convergence panels, in pixels.
+const LEGEND_LINE: u32 = 24;
+
+/// Where legend entries of `labels` go in a strip `width` pixels wide: `(line, x)` per entry,
+/// a new line whenever the next entry would run past the right edge.
+pub fn legend_layout(labels: &[String], width: u32) -> Vec<(u32, i32)> {
+    let (mut line, mut x) = (0u32, 20i32);
+    labels
+        .iter()
+        .map(|label| {
+            let w = 28 + (label.chars().count() as f64 * 0.6 * 14.0) as i32 + 30;
+            if x > 20 && x + w > width as i32 - 10 {
+                line += 1;
+                x = 20;
+            }
+            let at = (line, x);
+            x += w;
+            at
+        })
+        .collect()
+}
 
 /// Convergence of the GAs: one panel per map.
 pub struct ConvergenceFigure {
@@ -153,10 +172,44 @@ pub struct ConvergenceFigure {
     pub panels: Vec<(String, Vec<Curve>)>,
 }
 
+impl ConvergenceFigure {
+    /// Every series in the order it first appears, with its legend label; its colour is its
+    /// place here in every panel, so that a planner missing from one panel does not shift the
+    /// others' colours.
+    fn series(&self) -> Vec<(&Curve, String)> {
+        let mut series: Vec<&Curve> = Vec::new();
+        for c in self.panels.iter().flat_map(|(_, c)| c) {
+            if !series.iter().any(|s| s.label == c.label) {
+                series.push(c);
+            }
+        }
+        let runs: std::collections::BTreeSet<usize> =
+            self.panels.iter().flat_map(|(_, c)| c.iter().map(|c| c.runs)).collect();
+        series
+            .into_iter()
+            .map(|c| {
+                let label = match runs.len() {
+                    1 => format!("{} ({} runs)", c.label, c.runs),
+                    _ => c.label.clone(),
+                };
+                (c, label)
+            })
+            .collect()
+    }
+
+    /// The legend strip's height for a figure `width` pixels wide.
+    fn legend_height(&self, width: u32) -> u32 {
+        let labels: Vec<String> = self.series().into_iter().map(|(_, l)| l).collect();
+        let lines = legend_layout(&labels, width).last().map_or(1, |(line, _)| line + 1);
+        lines * LEGEND_LINE + 16
+    }
+}
+
 impl Figure for ConvergenceFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = shape(self.panels.len());
-        (c as u32 * 620, r as u32 * 400 + 40 + LEGEND_STRIP)
+        let width = c as u32 * 620;
+        (width, r as u32 * 400 + 40 + self.legend_height(width))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
@@ -166,28 +219,16 @@ impl Figure for ConvergenceFigure {
                 text(16.0),
             )
             .map_err(err)?;
-        // One legend for all panels, below them, where it hides no curve.
-        let (panels, strip) = root.split_vertically(root.dim_in_pixel().1 - LEGEND_STRIP);
-        // Every series in the order it first appears; its colour is its place here in every
-        // panel, so that a planner missing from one panel does not shift the others' colours.
-        let mut series: Vec<&Curve> = Vec::new();
-        for c in self.panels.iter().flat_map(|(_, c)| c) {
-            if !series.iter().any(|s| s.label == c.label) {
-                series.push(c);
-            }
-        }
-        let colour_of = |label: &str| colour(series.iter().position(|s| s.label == label).unwrap_or(0));
-        let runs: std::collections::BTreeSet<usize> =
-            self.panels.iter().flat_map(|(_, c)| c.iter().map(|c| c.runs)).collect();
-        let mut x = 20;
-        for (k, c) in series.iter().enumerate() {
-            let label = match runs.len() {
-                1 => format!("{} ({} runs)", c.label, c.runs),
-                _ => c.label.clone(),
-            };
-            strip.draw(&PathElement::new(vec![(x, 20), (x + 22, 20)], colour(k).stroke_width(3))).map_err(err)?;
-            strip.draw(&Text::new(label.clone(), (x + 28, 12), text(14.0))).map_err(err)?;
-            x += 28 + (label.chars().count() as f64 * 0.55 * 14.0) as i32 + 30;
+        // One legend for all panels, below them, where it hides no curve, wrapped to the width.
+        let (width, height) = root.dim_in_pixel();
+        let (panels, strip) = root.split_vertically(height - self.legend_height(width));
+        let series = self.series();
+        let colour_of = |label: &str| colour(series.iter().position(|(s, _)| s.label == label).unwrap_or(0));
+        let labels: Vec<String> = series.iter().map(|(_, l)| l.clone()).collect();
+        for (k, (label, (line, x))) in labels.iter().zip(legend_layout(&labels, width)).enumerate() {
+            let y = 20 + (line * LEGEND_LINE) as i32;
+            strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour(k).stroke_width(3))).map_err(err)?;
+            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
         }
         for (area, (map, curves)) in panels.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
             let x_max = curves.iter().flat_map(|c| c.points.last().map(|p| p.0)).fold(1.0f64, f64::max);
@@ -254,5 +295,25 @@ impl Figure for PlannerPathsFigure<'_> {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Entries run left to right and wrap before the right edge; an entry wider than the strip
+    /// still gets a line of its own.
+    #[test]
+    fn legend_entries_wrap_before_the_edge() {
+        let labels = |n: &[usize]| n.iter().map(|&k| "x".repeat(k)).collect::<Vec<_>>();
+        // An entry of k characters takes 28 + floor(8.4 k) + 30 pixels.
+        for (chars, width, expected) in [
+            (vec![10, 10], 1000, vec![(0, 20), (0, 162)]),
+            (vec![10, 10, 10], 400, vec![(0, 20), (0, 162), (1, 20)]),
+            (vec![200, 5], 300, vec![(0, 20), (1, 20)]),
+        ] {
+            assert_eq!(legend_layout(&labels(&chars), width), expected, "{chars:?} in {width} px");
+        }
     }
 }
