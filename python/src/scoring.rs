@@ -101,7 +101,10 @@ pub fn score(
         if paths.is_empty() {
             return Err(config_error("path: no path given (an (N, 2) array, or a list of them for agents)"));
         }
-        paths.iter().enumerate().map(|(k, p)| points(&format!("path {k}"), p)).collect::<PyResult<Vec<_>>>()
+        let plan =
+            paths.iter().enumerate().map(|(k, p)| points(&format!("path {k}"), p)).collect::<PyResult<Vec<_>>>()?;
+        covga::coverage::score::check_camera_poses(&plan).map_err(|m| config_error(format!("path: {m}")))?;
+        Ok(plan)
     })?;
     let m = &map.inner;
     released(py, || {

@@ -161,3 +161,11 @@ def test_a_bare_image_is_read_with_map_servers_thresholds_or_a_free_threshold(tm
             covga.load_map(image, resolution=0.1, free_threshold=bad)
     with pytest.raises(ValueError, match="applies to a bare PGM/PNG image only"):
         covga.load_map("office", free_threshold=250)
+
+
+def test_a_path_too_long_to_score_is_refused_with_the_bound():
+    m = covga.load_map("thesis-1")
+    xs = np.linspace(1.5, 9.5, 150_001)
+    path = np.column_stack([xs, np.full_like(xs, 2.0)])
+    with pytest.raises(ValueError, match="would pose the camera 300000 times.*at most 200000 poses"):
+        covga.score(m, path)

@@ -172,10 +172,7 @@ fn read_fleet(file: &std::path::Path, map: &crate::map::GridMap) -> Result<crate
     crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)
 }
 
-/// The most camera poses `eval --path` scores: each costs up to about 9 000 pixel tests with
-/// 000's default camera, so this bounds a scoring at about half a minute on one core.
-pub const MAX_CAMERA_POSES: u64 = 200_000;
-
+/// Runs `covga eval` with its parsed arguments.
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let robot = check_robot(&a)?;
     if let Some(r) = a.resolution
@@ -224,16 +221,8 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         }
         Some(file) => {
             let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;
-            let poses = crate::coverage::score::camera_poses(&paths);
-            if poses > MAX_CAMERA_POSES {
-                let points: usize = paths.iter().map(Vec::len).sum();
-                return Err(CliError::Input(format!(
-                    "{}: scoring its {points} points would pose the camera {poses} times (at both ends of each segment and every {} m between); eval scores at most {MAX_CAMERA_POSES} poses: thin the path first (e.g. keep one point in {})",
-                    file.display(),
-                    crate::coverage::score::CAMERA_STEP_M,
-                    poses.div_ceil(MAX_CAMERA_POSES).max(2)
-                )));
-            }
+            crate::coverage::score::check_camera_poses(&paths)
+                .map_err(|m| CliError::Input(format!("{}: {m}", file.display())))?;
             for (k, p) in paths.iter().enumerate() {
                 let what = |end: &str| format!("{}: agent {k} {end}", file.display());
                 map.check_station(p[0], &what("start")).map_err(CliError::Input)?;

@@ -25,6 +25,25 @@ use crate::map::reach::Reach;
 /// Spacing of camera poses along a path in metres.
 pub const CAMERA_STEP_M: f64 = 1.0;
 
+/// The most camera poses a scoring of a given path may take (`covga eval --path`, Python's
+/// `score`): each costs up to about 9 000 pixel tests with 000's default camera, so this bounds
+/// a scoring at about half a minute on one core.
+pub const MAX_CAMERA_POSES: u64 = 200_000;
+
+/// Refuses `paths` whose scoring would pose the camera more than [`MAX_CAMERA_POSES`] times,
+/// with the count and how far to thin them.
+pub fn check_camera_poses(paths: &[Vec<Point>]) -> Result<(), String> {
+    let poses = camera_poses(paths);
+    if poses <= MAX_CAMERA_POSES {
+        return Ok(());
+    }
+    let points: usize = paths.iter().map(Vec::len).sum();
+    Err(format!(
+        "scoring its {points} points would pose the camera {poses} times (at both ends of each segment and every {CAMERA_STEP_M} m between); at most {MAX_CAMERA_POSES} poses are scored: thin the path first (e.g. keep one point in {})",
+        poses.div_ceil(MAX_CAMERA_POSES).max(2)
+    ))
+}
+
 /// How many times the common scorer poses the camera along `paths`: at both ends of every
 /// segment longer than a nanometre and every [`CAMERA_STEP_M`] between (as `coverage` does),
 /// so that callers can bound the work before scoring.
