@@ -357,7 +357,8 @@ fn every_bad_input_exits_2_with_one_line_and_writes_nothing() {
                 .then(|| "not one line".to_string()),
             err.contains("panicked").then(|| "panicked".to_string()),
             (listing(dir.path()) != before).then(|| format!("wrote {:?}", listing(dir.path()))),
-            (started.elapsed().as_secs() > 20).then(|| "slow to refuse".to_string()),
+            // Every refusal comes within 5 s, whatever the input asks for.
+            (started.elapsed().as_secs_f64() > 5.0).then(|| format!("slow to refuse ({:?})", started.elapsed())),
         ];
         for p in problems.into_iter().flatten() {
             failures.push(format!("{}: {p}; stderr: {}", case.name, err.trim()));

@@ -167,3 +167,22 @@ fn a_camera_depth_beyond_the_map_sees_the_same_and_runs_quickly() {
     }
     assert_eq!(a, b);
 }
+
+/// The waypoint planner reads `stations.end`: its plan ends there (the return leg is flown and
+/// paid for like every other planner's), and no warning calls the key ignored.
+#[test]
+fn the_plan_ends_at_the_end_station_without_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "seed = 3\nplanner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[stations]\nstart = [2.0, 2.0]\nend = [8.0, 8.0]\n[waypoint]\npopulation = 10\ngenerations = 3\n";
+    let file = write(dir.path(), text);
+    let out = dir.path().join("out");
+    let o = covga(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(!err.contains("stations.end"), "{err}");
+    let path = std::fs::read_to_string(out.join("best_path.csv")).unwrap();
+    let last: Vec<f64> = path.lines().last().unwrap().split(',').skip(2).map(|v| v.parse().unwrap()).collect();
+    assert_eq!(last, vec![8.0, 8.0], "the plan ends at {last:?}");
+    let first: Vec<f64> = path.lines().nth(1).unwrap().split(',').skip(2).map(|v| v.parse().unwrap()).collect();
+    assert_eq!(first, vec![2.0, 2.0], "the plan starts at {first:?}");
+}

@@ -6,6 +6,7 @@ use crate::plot::path::{PathFigure, draw_map_paths};
 use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
 
 /// One box: a planner's values on one map.
 pub struct BoxSeries {
@@ -34,20 +35,41 @@ fn colour(k: usize) -> RGBColor {
     crate::plot::series_colour(k)
 }
 
+impl BoxFigure {
+    /// Each box's axis label: the planner, with its executable share where some plans are not.
+    fn labels(boxes: &[BoxSeries]) -> Vec<String> {
+        boxes
+            .iter()
+            .map(|b| {
+                if b.excluded.is_empty() {
+                    b.label.clone()
+                } else {
+                    format!("{} ({}/{})", b.label, b.values.len(), b.values.len() + b.excluded.len())
+                }
+            })
+            .collect()
+    }
+
+    /// Height of the band under each panel that holds its labels, written upwards.
+    fn label_band(&self) -> u32 {
+        let longest = self.panels.iter().flat_map(|(_, b)| Self::labels(b)).map(|l| l.chars().count()).max();
+        (longest.unwrap_or(4) as f64 * 0.52 * 12.0) as u32 + 24
+    }
+}
+
 impl Figure for BoxFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = shape(self.panels.len());
-        // Each box needs room for its label (up to ~26 characters at 12 pt, with its
-        // executable share).
+        // Labels written upwards under the boxes: a box needs its width, not its label's.
         let boxes = self.panels.iter().map(|(_, b)| b.len()).max().unwrap_or(1) as u32;
-        (c as u32 * (190 * boxes + 80).max(720), r as u32 * 420 + 40)
+        (c as u32 * (70 * boxes + 90).max(520), r as u32 * (300 + self.label_band()) + 40)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(
                 &format!(
-                    "{} per planner (box = IQR, line = median, whiskers = min..max of the executable plans; grey × = plans that are not executable; (k/n) = executable share)",
+                    "{} per planner (box = IQR, line = median, whiskers = min..max of executable plans; grey × = not executable; (k/n) = executable share)",
                     self.metric
                 ),
                 text(16.0),
@@ -68,41 +90,31 @@ impl Figure for BoxFigure {
             let mut chart = ChartBuilder::on(area)
                 .caption(map, text(15.0))
                 .margin(8)
-                .x_label_area_size(40)
+                .x_label_area_size(self.label_band())
                 .y_label_area_size(60)
                 .build_cartesian_2d(0.0..n as f64, (lo - pad)..(hi + pad))
                 .map_err(err)?;
-            let labels: Vec<String> = boxes
-                .iter()
-                .map(|b| {
-                    if b.excluded.is_empty() {
-                        b.label.clone()
-                    } else {
-                        format!("{} ({}/{})", b.label, b.values.len(), b.values.len() + b.excluded.len())
-                    }
-                })
-                .collect();
+            let labels = Self::labels(boxes);
             let decimals = crate::plot::tick_decimals(hi - lo);
             chart
                 .configure_mesh()
                 .disable_x_mesh()
                 .light_line_style(RGBColor(235, 235, 235))
-                .x_labels(n * 2 + 1)
-                .x_label_formatter(&|x| {
-                    let k = (*x - 0.5).round();
-                    if (x - 0.5 - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < labels.len() {
-                        labels[k as usize].clone()
-                    } else {
-                        String::new()
-                    }
-                })
-                .x_label_style(text(12.0))
+                .x_labels(0)
                 .y_label_formatter(&|v| format!("{v:.decimals$}"))
                 .y_desc(&self.metric)
                 .label_style(text(12.0))
                 .axis_desc_style(text(13.0))
                 .draw()
                 .map_err(err)?;
+            // Labels written upwards under their boxes, ending just below the axis.
+            let upwards = text(12.0).transform(FontTransform::Rotate270).pos(Pos::new(HPos::Right, VPos::Center));
+            let below = lo - pad;
+            for (k, label) in labels.iter().enumerate() {
+                let (x, y) = chart.backend_coord(&(k as f64 + 0.5, below));
+                let (ax, ay) = area.get_base_pixel();
+                area.draw(&Text::new(label.clone(), (x - ax, y - ay + 8), upwards.clone())).map_err(err)?;
+            }
             for (k, b) in boxes.iter().enumerate() {
                 let grey = RGBColor(120, 120, 120);
                 chart
