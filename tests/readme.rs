@@ -47,14 +47,13 @@ fn numbers(text: &str) -> Vec<u64> {
     let mut digits = String::new();
     let chars: Vec<char> = text.chars().collect();
     for (i, &c) in chars.iter().enumerate() {
+        // A space followed by exactly three digits separates groups of one number.
+        let group_gap = (c == ' ' || c == '\u{2009}')
+            && chars.get(i + 1..i + 4).is_some_and(|g| g.iter().all(char::is_ascii_digit))
+            && !chars.get(i + 4).is_some_and(char::is_ascii_digit);
         if c.is_ascii_digit() {
             digits.push(c);
-        } else if (c == ' ' || c == '\u{2009}')
-            && !digits.is_empty()
-            && chars.get(i + 1..i + 4).is_some_and(|g| g.iter().all(char::is_ascii_digit))
-            && !chars.get(i + 4).is_some_and(char::is_ascii_digit)
-        {
-        } else if !digits.is_empty() {
+        } else if !digits.is_empty() && !group_gap {
             out.push(digits.parse().unwrap());
             digits.clear();
         }

@@ -109,10 +109,9 @@ impl Figure for BoxFigure {
                 .map_err(err)?;
             // Labels written upwards under their boxes, ending just below the axis.
             let upwards = text(12.0).transform(FontTransform::Rotate270).pos(Pos::new(HPos::Right, VPos::Center));
-            let below = lo - pad;
+            let (below, (ax, ay)) = (lo - pad, area.get_base_pixel());
             for (k, label) in labels.iter().enumerate() {
                 let (x, y) = chart.backend_coord(&(k as f64 + 0.5, below));
-                let (ax, ay) = area.get_base_pixel();
                 area.draw(&Text::new(label.clone(), (x - ax, y - ay + 8), upwards.clone())).map_err(err)?;
             }
             for (k, b) in boxes.iter().enumerate() {
