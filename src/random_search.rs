@@ -15,6 +15,7 @@ use crate::thesis::genome::random_genome;
 use crate::thesis::individual::{
     Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario as ThesisScenario, correct_and_evaluate,
 };
+use crate::thesis::member::{Member, ReachMask};
 use rayon::prelude::*;
 use std::time::Instant;
 
@@ -68,6 +69,7 @@ impl Planner for RandomSearch {
     ) -> Result<RunOutcome, PlannerError> {
         let started = Instant::now();
         let th = ThesisScenario::from_common(scenario);
+        let reach = if observers.is_empty() { ReachMask::default() } else { Individual::reach_mask(&th) };
         // Without an evaluation budget (a library caller's), one batch.
         let budget = Budget { evaluations: Some(budget.evaluations.unwrap_or(self.batch as u64)), ..*budget };
         let mut best: Option<Individual> = None;
@@ -108,6 +110,7 @@ impl Planner for RandomSearch {
                 best_fitness: b.fitness(),
                 mean_fitness: mean,
                 best_coverage: b.score.cov_final,
+                best_coverage_reach: Some(reach.coverage(b.reached(&reach))),
                 feasible: None,
                 diversity: None,
                 robots: Vec::new(),

@@ -496,3 +496,38 @@ fn relative_map_paths_are_read_from_the_working_directory() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("maps/room.pgm"), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// Every planner's history records the reachable coverage of its reported plan (the column
+/// the ablation's convergence figure plots); where the reported plan is the plan itself (the
+/// thesis GA, straight or routed, random search, a pattern), the last record equals the common
+/// scorer's `cov_final_reach` in `summary.json`.
+#[test]
+fn the_history_records_the_reachable_coverage_the_scorer_reports() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        ("thesis", "[thesis]\npop_min = 20\ninit_actions = 30\n", true),
+        ("thesis", "[thesis]\npop_min = 20\ninit_actions = 30\nmoves = \"routed\"\n", true),
+        ("random_search", "", true),
+        ("boustrophedon", "", true),
+        ("cell_order", "", false),
+        ("waypoint", "[waypoint]\ngenerations = 5\n", false),
+    ];
+    for (k, (planner, extra, exact)) in cases.into_iter().enumerate() {
+        let text = format!(
+            "seed = 3\nplanner = \"{planner}\"\n[map]\nsource = \"thesis-2\"\n{extra}[budget]\niterations = 20\nevaluations = 1500\n"
+        );
+        let exp = write(dir.path(), &format!("e{k}.toml"), &text);
+        let out = dir.path().join(format!("o{k}"));
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+        assert!(o.status.success(), "{planner}: {}", String::from_utf8_lossy(&o.stderr));
+        let cov = column(&read(&out.join("history.csv")), "best_coverage_reach");
+        assert!(!cov.is_empty() && cov.iter().all(|c| (0.0..=1.0).contains(c)), "{planner}: {cov:?}");
+        if exact {
+            let s: serde_json::Value = serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+            let scored = s["score"]["cov_final_reach"].as_f64().unwrap();
+            // serde_json reads floats to within an ulp (without its `float_roundtrip`
+            // feature), so equal values are compared to 1e-12.
+            assert!((cov.last().unwrap() - scored).abs() < 1e-12, "{planner} {extra}: {cov:?} vs {scored}");
+        }
+    }
+}

@@ -202,8 +202,8 @@ impl CellOrderConfig {
                 let mut scratch = crate::coverage::SweepScratch::new(grid);
                 // Lane coverage of the best tour (its sweeps without transit), recomputed when
                 // the best changes.
-                let mut lanes: Option<(Tour, f64)> = None;
-                let mut lane_coverage = |tour: &Tour| -> f64 {
+                let mut lanes: Option<(Tour, (f64, f64))> = None;
+                let mut lane_coverage = |tour: &Tour| -> (f64, f64) {
                     if let Some((t, c)) = &lanes
                         && t == tour
                     {
@@ -211,17 +211,22 @@ impl CellOrderConfig {
                     }
                     let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
                     let swept = scratch.sweep_all(grid, &paths, scenario.robot.width).unique();
-                    let c = swept as f64 / grid.area_cells().max(1) as f64;
+                    let c = (
+                        swept as f64 / grid.area_cells().max(1) as f64,
+                        crate::coverage::score::reach_coverage(&prepared.reach, &scratch),
+                    );
                     lanes = Some((tour.clone(), c));
                     c
                 };
                 let out = search::search(inst, &self.ga, seed, budget, |g| {
+                    let (best_coverage, best_coverage_reach) = lane_coverage(g.best.0);
                     let record = GenerationRecord {
                         iteration: g.iteration,
                         evaluations: g.evaluations,
                         best_fitness: g.fitness.0,
                         mean_fitness: g.fitness.1,
-                        best_coverage: lane_coverage(g.best.0),
+                        best_coverage,
+                        best_coverage_reach: Some(best_coverage_reach),
                         feasible: None,
                         diversity: None,
                         extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],

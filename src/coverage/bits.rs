@@ -62,6 +62,20 @@ impl BitLayers {
         &self.raster
     }
 
+    /// The cells flagged in `flags` (one flag per cell, row-major, as a [`CoverageGrid`]
+    /// numbers them) as bit rows in the layout of the planes, for
+    /// [`VisitPlanes::visited_in`].
+    pub fn mask_of(&self, flags: &[bool]) -> Vec<u64> {
+        let (rows, cols) = (self.raster.rows, self.raster.cols);
+        assert_eq!(flags.len(), rows * cols, "one flag per cell");
+        let mut mask = vec![0u64; rows * self.words];
+        for (i, _) in flags.iter().enumerate().filter(|(_, f)| **f) {
+            let (r, c) = (i / cols, i % cols);
+            mask[r * self.words + c / 64] |= 1u64 << (c % 64);
+        }
+        mask
+    }
+
     /// Calls `mask(word index, bits)` for every word of every row the swept rectangle of
     /// `a → b` touches: the cells of the segment, in the layout of the planes.
     #[inline]

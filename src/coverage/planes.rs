@@ -62,6 +62,17 @@ impl VisitPlanes {
         &self.planes[idx * self.top..(idx + 1) * self.top]
     }
 
+    /// The cells of word `idx` visited at least once (the union of its planes).
+    #[inline]
+    pub fn visited_word(&self, idx: usize) -> u64 {
+        self.word_planes(idx).iter().fold(0, |any, &w| any | w)
+    }
+
+    /// Distinct cells of `mask` (bit rows in this layout) visited at least once.
+    pub fn visited_in(&self, mask: &[u64]) -> u64 {
+        (0..self.words.min(mask.len())).map(|idx| u64::from((self.visited_word(idx) & mask[idx]).count_ones())).sum()
+    }
+
     /// The planes in use, word-major: word `idx`'s planes at `idx · planes()` onwards
     /// (`planes()` × `plane_words()` words).
     pub fn plane_data(&self) -> &[u64] {

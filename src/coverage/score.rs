@@ -258,6 +258,18 @@ impl CameraLayer {
     }
 }
 
+/// Distinct cells of the last sweep in `scratch` (swept on the grid `reach` was made for)
+/// that `reach` counts as coverable: the numerator of the scorer's `cov_final_reach`.
+pub fn reached_cells(reach: &Reach, scratch: &SweepScratch) -> u64 {
+    scratch.visit_counts().filter(|&(i, _)| reach.is_coverable(i as usize)).count() as u64
+}
+
+/// `cov_final` over the cells `reach` counts as coverable, of the last sweep in `scratch`
+/// (the scorer's `cov_final_reach`, for per-generation records).
+pub fn reach_coverage(reach: &Reach, scratch: &SweepScratch) -> f64 {
+    reached_cells(reach, scratch) as f64 / reach.coverable_count().max(1) as f64
+}
+
 /// Scores plans on one map for one robot, camera and set of stations.
 pub struct Scorer {
     grid: CoverageGrid,
@@ -334,10 +346,10 @@ impl Scorer {
         let mut scratch = SweepScratch::new(&self.grid);
         let widths: Vec<f64> = robots.iter().map(|r| r.width).collect();
         let m = self.robot.measure_fleet(&self.grid, &mut scratch, paths, &widths);
-        let unique_reach = scratch.visit_counts().filter(|&(i, _)| self.reach.is_coverable(i as usize)).count() as u64;
+        let unique_reach = reached_cells(&self.reach, &scratch);
         let th = crate::coverage::fitness::score(&m, &self.robot, self.resolution, self.projection);
         let reachable = self.reach.coverable_count() as u64;
-        let cov_reach = unique_reach as f64 / reachable.max(1) as f64;
+        let cov_reach = reach_coverage(&self.reach, &scratch);
         let f_reach = f_obstacle(self.projection.apply(th.t_final, cov_reach), m.obstacle_cells);
         let (mut lengths, mut times) = (Vec::new(), Vec::new());
         for (p, r) in paths.iter().zip(robots) {

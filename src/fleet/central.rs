@@ -18,7 +18,7 @@ use crate::geom::Point;
 use crate::map::GridMap;
 use crate::thesis::diversity::{DiversityScratch, max_distance_by, pair_distance_sum_by};
 use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual, Scenario};
-use crate::thesis::member::{Member, Op, Origin, Premark, Variation};
+use crate::thesis::member::{Member, Op, Origin, Premark, ReachMask, Variation};
 use crate::thesis::params::ThesisParams;
 
 /// What a crew's evaluation reads: one scenario per robot (its footprint and stations on the
@@ -136,6 +136,27 @@ impl Member for Crew {
     }
     fn obstacle_cells(&self) -> u64 {
         self.robots.iter().map(|r| r.sweep.obj_pix).sum()
+    }
+    /// The narrowest robot's reachable cells from every robot's start, as the common scorer
+    /// counts them for a fleet's plan.
+    fn reach_mask(world: &FleetWorld) -> ReachMask {
+        let Some(first) = world.robots.first() else { return ReachMask::default() };
+        let width = world.robots.iter().map(|r| r.robot.width).fold(f64::INFINITY, f64::min);
+        let stations: Vec<Point> = world.robots.iter().map(|r| r.frame.start).collect();
+        ReachMask::new(first, width, &stations)
+    }
+    /// Cells of `mask` some robot sweeps.
+    fn reached(&self, mask: &ReachMask) -> u64 {
+        (0..mask.words.len())
+            .map(|idx| {
+                let any = self
+                    .robots
+                    .iter()
+                    .filter(|r| idx < r.visits.plane_words())
+                    .fold(0, |a, r| a | r.visits.visited_word(idx));
+                u64::from((any & mask.words[idx]).count_ones())
+            })
+            .sum()
     }
     fn robot_records(&self, world: &FleetWorld) -> Vec<RobotRecord> {
         self.robots

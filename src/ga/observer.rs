@@ -17,6 +17,10 @@ pub struct GenerationRecord {
     pub mean_fitness: f64,
     /// Footprint coverage (`cov_final` over the scenario's free cells) of the reported plan.
     pub best_coverage: f64,
+    /// Footprint coverage of the reachable cells (the common scorer's `cov_final_reach`: cells
+    /// the robot's footprint can sweep from the start) of the reported plan, for planners that
+    /// measure it.
+    pub best_coverage_reach: Option<f64>,
     /// Members meeting every constraint, for planners with constraints.
     pub feasible: Option<u32>,
     /// Population diversity, for planners that measure it.
@@ -39,8 +43,16 @@ pub struct RobotRecord {
 }
 
 /// Column names of the planner-neutral part of a [`GenerationRecord`].
-pub const NEUTRAL_COLUMNS: [&str; 7] =
-    ["iteration", "evaluations", "best_fitness", "mean_fitness", "best_coverage", "feasible", "diversity"];
+pub const NEUTRAL_COLUMNS: [&str; 8] = [
+    "iteration",
+    "evaluations",
+    "best_fitness",
+    "mean_fitness",
+    "best_coverage",
+    "best_coverage_reach",
+    "feasible",
+    "diversity",
+];
 
 impl GenerationRecord {
     /// The CSV header for records with these extras.
@@ -56,6 +68,7 @@ impl GenerationRecord {
             self.best_fitness.to_string(),
             self.mean_fitness.to_string(),
             self.best_coverage.to_string(),
+            opt(self.best_coverage_reach.map(|c| c.to_string())),
             opt(self.feasible.map(|f| f.to_string())),
             opt(self.diversity.map(|d| d.to_string())),
         ];
@@ -136,6 +149,7 @@ impl GenerationStats {
             best_fitness: self.best_fitness,
             mean_fitness: self.mean_fitness,
             best_coverage: self.best_cov_final,
+            best_coverage_reach: None,
             feasible: None,
             diversity: self.diversity,
             robots: Vec::new(),

@@ -90,7 +90,8 @@ impl Planner for PatternConfig {
         let planned = plan(&s.map, self.pattern, s.robot.width, s.start, s.end, self.complete)
             .map_err(|e| PlannerError::Input(format!("{} on map `{}`: {e}", self.name(), s.map.name())))?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
-        let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &planned.points);
+        let mut scratch = crate::coverage::SweepScratch::new(&grid);
+        let metrics = s.robot.measure(&grid, &mut scratch, &planned.points);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
         let record = GenerationRecord {
             iteration: 0,
@@ -98,6 +99,7 @@ impl Planner for PatternConfig {
             best_fitness: sc.fitness,
             mean_fitness: sc.fitness,
             best_coverage: sc.cov_final,
+            best_coverage_reach: Some(crate::coverage::score::reach_coverage(&s.reach(), &scratch)),
             feasible: Some(1),
             diversity: None,
             robots: Vec::new(),

@@ -44,6 +44,17 @@ pub struct Scenario {
     pub camera: CameraSpec,
 }
 
+impl Scenario {
+    /// The cells the common scorer counts as reachable for a plan of this scenario's robot
+    /// that starts at its start station (`cov_final_reach`'s denominator).
+    pub fn reach(&self) -> crate::map::reach::Reach {
+        crate::map::reach::Reach::new(
+            &crate::map::clearance::Clearance::new(&self.map, self.robot.width),
+            &[self.start],
+        )
+    }
+}
+
 /// A plan: one path per agent, points in metres.
 pub type Plan = Vec<Vec<Point>>;
 

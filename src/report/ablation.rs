@@ -123,9 +123,11 @@ fn at(curve: &[(f64, f64)], e: f64) -> Option<f64> {
     curve.iter().take_while(|(x, _)| *x <= e).last().map(|(_, y)| *y)
 }
 
+/// A run's `(evaluations, best_coverage_reach)` curve: the reachable coverage the tables
+/// headline (histories written before that column existed have none).
 fn history(path: &Path) -> Option<Vec<(f64, f64)>> {
     let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
-    let (e, c) = (t.col("evaluations")?, t.col("best_coverage")?);
+    let (e, c) = (t.col("evaluations")?, t.col("best_coverage_reach")?);
     let v: Option<Vec<(f64, f64)>> = t.rows.iter().map(|r| Some((r[e].parse().ok()?, r[c].parse().ok()?))).collect();
     v.filter(|v| v.len() > 1)
 }

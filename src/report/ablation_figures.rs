@@ -226,7 +226,7 @@ impl Figure for ConvergenceFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(
-                "Best footprint coverage (all free cells) vs fitness evaluations: median, band = IQR over seeds",
+                "Best plan's footprint coverage of the reachable cells vs fitness evaluations: median, band = IQR over seeds",
                 text(16.0),
             )
             .map_err(err)?;
@@ -255,7 +255,7 @@ impl Figure for ConvergenceFigure {
                 .configure_mesh()
                 .light_line_style(RGBColor(235, 235, 235))
                 .x_desc("fitness evaluations")
-                .y_desc("cov_final (free cells)")
+                .y_desc("cov_final (reachable cells)")
                 .x_label_formatter(&|x| {
                     if x_max >= 20_000.0 { format!("{:.0}k", x / 1000.0) } else { format!("{x:.0}") }
                 })

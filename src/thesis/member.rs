@@ -55,6 +55,29 @@ pub struct Variation {
     pub mode: EvaluationMode,
 }
 
+/// The cells the common scorer counts as reachable in a world, as bit rows in the layout of
+/// its visit maps, for the reachable coverage of the history's best plan.
+#[derive(Clone, Debug, Default)]
+pub struct ReachMask {
+    /// One bit per reachable cell ([`crate::coverage::bits::BitLayers::mask_of`]).
+    pub words: Vec<u64>,
+    /// Reachable cells (the denominator).
+    pub cells: u64,
+}
+
+impl ReachMask {
+    /// The reachable cells of a robot of `width` starting at `stations` on `world`'s map.
+    pub fn new(world: &Scenario, width: f64, stations: &[Point]) -> Self {
+        let reach = crate::map::reach::Reach::new(&crate::map::clearance::Clearance::new(&world.map, width), stations);
+        Self { words: world.layers.mask_of(reach.coverable()), cells: reach.coverable_count() as u64 }
+    }
+
+    /// `reached` cells as a share of the reachable ones.
+    pub fn coverage(&self, reached: u64) -> f64 {
+        reached as f64 / self.cells.max(1) as f64
+    }
+}
+
 /// A member of the thesis GA's population.
 pub trait Member: Clone + Default + Send + Sync {
     /// What an evaluation reads (a [`Scenario`], or one per robot).
@@ -98,6 +121,10 @@ pub trait Member: Clone + Default + Send + Sync {
     fn diversity(pop: &[Self], scratch: &mut DiversityScratch) -> f64;
     /// `Div_max` of a population (spec §12.2).
     fn max_distance(pop: &[Self]) -> u64;
+    /// The cells the common scorer counts as reachable for a plan in `world`.
+    fn reach_mask(world: &Self::World) -> ReachMask;
+    /// Distinct cells of `mask` the member's plan sweeps.
+    fn reached(&self, mask: &ReachMask) -> u64;
     /// Per robot of a fleet's member, what the history records of it (none for one robot).
     fn robot_records(&self, _world: &Self::World) -> Vec<crate::ga::observer::RobotRecord> {
         Vec::new()
@@ -138,6 +165,12 @@ pub fn vary(genome: &mut Vec<Action>, op: Op, init: &InitParams, rng: &mut Rng) 
 
 impl Member for Individual {
     type World = Scenario;
+    fn reach_mask(world: &Scenario) -> ReachMask {
+        ReachMask::new(world, world.robot.width, &[world.frame.start])
+    }
+    fn reached(&self, mask: &ReachMask) -> u64 {
+        self.visits.visited_in(&mask.words)
+    }
     fn fitness(&self) -> f64 {
         self.score.fitness
     }

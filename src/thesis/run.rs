@@ -6,7 +6,7 @@
 use super::architecture::{Effective, Generation, MutationRate};
 use super::diversity::DiversityScratch;
 use super::individual::{EvalScratch, Individual};
-use super::member::{Member, Premark};
+use super::member::{Member, Premark, ReachMask};
 use super::params::{Control, Retrain, Selection, ThesisParams};
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::control;
@@ -242,8 +242,10 @@ impl<T: Member> Ga<T> {
         let mut div = DiversityScratch::default();
         let fixed = self.fixed_effective();
         let first = stats(&state, &fixed, self.pareto());
+        // Reachability is measured only for someone who reads the records.
+        let reach = if observers.is_empty() { ReachMask::default() } else { T::reach_mask(&self.scenario) };
         for o in observers.iter_mut() {
-            o.generation(&record(&first, &state, &self.scenario))?;
+            o.generation(&record(&first, &state, &self.scenario, &reach))?;
         }
         history.push(first);
         let mut best_seen = state.population[best_index(&state.population)].fitness();
@@ -269,7 +271,7 @@ impl<T: Member> Ga<T> {
             self.step(&mut state, effective, &mut scratches, wants_diversity.then_some(&mut div));
             let now = stats(&state, &effective, self.pareto());
             if !observers.is_empty() {
-                let r = record(&now, &state, &self.scenario);
+                let r = record(&now, &state, &self.scenario, &reach);
                 for o in observers.iter_mut() {
                     o.generation(&r)?;
                 }
@@ -315,9 +317,16 @@ impl ThesisGa {
 }
 
 /// The record observers receive: the statistics, and the best member's robots for a fleet.
-fn record<T: Member>(stats: &GenerationStats, state: &GaState<T>, world: &T::World) -> GenerationRecord {
+fn record<T: Member>(
+    stats: &GenerationStats,
+    state: &GaState<T>,
+    world: &T::World,
+    reach: &ReachMask,
+) -> GenerationRecord {
     let mut r = stats.record();
-    r.robots = state.population[best_index(&state.population)].robot_records(world);
+    let best = &state.population[best_index(&state.population)];
+    r.best_coverage_reach = Some(reach.coverage(best.reached(reach)));
+    r.robots = best.robot_records(world);
     r
 }
 

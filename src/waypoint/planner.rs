@@ -114,6 +114,7 @@ impl Planner for WaypointConfig {
         let budget = &Budget { wall_clock: budget.wall_clock.map(|d| d.saturating_sub(started.elapsed())), ..*budget };
         let grid = CoverageGrid::new(&scenario.map);
         let mut scratch = SweepScratch::new(&grid);
+        let reach = scenario.reach();
         let mut history = Vec::new();
         let mut failed: Option<std::io::Error> = None;
         let outcome =
@@ -130,6 +131,7 @@ impl Planner for WaypointConfig {
                     best_fitness: b.eval.coverage,
                     mean_fitness: s.mean_coverage,
                     best_coverage: counts.unique() as f64 / grid.area_cells().max(1) as f64,
+                    best_coverage_reach: Some(crate::coverage::score::reach_coverage(&reach, &scratch)),
                     feasible: Some(s.feasible),
                     diversity: None,
                     robots: Vec::new(),

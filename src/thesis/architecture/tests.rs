@@ -45,6 +45,7 @@ fn adaptive_rate_spares_the_best() {
 use crate::coverage::fitness::ThesisScore;
 use crate::thesis::diversity::DiversityScratch;
 use crate::thesis::individual::EvaluationMode;
+use crate::thesis::member::ReachMask;
 use rand::{RngCore, SeedableRng};
 
 /// How a probe came to be.
@@ -96,6 +97,13 @@ impl Member for Probe {
         1
     }
     fn obstacle_cells(&self) -> u64 {
+        0
+    }
+    /// Probes sweep nothing: an empty map.
+    fn reach_mask(_: &World) -> ReachMask {
+        ReachMask::default()
+    }
+    fn reached(&self, _: &ReachMask) -> u64 {
         0
     }
     fn cross(a: &Self, b: &Self, _: &ThesisParams, world: &World, _: &mut Rng, kids: &mut Vec<Self>) -> bool {
