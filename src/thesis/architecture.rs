@@ -184,6 +184,8 @@ pub(crate) struct Generation<'a, T: Member> {
     pub effective: Effective,
     pub seed: u64,
     pub iteration: u32,
+    /// The seed plans' `(cov_final, t_final)` that bound Pareto selection (empty: none).
+    pub bounds: &'a [(f64, f64)],
 }
 
 impl<T: Member> Generation<'_, T> {
@@ -407,5 +409,6 @@ fn recycle<T>(spare: &mut Vec<T>, dropped: impl Iterator<Item = T>, limit: usize
 
 mod nsga2;
 pub(crate) use nsga2::objectives;
+pub use nsga2::violation;
 #[cfg(test)]
 mod tests;

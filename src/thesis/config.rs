@@ -5,7 +5,7 @@
 use super::crossover::{ChildMode, ShortGenomes};
 use super::genome::Action;
 use super::individual::{EvaluationMode, InitParams, Moves};
-use super::params::{Control, Retrain, Selection, ThesisParams};
+use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::coverage::fitness::Projection;
@@ -70,6 +70,10 @@ pub struct ThesisSection {
     /// member per pattern).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seed_share: Option<f64>,
+    /// `none` (default) or `dominate`: with NSGA-II and a seeded population, plans that fall
+    /// short of every seed plan on either objective count as violating a constraint.
+    #[serde(skip_serializing_if = "SeedBound::is_none")]
+    pub seed_bound: SeedBound,
 }
 
 /// Selection scheme names.
@@ -181,6 +185,7 @@ impl Default for ThesisSection {
             moves: Moves::Straight,
             seed_population: SeedPlans::default(),
             seed_share: None,
+            seed_bound: SeedBound::None,
         }
     }
 }
@@ -262,9 +267,21 @@ impl ThesisSection {
         settings: SeedSettings,
         ctx: &Context,
     ) -> Result<(Vec<Vec<Action>>, usize), ConfigError> {
+        if !self.seed_bound.is_none() && !matches!(params.selection, Selection::Nsga2) {
+            return Err(ctx.error(
+                "thesis.seed_bound",
+                "= \"dominate\" needs thesis.selection = \"nsga2\" (it bounds Pareto selection's front)",
+            ));
+        }
         if self.seed_population.is_empty() {
             if self.seed_share.is_some() {
                 return Err(ctx.error("thesis.seed_share", "is set but thesis.seed_population names no pattern"));
+            }
+            if !self.seed_bound.is_none() {
+                return Err(ctx.error(
+                    "thesis.seed_bound",
+                    "= \"dominate\" needs seed plans: thesis.seed_population names no pattern",
+                ));
             }
             return Ok((Vec::new(), 0));
         }
@@ -391,6 +408,7 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
         select: t.select,
         control,
         evaluation: t.evaluation,
+        seed_bound: t.seed_bound,
     };
     Ok(params)
 }

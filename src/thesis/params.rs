@@ -124,6 +124,30 @@ pub struct ThesisParams {
     pub control: Control,
     /// How children are evaluated (identical results either way).
     pub evaluation: EvaluationMode,
+    /// Whether a seeded Pareto run bounds its plans by its seed plans (`thesis.seed_bound`).
+    pub seed_bound: SeedBound,
+}
+
+/// What a seeded NSGA-II run asks of its plans beyond 003's obstacle rule (`thesis.seed_bound`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum SeedBound {
+    /// Nothing (the default): the seeds are initial members like any other.
+    #[default]
+    None,
+    /// A plan that falls short of every seed plan on `cov_final` or `t_final` violates a
+    /// constraint by its smallest shortfall (summed over the two objectives; obstacle sweeps,
+    /// whole cells, weigh more than any shortfall). The seeds meet it, and constrained
+    /// domination keeps some member that meets it in every generation, so the first front and
+    /// the knee the run reports are plans at least as good as a seed on both objectives.
+    Dominate,
+}
+
+impl SeedBound {
+    /// Whether this is the default (no bound).
+    pub fn is_none(&self) -> bool {
+        matches!(self, SeedBound::None)
+    }
 }
 
 impl ThesisParams {
@@ -149,6 +173,7 @@ impl ThesisParams {
             select: 0,
             control: Control::None,
             evaluation: EvaluationMode::Incremental,
+            seed_bound: SeedBound::None,
         }
     }
 

@@ -26,11 +26,16 @@ pub fn population_csv(population: &[(ThesisScore, usize, u64)]) -> Vec<u8> {
     s.into_bytes()
 }
 
-/// The final first front of a Pareto run under constrained domination, as
-/// `[cov_final, t_final, fitness, genome_len]` rows sorted by `cov_final` (for `summary.json`).
-fn final_front(population: &[(ThesisScore, usize, u64)]) -> serde_json::Value {
+/// The final first front of a Pareto run under constrained domination (within the seed
+/// plans' `bounds`, when it has them), as `[cov_final, t_final, fitness, genome_len]` rows
+/// sorted by `cov_final` (for `summary.json`).
+fn final_front(population: &[(ThesisScore, usize, u64)], bounds: &[(f64, f64)]) -> serde_json::Value {
     let points: Vec<(f64, f64)> = population.iter().map(|(s, _, _)| (s.cov_final, s.t_final)).collect();
-    let violation: Vec<f64> = population.iter().map(|(_, _, obj)| *obj as f64).collect();
+    let violation: Vec<f64> = population
+        .iter()
+        .zip(&points)
+        .map(|((_, _, obj), &p)| super::architecture::violation(p, *obj, bounds))
+        .collect();
     let rank = crate::ga::selection::nsga2::front_ranks(&points, &violation);
     let mut front: Vec<usize> = (0..population.len()).filter(|&i| rank[i] == 0).collect();
     front.sort_by(|&a, &b| points[a].0.total_cmp(&points[b].0).then(a.cmp(&b)));
@@ -75,7 +80,10 @@ impl Planner for ThesisConfig {
             details.insert("moves".into(), "routed: the plan drives around obstacles between viewpoints".into());
         }
         if matches!(self.params.selection, super::params::Selection::Nsga2) {
-            details.insert("front".into(), final_front(&out.final_population));
+            details.insert("front".into(), final_front(&out.final_population, &out.seed_points));
+            if !out.seed_points.is_empty() {
+                details.insert("seed_bound".into(), serde_json::json!(out.seed_points));
+            }
             details
                 .insert("front_columns".into(), serde_json::json!(["cov_final", "t_final", "fitness", "genome_len"]));
             details.insert("plan".into(), "the knee of the final front".into());

@@ -7,7 +7,7 @@ use super::architecture::{Effective, Generation, MutationRate};
 use super::diversity::DiversityScratch;
 use super::individual::{EvalScratch, Individual};
 use super::member::{Member, Premark, ReachMask};
-use super::params::{Control, Retrain, Selection, ThesisParams};
+use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::control;
 use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
@@ -45,6 +45,9 @@ pub struct GaState<T = Individual> {
     pub diversity: Option<f64>,
     /// `Div_max` of the current population (adaptive control only, else 0).
     pub diversity_max: f64,
+    /// `(cov_final, t_final)` of the seed plans as evaluated, for `thesis.seed_bound =
+    /// "dominate"` (empty otherwise).
+    pub seed_points: Vec<(f64, f64)>,
     rng: Rng,
     /// Members that did not pass on, whose buffers the next generation's new members reuse.
     spare: Vec<T>,
@@ -72,6 +75,8 @@ pub struct ThesisOutcome<T = Individual> {
     /// The final population's scores, genome lengths and obstacle sweeps, in population order
     /// (its front is what 003's Pareto figures show).
     pub final_population: Vec<(ThesisScore, usize, u64)>,
+    /// The seed plans' `(cov_final, t_final)` that bounded Pareto selection (empty: none).
+    pub seed_points: Vec<(f64, f64)>,
 }
 
 /// Index of the fittest individual (first on ties).
@@ -99,8 +104,8 @@ impl<T: Member> Ga<T> {
         matches!(self.params.control, Control::Adaptive(_))
     }
 
-    fn generation(&self, iteration: u32, effective: Effective) -> Generation<'_, T> {
-        Generation { scenario: &self.scenario, params: &self.params, effective, seed: self.seed, iteration }
+    fn generation<'a>(&'a self, iteration: u32, effective: Effective, bounds: &'a [(f64, f64)]) -> Generation<'a, T> {
+        Generation { scenario: &self.scenario, params: &self.params, effective, seed: self.seed, iteration, bounds }
     }
 
     fn fixed_effective(&self) -> Effective {
@@ -151,13 +156,28 @@ impl<T: Member> Ga<T> {
         let size = self.params.initial_size();
         let (seeds, seeded) = (&self.seeds.0, self.seeds.1.min(size));
         let (population, evaluations) =
-            self.generation(0, self.fixed_effective()).initial(size, &seeds[..], seeded, &mut scratches);
+            self.generation(0, self.fixed_effective(), &[]).initial(size, &seeds[..], seeded, &mut scratches);
+        let seed_points = match self.params.seed_bound {
+            SeedBound::None => Vec::new(),
+            SeedBound::Dominate => {
+                // One point per distinct seed plan (`seeded` cycles through the seeds).
+                let mut points: Vec<(f64, f64)> = Vec::new();
+                for m in &population[..seeded] {
+                    let p = (m.score().cov_final, m.score().t_final);
+                    if !points.contains(&p) {
+                        points.push(p);
+                    }
+                }
+                points
+            }
+        };
         let mut state = GaState {
             population,
             iteration: 0,
             evaluations,
             diversity: None,
             diversity_max: 0.0,
+            seed_points,
             rng: stream(self.seed, Purpose::Main, &[]),
             spare: Vec::new(),
         };
@@ -182,7 +202,7 @@ impl<T: Member> Ga<T> {
         div: Option<&mut DiversityScratch>,
     ) {
         state.iteration += 1;
-        let generation = self.generation(state.iteration, effective);
+        let generation = self.generation(state.iteration, effective, &state.seed_points);
         let pop = std::mem::take(&mut state.population);
         let (rng, spare) = (&mut state.rng, &mut state.spare);
         let (next, evaluations) = match self.params.selection {
@@ -289,7 +309,11 @@ impl<T: Member> Ga<T> {
                 break;
             }
         }
-        let reported = if self.pareto() { knee_index(&state.population) } else { best_index(&state.population) };
+        let reported = if self.pareto() {
+            knee_index(&state.population, &state.seed_points)
+        } else {
+            best_index(&state.population)
+        };
         let best = state.population[reported].clone();
         let final_population =
             state.population.iter().map(|m| (m.score(), m.genome_len(), m.obstacle_cells())).collect();
@@ -303,6 +327,7 @@ impl<T: Member> Ga<T> {
             evaluations: state.evaluations,
             stop,
             wall_s: started.elapsed().as_secs_f64(),
+            seed_points: state.seed_points,
         })
     }
 }
@@ -388,9 +413,9 @@ pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective, pareto: bool)
 
 /// The member a Pareto run reports: the knee ([`crate::ga::selection::nsga2::knee`]) of the
 /// first front under constrained domination (the plans without obstacle sweeps, when there
-/// are any).
-pub fn knee_index<T: Member>(pop: &[T]) -> usize {
-    let (points, violation) = super::architecture::objectives(pop);
+/// are any; within `bounds`, the seed plans' objectives, when it has them).
+pub fn knee_index<T: Member>(pop: &[T], bounds: &[(f64, f64)]) -> usize {
+    let (points, violation) = super::architecture::objectives(pop, bounds);
     let rank = crate::ga::selection::nsga2::front_ranks(&points, &violation);
     let front: Vec<usize> = (0..pop.len()).filter(|&i| rank[i] == 0).collect();
     crate::ga::selection::nsga2::knee(&points, &front).expect("a population has a first front")

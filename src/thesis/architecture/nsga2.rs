@@ -8,10 +8,20 @@ use crate::ga::selection::nsga2::{crowded_keys, crowded_tournament, survivors};
 use crate::thesis::individual::EvalScratch;
 use crate::thesis::member::Member;
 
-/// `(cov_final, t_final)` and the obstacle sweeps of each member.
-pub(crate) fn objectives<T: Member>(pop: &[T]) -> (Vec<(f64, f64)>, Vec<f64>) {
-    let points = pop.iter().map(|m| (m.score().cov_final, m.score().t_final)).collect();
-    let violation = pop.iter().map(|m| m.obstacle_cells() as f64).collect();
+/// The constraint violation of a plan with objectives `(cov, t)` and `obstacle_cells` swept:
+/// its obstacle sweeps (003's hard constraint), plus, with seed plans' objectives `bounds`
+/// (`thesis.seed_bound = "dominate"`), its smallest shortfall behind one of them summed over
+/// both objectives (below 2, so one obstacle cell outweighs any shortfall).
+pub fn violation((cov, t): (f64, f64), obstacle_cells: u64, bounds: &[(f64, f64)]) -> f64 {
+    let shortfall =
+        bounds.iter().map(|&(bc, bt)| (bc - cov).max(0.0) + (bt - t).max(0.0)).fold(f64::INFINITY, f64::min);
+    obstacle_cells as f64 + if bounds.is_empty() { 0.0 } else { shortfall }
+}
+
+/// `(cov_final, t_final)` and the constraint violation ([`violation`]) of each member.
+pub(crate) fn objectives<T: Member>(pop: &[T], bounds: &[(f64, f64)]) -> (Vec<(f64, f64)>, Vec<f64>) {
+    let points: Vec<(f64, f64)> = pop.iter().map(|m| (m.score().cov_final, m.score().t_final)).collect();
+    let violation = pop.iter().zip(&points).map(|(m, &p)| violation(p, m.obstacle_cells(), bounds)).collect();
     (points, violation)
 }
 
@@ -30,7 +40,7 @@ impl<T: Member> Generation<'_, T> {
     ) -> (Vec<T>, u64) {
         let p = self.params;
         let fit: Vec<f64> = pop.iter().map(T::fitness).collect();
-        let (points, violation) = objectives(&pop);
+        let (points, violation) = objectives(&pop, self.bounds);
         let (rank, crowding) = crowded_keys(&points, &violation);
         let mut jobs: Vec<Job<T>> = Vec::with_capacity(p.pop_min + 4);
         let mut kids = Vec::with_capacity(4);
@@ -43,11 +53,38 @@ impl<T: Member> Generation<'_, T> {
         let evaluations = run_jobs(&mut jobs, &pop, self.scenario, &self.context(), scratches);
         let made = jobs.len();
         let all: Vec<T> = pop.into_iter().chain(jobs.into_iter().map(|j| j.ind)).collect();
-        let (points, violation) = objectives(&all);
+        let (points, violation) = objectives(&all, self.bounds);
         let keep = survivors(&points, &violation, p.pop_min);
         let mut all: Vec<Option<T>> = all.into_iter().map(Some).collect();
         let next: Vec<T> = keep.iter().map(|&i| all[i].take().expect("each survivor once")).collect();
         recycle(spare, all.into_iter().flatten(), next.len().max(made));
         (next, evaluations)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::violation;
+
+    /// Obstacle cells count whole; with seed bounds, the smallest summed shortfall behind one
+    /// seed is added (0 for a plan at least as good as some seed on both objectives).
+    #[test]
+    fn the_violation_of_a_plan() {
+        let seeds = [(0.9, 0.5), (0.6, 0.8)];
+        /// A plan's objectives, its obstacle cells, the seed bounds and the violation wanted.
+        type Case<'a> = ((f64, f64), u64, &'a [(f64, f64)], f64);
+        let cases: [Case; 7] = [
+            ((0.5, 0.5), 0, &[], 0.0),
+            ((0.5, 0.5), 3, &[], 3.0),
+            ((0.95, 0.55), 0, &seeds, 0.0),
+            ((0.6, 0.8), 0, &seeds, 0.0),
+            ((0.85, 0.5), 0, &seeds, 0.05),
+            ((0.7, 0.6), 0, &seeds, 0.2),
+            ((0.85, 0.5), 2, &seeds, 2.05),
+        ];
+        for (plan, obstacles, bounds, want) in cases {
+            let got = violation(plan, obstacles, bounds);
+            assert!((got - want).abs() < 1e-12, "{plan:?} {obstacles} {bounds:?}: {got} != {want}");
+        }
     }
 }

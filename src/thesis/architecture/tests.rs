@@ -188,7 +188,8 @@ struct Outcome {
 }
 
 fn step(pop: Vec<Probe>, p: &ThesisParams, e: Effective, world: &World, rng: &mut Rng) -> Outcome {
-    let generation = Generation { scenario: world, params: p, effective: e, seed: SEED, iteration: ITERATION };
+    let generation =
+        Generation { scenario: world, params: p, effective: e, seed: SEED, iteration: ITERATION, bounds: &[] };
     let mut spare = Vec::new();
     let mut scratches = vec![EvalScratch::default(); 2];
     let (next, evaluations) = match p.selection.draw() {
