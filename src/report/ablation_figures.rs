@@ -292,7 +292,7 @@ impl Figure for PlannerPathsFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(
-                "Best executable run of each planner on each map (cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)",
+                "Best executable run of each planner on each map (blue line: the path; cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)",
                 text(18.0),
             )
             .map_err(err)?;

@@ -19,6 +19,8 @@ pub struct ParetoFacet {
     pub rows: Vec<usize>,
     /// `(t_final, cov_final)` of the runs whose plan is not executable (no part of the front).
     pub excluded: Vec<(f64, f64)>,
+    /// Each point's planner, an index into [`ParetoFigure::kinds`] (all 0 with one planner).
+    pub kinds: Vec<usize>,
 }
 
 /// Pareto scatter, one panel per group.
@@ -28,11 +30,37 @@ pub struct ParetoFigure {
     /// Rows × columns of panels (e.g. the values of two grouping columns, as 003 lays out its
     /// Figs. 4.2–4.5); `None` for a near-square grid.
     pub shape: Option<(usize, usize)>,
+    /// The planners of the points, when there are several: each drawn in its own colour,
+    /// named in a legend below the panels (empty or one: one colour, named in each panel).
+    pub kinds: Vec<String>,
 }
 
 impl ParetoFigure {
     fn shape(&self) -> (usize, usize) {
         self.shape.filter(|&(r, c)| r * c == self.facets.len()).unwrap_or_else(|| grid_shape(self.facets.len()))
+    }
+
+    /// The planner legend's entries, with their point counts (none for one planner).
+    fn kind_labels(&self) -> Vec<String> {
+        if self.kinds.len() < 2 {
+            return Vec::new();
+        }
+        (0..self.kinds.len())
+            .map(|k| {
+                let n: usize = self.facets.iter().map(|f| f.kinds.iter().filter(|&&j| j == k).count()).sum();
+                format!("{} ({n} executable)", self.kinds[k])
+            })
+            .collect()
+    }
+
+    /// Height of the planner legend below the panels (0 for one planner).
+    fn legend_height(&self, width: u32) -> u32 {
+        let labels = self.kind_labels();
+        if labels.is_empty() {
+            return 0;
+        }
+        let lines = super::ablation_figures::legend_layout(&labels, width).last().map_or(1, |(line, _)| line + 1);
+        lines * 24 + 16
     }
 }
 
@@ -43,7 +71,7 @@ fn grid_shape(n: usize) -> (usize, usize) {
 
 const PARETO_TITLE: &str = "Best individual per run: coverage vs time efficiency (front in red)";
 const PATHS_TITLE: &str =
-    "Best path per group (cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)";
+    "Best path per group (blue line: the path; cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)";
 
 const RUN: RGBColor = RGBColor(120, 150, 200);
 const FRONT: RGBColor = RGBColor(210, 40, 30);
@@ -51,13 +79,24 @@ const FRONT: RGBColor = RGBColor(210, 40, 30);
 impl Figure for ParetoFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = self.shape();
-        (c as u32 * 480, r as u32 * 440 + 40)
+        let width = c as u32 * 480;
+        (width, r as u32 * 440 + 40 + self.legend_height(width))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(PARETO_TITLE, crate::plot::fitting_text(PARETO_TITLE, root.dim_in_pixel().0, 20.0))
             .map_err(err)?;
+        let (width, height) = root.dim_in_pixel();
+        let (root, strip) = root.split_vertically(height - self.legend_height(width));
+        let labels = self.kind_labels();
+        for (k, (label, (line, x))) in
+            labels.iter().zip(super::ablation_figures::legend_layout(&labels, width)).enumerate()
+        {
+            let y = 20 + (line * 24) as i32;
+            strip.draw(&Circle::new((x + 11, y), 5, crate::plot::series_colour(k).filled())).map_err(err)?;
+            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
+        }
         let (r, c) = self.shape();
         let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
         for f in &self.facets {
@@ -85,11 +124,18 @@ impl Figure for ParetoFigure {
                 .axis_desc_style(text(14.0))
                 .draw()
                 .map_err(err)?;
-            chart
-                .draw_series(facet.points.iter().map(|&p| Circle::new(p, 3, RUN.filled())))
-                .map_err(err)?
-                .label(format!("executable runs ({})", facet.points.len()))
-                .legend(|(x, y)| Circle::new((x + 8, y), 4, RUN.filled()));
+            if labels.is_empty() {
+                chart
+                    .draw_series(facet.points.iter().map(|&p| Circle::new(p, 3, RUN.filled())))
+                    .map_err(err)?
+                    .label(format!("executable runs ({})", facet.points.len()))
+                    .legend(|(x, y)| Circle::new((x + 8, y), 4, RUN.filled()));
+            } else {
+                let coloured = facet.points.iter().zip(&facet.kinds);
+                chart
+                    .draw_series(coloured.map(|(&p, &k)| Circle::new(p, 3, crate::plot::series_colour(k).filled())))
+                    .map_err(err)?;
+            }
             if !facet.excluded.is_empty() {
                 let grey = RGBColor(120, 120, 120);
                 chart
@@ -101,11 +147,24 @@ impl Figure for ParetoFigure {
             let mut front: Vec<(f64, f64)> = facet.front.iter().map(|&i| facet.points[i]).collect();
             front.sort_by(|a, b| a.0.total_cmp(&b.0));
             chart.draw_series(LineSeries::new(front.iter().copied(), FRONT.stroke_width(1))).map_err(err)?;
-            chart
-                .draw_series(front.iter().map(|&p| Circle::new(p, 5, FRONT.filled())))
-                .map_err(err)?
-                .label(format!("non-dominated ({})", front.len()))
-                .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
+            if labels.is_empty() {
+                chart
+                    .draw_series(front.iter().map(|&p| Circle::new(p, 5, FRONT.filled())))
+                    .map_err(err)?
+                    .label(format!("non-dominated ({})", front.len()))
+                    .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
+            } else {
+                // A red ring around each front point, its planner's colour inside.
+                chart
+                    .draw_series(front.iter().map(|&p| Circle::new(p, 6, FRONT.stroke_width(2))))
+                    .map_err(err)?
+                    .label(format!("non-dominated ({})", front.len()))
+                    .legend(|(x, y)| Circle::new((x + 8, y), 6, FRONT.stroke_width(2)));
+                let on_front = facet.front.iter().map(|&i| (facet.points[i], facet.kinds[i]));
+                chart
+                    .draw_series(on_front.map(|(p, k)| Circle::new(p, 3, crate::plot::series_colour(k).filled())))
+                    .map_err(err)?;
+            }
             crate::plot::series_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
         }
         Ok(())

@@ -260,6 +260,13 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     // Fronts over the plans a robot can drive; the others are drawn apart. A table without
     // the column (written before executability was reported) counts every run.
     let executable = |r: usize| t.col("executable").is_none_or(|i| t.rows[r][i] == "true");
+    // The planners of a comparison, in the registry's order, each with its own colour.
+    let kinds: Vec<String> = crate::experiment::registry::PlannerKind::ALL
+        .iter()
+        .map(|k| k.name().to_string())
+        .filter(|k| t.col("planner").is_some_and(|c| t.rows.iter().any(|row| &row[c] == k)))
+        .collect();
+    let kind_of = |r: usize| kinds.iter().position(|k| *k == get(r, "planner")).unwrap_or(0);
     let facets: Vec<ParetoFacet> = groups
         .iter()
         .map(|g| {
@@ -269,7 +276,8 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             // A plan that covers nothing (t_final 1 at coverage 0) is no coverage plan, though
             // nothing dominates it: it is drawn, not put on the front.
             let front = non_dominated(&points).into_iter().filter(|&k| points[k].1 > 0.0).collect();
-            ParetoFacet { label: g.label.clone(), points, front, rows, excluded }
+            let kinds = rows.iter().map(|&r| kind_of(r)).collect();
+            ParetoFacet { label: g.label.clone(), points, front, rows, excluded, kinds }
         })
         .collect();
     crate::plot::save(
@@ -282,9 +290,11 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
                     front: f.front.clone(),
                     rows: f.rows.clone(),
                     excluded: f.excluded.clone(),
+                    kinds: f.kinds.clone(),
                 })
                 .collect(),
             shape,
+            kinds: if kinds.len() > 1 { kinds.clone() } else { Vec::new() },
         },
         &out.join("pareto"),
     )?;
