@@ -292,7 +292,7 @@ impl Figure for PlannerPathsFigure<'_> {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(
-                "Best executable run of each planner on each map (blue line: the path; cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)",
+                "Best executable run of each planner on each map: blue path; cells green once, orange 2+ times, red obstacle hit; ▲ start, ✕ end",
                 text(18.0),
             )
             .map_err(err)?;
@@ -300,8 +300,20 @@ impl Figure for PlannerPathsFigure<'_> {
         let areas = root.split_evenly((self.rows.len().max(1), cols));
         for (r, row) in self.rows.iter().enumerate() {
             for (c, panel) in row.iter().enumerate() {
-                if let Some(p) = panel {
-                    draw_map_paths(&areas[r * cols + c], p, (11.0, 10.0))?;
+                let Some(p) = panel else { continue };
+                // The planner on a line of its own, then the map and scores: a narrow panel
+                // keeps both readable.
+                let area = &areas[r * cols + c];
+                match p.title.split_once(", ") {
+                    Some((planner, rest)) => {
+                        let width = area.dim_in_pixel().0;
+                        let below =
+                            area.titled(planner, crate::plot::fitting_text(planner, width, 14.0)).map_err(err)?;
+                        draw_map_paths(&below, &PathFigure { title: rest.to_string(), ..p.clone() }, (14.0, 10.0))?;
+                    }
+                    None => {
+                        draw_map_paths(area, p, (14.0, 10.0))?;
+                    }
                 }
             }
         }

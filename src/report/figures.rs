@@ -71,7 +71,7 @@ fn grid_shape(n: usize) -> (usize, usize) {
 
 const PARETO_TITLE: &str = "Best individual per run: coverage vs time efficiency (front in red)";
 const PATHS_TITLE: &str =
-    "Best path per group (blue line: the path; cells: green once, orange 2+ times, red obstacle swept; ▲ start, ✕ end)";
+    "Best path per group: blue path; cells green once, orange 2+, red obstacle hit; ▲ start, ✕ end";
 
 const RUN: RGBColor = RGBColor(120, 150, 200);
 const FRONT: RGBColor = RGBColor(210, 40, 30);
