@@ -162,6 +162,19 @@ pub(crate) fn run_jobs<T: Member>(
     jobs.iter().map(|j| j.evaluations).sum()
 }
 
+/// What Elite families and the reported best compare members by: `f_obstacle` (003 eq.
+/// 3.16); with seed plans' objectives `bounds` (`thesis.seed_bound = "dominate"`), a plan
+/// behind every seed on `cov_final` or `t_final` ranks below every plan that is not, as minus
+/// its smallest summed shortfall (`f_obstacle` is never negative).
+pub fn bounded_fitness<T: Member>(m: &T, bounds: &[(f64, f64)]) -> f64 {
+    if bounds.is_empty() {
+        return m.fitness();
+    }
+    let s = m.score();
+    let shortfall = violation((s.cov_final, s.t_final), 0, bounds);
+    if shortfall > 0.0 { -shortfall } else { m.fitness() }
+}
+
 /// The family contest of the Elite scheme (003 §3.4.1): indices of the two fittest members,
 /// listed children first so that a child wins a tie with a parent (R20).
 /// The first two of the indices sorted stably by descending fitness, found without sorting.
@@ -377,7 +390,8 @@ impl<T: Member> Generation<'_, T> {
                     cands.extend(kids.map(|k| new[k].take()));
                     cands.extend(parents.iter().map(|&q| old[q].take()));
                     fitness.clear();
-                    fitness.extend(cands.iter().map(|c| c.as_ref().map_or(f64::NEG_INFINITY, T::fitness)));
+                    let key = |c: &Option<T>| c.as_ref().map_or(f64::NEG_INFINITY, |m| bounded_fitness(m, self.bounds));
+                    fitness.extend(cands.iter().map(key));
                     for k in family_survivors(&fitness) {
                         next.push(cands[k].take().expect("each member survives once"));
                     }

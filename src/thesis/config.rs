@@ -70,8 +70,8 @@ pub struct ThesisSection {
     /// member per pattern).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub seed_share: Option<f64>,
-    /// `none` (default) or `dominate`: with NSGA-II and a seeded population, plans that fall
-    /// short of every seed plan on either objective count as violating a constraint.
+    /// `none` (default) or `dominate`: with NSGA-II or Elite and a seeded population, plans
+    /// that fall short of every seed plan on either objective count as violating a constraint.
     #[serde(skip_serializing_if = "SeedBound::is_none")]
     pub seed_bound: SeedBound,
 }
@@ -267,10 +267,10 @@ impl ThesisSection {
         settings: SeedSettings,
         ctx: &Context,
     ) -> Result<(Vec<Vec<Action>>, usize), ConfigError> {
-        if !self.seed_bound.is_none() && !matches!(params.selection, Selection::Nsga2) {
+        if !self.seed_bound.is_none() && !matches!(params.selection, Selection::Nsga2 | Selection::Elite) {
             return Err(ctx.error(
                 "thesis.seed_bound",
-                "= \"dominate\" needs thesis.selection = \"nsga2\" (it bounds Pareto selection's front)",
+                "= \"dominate\" needs thesis.selection = \"nsga2\" or \"elite\" (it bounds their survivors)",
             ));
         }
         if self.seed_population.is_empty() {

@@ -124,11 +124,12 @@ pub struct ThesisParams {
     pub control: Control,
     /// How children are evaluated (identical results either way).
     pub evaluation: EvaluationMode,
-    /// Whether a seeded Pareto run bounds its plans by its seed plans (`thesis.seed_bound`).
+    /// Whether a seeded run bounds its plans by its seed plans (`thesis.seed_bound`).
     pub seed_bound: SeedBound,
 }
 
-/// What a seeded NSGA-II run asks of its plans beyond 003's obstacle rule (`thesis.seed_bound`).
+/// What a seeded NSGA-II or Elite run asks of its plans beyond 003's obstacle rule
+/// (`thesis.seed_bound`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum SeedBound {
@@ -136,10 +137,13 @@ pub enum SeedBound {
     #[default]
     None,
     /// A plan that falls short of every seed plan on `cov_final` or `t_final` violates a
-    /// constraint by its smallest shortfall (summed over the two objectives; obstacle sweeps,
-    /// whole cells, weigh more than any shortfall). The seeds meet it, and constrained
-    /// domination keeps some member that meets it in every generation, so the first front and
-    /// the knee the run reports are plans at least as good as a seed on both objectives.
+    /// constraint by its smallest shortfall, summed over the two objectives. NSGA-II adds it to
+    /// the obstacle cells of its constrained domination (a whole cell weighs more than any
+    /// shortfall); Elite families and the reported best put every plan that meets it before
+    /// every plan that does not ([`super::architecture::bounded_fitness`]). The seeds meet
+    /// it, and (with `P_mI` = 0 under Elite, whose re-initialisation can replace any member)
+    /// some member that meets it survives every generation, so the plan the run reports is at
+    /// least as good as a seed on both objectives.
     Dominate,
 }
 

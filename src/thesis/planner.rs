@@ -81,12 +81,12 @@ impl Planner for ThesisConfig {
         }
         if matches!(self.params.selection, super::params::Selection::Nsga2) {
             details.insert("front".into(), final_front(&out.final_population, &out.seed_points));
-            if !out.seed_points.is_empty() {
-                details.insert("seed_bound".into(), serde_json::json!(out.seed_points));
-            }
             details
                 .insert("front_columns".into(), serde_json::json!(["cov_final", "t_final", "fitness", "genome_len"]));
             details.insert("plan".into(), "the knee of the final front".into());
+        }
+        if !out.seed_points.is_empty() {
+            details.insert("seed_bound".into(), serde_json::json!(out.seed_points));
         }
         if let Some(b) = &out.best_before_retrain {
             details.insert(

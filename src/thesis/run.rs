@@ -3,7 +3,7 @@
 //! observers. Stops at `Iter_max`, at the optional wall-clock or stall limit; optionally marks
 //! a region as covered part-way (retrain, 003 §3.5.3).
 
-use super::architecture::{Effective, Generation, MutationRate};
+use super::architecture::{Effective, Generation, MutationRate, bounded_fitness};
 use super::diversity::DiversityScratch;
 use super::individual::{EvalScratch, Individual};
 use super::member::{Member, Premark, ReachMask};
@@ -81,10 +81,18 @@ pub struct ThesisOutcome<T = Individual> {
 
 /// Index of the fittest individual (first on ties).
 pub fn best_index<T: Member>(pop: &[T]) -> usize {
-    let mut best = 0;
-    for (i, ind) in pop.iter().enumerate() {
-        if ind.fitness() > pop[best].fitness() {
-            best = i;
+    best_index_within(pop, &[])
+}
+
+/// Index of the fittest individual by [`bounded_fitness`] within the seed plans' `bounds`
+/// (first on ties; [`best_index`] without bounds).
+pub fn best_index_within<T: Member>(pop: &[T], bounds: &[(f64, f64)]) -> usize {
+    let Some(first) = pop.first() else { return 0 };
+    let (mut best, mut best_key) = (0, bounded_fitness(first, bounds));
+    for (i, m) in pop.iter().enumerate().skip(1) {
+        let k = bounded_fitness(m, bounds);
+        if k > best_key {
+            (best, best_key) = (i, k);
         }
     }
     best
@@ -268,7 +276,10 @@ impl<T: Member> Ga<T> {
             o.generation(&record(&first, &state, &self.scenario, &reach))?;
         }
         history.push(first);
-        let mut best_seen = state.population[best_index(&state.population)].fitness();
+        let mut best_seen = bounded_fitness(
+            &state.population[best_index_within(&state.population, &state.seed_points)],
+            &state.seed_points,
+        );
         let mut stalled = 0u32;
         let mut best_before_retrain = None;
         let mut stop = StopReason::Iterations;
@@ -278,7 +289,8 @@ impl<T: Member> Ga<T> {
                 break;
             }
             if let Some(r) = retrain.filter(|r| r.at_iteration == state.iteration) {
-                best_before_retrain = Some(state.population[best_index(&state.population)].clone());
+                best_before_retrain =
+                    Some(state.population[best_index_within(&state.population, &state.seed_points)].clone());
                 self.change_environment(&mut state, r.region);
                 scratches = self.scratches();
                 for o in observers.iter_mut() {
@@ -297,7 +309,10 @@ impl<T: Member> Ga<T> {
                 }
             }
             history.push(now);
-            let best = state.population[best_index(&state.population)].fitness();
+            let best = bounded_fitness(
+                &state.population[best_index_within(&state.population, &state.seed_points)],
+                &state.seed_points,
+            );
             if best > best_seen {
                 best_seen = best;
                 stalled = 0;
@@ -312,7 +327,7 @@ impl<T: Member> Ga<T> {
         let reported = if self.pareto() {
             knee_index(&state.population, &state.seed_points)
         } else {
-            best_index(&state.population)
+            best_index_within(&state.population, &state.seed_points)
         };
         let best = state.population[reported].clone();
         let final_population =
@@ -349,7 +364,7 @@ fn record<T: Member>(
     reach: &ReachMask,
 ) -> GenerationRecord {
     let mut r = stats.record();
-    let best = &state.population[best_index(&state.population)];
+    let best = &state.population[best_index_within(&state.population, &state.seed_points)];
     r.best_coverage_reach = Some(reach.coverage(best.reached(reach)));
     r.robots = best.robot_records(world);
     r
@@ -360,7 +375,7 @@ fn record<T: Member>(
 pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective, pareto: bool) -> GenerationStats {
     let pop = &state.population;
     let n = pop.len() as f64;
-    let best = &pop[best_index(pop)];
+    let best = &pop[best_index_within(pop, &state.seed_points)];
     let (mut s, mut lo, mut hi) = ([0.0; 3], [f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     let (mut len_sum, mut len_min, mut len_max) = (0usize, usize::MAX, 0usize);
     let mut p_ma_sum = 0.0;
