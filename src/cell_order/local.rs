@@ -118,8 +118,17 @@ pub fn two_opt(inst: &Instance, tour: &mut Tour) -> (bool, u64) {
 /// Best choices, Or-opt and 2-opt until none improves (at most `rounds` rounds); returns the
 /// leg reads.
 pub fn improve(inst: &Instance, tour: &mut Tour, rounds: usize) -> u64 {
+    improve_within(inst, tour, rounds, u64::MAX)
+}
+
+/// As [`improve`], starting no round once `max_reads` leg reads are spent (a search's
+/// evaluation budget): it overshoots by at most one round.
+pub fn improve_within(inst: &Instance, tour: &mut Tour, rounds: usize, max_reads: u64) -> u64 {
     let mut reads = best_choices(inst, tour);
     for _ in 0..rounds {
+        if reads >= max_reads {
+            break;
+        }
         let (moved, r1) = or_opt(inst, tour);
         let (reversed, r2) = if moved { (false, 0) } else { two_opt(inst, tour) };
         reads += r1 + r2;

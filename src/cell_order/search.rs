@@ -6,7 +6,7 @@
 //! individual is the nearest-neighbour tour (the greedy rule today's boustrophedon uses), so
 //! the search starts from the baseline's way of ordering cells and can only improve on it.
 
-use super::local::improve;
+use super::local::improve_within;
 use super::operators::{choice_mutation, cuts, mutate_order, order_crossover, uniform_choices};
 use super::tour::{Instance, Tour};
 use crate::ga::rng::{Purpose, stream};
@@ -134,8 +134,13 @@ pub fn search<E>(
     let scale = nearest_time_s.max(f64::MIN_POSITIVE);
     let mut pop: Vec<(Tour, f64)> = Vec::with_capacity(params.population);
     let mut first = nearest;
+    // Leg reads the memetic step may still spend: what is left of an evaluation budget, so
+    // that a long local search does not run far past it.
+    let reads_left = |charged: f64| {
+        budget.evaluations.map_or(u64::MAX, |e| ((e as f64 - charged).max(0.0) * legs_per_tour).ceil() as u64)
+    };
     if params.memetic {
-        charged += improve(inst, &mut first, ROUNDS) as f64 / legs_per_tour;
+        charged += improve_within(inst, &mut first, ROUNDS, reads_left(charged)) as f64 / legs_per_tour;
     }
     let t = inst.time(&first);
     pop.push((first, t));
@@ -200,7 +205,11 @@ pub fn search<E>(
             let best_child = first_child + best_index(&next[first_child..]);
             let drawn = rng.random_range(first_child..next.len());
             for k in if drawn == best_child { vec![best_child] } else { vec![best_child, drawn] } {
-                charged += improve(inst, &mut next[k].0, ROUNDS) as f64 / legs_per_tour;
+                let left = reads_left(charged);
+                if left == 0 {
+                    break;
+                }
+                charged += improve_within(inst, &mut next[k].0, ROUNDS, left) as f64 / legs_per_tour;
                 next[k].1 = inst.time(&next[k].0);
             }
         }
