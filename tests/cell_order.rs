@@ -142,6 +142,9 @@ fn the_shipped_basement_experiment_beats_every_boustrophedon_direction() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();
+    // The memetic step stops at the budget (50 000): within one round of local search.
+    let evaluations = summary["evaluations"].as_u64().unwrap();
+    assert!((50_000..=51_500).contains(&evaluations), "{evaluations} evaluations");
     let score = &summary["score"];
     assert_eq!(score["obstacle_cells"], 0);
     assert_eq!(score["executable"], true);

@@ -314,4 +314,23 @@ mod tests {
         assert_eq!(out.stop, StopReason::Evaluations);
         assert!(out.evaluations >= 500 && out.evaluations < 500 + 40 + 200, "{}", out.evaluations);
     }
+
+    /// The local search stops once its read budget is spent: it overshoots by at most one
+    /// round, where a whole step on a shuffled tour of many cells costs several.
+    #[test]
+    fn local_search_stops_at_its_read_budget() {
+        let inst = line(300);
+        let mut shuffled = nearest_neighbour(&inst);
+        shuffled.order.shuffle(&mut stream(1, Purpose::Main, &[]));
+        let whole = super::super::local::improve(&inst, &mut shuffled.clone(), ROUNDS);
+        // The costliest round: best choices, a full Or-opt and a full 2-opt pass that find
+        // nothing (on the optimal tour), best choices again.
+        let round = 2 * super::super::local::improve_within(&inst, &mut nearest_neighbour(&inst), 1, u64::MAX);
+        for cap in [1u64, whole / 20, whole / 5] {
+            let capped = super::super::local::improve_within(&inst, &mut shuffled.clone(), ROUNDS, cap);
+            assert!(capped <= cap + round, "cap {cap}: {capped} reads, a round {round}");
+        }
+        let least = super::super::local::improve_within(&inst, &mut shuffled.clone(), ROUNDS, 1);
+        assert!(4 * least < whole, "one round ({least} reads) against the whole step ({whole})");
+    }
 }
