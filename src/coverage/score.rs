@@ -349,7 +349,7 @@ impl Scorer {
         let unique_reach = reached_cells(&self.reach, &scratch);
         let th = crate::coverage::fitness::score(&m, &self.robot, self.resolution, self.projection);
         let reachable = self.reach.coverable_count() as u64;
-        let cov_reach = reach_coverage(&self.reach, &scratch);
+        let cov_reach = unique_reach as f64 / reachable.max(1) as f64;
         let f_reach = f_obstacle(self.projection.apply(th.t_final, cov_reach), m.obstacle_cells);
         let (mut lengths, mut times) = (Vec::new(), Vec::new());
         for (p, r) in paths.iter().zip(robots) {
