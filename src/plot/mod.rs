@@ -173,6 +173,12 @@ pub fn series_colour(k: usize) -> RGBColor {
     SERIES[k % SERIES.len()]
 }
 
+/// Whether line series `k` is drawn dashed: [`SERIES`]'s sky blue is close in hue to its blue,
+/// so its lines (and their legend strokes) are dashed as well.
+pub fn series_dashed(k: usize) -> bool {
+    k % SERIES.len() == 5
+}
+
 /// Whether `title` fits `width_px` at `size` px (the estimate of [`fitting_text`]).
 pub fn fits(title: &str, width_px: u32, size: f64) -> bool {
     0.55 * size * title.chars().count() as f64 <= 0.92 * f64::from(width_px)

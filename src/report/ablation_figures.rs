@@ -234,11 +234,19 @@ impl Figure for ConvergenceFigure {
         let (width, height) = root.dim_in_pixel();
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
         let series = self.series();
-        let colour_of = |label: &str| colour(series.iter().position(|(s, _)| s.label == label).unwrap_or(0));
+        let index_of = |label: &str| series.iter().position(|(s, _)| s.label == label).unwrap_or(0);
         let labels: Vec<String> = series.iter().map(|(_, l)| l.clone()).collect();
         for (k, (label, (line, x))) in labels.iter().zip(legend_layout(&labels, width)).enumerate() {
             let y = 20 + (line * LEGEND_LINE) as i32;
-            strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour(k).stroke_width(3))).map_err(err)?;
+            if crate::plot::series_dashed(k) {
+                for x0 in [x, x + 9, x + 18] {
+                    strip
+                        .draw(&PathElement::new(vec![(x0, y), (x0 + 5, y)], colour(k).stroke_width(3)))
+                        .map_err(err)?;
+                }
+            } else {
+                strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour(k).stroke_width(3))).map_err(err)?;
+            }
             strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
         }
         for (area, (map, curves)) in panels.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
@@ -264,13 +272,17 @@ impl Figure for ConvergenceFigure {
                 .draw()
                 .map_err(err)?;
             for c in curves {
-                let col = colour_of(&c.label);
+                let k = index_of(&c.label);
+                let col = colour(k);
                 let band: Vec<(f64, f64)> =
                     c.points.iter().map(|p| (p.0, p.3)).chain(c.points.iter().rev().map(|p| (p.0, p.1))).collect();
                 chart.draw_series([Polygon::new(band, col.mix(0.2).filled())]).map_err(err)?;
-                chart
-                    .draw_series(LineSeries::new(c.points.iter().map(|p| (p.0, p.2)), col.stroke_width(2)))
-                    .map_err(err)?;
+                let median = c.points.iter().map(|p| (p.0, p.2));
+                if crate::plot::series_dashed(k) {
+                    chart.draw_series(DashedLineSeries::new(median, 7, 5, col.stroke_width(2))).map_err(err)?;
+                } else {
+                    chart.draw_series(LineSeries::new(median, col.stroke_width(2))).map_err(err)?;
+                }
             }
         }
         Ok(())
