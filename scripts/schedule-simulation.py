@@ -1,0 +1,91 @@
+#!/usr/bin/env python3
+"""How long a recorded study would take on more cores, by the order its runs are started in:
+a list-scheduling simulation from the `wall_s` each run took.
+
+    python3 scripts/schedule-simulation.py STUDY_RUNS... [--cores 16,64]
+
+STUDY_RUNS: runs.csv or runs.csv.xz files of studies (results/*/runs.csv*). Each core takes the
+next run in the order as soon as it is free, which is what `covga grid --jobs N` does. Orders:
+
+- `seed by seed`: the order `covga grid` uses, replicate by replicate and in run-id order within
+  each (a study stopped part-way holds whole seeds);
+- `longest first, estimated`: all runs by decreasing estimated time, the estimate of a run being
+  the mean `wall_s` of the other replicates of its configuration (`config_id`), as a calibration
+  or an earlier sitting would know it (a configuration run once gets the mean of all runs);
+- `longest first, exact`: by decreasing recorded `wall_s` (the list-scheduling optimum's usual
+  stand-in; it knows what no scheduler can).
+
+The makespan is divided by the lower bound max(total / cores, longest run): 1.000 is as good as
+any order can be. The recorded times come from the machine the study ran on (with whatever else
+ran there), so the figures speak of the order, not of a particular machine.
+"""
+
+import csv
+import heapq
+import io
+import lzma
+import os
+import statistics
+import sys
+
+
+def read_runs(path):
+    if path.endswith(".xz"):
+        with lzma.open(path, "rt", newline="") as f:
+            return list(csv.DictReader(io.StringIO(f.read())))
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def makespan(times, cores):
+    """List scheduling: each run starts on the core that frees first."""
+    free = [0.0] * cores
+    for t in times:
+        heapq.heappush(free, heapq.heappop(free) + t)
+    return max(free)
+
+
+def orders(rows):
+    wall = lambda r: float(r["wall_s"])
+    by_config = {}
+    for r in rows:
+        by_config.setdefault(r["config_id"], []).append(r)
+    overall = statistics.fmean(wall(r) for r in rows)
+
+    def estimate(r):
+        others = [wall(o) for o in by_config[r["config_id"]] if o is not r]
+        return statistics.fmean(others) if others else overall
+
+    seeds = sorted(rows, key=lambda r: (int(r["replicate"]), r["run_id"]))
+    estimated = sorted(rows, key=lambda r: (-estimate(r), r["run_id"]))
+    exact = sorted(rows, key=lambda r: (-wall(r), r["run_id"]))
+    return [("seed by seed", seeds), ("longest first, estimated", estimated), ("longest first, exact", exact)]
+
+
+def main():
+    args = sys.argv[1:]
+    cores = [16, 64]
+    if "--cores" in args:
+        at = args.index("--cores")
+        cores = [int(c) for c in args[at + 1].split(",")]
+        del args[at:at + 2]
+    if not args:
+        sys.exit(__doc__)
+    print("| study | runs | run time [h] | longest run [s] | cores | lower bound [s] | "
+          + " | ".join(name for name, _ in orders([{"wall_s": "1", "config_id": "a", "replicate": "0", "run_id": "a"}]))
+          + " |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for path in args:
+        rows = read_runs(path)
+        name = os.path.basename(os.path.dirname(os.path.abspath(path)))
+        times = [float(r["wall_s"]) for r in rows]
+        total, longest = sum(times), max(times)
+        for c in cores:
+            bound = max(total / c, longest)
+            ratios = [makespan([float(r["wall_s"]) for r in order], c) / bound for _, order in orders(rows)]
+            print(f"| {name} | {len(rows)} | {total / 3600:.2f} | {longest:.1f} | {c} | {bound:.0f} | "
+                  + " | ".join(f"{x:.3f}" for x in ratios) + " |")
+
+
+if __name__ == "__main__":
+    main()
