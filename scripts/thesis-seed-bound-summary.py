@@ -197,6 +197,11 @@ def summarise(results, real):
         f.write("\n".join(out))
 
 
+def where(runs):
+    """The settings of (row, value) pairs, named once each."""
+    return ", ".join(sorted({f"{r['map']} {r['moves']}/{r['sel']}" for r, _ in runs}))
+
+
 def findings(rows, tests):
     """The findings in words, each sentence built from the tables below it."""
     total = sum(len(r["runs"]) for r in rows)
@@ -235,18 +240,16 @@ def findings(rows, tests):
     if short or longer:
         words = f"{n}. **Where a bounded run is not ≥ the seed plan on both**: "
         if short:
-            where = sorted({f"{r['map']} {r['moves']}/{r['sel']}" for r, _ in short})
             words += (
-                f"{len(short)} {'run covers' if len(short) == 1 else 'runs cover'} less than the seed plan ({', '.join(where)}), by at most "
+                f"{len(short)} {'run covers' if len(short) == 1 else 'runs cover'} less than the seed plan ({where(short)}), by at most "
                 f"{-min(c for _, c in short):.4f}; the seed genome itself covers less than the plan it encodes on "
                 f"those maps (the table of the seed genome: the viewpoint lattice of the genome moves a lane edge by a few cells), "
                 f"and the bound is against the genome. "
             )
         if longer:
-            where = sorted({f"{r['map']} {r['moves']}/{r['sel']}" for r, _ in longer})
             words += (
                 f"{len(longer)} {'run takes' if len(longer) == 1 else 'runs take'} longer than the seed plan "
-                f"({', '.join(where)}), by at most {max(t for _, t in longer):+.3%}: t_final is swept-area efficiency, not time, so a plan can be more "
+                f"({where(longer)}), by at most {max(t for _, t in longer):+.3%}: t_final is swept-area efficiency, not time, so a plan can be more "
                 f"efficient and still longer."
             )
         else:
