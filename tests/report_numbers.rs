@@ -265,3 +265,62 @@ fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
     let size = image::image_dimensions(dir.path().join("report/pareto.png")).unwrap();
     assert_eq!(size, (480, 2 * 440 + 40));
 }
+
+/// f1 and f2 are different functions: where a study sweeps the projection, the best run, the
+/// best configuration and the mean of f are given per projection, never across them.
+#[test]
+fn f_is_ranked_and_averaged_within_one_projection() {
+    let dir = tempfile::tempdir().unwrap();
+    let params = vec!["thesis.projection".to_string()];
+    let header = covga::study::records::header(&params);
+    let mut csv = header.join(",") + "\n";
+    // (run, config, projection, cov_final, t_final): f1 = (c + t)/2 is larger than f2 = c·t,
+    // so a ranking across projections would put every f1 run first.
+    for (id, config, projection, cov, t) in [
+        ("p1", "cfg1", "f1", 0.40, 0.50),
+        ("p2", "cfg1", "f1", 0.50, 0.50),
+        ("q1", "cfg2", "f2", 0.90, 0.90),
+        ("q2", "cfg2", "f2", 0.70, 0.90),
+    ] {
+        let f = if projection == "f1" { (cov + t) / 2.0 } else { cov * t };
+        let values: HashMap<&str, String> = [
+            ("run_id", id.to_string()),
+            ("config_id", config.to_string()),
+            ("seed", "1".to_string()),
+            ("thesis.projection", projection.to_string()),
+            ("planner", "thesis".to_string()),
+            ("map", "thesis-1".to_string()),
+            ("executable", "true".to_string()),
+            ("planner_feasible", "true".to_string()),
+            ("cov_final_free", cov.to_string()),
+            ("cov_final_reach", cov.to_string()),
+            ("t_final", t.to_string()),
+            ("f_free", f.to_string()),
+            ("f_reach", f.to_string()),
+            ("wall_s", "1".to_string()),
+        ]
+        .into_iter()
+        .collect();
+        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
+        csv += &(row.join(",") + "\n");
+    }
+    std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
+    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 4}").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_covga")).args(["report", dir.path().to_str().unwrap()]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
+    for line in [
+        // The best run of each projection: p2 (f1 0.5) and q1 (f2 0.81).
+        "| all runs, thesis.projection=f1 | p2 | f1 | 0.500000 | 0.500000 | 0.500000 |",
+        "| all runs, thesis.projection=f2 | q1 | f2 | 0.900000 | 0.900000 | 0.810000 |",
+        // The best configuration of each projection over its seeds.
+        "| all runs, thesis.projection=f1 | f1 | 2 |",
+        "| all runs, thesis.projection=f2 | f2 | 2 |",
+        // Means of f per projection: f1 (0.45 + 0.5)/2, f2 (0.81 + 0.63)/2.
+        "| group | runs | executable | cov_final | t_final | f (f1) | f (f2) | cov_final (all) |",
+    ] {
+        assert!(md.contains(line), "missing `{line}` in\n{md}");
+    }
+    let means = md.lines().find(|l| l.starts_with("| all runs | 4 | 4/4 |")).expect("the group's means");
+    assert!(means.contains("| 0.4750 ± ") && means.contains("| 0.7200 ± "), "{means}");
+}

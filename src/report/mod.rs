@@ -328,14 +328,21 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     if wrote_diversity {
         crate::plot::save(&DiversityFigure { groups: div_groups }, &out.join("diversity"))?;
     }
-    // Best run per group, its path.
-    let best: Vec<usize> = groups
+    // Best run per group (per group and projection where the study sweeps it: f1 and f2 are
+    // different functions), its path.
+    let best: Vec<(String, usize)> = groups
         .iter()
-        .map(|g| {
-            // The best executable run; a group without one shows its best run all the same.
-            let pool: Vec<usize> = g.rows.iter().copied().filter(|&r| executable(r)).collect();
-            let pool = if pool.is_empty() { g.rows.clone() } else { pool };
-            *pool.iter().max_by(|&&a, &&b| num(a, "f_free").total_cmp(&num(b, "f_free"))).expect("non-empty group")
+        .flat_map(|g| {
+            self::report_tables::projection_scopes(&t, &g.rows).into_iter().map(|(suffix, rows)| {
+                // The best executable run; a scope without one shows its best run all the same.
+                let pool: Vec<usize> = rows.iter().copied().filter(|&r| executable(r)).collect();
+                let pool = if pool.is_empty() { rows } else { pool };
+                let r = *pool
+                    .iter()
+                    .max_by(|&&a, &&b| num(a, "f_free").total_cmp(&num(b, "f_free")))
+                    .expect("non-empty scope");
+                (format!("{}{suffix}", g.label), r)
+            })
         })
         .collect();
     let by_planner_varies =
@@ -343,7 +350,8 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             t.rows.iter().map(|row| row[c].as_str()).collect::<std::collections::BTreeSet<_>>().len() > 1
         });
     let mut loaded = Vec::new();
-    for (g, &r) in groups.iter().zip(&best) {
+    for (group_label, r) in &best {
+        let r = *r;
         let run_dir = dir.join("runs").join(get(r, "run_id"));
         let Ok(cfg) = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")) else { continue };
         let Ok(paths) = crate::io::read_path_csv(&run_dir.join("best_path.csv")) else { continue };
@@ -356,8 +364,8 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         // The planner too, where a study compares several.
         let planner = t.header.iter().rposition(|h| h == "planner").map(|c| t.rows[r][c].as_str());
         let label = match planner {
-            Some(p) if !g.label.contains(p) && by_planner_varies => format!("{}, {p}", g.label),
-            _ => g.label.clone(),
+            Some(p) if !group_label.contains(p) && by_planner_varies => format!("{group_label}, {p}"),
+            _ => group_label.clone(),
         };
         let title = format!(
             "{}: cov {:.3}, t {:.3}",

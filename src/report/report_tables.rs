@@ -12,14 +12,33 @@ use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
+/// `rows` per projection where the study sweeps it (f1 and f2 are different functions, so a
+/// best or a mean of f is taken within one), each with the suffix that names it; otherwise all
+/// of `rows` with an empty suffix.
+pub(super) fn projection_scopes(t: &RunsTable, rows: &[usize]) -> Vec<(String, Vec<usize>)> {
+    let (Some(levels), Some(c)) = (projection_levels(t, "f_free"), t.col(PROJECTION)) else {
+        return vec![(String::new(), rows.to_vec())];
+    };
+    let scopes: Vec<(String, Vec<usize>)> = levels
+        .into_iter()
+        .filter_map(|l| {
+            let scoped: Vec<usize> = rows.iter().copied().filter(|&r| t.rows[r][c] == l).collect();
+            (!scoped.is_empty()).then(|| (format!(", {PROJECTION}={l}"), scoped))
+        })
+        .collect();
+    // Rows of one projection (a group of `--by thesis.projection`) need no split.
+    if scopes.len() > 1 { scopes } else { vec![(String::new(), rows.to_vec())] }
+}
+
 /// What the tables are made of.
 pub(super) struct GroupTables<'a> {
     /// The runs.
     pub t: &'a RunsTable,
     /// The groups of `--by`.
     pub groups: &'a [Group],
-    /// The best run of each group.
-    pub best: &'a [usize],
+    /// The best run of each group (of each group and projection where f1 and f2 both occur),
+    /// with its label.
+    pub best: &'a [(String, usize)],
     /// Each group's Pareto facet.
     pub facets: &'a [ParetoFacet],
     /// Configurations over their replicates, best mean f first.
@@ -50,14 +69,18 @@ impl GroupTables<'_> {
             )
         };
         let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
+        if best.len() > groups.len() {
+            let _ = writeln!(md, "f1 and f2 are different functions: the best run of each projection.\n");
+        }
         let _ = writeln!(md, "| group | run | {} | cov_final | t_final | f |", params.join(" | "));
         let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
-        for (g, &r) in groups.iter().zip(best) {
+        for (label, r) in best {
+            let r = *r;
             let vals: Vec<String> = params.iter().map(|p| get(r, p)).collect();
             let _ = writeln!(
                 md,
                 "| {} | {} | {} | {:.6} | {:.6} | {:.6} |",
-                g.label,
+                label,
                 get(r, "run_id"),
                 vals.join(" | "),
                 num(r, "cov_final_free"),
@@ -76,9 +99,11 @@ impl GroupTables<'_> {
             "---|".repeat(params.len())
         );
         for g in groups {
-            let members: std::collections::HashSet<usize> = g.rows.iter().copied().collect();
-            if let Some(c) = conf_rows.iter().find(|c| members.contains(&c.1[0])) {
-                let _ = writeln!(md, "| {} | {}", g.label, config_cells(c));
+            for (suffix, rows) in projection_scopes(t, &g.rows) {
+                let members: std::collections::HashSet<usize> = rows.into_iter().collect();
+                if let Some(c) = conf_rows.iter().find(|c| members.contains(&c.1[0])) {
+                    let _ = writeln!(md, "| {}{suffix} | {}", g.label, config_cells(c));
+                }
             }
         }
         let _ = writeln!(
@@ -109,18 +134,40 @@ impl GroupTables<'_> {
             md,
             "Executable: runs whose best plan a robot can drive (`executable = true` in runs.csv: no obstacle or unknown cell swept, on the map). cov_final, t_final and f are over the executable runs; `cov_final (all)` over every run.\n"
         );
+        // f per projection where the study sweeps it (f1 and f2 are different functions).
+        let mixed = groups.iter().any(|g| projection_scopes(t, &g.rows).len() > 1);
+        let f_levels = projection_levels(t, "f_free").filter(|_| mixed);
+        let f_heads = match &f_levels {
+            None => "f".to_string(),
+            Some(levels) => levels.iter().map(|l| format!("f ({l})")).collect::<Vec<_>>().join(" | "),
+        };
+        let f_count = f_levels.as_ref().map_or(1, Vec::len);
         let _ = writeln!(
             md,
-            "| group | runs | executable | cov_final | t_final | f | cov_final (all) |\n|---|---|---|---|---|---|---|"
+            "| group | runs | executable | cov_final | t_final | {f_heads} | cov_final (all) |\n|---|---|---|---|---|{}---|",
+            "---|".repeat(f_count)
         );
         for g in groups {
             let drivable: Vec<usize> = g.rows.iter().copied().filter(|&r| get(r, "executable") == "true").collect();
-            let ci = |c: &str| mean_ci95(&drivable.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
-            let (c, tf, f) = (ci("cov_final_free"), ci("t_final"), ci("f_free"));
-            let all = mean_ci95(&g.rows.iter().map(|&r| num(r, "cov_final_free")).collect::<Vec<_>>());
+            let ci = |c: &str, rows: &[usize]| mean_ci95(&rows.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
+            let (c, tf) = (ci("cov_final_free", &drivable), ci("t_final", &drivable));
+            let f_cells: Vec<String> = match &f_levels {
+                None => vec![ci("f_free", &drivable)],
+                Some(levels) => levels
+                    .iter()
+                    .map(|l| {
+                        let rows: Vec<usize> = drivable.iter().copied().filter(|&r| get(r, PROJECTION) == *l).collect();
+                        ci("f_free", &rows)
+                    })
+                    .collect(),
+            }
+            .into_iter()
+            .map(|f| if f.0.is_finite() { format!("{:.4} ± {:.4}", f.0, f.1) } else { "–".to_string() })
+            .collect();
+            let all = ci("cov_final_free", &g.rows);
             let _ = writeln!(
                 md,
-                "| {} | {} | {}/{} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} ± {:.4} |",
+                "| {} | {} | {}/{} | {:.4} ± {:.4} | {:.4} ± {:.4} | {} | {:.4} ± {:.4} |",
                 g.label,
                 g.rows.len(),
                 drivable.len(),
@@ -129,8 +176,7 @@ impl GroupTables<'_> {
                 c.1,
                 tf.0,
                 tf.1,
-                f.0,
-                f.1,
+                f_cells.join(" | "),
                 all.0,
                 all.1
             );
