@@ -160,6 +160,57 @@ fn incremental_and_full_evaluation_give_identical_files() {
     }
 }
 
+/// `output.diversity_every` thins the diversity column of history.csv and changes nothing
+/// else: the other columns, the plan and every other result file are those of a run that
+/// measures it every iteration (the population does not depend on it), for Elite and for
+/// RRWS; 0 is refused with the key named.
+#[test]
+fn diversity_every_only_thins_the_diversity_column() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, extra) in [("elite", "c_child = 2\n"), ("rrws", "selection = \"rrws\"\ninit_individuals = 60\n")] {
+        let mut outs = Vec::new();
+        for every in [None, Some(7)] {
+            let tail = every.map_or(String::new(), |e| format!("[output]\ndiversity_every = {e}\n"));
+            let exp = write(dir.path(), &format!("{name}-{}.toml", every.unwrap_or(1)), &(small(extra) + &tail));
+            let out = dir.path().join(format!("{name}-{}", every.unwrap_or(1)));
+            let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+            assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+            outs.push(out);
+        }
+        for f in ["best_path.csv", "best_genome.csv", "path.svg"] {
+            assert_eq!(read(&outs[0].join(f)), read(&outs[1].join(f)), "{name}: {f}");
+        }
+        assert_eq!(summary_without_time(&outs[0]), summary_without_time(&outs[1]), "{name}");
+        let (every_row, thinned) = (read(&outs[0].join("history.csv")), read(&outs[1].join("history.csv")));
+        let header: Vec<&str> = every_row.lines().next().unwrap().split(',').collect();
+        let d = header.iter().position(|h| *h == "diversity").unwrap();
+        let (mut measured, mut rows) = (0, 0);
+        for (a, b) in every_row.lines().zip(thinned.lines()).skip(1) {
+            let (a, b): (Vec<&str>, Vec<&str>) = (a.split(',').collect(), b.split(',').collect());
+            let iteration: u32 = a[header.iter().position(|h| *h == "iteration").unwrap()].parse().unwrap();
+            for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+                if k == d && iteration % 7 != 0 {
+                    assert!(
+                        y.is_empty() && !x.is_empty(),
+                        "{name}: iteration {iteration} has no diversity when thinned"
+                    );
+                } else {
+                    assert_eq!(x, y, "{name}: column {} of iteration {iteration}", header[k]);
+                }
+            }
+            measured += usize::from(iteration % 7 == 0);
+            rows += 1;
+        }
+        assert_eq!((rows, measured), (201, 29), "{name}: rows and diversity measurements");
+    }
+    let exp = write(dir.path(), "zero.toml", &(small("") + "[output]\ndiversity_every = 0\n"));
+    let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join("zero").to_str().unwrap(), "--quiet"], "1");
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("output.diversity_every") && err.contains("at least 1"), "{err}");
+    assert!(!dir.path().join("zero").exists(), "nothing written for a refused file");
+}
+
 #[test]
 fn retrain_marks_the_region_and_recovers() {
     let dir = tempfile::tempdir().unwrap();

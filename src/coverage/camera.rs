@@ -171,8 +171,23 @@ impl Camera {
             let across = (dy * cos_psi - dx * sin_psi).abs();
             cone && across * cos_half - along * sin_half > 1e-9 * (dx.abs() + dy.abs() + 1.0)
         };
-        for r in pr - reach..=pr + reach {
-            for c in pc - reach..=pc + reach {
+        // With the pre-filter, only the pixels of the box around the field of view out to the
+        // range (a pixel wider on every side) can be other than passed over.
+        let (cols, rows) = if prefilter && cone {
+            let radius = range_skip.sqrt();
+            let (x0, y0, x1, y1) = sector_box(pos, psi, half, radius);
+            let span = |lo: f64, hi: f64, p: i64| {
+                ((lo - 0.5).floor() as i64 - 1).max(p - reach)..=((hi - 0.5).ceil() as i64 + 1).min(p + reach)
+            };
+            (span(x0, x1, pc), span(y0, y1, pr))
+        } else {
+            (pc - reach..=pc + reach, pr - reach..=pr + reach)
+        };
+        // Occluders ring by ring outwards (square rings about the pose's pixel): a pixel of
+        // ring k lies at least k − ½ px away, so once every section has an occluder nearer
+        // than the next ring, no farther one can change a section's depth.
+        for k in 0..=reach {
+            for (c, r) in ring(pc, pr, k, &cols, &rows) {
                 if occluded(c, r) && !passed_over(c, r) {
                     let (d, phi) = polar(c, r);
                     if d <= d_max
@@ -182,14 +197,25 @@ impl Camera {
                     }
                 }
             }
+            let closed = k as f64 + 0.5 - 1e-9;
+            if prefilter && nearest.iter().all(|&o| o < closed) {
+                break;
+            }
         }
         let limit: Vec<f64> = nearest.iter().map(|&o| d_view(d_max, self.d_min, o)).collect();
         if self.shape == ViewShape::Fan {
             self.fill_fan(width, height, &occluded, pos, psi, &limit, visible);
             return;
         }
-        for r in (pr - reach).max(0)..=(pr + reach).min(height as i64 - 1) {
-            for c in (pc - reach).max(0)..=(pc + reach).min(width as i64 - 1) {
+        // No pixel farther than the deepest section is seen: its ring lies beyond that depth + ½.
+        let deepest = limit.iter().fold(0.0f64, |a, &l| a.max(l));
+        let seen_reach = if prefilter { ((deepest + 0.5).floor() as i64 + 1).min(reach) } else { reach };
+        let rows =
+            (*rows.start()).max(pr - seen_reach).max(0)..=(*rows.end()).min(pr + seen_reach).min(height as i64 - 1);
+        let cols =
+            (*cols.start()).max(pc - seen_reach).max(0)..=(*cols.end()).min(pc + seen_reach).min(width as i64 - 1);
+        for r in rows {
+            for c in cols.clone() {
                 if occluded(c, r) || already_seen(r as usize * width + c as usize) || passed_over(c, r) {
                     continue;
                 }
@@ -204,6 +230,53 @@ impl Camera {
             }
         }
     }
+}
+
+/// The pixels of the square ring `k` about pixel `(pc, pr)` (ring 0 is the pixel itself)
+/// that lie within `cols × rows`.
+fn ring(
+    pc: i64,
+    pr: i64,
+    k: i64,
+    cols: &std::ops::RangeInclusive<i64>,
+    rows: &std::ops::RangeInclusive<i64>,
+) -> impl Iterator<Item = (i64, i64)> {
+    let (c0, c1, r0, r1) = (*cols.start(), *cols.end(), *rows.start(), *rows.end());
+    let row_span = move |r: i64| {
+        let lo = (pc - k).max(c0);
+        let hi = (pc + k).min(c1);
+        let on = r >= r0 && r <= r1;
+        (lo..=hi).filter(move |_| on).map(move |c| (c, r))
+    };
+    let side = move |c: i64| {
+        let on = c >= c0 && c <= c1;
+        ((pr - k + 1).max(r0)..=(pr + k - 1).min(r1)).filter(move |_| on).map(move |r| (c, r))
+    };
+    let top = row_span(pr + k);
+    let bottom = (k > 0).then(|| row_span(pr - k)).into_iter().flatten();
+    let sides = (k > 0).then(|| side(pc - k).chain(side(pc + k))).into_iter().flatten();
+    top.chain(bottom).chain(sides)
+}
+
+/// The box `(x0, y0, x1, y1)` around the sector of `radius` about `pos` between the headings
+/// `psi ± half` (`half` below a quarter turn): the apex, the two arc ends, and the arc's points
+/// in the axis directions the sector holds (with a hair of slack on the headings).
+fn sector_box(pos: (f64, f64), psi: f64, half: f64, radius: f64) -> (f64, f64, f64, f64) {
+    let mut b = (pos.0, pos.1, pos.0, pos.1);
+    let mut add = |a: f64| {
+        let (y, x) = a.sin_cos();
+        let (px, py) = (pos.0 + radius * x, pos.1 + radius * y);
+        b = (b.0.min(px), b.1.min(py), b.2.max(px), b.3.max(py));
+    };
+    add(psi - half);
+    add(psi + half);
+    for k in 0..4 {
+        let axis = k as f64 * 0.5 * std::f64::consts::PI;
+        if wrap(axis - psi).abs() <= half + 1e-6 {
+            add(axis);
+        }
+    }
+    b
 }
 
 impl Camera {

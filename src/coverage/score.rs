@@ -19,7 +19,6 @@ use crate::coverage::fitness::{Projection, f_obstacle};
 use crate::coverage::work_map::WorkMap;
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 
 /// Spacing of camera poses along a path in metres.
@@ -305,7 +304,7 @@ impl Scorer {
         stations: &[Point],
     ) -> Self {
         let narrowest = widths.iter().copied().fold(robot.width, f64::min);
-        let reach = Reach::new(&Clearance::new(map, narrowest), stations);
+        let reach = Reach::for_width(map, narrowest, stations);
         let far = map.origin() + nalgebra::Vector2::new(map.width_m(), map.height_m());
         Self {
             grid: CoverageGrid::new(map),

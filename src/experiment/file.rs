@@ -68,6 +68,13 @@ pub struct OutputSection {
     /// Results folder (default `out/<file stem>`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dir: Option<PathBuf>,
+    /// `history.csv` records the population diversity every this many iterations (and at
+    /// iteration 0); the other rows leave it empty. Measuring it is a pass over every visit
+    /// map, about a fifth of a thesis GA run when done every iteration. Absent means 1, every
+    /// iteration, so that the written `config.toml` and run ids of files without it stay as
+    /// they were.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diversity_every: Option<u32>,
 }
 
 impl Default for ExperimentFile {
@@ -108,6 +115,8 @@ pub struct Experiment {
     pub budget: Budget,
     /// Results folder.
     pub output_dir: PathBuf,
+    /// Iterations between diversity measurements in `history.csv` (at least 1).
+    pub diversity_every: u32,
 }
 
 impl ExperimentFile {
@@ -240,7 +249,15 @@ impl ExperimentFile {
         };
         let planner = PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget })?;
         let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
+        let diversity_every = self.output.diversity_every.unwrap_or(1);
+        if diversity_every == 0 {
+            return Err(ConfigError::new(
+                origin,
+                "output.diversity_every",
+                "= 0 is out of range: iterations between diversity measurements, at least 1",
+            ));
+        }
         self.stations.end = Some([end.x, end.y]);
-        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir })
+        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, diversity_every })
     }
 }

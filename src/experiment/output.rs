@@ -42,15 +42,16 @@ struct HistoryCsv {
     path: PathBuf,
     out: std::io::BufWriter<std::fs::File>,
     header_written: bool,
+    diversity_every: u32,
 }
 
 impl HistoryCsv {
     /// Opens `<dir>/history.csv` (as a temporary file until finished).
-    pub fn create(dir: &Path) -> std::io::Result<Self> {
+    pub fn create(dir: &Path, diversity_every: u32) -> std::io::Result<Self> {
         let path = dir.join("history.csv");
         let tmp = dir.join(".history.csv.partial");
         let out = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
-        Ok(Self { tmp, path, out, header_written: false })
+        Ok(Self { tmp, path, out, header_written: false, diversity_every })
     }
     /// Removes the temporary file (the run was refused).
     pub fn discard(self) {
@@ -75,8 +76,8 @@ impl Observer for HistoryCsv {
         }
         writeln!(self.out, "{}", record.csv_row())
     }
-    fn wants_diversity(&self) -> bool {
-        true
+    fn diversity_every(&self) -> Option<u32> {
+        Some(self.diversity_every)
     }
 }
 
@@ -189,7 +190,7 @@ pub fn run_experiment(
     extra: &mut [&mut dyn Observer],
 ) -> Result<Summary, OutputError> {
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
-    let mut history = HistoryCsv::create(dir).map_err(io_err(dir))?;
+    let mut history = HistoryCsv::create(dir, exp.diversity_every).map_err(io_err(dir))?;
     let planner = exp.planner.planner();
     let outcome = {
         let mut observers: Vec<&mut dyn Observer> = vec![&mut history];

@@ -115,7 +115,7 @@ pub struct GenerationStats {
     /// Longest genome.
     pub max_genome_len: u32,
     /// Population diversity `Div` (spec §5), when it was measured (see
-    /// [`Observer::wants_diversity`]).
+    /// [`Observer::diversity_every`]).
     pub diversity: Option<f64>,
     /// Effective crossover probability `P_c`.
     pub p_c: f64,
@@ -186,11 +186,12 @@ pub trait Observer {
     fn event(&mut self, _event: RunEvent) -> std::io::Result<()> {
         Ok(())
     }
-    /// Whether this observer reads the population diversity. Measuring it costs a pass over
-    /// every visit map each generation, so planners measure it only when someone reads it
-    /// (or their own parameter control does).
-    fn wants_diversity(&self) -> bool {
-        false
+    /// Every how many iterations this observer reads the population diversity (iteration 0
+    /// included), or `None` when it never does. Measuring it costs a pass over every visit
+    /// map, so planners measure it only when someone reads it (or their own parameter
+    /// control does).
+    fn diversity_every(&self) -> Option<u32> {
+        None
     }
 }
 
@@ -208,8 +209,8 @@ impl Observer for Recorder {
         self.history.push(record.clone());
         Ok(())
     }
-    fn wants_diversity(&self) -> bool {
-        true
+    fn diversity_every(&self) -> Option<u32> {
+        Some(1)
     }
     fn event(&mut self, event: RunEvent) -> std::io::Result<()> {
         let RunEvent::EnvironmentChanged { iteration } = event;

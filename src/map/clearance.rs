@@ -5,6 +5,7 @@
 
 use crate::geom::Point;
 use crate::map::GridMap;
+use crate::map::wall_rows::WallRows;
 use std::borrow::Cow;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -20,7 +21,13 @@ pub struct Clearance<'m> {
     map: Cow<'m, GridMap>,
     radius: f64,
     window: isize,
+    walls: WallRows,
     centre_ok: Vec<bool>,
+    /// Per cell: every point of it keeps clear of the non-free cells with any slack: its
+    /// centre keeps the radius plus half the cell's diagonal (and a margin far above rounding),
+    /// and no point of the cell is farther from it than that. The window holds every cell
+    /// that near: it reaches `radius + resolution` beyond the cell.
+    roomy: Vec<bool>,
     /// Cell centres reachable from the stations, once restricted.
     reachable: Option<Vec<bool>>,
 }
@@ -39,14 +46,53 @@ impl<'m> Clearance<'m> {
     fn of(map: Cow<'m, GridMap>, width: f64) -> Self {
         let radius = 0.5 * width;
         let window = (radius / map.resolution()).ceil() as isize + 1;
-        let mut c = Self { map, radius, window, centre_ok: Vec::new(), reachable: None };
+        let walls = WallRows::new(&map);
+        let mut c = Self { map, radius, window, walls, centre_ok: Vec::new(), roomy: Vec::new(), reachable: None };
         let map = &*c.map;
-        let centre_ok = (0..map.rows())
-            .flat_map(|r| (0..map.cols()).map(move |col| (r, col)))
-            .map(|(r, col)| c.fits_geometry(map.cell_centre(r, col)))
-            .collect();
-        c.centre_ok = centre_ok;
+        let half_diagonal = map.resolution() * std::f64::consts::FRAC_1_SQRT_2;
+        let (lim, roomy_lim) = (radius - CLEARANCE_EPS, radius - CLEARANCE_EPS + half_diagonal + 1e-9);
+        let (centre_ok, roomy) = (0..map.rows())
+            .flat_map(|r| (0..map.cols()).map(move |col| map.cell_centre(r, col)))
+            .map(|p| {
+                let d2 = c.nearest_cell_d2(p);
+                // As `fits_geometry`, from the same squared distances.
+                (c.inside_edges(p) && d2 >= lim * lim, d2 >= roomy_lim * roomy_lim)
+            })
+            .unzip();
+        (c.centre_ok, c.roomy) = (centre_ok, roomy);
         c
+    }
+
+    /// Whether the robot disc centred at `p` stays on the map (the edges' test of
+    /// [`Clearance::fits_geometry`]).
+    fn inside_edges(&self, p: Point) -> bool {
+        let m = &*self.map;
+        let (ox, oy) = (m.origin().x, m.origin().y);
+        let lim = self.radius - CLEARANCE_EPS;
+        !(p.x - ox < lim || p.y - oy < lim || ox + m.width_m() - p.x < lim || oy + m.height_m() - p.y < lim)
+    }
+
+    /// The smallest squared distance from `p` to a non-free cell of the window about it
+    /// (infinite when there is none).
+    fn nearest_cell_d2(&self, p: Point) -> f64 {
+        let m = &*self.map;
+        let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
+        let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
+        let (lo, hi) = ((cc - self.window).max(0), (cc + self.window).min(m.cols() as isize - 1));
+        let mut best = f64::INFINITY;
+        if lo > hi {
+            return best;
+        }
+        for r in (cr - self.window).max(0)..=(cr + self.window).min(m.rows() as isize - 1) {
+            let y0 = oy + r as f64 * res;
+            let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+            self.walls.candidates(r as usize, cc, lo as usize, hi as usize, |c| {
+                let x0 = ox + c as f64 * res;
+                let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
+                best = best.min(dx * dx + dy * dy);
+            });
+        }
+        best
     }
 
     /// Restricts every later query to the cell centres marked in `reachable` (one flag per
@@ -56,6 +102,11 @@ impl<'m> Clearance<'m> {
             *ok &= *r;
         }
         self.reachable = Some(reachable);
+    }
+
+    /// Whether [`Clearance::restrict`] narrowed the queries.
+    pub fn is_restricted(&self) -> bool {
+        self.reachable.is_some()
     }
 
     /// Whether the robot centred on cell `index` (row-major) fits (and is reachable, once
@@ -99,13 +150,7 @@ impl<'m> Clearance<'m> {
 
     /// Whether the robot disc centred at `p` stays on the map and off every non-free cell.
     pub fn fits_geometry(&self, p: Point) -> bool {
-        let m = &*self.map;
-        let (ox, oy) = (m.origin().x, m.origin().y);
-        let lim = self.radius - CLEARANCE_EPS;
-        if p.x - ox < lim || p.y - oy < lim || ox + m.width_m() - p.x < lim || oy + m.height_m() - p.y < lim {
-            return false;
-        }
-        self.clear_of_cells(p)
+        self.inside_edges(p) && self.clear_of_cells(p)
     }
 
     /// Whether the robot disc centred at `p` keeps clear of every non-free cell of the map (the
@@ -118,6 +163,22 @@ impl<'m> Clearance<'m> {
     /// own, for points that a planner put at the clearance limit and a later computation moved
     /// by a rounding error (see `coverage::routes::STAND_SLACK_M`).
     pub fn clear_of_cells_within(&self, p: Point, slack: f64) -> bool {
+        let m = &*self.map;
+        if slack >= 0.0
+            && let Some((r, c)) = m.cell_at(p)
+            && self.roomy[m.index(r, c)]
+        {
+            return true;
+        }
+        let lim = self.radius - CLEARANCE_EPS - slack;
+        // The same squared distances as a scan of the whole window (see WallRows).
+        self.nearest_cell_d2(p) >= lim * lim
+    }
+
+    /// [`Clearance::clear_of_cells_within`] scanning every cell of the window: the reference
+    /// for the row index.
+    #[cfg(test)]
+    fn clear_of_cells_within_full(&self, p: Point, slack: f64) -> bool {
         let m = &*self.map;
         let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
         let lim = self.radius - CLEARANCE_EPS - slack;
@@ -281,17 +342,25 @@ impl<'m> Clearance<'m> {
     }
 
     fn astar(&self, from: usize, to: usize) -> Option<Vec<usize>> {
+        ASTAR.with_borrow_mut(|scratch| {
+            scratch.ready(self.centre_ok.len());
+            let path = self.astar_in(from, to, scratch);
+            scratch.reset();
+            path
+        })
+    }
+
+    fn astar_in(&self, from: usize, to: usize, scratch: &mut AstarScratch) -> Option<Vec<usize>> {
         let m = &*self.map;
-        let n = self.centre_ok.len();
         let h = |i: usize| {
             let (dr, dc) =
                 ((i / m.cols()) as f64 - (to / m.cols()) as f64, (i % m.cols()) as f64 - (to % m.cols()) as f64);
             (dr * dr + dc * dc).sqrt()
         };
-        let mut g = vec![f64::INFINITY; n];
-        let mut parent = vec![usize::MAX; n];
+        let AstarScratch { g, parent, touched } = scratch;
         let mut heap = BinaryHeap::new();
         g[from] = 0.0;
+        touched.push(from);
         // Keys in 1e-6 cell units keep the order total and deterministic.
         let key = |f: f64| (f * 1e6) as u64;
         heap.push(Reverse((key(h(from)), from)));
@@ -309,6 +378,9 @@ impl<'m> Clearance<'m> {
             for (j, step) in self.steps(i) {
                 let cand = g[i] + step;
                 if cand < g[j] - 1e-12 {
+                    if g[j] == f64::INFINITY {
+                        touched.push(j);
+                    }
                     g[j] = cand;
                     parent[j] = i;
                     heap.push(Reverse((key(cand + h(j)), j)));
@@ -317,6 +389,37 @@ impl<'m> Clearance<'m> {
         }
         None
     }
+}
+
+/// The search state of [`Clearance::connect`]'s A*, one per thread: cost so far and parent per
+/// cell, and the cells written, so that a search resets only those (a fresh state per search
+/// cleared megabytes on large maps for searches that touch a few thousand cells).
+#[derive(Default)]
+struct AstarScratch {
+    g: Vec<f64>,
+    parent: Vec<usize>,
+    touched: Vec<usize>,
+}
+
+impl AstarScratch {
+    fn ready(&mut self, n: usize) {
+        if self.g.len() != n {
+            self.g = vec![f64::INFINITY; n];
+            self.parent = vec![usize::MAX; n];
+        }
+    }
+
+    fn reset(&mut self) {
+        for &i in &self.touched {
+            self.g[i] = f64::INFINITY;
+            self.parent[i] = usize::MAX;
+        }
+        self.touched.clear();
+    }
+}
+
+thread_local! {
+    static ASTAR: std::cell::RefCell<AstarScratch> = std::cell::RefCell::new(AstarScratch::default());
 }
 
 #[cfg(test)]
@@ -333,6 +436,22 @@ mod tests {
         let iv = c.fitting_intervals(Point::new(0.0, 5.0), Point::new(11.0, 5.0), 0.2);
         assert_eq!(iv.len(), 1);
         assert!((iv[0].0 * 11.0 - 1.3).abs() < 1e-5 && (iv[0].1 * 11.0 - 9.7).abs() < 1e-5);
+    }
+
+    proptest::proptest! {
+        /// The row index answers as the scan of the whole window, at random points on and
+        /// off the map (cell borders included) of a cluttered map, for several widths and slacks.
+        #[test]
+        fn row_index_answers_as_the_full_window(
+            x in -0.5f64..30.5, y in -0.5f64..20.5, on_border in proptest::bool::ANY,
+            width in 0.05f64..1.2, slack in 0.0f64..0.05,
+        ) {
+            let m = preset("office").unwrap();
+            let c = Clearance::new(&m, width);
+            let snap = |v: f64| if on_border { (v / m.resolution()).round() * m.resolution() } else { v };
+            let p = Point::new(snap(x), snap(y));
+            proptest::prop_assert_eq!(c.clear_of_cells_within(p, slack), c.clear_of_cells_within_full(p, slack));
+        }
     }
 
     #[test]

@@ -12,14 +12,40 @@
 //! wall-free plan can sweep, and at most the cells within 2δ of that set besides.
 
 use super::GridMap;
+use super::wall_rows::WallRows;
 use crate::geom::Point;
 
 /// Lattice points per cell edge (`h = resolution / LATTICE_PER_CELL`).
 pub const LATTICE_PER_CELL: usize = 8;
 
 /// Distance from `p` to the nearest non-free cell or the map's edge, or `cap` when both are
-/// farther than `cap`.
-fn clearance(map: &GridMap, p: Point, cap: f64) -> f64 {
+/// farther than `cap`. Only the non-free cells of each row nearest to `p` are measured
+/// ([`WallRows`]): the minimum is the one over the whole window.
+fn clearance(map: &GridMap, walls: &WallRows, p: Point, cap: f64) -> f64 {
+    let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
+    let edge = (p.x - ox).min(p.y - oy).min(ox + map.width_m() - p.x).min(oy + map.height_m() - p.y);
+    let mut best = edge.min(cap);
+    let window = (cap / res).ceil() as isize + 1;
+    let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
+    let (lo, hi) = ((cc - window).max(0), (cc + window).min(map.cols() as isize - 1));
+    if lo > hi {
+        return best;
+    }
+    for r in (cr - window).max(0)..=(cr + window).min(map.rows() as isize - 1) {
+        let y0 = oy + r as f64 * res;
+        let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+        walls.candidates(r as usize, cc, lo as usize, hi as usize, |c| {
+            let x0 = ox + c as f64 * res;
+            let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
+            best = best.min((dx * dx + dy * dy).sqrt());
+        });
+    }
+    best
+}
+
+/// [`clearance`] scanning every cell of the window: the reference for the row index.
+#[cfg(test)]
+fn clearance_full(map: &GridMap, p: Point, cap: f64) -> f64 {
     let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
     let edge = (p.x - ox).min(p.y - oy).min(ox + map.width_m() - p.x).min(oy + map.height_m() - p.y);
     let mut best = edge.min(cap);
@@ -61,6 +87,203 @@ impl Lattice<'_> {
     }
 }
 
+/// Which lattice points a centre may take (clearance ≥ r − δ), found lazily cell by cell.
+struct KeptPoints<'m> {
+    lat: &'m Lattice<'m>,
+    walls: WallRows,
+    need: f64,
+    /// Per cell: 0 unknown, [`ROOMY`], [`HOPELESS`] or [`MIXED`].
+    cells: Vec<u8>,
+    /// Per lattice point of a mixed cell: 0 unknown, 1 kept, 2 not kept.
+    points: Vec<u8>,
+}
+
+/// Every lattice point of the cell is kept: its centre's clearance exceeds `need` by half the
+/// cell's diagonal (clearance is 1-Lipschitz).
+const ROOMY: u8 = 1;
+/// No lattice point of the cell is kept: its centre's clearance falls short of `need` by more
+/// than half the diagonal (with a margin far above rounding).
+const HOPELESS: u8 = 2;
+/// Each point is tested on its own.
+const MIXED: u8 = 3;
+
+impl KeptPoints<'_> {
+    fn cell_class(&mut self, cell: usize) -> u8 {
+        if self.cells[cell] == 0 {
+            let map = self.lat.map;
+            let half_diagonal = map.resolution() * std::f64::consts::FRAC_1_SQRT_2;
+            let wanted = self.need + half_diagonal;
+            let c = map.cell_centre(cell / map.cols(), cell % map.cols());
+            let v = clearance(map, &self.walls, c, wanted + 1e-9);
+            self.cells[cell] = if v >= wanted {
+                ROOMY
+            } else if v + half_diagonal < self.need - 1e-9 {
+                HOPELESS
+            } else {
+                MIXED
+            };
+        }
+        self.cells[cell]
+    }
+
+    fn kept(&mut self, k: usize) -> bool {
+        let lat = self.lat;
+        let (i, j) = (k % lat.cols, k / lat.cols);
+        let s = LATTICE_PER_CELL;
+        match self.cell_class(lat.map.index(j / s, i / s)) {
+            ROOMY => true,
+            HOPELESS => false,
+            _ => {
+                if self.points[k] == 0 {
+                    self.test_points(lat.map.index(j / s, i / s));
+                }
+                self.points[k] == 1
+            }
+        }
+    }
+
+    /// Tests every lattice point of a mixed cell. Its points share the window and the row
+    /// candidates of [`clearance`], so the walls are gathered once, and those whose square
+    /// lies farther than the cap from the cell's square (a margin far above rounding) are
+    /// left out: they cannot lower a clearance capped there. Each point's clearance is that
+    /// of [`clearance`] to the bit.
+    fn test_points(&mut self, cell: usize) {
+        let (lat, s) = (self.lat, LATTICE_PER_CELL);
+        let map = lat.map;
+        let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
+        let (row, col) = (cell / map.cols(), cell % map.cols());
+        let cap = self.need + 1e-9;
+        let window = (cap / res).ceil() as isize + 1;
+        let (lo, hi) =
+            ((col as isize - window).max(0) as usize, (col as isize + window).min(map.cols() as isize - 1) as usize);
+        let (cx, cy) = (ox + col as f64 * res, oy + row as f64 * res);
+        let gap = |a: f64, b: f64| (a - b - res).max(0.0).max(b - a - res);
+        let mut boxes: Vec<(f64, f64)> = Vec::new();
+        for r in (row as isize - window).max(0)..=(row as isize + window).min(map.rows() as isize - 1) {
+            let y0 = oy + r as f64 * res;
+            self.walls.candidates(r as usize, col as isize, lo, hi, |c| {
+                let x0 = ox + c as f64 * res;
+                if gap(x0, cx).hypot(gap(y0, cy)) <= cap + 1e-9 {
+                    boxes.push((x0, y0));
+                }
+            });
+        }
+        for j in row * s..(row + 1) * s {
+            for i in col * s..(col + 1) * s {
+                let p = lat.point(i, j);
+                let edge = (p.x - ox).min(p.y - oy).min(ox + map.width_m() - p.x).min(oy + map.height_m() - p.y);
+                let mut best = edge.min(cap);
+                for &(x0, y0) in &boxes {
+                    let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
+                    let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+                    best = best.min((dx * dx + dy * dy).sqrt());
+                }
+                let ok = map.is_free_point(p) && best >= self.need;
+                self.points[j * lat.cols + i] = if ok { 1 } else { 2 };
+            }
+        }
+    }
+}
+
+/// The kept lattice points 8-connected to the seeds' nearest kept points, and per cell whether
+/// it holds one. Entering a roomy cell reaches all its points at once; from it, a roomy
+/// neighbour cell is entered whole (some of their points are neighbours, all are kept), and
+/// only the points of a mixed neighbour next to its rim are tried one by one.
+fn flood(kept: &mut KeptPoints, seeds: &[Point]) -> (Vec<bool>, Vec<bool>) {
+    let mut f = Flood {
+        reached: vec![false; kept.lat.cols * kept.lat.rows],
+        cell_reached: vec![false; kept.lat.map.rows() * kept.lat.map.cols()],
+        points: Vec::new(),
+        cells: Vec::new(),
+    };
+    for &p in seeds {
+        f.enter(kept, kept.lat.nearest(p));
+    }
+    let lat = kept.lat;
+    let (s, cols, rows) = (LATTICE_PER_CELL as isize, lat.map.cols() as isize, lat.map.rows() as isize);
+    let neighbours = [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)];
+    loop {
+        if let Some(k) = f.points.pop() {
+            let (i, j) = ((k % lat.cols) as isize, (k / lat.cols) as isize);
+            for (di, dj) in neighbours {
+                let (ni, nj) = (i + di, j + dj);
+                if ni >= 0 && nj >= 0 && ni < lat.cols as isize && nj < lat.rows as isize {
+                    f.enter(kept, nj as usize * lat.cols + ni as usize);
+                }
+            }
+        } else if let Some(cell) = f.cells.pop() {
+            let (r, c) = ((cell / lat.map.cols()) as isize, (cell % lat.map.cols()) as isize);
+            for (dc, dr) in neighbours {
+                let (nr, nc) = (r + dr, c + dc);
+                if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                    continue;
+                }
+                let next = (nr * cols + nc) as usize;
+                match kept.cell_class(next) {
+                    ROOMY => f.enter(kept, (nr * s) as usize * lat.cols + (nc * s) as usize),
+                    HOPELESS => {}
+                    _ => {
+                        // The rim points of `cell` facing `next`, and their neighbours in `next`.
+                        let span = |d: isize, o: isize| {
+                            if d < 0 {
+                                o..o + 1
+                            } else if d > 0 {
+                                o + s - 1..o + s
+                            } else {
+                                o..o + s
+                            }
+                        };
+                        for qj in span(dr, r * s) {
+                            for qi in span(dc, c * s) {
+                                for (di, dj) in neighbours {
+                                    let (ni, nj) = (qi + di, qj + dj);
+                                    if ni.div_euclid(s) == nc && nj.div_euclid(s) == nr {
+                                        f.enter(kept, nj as usize * lat.cols + ni as usize);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        } else {
+            break;
+        }
+    }
+    (f.reached, f.cell_reached)
+}
+
+/// The state of [`flood`]: points and cells reached, and those still to explore from.
+struct Flood {
+    reached: Vec<bool>,
+    cell_reached: Vec<bool>,
+    points: Vec<usize>,
+    cells: Vec<usize>,
+}
+
+impl Flood {
+    /// Reaches lattice point `n` if it is kept and new: with its whole cell when that is roomy.
+    fn enter(&mut self, kept: &mut KeptPoints, n: usize) {
+        if self.reached[n] || !kept.kept(n) {
+            return;
+        }
+        let (lat, s) = (kept.lat, LATTICE_PER_CELL);
+        let (i, j) = (n % lat.cols, n / lat.cols);
+        let cell = lat.map.index(j / s, i / s);
+        self.cell_reached[cell] = true;
+        if kept.cell_class(cell) != ROOMY {
+            self.reached[n] = true;
+            self.points.push(n);
+            return;
+        }
+        let (i0, j0) = (i / s * s, j / s * s);
+        for jj in j0..j0 + s {
+            self.reached[jj * lat.cols + i0..jj * lat.cols + i0 + s].fill(true);
+        }
+        self.cells.push(cell);
+    }
+}
+
 /// Coverable flags, one per cell (row-major), for a robot of radius `radius` whose centre
 /// starts at any of `seeds`: see the module documentation.
 pub fn coverable_cells(map: &GridMap, radius: f64, seeds: &[Point]) -> Vec<bool> {
@@ -68,53 +291,21 @@ pub fn coverable_cells(map: &GridMap, radius: f64, seeds: &[Point]) -> Vec<bool>
     let lat = Lattice { map, cols: map.cols() * s, rows: map.rows() * s, h: map.resolution() / s as f64 };
     let delta = lat.h * std::f64::consts::FRAC_1_SQRT_2;
     let need = (radius - delta).max(0.0);
-    // A cell whose centre has clearance ≥ need + half its diagonal keeps all its lattice
-    // points (clearance is 1-Lipschitz): one scan per cell instead of one per point.
-    let half_diagonal = map.resolution() * std::f64::consts::FRAC_1_SQRT_2;
-    let mut roomy = vec![0u8; map.rows() * map.cols()];
-    // Kept lattice points, found lazily: 0 unknown, 1 kept, 2 not kept.
-    let mut state = vec![0u8; lat.cols * lat.rows];
-    let mut kept = |k: usize, state: &mut Vec<u8>| {
-        if state[k] == 0 {
-            let (i, j) = (k % lat.cols, k / lat.cols);
-            let cell = map.index(j / s, i / s);
-            if roomy[cell] == 0 {
-                let c = map.cell_centre(j / s, i / s);
-                let wanted = need + half_diagonal;
-                roomy[cell] = if clearance(map, c, wanted + 1e-9) >= wanted { 1 } else { 2 };
-            }
-            let p = lat.point(i, j);
-            let ok = roomy[cell] == 1 || (map.is_free_point(p) && clearance(map, p, need + 1e-9) >= need);
-            state[k] = if ok { 1 } else { 2 };
-        }
-        state[k] == 1
+    let mut kept = KeptPoints {
+        lat: &lat,
+        walls: WallRows::new(map),
+        need,
+        cells: vec![0; map.rows() * map.cols()],
+        points: vec![0; lat.cols * lat.rows],
     };
-    let mut reached = vec![false; lat.cols * lat.rows];
-    let mut stack: Vec<usize> = Vec::new();
-    for &p in seeds {
-        let k = lat.nearest(p);
-        if !reached[k] && kept(k, &mut state) {
-            reached[k] = true;
-            stack.push(k);
-        }
-    }
-    while let Some(k) = stack.pop() {
-        let (i, j) = ((k % lat.cols) as isize, (k / lat.cols) as isize);
-        for (di, dj) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)] {
-            let (ni, nj) = (i + di, j + dj);
-            if ni < 0 || nj < 0 || ni >= lat.cols as isize || nj >= lat.rows as isize {
-                continue;
-            }
-            let n = nj as usize * lat.cols + ni as usize;
-            if !reached[n] && kept(n, &mut state) {
-                reached[n] = true;
-                stack.push(n);
-            }
-        }
-    }
+    let (reached, cell_reached) = flood(&mut kept, seeds);
     // A free cell is coverable when a reached lattice point lies within r + δ of its centre.
+    // Lattice points are looked at only in cells that hold a reached one and whose square
+    // comes that close (a margin far above rounding keeps every candidate point).
     let reach_r = radius + delta;
     let span = (reach_r / lat.h).ceil() as isize + 1;
+    let res = map.resolution();
+    let cell_span = (reach_r / res).ceil() as isize + 1;
     let mut out = vec![false; map.rows() * map.cols()];
     for row in 0..map.rows() {
         for col in 0..map.cols() {
@@ -128,20 +319,117 @@ pub fn coverable_cells(map: &GridMap, radius: f64, seeds: &[Point]) -> Vec<bool>
                 continue;
             }
             let (ci, cj) = ((k % lat.cols) as isize, (k / lat.cols) as isize);
-            'search: for dj in -span..=span {
-                for di in -span..=span {
-                    let (ni, nj) = (ci + di, cj + dj);
-                    if ni < 0 || nj < 0 || ni >= lat.cols as isize || nj >= lat.rows as isize {
-                        continue;
-                    }
+            let within = |ni: isize, nj: isize| {
+                (ni - ci).abs() <= span
+                    && (nj - cj).abs() <= span
+                    && reached[nj as usize * lat.cols + ni as usize]
+                    && (lat.point(ni as usize, nj as usize) - c).norm() <= reach_r
+            };
+            out[map.index(row, col)] = cells_around(map, row, col, cell_span).any(|(r2, c2)| {
+                if !cell_reached[map.index(r2, c2)] || box_distance(map, r2, c2, c) > reach_r * (1.0 + 1e-9) + 1e-12 {
+                    return false;
+                }
+                let (i0, j0) = ((c2 * s) as isize, (r2 * s) as isize);
+                (j0..j0 + s as isize).any(|nj| (i0..i0 + s as isize).any(|ni| within(ni, nj)))
+            });
+        }
+    }
+    out
+}
+
+/// The cells of the square of `span` cells around `(row, col)`, on the map.
+fn cells_around(map: &GridMap, row: usize, col: usize, span: isize) -> impl Iterator<Item = (usize, usize)> {
+    let (row, col) = (row as isize, col as isize);
+    let (r0, r1) = ((row - span).max(0), (row + span).min(map.rows() as isize - 1));
+    let (c0, c1) = ((col - span).max(0), (col + span).min(map.cols() as isize - 1));
+    (r0..=r1).flat_map(move |r| (c0..=c1).map(move |c| (r as usize, c as usize)))
+}
+
+/// Distance from `p` to the square of cell `(row, col)`.
+fn box_distance(map: &GridMap, row: usize, col: usize, p: Point) -> f64 {
+    let res = map.resolution();
+    let (x0, y0) = (map.origin().x + col as f64 * res, map.origin().y + row as f64 * res);
+    let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
+    let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+    dx.hypot(dy)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::CellState;
+    use proptest::prelude::*;
+
+    /// The plain definition: every lattice point kept by its own full-window clearance, the
+    /// 8-connected flood from the seeds, and every reached point within r + δ of a free cell's
+    /// centre looked at.
+    fn coverable_reference(map: &GridMap, radius: f64, seeds: &[Point]) -> Vec<bool> {
+        let s = LATTICE_PER_CELL;
+        let lat = Lattice { map, cols: map.cols() * s, rows: map.rows() * s, h: map.resolution() / s as f64 };
+        let delta = lat.h * std::f64::consts::FRAC_1_SQRT_2;
+        let need = (radius - delta).max(0.0);
+        let kept: Vec<bool> = (0..lat.cols * lat.rows)
+            .map(|k| {
+                let p = lat.point(k % lat.cols, k / lat.cols);
+                map.is_free_point(p) && clearance_full(map, p, need + 1e-9) >= need
+            })
+            .collect();
+        let mut reached = vec![false; kept.len()];
+        let mut stack: Vec<usize> = seeds.iter().map(|&p| lat.nearest(p)).filter(|&k| kept[k]).collect();
+        while let Some(k) = stack.pop() {
+            if reached[k] {
+                continue;
+            }
+            reached[k] = true;
+            let (i, j) = ((k % lat.cols) as isize, (k / lat.cols) as isize);
+            for (di, dj) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)] {
+                let (ni, nj) = (i + di, j + dj);
+                if ni >= 0 && nj >= 0 && ni < lat.cols as isize && nj < lat.rows as isize {
                     let n = nj as usize * lat.cols + ni as usize;
-                    if reached[n] && (lat.point(ni as usize, nj as usize) - c).norm() <= reach_r {
-                        out[map.index(row, col)] = true;
-                        break 'search;
+                    if kept[n] && !reached[n] {
+                        stack.push(n);
                     }
                 }
             }
         }
+        let reach_r = radius + delta;
+        (0..map.rows() * map.cols())
+            .map(|cell| {
+                let (row, col) = (cell / map.cols(), cell % map.cols());
+                let c = map.cell_centre(row, col);
+                map.is_free(row, col)
+                    && (0..reached.len())
+                        .any(|k| reached[k] && (lat.point(k % lat.cols, k / lat.cols) - c).norm() <= reach_r)
+            })
+            .collect()
     }
-    out
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+        /// The cell-level shortcuts (whole cells kept from their centre's clearance, the row
+        /// index of the walls, cells passed over by their square's distance) change nothing.
+        #[test]
+        fn shortcuts_give_the_plain_definition(
+            walls in proptest::collection::vec(proptest::bool::weighted(0.25), 80),
+            radius in 0.02f64..0.3,
+            sx in 0.0f64..1.0, sy in 0.0f64..0.8,
+        ) {
+            let cells = walls.iter().map(|&w| if w { CellState::Occupied } else { CellState::Free }).collect();
+            let Ok(map) = GridMap::new("random", 10, 8, 0.1, Point::new(-0.3, 0.2), cells) else { return Ok(()) };
+            let seeds = [Point::new(-0.3 + sx, 0.2 + sy)];
+            prop_assert_eq!(coverable_cells(&map, radius, &seeds), coverable_reference(&map, radius, &seeds));
+        }
+
+        /// The row index gives the full window's clearance to the bit.
+        #[test]
+        fn clearance_is_the_full_windows(
+            walls in proptest::collection::vec(proptest::bool::weighted(0.25), 80),
+            x in -0.5f64..1.0, y in 0.0f64..1.2, cap in 0.0f64..0.5,
+        ) {
+            let cells = walls.iter().map(|&w| if w { CellState::Occupied } else { CellState::Free }).collect();
+            let Ok(map) = GridMap::new("random", 10, 8, 0.1, Point::new(-0.3, 0.2), cells) else { return Ok(()) };
+            let p = Point::new(x, y);
+            prop_assert_eq!(clearance(&map, &WallRows::new(&map), p, cap).to_bits(), clearance_full(&map, p, cap).to_bits());
+        }
+    }
 }

@@ -10,6 +10,7 @@ pub mod coverable;
 pub mod presets;
 pub mod reach;
 pub mod ros;
+pub mod wall_rows;
 
 use crate::geom::Point;
 use std::path::PathBuf;

@@ -9,8 +9,29 @@
 //! clearance ≥ width/2 ([`super::coverable`]), so that lanes half a width off a wall, which
 //! sit between cell centres, count.
 
+use super::GridMap;
 use super::clearance::Clearance;
 use crate::geom::Point;
+use std::sync::{Mutex, MutexGuard};
+
+/// How many reaches [`Reach::new`] keeps: a plan's planner and the scorer that checks it ask
+/// for the same one (on a 600 × 600 map it costs about a tenth of a second each time).
+const RECENT_REACHES: usize = 4;
+
+/// A reach and the inputs it was computed from (compared exactly: the same inputs give the
+/// same reach, so a kept one is returned as a copy).
+struct RecentReach {
+    map: GridMap,
+    radius: u64,
+    stations: Vec<Point>,
+    reach: Reach,
+}
+
+fn recent() -> MutexGuard<'static, Vec<RecentReach>> {
+    static RECENT: Mutex<Vec<RecentReach>> = Mutex::new(Vec::new());
+    // A panic while the lock was held leaves a list of whole entries: still usable.
+    RECENT.lock().unwrap_or_else(|e| e.into_inner())
+}
 
 /// The reachable and coverable parts of a map for one robot width and a set of stations.
 #[derive(Clone, Debug)]
@@ -75,6 +96,43 @@ impl Reach {
     /// as the connecting moves of the patterns), then marks the coverable free cells and groups
     /// the free cells left over into pockets (8-connected).
     pub fn new(clear: &Clearance, stations: &[Point]) -> Self {
+        if clear.is_restricted() {
+            return Self::compute(clear, stations);
+        }
+        Self::recall(clear.map(), clear.radius(), stations).unwrap_or_else(|| Self::keep(clear, stations))
+    }
+
+    /// [`Reach::new`] for a robot `width` metres wide on `map`, without building the clearance
+    /// when the same reach was computed a moment ago.
+    pub fn for_width(map: &GridMap, width: f64, stations: &[Point]) -> Self {
+        Self::recall(map, 0.5 * width, stations).unwrap_or_else(|| Self::keep(&Clearance::new(map, width), stations))
+    }
+
+    /// A kept reach for exactly these inputs.
+    fn recall(map: &GridMap, radius: f64, stations: &[Point]) -> Option<Self> {
+        let r = recent();
+        r.iter()
+            .find(|e| e.radius == radius.to_bits() && e.stations == stations && e.map == *map)
+            .map(|e| e.reach.clone())
+    }
+
+    /// Computes the reach of an unrestricted clearance and keeps it.
+    fn keep(clear: &Clearance, stations: &[Point]) -> Self {
+        let reach = Self::compute(clear, stations);
+        let mut r = recent();
+        if r.len() == RECENT_REACHES {
+            r.remove(0);
+        }
+        r.push(RecentReach {
+            map: clear.map().clone(),
+            radius: clear.radius().to_bits(),
+            stations: stations.to_vec(),
+            reach: reach.clone(),
+        });
+        reach
+    }
+
+    fn compute(clear: &Clearance, stations: &[Point]) -> Self {
         let map = clear.map();
         let n = map.rows() * map.cols();
         let centres = reachable_centres(clear, stations);

@@ -33,7 +33,7 @@ pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mu
     };
     sweep(&mut covered, &route.points);
     let centre = |i: usize| map.cell_centre(i / cols, i % cols);
-    let mut open = patches(map, &covered, reach, min_patch);
+    let mut open = OpenCells::new(map, patches(map, &covered, reach, min_patch));
     let window = (clear.radius() / map.resolution()).ceil() as isize + 2;
     let near = |i: usize, k: isize| {
         let (r, c) = ((i / cols) as isize, (i % cols) as isize);
@@ -55,12 +55,8 @@ pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mu
     };
     while !open.is_empty() {
         let here = route.last();
-        let (k, &target) = open
-            .iter()
-            .enumerate()
-            .min_by(|a, b| (centre(*a.1) - here).norm().total_cmp(&(centre(*b.1) - here).norm()))
-            .expect("open is not empty");
-        open.swap_remove(k);
+        let k = open.nearest(map, here).expect("open is not empty");
+        let target = open.swap_remove(k);
         if covered[target] {
             continue;
         }
@@ -83,7 +79,121 @@ pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mu
                 }
             }
         }
-        open.retain(|&i| !covered[i]);
+        open.retain(|i| !covered[i]);
+    }
+}
+
+/// The open cells of the pass in the order it keeps them (the order breaks ties between
+/// equally near cells), with the cells of each block of [`BLOCK`]² map cells listed so that
+/// the nearest open cell is found by looking at the nearest blocks only.
+struct OpenCells {
+    order: Vec<usize>,
+    /// Per map cell: its position in `order`, or `u32::MAX` once it left.
+    position: Vec<u32>,
+    /// Per block: the cells that were open in it at the start (those gone are passed over).
+    blocks: Vec<Vec<usize>>,
+    /// Per block: how many of its cells are still open.
+    live: Vec<u32>,
+    block_cols: usize,
+    /// The map's columns.
+    cols: usize,
+}
+
+/// Edge of a block, in cells.
+const BLOCK: usize = 16;
+
+impl OpenCells {
+    fn new(map: &crate::map::GridMap, order: Vec<usize>) -> Self {
+        let block_cols = map.cols().div_ceil(BLOCK);
+        let blocks_n = block_cols * map.rows().div_ceil(BLOCK);
+        let position = vec![u32::MAX; map.rows() * map.cols()];
+        let (blocks, live) = (vec![Vec::new(); blocks_n], vec![0u32; blocks_n]);
+        let mut open = Self { order: Vec::new(), position, blocks, live, block_cols, cols: map.cols() };
+        for (k, &i) in order.iter().enumerate() {
+            open.position[i] = k as u32;
+            let b = open.block_of(i);
+            open.blocks[b].push(i);
+            open.live[b] += 1;
+        }
+        open.order = order;
+        open
+    }
+
+    fn block_of(&self, i: usize) -> usize {
+        (i / self.cols / BLOCK) * self.block_cols + i % self.cols / BLOCK
+    }
+
+    fn is_empty(&self) -> bool {
+        self.order.is_empty()
+    }
+
+    /// The position of the open cell whose centre is nearest to `here`, the first in the
+    /// order among equally near ones: what a scan of the whole order with `min_by` gives.
+    fn nearest(&self, map: &crate::map::GridMap, here: Point) -> Option<usize> {
+        let (res, o, cols) = (map.resolution(), map.origin(), map.cols());
+        let mut near_blocks: Vec<(f64, usize)> = (0..self.blocks.len())
+            .filter(|&b| self.live[b] > 0)
+            .map(|b| {
+                let (c0, r0) = ((b % self.block_cols) * BLOCK, (b / self.block_cols) * BLOCK);
+                let (c1, r1) = ((c0 + BLOCK).min(cols) - 1, (r0 + BLOCK).min(map.rows()) - 1);
+                let span = |v: f64, lo: usize, hi: usize, o: f64| {
+                    let (a, b) = (o + (lo as f64 + 0.5) * res, o + (hi as f64 + 0.5) * res);
+                    (a - v).max(0.0).max(v - b)
+                };
+                (span(here.x, c0, c1, o.x).hypot(span(here.y, r0, r1, o.y)), b)
+            })
+            .collect();
+        near_blocks.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut best: Option<(f64, u32)> = None;
+        for (bound, b) in near_blocks {
+            // A margin far above rounding: a block that may hold an equally near cell is read.
+            if best.is_some_and(|(d, _)| bound > d * (1.0 + 1e-9) + 1e-12) {
+                break;
+            }
+            for &i in &self.blocks[b] {
+                let k = self.position[i];
+                if k == u32::MAX {
+                    continue;
+                }
+                let d = (map.cell_centre(i / cols, i % cols) - here).norm();
+                if best.is_none_or(|(bd, bk)| d.total_cmp(&bd).then(k.cmp(&bk)).is_lt()) {
+                    best = Some((d, k));
+                }
+            }
+        }
+        best.map(|(_, k)| k as usize)
+    }
+
+    /// Takes the cell at position `k` out; the last cell takes its place (`Vec::swap_remove`).
+    fn swap_remove(&mut self, k: usize) -> usize {
+        let i = self.order.swap_remove(k);
+        self.leave(i);
+        if let Some(&moved) = self.order.get(k) {
+            self.position[moved] = k as u32;
+        }
+        i
+    }
+
+    fn leave(&mut self, i: usize) {
+        self.position[i] = u32::MAX;
+        let b = self.block_of(i);
+        self.live[b] -= 1;
+    }
+
+    /// Keeps the cells for which `keep` holds, in their order (`Vec::retain`).
+    fn retain(&mut self, keep: impl Fn(usize) -> bool) {
+        let mut order = std::mem::take(&mut self.order);
+        order.retain(|&i| {
+            let k = keep(i);
+            if !k {
+                self.leave(i);
+            }
+            k
+        });
+        for (k, &i) in order.iter().enumerate() {
+            self.position[i] = k as u32;
+        }
+        self.order = order;
     }
 }
 
@@ -128,4 +238,52 @@ pub fn patches(map: &crate::map::GridMap, covered: &[bool], reach: &Reach, min_p
     }
     out.sort_unstable();
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::presets::preset;
+    use proptest::prelude::*;
+
+    proptest! {
+        /// The block index answers as the scan of the whole order with `min_by` (the first of
+        /// equally near cells), through removals by position and by `retain`, from points on
+        /// and off cell centres (where ties are common).
+        #[test]
+        fn nearest_open_cell_is_the_scans(
+            picks in proptest::collection::vec(0usize..60_000, 1..300),
+            queries in proptest::collection::vec((0.0f64..30.0, 0.0f64..20.0, proptest::bool::ANY), 1..20),
+            drop_every in 2usize..7,
+        ) {
+            let map = preset("office").unwrap();
+            let mut order: Vec<usize> = picks.clone();
+            order.sort_unstable();
+            order.dedup();
+            let mut open = OpenCells::new(&map, order.clone());
+            let cols = map.cols();
+            let centre = |i: usize| map.cell_centre(i / cols, i % cols);
+            for (n, &(x, y, on_centre)) in queries.iter().enumerate() {
+                if order.is_empty() {
+                    break;
+                }
+                let here = if on_centre { centre(map.index((y / 0.1) as usize, (x / 0.1) as usize)) } else { Point::new(x, y) };
+                let scan = order
+                    .iter()
+                    .enumerate()
+                    .min_by(|a, b| (centre(*a.1) - here).norm().total_cmp(&(centre(*b.1) - here).norm()))
+                    .map(|(k, _)| k);
+                let k = open.nearest(&map, here);
+                prop_assert_eq!(k, scan);
+                let k = k.unwrap();
+                prop_assert_eq!(open.swap_remove(k), order.swap_remove(k));
+                if n % 2 == 1 {
+                    let keep = |i: usize| !i.is_multiple_of(drop_every);
+                    order.retain(|&i| keep(i));
+                    open.retain(keep);
+                }
+                prop_assert_eq!(&open.order, &order);
+            }
+        }
+    }
 }

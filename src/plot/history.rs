@@ -81,7 +81,9 @@ impl HistoryFigure<'_> {
         let one_px = (hi - lo + 2.0 * pad) / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
         let mut legend: Vec<(&str, RGBColor)> = Vec::new();
         for (label, colour, f) in series {
-            let points: Vec<(u32, f64)> = h.iter().map(|s| (s.iteration, f(s))).collect();
+            // Values not measured every iteration (diversity, `output.diversity_every`) are
+            // NaN in between: the line joins the measured ones.
+            let points: Vec<(u32, f64)> = h.iter().map(|s| (s.iteration, f(s))).filter(|(_, v)| !v.is_nan()).collect();
             super::draw_series_line(&mut chart, &points, colour, one_px)?;
             legend.push((label, colour));
         }

@@ -83,10 +83,14 @@ pub(super) fn cmp_group_values(a: &[String], b: &[String]) -> std::cmp::Ordering
     a.len().cmp(&b.len())
 }
 
+/// The `(iteration, diversity)` pairs of a run's `history.csv`: rows where the diversity was
+/// not measured (`output.diversity_every`) are passed over; `None` when no row has one.
 fn read_history_diversity(path: &Path) -> Option<Vec<(u32, f64)>> {
     let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
     let (i, d) = (t.col("iteration")?, t.col("diversity")?);
-    t.rows.iter().map(|r| Some((r[i].parse().ok()?, r[d].parse().ok()?))).collect()
+    let pairs: Option<Vec<(u32, f64)>> =
+        t.rows.iter().filter(|r| !r[d].is_empty()).map(|r| Some((r[i].parse().ok()?, r[d].parse().ok()?))).collect();
+    pairs.filter(|p| !p.is_empty())
 }
 
 fn median(v: &mut [f64]) -> f64 {

@@ -50,6 +50,10 @@ fn history_diversity_is_read_by_column_name() {
     assert_eq!(read_history_diversity(&path), Some(vec![(0, 4.5), (1, 2.25)]));
     std::fs::write(&path, "iteration,diversity\n0,\n").unwrap();
     assert_eq!(read_history_diversity(&path), None, "an unmeasured diversity is not a value");
+    std::fs::write(&path, "iteration,diversity\n0,4\n1,\n2,3\n").unwrap();
+    assert_eq!(read_history_diversity(&path), Some(vec![(0, 4.0), (2, 3.0)]), "rows between measurements");
+    std::fs::write(&path, "iteration,diversity\n0,4\n1,x\n").unwrap();
+    assert_eq!(read_history_diversity(&path), None, "a malformed value is not passed over");
     assert_eq!(read_history_diversity(&dir.join("missing.csv")), None);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -264,8 +264,8 @@ impl<T: Member> Ga<T> {
         let started = Instant::now();
         let mut history = Vec::new();
         let mut changes = Vec::new();
-        let wants_diversity = observers.iter().any(|o| o.wants_diversity());
-        let mut state = self.init(wants_diversity);
+        let diversity_every: Vec<u32> = observers.iter().filter_map(|o| o.diversity_every()).collect();
+        let mut state = self.init(!diversity_every.is_empty());
         let mut scratches = self.scratches();
         let mut div = DiversityScratch::default();
         let fixed = self.fixed_effective();
@@ -300,7 +300,8 @@ impl<T: Member> Ga<T> {
                 best_seen = f64::NEG_INFINITY;
             }
             let effective = self.effective(&state, state.iteration + 1, budget.iterations);
-            self.step(&mut state, effective, &mut scratches, wants_diversity.then_some(&mut div));
+            let wanted = diversity_every.iter().any(|&e| (state.iteration + 1).is_multiple_of(e.max(1)));
+            self.step(&mut state, effective, &mut scratches, wanted.then_some(&mut div));
             let now = stats(&state, &effective, self.pareto());
             if !observers.is_empty() {
                 let r = record(&now, &state, &self.scenario, &reach);
