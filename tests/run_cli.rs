@@ -189,7 +189,7 @@ fn diversity_every_only_thins_the_diversity_column() {
             let (a, b): (Vec<&str>, Vec<&str>) = (a.split(',').collect(), b.split(',').collect());
             let iteration: u32 = a[header.iter().position(|h| *h == "iteration").unwrap()].parse().unwrap();
             for (k, (x, y)) in a.iter().zip(&b).enumerate() {
-                if k == d && iteration % 7 != 0 {
+                if k == d && !iteration.is_multiple_of(7) {
                     assert!(
                         y.is_empty() && !x.is_empty(),
                         "{name}: iteration {iteration} has no diversity when thinned"
@@ -198,7 +198,7 @@ fn diversity_every_only_thins_the_diversity_column() {
                     assert_eq!(x, y, "{name}: column {} of iteration {iteration}", header[k]);
                 }
             }
-            measured += usize::from(iteration % 7 == 0);
+            measured += usize::from(iteration.is_multiple_of(7));
             rows += 1;
         }
         assert_eq!((rows, measured), (201, 29), "{name}: rows and diversity measurements");
