@@ -1,4 +1,6 @@
-use super::{cell_matches, cmp_group_values, median, param_columns, read_history_diversity};
+use super::{
+    FRONT_MIN_COVERAGE, cell_matches, cmp_group_values, coverage_front, median, param_columns, read_history_diversity,
+};
 use crate::study::records::{RunsTable, metric_columns};
 use std::cmp::Ordering::{Equal, Greater, Less};
 
@@ -85,4 +87,13 @@ fn group_values_order_numbers_by_magnitude_and_text_as_text() {
     let mut sizes = vec![values(&["10"]), values(&["2"]), values(&["5"]), values(&["3"])];
     sizes.sort_by(|a, b| cmp_group_values(a, b));
     assert_eq!(sizes, vec![values(&["2"]), values(&["3"]), values(&["5"]), values(&["10"])]);
+}
+
+#[test]
+fn a_plan_that_has_not_begun_to_cover_is_off_the_front() {
+    // (t_final, coverage): a one-move plan at t_final 1 dominates nothing the front needs.
+    let points = [(1.0, 0.003), (0.9, 0.5), (0.8, 0.7), (0.7, 0.6), (1.0, 0.0)];
+    assert_eq!(coverage_front(&points), vec![1, 2]);
+    let at_limit = [(1.0, FRONT_MIN_COVERAGE), (0.5, 0.9)];
+    assert_eq!(coverage_front(&at_limit), vec![0, 1], "1 % is on the front");
 }
