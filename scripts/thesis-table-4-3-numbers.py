@@ -157,7 +157,7 @@ def main(path):
     groups = defaultdict(lambda: [0, 0])
     for r in rows:
         g = groups[(r["replicate"], r["map.source"], r["thesis.c_child"])]
-        g[0] += r["feasible"] == "false"
+        g[0] += r["executable"] == "false"
         g[1] += 1
     for key in sorted(groups):
         bad, n = groups[key]
@@ -165,7 +165,7 @@ def main(path):
     runs_dir = path.rsplit("/", 1)[0] + "/runs" if "/" in path else "runs"
     first = defaultdict(lambda: defaultdict(int))
     for r in rows:
-        if r["feasible"] != "false":
+        if r["executable"] != "false":
             continue
         try:
             with open(f"{runs_dir}/{r['run_id']}/best_path.csv") as f:
