@@ -75,23 +75,8 @@ impl<'m> Clearance<'m> {
     /// The smallest squared distance from `p` to a non-free cell of the window about it
     /// (infinite when there is none).
     fn nearest_cell_d2(&self, p: Point) -> f64 {
-        let m = &*self.map;
-        let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
-        let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
-        let (lo, hi) = ((cc - self.window).max(0), (cc + self.window).min(m.cols() as isize - 1));
         let mut best = f64::INFINITY;
-        if lo > hi {
-            return best;
-        }
-        for r in (cr - self.window).max(0)..=(cr + self.window).min(m.rows() as isize - 1) {
-            let y0 = oy + r as f64 * res;
-            let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
-            self.walls.candidates(r as usize, cc, lo as usize, hi as usize, |c| {
-                let x0 = ox + c as f64 * res;
-                let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
-                best = best.min(dx * dx + dy * dy);
-            });
-        }
+        self.walls.for_each_near(&self.map, p, self.window, |dx, dy| best = best.min(dx * dx + dy * dy));
         best
     }
 

@@ -12,7 +12,7 @@
 //! wall-free plan can sweep, and at most the cells within 2δ of that set besides.
 
 use super::GridMap;
-use super::wall_rows::WallRows;
+use super::wall_rows::{WallRows, axis_gap};
 use crate::geom::Point;
 
 /// Lattice points per cell edge (`h = resolution / LATTICE_PER_CELL`).
@@ -22,24 +22,11 @@ pub const LATTICE_PER_CELL: usize = 8;
 /// farther than `cap`. Only the non-free cells of each row nearest to `p` are measured
 /// ([`WallRows`]): the minimum is the one over the whole window.
 fn clearance(map: &GridMap, walls: &WallRows, p: Point, cap: f64) -> f64 {
-    let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
+    let (ox, oy) = (map.origin().x, map.origin().y);
     let edge = (p.x - ox).min(p.y - oy).min(ox + map.width_m() - p.x).min(oy + map.height_m() - p.y);
     let mut best = edge.min(cap);
-    let window = (cap / res).ceil() as isize + 1;
-    let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
-    let (lo, hi) = ((cc - window).max(0), (cc + window).min(map.cols() as isize - 1));
-    if lo > hi {
-        return best;
-    }
-    for r in (cr - window).max(0)..=(cr + window).min(map.rows() as isize - 1) {
-        let y0 = oy + r as f64 * res;
-        let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
-        walls.candidates(r as usize, cc, lo as usize, hi as usize, |c| {
-            let x0 = ox + c as f64 * res;
-            let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
-            best = best.min((dx * dx + dy * dy).sqrt());
-        });
-    }
+    let window = (cap / map.resolution()).ceil() as isize + 1;
+    walls.for_each_near(map, p, window, |dx, dy| best = best.min((dx * dx + dy * dy).sqrt()));
     best
 }
 
@@ -152,8 +139,7 @@ impl KeptPoints<'_> {
                 let edge = (p.x - ox).min(p.y - oy).min(ox + map.width_m() - p.x).min(oy + map.height_m() - p.y);
                 let mut best = edge.min(cap);
                 for &(x0, y0) in &boxes {
-                    let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
-                    let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+                    let (dx, dy) = (axis_gap(x0, p.x, res), axis_gap(y0, p.y, res));
                     best = best.min((dx * dx + dy * dy).sqrt());
                 }
                 let ok = map.is_free_point(p) && best >= self.need;
@@ -327,9 +313,7 @@ fn cells_around(map: &GridMap, row: usize, col: usize, span: isize) -> impl Iter
 fn box_distance(map: &GridMap, row: usize, col: usize, p: Point) -> f64 {
     let res = map.resolution();
     let (x0, y0) = (map.origin().x + col as f64 * res, map.origin().y + row as f64 * res);
-    let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
-    let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
-    dx.hypot(dy)
+    axis_gap(x0, p.x, res).hypot(axis_gap(y0, p.y, res))
 }
 
 #[cfg(test)]

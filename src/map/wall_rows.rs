@@ -8,6 +8,12 @@
 //! cell that can be the minimum is still examined; tested against the full scan).
 
 use super::GridMap;
+use crate::geom::Point;
+
+/// The gap along one axis from coordinate `v` to the cell spanning `[lo, lo + res]` (0 inside).
+pub fn axis_gap(lo: f64, v: f64, res: f64) -> f64 {
+    (lo - v).max(0.0).max(v - lo - res)
+}
 
 /// No non-free cell on that side.
 const NONE: u32 = u32::MAX;
@@ -64,6 +70,27 @@ impl WallRows {
             [left(a), if a > lo { left(a - 1) } else { None }, right(a), if a < hi { right(a + 1) } else { None }];
         for c in around.into_iter().flatten() {
             visit(c as usize);
+        }
+    }
+}
+
+impl WallRows {
+    /// Calls `near(dx, dy)` with the gaps along x and y from `p` to the square of every
+    /// non-free cell that can be the nearest one in its row, over the rows and columns within
+    /// `window` cells of `p`'s cell on `map` (the map this index was built from). The least
+    /// `dx² + dy²` is that of a scan of the whole window.
+    pub fn for_each_near(&self, map: &GridMap, p: Point, window: isize, mut near: impl FnMut(f64, f64)) {
+        let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
+        let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
+        let (lo, hi) = ((cc - window).max(0), (cc + window).min(map.cols() as isize - 1));
+        if lo > hi {
+            return;
+        }
+        for r in (cr - window).max(0)..=(cr + window).min(map.rows() as isize - 1) {
+            let dy = axis_gap(oy + r as f64 * res, p.y, res);
+            self.candidates(r as usize, cc, lo as usize, hi as usize, |c| {
+                near(axis_gap(ox + c as f64 * res, p.x, res), dy)
+            });
         }
     }
 }
