@@ -9,9 +9,16 @@ next run in the order as soon as it is free, which is what `covga grid --jobs N`
 
 - `seed by seed`: the order `covga grid` uses, replicate by replicate and in run-id order within
   each (a study stopped part-way holds whole seeds);
-- `longest first, estimated`: all runs by decreasing estimated time, the estimate of a run being
-  the mean `wall_s` of the other replicates of its configuration (`config_id`), as a calibration
-  or an earlier sitting would know it (a configuration run once gets the mean of all runs);
+- `longest first, budget`: what `covga grid --order longest-first` does when nothing is recorded:
+  by decreasing fitness evaluations (`budget.evaluations`, else `budget.iterations` where the
+  grid sweeps them; the same for all runs where it does not) times the map's free cells, the
+  patterns by free cells alone, ties seed by seed;
+- `longest first, estimated`: what `covga grid --order longest-first` does with times recorded
+  in the study folder (an earlier sitting, other shards, a calibration): all runs by decreasing
+  estimated time, the estimate of a run being the mean `wall_s` of the other replicates of its
+  configuration (`config_id`); a configuration run once (a pattern, a deterministic fleet
+  method) gets its budget figure at the study's seconds per unit of budget (covga would first
+  use its branch's mean, which runs.csv does not record);
 - `longest first, exact`: by decreasing recorded `wall_s` (the list-scheduling optimum's usual
   stand-in; it knows what no scheduler can).
 
@@ -50,16 +57,28 @@ def orders(rows):
     by_config = {}
     for r in rows:
         by_config.setdefault(r["config_id"], []).append(r)
-    overall = statistics.fmean(wall(r) for r in rows)
 
     def estimate(r):
         others = [wall(o) for o in by_config[r["config_id"]] if o is not r]
-        return statistics.fmean(others) if others else overall
+        return statistics.fmean(others) if others else budget(r) * rate
 
-    seeds = sorted(rows, key=lambda r: (int(r["replicate"]), r["run_id"]))
-    estimated = sorted(rows, key=lambda r: (-estimate(r), r["run_id"]))
-    exact = sorted(rows, key=lambda r: (-wall(r), r["run_id"]))
-    return [("seed by seed", seeds), ("longest first, estimated", estimated), ("longest first, exact", exact)]
+    def budget(r):
+        free = float(r.get("free_cells") or 1)
+        if r.get("planner") in ("boustrophedon", "spiral"):
+            return free
+        for key in ("budget.evaluations", "budget.iterations"):
+            if float(r.get(key) or 0) > 0:
+                return float(r[key]) * free
+        return free
+
+    rate = sum(wall(r) for r in rows) / sum(budget(r) for r in rows)
+    seed_key = lambda r: (int(r["replicate"]), r["run_id"])
+    seeds = sorted(rows, key=seed_key)
+    by_budget = sorted(rows, key=lambda r: (-budget(r), seed_key(r)))
+    estimated = sorted(rows, key=lambda r: (-estimate(r), seed_key(r)))
+    exact = sorted(rows, key=lambda r: (-wall(r), seed_key(r)))
+    return [("seed by seed", seeds), ("longest first, budget", by_budget),
+            ("longest first, estimated", estimated), ("longest first, exact", exact)]
 
 
 def main():
@@ -74,7 +93,7 @@ def main():
     print("| study | runs | run time [h] | longest run [s] | cores | lower bound [s] | "
           + " | ".join(name for name, _ in orders([{"wall_s": "1", "config_id": "a", "replicate": "0", "run_id": "a"}]))
           + " |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for path in args:
         rows = read_runs(path)
         name = os.path.basename(os.path.dirname(os.path.abspath(path)))

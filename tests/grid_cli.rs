@@ -99,6 +99,10 @@ fn jobs_one_and_two_give_identical_results_and_a_report() {
     let ra = rows_without_timing(&a.join("runs.csv"));
     assert_eq!(ra.len(), 12);
     assert_eq!(ra, rows_without_timing(&b.join("runs.csv")));
+    // The order the runs start in changes nothing either.
+    let c = dir.path().join("c");
+    ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--order", "seeds", "--out", c.to_str().unwrap()]));
+    assert_eq!(ra, rows_without_timing(&c.join("runs.csv")));
     // Sorted by run id and written whole: the files differ only in wall_s.
     for f in ["grid.toml", "study.json"] {
         assert!(a.join(f).exists(), "{f}");
@@ -131,6 +135,39 @@ fn jobs_one_and_two_give_identical_results_and_a_report() {
     assert_eq!(std::fs::read_to_string(a.join("report/configurations.csv")).unwrap().lines().count(), 7);
     let bad = covga(&["report", a.to_str().unwrap(), "--by", "nope"]);
     assert_eq!(bad.status.code(), Some(2));
+}
+
+/// `--dry-run --calibrate` keeps its times in the study folder, where a later dry run and the
+/// longest-first order read them; the wall time is a list schedule in the order asked for.
+#[test]
+fn a_calibration_is_kept_for_the_order_and_later_estimates() {
+    let dir = tempfile::tempdir().unwrap();
+    let g = grid_file(dir.path());
+    let out = dir.path().join("s");
+    let o = covga(&[
+        "grid",
+        g.to_str().unwrap(),
+        "--dry-run",
+        "--calibrate",
+        "--jobs",
+        "2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    ok(&o);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("wall time with --jobs 2 in --order longest-first"), "{text}");
+    let cal = std::fs::read_to_string(out.join("calibration.csv")).unwrap();
+    assert_eq!(cal.lines().next(), Some("branch,runs,seconds_per_run,samples"));
+    assert_eq!(cal.lines().count(), 3, "two branches: {cal}");
+    assert!(out.join("study.json").exists());
+    let later = covga(&["grid", g.to_str().unwrap(), "--dry-run", "--order", "seeds", "--out", out.to_str().unwrap()]);
+    ok(&later);
+    let text = String::from_utf8_lossy(&later.stdout);
+    assert!(text.contains("from the calibration in the study folder") && text.contains("in --order seeds"), "{text}");
+    // The folder holds this study: the runs go in, in any order, with the same results.
+    ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", out.to_str().unwrap()]));
+    assert_eq!(rows_without_timing(&out.join("runs.csv")).len(), 12);
 }
 
 #[test]
@@ -170,7 +207,7 @@ fn killed_study_resumes_to_the_same_results() {
     // Killed deterministically after 4 recorded runs (the runner's fault-injection switch aborts
     // the process like SIGKILL would: no clean-up, the lock released by the OS).
     let killed_run = Command::new(env!("CARGO_BIN_EXE_covga"))
-        .args(["grid", g.to_str().unwrap(), "--jobs", "1", "--out", killed.to_str().unwrap()])
+        .args(["grid", g.to_str().unwrap(), "--jobs", "1", "--order", "seeds", "--out", killed.to_str().unwrap()])
         .env(covga::study::runner::ABORT_AFTER_ENV, "4")
         .stdout(Stdio::null())
         .stderr(Stdio::null())

@@ -144,6 +144,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str) -> PyResult<
         max_memory: None,
         on_done: &on_done,
         stop: Some(&stop),
+        order: covga::study::order::RunOrder::default(),
     };
     match interruptible(py, &stop, || run_study(&study, &opts))? {
         Ok(o) => Ok((o.selected, o.skipped, o.completed)),

@@ -31,9 +31,20 @@ pub fn cpu_seconds(times: &[BranchTime]) -> f64 {
     times.iter().map(|b| b.seconds_per_run * b.runs as f64).sum()
 }
 
-/// Wall seconds with `jobs` runs in parallel (each run on one core).
+/// Wall seconds with `jobs` runs in parallel (each run on one core), if the work divided
+/// evenly: the lower bound of any order but for the longest run.
 pub fn wall_seconds(times: &[BranchTime], jobs: usize) -> f64 {
     cpu_seconds(times) / jobs.max(1) as f64
+}
+
+/// Wall seconds of the study's runs, each taking its branch's time, started in `order` on
+/// `jobs` workers ([`super::order::list_schedule`]).
+pub fn scheduled_wall_seconds(study: &Study, times: &[BranchTime], jobs: usize, order: super::order::RunOrder) -> f64 {
+    let per: BTreeMap<&str, f64> = times.iter().map(|b| (b.branch.as_str(), b.seconds_per_run)).collect();
+    let of = |r: &super::grid::RunSpec| per.get(r.branch.as_str()).copied().unwrap_or(0.0);
+    let mut runs: Vec<&super::grid::RunSpec> = study.runs.iter().collect();
+    super::order::sort_runs(&mut runs, order, of);
+    super::order::list_schedule(&runs.iter().map(|r| of(r)).collect::<Vec<_>>(), jobs)
 }
 
 /// Mean `wall_s` per branch over runs already recorded in `dir` (any runs file).

@@ -133,6 +133,8 @@ pub struct RunnerOptions<'a> {
     /// When set (from another thread), no further run starts; the runs in progress finish and
     /// are recorded, and the runner returns [`StudyError::Stopped`].
     pub stop: Option<&'a AtomicBool>,
+    /// The order the runs start in (results never depend on it).
+    pub order: super::order::RunOrder,
 }
 
 /// What a study invocation did.
@@ -301,10 +303,12 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let head = header(&study.columns);
     let done_ids = recorded_ids(&file, &head)?;
     let mut pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
-    // Replicate by replicate, in id (hash) order within each, handed out one at a time: a study
-    // stopped part-way holds whole seeds first and, of the seed in progress, a uniform random
-    // sample of the configurations (results never depend on the order).
-    pending.sort_by(|a, b| a.replicate.cmp(&b.replicate).then_with(|| a.id.cmp(&b.id)));
+    // Handed out one at a time in the order asked for (results never depend on it).
+    let cost = match opts.order {
+        super::order::RunOrder::LongestFirst => super::order::estimates(study, &pending, &opts.out, &maps).cost,
+        super::order::RunOrder::Seeds => Default::default(),
+    };
+    super::order::sort_runs(&mut pending, opts.order, |r| cost.get(&r.id).copied().unwrap_or(0.0));
     let skipped = selected.len() - pending.len();
     let writer = Mutex::new(std::fs::OpenOptions::new().create(true).append(true).open(&file).map_err(io(&file))?);
     if done_ids.is_empty() {
