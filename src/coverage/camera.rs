@@ -125,6 +125,42 @@ impl Camera {
         );
     }
 
+    /// Adds the pixels of [`Self::view`] to the bitset `bits` (bit `i % 64` of word `i / 64` for
+    /// pixel `i`), pushing onto `touched` each word it turns from zero to non-zero. As in
+    /// [`Self::view_into`], a pixel already set is passed over before its range and bearing
+    /// are computed, which cannot change the union (tested).
+    #[allow(clippy::too_many_arguments)]
+    pub fn view_into_bits(
+        &self,
+        width: usize,
+        height: usize,
+        occluded: impl Fn(i64, i64) -> bool,
+        pos: (f64, f64),
+        psi: f64,
+        bits: &mut [u64],
+        touched: &mut Vec<u32>,
+    ) {
+        assert_eq!(bits.len(), (width * height).div_ceil(64), "one bit per raster pixel");
+        let marked = std::cell::RefCell::new(bits);
+        self.view_filtered(
+            width,
+            height,
+            occluded,
+            pos,
+            psi,
+            true,
+            true,
+            |i| marked.borrow()[i / 64] >> (i % 64) & 1 == 1,
+            |i| {
+                let word = &mut marked.borrow_mut()[i / 64];
+                if *word == 0 {
+                    touched.push((i / 64) as u32);
+                }
+                *word |= 1 << (i % 64);
+            },
+        );
+    }
+
     /// [`Self::view`]; with `prefilter`, pixels that are certainly out of range or out of the
     /// field of view are passed over before their exact range and bearing (`hypot`, `atan2`)
     /// are computed. The margins are far above rounding (1e-9 relative), so no pixel on a

@@ -21,6 +21,7 @@ pub mod score;
 pub mod segments;
 pub mod sweep;
 pub mod transit;
+pub mod views;
 pub mod work_map;
 
 pub use sweep::{CoverageGrid, SweepCounts, SweepScratch};

@@ -13,10 +13,9 @@
 //! (the thesis's `A_pix`), and `_reach`, the cells the footprint can sweep from the stations
 //! ([`crate::map::reach::Reach`]; for the camera, the free pixels connected to the stations).
 
-use super::camera::Camera;
+use super::views::CameraLayer;
 use super::{CoverageGrid, Footprint, SweepScratch, motion};
 use crate::coverage::fitness::{Projection, f_obstacle};
-use crate::coverage::work_map::WorkMap;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::map::reach::Reach;
@@ -171,92 +170,6 @@ impl Score {
     }
 }
 
-/// The camera side of the scorer: working raster, wall band, connected free pixels.
-struct CameraLayer {
-    map: WorkMap,
-    camera: Camera,
-    band: Vec<bool>,
-    reach: Vec<bool>,
-    counts: [usize; 4],
-}
-
-impl CameraLayer {
-    fn new(map: &GridMap, spec: &CameraSpec, stations: &[Point]) -> Self {
-        let wm = WorkMap::new(map, spec.scale);
-        let band = wm.band(spec.band_m / spec.scale);
-        let mut reach = vec![false; wm.occluded.len()];
-        let mut stack: Vec<usize> = Vec::new();
-        for s in stations {
-            let (c, r) = wm.pixel_of(wm.to_px(s.x, s.y));
-            if !wm.is_occluded(c, r) {
-                let i = wm.index(c as usize, r as usize);
-                reach[i] = true;
-                stack.push(i);
-            }
-        }
-        while let Some(i) = stack.pop() {
-            let (c, r) = ((i % wm.width) as i64, (i / wm.width) as i64);
-            for (dc, dr) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (-1, 1), (1, -1), (1, 1)] {
-                let (nc, nr) = (c + dc, r + dr);
-                if !wm.is_occluded(nc, nr) {
-                    let j = wm.index(nc as usize, nr as usize);
-                    if !reach[j] {
-                        reach[j] = true;
-                        stack.push(j);
-                    }
-                }
-            }
-        }
-        let free = wm.occluded.iter().filter(|o| !**o).count();
-        let counts = [
-            band.iter().filter(|b| **b).count(),
-            free,
-            band.iter().zip(&reach).filter(|(b, r)| **b && **r).count(),
-            reach.iter().filter(|r| **r).count(),
-        ];
-        let camera = Camera {
-            d_min: spec.d_min / spec.scale,
-            d_max: spec.d_max / spec.scale,
-            fov: spec.fov_deg.to_radians(),
-            sections: spec.sections,
-            // The common scorer measures every planner with eq. 1 as written.
-            shape: crate::coverage::camera::ViewShape::Sections,
-        };
-        Self { map: wm, camera, band, reach, counts }
-    }
-
-    /// `[walls_free, open_free, walls_reach, open_reach]` of a plan.
-    fn coverage(&self, paths: &[Vec<Point>]) -> [f64; 4] {
-        let wm = &self.map;
-        let mut seen = vec![false; wm.occluded.len()];
-        for path in paths {
-            for w in path.windows(2) {
-                let d = w[1] - w[0];
-                let len = d.norm();
-                if len < 1e-9 {
-                    continue;
-                }
-                let psi = d.y.atan2(d.x);
-                let steps = (len / CAMERA_STEP_M).ceil() as usize;
-                for k in 0..=steps {
-                    let p = w[0] + d * (k as f64 / steps as f64);
-                    let pos = wm.to_px(p.x, p.y);
-                    self.camera.view_into(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, psi, &mut seen);
-                }
-            }
-        }
-        let mut hit = [0usize; 4];
-        for (i, s) in seen.iter().enumerate().filter(|(_, s)| **s) {
-            let _ = s;
-            hit[0] += usize::from(self.band[i]);
-            hit[1] += 1;
-            hit[2] += usize::from(self.band[i] && self.reach[i]);
-            hit[3] += usize::from(self.reach[i]);
-        }
-        std::array::from_fn(|k| if self.counts[k] > 0 { hit[k] as f64 / self.counts[k] as f64 } else { 0.0 })
-    }
-}
-
 /// Distinct cells of the last sweep in `scratch` (swept on the grid `reach` was made for)
 /// that `reach` counts as coverable: the numerator of the scorer's `cov_final_reach`.
 pub fn reached_cells(reach: &Reach, scratch: &SweepScratch) -> u64 {
@@ -358,7 +271,9 @@ impl Scorer {
             times.push(len / r.speed + motion::rotation_time(turn, r.rot_speed));
         }
         let on_map = paths.iter().zip(&widths).all(|(p, &w)| footprint_on_map(self.bounds, p, w));
-        let [cam_walls_free, cam_open_free, cam_walls_reach, cam_open_reach] = self.camera.coverage(paths);
+        // Pose by pose: for one plan that is faster than segment masks, which help only when
+        // segments come again (`benches/camera.rs`).
+        let [cam_walls_free, cam_open_free, cam_walls_reach, cam_open_reach] = self.camera.coverage_by_pose(paths);
         Score {
             agents: paths.len(),
             executable: m.obstacle_cells == 0 && on_map,
@@ -444,34 +359,6 @@ mod tests {
         assert!((sc.length_m - 3.0).abs() < 1e-12 && (sc.time_s - 15.0).abs() < 1e-12);
         assert_eq!(sc.makespan_s, sc.time_s);
         assert!(sc.cam_walls_free > 0.0 && sc.cam_walls_free < 1.0 && sc.cam_open_free > 0.0);
-    }
-
-    /// The camera is posed at both ends of a segment and every [`CAMERA_STEP_M`] between, looking
-    /// along it: a 4 m lane gives the union of five views, no more and no fewer.
-    #[test]
-    fn the_camera_is_posed_every_metre_along_a_segment_and_at_its_ends() {
-        let map = preset("thesis-1").unwrap();
-        let layer = CameraLayer::new(&map, &camera(), &[Point::new(1.0, 1.0)]);
-        let wm = &layer.map;
-        let views = |xs: &[f64]| {
-            let mut seen = vec![false; wm.occluded.len()];
-            for &x in xs {
-                let pos = wm.to_px(x, 1.0);
-                layer.camera.view(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, 0.0, |i| seen[i] = true);
-            }
-            let open = seen.iter().filter(|s| **s).count() as f64 / layer.counts[1] as f64;
-            let walls =
-                seen.iter().zip(&layer.band).filter(|(s, b)| **s && **b).count() as f64 / layer.counts[0] as f64;
-            (walls, open)
-        };
-        let lane = vec![Point::new(1.0, 1.0), Point::new(5.0, 1.0)];
-        assert_eq!(camera_poses(std::slice::from_ref(&lane)), 5);
-        let [walls, open, _, _] = layer.coverage(std::slice::from_ref(&lane));
-        assert_eq!((walls, open), views(&[1.0, 2.0, 3.0, 4.0, 5.0]));
-        assert!(open > views(&[1.0, 5.0]).1, "the poses between the ends see more");
-        // A repeated vertex adds no pose (it has no heading) and a vertex on a pose adds none.
-        let repeated = vec![lane[0], lane[0], Point::new(3.0, 1.0), lane[1]];
-        assert_eq!(layer.coverage(&[repeated]), layer.coverage(&[lane]));
     }
 
     /// Two rooms split by a thick wall: the camera's `_reach` figures count only the room of

@@ -96,7 +96,12 @@ impl PlannerConfig {
                     pattern: &file.pattern,
                     cell_order: file.cell_order.as_ref().unwrap_or(&default_cell_order),
                 };
-                PlannerConfig::Thesis(file.thesis.validate(file.retrain.as_ref(), settings, ctx)?)
+                PlannerConfig::Thesis(file.thesis.validate(
+                    file.retrain.as_ref(),
+                    settings,
+                    file.waypoint.alpha_cov,
+                    ctx,
+                )?)
             }
             PlannerKind::Waypoint => PlannerConfig::Waypoint(Box::new(file.waypoint.validate(ctx)?)),
             PlannerKind::Boustrophedon => {
@@ -126,6 +131,12 @@ impl PlannerConfig {
                 return Err(ctx.error(
                     "thesis.moves",
                     "= \"routed\" is built for the GA of one robot; a fleet's GAs drive straight moves (leave it out)",
+                ));
+            }
+            PlannerConfig::Thesis(t) if t.objective.0 == crate::thesis::objective::Objective::Camera => {
+                return Err(ctx.error(
+                    "thesis.objective",
+                    "= \"camera\" is built for the GA of one robot; a fleet's GAs optimise the footprint (leave it out)",
                 ));
             }
             PlannerConfig::Thesis(t) => Team::Thesis(t.params),

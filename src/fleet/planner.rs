@@ -160,6 +160,7 @@ impl FleetPlanner {
                     seeds: Vec::new(),
                     seeded: 0,
                     moves: crate::thesis::individual::Moves::Straight,
+                    objective: (crate::thesis::objective::Objective::Footprint, 0.0),
                 };
                 let e = thesis.memory_estimate(map, threads);
                 MemoryEstimate { bytes: e.bytes * robots, what: format!("{} for each of {robots} robots", e.what), ..e }

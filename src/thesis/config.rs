@@ -5,6 +5,7 @@
 use super::crossover::{ChildMode, ShortGenomes};
 use super::genome::Action;
 use super::individual::{EvaluationMode, InitParams, Moves};
+use super::objective::Objective;
 use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
@@ -74,6 +75,11 @@ pub struct ThesisSection {
     /// that fall short of every seed plan on either objective count as violating a constraint.
     #[serde(skip_serializing_if = "SeedBound::is_none")]
     pub seed_bound: SeedBound,
+    /// `footprint` (default, 003 eq. 3.6) or `camera`: what `cov_final` measures; with the
+    /// camera, 000's eq. 2 coverage along the driven path, weighted by `waypoint.alpha_cov`
+    /// (see [`super::objective`]).
+    #[serde(skip_serializing_if = "Objective::is_footprint")]
+    pub objective: Objective,
 }
 
 /// Selection scheme names.
@@ -186,6 +192,7 @@ impl Default for ThesisSection {
             seed_population: SeedPlans::default(),
             seed_share: None,
             seed_bound: SeedBound::None,
+            objective: Objective::Footprint,
         }
     }
 }
@@ -210,20 +217,35 @@ pub struct ThesisConfig {
     pub seeded: usize,
     /// How the robot drives from one viewpoint to the next.
     pub moves: Moves,
+    /// What `cov_final` measures, with `α_cov` for the camera.
+    pub objective: (Objective, f64),
 }
 
 impl ThesisSection {
     /// Validates this section and the experiment's `[retrain]` (if any) into the thesis GA.
     /// `settings` are the file's `[pattern]` and `[cell_order]`, the settings of the seed plans.
+    /// `alpha_cov` is `waypoint.alpha_cov`, the weight of the camera objective.
     pub fn validate(
         &self,
         retrain: Option<&RetrainSection>,
         settings: SeedSettings,
+        alpha_cov: f64,
         ctx: &Context,
     ) -> Result<ThesisConfig, ConfigError> {
         let (origin, scenario, b) = (ctx.origin, ctx.scenario, ctx.budget);
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let params = validate_params(self, origin)?;
+        if self.objective == Objective::Camera {
+            if retrain.is_some() {
+                return Err(err(
+                    "thesis.objective",
+                    "= \"camera\" cannot be used with [retrain]: the camera objective has no pre-marked region".into(),
+                ));
+            }
+            if !(0.0..=1.0).contains(&alpha_cov) {
+                return Err(err("waypoint.alpha_cov", format!("= {alpha_cov} is out of range [0, 1]")));
+            }
+        }
         let retrain = match retrain.copied() {
             None => None,
             Some(rt) => {
@@ -257,7 +279,7 @@ impl ThesisSection {
             }
         };
         let (seeds, seeded) = self.seeds(&params, settings, ctx)?;
-        Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves })
+        Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves, objective: (self.objective, alpha_cov) })
     }
 
     /// The seed genomes and how many initial members are seeds.
@@ -324,8 +346,12 @@ impl ThesisConfig {
             Moves::Straight => 0.0,
             Moves::Routed => crate::coverage::routes::Router::memory_estimate(map.rows() * map.cols(), threads),
         };
+        let views = match self.objective.0 {
+            Objective::Footprint => 0.0,
+            Objective::Camera => (crate::coverage::views::VIEW_CACHE_BYTES * threads.max(1)) as f64,
+        };
         MemoryEstimate {
-            bytes: memory_estimate(p, map.rows(), map.cols(), threads) + routes,
+            bytes: memory_estimate(p, map.rows(), map.cols(), threads) + routes + views,
             key: if p.initial_size() > p.pop_min { "thesis.init_individuals" } else { "thesis.pop_min" },
             what: format!("{} individuals of up to {} actions", p.initial_size(), p.max_genome_len),
         }

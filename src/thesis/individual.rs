@@ -2,11 +2,13 @@
 //! follow every creation or change of a genome (003 §3.3.4, spec §9, order of R17).
 
 use super::genome::{Action, Frame, decode, decode_from, live, random_genome, same_bits};
+use super::objective::{CameraObjective, with_coverage};
 use crate::coverage::bits::{BitLayers, Tally};
 use crate::coverage::fitness::{Projection, ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
 use crate::coverage::routes::{RouteScratch, Router};
 use crate::coverage::segments::SegmentCache;
+use crate::coverage::views::SegmentViews;
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
 use crate::map::GridMap;
@@ -32,6 +34,9 @@ pub struct Scenario {
     /// With routed moves, how the robot drives from one viewpoint to the next (`None`: straight,
     /// as 003).
     pub routes: Option<Arc<Router>>,
+    /// With `thesis.objective = "camera"`, what `cov_final` measures instead of the footprint
+    /// (`None`: 003's footprint).
+    pub camera: Option<Arc<CameraObjective>>,
 }
 
 impl Scenario {
@@ -47,7 +52,22 @@ impl Scenario {
         let max = Point::new(min.x + map.width_m(), min.y + map.height_m());
         let grid = CoverageGrid::new(&map);
         let layers = BitLayers::new(&grid);
-        Self { grid, layers, robot, frame: Frame::new(start, end, min, max), projection, map, routes: None }
+        Self {
+            grid,
+            layers,
+            robot,
+            frame: Frame::new(start, end, min, max),
+            projection,
+            map,
+            routes: None,
+            camera: None,
+        }
+    }
+
+    /// The same scenario with `cov_final` measured by `camera` (see [`super::objective`]).
+    pub fn with_camera(mut self, camera: Option<CameraObjective>) -> Self {
+        self.camera = camera.map(Arc::new);
+        self
     }
 
     /// The same scenario with moves driven as `moves` says.
@@ -235,6 +255,8 @@ pub struct EvalScratch {
     routes: RouteScratch,
     /// The driven path (routed moves).
     driven: Vec<Point>,
+    /// Moves' camera views already computed (camera objective).
+    views: SegmentViews,
 }
 
 /// Decodes with correction (written back) and evaluates, in place (spec §9 steps 1–2).
@@ -322,6 +344,18 @@ pub fn evaluate(
         res,
         scenario.projection,
     );
+    if let Some(camera) = scenario.camera.as_deref() {
+        let EvalScratch { routes, driven, views, .. } = scratch;
+        let path: &[Point] = match scenario.routes.as_deref() {
+            None => &ind.points,
+            Some(r) => {
+                r.expand(&scenario.layers, &ind.points, routes, driven);
+                driven
+            }
+        };
+        let coverage = camera.coverage(path, views);
+        ind.score = with_coverage(ind.score, coverage, ind.sweep.obj_pix, scenario.projection);
+    }
 }
 
 /// Adds (`ADD`) or removes move `a → b`: its straight segment, or with a router its route.
@@ -657,12 +691,15 @@ mod tests {
         /// A crossover child, a mutated copy and a mutated child evaluated against their base
         /// equal their full evaluation in every field, visit map included.
         #[test]
-        fn incremental_evaluation_equals_full(seed in 0u64..1_000_000, na in 3usize..70, nb in 3usize..70, c_len in 0.0..0.6f64, mode in 0u8..3, map in 0usize..2, dist in 0.5..12.0f64) {
+        fn incremental_evaluation_equals_full(seed in 0u64..1_000_000, na in 3usize..70, nb in 3usize..70, c_len in 0.0..0.6f64, mode in 0u8..3, map in 0usize..2, dist in 0.5..12.0f64, camera in proptest::bool::ANY) {
             use crate::thesis::crossover::{ChildMode, Parent, ShortGenomes, crossover};
             use crate::thesis::mutation::mutate_action;
             let m = preset(["thesis-1", "thesis-2"][map]).unwrap();
             let s = Point::new(1.3, 1.3);
-            let sc = Scenario::new(m, Footprint { rot_speed: 0.7, ..Footprint::default() }, s, Point::new(9.7, 1.3), Projection::F2);
+            let spec = crate::coverage::score::CameraSpec { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 };
+            let objective = camera.then(|| CameraObjective::new(&m, &spec, 0.1, &[s]));
+            let sc = Scenario::new(m, Footprint { rot_speed: 0.7, ..Footprint::default() }, s, Point::new(9.7, 1.3), Projection::F2)
+                .with_camera(objective);
             let mut rng = crate::ga::rng::stream(seed, crate::ga::rng::Purpose::Main, &[]);
             let mut scratch = EvalScratch::default();
             let mut parents = Vec::new();

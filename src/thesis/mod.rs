@@ -12,6 +12,7 @@ pub mod genome;
 pub mod individual;
 pub mod member;
 pub mod mutation;
+pub mod objective;
 pub mod params;
 pub mod planner;
 pub mod run;

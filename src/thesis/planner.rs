@@ -5,6 +5,7 @@
 
 use super::config::ThesisConfig;
 use super::individual::{Individual, Scenario as ThesisScenario};
+use super::objective::{CameraObjective, Objective};
 use super::run::{ThesisGa, ThesisOutcome};
 use crate::coverage::CoverageGrid;
 use crate::coverage::fitness::ThesisScore;
@@ -59,7 +60,15 @@ impl Planner for ThesisConfig {
     ) -> Result<RunOutcome, PlannerError> {
         let seeds = self.seeds.iter().map(|g| Individual { genome: g.clone(), ..Default::default() }).collect();
         let mut ga = ThesisGa {
-            scenario: ThesisScenario::from_common(scenario).with_moves(self.moves),
+            scenario: ThesisScenario::from_common(scenario).with_moves(self.moves).with_camera(match self.objective {
+                (Objective::Footprint, _) => None,
+                (Objective::Camera, alpha_cov) => Some(CameraObjective::new(
+                    &scenario.map,
+                    &scenario.camera,
+                    alpha_cov,
+                    &[scenario.start, scenario.end],
+                )),
+            }),
             params: self.params,
             seed,
             seeds: (seeds, self.seeded),
