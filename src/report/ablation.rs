@@ -5,6 +5,7 @@
 //! numbers. Planners are compared only through the common scorer's columns.
 
 use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
+use super::search_objective::{self, MapRuns};
 use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
 use super::{ReportError, param_columns};
 use crate::coverage::CoverageGrid;
@@ -184,6 +185,8 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         .unwrap_or_default();
     // (map, metric, first, second) -> (Holm p, A12), for the sentences below.
     let mut tested: BTreeMap<(String, &str, String, String), (f64, f64)> = BTreeMap::new();
+    // The rows of the search-versus-objective table, on the maps that have all four cells.
+    let mut two_by_two = String::new();
     for map in &maps {
         let name = short_map(map);
         let present: Vec<&String> = variants.iter().filter(|v| !rows_of(map, v).is_empty()).collect();
@@ -266,32 +269,23 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             }
         }
         let _ = writeln!(md);
-        // Search versus objective: the same search with two objectives, and two searches with
-        // the footprint objective.
-        let pair = |a: &str, b: &str, metric: &'static str| {
+        // Search versus objective (`search_objective`): one search with two objectives, and
+        // two searches with one objective.
+        let pair = |a: &str, b: &str, metric: &str| {
             tested.get(&(name.clone(), metric, a.to_string(), b.to_string())).copied().or_else(|| {
                 tested.get(&(name.clone(), metric, b.to_string(), a.to_string())).map(|&(p, x)| (p, 1.0 - x))
             })
         };
-        if let Some((p, a12)) = pair("waypoint-footprint", "waypoint-camera", "cov_final_reach") {
-            let cam = pair("waypoint-footprint", "waypoint-camera", "cam_walls_free");
-            findings.push(format!(
-                "On {name}, the waypoint search optimising the footprint instead of the camera: footprint coverage A₁₂ = {a12:.2} ({}, p = {p:.1e}){}.",
-                a12_magnitude(a12),
-                cam.map_or(String::new(), |(p, x)| format!(
-                    ", camera wall coverage A₁₂ = {x:.2} ({}, p = {p:.1e})",
-                    a12_magnitude(x)
-                ))
-            ));
+        let split = |v: &str| {
+            let all = all_rows_of(map, v);
+            let exec = all.iter().copied().filter(|&r| flag(r, "executable")).collect();
+            (all, exec)
+        };
+        let cells = MapRuns { name: &name, present: &present_all, rows: &split, num: &num, pair: &pair };
+        if cells.complete() {
+            cells.table_rows(&mut two_by_two);
         }
-        if let Some((p, a12)) = pair("waypoint-footprint", "thesis-elite", "cov_final_reach") {
-            findings.push(format!(
-                "On {name}, with the footprint objective for both, the waypoint-graph search against the thesis GA (Elite): A₁₂ = {a12:.2} ({}, p = {p:.1e}) for footprint coverage; t_final medians {:.3} and {:.3}.",
-                a12_magnitude(a12),
-                quartiles(&rows_of(map, "waypoint-footprint").iter().map(|&r| num(r, "t_final")).collect::<Vec<_>>()).1,
-                quartiles(&rows_of(map, "thesis-elite").iter().map(|&r| num(r, "t_final")).collect::<Vec<_>>()).1,
-            ));
-        }
+        findings.extend(cells.findings());
         for (v, seed) in &seeded {
             let (runs, plan) = (rows_of(map, v), rows_of(map, seed));
             if let Some(sentence) = against_seed(&name, v, seed, &runs, &plan, num) {
@@ -442,6 +436,11 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         })
         .collect();
     crate::plot::save(&PlannerPathsFigure { rows }, &out.join("planner_paths"))?;
+    if !two_by_two.is_empty() {
+        search_objective::table_head(&mut md);
+        md.push_str(&two_by_two);
+        let _ = writeln!(md);
+    }
     let _ = writeln!(md, "## Findings\n");
     for f in &findings {
         let _ = writeln!(md, "- {f}");

@@ -141,3 +141,29 @@ proptest::proptest! {
         proptest::prop_assert_eq!(full, union);
     }
 }
+
+/// Section edges and range bounds through pixel centres (headings along the axes and
+/// diagonals, a pose on a pixel centre, ranges of whole pixels): the pre-filter's margins
+/// pass over no pixel on an edge, so the views are the same with and without it.
+#[test]
+fn edges_through_pixel_centres_change_no_view() {
+    use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+    let (w, h) = (31usize, 31usize);
+    let walls: Vec<bool> = (0..w * h).map(|i| i % 7 == 3 && i / w > 20).collect();
+    let occ = |c: i64, r: i64| c < 0 || r < 0 || c >= w as i64 || r >= h as i64 || walls[r as usize * w + c as usize];
+    for psi in [0.0, FRAC_PI_4, FRAC_PI_2, -FRAC_PI_2, PI, 3.0 * FRAC_PI_4] {
+        for (fov, sections) in [(FRAC_PI_2, 2), (FRAC_PI_2, 4), (PI / 3.0, 3), (FRAC_PI_2 + 1e-12, 2)] {
+            for (d_min, d_max) in [(0.0, 10.0), (2.0, 8.0), (1.0, 5.0)] {
+                let camera = Camera { d_min, d_max, fov, sections, shape: ViewShape::Sections };
+                let seen = |prefilter: bool| {
+                    let mut v = Vec::new();
+                    camera.view_filtered(w, h, occ, (15.5, 15.5), psi, prefilter, true, |_| false, |i| v.push(i));
+                    v
+                };
+                let fast = seen(true);
+                assert!(!fast.is_empty());
+                assert_eq!(fast, seen(false), "psi {psi} fov {fov} m {sections} range {d_min}..{d_max}");
+            }
+        }
+    }
+}

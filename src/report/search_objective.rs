@@ -1,0 +1,140 @@
+//! The ablation's 2 × 2 of search and objective: the waypoint-graph search of 000 and the
+//! thesis GA of 003 (Elite), each optimising the robot's swept footprint and 000's camera
+//! coverage, so that a difference between the planners can be put down to the search or to
+//! what it optimises. A table of the four cells per map and the findings that compare cells
+//! differing in one factor only.
+
+use super::stats::{a12_magnitude, quartiles};
+use std::fmt::Write as _;
+
+/// The labels of the 2 × 2's cells as `covga report` names the variants: (search, objective)
+/// → candidates, the first present used (a study without `thesis.objective` labels the Elite
+/// footprint runs `thesis-elite`).
+const CELLS: [(&str, &str, &[&str]); 4] = [
+    ("waypoint graph (000)", "footprint", &["waypoint-footprint"]),
+    ("waypoint graph (000)", "camera", &["waypoint-camera"]),
+    ("thesis GA, Elite (003)", "footprint", &["thesis-elite-footprint", "thesis-elite"]),
+    ("thesis GA, Elite (003)", "camera", &["thesis-elite-camera"]),
+];
+
+/// All runs of a variant (by label), and its executable runs.
+pub type RowsOf<'a> = &'a dyn Fn(&str) -> (Vec<usize>, Vec<usize>);
+
+/// The Holm-corrected p and A₁₂ of a tested pair (first, second, metric), if tested.
+pub type PairTest<'a> = &'a dyn Fn(&str, &str, &str) -> Option<(f64, f64)>;
+
+/// What the 2 × 2 reads of one map's runs.
+pub struct MapRuns<'a> {
+    /// The map's short name.
+    pub name: &'a str,
+    /// The variant labels present on the map.
+    pub present: &'a [&'a String],
+    /// All runs of a variant, and its executable runs.
+    pub rows: RowsOf<'a>,
+    /// A run's metric.
+    pub num: &'a dyn Fn(usize, &str) -> f64,
+    /// The Holm-corrected p and A₁₂ = P(first > second) of a tested pair on a metric, over
+    /// executable plans.
+    pub pair: PairTest<'a>,
+}
+
+impl MapRuns<'_> {
+    /// The label of a cell on this map, if its runs are present.
+    fn label(&self, search: &str, objective: &str) -> Option<&'static str> {
+        let (_, _, candidates) = CELLS.iter().find(|(s, o, _)| *s == search && *o == objective)?;
+        candidates.iter().copied().find(|c| self.present.iter().any(|p| p.as_str() == *c))
+    }
+
+    /// Whether all four cells are present.
+    pub fn complete(&self) -> bool {
+        CELLS.iter().all(|(s, o, _)| self.label(s, o).is_some())
+    }
+
+    /// One table row per search: each cell's medians over executable plans (footprint coverage
+    /// of the reachable cells, camera wall coverage) with the executable share, and over all
+    /// plans.
+    pub fn table_rows(&self, md: &mut String) {
+        for search in ["waypoint graph (000)", "thesis GA, Elite (003)"] {
+            let cells: Vec<String> = ["footprint", "camera"]
+                .iter()
+                .map(|objective| {
+                    let Some(label) = self.label(search, objective) else { return "–".to_string() };
+                    let (all, exec) = (self.rows)(label);
+                    let med = |rows: &[usize], c: &str| {
+                        let v: Vec<f64> = rows.iter().map(|&r| (self.num)(r, c)).collect();
+                        if v.is_empty() { "–".to_string() } else { format!("{:.3}", quartiles(&v).1) }
+                    };
+                    format!(
+                        "{} / {} ({}/{} executable; all plans {} / {})",
+                        med(&exec, "cov_final_reach"),
+                        med(&exec, "cam_walls_free"),
+                        exec.len(),
+                        all.len(),
+                        med(&all, "cov_final_reach"),
+                        med(&all, "cam_walls_free")
+                    )
+                })
+                .collect();
+            let _ = writeln!(md, "| {} | {search} | {} |", self.name, cells.join(" | "));
+        }
+    }
+
+    /// Sentences comparing cells that differ in one factor, from the pairwise tests.
+    pub fn findings(&self) -> Vec<String> {
+        let name = self.name;
+        let effect = |(p, a12): (f64, f64)| format!("A₁₂ = {a12:.2} ({}, p = {p:.1e})", a12_magnitude(a12));
+        let mut out = Vec::new();
+        let cell = |s: &str, o: &str| self.label(s, o);
+        let (wf, wc) = (cell("waypoint graph (000)", "footprint"), cell("waypoint graph (000)", "camera"));
+        let (tf, tc) = (cell("thesis GA, Elite (003)", "footprint"), cell("thesis GA, Elite (003)", "camera"));
+        // One search, two objectives: A₁₂ = P(footprint-optimised > camera-optimised).
+        for (search, f, c) in [("the waypoint search", wf, wc), ("the thesis GA (Elite)", tf, tc)] {
+            let (Some(f), Some(c)) = (f, c) else { continue };
+            if let Some(cov) = (self.pair)(f, c, "cov_final_reach") {
+                let cam = (self.pair)(f, c, "cam_walls_free");
+                out.push(format!(
+                    "On {name}, {search} optimising the footprint instead of the camera: footprint coverage {}{}.",
+                    effect(cov),
+                    cam.map_or(String::new(), |x| format!(", camera wall coverage {}", effect(x)))
+                ));
+            }
+        }
+        // One objective, two searches: A₁₂ = P(waypoint search > thesis GA) on the objective.
+        for (objective, metric, what, w, t) in [
+            ("footprint", "cov_final_reach", "footprint coverage", wf, tf),
+            ("camera", "cam_walls_free", "camera wall coverage", wc, tc),
+        ] {
+            let (Some(w), Some(t)) = (w, t) else { continue };
+            if let Some(x) = (self.pair)(w, t, metric) {
+                let t_final = |l: &str| {
+                    let v: Vec<f64> = (self.rows)(l).1.iter().map(|&r| (self.num)(r, "t_final")).collect();
+                    quartiles(&v).1
+                };
+                out.push(format!(
+                    "On {name}, with the {objective} objective for both, the waypoint-graph search against the thesis GA (Elite): {} for {what}; t_final medians {:.3} and {:.3}.",
+                    effect(x),
+                    t_final(w),
+                    t_final(t)
+                ));
+            } else {
+                let n = |l: &str| (self.rows)(l).1.len();
+                out.push(format!(
+                    "On {name}, with the {objective} objective for both, the two searches cannot be compared on executable plans: {} of the waypoint search's and {} of the thesis GA's plans are executable (at least 2 each are needed).",
+                    n(w),
+                    n(t)
+                ));
+            }
+        }
+        out
+    }
+}
+
+/// The 2 × 2 section's heading, note and table head.
+pub fn table_head(md: &mut String) {
+    let _ = writeln!(md, "## Search versus objective\n");
+    let _ = writeln!(
+        md,
+        "The waypoint-graph search of 000 and the thesis GA of 003 (Elite), each optimising the robot's swept footprint and 000's camera coverage (eq. 2, `waypoint.alpha_cov`). Each cell: median footprint coverage of the reachable cells / median camera wall coverage, over the executable plans, then over all plans.\n"
+    );
+    let _ = writeln!(md, "| map | search | footprint objective | camera objective |\n|---|---|---|---|");
+}
