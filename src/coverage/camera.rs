@@ -111,18 +111,7 @@ impl Camera {
         seen: &mut [bool],
     ) {
         assert_eq!(seen.len(), width * height, "one flag per raster pixel");
-        let marked = std::cell::RefCell::new(seen);
-        self.view_filtered(
-            width,
-            height,
-            occluded,
-            pos,
-            psi,
-            true,
-            true,
-            |i| marked.borrow()[i],
-            |i| marked.borrow_mut()[i] = true,
-        );
+        self.add_view(width, height, occluded, (pos, psi), seen, |s, i| s[i], |s, i| s[i] = true);
     }
 
     /// Adds the pixels of [`Self::view`] to the bitset `bits` (bit `i % 64` of word `i / 64` for
@@ -141,7 +130,37 @@ impl Camera {
         touched: &mut Vec<u32>,
     ) {
         assert_eq!(bits.len(), (width * height).div_ceil(64), "one bit per raster pixel");
-        let marked = std::cell::RefCell::new(bits);
+        self.add_view(
+            width,
+            height,
+            occluded,
+            (pos, psi),
+            (bits, touched),
+            |(bits, _), i| bits[i / 64] >> (i % 64) & 1 == 1,
+            |(bits, touched), i| {
+                if bits[i / 64] == 0 {
+                    touched.push((i / 64) as u32);
+                }
+                bits[i / 64] |= 1 << (i % 64);
+            },
+        );
+    }
+
+    /// Adds the pixels of the view from `pose` (position, heading) to a union, passing over
+    /// the pixels `has` finds in it before their range and bearing are computed.
+    #[allow(clippy::too_many_arguments)]
+    fn add_view<U>(
+        &self,
+        width: usize,
+        height: usize,
+        occluded: impl Fn(i64, i64) -> bool,
+        pose: ((f64, f64), f64),
+        union: U,
+        has: impl Fn(&U, usize) -> bool,
+        mut add: impl FnMut(&mut U, usize),
+    ) {
+        let union = std::cell::RefCell::new(union);
+        let (pos, psi) = pose;
         self.view_filtered(
             width,
             height,
@@ -150,14 +169,8 @@ impl Camera {
             psi,
             true,
             true,
-            |i| marked.borrow()[i / 64] >> (i % 64) & 1 == 1,
-            |i| {
-                let word = &mut marked.borrow_mut()[i / 64];
-                if *word == 0 {
-                    touched.push((i / 64) as u32);
-                }
-                *word |= 1 << (i % 64);
-            },
+            |i| has(&union.borrow(), i),
+            |i| add(&mut union.borrow_mut(), i),
         );
     }
 
