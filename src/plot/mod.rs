@@ -174,9 +174,11 @@ pub fn series_colour(k: usize) -> RGBColor {
 }
 
 /// Whether line series `k` is drawn dashed: [`SERIES`]'s sky blue is close in hue to its blue,
-/// so its lines (and their legend strokes) are dashed as well.
+/// so its lines (and their legend strokes) are dashed as well; past the palette's length the
+/// colours come round again with the dashes the other way, so that series `k` and
+/// `k + SERIES.len()` differ.
 pub fn series_dashed(k: usize) -> bool {
-    k % SERIES.len() == 5
+    (k % SERIES.len() == 5) != ((k / SERIES.len()) % 2 == 1)
 }
 
 /// Whether `title` fits `width_px` at `size` px (the estimate of [`fitting_text`]).
@@ -327,6 +329,19 @@ mod tests {
     use super::*;
 
     /// Metre ticks print without a trailing `.0` and without a negative zero.
+    /// Every series of up to two rounds of the palette has its own look (colour, dashes).
+    #[test]
+    fn series_looks_differ_for_two_rounds_of_the_palette() {
+        let looks: Vec<(RGBColor, bool)> =
+            (0..2 * SERIES.len()).map(|k| (series_colour(k), series_dashed(k))).collect();
+        for a in 0..looks.len() {
+            for b in a + 1..looks.len() {
+                assert_ne!(looks[a], looks[b], "series {a} and {b}");
+            }
+        }
+        assert!(series_dashed(5) && !series_dashed(12) && series_dashed(7) && !series_dashed(0));
+    }
+
     #[test]
     fn metre_ticks_are_short() {
         for (v, label) in [(5.0, "5"), (2.5, "2.5"), (-0.0, "0"), (-17.4, "-17.4"), (0.1 + 0.2, "0.3")] {

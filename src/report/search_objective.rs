@@ -93,7 +93,7 @@ impl MapRuns<'_> {
             if let Some(cov) = (self.pair)(f, c, "cov_final_reach") {
                 let cam = (self.pair)(f, c, "cam_walls_free");
                 out.push(format!(
-                    "On {name}, {search} optimising the footprint instead of the camera: footprint coverage {}{}.",
+                    "On {name}, {search} optimising the footprint against the same search optimising the camera (A₁₂ = P(footprint-optimised plan higher)): footprint coverage {}{}.",
                     effect(cov),
                     cam.map_or(String::new(), |x| format!(", camera wall coverage {}", effect(x)))
                 ));
@@ -111,7 +111,7 @@ impl MapRuns<'_> {
                     quartiles(&v).1
                 };
                 out.push(format!(
-                    "On {name}, with the {objective} objective for both, the waypoint-graph search against the thesis GA (Elite): {} for {what}; t_final medians {:.3} and {:.3}.",
+                    "On {name}, with the {objective} objective for both, the waypoint-graph search against the thesis GA (Elite) (A₁₂ = P(waypoint-graph plan higher)): {} for {what}; t_final medians {:.3} and {:.3}.",
                     effect(x),
                     t_final(w),
                     t_final(t)
