@@ -346,9 +346,9 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
     let out = dir.path().join("abl");
     let dry = covga(&["grid", grid.to_str().unwrap(), "--dry-run"]);
     ok(&dry);
-    // 3 seeded planners x 2 seeds + 2 deterministic patterns once each.
+    // (2 thesis GA + 2 waypoint + random search) x 2 seeds + 2 deterministic patterns once each.
     assert!(
-        String::from_utf8_lossy(&dry.stdout).contains("8 runs (5 configurations"),
+        String::from_utf8_lossy(&dry.stdout).contains("12 runs (7 configurations"),
         "{}",
         String::from_utf8_lossy(&dry.stdout)
     );
@@ -357,7 +357,7 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
-    assert_eq!(rows.len(), 8);
+    assert_eq!(rows.len(), 12);
     let col = |name: &str| header.iter().rposition(|h| *h == name).unwrap_or_else(|| panic!("{name}"));
     let planners: std::collections::BTreeSet<&str> = rows.iter().map(|r| r[col("planner")].as_str()).collect();
     assert_eq!(planners.len(), 5, "{planners:?}");
@@ -396,6 +396,14 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
         assert!((3000..3000 + 1200).contains(&e), "{}: {e} evaluations", r[col("planner")]);
         assert_eq!(r[col("stop")], "evaluations");
     }
+    // The 2 x 2 of search and objective is reported, its four cells in one table.
+    ok(&covga(&["report", out.to_str().unwrap()]));
+    let md = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    assert!(md.contains("## Search versus objective"), "{md}");
+    assert_eq!(md.lines().filter(|l| l.starts_with("| thesis-1 | ")).count(), 2, "{md}");
+    assert!(
+        md.contains("the thesis GA (Elite) optimising the footprint against the same search optimising the camera")
+    );
     // The common scorer gives a plan the same metrics whoever scores it: `covga eval` on a
     // waypoint plan agrees with the study's row.
     let wp = rows.iter().find(|r| r[col("planner")] == "waypoint").unwrap();

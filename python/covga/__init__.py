@@ -241,16 +241,23 @@ def run(
     return result
 
 
-def grid(file: Union[str, os.PathLike], jobs: Optional[int] = None, out: Optional[Union[str, os.PathLike]] = None):
+def grid(
+    file: Union[str, os.PathLike],
+    jobs: Optional[int] = None,
+    out: Optional[Union[str, os.PathLike]] = None,
+    order: str = "longest-first",
+):
     """Runs (or resumes) a grid study as ``covga grid`` does, ``jobs`` runs at a time (default:
     one per CPU), into ``out`` (default ``out/<grid stem>``); returns :func:`read_study` of it.
+    ``order`` is ``covga grid --order``: ``"longest-first"`` (by recorded or budgeted time, so
+    that few cores idle at the end) or ``"seeds"`` (seed by seed); results are the same.
     Ctrl-C stops it after the runs in progress, which stay recorded: call again to resume."""
     file = Path(file)
     folder = Path(out) if out is not None else Path("out") / file.stem
     n = (os.cpu_count() or 1) if jobs is None else jobs
     if not isinstance(n, (int, np.integer)) or n < 1:
         raise ConfigError(f"jobs = {jobs!r} is out of range: at least 1")
-    _covga.run_grid(str(file), int(n), str(folder))
+    _covga.run_grid(str(file), int(n), str(folder), str(order))
     return read_study(folder)
 
 

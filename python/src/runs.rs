@@ -124,16 +124,19 @@ pub fn run_experiment(
     Ok(warnings)
 }
 
-/// Runs (or resumes) the grid study `file` into `out` with `jobs` runs at a time; returns the
-/// runs selected, already recorded and completed now.
+/// Runs (or resumes) the grid study `file` into `out` with `jobs` runs at a time, started in
+/// `order` (`longest-first` or `seeds`, as `covga grid --order`); returns the runs selected,
+/// already recorded and completed now.
 #[pyfunction]
-#[pyo3(signature = (file, jobs, out))]
-pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str) -> PyResult<(usize, usize, usize)> {
-    let study = guarded(|| {
+#[pyo3(signature = (file, jobs, out, order))]
+pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str) -> PyResult<(usize, usize, usize)> {
+    let (study, order) = guarded(|| {
         if jobs == 0 {
             return Err(config_error("jobs = 0 is out of range: at least 1"));
         }
-        covga::study::grid::Study::load(Path::new(file)).map_err(config_error)
+        let order = covga::study::order::RunOrder::from_name(order)
+            .ok_or_else(|| config_error(format!("order = {order:?} is not one of \"longest-first\", \"seeds\"")))?;
+        Ok((covga::study::grid::Study::load(Path::new(file)).map_err(config_error)?, order))
     })?;
     let stop = AtomicBool::new(false);
     let on_done = |_: RunDone| {};
@@ -144,7 +147,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str) -> PyResult<
         max_memory: None,
         on_done: &on_done,
         stop: Some(&stop),
-        order: covga::study::order::RunOrder::default(),
+        order,
     };
     match interruptible(py, &stop, || run_study(&study, &opts))? {
         Ok(o) => Ok((o.selected, o.skipped, o.completed)),

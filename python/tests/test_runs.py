@@ -147,6 +147,10 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     cli("grid", grid_file, "--out", tmp_path / "cli", "--jobs", 2)
     runs = covga.grid(grid_file, jobs=2, out=tmp_path / "py")
     assert _same_rows_but_wall_time(tmp_path)
+    seeds = covga.grid(grid_file, jobs=2, out=tmp_path / "seeds", order="seeds")
+    assert seeds.drop(columns="wall_s").equals(runs.drop(columns="wall_s")), "the order changes no result"
+    with pytest.raises(covga.ConfigError, match="not one of"):
+        covga.grid(grid_file, jobs=2, out=tmp_path / "bad", order="shortest-first")
     assert len(runs) == 8
     assert all(isinstance(i, str) and len(i) == 16 for i in runs["run_id"]) and runs["seed"].dtype == np.int64
     assert runs["executable"].dtype == bool and runs["cov_final_reach"].dtype == np.float64

@@ -288,7 +288,14 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             let exec = all.iter().copied().filter(|&r| flag(r, "executable")).collect();
             (all, exec)
         };
-        let cells = MapRuns { name: &name, present: &present_all, rows: &split, num: &num, pair: &pair };
+        let cell_list: Vec<(&String, Option<(&'static str, &'static str)>)> = present_all
+            .iter()
+            .map(|v| {
+                let first = all_rows_of(map, v)[0];
+                (*v, search_objective::cell_of(&|c: &str| t.col(c).map(|i| t.rows[first][i].clone())))
+            })
+            .collect();
+        let cells = MapRuns { name: &name, cells: &cell_list, rows: &split, num: &num, pair: &pair };
         if cells.complete() {
             cells.table_rows(&mut two_by_two);
         }

@@ -7,15 +7,33 @@
 use super::stats::{a12_magnitude, quartiles};
 use std::fmt::Write as _;
 
-/// The labels of the 2 × 2's cells as `covga report` names the variants: (search, objective)
-/// → candidates, the first present used (a study without `thesis.objective` labels the Elite
-/// footprint runs `thesis-elite`).
-const CELLS: [(&str, &str, &[&str]); 4] = [
-    ("waypoint graph (000)", "footprint", &["waypoint-footprint"]),
-    ("waypoint graph (000)", "camera", &["waypoint-camera"]),
-    ("thesis GA, Elite (003)", "footprint", &["thesis-elite-footprint", "thesis-elite"]),
-    ("thesis GA, Elite (003)", "camera", &["thesis-elite-camera"]),
-];
+/// The two searches, as the table names them.
+const SEARCHES: [&str; 2] = ["waypoint graph (000)", "thesis GA, Elite (003)"];
+
+/// The cell of the 2 × 2 a run belongs to, `(search, objective)`, from its swept values
+/// (`value(column)`, `None` where the study has no such column or the key does not apply):
+/// the waypoint planner with its `waypoint.objective`, and the thesis GA as 003 runs it (Elite,
+/// straight moves, a random initial population) with its `thesis.objective` (the footprint
+/// where it is not swept); `None` for every other run.
+pub fn cell_of(value: &dyn Fn(&str) -> Option<String>) -> Option<(&'static str, &'static str)> {
+    let given = |c: &str| value(c).filter(|v| !v.is_empty());
+    let objective = |c: &str| match given(c).as_deref() {
+        None | Some("footprint") => Some("footprint"),
+        Some("camera") => Some("camera"),
+        Some(_) => None,
+    };
+    match given("planner").as_deref() {
+        Some("waypoint") => Some((SEARCHES[0], objective("waypoint.objective")?)),
+        Some("thesis") => {
+            let plain = given("thesis.selection").is_none_or(|s| s == "elite")
+                && given("thesis.moves").is_none_or(|m| m == "straight")
+                && given("thesis.seed_population").is_none_or(|p| p == "[]");
+            plain.then_some(())?;
+            Some((SEARCHES[1], objective("thesis.objective")?))
+        }
+        _ => None,
+    }
+}
 
 /// All runs of a variant (by label), and its executable runs.
 pub type RowsOf<'a> = &'a dyn Fn(&str) -> (Vec<usize>, Vec<usize>);
@@ -27,8 +45,8 @@ pub type PairTest<'a> = &'a dyn Fn(&str, &str, &str) -> Option<(f64, f64)>;
 pub struct MapRuns<'a> {
     /// The map's short name.
     pub name: &'a str,
-    /// The variant labels present on the map.
-    pub present: &'a [&'a String],
+    /// The variants present on the map with their cell of the 2 × 2 ([`cell_of`]).
+    pub cells: &'a [(&'a String, Option<(&'static str, &'static str)>)],
     /// All runs of a variant, and its executable runs.
     pub rows: RowsOf<'a>,
     /// A run's metric.
@@ -40,21 +58,20 @@ pub struct MapRuns<'a> {
 
 impl MapRuns<'_> {
     /// The label of a cell on this map, if its runs are present.
-    fn label(&self, search: &str, objective: &str) -> Option<&'static str> {
-        let (_, _, candidates) = CELLS.iter().find(|(s, o, _)| *s == search && *o == objective)?;
-        candidates.iter().copied().find(|c| self.present.iter().any(|p| p.as_str() == *c))
+    fn label(&self, search: &str, objective: &str) -> Option<&str> {
+        self.cells.iter().find(|(_, c)| *c == Some((search, objective))).map(|(l, _)| l.as_str())
     }
 
     /// Whether all four cells are present.
     pub fn complete(&self) -> bool {
-        CELLS.iter().all(|(s, o, _)| self.label(s, o).is_some())
+        SEARCHES.iter().all(|s| ["footprint", "camera"].iter().all(|o| self.label(s, o).is_some()))
     }
 
     /// One table row per search: each cell's medians over executable plans (footprint coverage
     /// of the reachable cells, camera wall coverage) with the executable share, and over all
     /// plans.
     pub fn table_rows(&self, md: &mut String) {
-        for search in ["waypoint graph (000)", "thesis GA, Elite (003)"] {
+        for search in SEARCHES {
             let cells: Vec<String> = ["footprint", "camera"]
                 .iter()
                 .map(|objective| {
@@ -85,8 +102,8 @@ impl MapRuns<'_> {
         let effect = |(p, a12): (f64, f64)| format!("A₁₂ = {a12:.2} ({}, p = {p:.1e})", a12_magnitude(a12));
         let mut out = Vec::new();
         let cell = |s: &str, o: &str| self.label(s, o);
-        let (wf, wc) = (cell("waypoint graph (000)", "footprint"), cell("waypoint graph (000)", "camera"));
-        let (tf, tc) = (cell("thesis GA, Elite (003)", "footprint"), cell("thesis GA, Elite (003)", "camera"));
+        let (wf, wc) = (cell(SEARCHES[0], "footprint"), cell(SEARCHES[0], "camera"));
+        let (tf, tc) = (cell(SEARCHES[1], "footprint"), cell(SEARCHES[1], "camera"));
         // One search, two objectives: A₁₂ = P(footprint-optimised > camera-optimised).
         for (search, f, c) in [("the waypoint search", wf, wc), ("the thesis GA (Elite)", tf, tc)] {
             let (Some(f), Some(c)) = (f, c) else { continue };

@@ -33,6 +33,14 @@ pub enum RunOrder {
     Seeds,
 }
 
+impl RunOrder {
+    /// The order `name` names as `--order` does (`longest-first`, `seeds`).
+    pub fn from_name(name: &str) -> Option<Self> {
+        use clap::ValueEnum;
+        Self::value_variants().iter().copied().find(|o| o.to_possible_value().is_some_and(|v| v.get_name() == name))
+    }
+}
+
 /// Where the estimates [`estimates`] gives come from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum EstimateSource {

@@ -15,6 +15,13 @@ fn iterations(r: &RunSpec) -> u32 {
 }
 
 #[test]
+fn orders_are_found_by_their_names() {
+    assert_eq!(RunOrder::from_name("longest-first"), Some(RunOrder::LongestFirst));
+    assert_eq!(RunOrder::from_name("seeds"), Some(RunOrder::Seeds));
+    assert_eq!(RunOrder::from_name("Seeds"), None);
+}
+
+#[test]
 fn seeds_order_is_replicate_then_id() {
     let s = study();
     let mut runs: Vec<&RunSpec> = s.runs.iter().collect();
