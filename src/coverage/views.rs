@@ -35,7 +35,12 @@ pub struct CameraLayer {
     reach: Vec<u64>,
     /// `[walls_free, open_free, walls_reach, open_reach]` denominators.
     pub(crate) counts: [usize; 4],
+    /// This layer's identity: masks cached for another layer are in other pixels.
+    id: u64,
 }
+
+/// Identities of [`CameraLayer`]s, one per layer made.
+static LAYERS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
 
 impl CameraLayer {
     /// The layer of `map` for the camera `spec`, with the free pixels 8-connected to `stations`.
@@ -58,7 +63,8 @@ impl CameraLayer {
             // The common scorer measures every planner with eq. 1 as written.
             shape: ViewShape::Sections,
         };
-        Self { camera, band: bitset(&band), reach: bitset(&reach), counts, map: wm }
+        let id = LAYERS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Self { camera, band: bitset(&band), reach: bitset(&reach), counts, map: wm, id }
     }
 
     /// Words of a bitset over the raster.
@@ -74,7 +80,7 @@ impl CameraLayer {
     /// `[walls_free, open_free, walls_reach, open_reach]` of a plan, each segment's views
     /// taken from (or added to) `views`.
     pub fn coverage<P: AsRef<[Point]>>(&self, paths: &[P], views: &mut SegmentViews) -> [f64; 4] {
-        views.begin(self.words());
+        views.begin(self.id, self.words());
         for path in paths {
             for w in path.as_ref().windows(2) {
                 views.add_segment(self, w[0], w[1]);
@@ -167,8 +173,8 @@ fn key_of(a: Point, b: Point) -> [u64; 4] {
 }
 
 /// Segments' views as `(word, bits)` lists over one [`CameraLayer`]'s raster, and the union of
-/// a plan's being built. Keep one per layer (and per thread): the masks are in that layer's
-/// pixels.
+/// a plan's being built. Keep one per thread; used with another layer, it starts afresh (the
+/// masks are in its layer's pixels).
 #[derive(Clone, Debug, Default)]
 pub struct SegmentViews {
     /// Where each segment's words lie in `masks`.
@@ -185,6 +191,8 @@ pub struct SegmentViews {
     viewed: u64,
     /// Mask words kept before starting afresh (0: [`VIEW_CACHE_WORDS`]).
     max_words: usize,
+    /// The layer the masks belong to (0: none yet).
+    layer: u64,
 }
 
 impl SegmentViews {
@@ -198,8 +206,14 @@ impl SegmentViews {
         self.viewed
     }
 
-    /// Starts an empty union over `words` words.
-    fn begin(&mut self, words: usize) {
+    /// Starts an empty union over `words` words of `layer`.
+    fn begin(&mut self, layer: u64, words: usize) {
+        if self.layer != layer {
+            // Masks of another layer lie in its pixels: start afresh.
+            self.layer = layer;
+            self.table.clear();
+            self.masks.clear();
+        }
         if self.union.len() != words {
             self.union = vec![0; words];
             self.bits = vec![0; words];

@@ -73,3 +73,21 @@ proptest! {
         }
     }
 }
+
+/// One cache used with two layers of the same raster (cameras of different range) and then
+/// with another map's: each coverage is its own layer's, never the masks of the layer before.
+#[test]
+fn a_cache_used_with_another_layer_starts_afresh() {
+    let map = preset("thesis-2").unwrap();
+    let short = CameraSpec { d_max: 2.0, ..camera() };
+    let s = map.origin() + nalgebra::Vector2::new(1.3, 1.3);
+    let path = vec![vec![s, s + nalgebra::Vector2::new(6.0, 0.0), s + nalgebra::Vector2::new(6.0, 6.0)]];
+    let (far, near) = (CameraLayer::new(&map, &camera(), &[s]), CameraLayer::new(&map, &short, &[s]));
+    let office = preset("office").unwrap();
+    let other = CameraLayer::new(&office, &camera(), &[office.origin() + nalgebra::Vector2::new(2.0, 2.0)]);
+    let mut views = SegmentViews::default();
+    for layer in [&far, &near, &far, &other, &near] {
+        assert_eq!(layer.coverage(&path, &mut views), layer.coverage_by_pose(&path));
+    }
+    assert_ne!(far.coverage_by_pose(&path), near.coverage_by_pose(&path));
+}
