@@ -86,8 +86,7 @@ impl CameraLayer {
                 views.add_segment(self, w[0], w[1]);
             }
         }
-        let hit = views.counts(self);
-        std::array::from_fn(|k| if self.counts[k] > 0 { hit[k] as f64 / self.counts[k] as f64 } else { 0.0 })
+        self.fractions(views.counts(self))
     }
 
     /// [`Self::coverage`] pose by pose into one flag per pixel, with no masks: the reference
@@ -111,6 +110,11 @@ impl CameraLayer {
             hit[2] += usize::from(b && r);
             hit[3] += usize::from(r);
         }
+        self.fractions(hit)
+    }
+
+    /// Seen pixels `hit` as shares of the layer's four denominators (0 where one is empty).
+    fn fractions(&self, hit: [usize; 4]) -> [f64; 4] {
         std::array::from_fn(|k| if self.counts[k] > 0 { hit[k] as f64 / self.counts[k] as f64 } else { 0.0 })
     }
 }
@@ -158,8 +162,8 @@ fn connected_free(wm: &WorkMap, stations: &[Point]) -> Vec<bool> {
     reach
 }
 
-/// One bit per flag.
-fn bitset(flags: &[bool]) -> Vec<u64> {
+/// A full bitset of a boolean raster: bit `i % 64` of word `i / 64` for flag `i`.
+pub fn bitset(flags: &[bool]) -> Vec<u64> {
     let mut w = vec![0u64; flags.len().div_ceil(64)];
     for (i, _) in flags.iter().enumerate().filter(|(_, f)| **f) {
         w[i / 64] |= 1 << (i % 64);

@@ -6,7 +6,7 @@
 //! Short runs extrapolated linearly under-predicted by half: a GA's cost per iteration is not
 //! constant over a run, and the per-generation work of the history writer was not timed.
 
-use super::grid::Study;
+use super::grid::{RunSpec, Study};
 use super::records::RunsTable;
 use super::runner::{MapCache, StudyError, experiment_of};
 use std::collections::BTreeMap;
@@ -47,24 +47,40 @@ pub fn scheduled_wall_seconds(study: &Study, times: &[BranchTime], jobs: usize, 
     super::order::list_schedule(&runs.iter().map(|r| of(r)).collect::<Vec<_>>(), jobs)
 }
 
-/// Mean `wall_s` per branch over runs already recorded in `dir` (any runs file).
-pub fn from_records(study: &Study, dir: &Path) -> Option<Vec<BranchTime>> {
-    let branch_of: BTreeMap<&str, &str> = study.runs.iter().map(|r| (r.id.as_str(), r.branch.as_str())).collect();
-    let mut acc: BTreeMap<String, (f64, usize)> = BTreeMap::new();
-    for entry in std::fs::read_dir(dir).ok()?.flatten() {
-        let name = entry.file_name().to_string_lossy().into_owned();
-        if !(name == "runs.csv" || name.starts_with("runs-shard-")) {
-            continue;
-        }
-        let table = RunsTable::parse(&std::fs::read_to_string(entry.path()).ok()?).ok()?;
+/// The `wall_s` of every run of `study` recorded in `dir`'s runs files (`runs.csv` and the
+/// shards' `runs-shard-*.csv`, in name order); `None` when a runs file cannot be read.
+pub fn recorded_times<'a>(study: &'a Study, dir: &Path) -> Option<Vec<(&'a RunSpec, f64)>> {
+    let spec: BTreeMap<&str, &RunSpec> = study.runs.iter().map(|r| (r.id.as_str(), r)).collect();
+    let mut names: Vec<std::path::PathBuf> = std::fs::read_dir(dir)
+        .ok()?
+        .flatten()
+        .filter(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            name == "runs.csv" || name.starts_with("runs-shard-")
+        })
+        .map(|e| e.path())
+        .collect();
+    names.sort();
+    let mut out = Vec::new();
+    for path in names {
+        let table = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
+        let id = table.col("run_id")?;
         for row in &table.rows {
-            let id = &row[table.col("run_id")?];
-            if let (Some(b), Some(w)) = (branch_of.get(id.as_str()), table.num(row, "wall_s")) {
-                let e = acc.entry(b.to_string()).or_default();
-                e.0 += w;
-                e.1 += 1;
+            if let (Some(run), Some(w)) = (spec.get(row[id].as_str()), table.num(row, "wall_s")) {
+                out.push((*run, w));
             }
         }
+    }
+    Some(out)
+}
+
+/// Mean `wall_s` per branch over runs already recorded in `dir` (any runs file).
+pub fn from_records(study: &Study, dir: &Path) -> Option<Vec<BranchTime>> {
+    let mut acc: BTreeMap<String, (f64, usize)> = BTreeMap::new();
+    for (run, w) in recorded_times(study, dir)? {
+        let e = acc.entry(run.branch.clone()).or_default();
+        e.0 += w;
+        e.1 += 1;
     }
     let overall = acc.values().fold((0.0, 0), |(s, n), (a, b)| (s + a, n + b));
     if overall.1 == 0 {

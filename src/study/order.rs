@@ -10,7 +10,6 @@
 
 use super::estimate::BranchTime;
 use super::grid::{RunSpec, Study};
-use super::records::RunsTable;
 use super::runner::MapCache;
 use crate::experiment::registry::PlannerKind;
 use std::collections::BTreeMap;
@@ -95,29 +94,13 @@ struct Means {
 /// Means of the `wall_s` recorded in `dir`'s runs files, with the calibration's per-branch
 /// means for branches no run of which is recorded; `None` when nothing is recorded.
 fn recorded_means(study: &Study, dir: &Path, maps: &MapCache) -> Option<Means> {
-    let spec: BTreeMap<&str, &RunSpec> = study.runs.iter().map(|r| (r.id.as_str(), r)).collect();
     let (mut config, mut branch): (Sums, Sums) = Default::default();
     let (mut seconds, mut work) = (0.0, 0.0);
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .ok()?
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n == "runs.csv" || (n.starts_with("runs-shard-") && n.ends_with(".csv")))
-        .collect();
-    names.sort();
-    for name in names {
-        let Some(table) = std::fs::read_to_string(dir.join(&name)).ok().and_then(|t| RunsTable::parse(&t).ok()) else {
-            continue;
-        };
-        let Some(id_col) = table.col("run_id") else { continue };
-        for row in &table.rows {
-            if let (Some(run), Some(w)) = (spec.get(row[id_col].as_str()), table.num(row, "wall_s")) {
-                add(&mut config, &run.config_id, w);
-                add(&mut branch, &run.branch, w);
-                seconds += w;
-                work += budget_work(run, maps);
-            }
-        }
+    for (run, w) in super::estimate::recorded_times(study, dir).unwrap_or_default() {
+        add(&mut config, &run.config_id, w);
+        add(&mut branch, &run.branch, w);
+        seconds += w;
+        work += budget_work(run, maps);
     }
     for b in read_calibration(&dir.join(CALIBRATION_FILE)) {
         if let Some(run) = study.runs.iter().find(|r| r.branch == b.branch)

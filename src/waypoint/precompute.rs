@@ -207,14 +207,3 @@ impl Union {
         self.words[i / 64] >> (i % 64) & 1 == 1
     }
 }
-
-/// A full bitset of a boolean raster.
-pub fn bitset(flags: &[bool]) -> Vec<u64> {
-    let mut w = vec![0u64; flags.len().div_ceil(64)];
-    for (i, &f) in flags.iter().enumerate() {
-        if f {
-            w[i / 64] |= 1 << (i % 64);
-        }
-    }
-    w
-}

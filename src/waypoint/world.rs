@@ -2,9 +2,10 @@
 //! traversal views, wall band and start waypoints, built once per map and parameter set.
 
 use super::graph::Graph;
-use super::precompute::{Sensing, Traversals, bitset};
+use super::precompute::{Sensing, Traversals};
 use super::{passages, waypoints};
 use crate::coverage::camera::{Camera, ViewShape};
+use crate::coverage::views::bitset;
 use crate::coverage::work_map::WorkMap;
 use crate::map::GridMap;
 
