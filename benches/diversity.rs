@@ -2,6 +2,10 @@
 //! maps on thesis-1, each swept from a random 40-move path of moves up to 3 m from the station
 //! (the shape of an initial population), as every generation of a recorded run computes it.
 //!
+//! `kept_pair_sum` is the sum kept from call to call ([`kept_pair_distance_sum`]) on 100 maps
+//! of which 4 are replaced per call, the churn of a recorded Elite run after its first 200
+//! iterations.
+//!
 //! `cargo bench --bench diversity`
 
 use covga::coverage::CoverageGrid;
@@ -9,7 +13,7 @@ use covga::coverage::bits::BitLayers;
 use covga::coverage::planes::VisitPlanes;
 use covga::geom::Point;
 use covga::map::presets::preset;
-use covga::thesis::diversity::{DiversityScratch, pair_distance_sum_by};
+use covga::thesis::diversity::{DiversityScratch, kept_pair_distance_sum, pair_distance_sum_by};
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
@@ -44,6 +48,20 @@ fn diversity(c: &mut Criterion) {
             b.iter(|| black_box(pair_distance_sum_by(pop.len(), |i| &pop[i], &mut scratch)))
         });
     }
+    // Two populations 4 members apart, measured in turn: each call sees 4 leave and 4 join.
+    let pop = population(&layers, 104, &mut rng);
+    let (first, second): (Vec<&VisitPlanes>, Vec<&VisitPlanes>) =
+        (pop[..100].iter().collect(), pop[..96].iter().chain(&pop[100..]).collect());
+    let mut scratch = DiversityScratch::default();
+    let mut turn = false;
+    group.throughput(Throughput::Elements(100));
+    group.bench_function("kept_pair_sum/100_maps_4_changed", |b| {
+        b.iter(|| {
+            turn = !turn;
+            let now = if turn { &first } else { &second };
+            black_box(kept_pair_distance_sum(100, |i| now[i], &mut scratch, 0))
+        })
+    });
     group.finish();
 }
 

@@ -27,7 +27,7 @@ fn advance(ga: &ThesisGa, state: &mut GaState, iterations: u32, iter_max: u32) {
     let mut scratches = ga.new_scratches();
     for _ in 0..iterations {
         let effective = ga.effective(state, state.iteration + 1, iter_max);
-        ga.step(state, effective, &mut scratches, None);
+        ga.step(state, effective, &mut scratches, false);
     }
 }
 

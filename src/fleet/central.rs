@@ -16,7 +16,7 @@ use crate::ga::observer::RobotRecord;
 use crate::ga::rng::Rng;
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::thesis::diversity::{DiversityScratch, max_distance_by, pair_distance_sum_by};
+use crate::thesis::diversity::{DiversityScratch, kept_pair_distance_sum, max_distance_by};
 use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual, Scenario};
 use crate::thesis::member::{Member, Op, Origin, Premark, ReachMask, Variation};
 use crate::thesis::params::ThesisParams;
@@ -238,7 +238,7 @@ impl Member for Crew {
             return 0.0;
         }
         let robots = pop[0].robots.len();
-        let sum: u64 = (0..robots).map(|k| pair_distance_sum_by(n, |i| &pop[i].robots[k].visits, scratch)).sum();
+        let sum: u64 = (0..robots).map(|k| kept_pair_distance_sum(n, |i| &pop[i].robots[k].visits, scratch, k)).sum();
         2.0 * sum as f64 / (n as f64 * (n as f64 - 1.0))
     }
 

@@ -137,7 +137,7 @@ pub fn negotiate(
                     break;
                 }
                 let effective = ga.effective(state, state.iteration + 1, np.iterations);
-                ga.step(state, effective, &mut scratches, None);
+                ga.step(state, effective, &mut scratches, false);
             }
         });
         rounds += 1;

@@ -11,6 +11,9 @@ use crate::coverage::lanes::lane_count_sums;
 use crate::coverage::planes::VisitPlanes;
 use rayon::prelude::*;
 
+mod kept;
+pub use kept::KeptPairSum;
+
 /// Visit counts whose thresholds are listed without a branch per mask (four count planes).
 const LOW: usize = 15;
 
@@ -23,20 +26,41 @@ pub struct DiversityScratch {
     low: Vec<u64>,
     /// `high[t − LOW − 1]`: the same for `t > LOW`.
     high: Vec<Vec<u64>>,
+    /// The pair sums kept from call to call, one per channel ([`kept_pair_distance_sum`]).
+    kept: Vec<KeptPairSum>,
 }
 
-/// `Σ_{i<j} Dist(M^i, M^j)` over the population (eqs. 3.17–3.18).
+/// `Σ_{i<j} Dist(M^i, M^j)` over the population (eqs. 3.17–3.18), updated from the members
+/// that changed since the previous call with the same `scratch` ([`kept_pair_distance_sum`]).
+pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> u64 {
+    kept_pair_distance_sum(pop.len(), |i| &pop[i].visits, scratch, 0)
+}
+
+/// [`pair_distance_sum_by`], kept in `scratch` under `channel` from one call to the next: only
+/// the maps that were not in the previous call's population (of the same channel) are read
+/// cell by cell ([`KeptPairSum`]). A GA measuring every generation changes a few members per
+/// call; a population unrelated to the previous one costs about twice the full pass. A caller
+/// with several populations at once (a fleet's robots) gives each its own channel.
+pub fn kept_pair_distance_sum<'a>(
+    n: usize,
+    map: impl Fn(usize) -> &'a VisitPlanes,
+    scratch: &mut DiversityScratch,
+    channel: usize,
+) -> u64 {
+    if scratch.kept.len() <= channel {
+        scratch.kept.resize_with(channel + 1, KeptPairSum::default);
+    }
+    scratch.kept[channel].update(n, map)
+}
+
+/// `Σ_{i<j} Dist(M^i, M^j)` over `n` visit maps, the `i`-th given by `map(i)`, in one pass
+/// over every map (eqs. 3.17–3.18); the reference of [`kept_pair_distance_sum`].
 ///
 /// For one cell, `Σ_{i<j} |a_i − a_j| = Σ_{t≥1} c_t·(N − c_t)` with `c_t` the number of
 /// individuals that visited it at least `t` times. The visit maps are bit-sliced, so for 64
 /// cells at once the individuals' masks "at least `t` visits" (`t = 1, 2, …` until one is
 /// empty) are counted lane by lane ([`lane_count_sums`]), and `Σ c_t(N − c_t) = N·Σc_t − Σc_t²`
 /// is read off the counts.
-pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> u64 {
-    pair_distance_sum_by(pop.len(), |i| &pop[i].visits, scratch)
-}
-
-/// [`pair_distance_sum`] over `n` visit maps, the `i`-th given by `map(i)`.
 pub fn pair_distance_sum_by<'a>(
     n: usize,
     map: impl Fn(usize) -> &'a VisitPlanes,
@@ -337,6 +361,7 @@ mod tests {
                 .map(|(i, j)| distance(&pop[i], &pop[j]))
                 .sum();
             assert_eq!(pair_distance_sum(&pop, &mut DiversityScratch::default()), expected, "top count {full}");
+            assert_eq!(full_pass(&pop), expected, "top count {full}");
         }
     }
 
@@ -388,6 +413,12 @@ mod tests {
             .collect();
         assert!(pop.iter().any(|i| i.visits.planes() > 4) && pop.iter().all(|i| i.visits.plane_words() == 16));
         assert_eq!(pair_distance_sum(&pop, &mut DiversityScratch::default()), pair_sum_by_cells(&pop));
+        assert_eq!(full_pass(&pop), pair_sum_by_cells(&pop));
+    }
+
+    /// The one-pass kernel's sum, without a kept sum.
+    fn full_pass(pop: &[Individual]) -> u64 {
+        pair_distance_sum_by(pop.len(), |i| &pop[i].visits, &mut DiversityScratch::default())
     }
 
     /// The sum over cells of the histogram formula, cell by cell (the reference).
@@ -433,6 +464,7 @@ mod tests {
                 }
             }
             proptest::prop_assert_eq!(pair_distance_sum(&pop, &mut DiversityScratch::default()), by_pairs);
+            proptest::prop_assert_eq!(full_pass(&pop), by_pairs);
             proptest::prop_assert_eq!(pair_sum_by_cells(&pop), by_pairs);
         }
     }

@@ -51,6 +51,8 @@ pub struct GaState<T = Individual> {
     rng: Rng,
     /// Members that did not pass on, whose buffers the next generation's new members reuse.
     spare: Vec<T>,
+    /// The diversity kept from one measured generation to the next.
+    diversity_scratch: DiversityScratch,
 }
 
 /// The result of a run of the thesis GA.
@@ -188,27 +190,23 @@ impl<T: Member> Ga<T> {
             seed_points,
             rng: stream(self.seed, Purpose::Main, &[]),
             spare: Vec::new(),
+            diversity_scratch: DiversityScratch::default(),
         };
-        self.measure_diversity(&mut state, measure_diversity, &mut DiversityScratch::default());
+        self.measure_diversity(&mut state, measure_diversity);
         state
     }
 
-    fn measure_diversity(&self, state: &mut GaState<T>, wanted: bool, scratch: &mut DiversityScratch) {
-        state.diversity = (wanted || self.adaptive()).then(|| T::diversity(&state.population, scratch));
+    fn measure_diversity(&self, state: &mut GaState<T>, wanted: bool) {
+        state.diversity =
+            (wanted || self.adaptive()).then(|| T::diversity(&state.population, &mut state.diversity_scratch));
         if self.adaptive() {
             state.diversity_max = T::max_distance(&state.population) as f64;
         }
     }
 
     /// One iteration: both architectures share the loop, selection decides which runs.
-    /// `div` is `Some` when the diversity is to be measured.
-    pub fn step(
-        &self,
-        state: &mut GaState<T>,
-        effective: Effective,
-        scratches: &mut [EvalScratch],
-        div: Option<&mut DiversityScratch>,
-    ) {
+    /// `measure`: whether the diversity is to be measured (always under adaptive control).
+    pub fn step(&self, state: &mut GaState<T>, effective: Effective, scratches: &mut [EvalScratch], measure: bool) {
         state.iteration += 1;
         let generation = self.generation(state.iteration, effective, &state.seed_points);
         let pop = std::mem::take(&mut state.population);
@@ -223,8 +221,7 @@ impl<T: Member> Ga<T> {
         };
         state.population = next;
         state.evaluations += evaluations;
-        let wanted = div.is_some();
-        self.measure_diversity(state, wanted, div.unwrap_or(&mut DiversityScratch::default()));
+        self.measure_diversity(state, measure);
     }
 
     /// A fresh scratch per worker thread, for [`Self::step`].
@@ -238,7 +235,7 @@ impl<T: Member> Ga<T> {
             state.evaluations += ind.reevaluate(&self.scenario, self.params.evaluation, &mut scratch);
         }
         let wanted = state.diversity.is_some();
-        self.measure_diversity(state, wanted, &mut DiversityScratch::default());
+        self.measure_diversity(state, wanted);
     }
 
     /// Marks `region` as already covered and re-evaluates everyone (spec §13, R25).
@@ -267,7 +264,6 @@ impl<T: Member> Ga<T> {
         let diversity_every: Vec<u32> = observers.iter().filter_map(|o| o.diversity_every()).collect();
         let mut state = self.init(!diversity_every.is_empty());
         let mut scratches = self.scratches();
-        let mut div = DiversityScratch::default();
         let fixed = self.fixed_effective();
         let first = stats(&state, &fixed, self.pareto());
         // Reachability is measured only for someone who reads the records.
@@ -301,7 +297,7 @@ impl<T: Member> Ga<T> {
             }
             let effective = self.effective(&state, state.iteration + 1, budget.iterations);
             let wanted = diversity_every.iter().any(|&e| (state.iteration + 1).is_multiple_of(e.max(1)));
-            self.step(&mut state, effective, &mut scratches, wanted.then_some(&mut div));
+            self.step(&mut state, effective, &mut scratches, wanted);
             let now = stats(&state, &effective, self.pareto());
             if !observers.is_empty() {
                 let r = record(&now, &state, &self.scenario, &reach);
