@@ -90,18 +90,34 @@ impl CameraLayer {
     }
 
     /// [`Self::coverage`] pose by pose into one flag per pixel, with no masks: the reference
-    /// the masks are tested against.
+    /// the masks are tested against, and the scorer's method for a plan seen once. The poses
+    /// are split into one run of consecutive poses per worker thread, whose flags are joined
+    /// at the end: a union, the same for any number of threads.
     pub fn coverage_by_pose(&self, paths: &[Vec<Point>]) -> [f64; 4] {
+        use rayon::prelude::*;
         let wm = &self.map;
-        let mut seen = vec![false; wm.occluded.len()];
+        let mut poses = Vec::new();
         for path in paths {
             for w in path.windows(2) {
-                for_each_pose(w[0], w[1], |p, psi| {
-                    let pos = wm.to_px(p.x, p.y);
-                    self.camera.view_into(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, psi, &mut seen);
-                });
+                for_each_pose(w[0], w[1], |p, psi| poses.push((wm.to_px(p.x, p.y), psi)));
             }
         }
+        let run = poses.len().div_ceil(rayon::current_num_threads().max(1)).max(1);
+        let view_run = |run: &[((f64, f64), f64)]| {
+            let mut seen = vec![false; wm.occluded.len()];
+            for &(pos, psi) in run {
+                self.camera.view_into(wm.width, wm.height, |c, r| wm.is_occluded(c, r), pos, psi, &mut seen);
+            }
+            seen
+        };
+        let seen = poses
+            .par_chunks(run)
+            .map(view_run)
+            .reduce_with(|mut a, b| {
+                a.iter_mut().zip(b).for_each(|(x, y)| *x |= y);
+                a
+            })
+            .unwrap_or_else(|| vec![false; wm.occluded.len()]);
         let mut hit = [0usize; 4];
         for i in (0..seen.len()).filter(|&i| seen[i]) {
             let (b, r) = (self.in_band(i), self.reach[i / 64] >> (i % 64) & 1 == 1);

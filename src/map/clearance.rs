@@ -6,6 +6,7 @@
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::map::wall_rows::WallRows;
+use rayon::prelude::*;
 use std::borrow::Cow;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -51,14 +52,21 @@ impl<'m> Clearance<'m> {
         let map = &*c.map;
         let half_diagonal = map.resolution() * std::f64::consts::FRAC_1_SQRT_2;
         let (lim, roomy_lim) = (radius - CLEARANCE_EPS, radius - CLEARANCE_EPS + half_diagonal + 1e-9);
-        let (centre_ok, roomy) = (0..map.rows())
-            .flat_map(|r| (0..map.cols()).map(move |col| map.cell_centre(r, col)))
-            .map(|p| {
-                let d2 = c.nearest_cell_d2(p);
-                // As `fits_geometry`, from the same squared distances.
-                (c.inside_edges(p) && d2 >= lim * lim, d2 >= roomy_lim * roomy_lim)
+        // Row by row on the worker threads: each cell's flags depend on the map alone.
+        let rows: Vec<Vec<(bool, bool)>> = (0..map.rows())
+            .into_par_iter()
+            .map(|r| {
+                (0..map.cols())
+                    .map(|col| {
+                        let p = map.cell_centre(r, col);
+                        let d2 = c.nearest_cell_d2(p);
+                        // As `fits_geometry`, from the same squared distances.
+                        (c.inside_edges(p) && d2 >= lim * lim, d2 >= roomy_lim * roomy_lim)
+                    })
+                    .collect()
             })
-            .unzip();
+            .collect();
+        let (centre_ok, roomy) = rows.into_iter().flatten().unzip();
         (c.centre_ok, c.roomy) = (centre_ok, roomy);
         c
     }

@@ -14,6 +14,7 @@
 use super::GridMap;
 use super::wall_rows::{WallRows, axis_gap};
 use crate::geom::Point;
+use rayon::prelude::*;
 
 /// Lattice points per cell edge (`h = resolution / LATTICE_PER_CELL`).
 pub const LATTICE_PER_CELL: usize = 8;
@@ -270,35 +271,34 @@ pub fn coverable_cells(map: &GridMap, radius: f64, seeds: &[Point]) -> Vec<bool>
     let span = (reach_r / lat.h).ceil() as isize + 1;
     let res = map.resolution();
     let cell_span = (reach_r / res).ceil() as isize + 1;
-    let mut out = vec![false; map.rows() * map.cols()];
-    for row in 0..map.rows() {
-        for col in 0..map.cols() {
-            if !map.is_free(row, col) {
-                continue;
-            }
-            let c = map.cell_centre(row, col);
-            let k = lat.nearest(c);
-            if reached[k] {
-                out[map.index(row, col)] = true;
-                continue;
-            }
-            let (ci, cj) = ((k % lat.cols) as isize, (k / lat.cols) as isize);
-            let within = |ni: isize, nj: isize| {
-                (ni - ci).abs() <= span
-                    && (nj - cj).abs() <= span
-                    && reached[nj as usize * lat.cols + ni as usize]
-                    && (lat.point(ni as usize, nj as usize) - c).norm() <= reach_r
-            };
-            out[map.index(row, col)] = cells_around(map, row, col, cell_span).any(|(r2, c2)| {
-                if !cell_reached[map.index(r2, c2)] || box_distance(map, r2, c2, c) > reach_r * (1.0 + 1e-9) + 1e-12 {
-                    return false;
-                }
-                let (i0, j0) = ((c2 * s) as isize, (r2 * s) as isize);
-                (j0..j0 + s as isize).any(|nj| (i0..i0 + s as isize).any(|ni| within(ni, nj)))
-            });
+    let coverable = |row: usize, col: usize| {
+        if !map.is_free(row, col) {
+            return false;
         }
-    }
-    out
+        let c = map.cell_centre(row, col);
+        let k = lat.nearest(c);
+        if reached[k] {
+            return true;
+        }
+        let (ci, cj) = ((k % lat.cols) as isize, (k / lat.cols) as isize);
+        let within = |ni: isize, nj: isize| {
+            (ni - ci).abs() <= span
+                && (nj - cj).abs() <= span
+                && reached[nj as usize * lat.cols + ni as usize]
+                && (lat.point(ni as usize, nj as usize) - c).norm() <= reach_r
+        };
+        cells_around(map, row, col, cell_span).any(|(r2, c2)| {
+            if !cell_reached[map.index(r2, c2)] || box_distance(map, r2, c2, c) > reach_r * (1.0 + 1e-9) + 1e-12 {
+                return false;
+            }
+            let (i0, j0) = ((c2 * s) as isize, (r2 * s) as isize);
+            (j0..j0 + s as isize).any(|nj| (i0..i0 + s as isize).any(|ni| within(ni, nj)))
+        })
+    };
+    // Row by row on the worker threads: each cell's flag reads the flood's result alone.
+    let rows: Vec<Vec<bool>> =
+        (0..map.rows()).into_par_iter().map(|row| (0..map.cols()).map(|col| coverable(row, col)).collect()).collect();
+    rows.into_iter().flatten().collect()
 }
 
 /// The cells of the square of `span` cells around `(row, col)`, on the map.

@@ -26,14 +26,22 @@ pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mu
     let raster = *grid.raster();
     let cols = map.cols();
     let mut covered = vec![false; grid.len()];
-    let sweep = |covered: &mut Vec<bool>, pts: &[Point]| {
-        for w in pts.windows(2) {
-            for_each_swept_cell(&raster, w[0], w[1], width, |i| covered[i] = true);
-        }
-    };
-    sweep(&mut covered, &route.points);
+    for w in route.points.windows(2) {
+        for_each_swept_cell(&raster, w[0], w[1], width, |i| covered[i] = true);
+    }
     let centre = |i: usize| map.cell_centre(i / cols, i % cols);
     let mut open = OpenCells::new(map, patches(map, &covered, reach, min_patch));
+    // Cells swept by the moves from `from` on are covered and no longer open.
+    let sweep = |covered: &mut Vec<bool>, open: &mut OpenCells, pts: &[Point]| {
+        for w in pts.windows(2) {
+            for_each_swept_cell(&raster, w[0], w[1], width, |i| {
+                if !covered[i] {
+                    covered[i] = true;
+                    open.remove(i);
+                }
+            });
+        }
+    };
     let window = (clear.radius() / map.resolution()).ceil() as isize + 2;
     let near = |i: usize, k: isize| {
         let (r, c) = ((i / cols) as isize, (i % cols) as isize);
@@ -63,7 +71,7 @@ pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mu
         let Some(&c) = near(target, window).first() else { continue };
         let before = route.points.len();
         route.go(clear, centre(c));
-        sweep(&mut covered, &route.points[before.saturating_sub(1)..]);
+        sweep(&mut covered, &mut open, &route.points[before.saturating_sub(1)..]);
         if !covered[target] {
             // One short move from the arrival past the cell.
             let from = route.last();
@@ -74,19 +82,22 @@ pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mu
                 if hit && clear.segment_fits(from, to) {
                     let before = route.points.len();
                     route.go(clear, to);
-                    sweep(&mut covered, &route.points[before.saturating_sub(1)..]);
+                    sweep(&mut covered, &mut open, &route.points[before.saturating_sub(1)..]);
                     break;
                 }
             }
         }
-        open.retain(|i| !covered[i]);
     }
 }
 
 /// The open cells of the pass in the order it keeps them (the order breaks ties between
 /// equally near cells), with the cells of each block of [`BLOCK`]² map cells listed so that
-/// the nearest open cell is found by looking at the nearest blocks only.
+/// the nearest open cell is found by looking at the nearest blocks only. A cell covered on
+/// the way is taken out where it stands ([`Self::remove`]): its place in `order` stays, empty,
+/// which keeps the order of the others as a `Vec::retain` after each move would, without
+/// a pass over every open cell per move.
 struct OpenCells {
+    /// The open cells in their order, and the places of cells that left.
     order: Vec<usize>,
     /// Per map cell: its position in `order`, or `u32::MAX` once it left.
     position: Vec<u32>,
@@ -94,6 +105,8 @@ struct OpenCells {
     blocks: Vec<Vec<usize>>,
     /// Per block: how many of its cells are still open.
     live: Vec<u32>,
+    /// Cells still open.
+    open: usize,
     block_cols: usize,
     /// The map's columns.
     cols: usize,
@@ -108,7 +121,8 @@ impl OpenCells {
         let blocks_n = block_cols * map.rows().div_ceil(BLOCK);
         let position = vec![u32::MAX; map.rows() * map.cols()];
         let (blocks, live) = (vec![Vec::new(); blocks_n], vec![0u32; blocks_n]);
-        let mut open = Self { order: Vec::new(), position, blocks, live, block_cols, cols: map.cols() };
+        let mut open =
+            Self { order: Vec::new(), position, blocks, live, open: order.len(), block_cols, cols: map.cols() };
         for (k, &i) in order.iter().enumerate() {
             open.position[i] = k as u32;
             let b = open.block_of(i);
@@ -124,7 +138,7 @@ impl OpenCells {
     }
 
     fn is_empty(&self) -> bool {
-        self.order.is_empty()
+        self.open == 0
     }
 
     /// The position of the open cell whose centre is nearest to `here`, the first in the
@@ -164,8 +178,14 @@ impl OpenCells {
         best.map(|(_, k)| k as usize)
     }
 
-    /// Takes the cell at position `k` out; the last cell takes its place (`Vec::swap_remove`).
+    /// Takes the open cell at position `k` out; the last open cell takes its place
+    /// (`Vec::swap_remove` on the open cells).
     fn swap_remove(&mut self, k: usize) -> usize {
+        while let Some(&last) = self.order.last()
+            && self.position[last] == u32::MAX
+        {
+            self.order.pop();
+        }
         let i = self.order.swap_remove(k);
         self.leave(i);
         if let Some(&moved) = self.order.get(k) {
@@ -178,22 +198,14 @@ impl OpenCells {
         self.position[i] = u32::MAX;
         let b = self.block_of(i);
         self.live[b] -= 1;
+        self.open -= 1;
     }
 
-    /// Keeps the cells for which `keep` holds, in their order (`Vec::retain`).
-    fn retain(&mut self, keep: impl Fn(usize) -> bool) {
-        let mut order = std::mem::take(&mut self.order);
-        order.retain(|&i| {
-            let k = keep(i);
-            if !k {
-                self.leave(i);
-            }
-            k
-        });
-        for (k, &i) in order.iter().enumerate() {
-            self.position[i] = k as u32;
+    /// Takes cell `i` out if it is open, leaving its place in the order empty.
+    fn remove(&mut self, i: usize) {
+        if self.position[i] != u32::MAX {
+            self.leave(i);
         }
-        self.order = order;
     }
 }
 
@@ -248,8 +260,9 @@ mod tests {
 
     proptest! {
         /// The block index answers as the scan of the whole order with `min_by` (the first of
-        /// equally near cells), through removals by position and by `retain`, from points on
-        /// and off cell centres (where ties are common).
+        /// equally near cells), through removals by position and of single cells, from
+        /// points on and off cell centres (where ties are common); the open cells keep the
+        /// order `Vec::swap_remove` and `Vec::retain` give.
         #[test]
         fn nearest_open_cell_is_the_scans(
             picks in proptest::collection::vec(0usize..60_000, 1..300),
@@ -263,8 +276,12 @@ mod tests {
             let mut open = OpenCells::new(&map, order.clone());
             let cols = map.cols();
             let centre = |i: usize| map.cell_centre(i / cols, i % cols);
+            let open_order = |open: &OpenCells| -> Vec<usize> {
+                open.order.iter().copied().filter(|&i| open.position[i] != u32::MAX).collect()
+            };
             for (n, &(x, y, on_centre)) in queries.iter().enumerate() {
                 if order.is_empty() {
+                    prop_assert!(open.is_empty());
                     break;
                 }
                 let here = if on_centre { centre(map.index((y / 0.1) as usize, (x / 0.1) as usize)) } else { Point::new(x, y) };
@@ -272,17 +289,23 @@ mod tests {
                     .iter()
                     .enumerate()
                     .min_by(|a, b| (centre(*a.1) - here).norm().total_cmp(&(centre(*b.1) - here).norm()))
-                    .map(|(k, _)| k);
+                    .map(|(k, _)| order[k]);
                 let k = open.nearest(&map, here);
-                prop_assert_eq!(k, scan);
+                prop_assert_eq!(k.map(|k| open.order[k]), scan);
                 let k = k.unwrap();
-                prop_assert_eq!(open.swap_remove(k), order.swap_remove(k));
+                let scan_k = order.iter().position(|&i| Some(i) == scan).unwrap();
+                prop_assert_eq!(open.swap_remove(k), order.swap_remove(scan_k));
                 if n % 2 == 1 {
                     let keep = |i: usize| !i.is_multiple_of(drop_every);
                     order.retain(|&i| keep(i));
-                    open.retain(keep);
+                    for i in 0..map.rows() * cols {
+                        if !keep(i) {
+                            open.remove(i);
+                        }
+                    }
                 }
-                prop_assert_eq!(&open.order, &order);
+                prop_assert_eq!(open_order(&open), order.clone());
+                prop_assert_eq!(open.is_empty(), order.is_empty());
             }
         }
     }
