@@ -107,6 +107,8 @@ struct OpenCells {
     live: Vec<u32>,
     /// Cells still open.
     open: usize,
+    /// Per block, reused by [`Self::nearest`]: the least distance of its square from the point.
+    bounds: Vec<f64>,
     block_cols: usize,
     /// The map's columns.
     cols: usize,
@@ -121,8 +123,16 @@ impl OpenCells {
         let blocks_n = block_cols * map.rows().div_ceil(BLOCK);
         let position = vec![u32::MAX; map.rows() * map.cols()];
         let (blocks, live) = (vec![Vec::new(); blocks_n], vec![0u32; blocks_n]);
-        let mut open =
-            Self { order: Vec::new(), position, blocks, live, open: order.len(), block_cols, cols: map.cols() };
+        let mut open = Self {
+            order: Vec::new(),
+            position,
+            blocks,
+            live,
+            open: order.len(),
+            bounds: Vec::new(),
+            block_cols,
+            cols: map.cols(),
+        };
         for (k, &i) in order.iter().enumerate() {
             open.position[i] = k as u32;
             let b = open.block_of(i);
@@ -142,27 +152,34 @@ impl OpenCells {
     }
 
     /// The position of the open cell whose centre is nearest to `here`, the first in the
-    /// order among equally near ones: what a scan of the whole order with `min_by` gives.
-    fn nearest(&self, map: &crate::map::GridMap, here: Point) -> Option<usize> {
+    /// order among equally near ones: what a scan of the whole order with `min_by` gives. The
+    /// block of least distance is read first, then every block that may hold a cell as near
+    /// as the best so far (the minimum of a total order: the order blocks are read in does
+    /// not change it).
+    fn nearest(&mut self, map: &crate::map::GridMap, here: Point) -> Option<usize> {
         let (res, o, cols) = (map.resolution(), map.origin(), map.cols());
-        let mut near_blocks: Vec<(f64, usize)> = (0..self.blocks.len())
+        let mut bounds = std::mem::take(&mut self.bounds);
+        bounds.clear();
+        bounds.extend((0..self.blocks.len()).map(|b| {
+            if self.live[b] == 0 {
+                return f64::INFINITY;
+            }
+            let (c0, r0) = ((b % self.block_cols) * BLOCK, (b / self.block_cols) * BLOCK);
+            let (c1, r1) = ((c0 + BLOCK).min(cols) - 1, (r0 + BLOCK).min(map.rows()) - 1);
+            let span = |v: f64, lo: usize, hi: usize, o: f64| {
+                let (a, b) = (o + (lo as f64 + 0.5) * res, o + (hi as f64 + 0.5) * res);
+                (a - v).max(0.0).max(v - b)
+            };
+            span(here.x, c0, c1, o.x).hypot(span(here.y, r0, r1, o.y))
+        }));
+        let first = (0..bounds.len())
             .filter(|&b| self.live[b] > 0)
-            .map(|b| {
-                let (c0, r0) = ((b % self.block_cols) * BLOCK, (b / self.block_cols) * BLOCK);
-                let (c1, r1) = ((c0 + BLOCK).min(cols) - 1, (r0 + BLOCK).min(map.rows()) - 1);
-                let span = |v: f64, lo: usize, hi: usize, o: f64| {
-                    let (a, b) = (o + (lo as f64 + 0.5) * res, o + (hi as f64 + 0.5) * res);
-                    (a - v).max(0.0).max(v - b)
-                };
-                (span(here.x, c0, c1, o.x).hypot(span(here.y, r0, r1, o.y)), b)
-            })
-            .collect();
-        near_blocks.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            .min_by(|&a, &b| bounds[a].total_cmp(&bounds[b]).then(a.cmp(&b)));
         let mut best: Option<(f64, u32)> = None;
-        for (bound, b) in near_blocks {
+        for b in first.into_iter().chain((0..bounds.len()).filter(|&b| Some(b) != first && self.live[b] > 0)) {
             // A margin far above rounding: a block that may hold an equally near cell is read.
-            if best.is_some_and(|(d, _)| bound > d * (1.0 + 1e-9) + 1e-12) {
-                break;
+            if best.is_some_and(|(d, _)| bounds[b] > d * (1.0 + 1e-9) + 1e-12) {
+                continue;
             }
             for &i in &self.blocks[b] {
                 let k = self.position[i];
@@ -175,6 +192,7 @@ impl OpenCells {
                 }
             }
         }
+        self.bounds = bounds;
         best.map(|(_, k)| k as usize)
     }
 
