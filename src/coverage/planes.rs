@@ -10,19 +10,88 @@
 /// and above, takes a loop).
 const UNROLLED_PLANES: usize = 8;
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 /// A visit-count map stored bit-sliced: plane `p` holds bit `p` of every free cell's count,
 /// laid out like [`BitLayers`](super::bits::BitLayers), word-major: bit `p` of word `idx`'s
 /// counts is at `idx · planes() + p`. Only the planes in use are stored.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+///
+/// A map also carries a [`stamp`](Self::stamp) of its content: two maps with the same stamp
+/// hold the same counts (a copy keeps the stamp, any change drops it).
+#[derive(Debug, Default)]
 pub struct VisitPlanes {
     words: usize,
     planes: Vec<u64>,
     top: usize,
+    /// The content's stamp, 0 until asked for after the last change.
+    stamp: AtomicU64,
+}
+
+impl Clone for VisitPlanes {
+    fn clone(&self) -> Self {
+        Self { words: self.words, planes: self.planes.clone(), top: self.top, stamp: AtomicU64::new(self.stamp()) }
+    }
+}
+
+/// Maps are equal when their counts are (the stamps are not compared).
+impl PartialEq for VisitPlanes {
+    fn eq(&self, other: &Self) -> bool {
+        self.words == other.words && self.top == other.top && self.planes == other.planes
+    }
+}
+
+impl Eq for VisitPlanes {}
+
+/// Stamps handed out so far, in blocks of [`STAMP_BLOCK`] per thread.
+static STAMPS: AtomicU64 = AtomicU64::new(1);
+
+/// Stamps a thread takes from [`STAMPS`] at a time.
+const STAMP_BLOCK: u64 = 1 << 20;
+
+thread_local! {
+    /// The next stamp of this thread's block, and the end of the block.
+    static NEXT_STAMP: std::cell::Cell<(u64, u64)> = const { std::cell::Cell::new((0, 0)) };
+}
+
+/// A stamp no map has had before (never 0).
+fn fresh_stamp() -> u64 {
+    NEXT_STAMP.with(|next| {
+        let (mut at, mut end) = next.get();
+        if at == end {
+            at = STAMPS.fetch_add(STAMP_BLOCK, Ordering::Relaxed);
+            end = at + STAMP_BLOCK;
+        }
+        next.set((at + 1, end));
+        at
+    })
 }
 
 impl VisitPlanes {
+    /// The stamp of the map's content: maps with equal stamps hold equal counts, so a reader
+    /// that kept a map's stamp knows, without reading it, whether the map is unchanged. A
+    /// clone or a [`copy_from`](Self::copy_from) keeps the stamp; a change drops it and the
+    /// next call hands out one never used before.
+    pub fn stamp(&self) -> u64 {
+        let now = self.stamp.load(Ordering::Relaxed);
+        if now != 0 {
+            return now;
+        }
+        let fresh = fresh_stamp();
+        match self.stamp.compare_exchange(0, fresh, Ordering::Relaxed, Ordering::Relaxed) {
+            Ok(_) => fresh,
+            Err(set) => set,
+        }
+    }
+
+    /// Marks the content changed.
+    #[inline(always)]
+    fn changed(&mut self) {
+        *self.stamp.get_mut() = 0;
+    }
+
     /// Empties the map for a grid of `words` words per plane (keeps the allocation).
     pub fn reset(&mut self, words: usize) {
+        self.changed();
         self.words = words;
         self.planes.clear();
         self.top = 0;
@@ -32,6 +101,7 @@ impl VisitPlanes {
     /// child's first visit that carries into a new plane then grows the map without moving it
     /// to a new allocation.
     pub fn copy_from(&mut self, other: &VisitPlanes) {
+        *self.stamp.get_mut() = other.stamp();
         self.words = other.words;
         self.top = other.top;
         self.planes.clear();
@@ -105,6 +175,7 @@ impl VisitPlanes {
     /// unvisited before.
     #[inline(always)]
     pub(super) fn add(&mut self, idx: usize, mask: u64) -> u64 {
+        self.changed();
         let (fresh, carry) = add_word(self.word_planes_mut(idx), mask);
         if carry != 0 {
             self.push_plane(idx, carry);
@@ -116,6 +187,7 @@ impl VisitPlanes {
     /// the cells left unvisited.
     #[inline(always)]
     pub(super) fn remove(&mut self, idx: usize, mask: u64) -> u64 {
+        self.changed();
         remove_word(self.word_planes_mut(idx), mask)
     }
 
@@ -127,6 +199,7 @@ impl VisitPlanes {
     /// word's ripple is unrolled and its index checked once.
     #[inline(always)]
     pub(super) fn edit<const ADD: bool>(&mut self, masks: &[(u32, u64)], countable: &[u64]) -> u64 {
+        self.changed();
         let (mut k, mut flipped) = (0, 0);
         while k < masks.len() {
             let (planes, rest) = (&mut self.planes[..], &masks[k..]);

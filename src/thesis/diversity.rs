@@ -38,9 +38,9 @@ pub fn pair_distance_sum(pop: &[Individual], scratch: &mut DiversityScratch) -> 
 
 /// [`pair_distance_sum_by`], kept in `scratch` under `channel` from one call to the next: only
 /// the maps that were not in the previous call's population (of the same channel) are read
-/// cell by cell ([`KeptPairSum`]). A GA measuring every generation changes a few members per
-/// call; a population unrelated to the previous one costs about twice the full pass. A caller
-/// with several populations at once (a fleet's robots) gives each its own channel.
+/// cell by cell ([`KeptPairSum`]); where more than half the population changed, the full pass
+/// is made. A caller with several populations at once (a fleet's robots) gives each its own
+/// channel.
 pub fn kept_pair_distance_sum<'a>(
     n: usize,
     map: impl Fn(usize) -> &'a VisitPlanes,
@@ -50,7 +50,10 @@ pub fn kept_pair_distance_sum<'a>(
     if scratch.kept.len() <= channel {
         scratch.kept.resize_with(channel + 1, KeptPairSum::default);
     }
-    scratch.kept[channel].update(n, map)
+    match scratch.kept[channel].update(n, &map) {
+        Some(sum) => sum,
+        None => pair_distance_sum_by(n, map, scratch),
+    }
 }
 
 /// `Σ_{i<j} Dist(M^i, M^j)` over `n` visit maps, the `i`-th given by `map(i)`, in one pass

@@ -1,41 +1,31 @@
 //! The pair sum of eq. 3.18 kept from one generation to the next (003 §3.2.3).
 //!
-//! A generation of the thesis GA replaces only a few members: in the reference run about 4 %
-//! of the population after the first 200 iterations. [`KeptPairSum`] therefore keeps, for
+//! A generation of the Elite families replaces only a few members: in the reference run about
+//! 4 % of the population after the first 200 iterations. [`KeptPairSum`] therefore keeps, for
 //! every threshold `t`, the number `c_t` of members that visited each cell at least `t` times,
 //! and with them `S₁ = Σ_cells Σ_t c_t` and `S₂ = Σ_cells Σ_t c_t²`. The pair sum is
 //! `Σ_cells Σ_t c_t(N − c_t) = N·S₁ − S₂` (the identity of [`super::pair_distance_sum_by`]), and
 //! a member that joins or leaves changes `S₁` and `S₂` only in the cells it visited, by
 //! `(c + 1)² − c² = 2c + 1` per cell and threshold. The counts are bit-sliced like the visit
 //! maps, so 64 cells move at once. The result is the exact integer the full pass computes.
+//!
+//! Members are told apart by their maps' [stamps](VisitPlanes::stamp): equal stamps, equal
+//! counts. A member costs about one and a half times as much to add or remove as to read in the
+//! full pass, so where more than half the population changed since the previous call (a
+//! generation of architecture (a) replaces nearly everyone) the caller makes the full pass
+//! instead and the counts are dropped; they are made again once a call finds the population
+//! changing little.
 
 use super::{LOW, at_least, thermometer};
 use crate::coverage::planes::VisitPlanes;
 
-/// One member as the sum holds it: a copy of its visit map, recognised by content.
+/// One member as the sum holds it: a copy of its visit map (needed to take it out again).
 #[derive(Default, Debug, Clone)]
 struct Kept {
-    fingerprint: u64,
+    stamp: u64,
     words: usize,
     planes: usize,
     data: Vec<u64>,
-}
-
-impl Kept {
-    fn holds(&self, map: &VisitPlanes) -> bool {
-        self.words == map.plane_words() && self.planes == map.planes() && self.data == map.plane_data()
-    }
-}
-
-/// A summary of a visit map's content: equal maps have equal fingerprints. It only narrows the
-/// search (members are matched by comparing their maps), so it is made of sums that need no
-/// chain of multiplications from word to word.
-fn fingerprint(map: &VisitPlanes) -> u64 {
-    let data = map.plane_data();
-    let sum = data.iter().fold(0u64, |a, &w| a.wrapping_add(w));
-    let xor = data.iter().fold(0u64, |a, &w| a ^ w);
-    let shape = (map.plane_words() as u64) << 8 | map.planes() as u64;
-    (sum ^ xor.rotate_left(32) ^ shape).wrapping_mul(0x9E37_79B9_7F4A_7C15)
 }
 
 /// `Σ_{i<j} Dist(M^i, M^j)` of a population, updated from the members that left and joined
@@ -50,61 +40,103 @@ pub struct KeptPairSum {
     counts: Vec<Vec<u64>>,
     s1: u64,
     s2: u64,
+    /// Whether the counts hold `members`, the previous call's population.
+    valid: bool,
+    /// The members counted, by stamp (when `valid`).
     members: Vec<Kept>,
     spare: Vec<Kept>,
-    /// Reused per call: `(fingerprint, member)` sorted, and which members are still present.
-    order: Vec<(u64, usize)>,
-    present: Vec<bool>,
+    /// The previous call's population's stamps, in order.
+    previous: Vec<u64>,
+    /// Reused per call: this population's `(stamp, member)` in order, and the changes.
+    now: Vec<(u64, usize)>,
+    leaving: Vec<usize>,
     joining: Vec<usize>,
 }
 
 impl KeptPairSum {
-    /// The pair sum of the `n` maps `map(0) … map(n − 1)`, after bringing the kept counts from
-    /// the previous population to this one. Equals [`super::pair_distance_sum_by`].
-    pub fn update<'a>(&mut self, n: usize, map: impl Fn(usize) -> &'a VisitPlanes) -> u64 {
-        self.order.clear();
-        self.order.extend(self.members.iter().enumerate().map(|(i, m)| (m.fingerprint, i)));
-        self.order.sort_unstable();
-        self.present.clear();
-        self.present.resize(self.members.len(), false);
+    /// The pair sum of the `n` maps `map(0) … map(n − 1)` from the kept counts, brought from
+    /// the previous call's population to this one; `None` when the full pass is cheaper (then
+    /// [`super::pair_distance_sum_by`] is the answer). Equals the full pass's sum.
+    pub fn update<'a>(&mut self, n: usize, map: impl Fn(usize) -> &'a VisitPlanes) -> Option<u64> {
+        self.now.clear();
+        self.now.extend((0..n).map(|i| (map(i).stamp(), i)));
+        self.now.sort_unstable();
+        self.changes();
+        let few = 2 * (self.leaving.len() + self.joining.len()) <= n;
+        let sum = if !few {
+            self.valid = false;
+            self.spare.append(&mut self.members);
+            None
+        } else if self.valid {
+            self.apply_changes(map);
+            Some(n as u64 * self.s1 - self.s2)
+        } else {
+            // Every member is in `joining`: the counts are made afresh.
+            self.spare.append(&mut self.members);
+            self.joining.clear();
+            self.joining.extend(0..n);
+            self.counts.iter_mut().for_each(|c| c.fill(0));
+            (self.s1, self.s2) = (0, 0);
+            self.leaving.clear();
+            self.apply_changes(map);
+            self.valid = true;
+            Some(n as u64 * self.s1 - self.s2)
+        };
+        self.previous.clear();
+        self.previous.extend(self.now.iter().map(|&(stamp, _)| stamp));
+        sum
+    }
+
+    /// `leaving`: the places in `previous` of the stamps not in this population; `joining`:
+    /// the members of this population whose stamps were not in `previous` (as multisets).
+    fn changes(&mut self) {
+        self.leaving.clear();
         self.joining.clear();
-        for i in 0..n {
-            let m = map(i);
-            let fp = fingerprint(m);
-            let from = self.order.partition_point(|&(f, _)| f < fp);
-            let found = self.order[from..]
-                .iter()
-                .take_while(|&&(f, _)| f == fp)
-                .map(|&(_, k)| k)
-                .find(|&k| !self.present[k] && self.members[k].holds(m));
-            match found {
-                Some(k) => self.present[k] = true,
-                None => self.joining.push(i),
+        let (mut a, mut b) = (0, 0);
+        while a < self.previous.len() || b < self.now.len() {
+            match (self.previous.get(a), self.now.get(b)) {
+                (Some(x), Some((y, _))) if x == y => (a, b) = (a + 1, b + 1),
+                (Some(x), Some((y, _))) if x < y => {
+                    self.leaving.push(a);
+                    a += 1;
+                }
+                (_, Some(&(_, i))) => {
+                    self.joining.push(i);
+                    b += 1;
+                }
+                (Some(_), None) => {
+                    self.leaving.push(a);
+                    a += 1;
+                }
+                (None, None) => unreachable!("the loop runs while one list has more"),
             }
         }
-        // Those who left, last first so that `swap_remove` keeps the indices still to visit.
-        for k in (0..self.members.len()).rev() {
-            if !self.present[k] {
-                let gone = self.members.swap_remove(k);
-                self.apply::<false>(&gone.data, gone.words, gone.planes);
-                self.spare.push(gone);
-            }
+    }
+
+    /// Takes the `leaving` members out of the counts and adds the `joining` ones; the members
+    /// then stay in stamp order, as `previous` will.
+    fn apply_changes<'a>(&mut self, map: impl Fn(usize) -> &'a VisitPlanes) {
+        // `leaving` ascends: the last first, so that the places still to visit stay put.
+        for k in (0..self.leaving.len()).rev() {
+            let gone = self.members.remove(self.leaving[k]);
+            self.apply::<false>(&gone.data, gone.words, gone.planes);
+            self.spare.push(gone);
         }
+        let n = self.members.len() + self.joining.len();
         if n >= 1 << self.levels {
             self.recount(usize::BITS as usize - n.leading_zeros() as usize);
         }
         for j in 0..self.joining.len() {
             let m = map(self.joining[j]);
             let mut kept = self.spare.pop().unwrap_or_default();
-            kept.fingerprint = fingerprint(m);
+            kept.stamp = m.stamp();
             (kept.words, kept.planes) = (m.plane_words(), m.planes());
             kept.data.clear();
             kept.data.extend_from_slice(m.plane_data());
             self.apply::<true>(&kept.data, kept.words, kept.planes);
             self.members.push(kept);
         }
-        debug_assert_eq!(self.members.len(), n);
-        n as u64 * self.s1 - self.s2
+        self.members.sort_by_key(|m| m.stamp);
     }
 
     /// Starts the counts afresh with `levels` bit planes and adds the members kept so far.

@@ -11,8 +11,41 @@ fn full(maps: &[VisitPlanes]) -> u64 {
     pair_distance_sum_by(maps.len(), |i| &maps[i], &mut DiversityScratch::default())
 }
 
+/// The kept sum, or the full pass where the kept sum declines (as `kept_pair_distance_sum`).
 fn kept(sum: &mut KeptPairSum, maps: &[VisitPlanes]) -> u64 {
-    sum.update(maps.len(), |i| &maps[i])
+    sum.update(maps.len(), |i| &maps[i]).unwrap_or_else(|| full(maps))
+}
+
+/// A population changing by one member a call is counted, not passed over in full, from the
+/// second call on; one that changes wholly is left to the full pass.
+#[test]
+fn few_changes_are_counted_and_many_passed_in_full() {
+    let pool: Vec<VisitPlanes> = (0..30u32).map(|k| map(1, &[(k, 1 + k % 3), (k + 1, 1)])).collect();
+    let mut sum = KeptPairSum::default();
+    assert_eq!(sum.update(10, |i| &pool[i]), None, "nothing kept yet");
+    for shift in 1..=5 {
+        let got = sum.update(10, |i| &pool[i + shift]);
+        assert_eq!(got, Some(full(&pool[shift..shift + 10])), "shift {shift}");
+    }
+    assert_eq!(sum.update(10, |i| &pool[i + 20]), None, "a new population");
+    assert_eq!(sum.update(10, |i| &pool[i + 20]), Some(full(&pool[20..30])), "counted afresh");
+}
+
+/// A copy keeps its map's stamp and any change gives a new one.
+#[test]
+fn stamps_follow_the_content() {
+    let a = map(2, &[(3, 2), (70, 1)]);
+    let b = a.clone();
+    assert_eq!(a.stamp(), b.stamp());
+    let mut c = VisitPlanes::default();
+    c.copy_from(&a);
+    assert_eq!(c.stamp(), a.stamp());
+    let same_counts = map(2, &[(3, 2), (70, 1)]);
+    assert_eq!(same_counts, a);
+    assert_ne!(same_counts.stamp(), a.stamp(), "made apart: equal counts, other stamps");
+    c.reset(2);
+    assert_ne!(c.stamp(), a.stamp());
+    assert_eq!(c.stamp(), c.stamp(), "a stamp stays while the map does");
 }
 
 /// Hand-computed: a = [1,2,0,0], b = [0,1,3,0], c = [1,0,0,1] have D_ab = 5, D_ac = 3,
