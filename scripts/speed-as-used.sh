@@ -5,16 +5,21 @@
 #   without output.diversity_every = 10; covga eval --pattern boustrophedon / spiral on a map.
 # usage: scripts/speed-as-used.sh MAP_YAML BIG_MAP_IMAGE OUT_DIR BIN...   (the last BIN is the
 # newest; only it runs the diversity_every = 10 variant; binaries named in RUN_ONLY, e.g.
-# RUN_ONLY="covga-bc0", time only the reference run). Prints one line per timed command and
-# writes OUT_DIR/times.csv (what, binary, seed or repeat, seconds).
+# RUN_ONLY="covga-bc0", time only the reference run). EVAL_THREADS (default 1) lists the
+# thread counts eval is timed with: one thread is pinned to one core, n threads to n cores.
+# Prints one line per timed command and writes OUT_DIR/times.csv (what, binary, seed or
+# repeat, seconds; eval with n > 1 threads is named eval-...-tn).
 set -euo pipefail
 map=${1:?map yaml}; big=${2:?big map image (0.05 m per pixel)}; out=${3:?out dir}; shift 3
 bins=("$@"); newest=${bins[-1]}
 mkdir -p "$out"; csv="$out/times.csv"; echo "what,binary,repeat,seconds" > "$csv"
-pin() { if command -v taskset >/dev/null; then taskset -c "$(( $(nproc) - 1 ))" "$@"; else "$@"; fi; }
+threads=1
+pin() { # the last $threads cores
+  if command -v taskset >/dev/null; then taskset -c "$(( $(nproc) - threads ))-$(( $(nproc) - 1 ))" "$@"; else "$@"; fi
+}
 timed() { # what binary repeat command...
   local what=$1 bin=$2 rep=$3; shift 3
-  local t0 t1 ms; t0=$(date +%s%N); RAYON_NUM_THREADS=1 pin "$@" >/dev/null 2>&1 || { echo "FAILED: $*"; return 0; }
+  local t0 t1 ms; t0=$(date +%s%N); RAYON_NUM_THREADS=$threads pin "$@" >/dev/null 2>&1 || { echo "FAILED: $*"; return 0; }
   t1=$(date +%s%N); ms=$(( (t1 - t0) / 1000000 ))
   printf '%s,%s,%s,%d.%03d\n' "$what" "$(basename "$bin")" "$rep" $((ms / 1000)) $((ms % 1000)) >> "$csv"
   printf '%-28s %-14s %s %d.%03d s\n' "$what" "$(basename "$bin")" "$rep" $((ms / 1000)) $((ms % 1000))
@@ -31,12 +36,15 @@ for seed in 1 2 3 4 5; do
   rm -rf "$out/run"; timed run-reference-div10 "$newest" "$seed" "$newest" run "$out/ref-$seed-10.toml"
 done
 for rep in 1 2 3; do
-  for bin in "${bins[@]}"; do
-    case " ${RUN_ONLY:-} " in *" $(basename "$bin") "*) continue ;; esac
-    for pattern in boustrophedon spiral; do
-      timed "eval-$pattern" "$bin" "$rep" "$bin" eval --map "$map" --pattern "$pattern" --out "$out/eval"
+  for threads in ${EVAL_THREADS:-1}; do
+    suffix=$([ "$threads" = 1 ] || echo "-t$threads")
+    for bin in "${bins[@]}"; do
+      case " ${RUN_ONLY:-} " in *" $(basename "$bin") "*) continue ;; esac
+      for pattern in boustrophedon spiral; do
+        timed "eval-$pattern$suffix" "$bin" "$rep" "$bin" eval --map "$map" --pattern "$pattern" --out "$out/eval"
+      done
+      timed "eval-big-boustrophedon$suffix" "$bin" "$rep" "$bin" eval --map "$big" --resolution 0.05 \
+        --pattern boustrophedon --start 25.3,10.1 --out "$out/eval-big"
     done
-    timed eval-big-boustrophedon "$bin" "$rep" "$bin" eval --map "$big" --resolution 0.05 \
-      --pattern boustrophedon --start 25.3,10.1 --out "$out/eval-big"
   done
 done
