@@ -328,7 +328,7 @@ fn edit_run_any<const ADD: bool>(
 /// cells) together, with no exit when the carry dies out, whose branch the processor cannot
 /// predict (the carry's length varies from cell word to cell word).
 #[inline(always)]
-fn add_word(word: &mut [u64], mask: u64) -> (u64, u64) {
+pub(crate) fn add_word(word: &mut [u64], mask: u64) -> (u64, u64) {
     let (mut any, mut carry) = (0, mask);
     for plane in word {
         let old = *plane;
@@ -342,7 +342,7 @@ fn add_word(word: &mut [u64], mask: u64) -> (u64, u64) {
 /// Removes one visit from the cells of `mask` in one word's planes `word` (each must have
 /// one); returns the cells left unvisited. One pass over every plane, as [`add_word`].
 #[inline(always)]
-fn remove_word(word: &mut [u64], mask: u64) -> u64 {
+pub(crate) fn remove_word(word: &mut [u64], mask: u64) -> u64 {
     let (mut any, mut borrow) = (0, mask);
     for plane in word {
         let old = *plane;

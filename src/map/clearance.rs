@@ -6,7 +6,6 @@
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::map::wall_rows::WallRows;
-use rayon::prelude::*;
 use std::borrow::Cow;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
@@ -52,21 +51,14 @@ impl<'m> Clearance<'m> {
         let map = &*c.map;
         let half_diagonal = map.resolution() * std::f64::consts::FRAC_1_SQRT_2;
         let (lim, roomy_lim) = (radius - CLEARANCE_EPS, radius - CLEARANCE_EPS + half_diagonal + 1e-9);
-        // Row by row on the worker threads: each cell's flags depend on the map alone.
-        let rows: Vec<Vec<(bool, bool)>> = (0..map.rows())
-            .into_par_iter()
-            .map(|r| {
-                (0..map.cols())
-                    .map(|col| {
-                        let p = map.cell_centre(r, col);
-                        let d2 = c.nearest_cell_d2(p);
-                        // As `fits_geometry`, from the same squared distances.
-                        (c.inside_edges(p) && d2 >= lim * lim, d2 >= roomy_lim * roomy_lim)
-                    })
-                    .collect()
-            })
-            .collect();
-        let (centre_ok, roomy) = rows.into_iter().flatten().unzip();
+        // Each cell's flags depend on the map alone.
+        let flags = map.par_cells(|r, col| {
+            let p = map.cell_centre(r, col);
+            let d2 = c.nearest_cell_d2(p);
+            // As `fits_geometry`, from the same squared distances.
+            (c.inside_edges(p) && d2 >= lim * lim, d2 >= roomy_lim * roomy_lim)
+        });
+        let (centre_ok, roomy) = flags.into_iter().unzip();
         (c.centre_ok, c.roomy) = (centre_ok, roomy);
         c
     }

@@ -14,7 +14,6 @@
 use super::GridMap;
 use super::wall_rows::{WallRows, axis_gap};
 use crate::geom::Point;
-use rayon::prelude::*;
 
 /// Lattice points per cell edge (`h = resolution / LATTICE_PER_CELL`).
 pub const LATTICE_PER_CELL: usize = 8;
@@ -295,10 +294,8 @@ pub fn coverable_cells(map: &GridMap, radius: f64, seeds: &[Point]) -> Vec<bool>
             (j0..j0 + s as isize).any(|nj| (i0..i0 + s as isize).any(|ni| within(ni, nj)))
         })
     };
-    // Row by row on the worker threads: each cell's flag reads the flood's result alone.
-    let rows: Vec<Vec<bool>> =
-        (0..map.rows()).into_par_iter().map(|row| (0..map.cols()).map(|col| coverable(row, col)).collect()).collect();
-    rows.into_iter().flatten().collect()
+    // Each cell's flag reads the flood's result alone.
+    map.par_cells(coverable)
 }
 
 /// The cells of the square of `span` cells around `(row, col)`, on the map.

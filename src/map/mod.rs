@@ -161,6 +161,21 @@ impl GridMap {
     pub fn index(&self, row: usize, col: usize) -> usize {
         row * self.cols + col
     }
+    /// `cell(row, col)` for every cell, row-major, the rows shared out among the worker
+    /// threads (for per-cell values that depend on the map alone: the same for any number of
+    /// threads).
+    pub fn par_cells<T: Send + Default + Clone>(&self, cell: impl Fn(usize, usize) -> T + Sync) -> Vec<T> {
+        use rayon::prelude::*;
+        let mut out = vec![T::default(); self.rows * self.cols];
+        if self.cols > 0 {
+            out.par_chunks_mut(self.cols).enumerate().for_each(|(row, line)| {
+                for (col, value) in line.iter_mut().enumerate() {
+                    *value = cell(row, col);
+                }
+            });
+        }
+        out
+    }
     /// State of the cell at a row-major index.
     #[inline]
     pub fn state_at(&self, index: usize) -> CellState {

@@ -17,7 +17,7 @@
 //! changing little.
 
 use super::{LOW, at_least, thermometer};
-use crate::coverage::planes::VisitPlanes;
+use crate::coverage::planes::{VisitPlanes, add_word, remove_word};
 
 /// One member as the sum holds it: a copy of its visit map (needed to take it out again).
 #[derive(Default, Debug, Clone)]
@@ -71,13 +71,12 @@ impl KeptPairSum {
             self.apply_changes(map);
             Some(n as u64 * self.s1 - self.s2)
         } else {
-            // Every member is in `joining`: the counts are made afresh.
+            // The counts are made afresh, with every member joining.
             self.spare.append(&mut self.members);
+            self.recount(self.levels);
+            self.leaving.clear();
             self.joining.clear();
             self.joining.extend(0..n);
-            self.counts.iter_mut().for_each(|c| c.fill(0));
-            (self.s1, self.s2) = (0, 0);
-            self.leaving.clear();
             self.apply_changes(map);
             self.valid = true;
             Some(n as u64 * self.s1 - self.s2)
@@ -214,30 +213,16 @@ impl KeptPairSum {
         let count = &mut self.counts[t - 1][idx * levels..(idx + 1) * levels];
         let cells = u64::from(mask.count_ones());
         if JOIN {
-            // Σ over the mask's cells of c before the member joins; then c += 1.
+            // Σ over the mask's cells of c before the member joins; then c += 1 (the counts'
+            // planes hold every count up to the population's size: nothing carries out).
             let before = masked_sum(count, mask);
             self.s1 += cells;
             self.s2 += 2 * before + cells;
-            let mut carry = mask;
-            for level in count.iter_mut() {
-                let old = *level;
-                *level = old ^ carry;
-                carry &= old;
-                if carry == 0 {
-                    break;
-                }
-            }
+            let (_, carry) = add_word(count, mask);
+            debug_assert_eq!(carry, 0, "a count outgrew its planes");
         } else {
             // c −= 1; then Σ over the mask's cells of c after the member left.
-            let mut borrow = mask;
-            for level in count.iter_mut() {
-                let old = *level;
-                *level = old ^ borrow;
-                borrow &= !old;
-                if borrow == 0 {
-                    break;
-                }
-            }
+            remove_word(count, mask);
             let after = masked_sum(count, mask);
             self.s1 -= cells;
             self.s2 -= 2 * after + cells;
