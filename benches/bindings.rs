@@ -10,7 +10,7 @@ use covga::geom::Point;
 use covga::map::presets::preset;
 use covga::patterns::{self, Pattern};
 use covga::thesis::batch::evaluate_batch;
-use covga::thesis::individual::Scenario;
+use covga::thesis::scenario::Scenario;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;

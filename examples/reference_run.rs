@@ -7,9 +7,9 @@ use covga::ga::observer::Recorder;
 use covga::geom::Point;
 use covga::map::presets::preset;
 use covga::planner::Budget;
-use covga::thesis::individual::Scenario;
 use covga::thesis::params::ThesisParams;
 use covga::thesis::run::ThesisGa;
+use covga::thesis::scenario::Scenario;
 
 fn main() {
     let iterations: u32 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(2000);

@@ -12,10 +12,9 @@ use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario};
 use crate::thesis::config::ThesisSection;
 use crate::thesis::genome::random_genome;
-use crate::thesis::individual::{
-    Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario as ThesisScenario, correct_and_evaluate,
-};
+use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
 use crate::thesis::member::{Member, ReachMask};
+use crate::thesis::scenario::Scenario as ThesisScenario;
 use rayon::prelude::*;
 use std::time::Instant;
 

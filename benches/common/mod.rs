@@ -7,9 +7,9 @@ use covga::coverage::fitness::Projection;
 use covga::geom::Point;
 use covga::map::presets::preset;
 use covga::thesis::crossover::ChildMode;
-use covga::thesis::individual::Scenario;
 use covga::thesis::params::{Selection, ThesisParams};
 use covga::thesis::run::ThesisGa;
+use covga::thesis::scenario::Scenario;
 
 /// The thesis GA on thesis map 1, start and end at (1.3, 1.3), f2, seed 1.
 pub fn thesis1_ga(params: ThesisParams) -> ThesisGa {

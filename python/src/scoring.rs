@@ -8,7 +8,7 @@ use covga::coverage::score::Scorer;
 use covga::geom::Point;
 use covga::patterns::{self, Pattern};
 use covga::thesis::batch::{COLUMNS, evaluate_genomes, genome_of};
-use covga::thesis::individual::{Moves, Scenario};
+use covga::thesis::scenario::{Moves, Scenario};
 use covga::waypoint::config::WaypointSection;
 use numpy::ndarray::{Array2, ArrayView2};
 use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, ToPyArray};

@@ -17,9 +17,10 @@ use crate::ga::rng::Rng;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::thesis::diversity::{DiversityScratch, kept_pair_distance_sum, max_distance_by};
-use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual, Scenario};
+use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual};
 use crate::thesis::member::{Member, Op, Origin, Premark, ReachMask, Variation};
 use crate::thesis::params::ThesisParams;
+use crate::thesis::scenario::Scenario;
 
 /// What a crew's evaluation reads: one scenario per robot (its footprint and stations on the
 /// shared map) and the fleet's combined sweep rate.
@@ -132,7 +133,7 @@ impl Member for Crew {
         self.score
     }
     fn genome_len(&self) -> usize {
-        self.robots.iter().map(Individual::len).sum()
+        self.robots.iter().map(|r| r.len()).sum()
     }
     fn obstacle_cells(&self) -> u64 {
         self.robots.iter().map(|r| r.sweep.obj_pix).sum()

@@ -14,9 +14,9 @@ use crate::coverage::{CoverageGrid, SweepScratch};
 use crate::ga::rng::{Purpose, stream};
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::thesis::individual::Scenario;
 use crate::thesis::params::ThesisParams;
 use crate::thesis::run::{GaState, ThesisGa, best_index};
+use crate::thesis::scenario::Scenario;
 use rand::RngCore;
 use rayon::prelude::*;
 

@@ -159,7 +159,7 @@ impl FleetPlanner {
                     retrain: None,
                     seeds: Vec::new(),
                     seeded: 0,
-                    moves: crate::thesis::individual::Moves::Straight,
+                    moves: crate::thesis::scenario::Moves::Straight,
                     objective: (crate::thesis::objective::Objective::Footprint, 0.0),
                 };
                 let e = thesis.memory_estimate(map, threads);

@@ -4,7 +4,8 @@
 //! 003 eqs. 3.4–3.16 on the scenario, as [`super::individual::evaluate`] scores the GA's own.
 
 use super::genome::{Action, MIN_GENOME_LEN};
-use super::individual::{Base, EvalScratch, EvaluationMode, Individual, Scenario, evaluate};
+use super::individual::{Base, EvalScratch, EvaluationMode, Individual, evaluate};
+use super::scenario::Scenario;
 use rayon::prelude::*;
 
 /// The columns of a batch result, in order.
@@ -126,7 +127,7 @@ mod tests {
         for _ in 0..20 {
             let mut genome = Vec::new();
             random_genome(&mut rng, 30, 3.0, &mut genome);
-            let mut ind = Individual { genome: genome.clone(), ..Default::default() };
+            let mut ind = Individual::with_genome(genome.clone());
             evaluate(&mut ind, &sc, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
             expected.push((ind.score, ind.sweep.obj_pix));
             moves.push(genome[..genome.len() - 2].iter().map(|a| (a.alpha_deg(), a.dist_m())).collect());

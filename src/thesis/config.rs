@@ -4,9 +4,10 @@
 
 use super::crossover::{ChildMode, ShortGenomes};
 use super::genome::Action;
-use super::individual::{EvaluationMode, InitParams, Moves};
+use super::individual::{EvaluationMode, InitParams};
 use super::objective::Objective;
 use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
+use super::scenario::Moves;
 use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::coverage::fitness::Projection;

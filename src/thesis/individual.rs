@@ -1,132 +1,19 @@
-//! Evaluated individuals, the scenario they are scored in, and the correction procedures that
-//! follow every creation or change of a genome (003 §3.3.4, spec §9, order of R17).
+//! Evaluated individuals and the correction procedures that follow every creation or change
+//! of a genome (003 §3.3.4, spec §9, order of R17), scored in a [`Scenario`].
 
-use super::genome::{Action, Frame, decode, decode_from, live, random_genome, same_bits};
-use super::objective::{CameraObjective, with_coverage};
+use super::genome::{Action, decode, decode_from, live, random_genome, same_bits};
+use super::objective::with_coverage;
+use super::scenario::Scenario;
 use crate::coverage::bits::{BitLayers, Tally};
-use crate::coverage::fitness::{Projection, ThesisScore, score_counts};
+use crate::coverage::fitness::{ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
 use crate::coverage::routes::{RouteScratch, Router};
 use crate::coverage::segments::SegmentCache;
 use crate::coverage::views::SegmentViews;
-use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepCounts, SweepScratch, motion};
+use crate::coverage::{PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
-use crate::map::GridMap;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
-use std::sync::Arc;
-
-/// Everything an evaluation reads: the map layers, the robot, the stations and the projection.
-#[derive(Clone, Debug)]
-pub struct Scenario {
-    /// The map.
-    pub map: GridMap,
-    /// Obstacles and pre-marks as scored.
-    pub grid: CoverageGrid,
-    /// The same layers as bit rows, for the evaluator.
-    pub layers: BitLayers,
-    /// The robot.
-    pub robot: Footprint,
-    /// Stations and clamping rectangle.
-    pub frame: Frame,
-    /// `f1` or `f2`.
-    pub projection: Projection,
-    /// With routed moves, how the robot drives from one viewpoint to the next (`None`: straight,
-    /// as 003).
-    pub routes: Option<Arc<Router>>,
-    /// With `thesis.objective = "camera"`, what `cov_final` measures instead of the footprint
-    /// (`None`: 003's footprint).
-    pub camera: Option<Arc<CameraObjective>>,
-}
-
-impl Scenario {
-    /// The thesis scenario (visit grid, clamping frame) of the common scenario every planner
-    /// plans for.
-    pub fn from_common(s: &crate::planner::Scenario) -> Self {
-        Self::new(s.map.clone(), s.robot, s.start, s.end, s.projection)
-    }
-
-    /// A scenario on `map` with stations `start` / `end` (already checked to be free).
-    pub fn new(map: GridMap, robot: Footprint, start: Point, end: Point, projection: Projection) -> Self {
-        let min = map.origin();
-        let max = Point::new(min.x + map.width_m(), min.y + map.height_m());
-        let grid = CoverageGrid::new(&map);
-        let layers = BitLayers::new(&grid);
-        Self {
-            grid,
-            layers,
-            robot,
-            frame: Frame::new(start, end, min, max),
-            projection,
-            map,
-            routes: None,
-            camera: None,
-        }
-    }
-
-    /// The same scenario with `cov_final` measured by `camera` (see [`super::objective`]).
-    pub fn with_camera(mut self, camera: Option<CameraObjective>) -> Self {
-        self.camera = camera.map(Arc::new);
-        self
-    }
-
-    /// The same scenario with moves driven as `moves` says.
-    pub fn with_moves(mut self, moves: Moves) -> Self {
-        self.routes = match moves {
-            Moves::Straight => None,
-            Moves::Routed => {
-                let stations = [self.frame.start, self.frame.end];
-                Some(Arc::new(Router::new(&self.map, self.robot.width, &stations)))
-            }
-        };
-        self
-    }
-
-    /// The path the robot drives through `points` (a genome's viewpoints): the viewpoints
-    /// themselves with straight moves, else the routes between them.
-    pub fn driven(&self, points: &[Point]) -> Vec<Point> {
-        match &self.routes {
-            None => points.to_vec(),
-            Some(router) => {
-                let mut out = Vec::new();
-                router.expand(&self.layers, points, &mut RouteScratch::default(), &mut out);
-                out
-            }
-        }
-    }
-
-    /// Replaces the pre-marks by the flagged free cells (see
-    /// [`CoverageGrid::set_premarks`]). Individuals must be re-evaluated in full afterwards.
-    pub fn set_premarks(&mut self, cells: &[bool]) {
-        self.grid.set_premarks(cells);
-        self.layers = BitLayers::new(&self.grid);
-    }
-
-    /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` as already covered
-    /// (the retrain region, spec R25). Individuals must be re-evaluated in full afterwards.
-    pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
-        self.grid.premark_rect(x0, y0, x1, y1);
-        self.layers = BitLayers::new(&self.grid);
-    }
-}
-
-/// How the robot drives from one viewpoint to the next (`thesis.moves`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Moves {
-    /// Straight segments, as 003: a move into a wall sweeps it and is penalised (eq. 3.16).
-    #[default]
-    Straight,
-    /// Around obstacles (003 §5.3's future work): see [`crate::coverage::routes`].
-    Routed,
-}
-
-impl Moves {
-    /// Whether these are 003's straight moves.
-    pub fn is_straight(&self) -> bool {
-        matches!(self, Moves::Straight)
-    }
-}
 
 /// How a changed genome is evaluated. Both give identical results; `Full` exists to prove it.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -140,9 +27,19 @@ pub enum EvaluationMode {
     Full,
 }
 
-/// A decoded, evaluated genome with its visit-count map (the input of the diversity, §5).
+/// A decoded, evaluated genome with its visit-count map (the input of the diversity, §5),
+/// held behind one pointer: a generation moves its members from list to list (children,
+/// jobs, families, the next population) several times per evaluation, and a pointer moves
+/// where the fields would be copied. The fields are read through it ([`IndividualFields`]).
 #[derive(Debug, Default)]
-pub struct Individual {
+pub struct Individual(Box<IndividualFields>);
+
+// Moved as one pointer, whatever fields are added.
+const _: () = assert!(std::mem::size_of::<Individual>() == std::mem::size_of::<usize>());
+
+/// What an [`Individual`] holds.
+#[derive(Debug, Default)]
+pub struct IndividualFields {
     /// The actions.
     pub genome: Vec<Action>,
     /// The viewpoints (`PA`), one per action.
@@ -161,6 +58,27 @@ pub struct Individual {
     pub stable_genes: usize,
 }
 
+impl std::ops::Deref for Individual {
+    type Target = IndividualFields;
+    #[inline(always)]
+    fn deref(&self) -> &IndividualFields {
+        &self.0
+    }
+}
+
+impl std::ops::DerefMut for Individual {
+    #[inline(always)]
+    fn deref_mut(&mut self) -> &mut IndividualFields {
+        &mut self.0
+    }
+}
+
+impl From<IndividualFields> for Individual {
+    fn from(fields: IndividualFields) -> Self {
+        Individual(Box::new(fields))
+    }
+}
+
 impl Clone for Individual {
     fn clone(&self) -> Self {
         let mut copy = Individual::default();
@@ -169,8 +87,20 @@ impl Clone for Individual {
     }
     /// Field by field, into the buffers already held (a recycled member's).
     fn clone_from(&mut self, other: &Self) {
+        self.0.clone_from(&other.0);
+    }
+}
+
+impl Clone for IndividualFields {
+    fn clone(&self) -> Self {
+        let mut copy = IndividualFields::default();
+        copy.clone_from(self);
+        copy
+    }
+    /// Field by field, into the buffers already held.
+    fn clone_from(&mut self, other: &Self) {
         // Destructured, so that a new field cannot be forgotten here.
-        let Individual { genome, points, sweep, t_rot_s, score, visits, stable_genes } = other;
+        let IndividualFields { genome, points, sweep, t_rot_s, score, visits, stable_genes } = other;
         self.genome.clone_from(genome);
         self.points.clone_from(points);
         self.sweep = *sweep;
@@ -182,6 +112,13 @@ impl Clone for Individual {
 }
 
 impl Individual {
+    /// An unevaluated individual of `genome`.
+    pub fn with_genome(genome: Vec<Action>) -> Self {
+        IndividualFields { genome, ..Default::default() }.into()
+    }
+}
+
+impl IndividualFields {
     /// `best_genome.csv`: one row per action with its role, move and viewpoint.
     pub fn genome_csv(&self) -> Vec<u8> {
         let n = self.genome.len();
@@ -273,6 +210,7 @@ pub fn evaluate(
     mode: EvaluationMode,
     scratch: &mut EvalScratch,
 ) {
+    let ind: &mut IndividualFields = ind;
     // The new path is decoded into the individual's own buffer, unless its old path is the
     // base the visit map is edited from; then into the scratch, copied over at the end.
     let keep_old = matches!((mode, base), (EvaluationMode::Incremental, Base::Own));
@@ -515,251 +453,4 @@ pub fn correct_and_evaluate<R: Rng + ?Sized>(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::map::presets::preset;
-
-    fn a(dist_m: f64) -> Action {
-        Action::new(90.0, dist_m)
-    }
-
-    /// Thesis map 1 with this robot, S and E, projection f2.
-    fn thesis1(robot: Footprint, s: Point, e: Point) -> Scenario {
-        Scenario::new(preset("thesis-1").unwrap(), robot, s, e, Projection::F2)
-    }
-
-    /// One move 3 m east, then two zero genes (the connector's slot and E's).
-    fn three_metres_east() -> Individual {
-        Individual {
-            genome: vec![Action::new(0.0, 3.0), Action::new(0.0, 0.0), Action::new(0.0, 0.0)],
-            ..Default::default()
-        }
-    }
-
-    #[test]
-    fn zero_runs_shrink_to_two() {
-        // Genes: S(1) 0 0 0 0 1 0 conn E → the middle two of the four zeros go.
-        let mut ind = Individual {
-            genome: vec![a(1.0), a(0.0), a(0.0), a(0.0), a(0.0), a(1.0), a(0.0), a(2.0), a(0.0)],
-            ..Default::default()
-        };
-        ind.points = (0..9).map(|i| Point::new(i as f64, 0.0)).collect();
-        assert_eq!(remove_zero_actions(&mut ind), 2);
-        let d: Vec<f64> = ind.genome.iter().map(|x| x.dist_m()).collect();
-        assert_eq!(d, vec![1.0, 0.0, 0.0, 1.0, 0.0, 2.0, 0.0]);
-        assert_eq!(ind.points.len(), 7);
-        assert_eq!(ind.points[2], Point::new(4.0, 0.0));
-    }
-
-    #[test]
-    fn a_premarked_rectangle_makes_its_cells_revisits_in_both_evaluations() {
-        // The 3 m lane east from (1.3, 1.3) on thesis map 1 sweeps 45 cells; with the 1 m square
-        // at (1, 1) pre-marked, its 12 lane cells are revisits (as the sweep's own case says).
-        let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 1.3));
-        let mut scenario = thesis1(Footprint::default(), s, e);
-        let eval = |scenario: &Scenario, mode| {
-            let mut ind = three_metres_east();
-            evaluate(&mut ind, scenario, Base::None, mode, &mut EvalScratch::default());
-            ind
-        };
-        for mode in [EvaluationMode::Full, EvaluationMode::Incremental] {
-            assert_eq!(eval(&scenario, mode).sweep, SweepCounts { cov_pix: 45, cross_pix: 0, obj_pix: 0 });
-        }
-        scenario.premark_rect(1.0, 1.0, 2.0, 2.0);
-        for mode in [EvaluationMode::Full, EvaluationMode::Incremental] {
-            let ind = eval(&scenario, mode);
-            assert_eq!(ind.sweep, SweepCounts { cov_pix: 45, cross_pix: 12, obj_pix: 0 }, "{mode:?}");
-            // The accessors read the member.
-            assert_eq!(ind.fitness(), ind.score.fitness);
-            assert!(ind.fitness() > 0.0 && ind.fitness() != 1.0, "{}", ind.fitness());
-            assert_eq!((ind.len(), ind.is_empty()), (3, false));
-        }
-        assert!(Individual::default().is_empty());
-    }
-
-    #[test]
-    fn turning_costs_r_rot_and_nothing_without_it() {
-        // East 3 m, then the connector north 3 m to E: a quarter turn, T_rot = (π/2) / R_rot.
-        let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 4.3));
-        for (rot_speed, t_rot) in [(0.5, std::f64::consts::PI), (0.0, 0.0)] {
-            let robot = Footprint { rot_speed, ..Footprint::default() };
-            let scenario = thesis1(robot, s, e);
-            let mut ind = three_metres_east();
-            evaluate(&mut ind, &scenario, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
-            assert!((ind.t_rot_s - t_rot).abs() < 1e-12, "R_rot {rot_speed}: {}", ind.t_rot_s);
-        }
-    }
-
-    #[test]
-    fn a_child_equal_to_its_parent_up_to_its_connector_evaluates_as_in_full() {
-        // Parent: five equal moves of 0.5 m east, the connector, E. Child: the same five genes,
-        // the fifth now in its connector's slot, and E. All the child's genes before E are the
-        // parent's bit for bit, one more than the child's stable prefix can hold.
-        let (s, e) = (Point::new(1.3, 1.3), Point::new(1.3, 3.3));
-        let scenario = thesis1(Footprint::default(), s, e);
-        let (g, zero) = (Action::new(0.0, 0.5), Action::new(0.0, 0.0));
-        let mut scratch = EvalScratch::default();
-        let mut parent = Individual { genome: vec![g, g, g, g, g, zero, zero], ..Default::default() };
-        evaluate(&mut parent, &scenario, Base::None, EvaluationMode::Incremental, &mut scratch);
-        assert_eq!(parent.stable_genes, 5);
-        let mut child = Individual { genome: vec![g, g, g, g, g, zero], ..Default::default() };
-        let mut full = Individual { genome: child.genome.clone(), ..Default::default() };
-        evaluate(&mut child, &scenario, Base::Parent(&parent), EvaluationMode::Incremental, &mut scratch);
-        evaluate(&mut full, &scenario, Base::None, EvaluationMode::Full, &mut scratch);
-        assert_eq!((&child.genome, &child.points, child.sweep), (&full.genome, &full.points, full.sweep));
-        assert_eq!((child.stable_genes, child.score), (full.stable_genes, full.score));
-        assert_eq!(child.visits, full.visits);
-        assert!((child.points[4] - Point::new(3.3, 1.3)).norm() < 1e-9, "four moves east, then the connector to E");
-    }
-
-    #[test]
-    fn an_edit_skips_only_the_segments_both_paths_share() {
-        // A path's visit map edited into another's equals the other's fresh sweep, however
-        // many viewpoints the two share at either end (`same`: leading viewpoints known shared).
-        let s = Point::new(1.3, 1.3);
-        let scenario = thesis1(Footprint::default(), s, s);
-        let (layers, width) = (&scenario.layers, scenario.robot.width);
-        let p = Point::new;
-        let old = [s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s];
-        let cases: [(Vec<Point>, usize); 9] = [
-            // The third viewpoint from the end differs; the last two are shared.
-            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(8.3, 8.3), p(6.3, 2.3), s], 3),
-            // The second differs; all after it are shared.
-            (vec![s, p(4.3, 1.3), p(5.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 1),
-            // The same, with nothing known shared beyond S.
-            (vec![s, p(4.3, 1.3), p(5.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 0),
-            // A viewpoint inserted, one removed.
-            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(3.3, 3.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 2),
-            (vec![s, p(4.3, 1.3), p(2.3, 6.3), p(6.3, 6.3), p(6.3, 2.3), s], 1),
-            // S again where the other path has a viewpoint, and S twice at the end: a shared
-            // tail is two equal segments, not one equal viewpoint matched with a neighbour.
-            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), s, p(6.3, 2.3), s], 1),
-            (vec![s, p(4.3, 1.3), p(4.3, 4.3), p(2.3, 6.3), p(6.3, 6.3), s, s], 1),
-            // Nothing shared but S and E; and the same path.
-            (vec![s, p(9.3, 9.3), s], 0),
-            (old.to_vec(), 6),
-        ];
-        let counts = |v: &VisitPlanes| {
-            let mut c = Vec::new();
-            v.for_each_count(|cell, k| c.push((cell, k)));
-            c
-        };
-        // Each pair both ways: from `old` to the case's path and back.
-        for (i, (path, same)) in cases.iter().enumerate() {
-            for (from, to) in [(&old[..], &path[..]), (&path[..], &old[..])] {
-                let mut visits = VisitPlanes::default();
-                let tally = layers.sweep(&mut visits, from, width);
-                let edited =
-                    edit(layers, &mut SegmentCache::default(), None, &mut visits, tally, from, to, *same, width);
-                let mut fresh = VisitPlanes::default();
-                assert_eq!(edited, layers.sweep(&mut fresh, to, width), "case {i}");
-                assert_eq!(counts(&visits), counts(&fresh), "case {i}");
-            }
-        }
-    }
-
-    /// Zero-action removal by its definition: marks on the unchanged genome, then deletion;
-    /// the indices of the genes kept.
-    fn kept_by_marks(genome: &[Action]) -> Vec<usize> {
-        let n = genome.len();
-        let z = |i: usize| genome[i].is_zero();
-        (0..n).filter(|&i| !(n >= 5 && i >= 1 && i <= n - 3 && z(i - 1) && z(i) && z(i + 1))).collect()
-    }
-
-    proptest::proptest! {
-        /// The in-place pass deletes exactly the marked genes and their viewpoints (with one
-        /// viewpoint per gene, or one fewer), and the stable prefix loses the genes deleted
-        /// from it.
-        #[test]
-        fn zero_action_removal_follows_its_marks(zeros in proptest::collection::vec(proptest::prelude::any::<bool>(), 0..40), stable in 0usize..41, short in proptest::bool::ANY) {
-            let genome: Vec<Action> = zeros.iter().enumerate().map(|(i, &z)| a(if z { 0.0 } else { 1.0 + i as f64 })).collect();
-            let n_points = if short { genome.len().saturating_sub(1) } else { genome.len() };
-            let points: Vec<Point> = (0..n_points).map(|i| Point::new(i as f64, 0.0)).collect();
-            let stable = stable.min(genome.len());
-            let kept = kept_by_marks(&genome);
-            let mut ind = Individual { genome: genome.clone(), points: points.clone(), stable_genes: stable, ..Default::default() };
-            proptest::prop_assert_eq!(remove_zero_actions(&mut ind), genome.len() - kept.len());
-            proptest::prop_assert_eq!(ind.genome, kept.iter().map(|&i| genome[i]).collect::<Vec<_>>());
-            let kept_points: Vec<Point> = kept.iter().filter(|&&i| i < n_points).map(|&i| points[i]).collect();
-            proptest::prop_assert_eq!(&ind.points[..kept_points.len().min(ind.points.len())], &kept_points[..]);
-            proptest::prop_assert_eq!(ind.stable_genes, kept.iter().filter(|&&i| i < stable).count());
-        }
-    }
-
-    proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(200))]
-        /// A crossover child, a mutated copy and a mutated child evaluated against their base
-        /// equal their full evaluation in every field, visit map included.
-        #[test]
-        fn incremental_evaluation_equals_full(seed in 0u64..1_000_000, na in 3usize..70, nb in 3usize..70, c_len in 0.0..0.6f64, mode in 0u8..3, map in 0usize..2, dist in 0.5..12.0f64, camera in proptest::bool::ANY) {
-            use crate::thesis::crossover::{ChildMode, Parent, ShortGenomes, crossover};
-            use crate::thesis::mutation::mutate_action;
-            let m = preset(["thesis-1", "thesis-2"][map]).unwrap();
-            let s = Point::new(1.3, 1.3);
-            let spec = crate::coverage::score::CameraSpec { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 };
-            let objective = camera.then(|| CameraObjective::new(&m, &spec, 0.1, &[s]));
-            let sc = Scenario::new(m, Footprint { rot_speed: 0.7, ..Footprint::default() }, s, Point::new(9.7, 1.3), Projection::F2)
-                .with_camera(objective);
-            let mut rng = crate::ga::rng::stream(seed, crate::ga::rng::Purpose::Main, &[]);
-            let mut scratch = EvalScratch::default();
-            let mut parents = Vec::new();
-            for n in [na, nb] {
-                let mut ind = Individual::default();
-                random_genome(&mut rng, n - 2, dist, &mut ind.genome);
-                evaluate(&mut ind, &sc, Base::None, EvaluationMode::Full, &mut scratch);
-                remove_zero_actions(&mut ind);
-                parents.push(ind);
-            }
-            let both = |ind: &Individual, base: Base, scratch: &mut EvalScratch| {
-                let (mut inc, mut full) = (ind.clone(), ind.clone());
-                evaluate(&mut inc, &sc, base, EvaluationMode::Incremental, scratch);
-                evaluate(&mut full, &sc, Base::None, EvaluationMode::Full, scratch);
-                (inc, full)
-            };
-            let same = |a: &Individual, b: &Individual| {
-                a.genome == b.genome && a.points == b.points && a.sweep == b.sweep && a.score == b.score
-                    && a.stable_genes == b.stable_genes && {
-                    let (mut x, mut y) = (Vec::new(), Vec::new());
-                    a.visits.for_each_count(|c, k| x.push((c, k)));
-                    b.visits.for_each_count(|c, k| y.push((c, k)));
-                    x == y
-                }
-            };
-            let pa = Parent { genome: &parents[0].genome, points: &parents[0].points, stable: parents[0].stable_genes };
-            let pb = Parent { genome: &parents[1].genome, points: &parents[1].points, stable: parents[1].stable_genes };
-            let kids = crossover(pa, pb, c_len, ShortGenomes::Clamp, ChildMode::from_index(mode).unwrap(), 300, &sc.frame, &mut rng);
-            for (k, genome) in kids.into_iter().flatten().enumerate() {
-                let receiver = &parents[k % 2];
-                let mut child = Individual { genome, ..Default::default() };
-                if rng.random_bool(0.3) {
-                    mutate_action(&mut child.genome, &mut rng);
-                }
-                let (inc, full) = both(&child, Base::Parent(receiver), &mut scratch);
-                proptest::prop_assert!(same(&inc, &full), "child {k}");
-            }
-            // A copy whose genome was mutated, against its own former self.
-            let mut copy = parents[0].clone();
-            mutate_action(&mut copy.genome, &mut rng);
-            let (inc, full) = both(&copy, Base::Own, &mut scratch);
-            proptest::prop_assert!(same(&inc, &full), "mutated copy");
-        }
-    }
-
-    #[test]
-    fn dead_genomes_are_reinitialised() {
-        let map = preset("thesis-1").unwrap();
-        let s = Point::new(1.3, 1.3);
-        let sc = Scenario::new(map, Footprint::default(), s, s, Projection::F1);
-        let mut scratch = EvalScratch::default();
-        let mut ind = Individual { genome: vec![a(0.0), a(0.0), a(0.0), a(0.0)], ..Default::default() };
-        assert!(is_dead(&ind.genome));
-        let mut rng = crate::ga::rng::stream(9, crate::ga::rng::Purpose::Main, &[]);
-        let init = InitParams { actions: 10, dist_max: 5.0 };
-        let evals =
-            correct_and_evaluate(&mut ind, &sc, Base::None, EvaluationMode::Incremental, &mut scratch, &init, &mut rng);
-        assert_eq!(evals, 2);
-        assert!(!is_dead(&ind.genome));
-        assert!(ind.score.cov_final > 0.0);
-        assert_eq!(ind.points.len(), ind.genome.len());
-    }
-}
+mod tests;

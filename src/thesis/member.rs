@@ -6,9 +6,10 @@
 use super::crossover::{ChildBuffers, Parent, crossover_into};
 use super::diversity::{DiversityScratch, diversity, max_distance};
 use super::genome::{Action, random_genome};
-use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, Scenario, correct_and_evaluate};
+use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
 use super::mutation::{Mutation, mutate, mutate_action};
 use super::params::ThesisParams;
+use super::scenario::Scenario;
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::rng::Rng;
 use crate::geom::Point;
@@ -232,6 +233,7 @@ impl Member for Individual {
 /// (the evaluation that follows overwrites them).
 impl ChildBuffers for Individual {
     fn buffers(&mut self) -> (&mut Vec<Action>, &mut Vec<Point>) {
-        (&mut self.genome, &mut self.points)
+        let fields = &mut **self;
+        (&mut fields.genome, &mut fields.points)
     }
 }

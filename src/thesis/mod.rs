@@ -16,4 +16,5 @@ pub mod objective;
 pub mod params;
 pub mod planner;
 pub mod run;
+pub mod scenario;
 pub mod seeding;

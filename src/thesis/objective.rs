@@ -77,7 +77,8 @@ mod tests {
     use crate::coverage::Footprint;
     use crate::map::presets::preset;
     use crate::thesis::genome::random_genome;
-    use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, Scenario, evaluate};
+    use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, evaluate};
+    use crate::thesis::scenario::Scenario;
 
     fn spec() -> CameraSpec {
         CameraSpec { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 }
@@ -101,7 +102,7 @@ mod tests {
             for _ in 0..5 {
                 let mut ind = Individual::default();
                 random_genome(&mut rng, 20, 4.0, &mut ind.genome);
-                let mut foot = Individual { genome: ind.genome.clone(), ..Default::default() };
+                let mut foot = Individual::with_genome(ind.genome.clone());
                 evaluate(&mut ind, &with, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
                 evaluate(&mut foot, &plain, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
                 let [walls, open, _, _] = layer.coverage_by_pose(std::slice::from_ref(&ind.points));

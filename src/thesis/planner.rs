@@ -4,9 +4,10 @@
 //! its own figures.
 
 use super::config::ThesisConfig;
-use super::individual::{Individual, Scenario as ThesisScenario};
+use super::individual::Individual;
 use super::objective::{CameraObjective, Objective};
 use super::run::{ThesisGa, ThesisOutcome};
+use super::scenario::Scenario as ThesisScenario;
 use crate::coverage::CoverageGrid;
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::observer::Observer;
@@ -58,7 +59,7 @@ impl Planner for ThesisConfig {
         budget: &Budget,
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunOutcome, PlannerError> {
-        let seeds = self.seeds.iter().map(|g| Individual { genome: g.clone(), ..Default::default() }).collect();
+        let seeds = self.seeds.iter().map(|g| Individual::with_genome(g.clone())).collect();
         let mut ga = ThesisGa {
             scenario: ThesisScenario::from_common(scenario).with_moves(self.moves).with_camera(match self.objective {
                 (Objective::Footprint, _) => None,

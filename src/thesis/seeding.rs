@@ -167,7 +167,8 @@ mod tests {
     use crate::coverage::{CoverageGrid, SweepScratch};
     use crate::map::presets::preset;
     use crate::thesis::genome::decode;
-    use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, Scenario as ThesisScenario};
+    use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual};
+    use crate::thesis::scenario::Scenario as ThesisScenario;
 
     /// The genome evaluated by the thesis GA on `scenario`, and the plan `points` scored by the
     /// common scorer with the scenario's robot.
@@ -176,7 +177,7 @@ mod tests {
         scenario: &ThesisScenario,
         points: &[Point],
     ) -> (Individual, crate::coverage::fitness::ThesisScore) {
-        let mut ind = Individual { genome, ..Default::default() };
+        let mut ind = Individual::with_genome(genome);
         crate::thesis::individual::evaluate(
             &mut ind,
             scenario,
@@ -221,7 +222,7 @@ mod tests {
     #[test]
     fn a_pattern_genome_under_routed_moves_drives_the_pattern() {
         use crate::coverage::routes::Router;
-        use crate::thesis::individual::Moves;
+        use crate::thesis::scenario::Moves;
         for (name, start) in [("thesis-2", Point::new(1.3, 1.3)), ("office", Point::new(2.0, 2.0))] {
             let map = preset(name).unwrap();
             let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };

@@ -1,8 +1,9 @@
 use super::*;
+use crate::thesis::individual::IndividualFields;
 
 /// An individual whose visit map over one 64-cell row holds `counts`.
 fn ind(counts: &[(u32, u32)]) -> Individual {
-    Individual { visits: VisitPlanes::from_counts(1, counts), ..Default::default() }
+    Individual::from(IndividualFields { visits: VisitPlanes::from_counts(1, counts), ..Default::default() })
 }
 
 #[test]
@@ -84,7 +85,7 @@ fn wide_maps_sum_as_their_cells_do() {
                     counts.push((c, rng.random_range(1..=top)));
                 }
             }
-            Individual { visits: VisitPlanes::from_counts(16, &counts), ..Default::default() }
+            Individual::from(IndividualFields { visits: VisitPlanes::from_counts(16, &counts), ..Default::default() })
         })
         .collect();
     assert!(pop.iter().any(|i| i.visits.planes() > 4) && pop.iter().all(|i| i.visits.plane_words() == 16));

@@ -131,9 +131,9 @@ fn a_run_keeps_the_full_pass_diversity() {
     use crate::coverage::fitness::Projection;
     use crate::geom::Point;
     use crate::map::presets::preset;
-    use crate::thesis::individual::Scenario;
     use crate::thesis::params::{Selection, ThesisParams};
     use crate::thesis::run::ThesisGa;
+    use crate::thesis::scenario::Scenario;
     let s = Point::new(1.3, 1.3);
     let tournament = ThesisParams {
         selection: Selection::Tournament { size: 3 },
