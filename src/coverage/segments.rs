@@ -61,6 +61,11 @@ fn slot_of(key: &[u64; 5]) -> usize {
     ((h ^ (h >> 29)) as usize) & (SLOTS - 1)
 }
 
+/// Where the probe for a segment's key starts, in either generation's table: the key's hash,
+/// computed once by [`SegmentCache::prefetch`] and handed to [`SegmentCache::apply_from`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Home(usize);
+
 /// Whether two keys are equal, word by word and inlined (the array comparison calls `memcmp`).
 #[inline(always)]
 fn same_key(a: &[u64; 5], b: &[u64; 5]) -> bool {
@@ -81,11 +86,12 @@ struct Generation {
 }
 
 impl Generation {
-    /// The slot holding `key` (`Ok`), or the empty slot where it would go (`Err`). The table
-    /// must be allocated.
+    /// The slot holding `key` (`Ok`), or the empty slot where it would go (`Err`), probing from
+    /// the key's home slot. The table must be allocated.
     #[inline(always)]
-    fn find(&self, key: &[u64; 5]) -> Result<usize, usize> {
-        let mut i = slot_of(key);
+    fn find(&self, key: &[u64; 5], home: Home) -> Result<usize, usize> {
+        debug_assert_eq!(home.0, slot_of(key), "the home of another key");
+        let mut i = home.0;
         while self.slots[i].epoch == self.epoch {
             if same_key(&self.slots[i].key, key) {
                 return Ok(i);
@@ -180,6 +186,24 @@ impl SegmentCache {
         width: f64,
         tally: &mut Tally,
     ) {
+        let home = Home(slot_of(&key_of(a, b, width)));
+        self.apply_from::<ADD>(layers, visits, a, b, width, home, tally);
+    }
+
+    /// [`Self::apply`] with the segment's home slot (from [`Self::prefetch`] of the same
+    /// segment), so that its key is not hashed again.
+    #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
+    pub fn apply_from<const ADD: bool>(
+        &mut self,
+        layers: &BitLayers,
+        visits: &mut VisitPlanes,
+        a: Point,
+        b: Point,
+        width: f64,
+        home: Home,
+        tally: &mut Tally,
+    ) {
         // Masks hold the free cells of the grid they were scanned on: another grid (or the same
         // raster with other walls) starts afresh.
         let grid = Some(layers.layout_id());
@@ -188,9 +212,9 @@ impl SegmentCache {
             self.grid = grid;
         }
         let key = key_of(a, b, width);
-        let i = match self.current.find(&key) {
+        let i = match self.current.find(&key, home) {
             Ok(i) => i,
-            Err(i) => match self.insert(layers, key, a, b, width, i) {
+            Err(i) => match self.insert(layers, key, home, a, b, width, i) {
                 Ok(i) => i,
                 Err(counts) => return layers.apply_free_masks::<ADD>(visits, &self.fresh, counts, tally),
             },
@@ -206,17 +230,19 @@ impl SegmentCache {
     /// holds is left in `fresh`, and its counts returned (`Err`). Out of line: most segments
     /// are found.
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     fn insert(
         &mut self,
         layers: &BitLayers,
         key: [u64; 5],
+        home: Home,
         a: Point,
         b: Point,
         width: f64,
         mut i: usize,
     ) -> Result<usize, [u64; 2]> {
         let previous = &self.previous;
-        let promoted = if previous.slots.is_empty() { None } else { previous.find(&key).ok() };
+        let promoted = if previous.slots.is_empty() { None } else { previous.find(&key, home).ok() };
         self.fresh.clear();
         let [free, obstacle] = match promoted {
             Some(j) => {
@@ -235,7 +261,7 @@ impl SegmentCache {
         if self.current.filled >= SLOTS / 2 || self.current.masks.len() + len > self.mask_limit {
             std::mem::swap(&mut self.current, &mut self.previous);
             self.current.clear(self.mask_limit);
-            i = slot_of(&key);
+            i = home.0;
         }
         let current = &mut self.current;
         let start = current.masks.len();
@@ -246,14 +272,16 @@ impl SegmentCache {
     }
 
     /// Asks the processor to fetch the slots of both generations where segment `a → b` would
-    /// be, so that a later [`Self::apply`] of it does not wait for memory. Changes nothing.
-    /// The previous generation's slot is probed only for a segment missing from the current
-    /// one, but that probe, left to wait, took 85 % of the insertions' time.
+    /// be, so that a later [`Self::apply_from`] of it does not wait for memory; returns the
+    /// segment's home slot for it. Changes nothing. The previous generation's slot is probed
+    /// only for a segment missing from the current one, but that probe, left to wait, took
+    /// 85 % of the insertions' time.
     #[inline(always)]
-    pub fn prefetch(&self, a: Point, b: Point, width: f64) {
+    pub fn prefetch(&self, a: Point, b: Point, width: f64) -> Home {
+        let home = Home(slot_of(&key_of(a, b, width)));
         #[cfg(target_arch = "x86_64")]
         {
-            let i = slot_of(&key_of(a, b, width));
+            let i = home.0;
             for slot in [self.current.slots.get(i), self.previous.slots.get(i)].into_iter().flatten() {
                 // SAFETY: a prefetch is a hint; it reads nothing and faults on no address.
                 unsafe {
@@ -261,8 +289,7 @@ impl SegmentCache {
                 }
             }
         }
-        #[cfg(not(target_arch = "x86_64"))]
-        let _ = (a, b, width);
+        home
     }
 
     /// Forgets every segment of both generations (keeps the allocations).

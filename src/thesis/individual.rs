@@ -8,7 +8,7 @@ use crate::coverage::bits::{BitLayers, Tally};
 use crate::coverage::fitness::{ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
 use crate::coverage::routes::{RouteScratch, Router};
-use crate::coverage::segments::SegmentCache;
+use crate::coverage::segments::{Home, SegmentCache};
 use crate::coverage::views::SegmentViews;
 use crate::coverage::{PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
@@ -188,6 +188,8 @@ pub struct EvalScratch {
     points: Vec<Point>,
     /// Segments already swept, replayed by incremental evaluations.
     segments: SegmentCache,
+    /// The segments' home slots in the cache, per edit.
+    homes: Vec<Home>,
     /// Routes already found (routed moves).
     routes: RouteScratch,
     /// The driven path (routed moves).
@@ -231,7 +233,7 @@ pub fn evaluate(
     };
     ind.stable_genes = stable;
     let (layers, width) = (&scenario.layers, scenario.robot.width);
-    let EvalScratch { segments: cache, routes, driven, .. } = scratch;
+    let EvalScratch { segments: cache, homes, routes, driven, .. } = scratch;
     let mut router = scenario.routes.as_deref().map(|r| (r, &mut *routes));
     let tally = match (mode, base) {
         (EvaluationMode::Full, _) => match &mut router {
@@ -243,15 +245,15 @@ pub fn evaluate(
         },
         (EvaluationMode::Incremental, Base::None) => {
             ind.visits.reset(layers.plane_words());
-            edit(layers, cache, router, &mut ind.visits, Tally::default(), &[], &points, 0, width)
+            edit(layers, cache, homes, router, &mut ind.visits, Tally::default(), &[], &points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Own) => {
             let t = ind.tally();
-            edit(layers, cache, router, &mut ind.visits, t, &ind.points, &points, 0, width)
+            edit(layers, cache, homes, router, &mut ind.visits, t, &ind.points, &points, 0, width)
         }
         (EvaluationMode::Incremental, Base::Parent(p)) => {
             ind.visits.copy_from(&p.visits);
-            edit(layers, cache, router, &mut ind.visits, p.tally(), &p.points, &points, shared, width)
+            edit(layers, cache, homes, router, &mut ind.visits, p.tally(), &p.points, &points, shared, width)
         }
     };
     if keep_old {
@@ -296,40 +298,36 @@ pub fn evaluate(
     }
 }
 
-/// Adds (`ADD`) or removes move `a → b`: its straight segment, or with a router its route.
+/// Adds (`ADD`) or removes the route of move `a → b`.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn apply_move<const ADD: bool>(
+fn apply_route<const ADD: bool>(
     layers: &BitLayers,
     cache: &mut SegmentCache,
-    router: &mut Option<(&Router, &mut RouteScratch)>,
+    (router, routes): (&Router, &mut RouteScratch),
     visits: &mut VisitPlanes,
     a: Point,
     b: Point,
     width: f64,
     tally: &mut Tally,
 ) {
-    match router {
-        None => cache.apply::<ADD>(layers, visits, a, b, width, tally),
-        Some((r, routes)) => {
-            let route = r.route(layers, a, b, routes);
-            let mut from = route.start;
-            for &p in route.points {
-                cache.apply::<ADD>(layers, visits, from, p, width, tally);
-                from = p;
-            }
-        }
+    let route = router.route(layers, a, b, routes);
+    let mut from = route.start;
+    for &p in route.points {
+        cache.apply::<ADD>(layers, visits, from, p, width, tally);
+        from = p;
     }
 }
 
 /// Turns the visit map of path `old` (with counts `tally`) into that of path `new`, whose first
 /// `same + 1` viewpoints are known to be `old`'s. A routed move depends on its two viewpoints
-/// only, so moves are shared exactly as straight segments are.
+/// only, so moves are shared exactly as straight segments are. `homes` is a scratch.
 #[allow(clippy::too_many_arguments)]
 fn edit(
     layers: &BitLayers,
     cache: &mut SegmentCache,
-    mut router: Option<(&Router, &mut RouteScratch)>,
+    homes: &mut Vec<Home>,
+    router: Option<(&Router, &mut RouteScratch)>,
     visits: &mut VisitPlanes,
     mut tally: Tally,
     old: &[Point],
@@ -351,20 +349,30 @@ fn edit(
             y += 1;
         }
     }
-    if router.is_none() {
-        // The cache's slots of all the segments are fetched at once, not one miss after another.
-        for i in x..so - y {
-            cache.prefetch(old[i], old[i + 1], width);
+    let (removed, added) = (x..so - y, x..sn - y);
+    match router {
+        None => {
+            // The cache's slots of all the segments are fetched at once, not one miss after
+            // another; each segment's key is hashed once.
+            homes.clear();
+            homes.extend(removed.clone().map(|i| cache.prefetch(old[i], old[i + 1], width)));
+            homes.extend(added.clone().map(|i| cache.prefetch(new[i], new[i + 1], width)));
+            let (removed_homes, added_homes) = homes.split_at(removed.len());
+            for (i, &home) in removed.zip(removed_homes) {
+                cache.apply_from::<false>(layers, visits, old[i], old[i + 1], width, home, &mut tally);
+            }
+            for (i, &home) in added.zip(added_homes) {
+                cache.apply_from::<true>(layers, visits, new[i], new[i + 1], width, home, &mut tally);
+            }
         }
-        for i in x..sn - y {
-            cache.prefetch(new[i], new[i + 1], width);
+        Some((r, routes)) => {
+            for i in removed {
+                apply_route::<false>(layers, cache, (r, &mut *routes), visits, old[i], old[i + 1], width, &mut tally);
+            }
+            for i in added {
+                apply_route::<true>(layers, cache, (r, &mut *routes), visits, new[i], new[i + 1], width, &mut tally);
+            }
         }
-    }
-    for i in x..so - y {
-        apply_move::<false>(layers, cache, &mut router, visits, old[i], old[i + 1], width, &mut tally);
-    }
-    for i in x..sn - y {
-        apply_move::<true>(layers, cache, &mut router, visits, new[i], new[i + 1], width, &mut tally);
     }
     tally
 }

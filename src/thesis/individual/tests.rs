@@ -128,7 +128,18 @@ fn an_edit_skips_only_the_segments_both_paths_share() {
         for (from, to) in [(&old[..], &path[..]), (&path[..], &old[..])] {
             let mut visits = VisitPlanes::default();
             let tally = layers.sweep(&mut visits, from, width);
-            let edited = edit(layers, &mut SegmentCache::default(), None, &mut visits, tally, from, to, *same, width);
+            let edited = edit(
+                layers,
+                &mut SegmentCache::default(),
+                &mut Vec::new(),
+                None,
+                &mut visits,
+                tally,
+                from,
+                to,
+                *same,
+                width,
+            );
             let mut fresh = VisitPlanes::default();
             assert_eq!(edited, layers.sweep(&mut fresh, to, width), "case {i}");
             assert_eq!(counts(&visits), counts(&fresh), "case {i}");
