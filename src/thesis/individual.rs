@@ -205,13 +205,16 @@ pub struct EvalScratch {
 /// (compared bit for bit) are kept, the base's segments between them are removed from its
 /// visit map and the new ones added. Shared segments have identical endpoints and hence
 /// identical cells, so the result equals a full evaluation exactly.
+///
+/// Returns how many leading genes are known to be the parent's, bit for bit, before and after
+/// correction (0 without a parent base).
 pub fn evaluate(
     ind: &mut Individual,
     scenario: &Scenario,
     base: Base,
     mode: EvaluationMode,
     scratch: &mut EvalScratch,
-) {
+) -> usize {
     let ind: &mut IndividualFields = ind;
     // The new path is decoded into the individual's own buffer, unless its old path is the
     // base the visit map is edited from; then into the scratch, copied over at the end.
@@ -296,6 +299,7 @@ pub fn evaluate(
         let coverage = camera.coverage(path, views);
         ind.score = with_coverage(ind.score, coverage, ind.sweep.obj_pix, scenario.projection);
     }
+    shared
 }
 
 /// Adds (`ADD`) or removes the route of move `a → b`.
@@ -382,20 +386,28 @@ fn edit(
 /// deleted, so every run of zeros shrinks to at most two. The path does not change. Returns
 /// the number of deleted genes.
 pub fn remove_zero_actions(ind: &mut Individual) -> usize {
+    remove_zero_actions_after(ind, 0)
+}
+
+/// [`remove_zero_actions`] of a genome whose first `known` genes hold no three zeros in a row
+/// ending before gene `known`: the search for the first run of three starts at gene
+/// `known − 2`. (A child's genes it shares with a parent that went through this removal.)
+fn remove_zero_actions_after(ind: &mut Individual, known: usize) -> usize {
     let n = ind.genome.len();
     if n < 5 {
         return 0;
     }
     // Most genomes have no run of three zeros: find the first marked gene without writing (the
     // middle of the first three zeros in a row ending at gene n − 2 or before).
+    let from = known.saturating_sub(2).min(n - 1);
     let mut run = 0;
-    let Some(first) = ind.genome[..n - 1].iter().position(|g| {
+    let Some(end) = ind.genome[from..n - 1].iter().position(|g| {
         run = if g.is_zero() { run + 1 } else { 0 };
         run == 3
     }) else {
         return 0;
     };
-    let first = first - 1;
+    let first = from + end - 1;
     // From there, one pass in place, no marks buffer: a gene's mark reads its neighbours as
     // they were, and the write position never passes the read position, so the genes ahead
     // are still unchanged; the zero flag of the gene behind is carried over from the previous
@@ -435,7 +447,8 @@ pub fn is_dead(genome: &[Action]) -> bool {
 
 /// The full correction sequence of R17 after a genome was created or changed: decode with
 /// correction → evaluate → zero-action removal → dead check (re-initialise and start over).
-/// Returns the number of evaluations spent. `base` is what the genome was made from.
+/// Returns the number of evaluations spent. `base` is what the genome was made from; a parent
+/// base must have been through this correction itself (every member of a population has).
 pub fn correct_and_evaluate<R: Rng + ?Sized>(
     ind: &mut Individual,
     scenario: &Scenario,
@@ -447,11 +460,12 @@ pub fn correct_and_evaluate<R: Rng + ?Sized>(
 ) -> u64 {
     let mut evaluations = 0;
     loop {
-        evaluate(ind, scenario, base, mode, scratch);
+        let parents_genes = evaluate(ind, scenario, base, mode, scratch);
         evaluations += 1;
         // Zero actions move nothing (see `decode_prefix`), so deleting them leaves the
-        // segments, and hence the visit map, as they are.
-        remove_zero_actions(ind);
+        // segments, and hence the visit map, as they are. The parent's genes hold no run of
+        // three zeros, so the search for one starts where the child's own genes do.
+        remove_zero_actions_after(ind, parents_genes);
         if !is_dead(&ind.genome) {
             return evaluations;
         }

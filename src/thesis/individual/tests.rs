@@ -174,6 +174,22 @@ proptest::proptest! {
         proptest::prop_assert_eq!(&ind.points[..kept_points.len().min(ind.points.len())], &kept_points[..]);
         proptest::prop_assert_eq!(ind.stable_genes, kept.iter().filter(|&&i| i < stable).count());
     }
+
+    /// Told that its first `known` genes end no run of three zeros (as a child's genes shared
+    /// with a corrected parent), the removal deletes what the whole search deletes.
+    #[test]
+    fn a_known_prefix_changes_no_removal(zeros in proptest::collection::vec(proptest::prelude::any::<bool>(), 0..40), known in 0usize..41) {
+        let genome: Vec<Action> = zeros.iter().enumerate().map(|(i, &z)| a(if z { 0.0 } else { 1.0 + i as f64 })).collect();
+        let n = genome.len();
+        // The longest prefix in which no run of three zeros ends (searched as the removal does,
+        // up to gene n − 2).
+        let clean = (2..n.saturating_sub(1)).find(|&e| (e - 2..=e).all(|i| genome[i].is_zero())).unwrap_or(n);
+        let known = known.min(clean);
+        let (mut plain, mut told) = (Individual::with_genome(genome.clone()), Individual::with_genome(genome));
+        let removed = remove_zero_actions(&mut plain);
+        proptest::prop_assert_eq!(remove_zero_actions_after(&mut told, known), removed);
+        proptest::prop_assert_eq!(&told.genome, &plain.genome);
+    }
 }
 
 proptest::proptest! {
