@@ -3,6 +3,8 @@
 //! `m` angular sections; each section sees up to its first obstacle. [`ViewShape::Fan`] draws
 //! the view as the authors' public code does (a polygon through the section depths).
 
+use frame::Frame;
+
 /// Camera parameters in pixel units (ranges) and radians.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Camera {
@@ -191,67 +193,10 @@ impl Camera {
         already_seen: impl Fn(usize) -> bool,
         mut visible: impl FnMut(usize),
     ) {
-        let d_max = if capped { self.effective_d_max(width, height, pos) } else { self.d_max };
-        let reach = d_max.ceil() as i64 + 1;
-        let (pc, pr) = (pos.0.floor() as i64, pos.1.floor() as i64);
-        let mut nearest = vec![f64::INFINITY; self.sections];
-        let polar = |c: i64, r: i64| {
-            let (dx, dy) = (c as f64 + 0.5 - pos.0, r as f64 + 0.5 - pos.1);
-            (dx.hypot(dy), wrap(dy.atan2(dx) - psi))
-        };
-        // No pixel beyond d_max counts, and none is seen beyond max(d_max, d_min) (eq. 1).
-        let range_skip = (d_max.max(self.d_min) * (1.0 + 1e-9)).powi(2);
-        let half = 0.5 * self.fov;
-        let cone = half < 0.5 * std::f64::consts::PI - 1e-6;
-        let (sin_psi, cos_psi) = psi.sin_cos();
-        let (sin_half, cos_half) = half.sin_cos();
-        let passed_over = |c: i64, r: i64| {
-            let (dx, dy) = (c as f64 + 0.5 - pos.0, r as f64 + 0.5 - pos.1);
-            let d2 = dx * dx + dy * dy;
-            if !prefilter || d2 <= 1e-18 {
-                return false;
-            }
-            if d2 > range_skip {
-                return true;
-            }
-            // With θ the angle from the heading, `sin(θ − half)·d`: positive past the edge of
-            // the field of view (for a field of view below a half turn).
-            let along = dx * cos_psi + dy * sin_psi;
-            let across = (dy * cos_psi - dx * sin_psi).abs();
-            cone && across * cos_half - along * sin_half > 1e-9 * (dx.abs() + dy.abs() + 1.0)
-        };
-        // With the pre-filter, only the pixels of the box around the field of view out to the
-        // range (a pixel wider on every side) can be other than passed over.
-        let (cols, rows) = if prefilter && cone {
-            let radius = range_skip.sqrt();
-            let (x0, y0, x1, y1) = sector_box(pos, psi, half, radius);
-            let span = |lo: f64, hi: f64, p: i64| {
-                ((lo - 0.5).floor() as i64 - 1).max(p - reach)..=((hi - 0.5).ceil() as i64 + 1).min(p + reach)
-            };
-            (span(x0, x1, pc), span(y0, y1, pr))
-        } else {
-            (pc - reach..=pc + reach, pr - reach..=pr + reach)
-        };
-        // Occluders ring by ring outwards (square rings about the pose's pixel): a pixel of
-        // ring k lies at least k − ½ px away, so once every section has an occluder nearer
-        // than the next ring, no farther one can change a section's depth.
-        for k in 0..=reach {
-            for (c, r) in ring(pc, pr, k, &cols, &rows) {
-                if occluded(c, r) && !passed_over(c, r) {
-                    let (d, phi) = polar(c, r);
-                    if d <= d_max
-                        && let Some(i) = self.section(phi)
-                    {
-                        nearest[i] = nearest[i].min(d);
-                    }
-                }
-            }
-            let closed = k as f64 + 0.5 - 1e-9;
-            if prefilter && nearest.iter().all(|&o| o < closed) {
-                break;
-            }
-        }
-        let limit: Vec<f64> = nearest.iter().map(|&o| d_view(d_max, self.d_min, o)).collect();
+        let frame = Frame::new(self, (width, height), (pos, psi), prefilter, capped);
+        let nearest = frame.nearest_occluders(self, &occluded);
+        let ((pc, pr), reach, (cols, rows)) = (frame.pixel, frame.reach, (&frame.cols, &frame.rows));
+        let limit: Vec<f64> = nearest.iter().map(|&o| d_view(frame.d_max, self.d_min, o)).collect();
         if self.shape == ViewShape::Fan {
             self.fill_fan(width, height, &occluded, pos, psi, &limit, visible);
             return;
@@ -264,11 +209,13 @@ impl Camera {
         let cols =
             (*cols.start()).max(pc - seen_reach).max(0)..=(*cols.end()).min(pc + seen_reach).min(width as i64 - 1);
         for r in rows {
-            for c in cols.clone() {
-                if occluded(c, r) || already_seen(r as usize * width + c as usize) || passed_over(c, r) {
+            // No pixel beyond the deepest section is seen.
+            let (lo, hi) = frame.wedge.as_ref().map_or((i64::MIN, i64::MAX), |w| w.cols(r, deepest + 1.0));
+            for c in (*cols.start()).max(lo)..=(*cols.end()).min(hi) {
+                if occluded(c, r) || already_seen(r as usize * width + c as usize) || frame.passed_over(c, r) {
                     continue;
                 }
-                let (d, phi) = polar(c, r);
+                let (d, phi) = frame.polar(c, r);
                 if let Some(i) = self.section(phi)
                     && d >= self.d_min
                     && d <= limit[i]
@@ -279,53 +226,6 @@ impl Camera {
             }
         }
     }
-}
-
-/// The pixels of the square ring `k` about pixel `(pc, pr)` (ring 0 is the pixel itself)
-/// that lie within `cols × rows`.
-fn ring(
-    pc: i64,
-    pr: i64,
-    k: i64,
-    cols: &std::ops::RangeInclusive<i64>,
-    rows: &std::ops::RangeInclusive<i64>,
-) -> impl Iterator<Item = (i64, i64)> {
-    let (c0, c1, r0, r1) = (*cols.start(), *cols.end(), *rows.start(), *rows.end());
-    let row_span = move |r: i64| {
-        let lo = (pc - k).max(c0);
-        let hi = (pc + k).min(c1);
-        let on = r >= r0 && r <= r1;
-        (lo..=hi).filter(move |_| on).map(move |c| (c, r))
-    };
-    let side = move |c: i64| {
-        let on = c >= c0 && c <= c1;
-        ((pr - k + 1).max(r0)..=(pr + k - 1).min(r1)).filter(move |_| on).map(move |r| (c, r))
-    };
-    let top = row_span(pr + k);
-    let bottom = (k > 0).then(|| row_span(pr - k)).into_iter().flatten();
-    let sides = (k > 0).then(|| side(pc - k).chain(side(pc + k))).into_iter().flatten();
-    top.chain(bottom).chain(sides)
-}
-
-/// The box `(x0, y0, x1, y1)` around the sector of `radius` about `pos` between the headings
-/// `psi ± half` (`half` below a quarter turn): the apex, the two arc ends, and the arc's points
-/// in the axis directions the sector holds (with a hair of slack on the headings).
-fn sector_box(pos: (f64, f64), psi: f64, half: f64, radius: f64) -> (f64, f64, f64, f64) {
-    let mut b = (pos.0, pos.1, pos.0, pos.1);
-    let mut add = |a: f64| {
-        let (y, x) = a.sin_cos();
-        let (px, py) = (pos.0 + radius * x, pos.1 + radius * y);
-        b = (b.0.min(px), b.1.min(py), b.2.max(px), b.3.max(py));
-    };
-    add(psi - half);
-    add(psi + half);
-    for k in 0..4 {
-        let axis = k as f64 * 0.5 * std::f64::consts::PI;
-        if wrap(axis - psi).abs() <= half + 1e-6 {
-            add(axis);
-        }
-    }
-    b
 }
 
 impl Camera {
@@ -383,5 +283,7 @@ impl Camera {
     }
 }
 
+mod frame;
+mod sector;
 #[cfg(test)]
 mod tests;

@@ -71,6 +71,33 @@ fn fan_polygon_vertices_by_hand() {
 }
 
 proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(4000))]
+
+    /// Each section's nearest occluder is the same with and without the pre-filter, which cuts
+    /// each ring to the wedge of the sections still open: random walls from sparse to dense,
+    /// poses (on pixel centres and corners too), headings, fields of view (mostly under the
+    /// half turn where the cut applies) and sections (wide ones close unevenly).
+    #[test]
+    fn the_prefilter_changes_no_section_depth(
+        seed in 0u64..1_000_000, x in 0.0..48.0f64, y in 0.0..48.0f64,
+        corner in proptest::prelude::any::<bool>(), psi in -7.0..7.0f64, fov_deg in 1.0..220.0f64,
+        sections in 1usize..12, density in 0.005..0.3f64, d_max in 1.0..40.0f64,
+    ) {
+        use rand::{Rng, SeedableRng};
+        let (w, h) = (48usize, 48usize);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let walls: Vec<bool> = (0..w * h).map(|_| rng.random_bool(density)).collect();
+        let occ = |c: i64, r: i64| c < 0 || r < 0 || c >= w as i64 || r >= h as i64 || walls[r as usize * w + c as usize];
+        let pos = if corner { (x.floor(), y.floor()) } else { (x.floor() + 0.5, y.floor() + 0.5) };
+        let camera = Camera { d_min: 0.5, d_max, fov: fov_deg.to_radians(), sections, shape: ViewShape::Sections };
+        let depths = |prefilter: bool| {
+            frame::Frame::new(&camera, (w, h), (pos, psi), prefilter, true).nearest_occluders(&camera, &occ)
+        };
+        proptest::prop_assert_eq!(depths(true), depths(false));
+    }
+}
+
+proptest::proptest! {
     /// Passing over out-of-range and out-of-view pixels changes no viewed pixel: random
     /// walls, poses (on pixel centres and corners too), headings, fields of view up to a
     /// whole turn, both shapes.
