@@ -75,9 +75,7 @@ impl<'m> Clearance<'m> {
     /// The smallest squared distance from `p` to a non-free cell of the window about it
     /// (infinite when there is none).
     fn nearest_cell_d2(&self, p: Point) -> f64 {
-        let mut best = f64::INFINITY;
-        self.walls.for_each_near(&self.map, p, self.window, |dx, dy| best = best.min(dx * dx + dy * dy));
-        best
+        self.walls.least_near(&self.map, p, self.window, f64::INFINITY, |dx, dy| dx * dx + dy * dy, |dy| dy * dy)
     }
 
     /// Restricts every later query to the cell centres marked in `reachable` (one flag per

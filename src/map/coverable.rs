@@ -24,10 +24,9 @@ pub const LATTICE_PER_CELL: usize = 8;
 fn clearance(map: &GridMap, walls: &WallRows, p: Point, cap: f64) -> f64 {
     let (ox, oy) = (map.origin().x, map.origin().y);
     let edge = (p.x - ox).min(p.y - oy).min(ox + map.width_m() - p.x).min(oy + map.height_m() - p.y);
-    let mut best = edge.min(cap);
     let window = (cap / map.resolution()).ceil() as isize + 1;
-    walls.for_each_near(map, p, window, |dx, dy| best = best.min((dx * dx + dy * dy).sqrt()));
-    best
+    // `√(dy·dy)` as rounded, not `dy`: the least distance a cell of the row can round to.
+    walls.least_near(map, p, window, edge.min(cap), |dx, dy| (dx * dx + dy * dy).sqrt(), |dy| (dy * dy).sqrt())
 }
 
 /// The lattice over a map: `cols·s × rows·s` points, point `(i, j)` at

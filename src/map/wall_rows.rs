@@ -26,6 +26,9 @@ pub struct WallRows {
     left: Vec<u32>,
     /// `right[row·cols + c]`: the smallest non-free column `≥ c` of the row, or [`NONE`].
     right: Vec<u32>,
+    /// `before[r·(cols + 1) + c]`: the non-free cells in rows `< r` and columns `< c`, so that
+    /// a window with none is answered without reading its rows.
+    before: Vec<u32>,
 }
 
 impl WallRows {
@@ -50,7 +53,21 @@ impl WallRows {
                 right[r * cols + c] = last;
             }
         }
-        Self { cols, left, right }
+        let mut before = vec![0u32; (rows + 1) * (cols + 1)];
+        for r in 0..rows {
+            let mut in_row = 0;
+            for c in 0..cols {
+                in_row += u32::from(!map.is_free(r, c));
+                before[(r + 1) * (cols + 1) + c + 1] = before[r * (cols + 1) + c + 1] + in_row;
+            }
+        }
+        Self { cols, left, right, before }
+    }
+
+    /// The non-free cells in rows `r0..=r1` and columns `c0..=c1` (valid, non-empty ranges).
+    fn count_in(&self, (r0, r1): (usize, usize), (c0, c1): (usize, usize)) -> u32 {
+        let at = |r: usize, c: usize| self.before[r * (self.cols + 1) + c];
+        at(r1 + 1, c1 + 1) + at(r0, c0) - at(r0, c1 + 1) - at(r1 + 1, c0)
     }
 
     /// Calls `visit` with the non-free columns of row `row` within `lo..=hi` (valid columns)
@@ -75,23 +92,55 @@ impl WallRows {
 }
 
 impl WallRows {
-    /// Calls `near(dx, dy)` with the gaps along x and y from `p` to the square of every
-    /// non-free cell that can be the nearest one in its row, over the rows and columns within
-    /// `window` cells of `p`'s cell on `map` (the map this index was built from). The least
-    /// `dx² + dy²` is that of a scan of the whole window.
-    pub fn for_each_near(&self, map: &GridMap, p: Point, window: isize, mut near: impl FnMut(f64, f64)) {
+    /// The least `dist(dx, dy)` (starting from `init`) over the gaps along x and y from `p` to
+    /// the square of every non-free cell that can be the nearest one in its row, over the rows
+    /// and columns within `window` cells of `p`'s cell on `map` (the map this index was built
+    /// from): the minimum of a scan of the whole window. `row_floor(dy)` must bound from below
+    /// every `dist(dx, dy)` of a row whose gap along y is `dy`: rows are read outwards from
+    /// `p`'s row, where `dy` only grows, and each direction stops at the first row whose floor
+    /// reaches the least value found, since no row beyond it can go below (tested against the
+    /// full scan).
+    pub fn least_near(
+        &self,
+        map: &GridMap,
+        p: Point,
+        window: isize,
+        init: f64,
+        dist: impl Fn(f64, f64) -> f64,
+        row_floor: impl Fn(f64) -> f64,
+    ) -> f64 {
         let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
         let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
         let (lo, hi) = ((cc - window).max(0), (cc + window).min(map.cols() as isize - 1));
-        if lo > hi {
-            return;
+        let (first, last) = ((cr - window).max(0), (cr + window).min(map.rows() as isize - 1));
+        let mut best = init;
+        if lo > hi || first > last || self.count_in((first as usize, last as usize), (lo as usize, hi as usize)) == 0 {
+            return best;
         }
-        for r in (cr - window).max(0)..=(cr + window).min(map.rows() as isize - 1) {
+        let row = |r: isize, best: &mut f64| {
             let dy = axis_gap(oy + r as f64 * res, p.y, res);
+            if row_floor(dy) >= *best {
+                return false;
+            }
             self.candidates(r as usize, cc, lo as usize, hi as usize, |c| {
-                near(axis_gap(ox + c as f64 * res, p.x, res), dy)
+                *best = best.min(dist(axis_gap(ox + c as f64 * res, p.x, res), dy));
             });
+            true
+        };
+        // `p`'s row may lie outside the window's rows (a point off the map): then every row of
+        // the window is on one side of it.
+        let split = cr.clamp(first - 1, last);
+        for r in (first..=split).rev() {
+            if !row(r, &mut best) {
+                break;
+            }
         }
+        for r in split + 1..=last {
+            if !row(r, &mut best) {
+                break;
+            }
+        }
+        best
     }
 }
 

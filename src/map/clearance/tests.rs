@@ -25,6 +25,7 @@ proptest::proptest! {
         let snap = |v: f64| if on_border { (v / m.resolution()).round() * m.resolution() } else { v };
         let p = Point::new(snap(x), snap(y));
         proptest::prop_assert_eq!(c.clear_of_cells_within(p, slack), c.clear_of_cells_within_full(p, slack));
+        proptest::prop_assert_eq!(c.nearest_cell_d2(p).to_bits(), c.nearest_cell_d2_full(p).to_bits());
     }
 }
 
@@ -44,6 +45,25 @@ fn connection_goes_around_the_disc() {
 }
 
 impl Clearance<'_> {
+    /// [`Clearance::nearest_cell_d2`] over every cell of the window, in scan order.
+    fn nearest_cell_d2_full(&self, p: Point) -> f64 {
+        let m = &*self.map;
+        let (ox, oy, res) = (m.origin().x, m.origin().y, m.resolution());
+        let (cc, cr) = (((p.x - ox) / res).floor() as isize, ((p.y - oy) / res).floor() as isize);
+        let mut best = f64::INFINITY;
+        for r in (cr - self.window).max(0)..=(cr + self.window).min(m.rows() as isize - 1) {
+            for c in (cc - self.window).max(0)..=(cc + self.window).min(m.cols() as isize - 1) {
+                if !m.is_free(r as usize, c as usize) {
+                    let (x0, y0) = (ox + c as f64 * res, oy + r as f64 * res);
+                    let dx = (x0 - p.x).max(0.0).max(p.x - x0 - res);
+                    let dy = (y0 - p.y).max(0.0).max(p.y - y0 - res);
+                    best = best.min(dx * dx + dy * dy);
+                }
+            }
+        }
+        best
+    }
+
     /// [`Clearance::clear_of_cells_within`] scanning every cell of the window: the reference
     /// for the row index.
     fn clear_of_cells_within_full(&self, p: Point, slack: f64) -> bool {
