@@ -209,7 +209,7 @@ impl Camera {
         let cols =
             (*cols.start()).max(pc - seen_reach).max(0)..=(*cols.end()).min(pc + seen_reach).min(width as i64 - 1);
         for r in rows {
-            // No pixel beyond the deepest section is seen.
+            // Nor any outside the field of view's wedge.
             let (lo, hi) = frame.wedge.as_ref().map_or((i64::MIN, i64::MAX), |w| w.cols(r, deepest + 1.0));
             for c in (*cols.start()).max(lo)..=(*cols.end()).min(hi) {
                 if occluded(c, r) || already_seen(r as usize * width + c as usize) || frame.passed_over(c, r) {

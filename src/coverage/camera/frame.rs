@@ -8,8 +8,8 @@ use std::ops::RangeInclusive;
 
 /// The geometry of a view from one pose (px, radians), computed once per pose.
 pub(super) struct Frame {
-    pub(super) pos: (f64, f64),
-    pub(super) psi: f64,
+    pos: (f64, f64),
+    psi: f64,
     /// The pixel holding the pose.
     pub(super) pixel: (i64, i64),
     /// `d_max` as computed with (capped at the raster or not).
@@ -17,7 +17,7 @@ pub(super) struct Frame {
     /// Rings (and box half-widths) that can hold a pixel within `d_max`.
     pub(super) reach: i64,
     /// Whether pixels certainly out of range or view are passed over.
-    pub(super) prefilter: bool,
+    prefilter: bool,
     /// `(max(d_max, d_min)·(1 + 1e-9))²`: no pixel farther counts.
     range_skip: f64,
     half: f64,
