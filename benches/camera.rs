@@ -1,4 +1,4 @@
-//! The camera model's speed target on `../shared/maps/basement.yaml` (skipped with a message
+//! The camera model's speed target on `experiments/maps/basement.yaml` (skipped with a message
 //! where the map is not beside the checkout): the camera coverage of a 100 m stretch of the
 //! boustrophedon plan, pose by pose as the scorer did before the masks (`by_pose`), with every
 //! segment new (`masks_cold`), with every segment's views kept from an earlier plan
@@ -32,9 +32,9 @@ fn first_metres(path: &[Point], metres: f64) -> Vec<Point> {
 }
 
 fn bench(c: &mut Criterion) {
-    let map = Path::new("../shared/maps/basement.yaml");
+    let map = Path::new("experiments/maps/basement.yaml");
     if !map.exists() {
-        eprintln!("camera bench: {} is not beside the checkout; nothing to measure", map.display());
+        eprintln!("camera bench: {} is missing (run from the repository root); nothing to measure", map.display());
         return;
     }
     let mut file = ExperimentFile::default();

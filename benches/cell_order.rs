@@ -1,4 +1,4 @@
-//! The cell-order planner's speed targets on `../shared/maps/basement.yaml` (skipped with a
+//! The cell-order planner's speed targets on `experiments/maps/basement.yaml` (skipped with a
 //! message where the map is not beside the checkout): the set-up (decomposition, candidate
 //! sweeps, transit matrix, leg times) and one evaluation of a tour, whose inverse is the
 //! evaluations per second of the GA. Run on one core for the figures:
@@ -15,9 +15,9 @@ use std::path::Path;
 use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
-    let map = Path::new("../shared/maps/basement.yaml");
+    let map = Path::new("experiments/maps/basement.yaml");
     if !map.exists() {
-        eprintln!("cell_order bench: {} is not beside the checkout; nothing to measure", map.display());
+        eprintln!("cell_order bench: {} is missing (run from the repository root); nothing to measure", map.display());
         return;
     }
     let mut file = ExperimentFile { planner: PlannerKind::CellOrder, ..ExperimentFile::default() };

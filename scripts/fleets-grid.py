@@ -6,15 +6,30 @@ it is generated:   python3 scripts/fleets-grid.py > grids/fleets.toml
 """
 
 SEEDS = 10
-# Five start stations per map, spread over the free space (robots take the first n).
+# Five start stations per map, spread over the free space (robots take the first n). On the
+# thesis maps (free space x, y in [1, 10] m) the corner stations sit half a robot's width off
+# both walls, so that every robot's body fits at its start: `free` gives those walls.
 MAPS = {
-    "thesis-1": dict(starts=[(1.3, 1.3), (9.7, 9.7), (9.7, 1.3), (1.3, 9.7), (5.5, 9.5)], evaluations=40000, large=False),
-    "thesis-2": dict(starts=[(1.3, 1.3), (9.7, 9.7), (9.7, 1.3), (1.3, 9.7), (5.5, 9.5)], evaluations=40000, large=False),
-    "office": dict(starts=[(2.0, 2.0), (28.0, 18.0), (28.0, 2.0), (2.0, 18.0), (15.0, 10.0)], evaluations=30000, large=True),
-    "../shared/maps/basement.yaml": dict(
-        starts=[(0.0, 0.0), (-15.0, 10.0), (-18.0, 0.0), (-5.0, 12.0), (-10.0, 5.0)], evaluations=45000, large=True
+    "thesis-1": dict(starts=[(1.3, 1.3), (9.7, 9.7), (9.7, 1.3), (1.3, 9.7), (5.5, 9.5)], evaluations=40000, large=False, free=(1.0, 10.0)),
+    "thesis-2": dict(starts=[(1.3, 1.3), (9.7, 9.7), (9.7, 1.3), (1.3, 9.7), (5.5, 9.5)], evaluations=40000, large=False, free=(1.0, 10.0)),
+    # Elsewhere the stations fit a 1 m robot's body (the nearest such points, on a 0.25 m
+    # lattice, to the stations first chosen by eye).
+    "office": dict(starts=[(2.0, 2.0), (28.0, 18.0), (28.0, 2.0), (2.0, 18.0), (15.0, 10.5)], evaluations=30000, large=True),
+    "experiments/maps/basement.yaml": dict(
+        starts=[(0.0, 0.0), (-15.25, 10.0), (-17.5, -0.25), (-5.0, 12.0), (-10.25, 5.0)], evaluations=45000, large=True
     ),
 }
+BASE_WIDTH = 0.6
+
+
+def fitted(start, width, free):
+    """The station moved inwards so that a robot `width` wide keeps half its width from the walls
+    at `free` = (low, high) on both axes; unchanged where it already does (or off the thesis maps)."""
+    if free is None:
+        return start
+    lo, hi = free
+    half = width / 2
+    return tuple(round(min(max(c, lo + half), hi - half), 6) for c in start)
 # Fleets: label -> list of (width m, speed m/s); None = the base [robot] (0.6 m, 0.3 m/s).
 FLEETS = {
     "homo-1": [None],
@@ -27,13 +42,14 @@ FLEETS = {
 }
 
 
-def robots(fleet, starts):
+def robots(fleet, starts, free):
     out = []
     for k, spec in enumerate(FLEETS[fleet]):
         fields = [f'name = "r{k + 1}"']
         if spec is not None:
             fields += [f"width = {spec[0]}", f"speed = {spec[1]}"]
-        fields.append(f"start = [{starts[k][0]}, {starts[k][1]}]")
+        x, y = fitted(starts[k], BASE_WIDTH if spec is None else spec[0], free)
+        fields.append(f"start = [{x}, {y}]")
         out.append("{ " + ", ".join(fields) + " }")
     return "[" + ", ".join(out) + "]"
 
@@ -47,7 +63,7 @@ def main():
 # by the centralised fleet GA, the decentralised negotiation, area division (DARP style, runs
 # once: it ignores the seed) and the waypoint planner's teams (homogeneous fleets only). The
 # GAs and the waypoint teams get the same number of single-path evaluations on a map.
-# Run from the repository root (the basement map is read from ../shared/maps, not copied):
+# Run from the repository root (the basement map is shipped in experiments/maps):
 #   covga grid grids/fleets.toml --jobs 2 --out out/fleets
 #   covga report out/fleets
 seed = 2026
@@ -106,7 +122,7 @@ axes = {{ "stations.start" = [[{s[0]}, {s[1]}]], "budget.evaluations" = [{spec['
         for f in FLEETS:
             print(f"""[[conditional]]
 when = {{ "map.source" = "{m}", "fleet.name" = "{f}" }}
-axes = {{ "robots" = [{robots(f, spec['starts'])}] }}
+axes = {{ "robots" = [{robots(f, spec['starts'], spec.get('free'))}] }}
 """)
 
 

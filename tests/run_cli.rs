@@ -369,7 +369,7 @@ fn stall_and_wall_clock_stops_are_reported() {
 fn fleet(extra: &str) -> String {
     format!(
         "{}[fleet]\nround_iterations = 50\n[[robots]]\nname = \"narrow\"\nwidth = 0.4\nstart = [1.3, 1.3]\n\
-         [[robots]]\nname = \"wide\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.7, 9.7]\n{extra}",
+         [[robots]]\nname = \"wide\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.55, 9.55]\n{extra}",
         small("")
     )
 }

@@ -353,13 +353,24 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Why the common scorer calls a plan not executable, in words.
+pub fn not_executable_why(s: &crate::coverage::score::Score) -> String {
+    if s.obstacle_cells > 0 {
+        format!("the robot's body touches {} occupied or unknown cells", s.obstacle_cells)
+    } else {
+        "the robot's body reaches past the map's edge".to_string()
+    }
+}
+
 fn print_table(r: &Report) {
     let m = &r.metrics;
     let c = &r.common;
-    let rows: [(&str, String); 22] = [
+    let executable = if c.executable { "yes".to_string() } else { format!("NO ({})", not_executable_why(c)) };
+    let rows: [(&str, String); 23] = [
         ("map", r.map.to_string()),
         ("path", r.source.clone()),
         ("agents", r.agents.to_string()),
+        ("executable", executable),
         ("cells swept (cov_pix)", m.cells_swept.to_string()),
         ("unique cells", m.unique_cells.to_string()),
         ("crossings (cross_pix)", m.crossings.to_string()),

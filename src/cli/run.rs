@@ -138,10 +138,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         if s.executable {
             println!("executable: yes");
         } else {
-            println!(
-                "executable: NO (the plan sweeps {} obstacle or unknown cells or leaves the map)",
-                s.obstacle_cells
-            );
+            println!("executable: NO ({})", super::eval::not_executable_why(s));
         }
         if summary.planner_feasible {
             println!("planner constraints: met");

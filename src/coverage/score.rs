@@ -80,8 +80,10 @@ pub struct CameraSpec {
 pub struct Score {
     /// Paths in the plan.
     pub agents: usize,
-    /// Whether a robot can drive the plan: its footprint sweeps no obstacle or unknown cell
-    /// and stays on the map (the one executability rule of every planner's plans).
+    /// Whether a robot can drive the plan: its body (a disc of the robot's width) touches no
+    /// occupied or unknown cell and stays on the map at every point of every path, vertices,
+    /// turns and end caps included ([`crate::map::body`]; the one executability rule of every
+    /// planner's plans).
     pub executable: bool,
     /// `cov_final` over all free cells (003 eq. 3.6 with `A_pix` = free cells).
     pub cov_final_free: f64,
@@ -101,8 +103,12 @@ pub struct Score {
     pub cells_swept: u64,
     /// `cross_pix`: sweeps of cells already swept.
     pub crossings: u64,
-    /// `obj_pix`: sweeps of obstacle cells.
+    /// Distinct occupied or unknown cells the robot's body touches along the plan
+    /// ([`crate::map::body::BodyContact::wall_cells`]).
     pub obstacle_cells: u64,
+    /// `obj_pix` (003 eq. 3.13): sweeps of obstacle cells by the footprint's rectangles, the
+    /// count 003's penalty `f_obstacle` reads (so `f_free` and `f_reach` are 003's).
+    pub obstacle_sweeps: u64,
     /// Free cells (`A_pix`).
     pub free_cells: u64,
     /// Cells the footprint can sweep from the stations.
@@ -150,6 +156,7 @@ impl Score {
             ("cells_swept", self.cells_swept.to_string()),
             ("crossings", self.crossings.to_string()),
             ("obstacle_cells", self.obstacle_cells.to_string()),
+            ("obstacle_sweeps", self.obstacle_sweeps.to_string()),
             ("free_cells", self.free_cells.to_string()),
             ("reachable_cells", self.reachable_cells.to_string()),
             ("pocket_cells", self.pocket_cells.to_string()),
@@ -185,7 +192,7 @@ pub fn reach_coverage(reach: &Reach, scratch: &SweepScratch) -> f64 {
 /// Scores plans on one map for one robot, camera and set of stations.
 pub struct Scorer {
     grid: CoverageGrid,
-    bounds: (Point, Point),
+    map: GridMap,
     robot: Footprint,
     resolution: f64,
     projection: Projection,
@@ -218,10 +225,9 @@ impl Scorer {
     ) -> Self {
         let narrowest = widths.iter().copied().fold(robot.width, f64::min);
         let reach = Reach::for_width(map, narrowest, stations);
-        let far = map.origin() + nalgebra::Vector2::new(map.width_m(), map.height_m());
         Self {
             grid: CoverageGrid::new(map),
-            bounds: (map.origin(), far),
+            map: map.clone(),
             robot,
             resolution: map.resolution(),
             projection,
@@ -270,13 +276,13 @@ impl Scorer {
             lengths.push(len);
             times.push(len / r.speed + motion::rotation_time(turn, r.rot_speed));
         }
-        let on_map = paths.iter().zip(&widths).all(|(p, &w)| footprint_on_map(self.bounds, p, w));
+        let body = crate::map::body::contact(&self.map, paths, &widths);
         // Pose by pose: for one plan that is faster than segment masks, which help only when
         // segments come again (`benches/camera.rs`).
         let [cam_walls_free, cam_open_free, cam_walls_reach, cam_open_reach] = self.camera.coverage_by_pose(paths);
         Score {
             agents: paths.len(),
-            executable: m.obstacle_cells == 0 && on_map,
+            executable: body.is_clear(),
             cov_final_free: th.cov_final,
             cov_final_reach: cov_reach,
             t_final: th.t_final,
@@ -286,7 +292,8 @@ impl Scorer {
             unique_reach_cells: unique_reach,
             cells_swept: m.cells_swept,
             crossings: m.crossings,
-            obstacle_cells: m.obstacle_cells,
+            obstacle_cells: body.wall_cells,
+            obstacle_sweeps: m.obstacle_cells,
             free_cells: m.area_cells,
             reachable_cells: reachable,
             pocket_cells: self.reach.pocket_cells() as u64,
@@ -303,28 +310,6 @@ impl Scorer {
             agent_time_s: times,
         }
     }
-}
-
-/// Whether the footprint of width `width` swept along `path` stays inside the map's
-/// rectangle `bounds` (corner, far corner), to 1e-6 m (the slack of the planners' clearance
-/// test, so that lanes half a width off the edge stay on): every swept rectangle's corners (a
-/// rectangle is convex), and a path of one point lies on the map.
-pub fn footprint_on_map(bounds: (Point, Point), path: &[Point], width: f64) -> bool {
-    const EPS: f64 = 1e-6;
-    let (lo, hi) = bounds;
-    let inside = |p: Point| p.x >= lo.x - EPS && p.y >= lo.y - EPS && p.x <= hi.x + EPS && p.y <= hi.y + EPS;
-    if path.len() == 1 {
-        return inside(path[0]);
-    }
-    path.windows(2).all(|w| {
-        let d = w[1] - w[0];
-        let len = d.norm();
-        if len < crate::geom::ZERO_LENGTH {
-            return inside(w[0]);
-        }
-        let n = nalgebra::Vector2::new(-d.y, d.x) * (0.5 * width / len);
-        [w[0] + n, w[0] - n, w[1] + n, w[1] - n].into_iter().all(inside)
-    })
 }
 
 /// The violation of a plan that sweeps obstacle cells, in words (none when it sweeps none):
@@ -416,17 +401,17 @@ mod tests {
     fn score_columns_are_named_and_ordered_with_their_values() {
         let sc = Score { agents: 3, cov_final_free: 0.25, crossings: 17, makespan_s: 12.5, ..Score::default() };
         let cols = sc.columns();
-        assert_eq!(cols.len(), 24);
+        assert_eq!(cols.len(), 25);
         assert_eq!(cols[0], ("agents", "3".to_string()));
         assert_eq!(cols[1], ("executable", "false".to_string()));
         assert_eq!(cols[2], ("cov_final_free", "0.25".to_string()));
         assert_eq!(cols[10], ("crossings", "17".to_string()));
-        assert_eq!(cols[23], ("makespan_s", "12.5".to_string()));
+        assert_eq!(cols[24], ("makespan_s", "12.5".to_string()));
         assert_eq!(Score::column_names(), cols.iter().map(|(k, _)| *k).collect::<Vec<_>>());
         let mut names = Score::column_names();
         names.sort_unstable();
         names.dedup();
-        assert_eq!(names.len(), 24, "no column twice");
+        assert_eq!(names.len(), 25, "no column twice");
     }
 
     #[test]

@@ -226,9 +226,18 @@ impl ExperimentFile {
         map.check_station(end, "end").map_err(|m| err("stations.end", m))?;
         let robot = Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed };
         robot.check_fits(&map).map_err(|m| err("robot.width", m))?;
-        if end != start {
+        {
+            use crate::map::reach::{station_misfit, unreachable_end};
             let clear = crate::map::clearance::Clearance::new(&map, robot.width);
-            if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {
+            if let Some(why) = station_misfit(&clear, start, "the start") {
+                return Err(err("stations.start", why));
+            }
+            if let Some(why) = station_misfit(&clear, end, "the end") {
+                return Err(err("stations.end", why));
+            }
+            if end != start
+                && let Some(why) = unreachable_end(&clear, start, end)
+            {
                 return Err(err("stations.end", why));
             }
         }

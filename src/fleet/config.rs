@@ -92,9 +92,18 @@ pub fn validate(
         let end = e.end.map_or(s, |p| Point::new(p[0], p[1]));
         map.check_station(s, "the start").map_err(|m| ConfigError::new(origin, &named("start"), m))?;
         map.check_station(end, "the end").map_err(|m| ConfigError::new(origin, &named("end"), m))?;
-        if end != s {
+        {
+            use crate::map::reach::{station_misfit, unreachable_end};
             let clear = crate::map::clearance::Clearance::new(map, width);
-            if let Some(why) = crate::map::reach::unreachable_end(&clear, s, end) {
+            if let Some(why) = station_misfit(&clear, s, "the start") {
+                return Err(ConfigError::new(origin, &named("start"), why));
+            }
+            if let Some(why) = station_misfit(&clear, end, "the end") {
+                return Err(ConfigError::new(origin, &named("end"), why));
+            }
+            if end != s
+                && let Some(why) = unreachable_end(&clear, s, end)
+            {
                 return Err(ConfigError::new(origin, &named("end"), why));
             }
         }

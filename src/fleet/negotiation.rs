@@ -238,7 +238,7 @@ mod tests {
         let map = preset("thesis-1").unwrap();
         let fleet = FleetFile::parse(
             "[[robots]]\nname = \"a\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
-             [[robots]]\nname = \"b\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.7, 9.7]\n",
+             [[robots]]\nname = \"b\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.55, 9.55]\n",
             "f.toml",
             &map,
         )

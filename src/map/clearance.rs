@@ -11,7 +11,7 @@ use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
 /// Slack on the clearance test, so that lanes exactly half a width off a wall are drivable.
-const CLEARANCE_EPS: f64 = 1e-6;
+pub(crate) const CLEARANCE_EPS: f64 = 1e-6;
 
 /// Clearance queries for a robot of radius `width / 2` on one map.
 #[derive(Clone, Debug)]
@@ -70,6 +70,15 @@ impl<'m> Clearance<'m> {
         let (ox, oy) = (m.origin().x, m.origin().y);
         let lim = self.radius - CLEARANCE_EPS;
         !(p.x - ox < lim || p.y - oy < lim || ox + m.width_m() - p.x < lim || oy + m.height_m() - p.y < lim)
+    }
+
+    /// The distance from `p` to the nearest non-free cell square or the map's edge, capped at
+    /// the window's reach (`radius + resolution`): what a station's refusal quotes.
+    pub fn clearance_at(&self, p: Point) -> f64 {
+        let m = &*self.map;
+        let (o, cap) = (m.origin(), self.window as f64 * m.resolution());
+        let edge = (p.x - o.x).min(p.y - o.y).min(o.x + m.width_m() - p.x).min(o.y + m.height_m() - p.y);
+        self.nearest_cell_d2(p).sqrt().min(edge).min(cap)
     }
 
     /// The smallest squared distance from `p` to a non-free cell of the window about it

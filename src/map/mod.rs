@@ -5,6 +5,7 @@
 //! (spec thesis-ga §0), so row 0 is the bottom row; image row 0 is the top row and is flipped
 //! on load and save. Unknown cells are not free.
 
+pub mod body;
 pub mod clearance;
 pub mod coverable;
 pub mod presets;

@@ -64,6 +64,23 @@ pub fn reachable_centres(clear: &Clearance, stations: &[Point]) -> Vec<bool> {
     centres
 }
 
+/// Why the robot's body does not fit at the station `p` (`what` names it), if it does not:
+/// its centre must keep half the robot's width from every non-free cell and the map's edge
+/// (the body of [`super::body`]); the message quotes the clearance there.
+pub fn station_misfit(clear: &Clearance, p: Point, what: &str) -> Option<String> {
+    if clear.fits_geometry(p) {
+        return None;
+    }
+    Some(format!(
+        "a {} m robot does not fit at {what} ({}, {}) m: its body would touch a wall, an unknown cell or the map's edge (clearance there {:.4} m, at least {} m needed: half the robot's width)",
+        2.0 * clear.radius(),
+        p.x,
+        p.y,
+        clear.clearance_at(p),
+        clear.radius()
+    ))
+}
+
 /// Why `end` is no place to end a plan that starts at `start` for a robot of the
 /// clearance's width, if it is none: the disc does not fit there, or no path of its centre
 /// from `start` keeps clear of every wall.

@@ -141,7 +141,7 @@ pub fn panel_label(label: &str) -> String {
     label
         .split(", ")
         .map(|part| match part.split_once('=') {
-            // A map file is named by its stem (`../shared/maps/basement.yaml` → `basement`).
+            // A map file is named by its stem (`experiments/maps/basement.yaml` → `basement`).
             Some((key, value)) => {
                 let value = if value.contains('/') {
                     std::path::Path::new(value).file_stem().map_or(value.into(), |s| s.to_string_lossy())

@@ -114,6 +114,13 @@ impl MapRuns<'_> {
                     effect(cov),
                     cam.map_or(String::new(), |x| format!(", camera wall coverage {}", effect(x)))
                 ));
+            } else {
+                let n = |l: &str| (self.rows)(l).1.len();
+                out.push(format!(
+                    "On {name}, {search} optimising the footprint and the same search optimising the camera cannot be compared on executable plans: {} and {} of their plans are executable (at least 2 each are needed).",
+                    n(f),
+                    n(c)
+                ));
             }
         }
         // One objective, two searches: A₁₂ = P(waypoint search > thesis GA) on the objective.
