@@ -264,6 +264,11 @@ pub struct ReportArgs {
     /// study (e.g. one per figure of 003) stand side by side.
     #[arg(long)]
     name: Option<String>,
+    /// An earlier `runs.csv` of the same study (e.g. the committed one before a re-run): also
+    /// write `rescore.md`, what the re-run changed (executable plans per planner and map, the
+    /// columns that moved), into the report folder.
+    #[arg(long, value_name = "RUNS_CSV")]
+    previous: Option<PathBuf>,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
@@ -280,5 +285,13 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
         other => CliError::internal(other),
     })?;
     println!("wrote {} and the figures beside it", path.display());
+    if let Some(previous) = &a.previous {
+        let folder = path.parent().unwrap_or(&a.dir);
+        let file = crate::report::rescore::write(&a.dir, previous, folder).map_err(|e| match e {
+            crate::report::ReportError::Input(m) => CliError::Input(m),
+            other => CliError::internal(other),
+        })?;
+        println!("wrote {}", file.display());
+    }
     Ok(())
 }

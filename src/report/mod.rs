@@ -18,6 +18,7 @@ pub mod claims;
 pub mod figures;
 pub mod fleet_report;
 mod report_tables;
+pub mod rescore;
 pub mod search_objective;
 pub mod stats;
 pub mod thesis_report;
