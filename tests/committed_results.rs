@@ -25,7 +25,6 @@ const SCORED_BEFORE_THE_BODY_RULE: &[&str] = &[
     "cell-order",
     "fleets",
     "init-dist",
-    "smoke",
     "thesis-real-maps",
     "thesis-seed-bound",
     "thesis-table-4-3",
