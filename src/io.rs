@@ -19,6 +19,49 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     std::fs::rename(&tmp, path)
 }
 
+/// An advisory lock on a results folder (the file `.covga.lock` in it), held while a covga
+/// process writes there and released by the operating system when the process ends, however it
+/// ends. Exclusive for a run or a whole study; shared for the shards of one study, which write
+/// one folder side by side (a Slurm job array), so that a whole-study run and a shard never
+/// write the same folder at once.
+pub struct FolderLock {
+    _file: std::fs::File,
+}
+
+impl FolderLock {
+    /// Takes the folder's lock, `exclusive` or shared, or says which process holds it.
+    pub fn take(dir: &Path, exclusive: bool) -> Result<Self, String> {
+        let path = dir.join(".covga.lock");
+        let mut file = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .read(true)
+            .write(true)
+            .open(&path)
+            .map_err(|e| format!("{}: cannot lock the folder: {e}", dir.display()))?;
+        #[cfg(unix)]
+        {
+            use std::io::{Read, Seek};
+            use std::os::fd::AsRawFd;
+            let mode = if exclusive { libc::LOCK_EX } else { libc::LOCK_SH };
+            // SAFETY: flock on a file descriptor this function owns; no memory is shared.
+            let rc = unsafe { libc::flock(file.as_raw_fd(), mode | libc::LOCK_NB) };
+            if rc != 0 {
+                let mut holder = String::new();
+                let _ = file.read_to_string(&mut holder);
+                let by = holder.trim().parse::<u32>().map_or(String::new(), |pid| format!(" by process {pid}"));
+                return Err(format!(
+                    "{}: in use{by}: another covga process is writing this folder now; wait for it or choose another folder",
+                    dir.display()
+                ));
+            }
+            // The holder's process id, for the next one's message (a shard overwrites another's).
+            let _ = file.set_len(0).and_then(|_| file.rewind()).and_then(|_| write!(file, "{}", std::process::id()));
+        }
+        Ok(Self { _file: file })
+    }
+}
+
 use crate::geom::Point;
 use std::path::PathBuf;
 

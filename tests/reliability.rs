@@ -326,6 +326,90 @@ const CASES: &[Case] = &[
     },
     Case { name: "report of a non-study folder", files: &[], args: &["report", "."], needle: "not a study folder" },
     Case {
+        name: "start where the robot's body touches a wall",
+        files: &[("e.toml", "[map]\nsource = \"thesis-1\"\n[stations]\nstart = [1.1, 5.0]\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`stations.start` a 0.6 m robot does not fit at the start (1.1, 5) m",
+    },
+    Case {
+        name: "cell_order from a corner of an all-free map",
+        files: &[
+            (
+                "e.toml",
+                "planner = \"cell_order\"\n[map]\nsource = \"free.pgm\"\nresolution = 0.2\n[stations]\nstart = [0.0, 0.0]\n",
+            ),
+            (
+                "free.pgm",
+                "P2\n10 10\n255\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n254 254 254 254 254 254 254 254 254 254\n",
+            ),
+        ],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "does not fit at the start (0, 0) m: its body would touch a wall, an unknown cell or the map's edge (clearance there 0.0000 m",
+    },
+    Case {
+        name: "eval pattern from a station where the body does not fit",
+        files: &[],
+        args: &["eval", "--map", "thesis-1", "--pattern", "boustrophedon", "--start", "1.1,5", "--out", "OUT"],
+        needle: "does not fit at --start (1.1, 5) m",
+    },
+    Case {
+        name: "huge pattern angle for a seeded thesis run",
+        files: &[("e.toml", "[thesis]\nseed_population = [\"boustrophedon\"]\n[pattern]\nangle_deg = 1e308\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`pattern.angle_deg` = 1e308",
+    },
+    Case {
+        name: "nan pattern angle for a seeded thesis run",
+        files: &[("e.toml", "[thesis]\nseed_population = [\"boustrophedon\"]\n[pattern]\nangle_deg = nan\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`pattern.angle_deg`",
+    },
+    Case {
+        name: "eval angle out of range",
+        files: &[],
+        args: &["eval", "--map", "thesis-1", "--angle", "1e308", "--out", "OUT"],
+        needle: "--angle = 1e308 is out of range",
+    },
+    Case {
+        name: "seed bound under Elite with re-initialisation",
+        files: &[(
+            "e.toml",
+            "[map]\nsource = \"thesis-1\"\n[thesis]\nselection = \"elite\"\np_mi = 0.1\nseed_population = [\"spiral\"]\nseed_bound = \"dominate\"\n",
+        )],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "needs thesis.p_mi = 0 (it is 0.1)",
+    },
+    Case {
+        name: "run into a folder holding another run's files",
+        files: &[("e.toml", SMALL), ("taken/best_genome.csv", "role,alpha_deg,dist_m\n")],
+        args: &["run", "e.toml", "--out", "taken"],
+        needle: "taken: holds files of another run (best_genome.csv)",
+    },
+    Case {
+        name: "report of a study with a run recorded twice",
+        files: &[("study.json", "{\"runs\": 2}"), ("runs.csv", "run_id,cov_final_free\na,0.5\na,0.6\n")],
+        args: &["report", "."],
+        needle: "run a is recorded twice",
+    },
+    Case {
+        name: "report of a share above 1",
+        files: &[("study.json", "{\"runs\": 1}"), ("runs.csv", "run_id,cov_final_free\na,1.7\n")],
+        args: &["report", "."],
+        needle: "run a has `cov_final_free` = 1.7: allowed [0, 1]",
+    },
+    Case {
+        name: "report of a negative time",
+        files: &[("study.json", "{\"runs\": 1}"), ("runs.csv", "run_id,time_s\na,-5\n")],
+        args: &["report", "."],
+        needle: "run a has `time_s` = -5: allowed [0, inf]",
+    },
+    Case {
+        name: "report of a corrupt study.json",
+        files: &[("study.json", "{\"runs\": "), ("runs.csv", "run_id,time_s\na,5\n")],
+        args: &["report", "."],
+        needle: "study.json: not a covga study description",
+    },
+    Case {
         name: "maps into a file",
         files: &[("taken", "x")],
         args: &["maps", "--out", "taken"],
@@ -339,7 +423,9 @@ fn every_bad_input_exits_2_with_one_line_and_writes_nothing() {
     for case in CASES {
         let dir = tempfile::tempdir().unwrap();
         for (name, text) in case.files {
-            std::fs::write(dir.path().join(name), text).unwrap();
+            let path = dir.path().join(name);
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(path, text).unwrap();
         }
         let before = listing(dir.path());
         let started = std::time::Instant::now();
@@ -507,4 +593,58 @@ fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
     };
     assert_eq!(rows("killed").len(), 12);
     assert_eq!(rows("killed"), rows("reference"));
+}
+
+/// Two processes writing one folder: a second `covga run --out D` while the first runs, and a
+/// shard beside a whole-study grid, are refused with exit 2 naming the process that holds it;
+/// the first finishes unharmed. Two shards of one study may write the folder together.
+#[test]
+fn a_folder_in_use_by_another_covga_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let long = "seed = 3\n[map]\nsource = \"thesis-1\"\n[thesis]\npop_min = 40\ninit_actions = 30\n[budget]\niterations = 1000000\nwall_clock_s = 4\n";
+    std::fs::write(dir.path().join("long.toml"), long).unwrap();
+    std::fs::write(dir.path().join("short.toml"), SMALL).unwrap();
+    let spawn = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_covga"))
+            .current_dir(dir.path())
+            .args(args)
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap()
+    };
+    let wait_for_lock = |folder: &str| {
+        let lock = dir.path().join(folder).join(".covga.lock");
+        let started = std::time::Instant::now();
+        while !std::fs::read_to_string(&lock).is_ok_and(|t| !t.trim().is_empty()) {
+            assert!(started.elapsed().as_secs_f64() < 10.0, "no lock in {folder}");
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+    };
+    let first = spawn(&["run", "long.toml", "--quiet", "--out", "D"]);
+    wait_for_lock("D");
+    let second = covga(dir.path(), &["run", "long.toml", "--quiet", "--out", "D"].map(String::from));
+    let err = String::from_utf8_lossy(&second.stderr);
+    assert_eq!(second.status.code(), Some(2), "{err}");
+    assert!(err.contains(&format!("D: in use by process {}", first.id())), "{err}");
+    let out = first.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.path().join("D/summary.json").exists());
+    // A whole-study grid holds its folder: a shard beside it is refused.
+    let grid = "[base]\n[base.thesis]\npop_min = 40\ninit_actions = 30\n[base.budget]\niterations = 1000000\nwall_clock_s = 2\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n";
+    std::fs::write(dir.path().join("g.toml"), grid).unwrap();
+    let whole = spawn(&["grid", "g.toml", "--jobs", "1", "--out", "S"]);
+    wait_for_lock("S");
+    let shard = covga(dir.path(), &["grid", "g.toml", "--shard", "0/2", "--out", "S"].map(String::from));
+    let err = String::from_utf8_lossy(&shard.stderr);
+    assert_eq!(shard.status.code(), Some(2), "{err}");
+    assert!(err.contains("in use by process"), "{err}");
+    let out = whole.wait_with_output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    // Two shards of one study, at once, into one folder.
+    let a = spawn(&["grid", "g.toml", "--jobs", "1", "--shard", "0/2", "--out", "T"]);
+    wait_for_lock("T");
+    let b = covga(dir.path(), &["grid", "g.toml", "--jobs", "1", "--shard", "1/2", "--out", "T"].map(String::from));
+    assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
+    assert!(a.wait_with_output().unwrap().status.success());
 }

@@ -132,8 +132,9 @@ fn check_robot(a: &EvalArgs) -> Result<Footprint, CliError> {
             a.rot_speed
         )));
     }
-    if !a.angle.is_finite() {
-        return Err(CliError::Input(format!("--angle = {} is not a finite number of degrees", a.angle)));
+    if !(a.angle.is_finite() && (-360.0..=360.0).contains(&a.angle)) {
+        let angle = crate::io::short_number(a.angle);
+        return Err(CliError::Input(format!("--angle = {angle} is out of range: allowed [-360, 360] degrees")));
     }
     Ok(Footprint { width: a.width, speed: a.speed, rot_speed: a.rot_speed })
 }

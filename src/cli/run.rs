@@ -44,6 +44,35 @@ impl Observer for Progress {
     }
 }
 
+/// Refuses a results folder that holds files of another run: a folder is this run's when it
+/// is empty (but for the folder lock) or its `config.toml` is the one this run writes (the
+/// same experiment run again). Another run's `best_genome.csv` or `history.png` would
+/// otherwise stay beside this run's results.
+fn check_results_folder(dir: &std::path::Path, file: &ExperimentFile) -> Result<(), String> {
+    let entries: Vec<String> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != ".covga.lock")
+        .collect();
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let ours = toml::to_string_pretty(file).expect("experiment files serialise");
+    if std::fs::read_to_string(dir.join("config.toml")).is_ok_and(|t| t == ours) {
+        return Ok(());
+    }
+    let mut shown = entries.clone();
+    shown.sort();
+    shown.truncate(4);
+    Err(format!(
+        "{}: holds files of another run ({}{}): choose an empty folder with --out, or remove them",
+        dir.display(),
+        shown.join(", "),
+        if entries.len() > shown.len() { ", …" } else { "" }
+    ))
+}
+
 pub fn run(a: RunArgs) -> Result<(), CliError> {
     let (mut file, origin, base, stem, ignored) = match &a.file {
         Some(path) => {
@@ -80,15 +109,29 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         .map_err(CliError::input)?;
     let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
     let existed = dir.exists();
+    let lock_existed = dir.join(".covga.lock").exists();
     std::fs::create_dir_all(&dir)
         .map_err(|e| CliError::Input(format!("{}: cannot create the results folder: {e}", dir.display())))?;
-    // A run refused by its planner leaves no folder behind that it made itself (the folder is
-    // removed only while still empty).
+    // A refused run leaves nothing behind that it made itself: its lock file, and the folder
+    // while still empty.
     let discard_folder = || {
+        if !lock_existed {
+            let _ = std::fs::remove_file(dir.join(".covga.lock"));
+        }
         if !existed {
             let _ = std::fs::remove_dir(&dir);
         }
     };
+    let _lock = crate::io::FolderLock::take(&dir, true).map_err(|m| {
+        if !existed {
+            let _ = std::fs::remove_dir(&dir);
+        }
+        CliError::Input(m)
+    })?;
+    check_results_folder(&dir, &exp.file).map_err(|m| {
+        discard_folder();
+        CliError::Input(m)
+    })?;
     let show = !a.quiet && std::io::stderr().is_terminal();
     let length = exp.planner.progress_length(&exp.budget);
     let mut progress = Progress(super::progress_bar(length, "it", show));

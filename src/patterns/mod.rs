@@ -212,18 +212,24 @@ impl Route {
 
 /// Checks the inputs of [`plan`] as a user gives them, naming the input that is wrong with
 /// `names` (`[start, end, width]`, e.g. `["--start", "--end", "--width"]`): both stations on
-/// free cells of the map, a lane count within [`MAX_LANES`], and an end the robot can reach
-/// from the start.
+/// free cells of the map where the robot's body fits, a lane count within [`MAX_LANES`], and
+/// an end the robot can reach from the start.
 pub fn check_plan_inputs(map: &GridMap, width: f64, start: Point, end: Point, names: [&str; 3]) -> Result<(), String> {
+    use crate::map::reach::{station_misfit, unreachable_end};
     let [start_name, end_name, width_name] = names;
     map.check_station(start, start_name)?;
     map.check_station(end, end_name)?;
     check_lane_count(map, width).map_err(|e| format!("{width_name}: {e}"))?;
-    if end != start {
-        let clear = Clearance::new(map, width);
-        if let Some(why) = crate::map::reach::unreachable_end(&clear, start, end) {
-            return Err(format!("{end_name}: {why}"));
+    let clear = Clearance::new(map, width);
+    for (p, name) in [(start, start_name), (end, end_name)] {
+        if let Some(why) = station_misfit(&clear, p, name) {
+            return Err(why);
         }
+    }
+    if end != start
+        && let Some(why) = unreachable_end(&clear, start, end)
+    {
+        return Err(format!("{end_name}: {why}"));
     }
     Ok(())
 }

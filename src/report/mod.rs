@@ -139,6 +139,33 @@ fn cell_matches(cell: &str, want: &str) -> bool {
 /// report would print `NaN ± NaN` or an infinite hypervolume as if they were results.
 fn check_finite(t: &RunsTable) -> Result<(), String> {
     let id = t.col("run_id");
+    if let Some(i) = id {
+        let mut seen = std::collections::BTreeSet::new();
+        for row in &t.rows {
+            if !seen.insert(row[i].as_str()) {
+                return Err(format!(
+                    "run {} is recorded twice: every run id appears once (was the file edited by hand?)",
+                    row[i]
+                ));
+            }
+        }
+    }
+    // Shares lie in [0, 1]; lengths, times and counts are not negative.
+    let shares =
+        ["cov_final_free", "cov_final_reach", "cam_walls_free", "cam_open_free", "cam_walls_reach", "cam_open_reach"];
+    for name in crate::coverage::score::Score::column_names() {
+        let Some(c) = t.col(name) else { continue };
+        let (lo, hi) = if shares.contains(&name) { (0.0, 1.0) } else { (0.0, f64::INFINITY) };
+        for row in &t.rows {
+            if row[c].parse::<f64>().is_ok_and(|v| v.is_finite() && !(lo..=hi).contains(&v)) {
+                return Err(format!(
+                    "run {} has `{name}` = {}: allowed [{lo}, {hi}] (was the file edited by hand?)",
+                    id.map_or("?", |i| row[i].as_str()),
+                    row[c]
+                ));
+            }
+        }
+    }
     for name in crate::coverage::score::Score::column_names() {
         let Some(c) = t.col(name) else { continue };
         for row in &t.rows {
@@ -178,6 +205,16 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         return Err(ReportError::Input(format!(
             "{}: not a study folder (no study.json); run `covga grid` into it first",
             dir.display()
+        )));
+    }
+    let runs_count = std::fs::read_to_string(dir.join("study.json"))
+        .map_err(|e| e.to_string())
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).map_err(|e| e.to_string()))
+        .and_then(|m| m.get("runs").and_then(serde_json::Value::as_u64).ok_or_else(|| "no `runs` count".to_string()));
+    if let Err(e) = runs_count {
+        return Err(ReportError::Input(format!(
+            "{}: not a covga study description ({e}); it is written by `covga grid`",
+            dir.join("study.json").display()
         )));
     }
     let runs_file = dir.join("runs.csv");
@@ -244,7 +281,7 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     let incomplete = incomplete_note(dir, recorded);
     if self::fleet_report::applies(&t) {
         self::fleet_report::write(dir, &t, &out, incomplete.as_deref())?;
-        return Ok(out);
+        return Ok(out.join("summary.md"));
     }
     let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
     let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();

@@ -57,16 +57,7 @@ impl GroupTables<'_> {
         // A configuration's cells: its parameter values, replicates, means with CIs, mean f.
         let config_cells = |(_, rows, c, tf, f): &ConfigRow| {
             let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
-            format!(
-                "{} | {} | {:.4} ± {:.4} | {:.4} ± {:.4} | {:.4} |",
-                vals.join(" | "),
-                rows.len(),
-                c.0,
-                c.1,
-                tf.0,
-                tf.1,
-                f
-            )
+            format!("{} | {} | {} | {} | {:.4} |", vals.join(" | "), rows.len(), mean_ci_cell(*c), mean_ci_cell(*tf), f)
         };
         let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
         if best.len() > groups.len() {
@@ -162,23 +153,20 @@ impl GroupTables<'_> {
                     .collect(),
             }
             .into_iter()
-            .map(|f| if f.0.is_finite() { format!("{:.4} ± {:.4}", f.0, f.1) } else { "–".to_string() })
+            .map(mean_ci_cell)
             .collect();
             let all = ci("cov_final_free", &g.rows);
             let _ = writeln!(
                 md,
-                "| {} | {} | {}/{} | {:.4} ± {:.4} | {:.4} ± {:.4} | {} | {:.4} ± {:.4} |",
+                "| {} | {} | {}/{} | {} | {} | {} | {} |",
                 g.label,
                 g.rows.len(),
                 drivable.len(),
                 g.rows.len(),
-                c.0,
-                c.1,
-                tf.0,
-                tf.1,
+                mean_ci_cell(c),
+                mean_ci_cell(tf),
                 f_cells.join(" | "),
-                all.0,
-                all.1
+                mean_ci_cell(all)
             );
         }
         // f1 and f2 are different functions: configurations are ranked by f within one
@@ -263,5 +251,15 @@ impl GroupTables<'_> {
             None => "– | – | – | –".to_string(),
         };
         let _ = writeln!(md, "| {p} | {label} | {k} | {stats} | {} |", medians.join(" · "));
+    }
+}
+
+/// A table cell of a mean and its 95 % CI half-width: "–" without runs, the mean alone with
+/// "(1 run)" where one run gives no interval.
+fn mean_ci_cell((mean, half): (f64, f64)) -> String {
+    match (mean.is_finite(), half.is_finite()) {
+        (false, _) => "–".to_string(),
+        (true, false) => format!("{mean:.4} (1 run)"),
+        (true, true) => format!("{mean:.4} ± {half:.4}"),
     }
 }

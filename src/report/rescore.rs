@@ -42,8 +42,44 @@ pub fn rescore_markdown(new: &RunsTable, old: &RunsTable, old_label: &str) -> St
         only_new,
         only_old
     );
-    md.push_str(&status_table(new, old, &matched));
+    md.push_str(&shares_table(new, old));
+    if !matched.is_empty() {
+        md.push_str(&status_table(new, old, &matched));
+    }
     md.push_str(&column_changes(new, old, &matched));
+    md
+}
+
+/// Executable plans per (planner, map) out of all runs of each table, matched or not (a
+/// re-run whose configurations changed, and so its run ids, is compared this way alone).
+fn shares_table(new: &RunsTable, old: &RunsTable) -> String {
+    let count = |t: &RunsTable| -> BTreeMap<(String, String), (usize, usize)> {
+        let (p, m, e) = (planner_col(t), t.col("map"), t.col("executable"));
+        let mut out: BTreeMap<(String, String), (usize, usize)> = BTreeMap::new();
+        for r in &t.rows {
+            let key = (p.map_or(String::new(), |c| r[c].clone()), m.map_or(String::new(), |c| r[c].clone()));
+            let slot = out.entry(key).or_default();
+            slot.0 += 1;
+            slot.1 += usize::from(e.is_some_and(|c| r[c] == "true"));
+        }
+        out
+    };
+    let (now, before) = (count(new), count(old));
+    let mut keys: Vec<&(String, String)> = now.keys().chain(before.keys()).collect();
+    keys.sort();
+    keys.dedup();
+    let cell = |c: Option<&(usize, usize)>| c.map_or("–".to_string(), |(n, e)| format!("{e} of {n}"));
+    let mut md = String::from(
+        "## Executable plans per planner and map, all runs
+
+| planner | map | executable before | executable now |
+|---|---|---|---|
+",
+    );
+    for k in keys {
+        let _ = writeln!(md, "| {} | {} | {} | {} |", k.0, k.1, cell(before.get(k)), cell(now.get(k)));
+    }
+    md.push('\n');
     md
 }
 
@@ -67,7 +103,7 @@ fn status_table(new: &RunsTable, old: &RunsTable, matched: &[&String]) -> String
         c.gained += usize::from(!b && a);
     }
     let mut md = String::from(
-        "## Executable plans, before and after\n\n| planner | map | runs | executable before | executable now | lost | gained |\n|---|---|---|---|---|---|---|\n",
+        "## Executable plans of the runs in both tables, before and after\n\n| planner | map | runs | executable before | executable now | lost | gained |\n|---|---|---|---|---|---|---|\n",
     );
     let mut total = StatusCounts::default();
     for ((planner, map), c) in &counts {
@@ -185,6 +221,10 @@ mod tests {
         assert!(md.contains("| executable | 2 |") && md.contains("| obstacle_cells | 2 |"), "{md}");
         assert!(!md.contains("| cov_final_free |") && !md.contains("| wall_s |"), "{md}");
         assert!(md.contains("Columns only now: `obstacle_sweeps`."), "{md}");
+        assert!(
+            md.contains("| thesis | m1 | 2 of 2 | 1 of 2 |") && md.contains("| thesis | m2 | 1 of 1 | 1 of 1 |"),
+            "{md}"
+        );
     }
 
     #[test]

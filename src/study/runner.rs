@@ -298,6 +298,8 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     check_identity(study, &opts.out)?;
     std::fs::create_dir_all(&opts.out).map_err(|source| StudyError::Folder { path: opts.out.clone(), source })?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
+    let _folder = crate::io::FolderLock::take(&opts.out, opts.shard.is_none())
+        .map_err(|message| StudyError::Mismatch { path: opts.out.clone(), message })?;
     let _lock = StudyLock::take(&file)?;
     write_study_files(study, &opts.out)?;
     let head = header(&study.columns);

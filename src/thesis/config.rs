@@ -312,9 +312,28 @@ impl ThesisSection {
         if !(share > 0.0 && share <= 1.0) {
             return Err(ctx.error("thesis.seed_share", format!("= {share} is out of range (0, 1]")));
         }
-        if self.seed_population.plans().contains(&SeedPlan::CellOrder) {
-            // The section's own range checks, under its own keys.
-            settings.cell_order.validate(ctx)?;
+        // The sections the seeds read, with their own range checks under their own keys.
+        for plan in self.seed_population.plans() {
+            match plan {
+                SeedPlan::CellOrder => {
+                    settings.cell_order.validate(ctx)?;
+                }
+                SeedPlan::Boustrophedon => {
+                    settings.pattern.validate(crate::patterns::planner::PatternKind::Boustrophedon, ctx)?;
+                }
+                SeedPlan::Spiral => {
+                    settings.pattern.validate(crate::patterns::planner::PatternKind::Spiral, ctx)?;
+                }
+            }
+        }
+        if !self.seed_bound.is_none() && params.selection == Selection::Elite && params.p_mi > 0.0 {
+            return Err(ctx.error(
+                "thesis.seed_bound",
+                format!(
+                    "= \"dominate\" with Elite needs thesis.p_mi = 0 (it is {}): a re-initialisation can replace any member, the seeds too, so the run could end outside the bound",
+                    params.p_mi
+                ),
+            ));
         }
         let genomes = seed_genomes(self.seed_population, settings, ctx.scenario, params.max_genome_len)
             .map_err(|m| ctx.error("thesis.seed_population", m))?;
