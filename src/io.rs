@@ -108,8 +108,18 @@ pub fn read_text_bounded(path: &Path, limit: u64) -> std::io::Result<String> {
 
 /// Reads a path file: CSV with header `x_m,y_m` (metres, one point per row), optionally an
 /// `agent` column (non-negative integer) that splits the rows into one path per agent, and an
-/// `index` column that is ignored. Returns the paths in ascending agent order.
+/// `index` column that must number each agent's rows 0, 1, 2, … in the file's order. Returns the paths in ascending agent order.
 pub fn read_path_csv(path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
+    // A FIFO or a device would block or never end: only regular files are read.
+    if let Ok(meta) = std::fs::metadata(path)
+        && !meta.is_file()
+    {
+        return Err(PathFileError {
+            path: path.to_path_buf(),
+            line: 0,
+            message: "is not a regular file (a folder, FIFO or device); give a CSV file of points".into(),
+        });
+    }
     let text = read_text_bounded(path, MAX_PATH_FILE_BYTES).map_err(|e| PathFileError {
         path: path.to_path_buf(),
         line: 0,
@@ -136,7 +146,7 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
     if let Some(bad) = headers.iter().find(|h| !["x_m", "y_m", "agent", "robot", "index"].contains(h)) {
         return Err(fail(1, format!("unknown column `{bad}`; allowed: x_m, y_m, agent, robot, index")));
     }
-    let ai = col("agent");
+    let (ai, ii) = (col("agent"), col("index"));
     let mut by_agent: std::collections::BTreeMap<u64, Vec<Point>> = Default::default();
     for (k, record) in reader.records().enumerate() {
         let line = k as u64 + 2;
@@ -157,7 +167,22 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
                     .map_err(|_| fail(line, format!("`agent` = `{raw}` is not a non-negative integer")))?
             }
         };
-        by_agent.entry(agent).or_default().push(p);
+        let points = by_agent.entry(agent).or_default();
+        // The index, where given, numbers each agent's points in the file's order: a file
+        // sorted otherwise would be read as another path.
+        if let Some(i) = ii {
+            let raw = record.get(i).unwrap_or("");
+            if raw.parse::<usize>().ok() != Some(points.len()) {
+                return Err(fail(
+                    line,
+                    format!(
+                        "`index` = `{raw}` where {} was expected: each agent's rows must be in path order, numbered from 0",
+                        points.len()
+                    ),
+                ));
+            }
+        }
+        points.push(p);
     }
     let paths: Vec<Vec<Point>> = by_agent.into_values().collect();
     if paths.is_empty() {

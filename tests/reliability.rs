@@ -410,6 +410,24 @@ const CASES: &[Case] = &[
         needle: "study.json: not a covga study description",
     },
     Case {
+        name: "path file whose index is out of order",
+        files: &[("p.csv", "index,x_m,y_m\n0,5,5\n2,6,5\n1,6,6\n")],
+        args: &["eval", "--map", "thesis-1", "--path", "p.csv", "--out", "OUT"],
+        needle: "p.csv:3: `index` = `2` where 1 was expected",
+    },
+    Case {
+        name: "path file whose index is not a number",
+        files: &[("p.csv", "index,x_m,y_m\na,5,5\n")],
+        args: &["eval", "--map", "thesis-1", "--path", "p.csv", "--out", "OUT"],
+        needle: "p.csv:2: `index` = `a` where 0 was expected",
+    },
+    Case {
+        name: "path file that is a folder",
+        files: &[("p.csv/x", "")],
+        args: &["eval", "--map", "thesis-1", "--path", "p.csv", "--out", "OUT"],
+        needle: "p.csv: is not a regular file",
+    },
+    Case {
         name: "maps into a file",
         files: &[("taken", "x")],
         args: &["maps", "--out", "taken"],
@@ -647,4 +665,20 @@ fn a_folder_in_use_by_another_covga_is_refused() {
     let b = covga(dir.path(), &["grid", "g.toml", "--jobs", "1", "--shard", "1/2", "--out", "T"].map(String::from));
     assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
     assert!(a.wait_with_output().unwrap().status.success());
+}
+
+/// A path file that is a FIFO nobody writes to is refused at once instead of blocking.
+#[cfg(unix)]
+#[test]
+fn a_fifo_as_path_file_is_refused_at_once() {
+    let dir = tempfile::tempdir().unwrap();
+    let fifo = dir.path().join("p.csv");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    let started = std::time::Instant::now();
+    let o = covga(dir.path(), &["eval", "--map", "thesis-1", "--path", "p.csv", "--out", "OUT"].map(String::from));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("p.csv: is not a regular file"), "{err}");
+    assert!(started.elapsed().as_secs_f64() < 5.0);
+    assert!(!dir.path().join("OUT").exists());
 }
