@@ -161,3 +161,27 @@ fn the_shipped_basement_experiment_beats_every_boustrophedon_direction() {
     assert!(cov >= best_cov - 0.005, "coverage {cov} vs the best direction's {best_cov}");
     assert!(time <= 0.86 * fastest, "time {time} vs the fastest direction's {fastest}");
 }
+
+/// Each selection scheme's own key is checked under that scheme only (issue: `population = 10`
+/// was refused for the default `select` = 20 that tournament selection never reads); the key
+/// of the scheme in use is still checked.
+#[test]
+fn a_small_population_is_refused_only_by_the_key_its_selection_reads() {
+    let file = |extra: &str| {
+        format!(
+            "planner = \"cell_order\"\n[map]\nsource = \"thesis-1\"\n[stations]\nstart = [1.3, 1.3]\n[cell_order]\npopulation = 10\n{extra}"
+        )
+    };
+    let check = |text: &str| {
+        covga::experiment::file::ExperimentFile::parse(text, "t.toml")
+            .and_then(|f| f.validate("t.toml", std::path::Path::new("."), "t"))
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    assert_eq!(check(&file("")), Ok(()));
+    assert_eq!(check(&file("selection = \"rrws\"\n")), Ok(()));
+    let elite = check(&file("selection = \"elite\"\n")).unwrap_err();
+    assert!(elite.contains("cell_order.select"), "{elite}");
+    let tournament = check(&file("tournament_size = 11\n")).unwrap_err();
+    assert!(tournament.contains("cell_order.tournament_size"), "{tournament}");
+}

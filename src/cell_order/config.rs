@@ -135,10 +135,15 @@ impl CellOrderSection {
             check_range(o, key, v as f64, lo as f64, hi as f64, &format!("integers {lo}..={hi}"))
         };
         count("cell_order.population", self.population, 2, 100_000)?;
-        count("cell_order.tournament_size", self.tournament_size, 1, self.population)?;
-        count("cell_order.select", self.select, 1, self.population)?;
+        // Each scheme's own key is checked under that scheme only: a default the scheme never
+        // reads (`select` = 20 under tournament selection) must not refuse a small population.
+        match self.selection {
+            SelectionName::Tournament => count("cell_order.tournament_size", self.tournament_size, 1, self.population)?,
+            SelectionName::Elite => count("cell_order.select", self.select, 1, self.population)?,
+            SelectionName::Rrws => check_range(o, "cell_order.sp", self.sp, 1.0, 2.0, "[1, 2]")?,
+            SelectionName::Prws => {}
+        }
         count("cell_order.keep", self.keep, 0, self.population - 1)?;
-        check_range(o, "cell_order.sp", self.sp, 1.0, 2.0, "[1, 2]")?;
         check_range(o, "cell_order.p_c", self.p_c, 0.0, 1.0, "[0, 1]")?;
         check_range(o, "cell_order.p_m", self.p_m, 0.0, 1.0, "[0, 1]")?;
         check_range(o, "cell_order.completion_m_per_m2", self.completion_m_per_m2, 0.0, 1e4, "[0, 10000] m per m²")?;
