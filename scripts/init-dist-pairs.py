@@ -5,8 +5,9 @@ and f at each length, and how often one length beats another (two-sided sign tes
 differences); then the executable share and the means per selection scheme and length.
 f is a different function under each projection (f1, 003 eq. 3.14; f2, eq. 3.15), so its rows
 are per projection. A configuration with no executable run at one of the two lengths is left
-out of that comparison, and the table says how many were.
-Usage: python3 scripts/init-dist-pairs.py out/init-dist/runs.csv"""
+out of that comparison, and the table says how many were. With --all-runs every run counts,
+executable or not (what the GA optimised, whether a robot can drive its plan or not).
+Usage: python3 scripts/init-dist-pairs.py out/init-dist/runs.csv [--all-runs]"""
 import csv
 import math
 import sys
@@ -23,8 +24,15 @@ for r in body:
 projection_at = other.index("thesis.projection")
 
 
+ALL_RUNS = "--all-runs" in sys.argv[2:]
+
+
 def executable(rs):
-    return [r for r in rs if r[col["executable"]] == "true"]
+    return list(rs) if ALL_RUNS else [r for r in rs if r[col["executable"]] == "true"]
+
+
+def mean_of(metric, rs, digits):
+    return f"{sum(float(r[col[metric]]) for r in rs) / len(rs):.{digits}f}" if rs else "–"
 
 
 def sign_p(wins, losses):
@@ -50,10 +58,12 @@ for metric, projection in metrics:
             d.append(m(ea) - m(eb))
         w, l = sum(x > 0 for x in d), sum(x < 0 for x in d)
         name = f"{metric} ({projection})" if projection else metric
-        print(f"| {name} | {a} m vs {b} m | {len(d)} | {left_out} | {w} | {l} | {sum(d) / len(d):+.4f} | {sign_p(w, l):.1e} |")
+        diff = f"{sum(d) / len(d):+.4f}" if d else "–"
+        p = f"{sign_p(w, l):.1e}" if d else "–"
+        print(f"| {name} | {a} m vs {b} m | {len(d)} | {left_out} | {w} | {l} | {diff} | {p} |")
 
 print()
-print("Means over the executable runs of each selection scheme and length (f per projection).")
+print(f"Means over the {'' if ALL_RUNS else 'executable '}runs of each selection scheme and length (f per projection).")
 print()
 print("| selection | init_dist_max [m] | runs | executable | cov_final mean | t_final mean | f1 mean | f2 mean |")
 print("|---|---|---|---|---|---|---|---|")
@@ -62,9 +72,9 @@ for r in body:
     groups[(r[col["thesis.selection"]], float(r[col["thesis.init_dist_max"]]))].append(r)
 for (sel, d), rs in sorted(groups.items()):
     ok = executable(rs)
-    mean = lambda m, rs: sum(float(r[col[m]]) for r in rs) / len(rs)
     f = {p: [r for r in ok if r[col["thesis.projection"]] == p] for p in ("f1", "f2")}
+    n_exec = sum(r[col["executable"]] == "true" for r in rs)
     print(
-        f"| {sel} | {d:g} | {len(rs)} | {len(ok)}/{len(rs)} | {mean('cov_final_free', ok):.3f} | "
-        f"{mean('t_final', ok):.3f} | {mean('f_free', f['f1']):.4f} | {mean('f_free', f['f2']):.4f} |"
+        f"| {sel} | {d:g} | {len(rs)} | {n_exec}/{len(rs)} | {mean_of('cov_final_free', ok, 3)} | "
+        f"{mean_of('t_final', ok, 3)} | {mean_of('f_free', f['f1'], 4)} | {mean_of('f_free', f['f2'], 4)} |"
     )
