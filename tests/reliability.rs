@@ -549,6 +549,46 @@ fn keys_the_selection_ignores_are_warned_about() {
     assert!(!err.contains("pop_min"), "read keys are not warned about: {err}");
 }
 
+/// Budget and output keys a planner never reads are named in a warning (issue items: stall
+/// under the waypoint planner and random search, iterations under random search, the
+/// diversity interval outside the thesis GA); the run goes on.
+#[test]
+fn budget_and_output_keys_a_planner_does_not_read_are_warned_about() {
+    let cases: &[(&str, &[&str], &[&str])] = &[
+        (
+            "planner = \"random_search\"\n[budget]\nevaluations = 200\niterations = 5\nstall_iterations = 3\n[output]\ndiversity_every = 5\n",
+            &["budget.iterations", "budget.stall_iterations", "output.diversity_every"],
+            &["budget.evaluations"],
+        ),
+        (
+            "planner = \"waypoint\"\n[waypoint]\ngenerations = 3\n[budget]\nstall_iterations = 3\n",
+            &["budget.stall_iterations"],
+            &["waypoint.generations"],
+        ),
+        (
+            "planner = \"thesis\"\n[budget]\niterations = 2\nstall_iterations = 3\n[output]\ndiversity_every = 5\n",
+            &[],
+            &[],
+        ),
+    ];
+    for (text, ignored, read) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("e.toml"), text).unwrap();
+        let o = covga(dir.path(), &["run", "e.toml", "--out", "o", "--quiet"].map(String::from));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{text}: {err}");
+        for key in *ignored {
+            assert!(err.contains(&format!("warning: e.toml: `{key}` is ignored")), "{key}: {err}");
+        }
+        for key in *read {
+            assert!(!err.contains(&format!("`{key}` is ignored")), "{key} is read: {err}");
+        }
+        if ignored.is_empty() {
+            assert!(!err.contains("is ignored"), "{text}: {err}");
+        }
+    }
+}
+
 /// A 12-run grid, stopped after two runs by the runner's abort switch (so the study is known to
 /// be unfinished whatever the machine's speed), then killed with SIGKILL at several moments
 /// (chosen by a fixed-seed generator, so the schedule is the same every time, while where the

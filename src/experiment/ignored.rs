@@ -83,6 +83,17 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     {
         return Some(format!("the thesis GA's cell_order seed plan reads only {}", READ_BY_CELL_ORDER_SEED.join(", ")));
     }
+    if key == "output.diversity_every" && planner != PlannerKind::Thesis {
+        return Some(format!("only the thesis GA measures the population's diversity; planner = \"{name}\""));
+    }
+    if key == "budget.stall_iterations" && matches!(planner, PlannerKind::Waypoint | PlannerKind::RandomSearch) {
+        return Some(format!(
+            "planner = \"{name}\" does not stop on stalls (its budget is evaluations and wall clock)"
+        ));
+    }
+    if key == "budget.iterations" && planner == PlannerKind::RandomSearch {
+        return Some("random search draws `budget.evaluations` genomes; it has no iterations".into());
+    }
     if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
         return Some("waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into());
     }
@@ -120,7 +131,7 @@ pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String
     let mut out = Vec::new();
     for (section, value) in &table {
         match value {
-            toml::Value::Table(t) if section == "thesis" || section == "waypoint" => {
+            toml::Value::Table(t) if ["thesis", "waypoint", "output", "budget"].contains(&section.as_str()) => {
                 for key in t.keys() {
                     let dotted = format!("{section}.{key}");
                     if let Some(why) = why_ignored(file, &dotted) {
