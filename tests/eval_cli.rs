@@ -407,3 +407,35 @@ fn maps_needs_an_out_folder() {
     assert!(String::from_utf8_lossy(&o.stderr).contains("--out"), "{o:?}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
 }
+
+/// A map smaller than the default camera's narrowest hallway (1.5 m) is scored: the hallway is
+/// the map's longer side there (it was refused before, naming `waypoint.hallway`).
+#[test]
+fn a_map_smaller_than_the_default_hallway_is_scored() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut pgm = String::from("P2\n12 8\n255\n");
+    for _ in 0..8 {
+        pgm.push_str(&["254"; 12].join(" "));
+        pgm.push('\n');
+    }
+    let map = dir.path().join("small.pgm");
+    std::fs::write(&map, pgm).unwrap();
+    let o = covga(&[
+        "eval",
+        "--map",
+        map.to_str().unwrap(),
+        "--resolution",
+        "0.1",
+        "--width",
+        "0.3",
+        "--start",
+        "0.5,0.4",
+        "--json",
+        "--out",
+        dir.path().join("out").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["common"]["executable"], true, "{v}");
+    assert!(v["common"]["cam_open_free"].as_f64().unwrap() > 0.0, "{v}");
+}

@@ -430,7 +430,10 @@ fn short(source: &str) -> String {
 /// The camera of the common scorer's `cov_cam`: 000's default. Its narrowest hallway bounds the
 /// map's cell size, and `eval` has no camera flags, so a coarser map is blamed on its resolution.
 fn eval_camera(map: &crate::map::GridMap, source: &str) -> Result<crate::coverage::score::CameraSpec, CliError> {
-    let defaults = crate::waypoint::config::WaypointSection::default();
+    let mut defaults = crate::waypoint::config::WaypointSection::default();
+    // A map smaller than 000's narrowest hallway is one hallway: the camera's waypoint step
+    // cannot exceed the map (maps under 1.5 m could not be scored at all).
+    defaults.hallway = defaults.hallway.min(map.width_m().max(map.height_m()));
     let finest_needed = defaults.hallway;
     if map.resolution() > finest_needed {
         return Err(CliError::Input(format!(
