@@ -154,7 +154,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         (0..t.rows.len()).filter(|&r| t.rows[r][mc] == map && label[r] == v).collect()
     };
     // Tables, tests and findings compare executable plans only (plans a robot can drive:
-    // no obstacle or unknown cell swept, on the map); the share and the all-plans coverage
+    // the robot's body touches no occupied, unknown or off-map cell); the share and the all-plans coverage
     // stand beside them.
     let rows_of = |map: &str, v: &str| -> Vec<usize> {
         all_rows_of(map, v).into_iter().filter(|&r| flag(r, "executable")).collect()
@@ -165,7 +165,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
     let _ = writeln!(md, "## Planner comparison\n");
     let _ = writeln!(
         md,
-        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. `executable`: plans a robot can drive (no obstacle or unknown cell swept, on the map); `planner-feasible`: plans that also meet their planner's own constraints. Metric values are median [q1, q3] over the executable plans of the replicates (deterministic planners run once); `cov (all plans)` is the median reachable coverage over every plan, executable or not. Tests and findings compare executable plans only. All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
+        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. `executable`: plans a robot can drive (its body touches no occupied, unknown or off-map cell along the path); `planner-feasible`: plans that also meet their planner's own constraints. Metric values are median [q1, q3] over the executable plans of the replicates (deterministic planners run once); `cov (all plans)` is the median reachable coverage over every plan, executable or not. Tests and findings compare executable plans only. All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
     );
     let _ = writeln!(
         md,
@@ -334,7 +334,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         let not_executable = count_of(&|r| !flag(r, "executable"));
         if !not_executable.is_empty() {
             findings.push(format!(
-                "On {name}, plans a robot cannot drive (they sweep obstacle or unknown cells or leave the map), left out of the medians, tests and rankings above: {}.",
+                "On {name}, plans a robot cannot drive (its body touches an occupied, unknown or off-map cell), left out of the medians, tests and rankings above: {}.",
                 not_executable.join(", ")
             ));
         }

@@ -94,7 +94,7 @@ pub fn write(dir: &Path, t: &RunsTable, out: &Path, incomplete: Option<&str>) ->
          `waypoint` (000's multi-agent planner, homogeneous fleets only). Union = swept cells any robot can reach over \
          the cells the robots can reach; makespan = the slowest robot's time (length / speed + turning / rotation speed). \
          Medians [IQR] over the executable plans of the seeds; `executable` counts the plans every robot can drive at \
-         its own width (no obstacle or unknown cell swept, on the map), `planner-feasible` those that also meet the \
+         its own width (its body touches no occupied, unknown or off-map cell along its path), `planner-feasible` those that also meet the \
          method's own constraints (the waypoint teams' loop closures and connectivity).\n",
         t.rows.len(),
         dir.display()

@@ -123,7 +123,7 @@ impl GroupTables<'_> {
         let _ = writeln!(md, "\n## Per group: mean ± 95 % CI over its runs\n");
         let _ = writeln!(
             md,
-            "Executable: runs whose best plan a robot can drive (`executable = true` in runs.csv: no obstacle or unknown cell swept, on the map). cov_final, t_final and f are over the executable runs; `cov_final (all)` over every run.\n"
+            "Executable: runs whose best plan a robot can drive (`executable = true` in runs.csv: the robot's body touches no occupied, unknown or off-map cell along the path). cov_final, t_final and f are over the executable runs; `cov_final (all)` over every run.\n"
         );
         // f per projection where the study sweeps it (f1 and f2 are different functions).
         let mixed = groups.iter().any(|g| projection_scopes(t, &g.rows).len() > 1);
