@@ -406,10 +406,14 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
     crate::plot::save(&ConvergenceFigure { panels }, &out.join("convergence"))?;
     // Best path of each planner on each map.
     let mut loaded: Vec<Vec<Option<LoadedPanel>>> = Vec::new();
+    // What an empty panel says: a planner that ran on the map without an executable plan.
+    let mut missing: Vec<Vec<Option<String>>> = Vec::new();
     for map in &maps {
-        let mut row = Vec::new();
+        let (mut row, mut notes) = (Vec::new(), Vec::new());
         for v in &variants {
             let rows = rows_of(map, v);
+            let ran = all_rows_of(map, v).len();
+            notes.push((ran > 0 && rows.is_empty()).then(|| format!("{v}: no executable plan (0/{ran})")));
             let Some(&best) = rows.iter().max_by(|&&a, &&b| num(a, "f_reach").total_cmp(&num(b, "f_reach"))) else {
                 row.push(None);
                 continue;
@@ -431,6 +435,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             row.push(panel);
         }
         loaded.push(row);
+        missing.push(notes);
     }
     let rows: Vec<Vec<Option<PathFigure>>> = loaded
         .iter()
@@ -449,7 +454,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                 .collect()
         })
         .collect();
-    crate::plot::save(&PlannerPathsFigure { rows }, &out.join("planner_paths"))?;
+    crate::plot::save(&PlannerPathsFigure { rows, missing }, &out.join("planner_paths"))?;
     if !two_by_two.is_empty() {
         search_objective::table_head(&mut md);
         md.push_str(&two_by_two);

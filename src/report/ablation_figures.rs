@@ -293,6 +293,9 @@ impl Figure for ConvergenceFigure {
 pub struct PlannerPathsFigure<'a> {
     /// Rows of panels; a `None` cell is left empty.
     pub rows: Vec<Vec<Option<PathFigure<'a>>>>,
+    /// For each empty cell, what it says instead (a planner that ran without an executable
+    /// plan); same shape as `rows`.
+    pub missing: Vec<Vec<Option<String>>>,
 }
 
 impl Figure for PlannerPathsFigure<'_> {
@@ -312,10 +315,23 @@ impl Figure for PlannerPathsFigure<'_> {
         let areas = root.split_evenly((self.rows.len().max(1), cols));
         for (r, row) in self.rows.iter().enumerate() {
             for (c, panel) in row.iter().enumerate() {
-                let Some(p) = panel else { continue };
+                let area = &areas[r * cols + c];
+                let Some(p) = panel else {
+                    if let Some(note) = self.missing.get(r).and_then(|m| m.get(c)).and_then(Option::as_ref) {
+                        // The planner on one line, what is missing on the next.
+                        let (w, h) = area.dim_in_pixel();
+                        let lines: Vec<&str> = note.splitn(2, ": ").collect();
+                        for (k, line) in lines.iter().enumerate() {
+                            let style =
+                                crate::plot::fitting_text(line, w, 14.0).pos(Pos::new(HPos::Center, VPos::Center));
+                            let y = h as i32 / 2 + (k as i32 * 2 - lines.len() as i32 + 1) * 10;
+                            area.draw_text(line, &style, (w as i32 / 2, y)).map_err(err)?;
+                        }
+                    }
+                    continue;
+                };
                 // The planner on a line of its own, then the map and scores: a narrow panel
                 // keeps both readable.
-                let area = &areas[r * cols + c];
                 match p.title.split_once(", ") {
                     Some((planner, rest)) => {
                         let width = area.dim_in_pixel().0;
