@@ -226,7 +226,7 @@ impl Figure for ConvergenceFigure {
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let root = root
             .titled(
-                "Best plan's footprint coverage of the reachable cells vs fitness evaluations: median, band = IQR over seeds",
+                "Best plan's footprint coverage of the reachable cells vs fitness evaluations: median, band = IQR over the seeds with an executable plan",
                 text(16.0),
             )
             .map_err(err)?;
