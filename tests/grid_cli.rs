@@ -601,3 +601,58 @@ fn reports_mark_incomplete_studies_and_refuse_non_finite_metrics() {
     assert_eq!(bad.status.code(), Some(2), "{bad:?}");
     assert!(String::from_utf8_lossy(&bad.stderr).contains("`time_s` = NaN"), "{bad:?}");
 }
+
+/// Two fleet runs on thesis map 1 whose second robot ends beside the first one's start: the
+/// centralised GA plans it; area division finds the end outside robot b's region only while
+/// planning (a refusal validation cannot make without dividing the map).
+const ONE_RUN_FAILS_WHILE_PLANNING: &str = r#"
+[base]
+planner = "thesis"
+[base.thesis]
+pop_min = 10
+init_actions = 10
+[base.budget]
+iterations = 2
+[[base.robots]]
+name = "a"
+start = [1.3, 1.3]
+[[base.robots]]
+name = "b"
+start = [9.7, 9.5]
+end = [1.6, 1.3]
+[axes]
+"fleet.mode" = ["central", "divide"]
+"#;
+
+#[test]
+fn a_run_that_fails_while_planning_is_recorded_and_the_study_goes_on() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.toml");
+    std::fs::write(&grid, ONE_RUN_FAILS_WHILE_PLANNING).unwrap();
+    let out = dir.path().join("out");
+    let o = out.to_str().unwrap();
+    let first = covga(&["grid", grid.to_str().unwrap(), "--out", o]);
+    // Exit 2 after the other run is recorded, naming the runs file and the reason.
+    assert_eq!(first.status.code(), Some(2), "{first:?}");
+    let err = String::from_utf8_lossy(&first.stderr);
+    assert!(
+        err.contains("runs.csv: 1 of 2 runs failed while running") && err.contains("lies outside its region"),
+        "{err}"
+    );
+    let runs = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    assert_eq!(runs.lines().count(), 3, "{runs}");
+    let failed: Vec<&str> = runs.lines().filter(|l| l.contains(",failed,")).collect();
+    assert_eq!(failed.len(), 1, "{runs}");
+    assert!(failed[0].contains("fleet-divide") || failed[0].contains(",divide,"), "{}", failed[0]);
+    // The failed run leaves no folder behind; the other run has its files.
+    assert_eq!(std::fs::read_dir(out.join("runs")).unwrap().count(), 1);
+    // A resume runs nothing again and still says that a run failed.
+    let again = covga(&["grid", grid.to_str().unwrap(), "--out", o]);
+    assert_eq!(again.status.code(), Some(2), "{again:?}");
+    assert!(String::from_utf8_lossy(&again.stdout).contains("2 already recorded, 0 run now"), "{again:?}");
+    assert_eq!(std::fs::read_to_string(out.join("runs.csv")).unwrap(), runs);
+    // The report counts the failed run and summarises the other.
+    ok(&covga(&["report", o]));
+    let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    assert!(summary.contains("**1 recorded runs failed while running**"), "{summary}");
+}

@@ -433,6 +433,26 @@ const CASES: &[Case] = &[
         args: &["maps", "--out", "taken"],
         needle: "taken: cannot write the map files",
     },
+    Case {
+        name: "exact cell order on more cells than it takes, in a grid",
+        files: &[(
+            "g.toml",
+            "[base]\nplanner = \"cell_order\"\n[base.map]\nsource = \"office\"\n[base.stations]\nstart = [2.0, 2.0]\n\
+             [axes]\n\"cell_order.solver\" = [\"ga\", \"exact\"]\n",
+        )],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "`cell_order.solver` = \"exact\" takes at most 12 cells; map `office` has 17",
+    },
+    Case {
+        name: "area division of robots starting in one cell, in a grid",
+        files: &[(
+            "g.toml",
+            "[base]\n[base.fleet]\nmode = \"divide\"\n[[base.robots]]\nname = \"a\"\nstart = [1.3, 1.3]\n\
+             [[base.robots]]\nname = \"b\"\nstart = [1.35, 1.3]\n[axes]\n\"fleet.angle_deg\" = [0.0, 90.0]\n",
+        )],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "`robots[1].start` (robot \"b\") starts in the same cell as robots[0]",
+    },
 ];
 
 #[test]

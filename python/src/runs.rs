@@ -150,13 +150,17 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
         order,
     };
     match interruptible(py, &stop, || run_study(&study, &opts))? {
-        Ok(o) => Ok((o.selected, o.skipped, o.completed)),
-        Err(
-            e @ (StudyError::Config(_)
-            | StudyError::Mismatch { .. }
-            | StudyError::Planner { .. }
-            | StudyError::Folder { .. }),
-        ) => Err(config_error(e)),
+        Ok(o) => match o.first_failure {
+            Some((id, why)) => Err(config_error(format!(
+                "{out}/runs.csv: {} of {} runs failed while running and are recorded as such (stop = failed, the \
+                 reason in violations); the first, run {id}: {why}",
+                o.failed, o.selected
+            ))),
+            None => Ok((o.selected, o.skipped, o.completed)),
+        },
+        Err(e @ (StudyError::Config(_) | StudyError::Mismatch { .. } | StudyError::Folder { .. })) => {
+            Err(config_error(e))
+        }
         Err(e @ (StudyError::Io { .. } | StudyError::Run { .. } | StudyError::Stopped { .. })) => {
             Err(PyRuntimeError::new_err(e.to_string()))
         }

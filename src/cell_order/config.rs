@@ -150,6 +150,24 @@ impl CellOrderSection {
         if let Some(p) = self.p_choice {
             check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
         }
+        if self.solver == Solver::Exact {
+            // The cells are known only after the decomposition: counted here so that a grid
+            // refuses the configuration before it writes anything.
+            let (_, _, sweeps) = super::decompose(ctx.scenario, &self.directions).map_err(|m| {
+                ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name()))
+            })?;
+            if sweeps.len() > super::exact::MAX_EXACT_CELLS {
+                return Err(ctx.error(
+                    "cell_order.solver",
+                    format!(
+                        "= \"exact\" takes at most {} cells; map `{}` has {} for this robot and start (use \"ga\")",
+                        super::exact::MAX_EXACT_CELLS,
+                        ctx.scenario.map.name(),
+                        sweeps.len()
+                    ),
+                ));
+            }
+        }
         let selection = match self.selection {
             SelectionName::Elite => Selection::Elite { select: self.select },
             SelectionName::Tournament => Selection::Tournament { size: self.tournament_size },

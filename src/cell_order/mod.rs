@@ -57,17 +57,7 @@ pub fn prepare<'m>(
     completion_m_per_m2: f64,
 ) -> Result<Prepared<'m>, String> {
     let s = scenario;
-    let width = s.robot.width;
-    let mut clear = Clearance::new(&s.map, width);
-    let reach = Reach::new(&clear, &[s.start]);
-    if reach.centres().iter().all(|c| !c) {
-        return Err(format!("no free area reachable from the start fits a robot {width} m wide"));
-    }
-    clear.restrict(reach.centres().to_vec());
-    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable());
-    if sweeps.is_empty() {
-        return Err(format!("no lane of a robot {width} m wide fits the area reachable from the start"));
-    }
+    let (clear, reach, sweeps) = decompose(scenario, directions)?;
     let count: usize = sweeps.cells.iter().map(Vec::len).sum();
     if count > MAX_CANDIDATES {
         return Err(format!(
@@ -106,6 +96,25 @@ pub fn prepare<'m>(
         leg_time(metres, turn, speed, rot)
     });
     Ok(Prepared { clear, reach, sweeps, instance })
+}
+
+/// The reachable clearance of `scenario`, its reach and its cells with their candidate sweeps
+/// at `directions`: the first, cheap part of [`prepare`] (no transit), which validation uses
+/// to count the cells.
+pub fn decompose<'m>(scenario: &'m Scenario, directions: &[f64]) -> Result<(Clearance<'m>, Reach, CellSweeps), String> {
+    let s = scenario;
+    let width = s.robot.width;
+    let mut clear = Clearance::new(&s.map, width);
+    let reach = Reach::new(&clear, &[s.start]);
+    if reach.centres().iter().all(|c| !c) {
+        return Err(format!("no free area reachable from the start fits a robot {width} m wide"));
+    }
+    clear.restrict(reach.centres().to_vec());
+    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable());
+    if sweeps.is_empty() {
+        return Err(format!("no lane of a robot {width} m wide fits the area reachable from the start"));
+    }
+    Ok((clear, reach, sweeps))
 }
 
 impl Prepared<'_> {

@@ -95,6 +95,14 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
             bar.set_length(d.total as u64);
             bar.set_position(d.done as u64);
             bar.set_message(format!("last cov {:.3} t {:.3}", d.result.0, d.result.1));
+        } else if let Some(why) = d.failure {
+            eprintln!(
+                "[{}/{}] {} replicate {} failed: {why}",
+                d.done + d.skipped,
+                d.total + d.skipped,
+                d.run.id,
+                d.run.replicate
+            );
         } else {
             eprintln!(
                 "[{}/{}] {} replicate {} cov_final {:.4} t_final {:.4} {:.2} s",
@@ -119,9 +127,9 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     };
     let outcome = run_study(&study, &opts).map_err(|e| match e {
         crate::study::runner::StudyError::Config(c) => CliError::input(c),
-        crate::study::runner::StudyError::Mismatch { .. }
-        | crate::study::runner::StudyError::Planner { .. }
-        | crate::study::runner::StudyError::Folder { .. } => CliError::input(e),
+        crate::study::runner::StudyError::Mismatch { .. } | crate::study::runner::StudyError::Folder { .. } => {
+            CliError::input(e)
+        }
         other => CliError::internal(other),
     })?;
     bar.finish_and_clear();
@@ -134,7 +142,17 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
         outcome.completed,
         out.display()
     );
-    Ok(())
+    match outcome.first_failure {
+        // The other runs are recorded; the exit status still says that not all could run.
+        Some((id, why)) => Err(CliError::Input(format!(
+            "{}: {} of {} runs failed while running and are recorded as such (stop = failed, the reason in \
+             violations); the first, run {id}: {why}",
+            out.join(shard.map_or("runs.csv".to_string(), |s| s.file_name())).display(),
+            outcome.failed,
+            outcome.selected
+        ))),
+        None => Ok(()),
+    }
 }
 
 fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), CliError> {

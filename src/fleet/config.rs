@@ -296,6 +296,20 @@ impl FleetSection {
                 ),
             ));
         }
+        if self.mode == FleetMode::Divide
+            && let Some((j, k)) = super::division::shared_start(&scenario.map, &fleet)
+        {
+            let names = (&fleet.robots()[j].name, &fleet.robots()[k].name);
+            return Err(ConfigError::new(
+                origin,
+                &format!("robots[{k}].start"),
+                format!(
+                    "(robot \"{}\") starts in the same cell as robots[{j}] (robot \"{}\") (or, where a start lies off \
+                     the free cells, the nearest cell each fits in): fleet.mode = \"divide\" needs distinct start stations",
+                    names.1, names.0
+                ),
+            ));
+        }
         Ok(super::planner::FleetPlanner { fleet, name: self.name.clone(), method })
     }
 }

@@ -144,17 +144,20 @@ fn anchor(map: &GridMap, r: &super::Robot) -> Option<usize> {
     Clearance::new(map, r.footprint.width).snap(r.start)
 }
 
+/// The first two robots `(j, i)`, `j < i`, that start from the same cell (see [`anchor`]), which
+/// a geodesic split cannot separate; checked when a fleet's configuration is validated.
+pub fn shared_start(map: &GridMap, fleet: &Fleet) -> Option<(usize, usize)> {
+    let anchors: Vec<Option<usize>> = fleet.robots().iter().map(|r| anchor(map, r)).collect();
+    (0..anchors.len()).find_map(|i| (0..i).find(|&j| anchors[i] == anchors[j]).map(|j| (j, i)))
+}
+
 /// Splits the cells the robots can sweep between them (see the module documentation).
 pub fn divide(map: &GridMap, fleet: &Fleet) -> Result<Division, DivisionError> {
     let robots = fleet.robots();
-    let anchors: Vec<Option<usize>> = robots.iter().map(|r| anchor(map, r)).collect();
-    for i in 0..robots.len() {
-        for j in 0..i {
-            if anchors[i] == anchors[j] {
-                return Err(DivisionError::SharedStart(robots[j].name.clone(), robots[i].name.clone()));
-            }
-        }
+    if let Some((j, i)) = shared_start(map, fleet) {
+        return Err(DivisionError::SharedStart(robots[j].name.clone(), robots[i].name.clone()));
     }
+    let anchors: Vec<Option<usize>> = robots.iter().map(|r| anchor(map, r)).collect();
     let n = map.rows() * map.cols();
     // d_i(c): robot i's travel distance where it can sweep c, else infinity.
     let dist: Vec<Vec<f64>> = robots.iter().map(|r| robot_distance(map, r)).collect();

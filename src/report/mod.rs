@@ -181,6 +181,39 @@ fn check_finite(t: &RunsTable) -> Result<(), String> {
     Ok(())
 }
 
+/// Takes the rows of runs that failed while running out of `t` and returns them as
+/// `run <id>: <reason>` lines, by run id: they have no metrics to summarise.
+pub fn take_failed(t: &mut RunsTable) -> Vec<String> {
+    let (Some(stop), Some(why), Some(id)) = (t.col("stop"), t.col("violations"), t.col("run_id")) else {
+        return Vec::new();
+    };
+    let mut failed = Vec::new();
+    t.rows.retain(|r| {
+        let ok = r[stop] != crate::study::records::FAILED_STOP;
+        if !ok {
+            failed.push(format!("run {}: {}", r[id], r[why]));
+        }
+        ok
+    });
+    failed.sort();
+    failed
+}
+
+/// The note a report with failed runs begins with: how many, and the first reasons.
+pub fn failed_note(failed: &[String]) -> Option<String> {
+    const SHOWN: usize = 3;
+    (!failed.is_empty()).then(|| {
+        let more = failed.len().saturating_sub(SHOWN);
+        format!(
+            "**{} recorded runs failed while running** (`stop` = failed in runs.csv, the reason in `violations`) and are \
+             left out of every table and figure below: {}{}",
+            failed.len(),
+            failed.iter().take(SHOWN).cloned().collect::<Vec<_>>().join("; "),
+            if more > 0 { format!("; and {more} more") } else { String::new() }
+        )
+    })
+}
+
 /// The note a report of a study with fewer recorded runs than its grid holds begins with.
 pub fn incomplete_note(dir: &Path, recorded: usize) -> Option<String> {
     let meta: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(dir.join("study.json")).ok()?).ok()?;
@@ -235,6 +268,15 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
     check_finite(&t).map_err(|m| ReportError::Input(format!("{}: {m}", runs_file.display())))?;
     let recorded = t.rows.len();
+    let failed = take_failed(&mut t);
+    if t.rows.is_empty() && !failed.is_empty() {
+        return Err(ReportError::Input(format!(
+            "{}: every recorded run failed while running ({} runs, stop = failed); the first: {}",
+            runs_file.display(),
+            failed.len(),
+            failed[0]
+        )));
+    }
     let mut selected = Vec::new();
     for (key, want) in &opts.filter {
         let Some(c) = t.col(key) else {
@@ -278,7 +320,8 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         None => dir.join("report"),
     };
     std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
-    let incomplete = incomplete_note(dir, recorded);
+    let notes: Vec<String> = incomplete_note(dir, recorded).into_iter().chain(failed_note(&failed)).collect();
+    let incomplete = (!notes.is_empty()).then(|| notes.join("\n\n"));
     if self::fleet_report::applies(&t) {
         self::fleet_report::write(dir, &t, &out, incomplete.as_deref())?;
         return Ok(out.join("summary.md"));

@@ -71,6 +71,24 @@ pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
     out
 }
 
+/// The `stop` of a run that failed while running (a refusal only its planning could find,
+/// such as more cells than the exact solver takes): its row says why in `violations` and
+/// leaves every metric empty; `covga report` counts such rows and leaves them out.
+pub const FAILED_STOP: &str = "failed";
+
+/// The row of a run that failed while running: `reason` (one line) in `violations`, `stop` =
+/// [`FAILED_STOP`], the metrics empty.
+pub fn failed_row(run: &RunSpec, reason: &str, wall_s: f64) -> Vec<String> {
+    let mut out = vec![run.id.clone(), run.config_id.clone(), run.replicate.to_string(), run.file.seed.to_string()];
+    out.extend(run.params.iter().map(|v| v.clone().unwrap_or_default()));
+    let reason = reason.split_whitespace().collect::<Vec<_>>().join(" ");
+    out.extend([run.file.planner.name().to_string(), run.file.map.source.clone(), "false".to_string(), reason]);
+    out.extend(crate::coverage::score::Score::column_names().into_iter().map(|_| String::new()));
+    out.extend([String::new(), String::new(), FAILED_STOP.to_string(), format!("{wall_s:.3}")]);
+    out.extend(std::iter::repeat_n(String::new(), FLEET_COLUMNS.len()));
+    out
+}
+
 /// The [`FLEET_COLUMNS`] of a run (empty fields for a single robot's plan).
 fn fleet_fields(summary: &Summary) -> Vec<String> {
     let Some(f) = &summary.fleet else { return vec![String::new(); FLEET_COLUMNS.len()] };
@@ -161,6 +179,12 @@ impl RunsTable {
             .filter(|(_, h)| !TIMING_COLUMNS.contains(&h.as_str()))
             .map(|(v, _)| v.clone())
             .collect()
+    }
+
+    /// The rows of runs that failed while running ([`FAILED_STOP`]).
+    pub fn failed_rows(&self) -> Vec<&Vec<String>> {
+        let Some(stop) = self.col("stop") else { return Vec::new() };
+        self.rows.iter().filter(|r| r[stop] == FAILED_STOP).collect()
     }
 
     /// A numeric column of a row.

@@ -7,7 +7,7 @@
 //! printed; progress goes to a callback.
 
 use super::grid::{RunSpec, Study};
-use super::records::{RunsTable, csv_line, header, row};
+use super::records::{RunsTable, csv_line, failed_row, header, row};
 use crate::config::ConfigError;
 use crate::experiment::file::Experiment;
 use std::io::Write;
@@ -45,14 +45,6 @@ pub enum StudyError {
         path: PathBuf,
         /// The cause.
         source: std::io::Error,
-    },
-    /// A run's planner cannot plan its configuration (the user's input).
-    #[error("run {id}: {message}")]
-    Planner {
-        /// The run id.
-        id: String,
-        /// Why.
-        message: String,
     },
     /// A run failed.
     #[error("run {id}: {message}")]
@@ -116,6 +108,8 @@ pub struct RunDone<'a> {
     pub skipped: usize,
     /// `cov_final_reach`, `t_final`, wall seconds.
     pub result: (f64, f64, f64),
+    /// Why the run failed, when it failed while running (its row records it).
+    pub failure: Option<&'a str>,
 }
 
 /// How a study is run.
@@ -138,7 +132,7 @@ pub struct RunnerOptions<'a> {
 }
 
 /// What a study invocation did.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub struct StudyOutcome {
     /// Runs in the study or shard.
     pub selected: usize,
@@ -146,6 +140,10 @@ pub struct StudyOutcome {
     pub skipped: usize,
     /// Runs completed now.
     pub completed: usize,
+    /// Rows of the runs file, now and before, of runs that failed while running.
+    pub failed: usize,
+    /// The first of them by run id, with its reason.
+    pub first_failure: Option<(String, String)>,
 }
 
 /// Maps loaded once per study and shared by its runs.
@@ -324,16 +322,26 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let counter = AtomicUsize::new(0);
     let written = AtomicUsize::new(0);
     let abort_after: Option<usize> = std::env::var(ABORT_AFTER_ENV).ok().and_then(|v| v.parse().ok());
-    let run_one = |run: &RunSpec| -> Result<(f64, f64, f64), StudyError> {
+    // A run its planner refuses while planning (what validation cannot see without planning)
+    // is recorded with its reason and the study goes on; any other failure stops the study.
+    let run_one = |run: &RunSpec| -> Result<((f64, f64, f64), Option<String>), StudyError> {
         let dir = opts.out.join("runs").join(&run.id);
         let exp = experiment_of(study, run, &maps)?;
-        let summary = crate::experiment::output::run_experiment(&exp, &dir, false, &mut []).map_err(|e| match e {
-            crate::experiment::output::OutputError::Planner(message) => {
-                StudyError::Planner { id: run.id.clone(), message }
+        let started = std::time::Instant::now();
+        let (fields, result) = match crate::experiment::output::run_experiment(&exp, &dir, false, &mut []) {
+            Ok(summary) => {
+                let s = &summary.score;
+                (row(run, &summary), ((s.cov_final_reach, s.t_final, summary.wall_s), None))
             }
-            other => StudyError::Run { id: run.id.clone(), message: other.to_string() },
-        })?;
-        let line = csv_line(&row(run, &summary));
+            Err(crate::experiment::output::OutputError::Planner(message)) => {
+                let wall_s = started.elapsed().as_secs_f64();
+                // A failed run has no files; its empty folder goes (a non-empty one stays).
+                let _ = std::fs::remove_dir(&dir);
+                (failed_row(run, &message, wall_s), ((f64::NAN, f64::NAN, wall_s), Some(message)))
+            }
+            Err(other) => return Err(StudyError::Run { id: run.id.clone(), message: other.to_string() }),
+        };
+        let line = csv_line(&fields);
         let mut w = writer.lock().expect("writer");
         w.write_all(&line).map_err(io(&file))?;
         w.flush().map_err(io(&file))?;
@@ -344,7 +352,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
             // with this run's row on disk and nothing cleaned up.
             std::process::abort();
         }
-        Ok((summary.score.cov_final_reach, summary.score.t_final, summary.wall_s))
+        Ok(result)
     };
     let fail = |e: StudyError| {
         failed.store(true, Ordering::Relaxed);
@@ -367,9 +375,10 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
                 while !failed.load(Ordering::Relaxed) && !stopped() {
                     let Some(&run) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else { break };
                     match pool.install(|| run_one(run)) {
-                        Ok(r) => {
+                        Ok((result, failure)) => {
                             let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
-                            (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result: r });
+                            let failure = failure.as_deref();
+                            (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result, failure });
                         }
                         Err(e) => fail(e),
                     }
@@ -387,7 +396,17 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let text = std::fs::read_to_string(&file).map_err(io(&file))?;
     let table = RunsTable::parse(&text).map_err(|m| StudyError::Mismatch { path: file.clone(), message: m })?;
     crate::io::write_atomic(&file, &table.to_csv_sorted()).map_err(io(&file))?;
-    Ok(StudyOutcome { selected: selected.len(), skipped, completed: pending.len() })
+    let mut failures: Vec<&Vec<String>> = table.failed_rows();
+    let (id, why) = (table.col("run_id").unwrap_or(0), table.col("violations").unwrap_or(0));
+    failures.sort_by(|a, b| a[id].cmp(&b[id]));
+    let first_failure = failures.first().map(|r| (r[id].clone(), r[why].clone()));
+    Ok(StudyOutcome {
+        selected: selected.len(),
+        skipped,
+        completed: pending.len(),
+        failed: failures.len(),
+        first_failure,
+    })
 }
 
 /// Ids recorded in an existing runs file; drops a half-written last line in place.
