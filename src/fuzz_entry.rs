@@ -17,7 +17,7 @@ pub fn experiment_toml(data: &[u8]) {
         crate::map::presets::preset(source)
             .ok_or_else(|| crate::map::MapError::UnknownMap { name: source.to_string(), presets: String::new() })
     };
-    let _ = file.validate_with("fuzz.toml", Path::new("."), "fuzz", &presets_only);
+    let _ = file.validate_with("fuzz.toml", Path::new("."), "fuzz", &presets_only, crate::planner::Checks::Full);
 }
 
 /// A grid TOML file, parsed and expanded (counted before it is enumerated).

@@ -60,7 +60,7 @@ fn the_ga_reaches_the_exact_optimum_on_small_maps() {
         seed += 1;
         let s = scenario(random_map(seed, 1 + (seed % 3) as usize));
         let budget = Budget { evaluations: Some(50_000), ..Budget::iterations(1_000_000) };
-        let ctx = Context { origin: "test", scenario: &s, budget: &budget };
+        let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
         let config = section.validate(&ctx).unwrap();
         let prepared = prepare(&s, &config.directions, config.completion_m_per_m2).unwrap();
         let cells = prepared.instance.cells();
@@ -69,7 +69,9 @@ fn the_ga_reaches_the_exact_optimum_on_small_maps() {
         }
         tried += 1;
         let (_, optimum) = held_karp(&prepared.instance).unwrap();
-        let found = search(&prepared.instance, &config.ga, seed, &budget, |_| Ok::<(), ()>(())).unwrap();
+        let found =
+            search(&prepared.instance, &config.ga, (seed, std::time::Instant::now()), &budget, |_| Ok::<(), ()>(()))
+                .unwrap();
         assert!(found.best.1 >= optimum - 1e-6, "seed {seed}: the GA cannot beat the optimum");
         if found.best.1 <= optimum + 1e-6 {
             hits += 1;
@@ -84,7 +86,7 @@ fn the_ga_reaches_the_exact_optimum_on_small_maps() {
 fn plans_are_executable_from_station_to_station_and_repeatable() {
     let s = scenario(random_map(7, 3));
     let budget = Budget { evaluations: Some(5_000), ..Budget::iterations(1_000_000) };
-    let ctx = Context { origin: "test", scenario: &s, budget: &budget };
+    let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
     let planner = CellOrderSection::default().validate(&ctx).unwrap();
     let a = planner.run(&s, 11, &budget, &mut []).unwrap();
     let b = planner.run(&s, 11, &budget, &mut []).unwrap();
@@ -101,7 +103,7 @@ fn plans_are_executable_from_station_to_station_and_repeatable() {
 fn the_exact_solver_refuses_large_maps_with_the_key() {
     let s = scenario(random_map(3, 2));
     let budget = Budget::iterations(10);
-    let ctx = Context { origin: "f.toml", scenario: &s, budget: &budget };
+    let ctx = Context { origin: "f.toml", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
     let section = CellOrderSection {
         solver: covga::cell_order::config::Solver::Exact,
         directions: (0..36).map(|k| k as f64 * 5.0).collect(),

@@ -742,3 +742,64 @@ fn a_fifo_as_path_file_is_refused_at_once() {
     assert!(started.elapsed().as_secs_f64() < 5.0);
     assert!(!dir.path().join("OUT").exists());
 }
+
+/// A 20 m square hall at 0.1 m holding 144 pillars (0.3 m square, 1.6 m apart): hundreds of
+/// cells, thousands of candidate sweeps, seconds of transit to prepare.
+fn pillar_hall(dir: &Path) {
+    let n = 200;
+    let mut px = vec![254u8; n * n];
+    for i in 0..12 {
+        for j in 0..12 {
+            let (x0, y0) = (12 + i * 16, 12 + j * 16);
+            for y in y0..y0 + 3 {
+                for x in x0..x0 + 3 {
+                    px[y * n + x] = 0;
+                }
+            }
+        }
+    }
+    let mut pgm = format!("P5\n{n} {n}\n255\n").into_bytes();
+    pgm.extend(px);
+    std::fs::write(dir.join("hall.pgm"), pgm).unwrap();
+}
+
+const HALL: &str = "[map]\nsource = \"hall.pgm\"\nresolution = 0.1\n[stations]\nstart = [0.5, 0.5]\n";
+
+#[test]
+fn cell_order_preparation_stops_at_the_wall_clock() {
+    let dir = tempfile::tempdir().unwrap();
+    pillar_hall(dir.path());
+    let e = format!("planner = \"cell_order\"\n{HALL}[budget]\nevaluations = 1\nwall_clock_s = 0.001\n");
+    std::fs::write(dir.path().join("e.toml"), e).unwrap();
+    let started = std::time::Instant::now();
+    let o = covga(dir.path(), &["run".into(), "e.toml".into(), "--out".into(), "OUT".into()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("the wall clock (budget.wall_clock_s = 0.001 s) ran out while"), "{err}");
+    assert!(started.elapsed().as_secs_f64() < 5.0, "{:?}", started.elapsed());
+    assert!(!dir.path().join("OUT").exists());
+}
+
+#[test]
+fn a_dry_run_plans_no_seed_and_the_run_checks_it() {
+    let dir = tempfile::tempdir().unwrap();
+    pillar_hall(dir.path());
+    // A genome limit far below the seed's length: only planning the seed finds it.
+    let base = HALL.replace("[map]", "[base.map]").replace("[stations]", "[base.stations]");
+    let g = format!(
+        "[base]\nplanner = \"thesis\"\n{base}[base.thesis]\nseed_population = [\"cell_order\"]\nmax_genome_len = 60\n\
+         [base.budget]\niterations = 0\n[axes]\n\"thesis.c_len\" = [0.1, 0.2]\n"
+    );
+    std::fs::write(dir.path().join("g.toml"), g).unwrap();
+    let args = |more: &[&str]| {
+        ["grid", "g.toml", "--out", "OUT"].iter().chain(more).map(|s| s.to_string()).collect::<Vec<_>>()
+    };
+    let dry = covga(dir.path(), &args(&["--dry-run"]));
+    assert!(dry.status.success(), "{dry:?}");
+    assert!(String::from_utf8_lossy(&dry.stdout).contains("seed plans and cell counts are checked when it runs"));
+    let run = covga(dir.path(), &args(&[]));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{err}");
+    assert!(err.contains("`thesis.seed_population` the cell_order seed is a genome of"), "{err}");
+    assert!(!dir.path().join("OUT").exists());
+}

@@ -150,7 +150,7 @@ impl CellOrderSection {
         if let Some(p) = self.p_choice {
             check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
         }
-        if self.solver == Solver::Exact {
+        if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             // The cells are known only after the decomposition: counted here so that a grid
             // refuses the configuration before it writes anything.
             let (_, _, sweeps) = super::decompose(ctx.scenario, &self.directions).map_err(|m| {
@@ -194,20 +194,21 @@ impl CellOrderSection {
 }
 
 impl CellOrderConfig {
-    /// An estimate of a run's own memory on `map`: the leg-time matrix over candidate sweeps
-    /// (cells taken as at least two widths square, four entries per direction; the run
-    /// refuses more than [`super::MAX_CANDIDATES`] candidates) and one Dijkstra buffer per
-    /// thread.
+    /// An estimate of a run's own memory on `map`, made before anything is allocated: the
+    /// leg-time matrix over candidate sweeps and the transit lengths between their ends (each
+    /// `f32`, candidates squared; cells taken as at least two widths square, four entries per
+    /// direction; the run refuses more than [`super::MAX_CANDIDATES`] candidates) and one
+    /// Dijkstra buffer per thread.
     pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
         let free_m2 = map.free_count() as f64 * map.resolution().powi(2);
         let cells = (free_m2 / (4.0 * self.width * self.width)).ceil();
         let candidates = (cells * 4.0 * self.directions.len() as f64).min(super::MAX_CANDIDATES as f64);
-        let legs = 4.0 * candidates * candidates;
+        let legs = 2.0 * 4.0 * candidates * candidates;
         let dijkstra = 16.0 * (map.rows() * map.cols()) as f64 * threads.max(1) as f64;
         MemoryEstimate {
             bytes: legs + dijkstra,
             key: "cell_order.directions",
-            what: format!("leg times between about {candidates:.0} candidate sweeps"),
+            what: format!("leg times and transit lengths between about {candidates:.0} candidate sweeps"),
         }
     }
 }

@@ -31,7 +31,7 @@ use sweeps::CellSweeps;
 use tour::{Candidate, Instance, Tour, leg_time, leg_turn_rad};
 
 /// The most candidate sweeps a run accepts (cells × directions × 4 entries): the leg-time
-/// matrix holds the square of it in `f32`, 1.6 GB at this bound.
+/// matrix and the transit lengths each hold the square of it in `f32`, 3.2 GB at this bound.
 pub const MAX_CANDIDATES: usize = 20_000;
 
 /// A map prepared for tours: the reachable clearance, the cells and their sweeps, the tour
@@ -56,8 +56,33 @@ pub fn prepare<'m>(
     directions: &[f64],
     completion_m_per_m2: f64,
 ) -> Result<Prepared<'m>, String> {
+    prepare_within(scenario, directions, completion_m_per_m2, None)
+}
+
+/// [`prepare`], refused once `deadline` has passed (checked after the decomposition and
+/// while the transit lengths are computed, the phases that grow with the map): a run's wall
+/// clock covers its preparation.
+pub fn prepare_within<'m>(
+    scenario: &'m Scenario,
+    directions: &[f64],
+    completion_m_per_m2: f64,
+    deadline: Option<(Instant, std::time::Duration)>,
+) -> Result<Prepared<'m>, String> {
     let s = scenario;
+    let begun = Instant::now();
+    let out_of_time = |phase: &str| {
+        let limit = deadline.map_or(0.0, |(_, d)| d.as_secs_f64());
+        format!(
+            "the wall clock (budget.wall_clock_s = {limit} s) ran out while {phase}, after {:.1} s of preparation: \
+             raise budget.wall_clock_s, or offer fewer cell_order.directions",
+            begun.elapsed().as_secs_f64()
+        )
+    };
+    let past = || deadline.is_some_and(|(d, _)| Instant::now() >= d);
     let (clear, reach, sweeps) = decompose(scenario, directions)?;
+    if past() {
+        return Err(out_of_time("decomposing the map into cells"));
+    }
     let count: usize = sweeps.cells.iter().map(Vec::len).sum();
     if count > MAX_CANDIDATES {
         return Err(format!(
@@ -69,7 +94,13 @@ pub fn prepare<'m>(
     let flat: Vec<&sweeps::Sweep> = sweeps.cells.iter().flatten().collect();
     let (exits, exit_id) = distinct(&flat.iter().map(|w| w.end()).chain([s.start]).collect::<Vec<_>>());
     let (entries, entry_id) = distinct(&flat.iter().map(|w| w.start()).chain([s.end]).collect::<Vec<_>>());
-    let transit = Transit::new(&clear, &exits, &entries);
+    let transit = Transit::new_within(&clear, &exits, &entries, deadline.map(|(d, _)| d)).ok_or_else(|| {
+        out_of_time(&format!(
+            "finding the wall-free routes between {} sweep ends and {} starts",
+            exits.len(),
+            entries.len()
+        ))
+    })?;
     let (speed, rot) = (s.robot.speed, s.robot.rot_speed);
     let candidates: Vec<Vec<Candidate>> = sweeps
         .cells
@@ -176,7 +207,16 @@ impl Prepared<'_> {
 /// run of a configuration gets the same plan; the thesis GA seeds its population with it
 /// (`thesis.seed_population = ["cell_order"]`).
 pub fn local_optimum_plan(scenario: &Scenario, section: &config::CellOrderSection) -> Result<Vec<Point>, String> {
-    let prepared = prepare(scenario, &section.directions, section.completion_m_per_m2)?;
+    local_optimum_plan_within(scenario, section, None)
+}
+
+/// [`local_optimum_plan`] whose preparation is refused past `deadline` (see [`prepare_within`]).
+pub fn local_optimum_plan_within(
+    scenario: &Scenario,
+    section: &config::CellOrderSection,
+    deadline: Option<(Instant, std::time::Duration)>,
+) -> Result<Vec<Point>, String> {
+    let prepared = prepare_within(scenario, &section.directions, section.completion_m_per_m2, deadline)?;
     let mut tour = search::nearest_neighbour(&prepared.instance);
     local::improve(&prepared.instance, &mut tour, search::ROUNDS);
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)
@@ -201,7 +241,7 @@ impl CellOrderConfig {
         prepared: &Prepared,
         scenario: &Scenario,
         grid: &crate::coverage::CoverageGrid,
-        seed: u64,
+        (seed, started): (u64, Instant),
         budget: &Budget,
         observers: &mut [&mut dyn Observer],
     ) -> Result<Solved, PlannerError> {
@@ -227,7 +267,7 @@ impl CellOrderConfig {
                     lanes = Some((tour.clone(), c));
                     c
                 };
-                let out = search::search(inst, &self.ga, seed, budget, |g| {
+                let out = search::search(inst, &self.ga, (seed, started), budget, |g| {
                     let (best_coverage, best_coverage_reach) = lane_coverage(g.best.0);
                     let record = GenerationRecord {
                         iteration: g.iteration,
@@ -318,10 +358,11 @@ impl Planner for CellOrderConfig {
     ) -> Result<RunOutcome, PlannerError> {
         let started = Instant::now();
         let s = scenario;
-        let prepared = prepare(s, &self.directions, self.completion_m_per_m2)
+        let deadline = budget.wall_clock.map(|d| (started + d, d));
+        let prepared = prepare_within(s, &self.directions, self.completion_m_per_m2, deadline)
             .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
-        let solved = self.solve(&prepared, s, &grid, seed, budget, observers)?;
+        let solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
         let (path, skipped) = prepared.path(&solved.tour, &s.robot, (s.start, s.end), self.completion);
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);

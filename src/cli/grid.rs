@@ -79,9 +79,18 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     } else {
         (crate::experiment::memory::memory_limit(a.max_memory), a.jobs.min(all.len().max(1)))
     };
-    let largest_run_bytes =
-        crate::study::runner::validate_runs(&study, &all, &crate::study::runner::MapCache::default(), limit, parallel)
-            .map_err(CliError::input)?;
+    // A dry run answers at once: it checks keys, ranges, maps and stations, and plans nothing
+    // (a pattern seed's plan, the exact solver's cell count wait for the run).
+    let checks = if a.dry_run { crate::planner::Checks::KeysOnly } else { crate::planner::Checks::Full };
+    let largest_run_bytes = crate::study::runner::validate_runs(
+        &study,
+        &all,
+        &crate::study::runner::MapCache::default(),
+        limit,
+        parallel,
+        checks,
+    )
+    .map_err(CliError::input)?;
     if a.dry_run {
         return dry_run(&study, &a, &out);
     }
@@ -158,6 +167,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
 fn dry_run(study: &Study, a: &GridArgs, out: &std::path::Path) -> Result<(), CliError> {
     let configs = study.runs.iter().map(|r| &r.config_id).collect::<std::collections::HashSet<_>>().len();
     println!("{}: {} runs ({} configurations x replicates)", study.path.display(), study.runs.len(), configs);
+    println!("  checked: keys, ranges, maps, stations and memory; seed plans and cell counts are checked when it runs");
     for (branch, n) in study.branches() {
         println!("  {n:>7} runs  {branch}");
     }

@@ -38,6 +38,24 @@ pub fn distinct(points: &[Point]) -> (Vec<Point>, Vec<u32>) {
 impl Transit {
     /// The lengths from every point of `exits` to every point of `entries` (each distinct).
     pub fn new(clear: &Clearance, exits: &[Point], entries: &[Point]) -> Self {
+        Self::new_within(clear, exits, entries, None).expect("no deadline")
+    }
+
+    /// [`Self::new`], given up (`None`) once `deadline` has passed: a run's wall clock covers
+    /// its preparation too.
+    pub fn new_within(
+        clear: &Clearance,
+        exits: &[Point],
+        entries: &[Point],
+        deadline: Option<std::time::Instant>,
+    ) -> Option<Self> {
+        let expired = std::sync::atomic::AtomicBool::new(false);
+        let past = || {
+            deadline.is_some_and(|d| std::time::Instant::now() >= d) && {
+                expired.store(true, std::sync::atomic::Ordering::Relaxed);
+                true
+            }
+        };
         let map = clear.map();
         let res = map.resolution();
         let cols = map.cols();
@@ -57,6 +75,9 @@ impl Transit {
                 || vec![f64::INFINITY; map.rows() * cols],
                 |dist, &exit| {
                     let mut row = vec![f32::INFINITY; entries.len()];
+                    if expired.load(std::sync::atomic::Ordering::Relaxed) || past() {
+                        return row;
+                    }
                     if let Some((s, leg)) = snap(exit) {
                         let touched = dijkstra(clear, s, leg, res, dist);
                         for (k, snap) in entry_snap.iter().enumerate() {
@@ -79,7 +100,7 @@ impl Transit {
             )
             .flatten()
             .collect();
-        Self { entries: entries.len(), metres }
+        (!expired.into_inner()).then_some(Self { entries: entries.len(), metres })
     }
 
     /// The transit length from exit `exit` to entry `entry` in metres.

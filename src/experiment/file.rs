@@ -13,7 +13,7 @@ use crate::geom::Point;
 use crate::map::GridMap;
 use crate::patterns::planner::PatternSection;
 use crate::planner::sections::{BudgetSection, MapSection, RobotSection, StationsSection};
-use crate::planner::{Budget, Context, Scenario};
+use crate::planner::{Budget, Checks, Context, Scenario};
 use crate::thesis::config::{RetrainSection, ThesisSection};
 use crate::waypoint::config::WaypointSection;
 use serde::{Deserialize, Serialize};
@@ -152,9 +152,13 @@ impl ExperimentFile {
     /// Python pass the working directory, one rule for run and grid files); `origin`
     /// names the file in messages; `stem` names the default output folder.
     pub fn validate(self, origin: &str, base: &Path, stem: &str) -> Result<Experiment, ConfigError> {
-        self.validate_with(origin, base, stem, &|src: &str, image: &crate::map::ros::BareImage| {
-            crate::map::ros::load_map(src, image)
-        })
+        self.validate_with(
+            origin,
+            base,
+            stem,
+            &|src: &str, image: &crate::map::ros::BareImage| crate::map::ros::load_map(src, image),
+            Checks::Full,
+        )
     }
 
     /// [`Self::validate`] with a map loader (studies share one cache of loaded maps).
@@ -164,6 +168,7 @@ impl ExperimentFile {
         base: &Path,
         stem: &str,
         load: &MapLoader<'_>,
+        checks: Checks,
     ) -> Result<Experiment, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         if self.planner == PlannerKind::CellOrder && self.cell_order.is_none() {
@@ -256,7 +261,8 @@ impl ExperimentFile {
             wall_clock: (b.wall_clock_s > 0.0).then(|| Duration::from_secs_f64(b.wall_clock_s)),
             stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
         };
-        let planner = PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget })?;
+        let planner =
+            PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget, checks })?;
         let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
         let diversity_every = self.output.diversity_every.unwrap_or(1);
         if diversity_every == 0 {

@@ -123,6 +123,19 @@ pub struct Context<'a> {
     pub scenario: &'a Scenario,
     /// Stop conditions.
     pub budget: &'a Budget,
+    /// Whether checks that plan (seed plans, cell counts) run too.
+    pub checks: Checks,
+}
+
+/// How deep a configuration is checked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Checks {
+    /// Every check, those that plan included (a pattern seed's plan, the exact solver's cell
+    /// count): what a run needs before it starts.
+    Full,
+    /// Keys, ranges, map and stations only; nothing is planned (a grid's `--dry-run`, which
+    /// must answer at once). The configuration is not runnable: a run validates it again.
+    KeysOnly,
 }
 
 impl Context<'_> {

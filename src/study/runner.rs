@@ -10,6 +10,7 @@ use super::grid::{RunSpec, Study};
 use super::records::{RunsTable, csv_line, failed_row, header, row};
 use crate::config::ConfigError;
 use crate::experiment::file::Experiment;
+use crate::planner::Checks;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -146,6 +147,9 @@ pub struct StudyOutcome {
     pub first_failure: Option<(String, String)>,
 }
 
+/// A recorded run's `cov_final_reach`, `t_final` and wall seconds, and why it failed if it did.
+type RunResult = ((f64, f64, f64), Option<String>);
+
 /// Maps loaded once per study and shared by its runs.
 #[derive(Default)]
 pub struct MapCache(Mutex<std::collections::HashMap<MapKey, crate::map::GridMap>>);
@@ -172,8 +176,18 @@ impl MapCache {
 
 /// Validates a run's experiment.
 pub fn experiment_of(study: &Study, run: &RunSpec, maps: &MapCache) -> Result<Experiment, ConfigError> {
+    checked_experiment_of(study, run, maps, Checks::Full)
+}
+
+/// Validates a run's experiment as deep as `checks` asks.
+fn checked_experiment_of(
+    study: &Study,
+    run: &RunSpec,
+    maps: &MapCache,
+    checks: Checks,
+) -> Result<Experiment, ConfigError> {
     let origin = format!("{} (run {})", study.path.display(), run.id);
-    run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r))
+    run.file.clone().validate_with(&origin, Path::new("."), &run.id, &|s, r| maps.load(s, r), checks)
 }
 
 /// Validates the experiments of `runs` (maps loaded once through `maps`; one replicate per
@@ -187,6 +201,7 @@ pub fn validate_runs(
     maps: &MapCache,
     limit: Option<u64>,
     parallel: usize,
+    checks: Checks,
 ) -> Result<f64, ConfigError> {
     let parallel = parallel.min(runs.len());
     // Replicates differ only in their seed, which no check reads (run seeds are kept below
@@ -194,7 +209,7 @@ pub fn validate_runs(
     // once per configuration, not once per replicate.
     let mut seen = std::collections::HashSet::new();
     runs.iter().filter(|run| seen.insert(run.config_id.as_str())).try_fold(0.0f64, |largest, run| {
-        let exp = experiment_of(study, run, maps)?;
+        let exp = checked_experiment_of(study, run, maps, checks)?;
         let origin = format!("{} (run {})", study.path.display(), run.id);
         Ok(largest.max(exp.check_memory(&origin, limit, parallel, 1)?.bytes))
     })
@@ -292,7 +307,14 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let maps = MapCache::default();
     // More workers than runs would only start idle threads (and count their memory).
     let jobs = opts.jobs.clamp(1, selected.len().max(1));
-    validate_runs(study, &selected, &maps, crate::experiment::memory::memory_limit(opts.max_memory), jobs)?;
+    validate_runs(
+        study,
+        &selected,
+        &maps,
+        crate::experiment::memory::memory_limit(opts.max_memory),
+        jobs,
+        Checks::Full,
+    )?;
     check_identity(study, &opts.out)?;
     std::fs::create_dir_all(&opts.out).map_err(|source| StudyError::Folder { path: opts.out.clone(), source })?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
@@ -324,7 +346,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let abort_after: Option<usize> = std::env::var(ABORT_AFTER_ENV).ok().and_then(|v| v.parse().ok());
     // A run its planner refuses while planning (what validation cannot see without planning)
     // is recorded with its reason and the study goes on; any other failure stops the study.
-    let run_one = |run: &RunSpec| -> Result<((f64, f64, f64), Option<String>), StudyError> {
+    let run_one = |run: &RunSpec| -> Result<RunResult, StudyError> {
         let dir = opts.out.join("runs").join(&run.id);
         let exp = experiment_of(study, run, &maps)?;
         let started = std::time::Instant::now();

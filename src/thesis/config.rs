@@ -12,8 +12,8 @@ use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::coverage::fitness::Projection;
 use crate::ga::control::AdaptiveConstants;
-use crate::planner::Context;
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::{Checks, Context};
 use serde::{Deserialize, Serialize};
 
 /// `[thesis]`: the parameters of 003 Tables 4.1–4.3.
@@ -335,7 +335,12 @@ impl ThesisSection {
                 ),
             ));
         }
-        let genomes = seed_genomes(self.seed_population, settings, ctx.scenario, params.max_genome_len)
+        if ctx.checks == Checks::KeysOnly {
+            // A dry run plans no seed: the keys above are checked, the plans when the run starts.
+            return Ok((Vec::new(), 0));
+        }
+        let deadline = ctx.budget.wall_clock.map(|d| (std::time::Instant::now() + d, d));
+        let genomes = seed_genomes(self.seed_population, settings, ctx.scenario, params.max_genome_len, deadline)
             .map_err(|m| ctx.error("thesis.seed_population", m))?;
         let size = params.initial_size();
         let seeded = ((share * size as f64).ceil() as usize).max(genomes.len()).min(size);

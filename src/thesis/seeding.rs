@@ -5,7 +5,7 @@
 
 use super::genome::{Action, MIN_GENOME_LEN};
 use crate::cell_order::config::CellOrderSection;
-use crate::cell_order::local_optimum_plan;
+use crate::cell_order::local_optimum_plan_within;
 use crate::geom::{Point, polar_deg};
 use crate::patterns::planner::PatternSection;
 use crate::patterns::{Pattern, plan};
@@ -120,12 +120,14 @@ pub struct SeedSettings<'a> {
 }
 
 /// The genome of each pattern's plan on the scenario, or why it cannot seed: the pattern
-/// cannot be planned, or its genome exceeds `max_genome_len` (named with the length needed).
+/// cannot be planned, its genome exceeds `max_genome_len` (named with the length needed), or
+/// the cell-order plan's preparation runs past `deadline` (the run's wall clock and its limit).
 pub fn seed_genomes(
     plans: SeedPlans,
     settings: SeedSettings,
     scenario: &Scenario,
     max_genome_len: usize,
+    deadline: Option<(std::time::Instant, std::time::Duration)>,
 ) -> Result<Vec<(SeedPlan, Vec<Action>)>, String> {
     let s = scenario;
     let pattern = settings.pattern;
@@ -142,7 +144,7 @@ pub fn seed_genomes(
             let points = match p {
                 SeedPlan::Boustrophedon => pattern_plan(Pattern::Boustrophedon { angle_deg: pattern.angle_deg })?,
                 SeedPlan::Spiral => pattern_plan(Pattern::Spiral)?,
-                SeedPlan::CellOrder => local_optimum_plan(s, settings.cell_order).map_err(in_map)?,
+                SeedPlan::CellOrder => local_optimum_plan_within(s, settings.cell_order, deadline).map_err(in_map)?,
             };
             let genome = genome_of_path(&points);
             if genome.len() > max_genome_len {
