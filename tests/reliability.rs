@@ -201,6 +201,30 @@ const CASES: &[Case] = &[
         needle: "`thesis.tournament_size` is swept but ignored",
     },
     Case {
+        name: "swept sp under the cell-order GA's tournament",
+        files: &[("g.toml", "[base]\nplanner = \"cell_order\"\n[axes]\n\"cell_order.sp\" = [1.2, 1.8]\n")],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "`cell_order.sp` is swept but ignored in run",
+    },
+    Case {
+        name: "swept GA key under the exact solver",
+        files: &[(
+            "g.toml",
+            "[base]\nplanner = \"cell_order\"\n[base.cell_order]\nsolver = \"exact\"\n[axes]\n\"cell_order.population\" = [10, 20]\n",
+        )],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "runs no GA",
+    },
+    Case {
+        name: "swept pattern angle under cell_order names the planner in its hint",
+        files: &[(
+            "g.toml",
+            "[base]\n[axes]\n\"planner\" = [\"cell_order\", \"spiral\"]\n\"pattern.angle_deg\" = [0.0, 90.0]\n",
+        )],
+        args: &["grid", "g.toml", "--out", "OUT"],
+        needle: "when = { \"planner\" = \"…\" }",
+    },
+    Case {
         name: "grid over the memory limit",
         files: &[("g.toml", GRID)],
         args: &["grid", "g.toml", "--out", "OUT", "--jobs", "2", "--max-memory", "10k"],

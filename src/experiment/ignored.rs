@@ -41,6 +41,52 @@ const READ_BY_RANDOM_SEARCH: [&str; 5] =
 const READ_BY_CELL_ORDER_SEED: [&str; 3] =
     ["cell_order.directions", "cell_order.completion", "cell_order.completion_m_per_m2"];
 
+/// The `[cell_order]` keys of its GA, which the exact solver does not read.
+const CELL_ORDER_GA_KEYS: [&str; 10] = [
+    "cell_order.population",
+    "cell_order.selection",
+    "cell_order.tournament_size",
+    "cell_order.sp",
+    "cell_order.select",
+    "cell_order.keep",
+    "cell_order.p_c",
+    "cell_order.p_m",
+    "cell_order.p_choice",
+    "cell_order.memetic",
+];
+
+/// The `[cell_order]` keys each of its GA's selection schemes does not read.
+fn unread_by_cell_order_selection(s: crate::cell_order::config::SelectionName) -> &'static [&'static str] {
+    use crate::cell_order::config::SelectionName;
+    match s {
+        SelectionName::Elite => &["cell_order.tournament_size", "cell_order.sp"],
+        SelectionName::Tournament => &["cell_order.select", "cell_order.sp"],
+        SelectionName::Prws => &["cell_order.tournament_size", "cell_order.select", "cell_order.sp"],
+        SelectionName::Rrws => &["cell_order.tournament_size", "cell_order.select"],
+    }
+}
+
+/// Why the cell-order planner of `file` does not read `key` of `[cell_order]`.
+fn unread_by_cell_order(file: &ExperimentFile, key: &str) -> Option<String> {
+    use crate::cell_order::config::{SelectionName, Solver};
+    let section = file.cell_order.clone().unwrap_or_default();
+    match section.solver {
+        Solver::Exact if CELL_ORDER_GA_KEYS.contains(&key) => {
+            Some("cell_order.solver = \"exact\" runs no GA (Held–Karp reads only the directions and completion)".into())
+        }
+        Solver::Exact => None,
+        Solver::Ga => unread_by_cell_order_selection(section.selection).contains(&key).then(|| {
+            let name = match section.selection {
+                SelectionName::Elite => "elite",
+                SelectionName::Tournament => "tournament",
+                SelectionName::Prws => "prws",
+                SelectionName::Rrws => "rrws",
+            };
+            format!("cell_order.selection = \"{name}\" does not use it")
+        }),
+    }
+}
+
 /// Whether `key` (dotted) lies in the section or key `prefix`.
 fn within(key: &str, prefix: &str) -> bool {
     key == prefix || key.strip_prefix(prefix).is_some_and(|rest| rest.starts_with('.'))
@@ -82,6 +128,11 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
         && !READ_BY_CELL_ORDER_SEED.iter().any(|k| within(key, k))
     {
         return Some(format!("the thesis GA's cell_order seed plan reads only {}", READ_BY_CELL_ORDER_SEED.join(", ")));
+    }
+    if planner == PlannerKind::CellOrder
+        && let Some(why) = unread_by_cell_order(file, key)
+    {
+        return Some(why);
     }
     if key == "output.diversity_every" && planner != PlannerKind::Thesis {
         return Some(format!("only the thesis GA measures the population's diversity; planner = \"{name}\""));
@@ -139,6 +190,15 @@ pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String
                     }
                 }
             }
+            // A section read as a whole may still hold keys its settings do not read.
+            toml::Value::Table(t) if section == "cell_order" && why_ignored(file, section).is_none() => {
+                for key in t.keys() {
+                    let dotted = format!("{section}.{key}");
+                    if let Some(why) = why_ignored(file, &dotted) {
+                        out.push((dotted, why));
+                    }
+                }
+            }
             _ => {
                 if let Some(why) = why_ignored(file, section) {
                     out.push((section.clone(), why));
@@ -166,6 +226,9 @@ mod tests {
         let cell_seeded = file("[thesis]\nseed_population = [\"cell_order\"]\n");
         let waypoint = file("planner = \"waypoint\"\n");
         let random = file("planner = \"random_search\"\n");
+        let cell_ga = file("planner = \"cell_order\"\n");
+        let cell_elite = file("planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"\n");
+        let cell_exact = file("planner = \"cell_order\"\n[cell_order]\nsolver = \"exact\"\n");
         for (f, key, ignored) in [
             (&elite, "thesis.init_individuals", true),
             (&elite, "thesis.keep", true),
@@ -198,6 +261,16 @@ mod tests {
             (&elite, "thesis_x", false),
             (&waypoint, "waypoint.near_wall", true),
             (&file("planner = \"waypoint\"\n[waypoint]\nwaypoint_set = \"near_wall\"\n"), "waypoint.near_wall", false),
+            (&cell_ga, "cell_order.sp", true),
+            (&cell_ga, "cell_order.select", true),
+            (&cell_ga, "cell_order.tournament_size", false),
+            (&cell_ga, "cell_order.population", false),
+            (&cell_elite, "cell_order.sp", true),
+            (&cell_elite, "cell_order.select", false),
+            (&cell_exact, "cell_order.population", true),
+            (&cell_exact, "cell_order.memetic", true),
+            (&cell_exact, "cell_order.directions", false),
+            (&cell_exact, "cell_order.completion", false),
         ] {
             assert_eq!(why_ignored(f, key).is_some(), ignored, "{key} under {:?}", f.planner);
         }
@@ -208,5 +281,8 @@ mod tests {
         let text = "[thesis]\nselection = \"elite\"\ninit_individuals = 500\npop_min = 20\n[pattern]\nangle_deg = 0\n";
         let found: Vec<String> = ignored_in_text(text, &file(text)).into_iter().map(|(k, _)| k).collect();
         assert_eq!(found, ["pattern", "thesis.init_individuals"]);
+        let text = "planner = \"cell_order\"\n[cell_order]\nsolver = \"exact\"\npopulation = 10\ndirections = [0.0]\n";
+        let found: Vec<String> = ignored_in_text(text, &file(text)).into_iter().map(|(k, _)| k).collect();
+        assert_eq!(found, ["cell_order.population"]);
     }
 }

@@ -51,6 +51,16 @@ pub struct GridFile {
     pub conditional: Vec<Conditional>,
 }
 
+/// The key whose value decides whether `key` is read, for the hint of a swept unread key.
+fn deciding_key(key: &str) -> &'static str {
+    match key.split('.').next() {
+        Some("thesis") => "\"thesis.selection\" = \"…\"",
+        Some("cell_order") => "\"cell_order.solver\" = \"ga\", \"cell_order.selection\" = \"…\"",
+        Some("waypoint") => "\"waypoint.waypoint_set\" = \"…\"",
+        _ => "\"planner\" = \"…\"",
+    }
+}
+
 fn one() -> u64 {
     1
 }
@@ -358,27 +368,39 @@ impl Study {
                 ),
             ));
         }
-        // A key swept over several values that a run's planner or selection does not read
-        // makes runs that differ only in a value nothing reads. (A single-valued axis only
-        // sets a key, e.g. per map for whichever planner runs there.)
-        let multi: Vec<bool> = columns
-            .iter()
-            .map(|k| {
-                axes.iter().chain(conds.iter().flat_map(|(_, cax)| cax.iter())).any(|(a, v)| a == k && v.len() > 1)
-            })
-            .collect();
+        // A key a run's planner or selection does not read, swept so that two runs differ only
+        // in such keys, makes runs that differ in a value nothing reads (the same run twice
+        // under two ids). A key set but unread where no other run differs from it only there
+        // (the exact solver on the branch of a GA setting) is what it is: a recorded value.
+        let mut unread_alike: std::collections::HashMap<(Vec<Option<String>>, u32), &RunSpec> =
+            std::collections::HashMap::new();
         for r in &runs {
-            for ((k, v), multi) in columns.iter().zip(&r.params).zip(&multi) {
-                if *multi
-                    && v.is_some()
+            let mut read = r.params.clone();
+            let mut unread = Vec::new();
+            for ((k, v), kept) in columns.iter().zip(&r.params).zip(read.iter_mut()) {
+                if v.is_some()
                     && let Some(why) = crate::experiment::ignored::why_ignored(&r.file, k)
                 {
+                    *kept = None;
+                    unread.push((k, why));
+                }
+            }
+            if let Some(other) = unread_alike.insert((read, r.replicate), r) {
+                let differs = |k: &String| {
+                    let i = columns.iter().position(|c| c == k).expect("a column");
+                    other.params[i] != r.params[i]
+                };
+                if let Some((k, why)) = unread.iter().find(|(k, _)| differs(k)) {
                     return Err(ConfigError::new(
                         &origin,
                         k,
                         format!(
-                            "is swept but ignored in run {} ({why}); sweep it in a conditional axis where it is read, e.g. [[conditional]] when = {{ \"thesis.selection\" = \"…\" }}",
-                            r.id
+                            "is swept but ignored in run {} ({why}), which then differs from run {} only in keys \
+                             nothing reads; sweep it in a conditional axis where it is read, e.g. [[conditional]] \
+                             when = {{ {} }}",
+                            r.id,
+                            other.id,
+                            deciding_key(k)
                         ),
                     ));
                 }
