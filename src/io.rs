@@ -110,6 +110,21 @@ pub fn read_text_bounded(path: &Path, limit: u64) -> std::io::Result<String> {
 /// `agent` column (non-negative integer) that splits the rows into one path per agent, and an
 /// `index` column that must number each agent's rows 0, 1, 2, … in the file's order. Returns the paths in ascending agent order.
 pub fn read_path_csv(path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
+    read_path_file(path).map(|f| f.paths)
+}
+
+/// A path file's paths in ascending agent order, with each agent's `robot` name where the
+/// file has that column (one name per agent).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PathFile {
+    /// One path per agent.
+    pub paths: Vec<Vec<Point>>,
+    /// Each agent's robot name (`None` without a `robot` column).
+    pub robots: Vec<Option<String>>,
+}
+
+/// [`read_path_csv`] with each agent's `robot` name.
+pub fn read_path_file(path: &Path) -> Result<PathFile, PathFileError> {
     // A FIFO or a device would block or never end: only regular files are read.
     if let Ok(meta) = std::fs::metadata(path)
         && !meta.is_file()
@@ -125,11 +140,17 @@ pub fn read_path_csv(path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
         line: 0,
         message: format!("cannot read path file: {e}"),
     })?;
-    parse_path_csv(&text, path)
+    parse_path_file(&text, path)
 }
 
 /// Parses the text of a path file read from `path` (named in messages); see [`read_path_csv`].
 pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFileError> {
+    parse_path_file(text, path).map(|f| f.paths)
+}
+
+/// [`parse_path_csv`] with each agent's `robot` name: every row of an agent must name the
+/// same robot.
+pub fn parse_path_file(text: &str, path: &Path) -> Result<PathFile, PathFileError> {
     let fail = |line: u64, message: String| PathFileError { path: path.to_path_buf(), line, message };
     let mut reader = csv::ReaderBuilder::new().trim(csv::Trim::All).from_reader(text.as_bytes());
     let headers = reader.headers().map_err(|e| fail(1, format!("bad CSV header: {e}")))?.clone();
@@ -146,8 +167,9 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
     if let Some(bad) = headers.iter().find(|h| !["x_m", "y_m", "agent", "robot", "index"].contains(h)) {
         return Err(fail(1, format!("unknown column `{bad}`; allowed: x_m, y_m, agent, robot, index")));
     }
-    let (ai, ii) = (col("agent"), col("index"));
+    let (ai, ii, ri) = (col("agent"), col("index"), col("robot"));
     let mut by_agent: std::collections::BTreeMap<u64, Vec<Point>> = Default::default();
+    let mut names: std::collections::BTreeMap<u64, String> = Default::default();
     for (k, record) in reader.records().enumerate() {
         let line = k as u64 + 2;
         let record = record.map_err(|e| fail(line, format!("bad CSV row: {e}")))?;
@@ -167,6 +189,16 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
                     .map_err(|_| fail(line, format!("`agent` = `{raw}` is not a non-negative integer")))?
             }
         };
+        if let Some(i) = ri {
+            let raw = record.get(i).unwrap_or("");
+            let first = names.entry(agent).or_insert_with(|| raw.to_string());
+            if first != raw {
+                return Err(fail(
+                    line,
+                    format!("`robot` = `{raw}` where agent {agent}'s earlier rows name `{first}`: one robot per agent"),
+                ));
+            }
+        }
         let points = by_agent.entry(agent).or_default();
         // The index, where given, numbers each agent's points in the file's order: a file
         // sorted otherwise would be read as another path.
@@ -184,11 +216,12 @@ pub fn parse_path_csv(text: &str, path: &Path) -> Result<Vec<Vec<Point>>, PathFi
         }
         points.push(p);
     }
+    let robots: Vec<Option<String>> = by_agent.keys().map(|a| names.get(a).cloned()).collect();
     let paths: Vec<Vec<Point>> = by_agent.into_values().collect();
     if paths.is_empty() {
         return Err(fail(2, "the file has no points; expected at least one row x_m,y_m".into()));
     }
-    Ok(paths)
+    Ok(PathFile { paths, robots })
 }
 
 /// Writes paths as CSV `agent,index,x_m,y_m` (the format [`read_path_csv`] reads).

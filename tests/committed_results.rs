@@ -165,7 +165,7 @@ fn committed_study_rows_re_run_exactly() {
             let out = scratch.path().join(&name).join(&id);
             let summary = covga::experiment::output::run_experiment(&exp, &out, false, &mut [])
                 .unwrap_or_else(|e| panic!("{name} {id}: {e}"));
-            let fresh = row(run, &summary);
+            let fresh = row(&study.columns, run, &summary);
             let fresh = if before_body_rule { as_earlier_rule_row(&today, &fresh) } else { fresh };
             let old = committed[&id];
             for ((h, a), b) in table.header.iter().zip(old).zip(&fresh) {

@@ -243,6 +243,27 @@ fn a_fleet_plan_is_scored_per_robot_and_bad_fleets_exit_2() {
         "2 paths for a fleet of 1 robots",
     );
     expect_input_error(&["eval", "--path", &d("plan.csv"), "--fleet", &d("missing.toml")], "missing.toml");
+    // The `robot` column names each agent's robot of the fleet, in order.
+    std::fs::write(d("named.csv"), "x_m,y_m,agent,robot\n2,3,0,small\n6,3,0,small\n4,3,1,large\n8,3,1,large\n")
+        .unwrap();
+    json_of(&covga(&["eval", "--path", &d("named.csv"), "--fleet", &d("fleet.toml"), "--json", "--out", &d("o4")]));
+    std::fs::write(d("swapped.csv"), "x_m,y_m,agent,robot\n2,3,0,large\n6,3,0,large\n4,3,1,small\n8,3,1,small\n")
+        .unwrap();
+    expect_input_error(
+        &["eval", "--path", &d("swapped.csv"), "--fleet", &d("fleet.toml"), "--out", &d("o5")],
+        "agent 0 names robot `large`, but robot 0 of",
+    );
+    std::fs::write(d("unknown.csv"), "x_m,y_m,agent,robot\n2,3,0,small\n6,3,0,small\n4,3,1,nobody\n8,3,1,nobody\n")
+        .unwrap();
+    expect_input_error(
+        &["eval", "--path", &d("unknown.csv"), "--fleet", &d("fleet.toml"), "--out", &d("o6")],
+        "agent 1 names robot `nobody`",
+    );
+    std::fs::write(d("mixed.csv"), "x_m,y_m,agent,robot\n2,3,0,small\n6,3,0,large\n").unwrap();
+    expect_input_error(
+        &["eval", "--path", &d("mixed.csv"), "--fleet", &d("fleet.toml"), "--out", &d("o7")],
+        "mixed.csv:3: `robot` = `large` where agent 0's earlier rows name `small`",
+    );
 }
 
 #[test]

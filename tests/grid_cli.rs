@@ -361,6 +361,8 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let rows: Vec<Vec<String>> = lines.map(|l| l.split(',').map(str::to_string).collect()).collect();
     assert_eq!(rows.len(), 12);
+    // The swept `planner` is the planner column itself, not a second column of that name.
+    assert_eq!(header.iter().filter(|h| **h == "planner").count(), 1, "{header:?}");
     let col = |name: &str| header.iter().rposition(|h| *h == name).unwrap_or_else(|| panic!("{name}"));
     let planners: std::collections::BTreeSet<&str> = rows.iter().map(|r| r[col("planner")].as_str()).collect();
     assert_eq!(planners.len(), 5, "{planners:?}");
@@ -583,7 +585,13 @@ fn reports_mark_incomplete_studies_and_refuse_non_finite_metrics() {
     ok(&covga(&["grid", grid.to_str().unwrap(), "--out", o]));
     ok(&covga(&["report", o]));
     let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
-    assert!(!summary.contains("Incomplete"), "{summary}");
+    assert!(!summary.contains("Incomplete") && !summary.contains("No `runs/` folder"), "{summary}");
+    // Without the runs' folders the report says that it has tables only.
+    std::fs::rename(out.join("runs"), dir.path().join("runs-away")).unwrap();
+    ok(&covga(&["report", o]));
+    let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
+    assert!(summary.contains("**No `runs/` folder in"), "{summary}");
+    std::fs::rename(dir.path().join("runs-away"), out.join("runs")).unwrap();
     // One run lost (as after kill -9 before it was recorded).
     let runs = std::fs::read_to_string(out.join("runs.csv")).unwrap();
     let lines: Vec<&str> = runs.lines().collect();
@@ -655,4 +663,22 @@ fn a_run_that_fails_while_planning_is_recorded_and_the_study_goes_on() {
     ok(&covga(&["report", o]));
     let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
     assert!(summary.contains("**1 recorded runs failed while running**"), "{summary}");
+}
+
+#[test]
+fn a_resume_refuses_a_runs_file_holding_a_run_twice() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.toml");
+    std::fs::write(&grid, "[base]\nplanner = \"boustrophedon\"\n[axes]\n\"robot.speed\" = [0.2, 0.3]\n").unwrap();
+    let out = dir.path().join("out");
+    let args = ["grid", grid.to_str().unwrap(), "--out", out.to_str().unwrap()];
+    ok(&covga(&args));
+    let runs = std::fs::read_to_string(out.join("runs.csv")).unwrap();
+    let last = runs.lines().last().unwrap();
+    std::fs::write(out.join("runs.csv"), format!("{runs}{last}\n")).unwrap();
+    let again = covga(&args);
+    assert_eq!(again.status.code(), Some(2), "{again:?}");
+    assert!(String::from_utf8_lossy(&again.stderr).contains("is recorded twice"), "{again:?}");
+    // Nothing was rewritten.
+    assert_eq!(std::fs::read_to_string(out.join("runs.csv")).unwrap(), format!("{runs}{last}\n"));
 }

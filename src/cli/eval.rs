@@ -221,7 +221,32 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
             (paths, format!("area division ({} cells{detached}, boustrophedon {}°)", sizes.join("/"), a.angle))
         }
         Some(file) => {
-            let paths = crate::io::read_path_csv(file).map_err(CliError::input)?;
+            let crate::io::PathFile { paths, robots: names } =
+                crate::io::read_path_file(file).map_err(CliError::input)?;
+            // With a fleet, the `robot` column must name the fleet's robot of each agent.
+            if let Some((origin, f)) = &fleet {
+                for (k, name) in names.iter().enumerate() {
+                    let Some(name) = name else { continue };
+                    match f.robots().get(k) {
+                        Some(r) if &r.name == name => {}
+                        Some(r) => {
+                            return Err(CliError::Input(format!(
+                                "{}: agent {k} names robot `{name}`, but robot {k} of {origin} is `{}` (agents follow \
+                                 the fleet's [[robots]] in order)",
+                                file.display(),
+                                r.name
+                            )));
+                        }
+                        None => {
+                            return Err(CliError::Input(format!(
+                                "{}: agent {k} names robot `{name}`, but {origin} has {} robots",
+                                file.display(),
+                                f.robots().len()
+                            )));
+                        }
+                    }
+                }
+            }
             crate::coverage::score::check_camera_poses(&paths)
                 .map_err(|m| CliError::Input(format!("{}: {m}", file.display())))?;
             for (k, p) in paths.iter().enumerate() {

@@ -320,7 +320,17 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         None => dir.join("report"),
     };
     std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
-    let notes: Vec<String> = incomplete_note(dir, recorded).into_iter().chain(failed_note(&failed)).collect();
+    // Without the runs' own files the report has tables only: say so rather than leave the
+    // path and history figures out without a word.
+    let no_run_files = (!dir.join("runs").is_dir()).then(|| {
+        format!(
+            "**No `runs/` folder in {}**: the tables below come from runs.csv alone; the best paths and the \
+             histories (diversity, convergence) that the runs' folders hold are not drawn.",
+            dir.display()
+        )
+    });
+    let notes: Vec<String> =
+        incomplete_note(dir, recorded).into_iter().chain(failed_note(&failed)).chain(no_run_files).collect();
     let incomplete = (!notes.is_empty()).then(|| notes.join("\n\n"));
     if self::fleet_report::applies(&t) {
         self::fleet_report::write(dir, &t, &out, incomplete.as_deref())?;

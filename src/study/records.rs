@@ -44,15 +44,35 @@ pub fn metric_columns() -> Vec<String> {
         .collect()
 }
 
-/// The header for a study with `params` swept keys.
-pub fn header(params: &[String]) -> Vec<String> {
-    ID_COLUMNS.iter().map(|s| s.to_string()).chain(params.iter().cloned()).chain(metric_columns()).collect()
+/// Whether each of the swept keys `params` gets a column of its own: a key named like a
+/// metric column (`planner`, swept to compare planners) has its value there already, and a
+/// table with two columns of one name could not be read by name.
+fn own_column(params: &[String]) -> Vec<bool> {
+    let metrics = metric_columns();
+    params.iter().map(|p| !metrics.contains(p)).collect()
 }
 
-/// The row of a finished run.
-pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
+/// The swept values of `run` that get a column of their own (see [`own_column`]).
+fn param_fields(params: &[String], run: &RunSpec) -> Vec<String> {
+    run.params
+        .iter()
+        .zip(own_column(params))
+        .filter(|(_, own)| *own)
+        .map(|(v, _)| v.clone().unwrap_or_default())
+        .collect()
+}
+
+/// The header for a study with `params` swept keys.
+pub fn header(params: &[String]) -> Vec<String> {
+    let own = own_column(params);
+    let params = params.iter().zip(own).filter(|(_, own)| *own).map(|(p, _)| p.clone());
+    ID_COLUMNS.iter().map(|s| s.to_string()).chain(params).chain(metric_columns()).collect()
+}
+
+/// The row of a finished run of a study with `params` swept keys.
+pub fn row(params: &[String], run: &RunSpec, summary: &Summary) -> Vec<String> {
     let mut out = vec![run.id.clone(), run.config_id.clone(), run.replicate.to_string(), run.file.seed.to_string()];
-    out.extend(run.params.iter().map(|v| v.clone().unwrap_or_default()));
+    out.extend(param_fields(params, run));
     out.extend([
         summary.planner.to_string(),
         run.file.map.source.clone(),
@@ -76,11 +96,12 @@ pub fn row(run: &RunSpec, summary: &Summary) -> Vec<String> {
 /// leaves every metric empty; `covga report` counts such rows and leaves them out.
 pub const FAILED_STOP: &str = "failed";
 
-/// The row of a run that failed while running: `reason` (one line) in `violations`, `stop` =
+/// The row of a run (of a study with `params` swept keys) that failed while running: `reason`
+/// (one line) in `violations`, `stop` =
 /// [`FAILED_STOP`], the metrics empty.
-pub fn failed_row(run: &RunSpec, reason: &str, wall_s: f64) -> Vec<String> {
+pub fn failed_row(params: &[String], run: &RunSpec, reason: &str, wall_s: f64) -> Vec<String> {
     let mut out = vec![run.id.clone(), run.config_id.clone(), run.replicate.to_string(), run.file.seed.to_string()];
-    out.extend(run.params.iter().map(|v| v.clone().unwrap_or_default()));
+    out.extend(param_fields(params, run));
     let reason = reason.split_whitespace().collect::<Vec<_>>().join(" ");
     out.extend([run.file.planner.name().to_string(), run.file.map.source.clone(), "false".to_string(), reason]);
     out.extend(crate::coverage::score::Score::column_names().into_iter().map(|_| String::new()));

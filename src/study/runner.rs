@@ -353,13 +353,13 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
         let (fields, result) = match crate::experiment::output::run_experiment(&exp, &dir, false, &mut []) {
             Ok(summary) => {
                 let s = &summary.score;
-                (row(run, &summary), ((s.cov_final_reach, s.t_final, summary.wall_s), None))
+                (row(&study.columns, run, &summary), ((s.cov_final_reach, s.t_final, summary.wall_s), None))
             }
             Err(crate::experiment::output::OutputError::Planner(message)) => {
                 let wall_s = started.elapsed().as_secs_f64();
                 // A failed run has no files; its empty folder goes (a non-empty one stays).
                 let _ = std::fs::remove_dir(&dir);
-                (failed_row(run, &message, wall_s), ((f64::NAN, f64::NAN, wall_s), Some(message)))
+                (failed_row(&study.columns, run, &message, wall_s), ((f64::NAN, f64::NAN, wall_s), Some(message)))
             }
             Err(other) => return Err(StudyError::Run { id: run.id.clone(), message: other.to_string() }),
         };
@@ -455,5 +455,19 @@ fn recorded_ids(file: &Path, head: &[String]) -> Result<std::collections::HashSe
             message: "its columns differ from this grid's; use another --out folder or remove the file".into(),
         });
     }
-    Ok(table.by_id().into_keys().collect())
+    let id = table.col("run_id").unwrap_or(0);
+    let mut ids = std::collections::HashSet::with_capacity(table.rows.len());
+    for row in &table.rows {
+        if !ids.insert(row[id].clone()) {
+            return Err(StudyError::Mismatch {
+                path: file.to_path_buf(),
+                message: format!(
+                    "run {} is recorded twice (a runs file holds each run once: was it edited or concatenated?); \
+                     remove one of its rows",
+                    row[id]
+                ),
+            });
+        }
+    }
+    Ok(ids)
 }
