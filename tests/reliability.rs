@@ -458,6 +458,38 @@ const CASES: &[Case] = &[
         needle: "taken: cannot write the map files",
     },
     Case {
+        name: "an obstacle rectangle between cell centres",
+        files: &[],
+        args: &[
+            "eval",
+            "--map",
+            "thesis-1",
+            "--pattern",
+            "boustrophedon",
+            "--obstacle",
+            "5.01,5.01,5.02,5.02",
+            "--out",
+            "OUT",
+        ],
+        needle: "--obstacle 5.01,5.01,5.02,5.02: holds no free cell centre of map `thesis-1`",
+    },
+    Case {
+        name: "routed moves for a robot that fits nowhere near its start",
+        files: &[(
+            "e.toml",
+            "planner = \"thesis\"\n[map]\nsource = \"thesis-2\"\n[robot]\nwidth = 3.5\n[stations]\nstart = [1.3, 1.3]\n\
+             [thesis]\nmoves = \"routed\"\n[budget]\niterations = 1\n",
+        )],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`stations.start` a 3.5 m robot does not fit at the start",
+    },
+    Case {
+        name: "a resolution for a preset map",
+        files: &[("e.toml", "[map]\nsource = \"thesis-1\"\nresolution = 0.1\n")],
+        args: &["run", "e.toml", "--out", "OUT"],
+        needle: "`resolution` = 0.1 is out of range: a resolution applies to a bare PGM/PNG image only",
+    },
+    Case {
         name: "exact cell order on more cells than it takes, in a grid",
         files: &[(
             "g.toml",

@@ -23,30 +23,61 @@ fn read(dir: &Path, file: &str) -> String {
 const THESIS_2: &str = "seed = 7\nplanner = \"thesis\"\n[map]\nsource = \"thesis-2\"\n[stations]\nstart = [1.3, 1.3]\n\
                         [thesis]\npop_min = 40\ninit_actions = 30\n[budget]\niterations = 60\n";
 
+/// A 12 m × 10 m room whose every cell is free, at `res` metres per cell.
+fn open_room(res: f64) -> covga::map::GridMap {
+    let (cols, rows) = ((12.0 / res).round() as usize, (10.0 / res).round() as usize);
+    let cells = vec![covga::map::CellState::Free; cols * rows];
+    covga::map::GridMap::new("open", cols, rows, res, covga::geom::Point::new(0.0, 0.0), cells).unwrap()
+}
+
 #[test]
-fn routed_moves_on_a_map_without_obstacles_are_the_straight_moves_bit_for_bit() {
-    // A 12 m × 10 m room at 0.2 m whose every cell is free: no move needs a route.
-    let maps = tempfile::tempdir().unwrap();
-    let (cols, rows) = (60, 50);
-    let mut pgm = format!("P5\n{cols} {rows}\n255\n").into_bytes();
-    pgm.extend(std::iter::repeat_n(254u8, cols * rows));
-    std::fs::write(maps.path().join("open.pgm"), pgm).unwrap();
-    std::fs::write(
-        maps.path().join("open.yaml"),
-        "image: open.pgm\nresolution: 0.2\norigin: [0.0, 0.0, 0.0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
-    )
-    .unwrap();
-    let straight = "seed = 3\nplanner = \"thesis\"\n[map]\nsource = \"open.yaml\"\n[stations]\nstart = [1.0, 1.0]\n\
-                    [robot]\nrot_speed = 0.5\n[thesis]\npop_min = 30\ninit_actions = 20\ninit_dist_max = 8.0\n\
-                    [budget]\niterations = 80\n";
-    let routed = straight.replace("[thesis]\n", "[thesis]\nmoves = \"routed\"\n");
-    let (a, b) = (run(straight, maps.path()), run(&routed, maps.path()));
-    for file in ["best_path.csv", "best_genome.csv", "history.csv", "population.csv"] {
-        assert_eq!(read(a.path(), file), read(b.path(), file), "{file}");
+fn on_a_map_without_obstacles_routed_moves_are_the_straight_moves_wherever_those_are_executable() {
+    use covga::coverage::routes::{RouteScratch, Router};
+    use covga::geom::Point;
+    use rand::{Rng, SeedableRng};
+    let width = 0.6;
+    for res in [0.2, 0.1, 0.05] {
+        let map = open_room(res);
+        let router = Router::new(&map, width, &[Point::new(1.0, 1.0)]);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let (mut same, mut moved) = (0, 0);
+        for case in 0..200 {
+            // Half the plans keep the body inside the room, half may put it past the walls.
+            let margin = if case % 2 == 0 { width / 2.0 + 1e-6 } else { 0.0 };
+            let points: Vec<Point> = (0..10)
+                .map(|_| Point::new(rng.random_range(margin..12.0 - margin), rng.random_range(margin..10.0 - margin)))
+                .collect();
+            let mut routed = Vec::new();
+            router.expand(&points, &mut RouteScratch::default(), &mut routed);
+            let body = |path: &[Point]| covga::map::body::contact(&map, &[path.to_vec()], &[width]).is_clear();
+            assert!(body(&routed), "{res} m, case {case}: a routed plan leaves the room: {routed:?}");
+            if body(&points) {
+                assert_eq!(routed, points, "{res} m, case {case}: an executable straight plan was rerouted");
+                same += 1;
+            } else {
+                moved += 1;
+            }
+        }
+        assert!(same >= 90 && moved >= 50, "{res} m: {same} executable straight plans, {moved} others");
     }
-    let (sa, sb) = (summary(a.path()), summary(b.path()));
-    assert_eq!(sa["score"], sb["score"]);
-    assert_eq!(sb["moves"].as_str().map(|m| m.starts_with("routed")), Some(true), "{sb}");
+}
+
+#[test]
+fn routed_runs_on_an_open_room_are_executable_at_every_resolution() {
+    for (res, cols, rows) in [(0.2, 60, 50), (0.1, 120, 100), (0.05, 240, 200)] {
+        let maps = tempfile::tempdir().unwrap();
+        let mut pgm = format!("P5\n{cols} {rows}\n255\n").into_bytes();
+        pgm.extend(std::iter::repeat_n(254u8, cols * rows));
+        std::fs::write(maps.path().join("open.pgm"), pgm).unwrap();
+        let routed = format!(
+            "seed = 3\nplanner = \"thesis\"\n[map]\nsource = \"open.pgm\"\nresolution = {res}\n[stations]\n\
+             start = [1.0, 1.0]\n[robot]\nrot_speed = 0.5\n[thesis]\nmoves = \"routed\"\npop_min = 30\n\
+             init_actions = 20\ninit_dist_max = 8.0\n[budget]\niterations = 80\n"
+        );
+        let s = summary(run(&routed, maps.path()).path());
+        assert_eq!(s["score"]["executable"], true, "{res} m: {s}");
+        assert_eq!(s["moves"].as_str().map(|m| m.starts_with("routed")), Some(true), "{s}");
+    }
 }
 
 #[test]

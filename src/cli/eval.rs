@@ -192,6 +192,14 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
     for text in &a.obstacles {
         let rect = parse_rect(text).map_err(|m| CliError::Input(format!("--obstacle {text}: {m}")))?;
         let (with, n) = map.with_obstacle(rect).map_err(|e| CliError::Input(format!("--obstacle {text}: {e}")))?;
+        if n == 0 && with.cells() == map.cells() {
+            return Err(CliError::Input(format!(
+                "--obstacle {text}: holds no free cell centre of map `{}` ({} m cells: a cell is blocked when its \
+                 centre lies inside), so it would change nothing",
+                map.name(),
+                map.resolution()
+            )));
+        }
         map = with;
         placed += n;
     }

@@ -58,6 +58,9 @@ pub struct Router {
     /// Grid distances (in cells) from each landmark to every reachable centre, `LANDMARKS` per
     /// cell; `f32::INFINITY` off the component.
     landmarks: Vec<f32>,
+    /// The map's free cells as bit rows: a segment whose rectangle, a cell wider than the
+    /// robot on either side, holds no other cell is clear without sampling it.
+    bits: BitLayers,
 }
 
 /// A move's route: where it starts (where the robot stands at its first viewpoint) and the
@@ -107,7 +110,7 @@ impl Router {
     /// worker threads: the landmark distances and tables, and each worker's search arrays and
     /// full route cache.
     pub fn memory_estimate(cells: usize, threads: usize) -> f64 {
-        let shared = cells * (LANDMARKS * 4 + 4 + 8);
+        let shared = cells * (LANDMARKS * 4 + 4 + 8 + 1);
         let per_thread = cells * 20 + CACHE_ROUTES * 48 + CACHE_POINTS * 16;
         (shared + per_thread * threads.max(1)) as f64
     }
@@ -120,7 +123,28 @@ impl Router {
         clear.restrict(reach.centres().to_vec());
         let landmarks = landmark_distances(&clear, stations);
         let nearest = nearest_centres(&clear);
-        Self { clear, coverable: reach.coverable().to_vec(), width, nearest, landmarks }
+        let bits = BitLayers::new(&super::CoverageGrid::new(map));
+        Self { clear, coverable: reach.coverable().to_vec(), width, nearest, landmarks, bits }
+    }
+
+    /// Whether the robot's body along `p → q`, both places it fits, keeps clear of every
+    /// non-free cell and the map's edge (the executability rule of `map::body`, to the
+    /// planners' sampling): at once where the segment's rectangle widened by a cell on either
+    /// side holds only free cells (every other cell square then lies more than a radius from
+    /// the segment, and the map's edge stays clear between two ends that keep clear of it),
+    /// refused at once where the rectangle half a cell narrower than the robot holds another,
+    /// else decided by [`Clearance::segment_fits_within`].
+    pub fn segment_clear(&self, p: Point, q: Point) -> bool {
+        let res = self.clear.map().resolution();
+        if self.bits.obstacle_cells(p, q, self.width + 2.0 * res) == 0 {
+            return true;
+        }
+        // A non-free cell centre half a cell inside the body's band lies inside the disc at a
+        // sample a quarter cell from its foot: the sampled test refuses the segment too.
+        if self.width > 2.0 * res && self.bits.obstacle_cells(p, q, self.width - res) > 0 {
+            return false;
+        }
+        self.clear.segment_fits_within(p, q, STAND_SLACK_M)
     }
 
     /// The robot width the routes are planned for.
@@ -131,7 +155,11 @@ impl Router {
     /// Whether the robot can stand at `p`: its cell is swept by some reachable pose and the disc
     /// centred at `p` keeps clear of every non-free cell (to [`STAND_SLACK_M`]).
     pub fn can_stand(&self, p: Point) -> bool {
-        self.cell_of(p).is_some_and(|i| self.coverable[i] && self.clear.clear_of_cells_within(p, STAND_SLACK_M))
+        self.cell_of(p).is_some_and(|i| {
+            self.coverable[i]
+                && self.clear.inside_edges_within(p, STAND_SLACK_M)
+                && self.clear.clear_of_cells_within(p, STAND_SLACK_M)
+        })
     }
 
     /// The cell holding `p` (the map's upper edges belong to its last row and column, where
@@ -164,7 +192,7 @@ impl Router {
 
     /// The route of the move `a → b` (cached in `scratch`). `layers` are the map's bit rows,
     /// which tell whether a segment's swept rectangle holds obstacle cells.
-    pub fn route<'s>(&self, layers: &BitLayers, a: Point, b: Point, scratch: &'s mut RouteScratch) -> Route<'s> {
+    pub fn route<'s>(&self, a: Point, b: Point, scratch: &'s mut RouteScratch) -> Route<'s> {
         let key = [a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits()];
         let (start, from, len) = match scratch.cache.get(&key) {
             Some(&hit) => hit,
@@ -175,7 +203,7 @@ impl Router {
                 }
                 scratch.searches += 1;
                 let from = scratch.points.len();
-                let start = self.search(layers, a, b, scratch);
+                let start = self.search(a, b, scratch);
                 let entry = (start, from as u32, (scratch.points.len() - from) as u32);
                 scratch.cache.insert(key, entry);
                 entry
@@ -186,18 +214,18 @@ impl Router {
 
     /// The driven path of the viewpoints `points`: the robot's position at the first, then each
     /// move's route, into `out` (cleared first).
-    pub fn expand(&self, layers: &BitLayers, points: &[Point], scratch: &mut RouteScratch, out: &mut Vec<Point>) {
+    pub fn expand(&self, points: &[Point], scratch: &mut RouteScratch, out: &mut Vec<Point>) {
         out.clear();
         let Some(&first) = points.first() else { return };
         out.push(self.position(first));
         for w in points.windows(2) {
-            out.extend_from_slice(self.route(layers, w[0], w[1], scratch).points);
+            out.extend_from_slice(self.route(w[0], w[1], scratch).points);
         }
     }
 
     /// Finds the route of `a → b`, appends its points to `scratch.points` and returns its start.
-    fn search(&self, layers: &BitLayers, a: Point, b: Point, scratch: &mut RouteScratch) -> Point {
-        let clear_segment = |p: Point, q: Point| layers.obstacle_cells(p, q, self.width) == 0;
+    fn search(&self, a: Point, b: Point, scratch: &mut RouteScratch) -> Point {
+        let clear_segment = |p: Point, q: Point| self.segment_clear(p, q);
         let (pa, pb) = (self.position(a), self.position(b));
         // Where the robot stands at both viewpoints this is 003's straight move, if clear.
         if pa == pb || clear_segment(pa, pb) {
@@ -416,13 +444,37 @@ mod tests {
     }
 
     #[test]
+    fn the_wide_rectangle_shortcut_agrees_with_the_sampled_segment_test() {
+        use rand::{Rng, SeedableRng};
+        for name in ["office", "thesis-2"] {
+            let map = preset(name).unwrap();
+            let router = Router::new(&map, 0.6, &[Point::new(2.0, 2.0)]);
+            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+            let mut stand = || loop {
+                let p = Point::new(rng.random_range(0.0..map.width_m()), rng.random_range(0.0..map.height_m()));
+                if router.can_stand(p) {
+                    return p;
+                }
+            };
+            let (mut clear, mut blocked) = (0, 0);
+            for _ in 0..3000 {
+                let (p, q) = (stand(), stand());
+                let sampled = router.clear.segment_fits_within(p, q, STAND_SLACK_M);
+                assert_eq!(router.segment_clear(p, q), sampled, "{name}: {p:?} → {q:?}");
+                if sampled { clear += 1 } else { blocked += 1 }
+            }
+            assert!(clear > 100 && blocked > 100, "{name}: {clear} clear, {blocked} blocked");
+        }
+    }
+
+    #[test]
     fn a_move_through_the_disc_goes_around_it_and_sweeps_no_obstacle() {
         let map = preset("thesis-2").unwrap();
         let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]), layers(&map));
         let (a, b) = (Point::new(2.0, 5.5), Point::new(9.0, 5.5));
         assert!(bits.obstacle_cells(a, b, 0.6) > 0);
         let mut scratch = RouteScratch::default();
-        let route = router.route(&bits, a, b, &mut scratch);
+        let route = router.route(a, b, &mut scratch);
         assert_eq!((route.start, *route.points.last().unwrap()), (a, b));
         assert!(route.points.len() >= 2, "a detour, not the straight segment");
         let mut prev = route.start;
@@ -436,19 +488,19 @@ mod tests {
         // round the map.
         assert!(length > 7.0 && length < 10.0, "{length}");
         // The cache returns the same route.
-        let again: Vec<Point> = router.route(&bits, a, b, &mut scratch).points.to_vec();
+        let again: Vec<Point> = router.route(a, b, &mut scratch).points.to_vec();
         assert_eq!(scratch.searches(), 1);
-        let fresh = router.route(&bits, a, b, &mut RouteScratch::default()).points.to_vec();
+        let fresh = router.route(a, b, &mut RouteScratch::default()).points.to_vec();
         assert_eq!(again, fresh);
     }
 
     #[test]
     fn a_clear_move_is_the_straight_segment() {
         let map = preset("thesis-2").unwrap();
-        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]), layers(&map));
+        let router = Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]);
         let (a, b) = (Point::new(1.5, 1.5), Point::new(8.5, 1.5));
         let mut scratch = RouteScratch::default();
-        assert_eq!(router.route(&bits, a, b, &mut scratch), Route { start: a, points: &[b] });
+        assert_eq!(router.route(a, b, &mut scratch), Route { start: a, points: &[b] });
     }
 
     #[test]
@@ -468,7 +520,7 @@ mod tests {
             assert!(q.x < 4.0 - 0.3 + 1e-9, "{q:?} is on the stations' side");
         }
         let mut scratch = RouteScratch::default();
-        let route = router.route(&bits, Point::new(1.0, 2.0), closed, &mut scratch);
+        let route = router.route(Point::new(1.0, 2.0), closed, &mut scratch);
         let mut prev = route.start;
         for &p in route.points {
             assert_eq!(bits.obstacle_cells(prev, p, 0.6), 0);
@@ -478,13 +530,20 @@ mod tests {
     }
 
     #[test]
-    fn on_a_map_without_obstacles_every_move_is_straight() {
+    fn on_a_map_without_obstacles_every_move_is_straight_between_places_the_body_fits() {
         let map = GridMap::new("open", 40, 30, 0.2, Point::origin(), vec![CellState::Free; 1200]).unwrap();
-        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.0, 1.0)]), layers(&map));
+        let router = Router::new(&map, 0.6, &[Point::new(1.0, 1.0)]);
         let mut scratch = RouteScratch::default();
-        for (a, b) in [((0.0, 0.0), (8.0, 6.0)), ((0.05, 5.9), (7.9, 0.1)), ((4.0, 3.0), (4.0, 3.0))] {
+        // Where the body fits at both ends: the straight move itself.
+        for (a, b) in [((0.3, 0.3), (7.7, 5.7)), ((0.35, 5.6), (7.65, 0.4)), ((4.0, 3.0), (4.0, 3.0))] {
             let (a, b) = (Point::new(a.0, a.1), Point::new(b.0, b.1));
-            assert_eq!(router.route(&bits, a, b, &mut scratch), Route { start: a, points: &[b] });
+            assert_eq!(router.route(a, b, &mut scratch), Route { start: a, points: &[b] });
         }
+        // A viewpoint past the reach of the body (on the map's edge) is driven to the nearest
+        // place it fits, then straight.
+        let (a, b) = (Point::new(0.0, 0.0), Point::new(8.0, 6.0));
+        let (pa, pb) = (router.position(a), router.position(b));
+        assert!(pa != a && pb != b && router.can_stand(pa) && router.can_stand(pb));
+        assert_eq!(router.route(a, b, &mut scratch), Route { start: pa, points: &[pb] });
     }
 }

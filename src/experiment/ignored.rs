@@ -145,6 +145,11 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     if key == "budget.iterations" && planner == PlannerKind::RandomSearch {
         return Some("random search draws `budget.evaluations` genomes; it has no iterations".into());
     }
+    if key == "waypoint.alpha_cov" && file.waypoint.objective == crate::waypoint::world::ObjectiveKind::Footprint {
+        return Some(
+            "waypoint.objective = \"footprint\" measures the swept area; only the camera objective blends walls and open floor by alpha_cov".into(),
+        );
+    }
     if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
         return Some("waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into());
     }
@@ -261,6 +266,8 @@ mod tests {
             (&elite, "thesis_x", false),
             (&waypoint, "waypoint.near_wall", true),
             (&file("planner = \"waypoint\"\n[waypoint]\nwaypoint_set = \"near_wall\"\n"), "waypoint.near_wall", false),
+            (&file("planner = \"waypoint\"\n[waypoint]\nobjective = \"footprint\"\n"), "waypoint.alpha_cov", true),
+            (&waypoint, "waypoint.alpha_cov", false),
             (&cell_ga, "cell_order.sp", true),
             (&cell_ga, "cell_order.select", true),
             (&cell_ga, "cell_order.tournament_size", false),

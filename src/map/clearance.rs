@@ -66,9 +66,15 @@ impl<'m> Clearance<'m> {
     /// Whether the robot disc centred at `p` stays on the map (the edges' test of
     /// [`Clearance::fits_geometry`]).
     fn inside_edges(&self, p: Point) -> bool {
+        self.inside_edges_within(p, 0.0)
+    }
+
+    /// Whether the robot disc centred at `p` stays on the map, with `slack` metres more
+    /// tolerance than the planners' own (see [`Clearance::clear_of_cells_within`]).
+    pub fn inside_edges_within(&self, p: Point, slack: f64) -> bool {
         let m = &*self.map;
         let (ox, oy) = (m.origin().x, m.origin().y);
-        let lim = self.radius - CLEARANCE_EPS;
+        let lim = self.radius - CLEARANCE_EPS - slack;
         !(p.x - ox < lim || p.y - oy < lim || ox + m.width_m() - p.x < lim || oy + m.height_m() - p.y < lim)
     }
 
@@ -171,6 +177,17 @@ impl<'m> Clearance<'m> {
     pub fn segment_fits(&self, a: Point, b: Point) -> bool {
         let steps = ((b - a).norm() / (0.25 * self.map.resolution())).ceil().max(1.0) as usize;
         (0..=steps).all(|i| self.fits(a + (b - a) * (i as f64 / steps as f64)))
+    }
+
+    /// [`Clearance::segment_fits`] with `slack` metres more tolerance than the planners' own,
+    /// for segments whose ends a planner put at the clearance limit (see
+    /// [`Clearance::clear_of_cells_within`]).
+    pub fn segment_fits_within(&self, a: Point, b: Point, slack: f64) -> bool {
+        let steps = ((b - a).norm() / (0.25 * self.map.resolution())).ceil().max(1.0) as usize;
+        (0..=steps).all(|i| {
+            let p = a + (b - a) * (i as f64 / steps as f64);
+            self.inside_edges_within(p, slack) && self.clear_of_cells_within(p, slack) && self.near_reachable(p)
+        })
     }
 
     /// The free sub-intervals `[t0, t1]` (parameters in [0, 1]) of the segment `a → b` where the

@@ -285,6 +285,16 @@ pub fn load_map(spec: &str, image: &BareImage) -> Result<GridMap, MapError> {
             allowed: "a free threshold applies to a bare PGM/PNG image only (a ROS map YAML sets free_thresh and occupied_thresh; presets are drawn in three classes)",
         });
     }
+    if let Some(r) = image.resolution
+        && (preset(spec).is_some() || !matches!(ext.as_str(), "pgm" | "png"))
+    {
+        return Err(MapError::OutOfRange {
+            source_name: spec.to_string(),
+            field: "resolution",
+            value: r.to_string(),
+            allowed: "a resolution applies to a bare PGM/PNG image only (a ROS map YAML and a preset give their own); leave it out",
+        });
+    }
     if let Some(m) = preset(spec) {
         return Ok(m);
     }

@@ -108,13 +108,37 @@ pub fn fnv1a(bytes: &[u8]) -> u64 {
     bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3))
 }
 
-/// Sets a dotted key in a table, creating intermediate tables.
+/// Merges `value` into `slot`: a table into a table key by key (so that an axis value
+/// `thesis = {pop_min = 10}` keeps the base's other `[thesis]` keys), anything else replaces.
+fn merge(slot: &mut Value, value: Value) {
+    match (slot, value) {
+        (Value::Table(old), Value::Table(new)) => {
+            for (k, v) in new {
+                match old.get_mut(&k) {
+                    Some(existing) => merge(existing, v),
+                    None => {
+                        old.insert(k, v);
+                    }
+                }
+            }
+        }
+        (slot, value) => *slot = value,
+    }
+}
+
+/// Sets a dotted key in a table, creating intermediate tables; a table value is merged into
+/// a table already there ([`merge`]).
 fn set(table: &mut Table, key: &str, value: Value) -> Result<(), String> {
     let mut parts = key.split('.').peekable();
     let mut t = table;
     while let Some(p) = parts.next() {
         if parts.peek().is_none() {
-            t.insert(p.to_string(), value);
+            match t.get_mut(p) {
+                Some(slot) => merge(slot, value),
+                None => {
+                    t.insert(p.to_string(), value);
+                }
+            }
             return Ok(());
         }
         let entry = t.entry(p.to_string()).or_insert_with(|| Value::Table(Table::new()));
@@ -515,6 +539,15 @@ mod tests {
     }
 
     const BASE: &str = "[base]\n[base.budget]\niterations = 10\n";
+
+    #[test]
+    fn a_table_valued_axis_keeps_the_base_keys_it_does_not_set() {
+        let text = "[base]\n[base.thesis]\npop_min = 20\nc_len = 0.4\n[base.budget]\niterations = 10\n\
+                    [axes]\n\"thesis\" = [{ pop_min = 10 }, { pop_min = 30 }]\n";
+        let study = parse(text).unwrap();
+        let got: Vec<(usize, f64)> = study.runs.iter().map(|r| (r.file.thesis.pop_min, r.file.thesis.c_len)).collect();
+        assert_eq!(got, [(10, 0.4), (30, 0.4)]);
+    }
 
     #[test]
     fn a_conditional_may_not_override_an_unconditional_axis() {

@@ -242,7 +242,7 @@ pub fn evaluate(
         (EvaluationMode::Full, _) => match &mut router {
             None => layers.sweep(&mut ind.visits, &points, width),
             Some((r, routes)) => {
-                r.expand(layers, &points, routes, driven);
+                r.expand(&points, routes, driven);
                 layers.sweep(&mut ind.visits, driven, width)
             }
         },
@@ -274,7 +274,7 @@ pub fn evaluate(
         (false, _) => 0.0,
         (true, None) => motion::rotation_time(motion::turning(&ind.points).0, rot),
         (true, Some(r)) => {
-            r.expand(&scenario.layers, &ind.points, &mut scratch.routes, &mut scratch.driven);
+            r.expand(&ind.points, &mut scratch.routes, &mut scratch.driven);
             motion::rotation_time(motion::turning(&scratch.driven).0, rot)
         }
     };
@@ -292,7 +292,7 @@ pub fn evaluate(
         let path: &[Point] = match scenario.routes.as_deref() {
             None => &ind.points,
             Some(r) => {
-                r.expand(&scenario.layers, &ind.points, routes, driven);
+                r.expand(&ind.points, routes, driven);
                 driven
             }
         };
@@ -315,7 +315,7 @@ fn apply_route<const ADD: bool>(
     width: f64,
     tally: &mut Tally,
 ) {
-    let route = router.route(layers, a, b, routes);
+    let route = router.route(a, b, routes);
     let mut from = route.start;
     for &p in route.points {
         cache.apply::<ADD>(layers, visits, from, p, width, tally);

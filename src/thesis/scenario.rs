@@ -85,7 +85,7 @@ impl Scenario {
             None => points.to_vec(),
             Some(router) => {
                 let mut out = Vec::new();
-                router.expand(&self.layers, points, &mut RouteScratch::default(), &mut out);
+                router.expand(points, &mut RouteScratch::default(), &mut out);
                 out
             }
         }
