@@ -582,3 +582,27 @@ fn the_history_records_the_reachable_coverage_the_scorer_reports() {
         }
     }
 }
+
+#[test]
+fn the_history_counts_the_feasible_members_of_the_thesis_ga_and_cell_order() {
+    let dir = tempfile::tempdir().unwrap();
+    // Thesis map 1 has walls: some members sweep them, the count lies in [0, population].
+    let thesis = write(dir.path(), "t.toml", &small("").replace("iterations = 200", "iterations = 5"));
+    let cells = write(
+        dir.path(),
+        "c.toml",
+        "planner = \"cell_order\"\n[map]\nsource = \"thesis-2\"\n[stations]\nstart = [1.3, 1.3]\n\
+         [cell_order]\npopulation = 20\n[budget]\nevaluations = 200\n",
+    );
+    for (file, population) in [(thesis, 40.0), (cells, 20.0)] {
+        let out = dir.path().join(file.file_stem().unwrap());
+        let o = covga(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let feasible = column(&read(&out.join("history.csv")), "feasible");
+        assert!(!feasible.is_empty() && feasible.iter().all(|&f| (0.0..=population).contains(&f)), "{feasible:?}");
+        if population == 20.0 {
+            // Every tour is driven on wall-free routes.
+            assert!(feasible.iter().all(|&f| f == population), "{feasible:?}");
+        }
+    }
+}

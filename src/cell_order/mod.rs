@@ -276,7 +276,8 @@ impl CellOrderConfig {
                         mean_fitness: g.fitness.1,
                         best_coverage,
                         best_coverage_reach: Some(best_coverage_reach),
-                        feasible: None,
+                        // Every tour is driven on wall-free routes: all members are feasible.
+                        feasible: Some(self.ga.population as u32),
                         diversity: None,
                         extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
                         robots: Vec::new(),

@@ -125,6 +125,8 @@ pub struct GenerationStats {
     pub sp: f64,
     /// Population size.
     pub population: u32,
+    /// Members whose plans sweep no obstacle cell (003's constraint `obj_pix` = 0).
+    pub feasible: u32,
     /// Hypervolume of the population's plans without obstacle sweeps over
     /// (`cov_final`, `t_final`) from (0, 0), for Pareto selection (NSGA-II) only.
     pub hypervolume: Option<f64>,
@@ -150,7 +152,7 @@ impl GenerationStats {
             mean_fitness: self.mean_fitness,
             best_coverage: self.best_cov_final,
             best_coverage_reach: None,
-            feasible: None,
+            feasible: Some(self.feasible),
             diversity: self.diversity,
             robots: Vec::new(),
             extras: vec![

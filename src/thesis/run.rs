@@ -412,6 +412,7 @@ pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective, pareto: bool)
         p_ma: p_ma_sum / n,
         sp: if effective.tournament_size > 0 { effective.tournament_size as f64 } else { effective.pressure },
         population: pop.len() as u32,
+        feasible: pop.iter().filter(|m| m.obstacle_cells() == 0).count() as u32,
         hypervolume: pareto.then(|| {
             let clean: Vec<(f64, f64)> = pop
                 .iter()
