@@ -181,3 +181,34 @@ def test_ctrl_c_stops_a_study_which_then_resumes(tmp_path):
     assert 1 <= len(recorded) < 9, "stopped part-way, with the header and the finished runs"
     runs = covga.grid(grid_file, jobs=2, out=tmp_path / "study")
     assert len(runs) == 8 and runs["run_id"].is_unique
+
+
+FAILING_GRID = """
+[base]
+planner = "thesis"
+[base.thesis]
+pop_min = 10
+init_actions = 10
+[base.budget]
+iterations = 2
+[[base.robots]]
+name = "a"
+start = [1.3, 1.3]
+[[base.robots]]
+name = "b"
+start = [9.7, 9.5]
+end = [1.6, 1.3]
+[axes]
+"fleet.mode" = ["central", "divide"]
+"""
+
+
+def test_a_run_that_fails_while_planning_is_recorded_and_raises_after_the_others(tmp_path):
+    grid_file = tmp_path / "fails.toml"
+    grid_file.write_text(FAILING_GRID)
+    with pytest.raises(covga.ConfigError, match="1 of 2 runs failed while running"):
+        covga.grid(grid_file, jobs=1, out=tmp_path / "out")
+    runs = covga.read_study(tmp_path / "out")
+    assert sorted(runs["stop"]) != [] and list(runs["stop"]).count("failed") == 1
+    failed = runs[runs["stop"] == "failed"]
+    assert "lies outside its region" in failed["violations"].iloc[0]
