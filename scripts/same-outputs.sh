@@ -72,6 +72,8 @@ import csv, io, json, os, re, sys
 base, new = sys.argv[1], sys.argv[2]
 
 TIMINGS = {"wall_s", "precompute_s"}  # seconds of wall time, different in every run
+# Which build wrote a study (its commit) and which process holds a folder differ by design.
+PROVENANCE = {"git_commit"}
 
 def strip_md(text, root):
     """A report without its timings: the study folder's name, the columns from `wall s` on,
@@ -103,7 +105,7 @@ def normal(path, root):
             return data
         def strip(o):
             if isinstance(o, dict):
-                return {k: strip(v) for k, v in o.items() if k not in TIMINGS}
+                return {k: strip(v) for k, v in o.items() if k not in TIMINGS | PROVENANCE}
             if isinstance(o, list):
                 return [strip(v) for v in o]
             return o
@@ -119,10 +121,12 @@ def normal(path, root):
     return data
 
 def files(root):
+    """The output files, without the folder locks (`.covga.lock`, which name the process)."""
     out = set()
     for d, _, fs in os.walk(root):
         for f in fs:
-            out.add(os.path.relpath(os.path.join(d, f), root))
+            if f != ".covga.lock":
+                out.add(os.path.relpath(os.path.join(d, f), root))
     return out
 
 a, b = files(base), files(new)

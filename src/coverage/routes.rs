@@ -87,6 +87,9 @@ pub struct RouteScratch {
     /// Routes by the bits of their two viewpoints: start and the range of their points.
     cache: HashMap<[u64; 4], (Point, u32, u32)>,
     points: Vec<Point>,
+    /// Grid routes by their two cells: the range of their turning cells in `grid_cells`.
+    grid_paths: HashMap<(u32, u32), (u32, u32)>,
+    grid_cells: Vec<u32>,
     /// Routes searched so far (cache misses).
     searches: u64,
 }
@@ -111,7 +114,7 @@ impl Router {
     /// full route cache.
     pub fn memory_estimate(cells: usize, threads: usize) -> f64 {
         let shared = cells * (LANDMARKS * 4 + 4 + 8 + 1);
-        let per_thread = cells * 20 + CACHE_ROUTES * 48 + CACHE_POINTS * 16;
+        let per_thread = cells * 20 + CACHE_ROUTES * (48 + 24) + CACHE_POINTS * (16 + 4);
         (shared + per_thread * threads.max(1)) as f64
     }
 
@@ -234,32 +237,20 @@ impl Router {
         }
         let map = self.clear.map();
         let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
-        let found = match (self.nearest_centre(pa), self.nearest_centre(pb)) {
-            (Some(s), Some(t)) => self.astar(s, t, scratch),
-            _ => false,
-        };
-        if !found {
+        let Some((from, len)) = (match (self.nearest_centre(pa), self.nearest_centre(pb)) {
+            (Some(s), Some(t)) => self.turning_cells(s, t, scratch),
+            _ => None,
+        }) else {
             // No wall-free way (a station off the component): drive straight and let the
             // obstacle cells count.
             scratch.points.push(pb);
             return pa;
-        }
-        // `scratch.raw` holds the cell centres from `pa`'s to `pb`'s; the ends join them.
+        };
+        // The cells where the grid route turns, from `pa`'s to `pb`'s; the ends join them.
         let mut raw = std::mem::take(&mut scratch.raw);
-        // Only the cells where the route turns can be anchors worth keeping: straight runs
-        // between them add line-of-sight tests and nothing else.
-        let cells: Vec<usize> = raw.iter().map(|p| p.x as usize).collect();
         raw.clear();
         raw.push(pa);
-        for (k, &i) in cells.iter().enumerate() {
-            let turns = k == 0 || k + 1 == cells.len() || {
-                let step = |x: usize, y: usize| y as isize - x as isize;
-                step(cells[k - 1], i) != step(i, cells[k + 1])
-            };
-            if turns {
-                raw.push(centre(i));
-            }
-        }
+        raw.extend(scratch.grid_cells[from..from + len].iter().map(|&i| centre(i as usize)));
         raw.push(pb);
         // Line of sight, forwards: from each anchor go on while the rectangle stays clear.
         let mut anchor = 0;
@@ -274,6 +265,39 @@ impl Router {
         raw.clear();
         scratch.raw = raw;
         pa
+    }
+
+    /// The cells where the grid route from cell `s` to cell `t` turns (its first and last
+    /// included), as a range of `scratch.grid_cells`: only they can be anchors worth keeping,
+    /// straight runs between them adding line-of-sight tests and nothing else. The route
+    /// depends on the two cells alone, so it is searched once per worker and pair (`None`: no
+    /// route).
+    fn turning_cells(&self, s: usize, t: usize, scratch: &mut RouteScratch) -> Option<(usize, usize)> {
+        let key = (s as u32, t as u32);
+        if let Some(&(from, len)) = scratch.grid_paths.get(&key) {
+            return Some((from as usize, len as usize));
+        }
+        if !self.astar(s, t, scratch) {
+            return None;
+        }
+        if scratch.grid_paths.len() >= CACHE_ROUTES || scratch.grid_cells.len() >= CACHE_POINTS {
+            scratch.grid_paths.clear();
+            scratch.grid_cells.clear();
+        }
+        let cells: Vec<usize> = scratch.raw.iter().map(|p| p.x as usize).collect();
+        let from = scratch.grid_cells.len();
+        for (k, &i) in cells.iter().enumerate() {
+            let turns = k == 0 || k + 1 == cells.len() || {
+                let step = |x: usize, y: usize| y as isize - x as isize;
+                step(cells[k - 1], i) != step(i, cells[k + 1])
+            };
+            if turns {
+                scratch.grid_cells.push(i as u32);
+            }
+        }
+        let len = scratch.grid_cells.len() - from;
+        scratch.grid_paths.insert(key, (from as u32, len as u32));
+        Some((from, len))
     }
 
     /// A* from cell `from` to cell `to` over the fitting reachable centres; on success the cells
