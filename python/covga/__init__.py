@@ -67,6 +67,11 @@ def _cell_states(occupancy: np.ndarray) -> np.ndarray:
     return states
 
 
+def _map_from_pickle(states: np.ndarray, resolution: float, origin: tuple, name: str) -> Map:
+    """Rebuilds a pickled :class:`Map` (``Map.__reduce__``) bit for bit."""
+    return _covga.map_from_states(np.ascontiguousarray(states, dtype=np.int8), float(resolution), tuple(origin), str(name))
+
+
 def load_map(
     source: Union[str, os.PathLike, np.ndarray, Map],
     resolution: Optional[float] = None,

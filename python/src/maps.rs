@@ -77,6 +77,37 @@ impl Map {
         })
         .to_pyarray(py)
     }
+    /// Two maps are equal when their names, frames and every cell are.
+    fn __eq__(&self, other: PyRef<'_, Map>) -> bool {
+        self.inner == other.inner
+    }
+    /// A hash consistent with `==`.
+    fn __hash__(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let m = &self.inner;
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        (m.name(), m.rows(), m.cols(), m.resolution().to_bits(), m.origin().x.to_bits(), m.origin().y.to_bits())
+            .hash(&mut h);
+        m.cells().hash(&mut h);
+        h.finish()
+    }
+    /// A map is immutable: a copy is the map itself.
+    fn __copy__(slf: PyRef<'_, Self>) -> PyRef<'_, Self> {
+        slf
+    }
+    /// A map is immutable: a deep copy is the map itself.
+    fn __deepcopy__<'py>(slf: PyRef<'py, Self>, _memo: &Bound<'py, PyAny>) -> PyRef<'py, Self> {
+        slf
+    }
+    /// Pickles as its cell states, resolution, origin and name (`covga.map_from_states`
+    /// rebuilds it bit for bit), for multiprocessing, joblib and pymoo's saved histories.
+    fn __reduce__<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, pyo3::types::PyTuple>)> {
+        let rebuild = py.import("covga")?.getattr("_map_from_pickle")?;
+        let m = &self.inner;
+        let states = self.cells_as(|s| s as i8).to_pyarray(py);
+        let args = (states, m.resolution(), (m.origin().x, m.origin().y), m.name().to_string()).into_pyobject(py)?;
+        Ok((rebuild, args))
+    }
     fn __repr__(&self) -> String {
         let m = &self.inner;
         format!(

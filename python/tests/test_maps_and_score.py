@@ -169,3 +169,26 @@ def test_a_path_too_long_to_score_is_refused_with_the_bound():
     path = np.column_stack([xs, np.full_like(xs, 2.0)])
     with pytest.raises(ValueError, match="would pose the camera 300000 times.*at most 200000 poses"):
         covga.score(m, path)
+
+
+def _free_cells_of(m):
+    return m.free_cells
+
+
+def test_a_map_pickles_copies_and_compares_bit_for_bit():
+    import copy
+    import multiprocessing
+    import pickle
+
+    m = covga.load_map("office")
+    odd = covga.load_map(np.array([[0, 1, 2], [0, 0, 1]], dtype=np.int8), resolution=0.05, origin=(-1.5, 2.25))
+    for original in (m, odd):
+        back = pickle.loads(pickle.dumps(original))
+        assert back == original and hash(back) == hash(original)
+        assert back.name == original.name and back.origin == original.origin
+        assert back.resolution == original.resolution and np.array_equal(back.states, original.states)
+        assert copy.deepcopy(original) == original and copy.copy(original) is original
+    assert m != odd and m != "office"
+    # A map crosses process boundaries (multiprocessing, joblib, pymoo's parallel runners).
+    with multiprocessing.get_context("spawn").Pool(2) as pool:
+        assert pool.map(_free_cells_of, [m, odd]) == [m.free_cells, odd.free_cells]
