@@ -186,10 +186,37 @@ class Result:
         )
 
 
+def _plain(value: Any, key: str) -> Any:
+    """An experiment dict's value as JSON takes it: numpy scalars and arrays as numbers and
+    lists, paths as text; a value that is neither (or a NaN or infinity) raises ConfigError
+    naming its dotted ``key``."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v, f"{key}.{k}" if key else str(k)) for k, v in value.items()}
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, f"{key}[{i}]") for i, v in enumerate(value)]
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        if not np.isfinite(value):
+            raise ConfigError(f"experiment dict: `{key}` = {value}: expected a finite number")
+        return float(value)
+    if isinstance(value, os.PathLike):
+        return os.fspath(value)
+    if isinstance(value, str):
+        return value
+    raise ConfigError(
+        f"experiment dict: `{key}` = {value!r} of type {type(value).__name__}: expected a number, text, a list or a table"
+    )
+
+
 def _experiment(experiment: Any) -> tuple:
     """``(kind, payload)`` of a TOML path, TOML text or dict."""
     if isinstance(experiment, Mapping):
-        return "json", json.dumps(experiment)
+        return "json", json.dumps(_plain(experiment, ""))
     if isinstance(experiment, os.PathLike):
         return "path", os.fspath(experiment)
     if isinstance(experiment, str):

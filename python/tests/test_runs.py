@@ -51,6 +51,30 @@ def test_text_dict_and_file_give_the_same_run(tmp_path, short_thesis):
     assert history["best_fitness"].dtype == np.float64
 
 
+def test_a_dict_takes_numpy_numbers_and_paths_and_names_a_bad_value(tmp_path):
+    plain = {"planner": "spiral", "map": {"source": "thesis-2"}, "robot": {"width": 0.6}, "seed": 3}
+    numpy_typed = {
+        "planner": "spiral",
+        "map": {"source": "thesis-2"},
+        "robot": {"width": np.float64(0.6)},
+        "seed": np.int64(3),
+        "stations": {"start": np.array([1.3, 1.3])},
+    }
+    a = covga.run(dict(plain, stations={"start": [1.3, 1.3]}), figures=False)
+    b = covga.run(numpy_typed, figures=False)
+    assert np.array_equal(a.path, b.path)
+    (tmp_path / "m.pgm").write_bytes(b"P5\n20 20\n255\n" + bytes([254]) * 400)
+    from_path = covga.run(
+        {"planner": "spiral", "map": {"source": tmp_path / "m.pgm", "resolution": 0.2}, "stations": {"start": [1.0, 1.0]}},
+        figures=False,
+    )
+    assert from_path.summary["score"]["executable"] is True
+    with pytest.raises(covga.ConfigError, match="`robot.width` = nan: expected a finite number"):
+        covga.run({"planner": "spiral", "robot": {"width": float("nan")}})
+    with pytest.raises(covga.ConfigError, match="`thesis.pop_min` = .* of type object"):
+        covga.run({"thesis": {"pop_min": object()}})
+
+
 def test_patterns_and_fleets_run_with_one_path_per_agent(tmp_path):
     spiral = covga.run({"planner": "spiral", "map": {"source": "thesis-2"}}, figures=False)
     assert len(spiral.plan) == 1 and spiral.summary["score"]["executable"] is True
