@@ -18,7 +18,11 @@ use std::time::Duration;
 
 /// Runs `work` on its own thread until it ends or Python raises a signal's exception (Ctrl-C's
 /// `KeyboardInterrupt`); then `stop` is set, the work is waited for, and the exception returned.
-fn interruptible<T: Send>(py: Python<'_>, stop: &AtomicBool, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+pub(crate) fn interruptible<T: Send>(
+    py: Python<'_>,
+    stop: &AtomicBool,
+    work: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
     std::thread::scope(|scope| {
         let handle = scope.spawn(work);
         let mut signal = None;

@@ -7,7 +7,7 @@ use covga::coverage::fitness::Projection;
 use covga::coverage::score::Scorer;
 use covga::geom::Point;
 use covga::patterns::{self, Pattern};
-use covga::thesis::batch::{COLUMNS, evaluate_genomes, genome_of};
+use covga::thesis::batch::{COLUMNS, evaluate_genomes_until, genome_of};
 use covga::thesis::scenario::{Moves, Scenario};
 use covga::waypoint::config::WaypointSection;
 use numpy::ndarray::{Array2, ArrayView2};
@@ -162,6 +162,24 @@ pub fn pattern<'py>(
     Ok(array_of(&planned.points).to_pyarray(py))
 }
 
+/// Bytes one action of a genome takes once built (the genome and its decoded viewpoint).
+const BYTES_PER_ACTION: f64 = 32.0;
+
+/// Refuses a batch of `genomes` genomes of `actions` actions in all whose genomes would need
+/// more than the memory available (a `ConfigError` naming the size and the bound).
+fn check_batch_memory(genomes: usize, actions: usize) -> PyResult<()> {
+    let need = BYTES_PER_ACTION * actions as f64 + 256.0 * genomes as f64;
+    match covga::experiment::memory::memory_limit(None) {
+        Some(limit) if need > limit as f64 => Err(config_error(format!(
+            "genomes: {genomes} genomes of {actions} actions in all would need about {} once built, more than the \
+             {} of memory available; evaluate them in smaller batches",
+            covga::io::human_bytes(need),
+            covga::io::human_bytes(limit as f64)
+        ))),
+        _ => Ok(()),
+    }
+}
+
 /// The thesis GA's fitness of a batch of genomes (an `(n, L, 2)` array, or a list of `(L, 2)`
 /// arrays), each genome its live moves (heading in degrees, distance in metres; S's move first,
 /// the connector to E added), as an `(n, 4)` array with the columns of `THESIS_COLUMNS`;
@@ -182,19 +200,22 @@ pub fn thesis_evaluate<'py>(
     moves_name: &str,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let built = guarded(|| {
-        // One (n, L, 2) array is read in place; a list is read array by array.
+        // One (n, L, 2) array is read in place; a list is read array by array. The genomes'
+        // memory is checked before any is built.
         if let Ok(batch) = genomes.extract::<PyReadonlyArray3<'py, f64>>() {
             let a = batch.as_array();
             if a.dim().2 != 2 {
                 return Err(config_error(format!("genomes: shape {:?}, expected (n, L, 2)", a.dim())));
             }
+            check_batch_memory(a.dim().0, a.dim().0 * a.dim().1)?;
             return a.outer_iter().enumerate().map(|(i, g)| genome_of_rows(i, g)).collect::<PyResult<Vec<_>>>();
         }
         let list: Vec<PyReadonlyArray2<'py, f64>> = genomes.extract()?;
+        check_batch_memory(list.len(), list.iter().map(|g| g.as_array().nrows()).sum())?;
         list.iter().enumerate().map(|(i, g)| genome_of_rows(i, g.as_array())).collect::<PyResult<Vec<_>>>()
     })?;
     let m = &map.inner;
-    let rows = released(py, || {
+    let scenario = released(py, || {
         let robot = robot(map, width, speed, rot_speed)?;
         let projection = projection(projection_name)?;
         let moves = moves(moves_name)?;
@@ -205,9 +226,13 @@ pub fn thesis_evaluate<'py>(
         };
         m.check_station(start, "start").map_err(config_error)?;
         m.check_station(end, "end").map_err(config_error)?;
-        let scenario = Scenario::new(m.clone(), robot, start, end, projection).with_moves(moves);
-        Ok(evaluate_genomes(&scenario, built))
+        Ok(Scenario::new(m.clone(), robot, start, end, projection).with_moves(moves))
     })?;
+    // Ctrl-C stops the batch within about one evaluation per thread (KeyboardInterrupt).
+    let stop = std::sync::atomic::AtomicBool::new(false);
+    // A panic in the evaluation reaches Python as a RuntimeError (the thread's join).
+    let rows = crate::runs::interruptible(py, &stop, || evaluate_genomes_until(&scenario, built, &stop))?
+        .unwrap_or_default();
     let out = Array2::from_shape_fn((rows.len(), COLUMNS.len()), |(i, k)| rows[i].row()[k]);
     Ok(out.to_pyarray(py))
 }

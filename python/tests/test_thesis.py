@@ -99,3 +99,27 @@ def test_a_panic_inside_covga_is_a_runtime_error():
     with pytest.raises(RuntimeError, match="internal error in covga"):
         covga._covga.raise_panic()
     assert covga.load_map("thesis-1").shape == (55, 55)
+
+
+def test_a_batch_too_large_for_memory_is_refused_before_it_is_built():
+    one = np.tile([[0.5, 1.0]], (100_000, 1))
+    with pytest.raises(covga.ConfigError, match="genomes: 200000 genomes of 20000000000 actions in all would need"):
+        covga.thesis.evaluate("thesis-1", [one] * 200_000)
+
+
+def test_ctrl_c_stops_a_batch_within_a_second():
+    import _thread
+    import threading
+    import time
+
+    rng = np.random.default_rng(5)
+    batch = np.stack([np.column_stack([rng.uniform(-180, 180, 150), rng.uniform(0, 6, 150)]) for _ in range(12000)])
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    started = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        covga.thesis.evaluate("office", batch, start=(2.0, 2.0), moves="routed")
+    timer.join()
+    assert time.monotonic() - started < 1.5
+    # The library goes on as before.
+    assert covga.thesis.evaluate("thesis-1", batch[:2]).shape == (2, 4)

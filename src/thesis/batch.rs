@@ -83,22 +83,42 @@ pub fn evaluate_batch(scenario: &Scenario, genomes: &[Vec<(f64, f64)>]) -> Resul
 
 /// [`evaluate_batch`] of genomes already built by [`genome_of`].
 pub fn evaluate_genomes(scenario: &Scenario, genomes: Vec<Vec<Action>>) -> Vec<BatchScore> {
-    genomes
+    evaluate_genomes_until(scenario, genomes, &std::sync::atomic::AtomicBool::new(false))
+        .expect("nothing sets the flag")
+}
+
+/// [`evaluate_genomes`] that gives up (`None`) once `stop` is set from another thread (a
+/// caller's Ctrl-C): each genome not yet evaluated is skipped, so the batch ends within about
+/// one evaluation per thread.
+pub fn evaluate_genomes_until(
+    scenario: &Scenario,
+    genomes: Vec<Vec<Action>>,
+    stop: &std::sync::atomic::AtomicBool,
+) -> Option<Vec<BatchScore>> {
+    use std::sync::atomic::Ordering;
+    let scores: Vec<Option<BatchScore>> = genomes
         .into_par_iter()
         .map_init(
             || (EvalScratch::default(), Individual::default()),
             |(scratch, ind), genome| {
+                if stop.load(Ordering::Relaxed) {
+                    return None;
+                }
                 ind.genome = genome;
                 evaluate(ind, scenario, Base::None, EvaluationMode::Full, scratch);
-                BatchScore {
+                Some(BatchScore {
                     cov_final: ind.score.cov_final,
                     t_final: ind.score.t_final,
                     fitness: ind.score.fitness,
                     obstacle_cells: ind.sweep.obj_pix,
-                }
+                })
             },
         )
-        .collect()
+        .collect();
+    if stop.load(Ordering::Relaxed) {
+        return None;
+    }
+    scores.into_iter().collect()
 }
 
 #[cfg(test)]
