@@ -72,6 +72,29 @@ def _map_from_pickle(states: np.ndarray, resolution: float, origin: tuple, name:
     return _covga.map_from_states(np.ascontiguousarray(states, dtype=np.int8), float(resolution), tuple(origin), str(name))
 
 
+def _number(value: Any, key: str, integer: bool = False) -> Any:
+    """``value`` as a float (or, with ``integer``, an int), or ConfigError naming ``key``: text,
+    bools and, for integers, fractions are refused rather than converted."""
+    ok = isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, (bool, np.bool_))
+    if ok and integer and not float(value).is_integer():
+        ok = False
+    if not ok:
+        kind = "a whole number" if integer else "a number"
+        raise ConfigError(f"{key} = {value!r}: expected {kind}")
+    return int(value) if integer else float(value)
+
+
+def _point(value: Any, key: str) -> tuple:
+    """``value`` as ``(x, y)`` in metres, or ConfigError naming ``key``."""
+    try:
+        items = list(value)
+    except TypeError:
+        raise ConfigError(f"{key} = {value!r}: expected a point (x, y) in metres") from None
+    if len(items) != 2:
+        raise ConfigError(f"{key} = {value!r}: expected a point (x, y) in metres, two numbers")
+    return (_number(items[0], key), _number(items[1], key))
+
+
 def load_map(
     source: Union[str, os.PathLike, np.ndarray, Map],
     resolution: Optional[float] = None,
@@ -95,18 +118,23 @@ def load_map(
     if isinstance(source, Map):
         return source
     if isinstance(source, (str, os.PathLike)):
+        # A file or preset brings its own frame and name.
+        if tuple(origin) != (0.0, 0.0) or name != "array":
+            raise ConfigError(f"{os.fspath(source)}: origin= and name= apply to occupancy arrays only")
         return _covga.load_map(
             os.fspath(source),
-            None if resolution is None else float(resolution),
-            None if free_threshold is None else int(free_threshold),
+            None if resolution is None else _number(resolution, "resolution"),
+            None if free_threshold is None else _number(free_threshold, "free_threshold", integer=True),
         )
+    if free_threshold is not None:
+        raise ConfigError("free_threshold applies to a bare PGM/PNG image only, not to an occupancy array")
     occupancy = np.asarray(source)
     if occupancy.ndim != 2:
         raise ConfigError(f"occupancy array of shape {occupancy.shape}: expected 2-D (rows, cols)")
     if resolution is None:
         raise ConfigError("resolution: an occupancy array needs its metres per cell (resolution=...)")
-    x, y = (float(v) for v in origin)
-    return _covga.map_from_states(_cell_states(occupancy), float(resolution), (x, y), name)
+    x, y = _point(origin, "origin")
+    return _covga.map_from_states(_cell_states(occupancy), _number(resolution, "resolution"), (x, y), str(name))
 
 
 def _paths(path: Any) -> list:
@@ -287,7 +315,9 @@ def grid(
     file = Path(file)
     folder = Path(out) if out is not None else Path("out") / file.stem
     n = (os.cpu_count() or 1) if jobs is None else jobs
-    if not isinstance(n, (int, np.integer)) or n < 1:
+    if not isinstance(n, (int, np.integer)) or isinstance(n, bool):
+        raise ConfigError(f"jobs = {jobs!r}: expected a whole number of runs at a time, at least 1")
+    if n < 1:
         raise ConfigError(f"jobs = {jobs!r} is out of range: at least 1")
     _covga.run_grid(str(file), int(n), str(folder), str(order))
     return read_study(folder)

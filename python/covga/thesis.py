@@ -54,10 +54,10 @@ def evaluate(
     space). ``end`` defaults to ``start``. ``moves``: ``"straight"`` (003) or ``"routed"`` (a move
     that would sweep an obstacle drives around it, as ``thesis.moves = "routed"``).
     """
-    from . import load_map
+    from . import _point, load_map
 
-    s = tuple(float(v) for v in start)
-    e = None if end is None else tuple(float(v) for v in end)
+    s = _point(start, "start")
+    e = None if end is None else _point(end, "end")
     return _covga.thesis_evaluate(
         load_map(map), _genomes(genomes), float(width), float(speed), float(rot_speed), s, e, projection, moves
     )

@@ -192,3 +192,22 @@ def test_a_map_pickles_copies_and_compares_bit_for_bit():
     # A map crosses process boundaries (multiprocessing, joblib, pymoo's parallel runners).
     with multiprocessing.get_context("spawn").Pool(2) as pool:
         assert pool.map(_free_cells_of, [m, odd]) == [m.free_cells, odd.free_cells]
+
+
+@pytest.mark.parametrize(
+    "call,message",
+    [
+        (lambda: covga.load_map("thesis-1", origin=(1.0, 2.0)), "origin= and name= apply to occupancy arrays only"),
+        (lambda: covga.load_map("thesis-1", name="x"), "origin= and name= apply to occupancy arrays only"),
+        (lambda: covga.load_map(np.zeros((3, 3), dtype=bool), resolution=0.1, origin=(0, 0, 0)), "two numbers"),
+        (lambda: covga.load_map(np.zeros((3, 3), dtype=bool), resolution="0.1"), "resolution = '0.1': expected a number"),
+        (lambda: covga.load_map(np.zeros((3, 3), dtype=bool), resolution=0.1, free_threshold=250), "bare PGM/PNG"),
+        (lambda: covga.load_map("office", free_threshold=2.5), "free_threshold = 2.5: expected a whole number"),
+        (lambda: covga.load_map("office", free_threshold="250"), "free_threshold = '250': expected a whole number"),
+        (lambda: covga.thesis.evaluate("thesis-1", np.zeros((1, 3, 2)), start=1.0), "start = 1.0: expected a point"),
+        (lambda: covga.grid("g.toml", jobs=1.5), "jobs = 1.5: expected a whole number"),
+    ],
+)
+def test_bad_python_arguments_raise_config_error_naming_the_key(call, message):
+    with pytest.raises(covga.ConfigError, match=message.replace("(", r"\(").replace(")", r"\)")):
+        call()
