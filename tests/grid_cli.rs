@@ -682,3 +682,62 @@ fn a_resume_refuses_a_runs_file_holding_a_run_twice() {
     // Nothing was rewritten.
     assert_eq!(std::fs::read_to_string(out.join("runs.csv")).unwrap(), format!("{runs}{last}\n"));
 }
+
+/// Whether a grid or experiment file names a map of `../shared/maps`, which only this
+/// project's own machines have beside the checkout.
+fn reads_shared_maps(text: &str) -> bool {
+    text.contains("../shared/maps")
+}
+
+#[test]
+fn every_shipped_grid_dry_runs_and_every_shipped_experiment_validates() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let shared = root.join("../shared/maps").is_dir();
+    let mut checked = 0;
+    let mut grids: Vec<PathBuf> = std::fs::read_dir(root.join("grids"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    grids.sort();
+    for g in &grids {
+        let text = std::fs::read_to_string(g).unwrap();
+        if reads_shared_maps(&text) && !shared {
+            eprintln!(
+                "{}: skipped, it reads ../shared/maps (moves to experiments/maps with its study's re-run)",
+                g.display()
+            );
+            continue;
+        }
+        let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+            .current_dir(root)
+            .args([
+                "grid",
+                g.to_str().unwrap(),
+                "--dry-run",
+                "--out",
+                std::env::temp_dir().join("covga-dry").to_str().unwrap(),
+            ])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}: {}", g.display(), String::from_utf8_lossy(&o.stderr));
+        checked += 1;
+    }
+    let mut experiments: Vec<PathBuf> = ["experiments", "experiments/fleets"]
+        .iter()
+        .flat_map(|d| std::fs::read_dir(root.join(d)).unwrap().map(|e| e.unwrap().path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    experiments.sort();
+    for e in &experiments {
+        let text = std::fs::read_to_string(e).unwrap();
+        if reads_shared_maps(&text) && !shared {
+            continue;
+        }
+        let file = covga::experiment::file::ExperimentFile::parse(&text, &e.display().to_string())
+            .unwrap_or_else(|err| panic!("{err}"));
+        file.validate(&e.display().to_string(), root, "t").unwrap_or_else(|err| panic!("{err}"));
+        checked += 1;
+    }
+    assert!(checked >= 25, "only {checked} shipped files checked");
+}
