@@ -52,8 +52,8 @@ def _cell_states(occupancy: np.ndarray) -> np.ndarray:
     """Cell states (0 free, 1 occupied, 2 unknown) of an occupancy array."""
     if occupancy.dtype == np.bool_:
         return occupancy.astype(np.int8)
-    if not np.issubdtype(occupancy.dtype, np.number):
-        raise ConfigError(f"occupancy array of dtype {occupancy.dtype}: expected bool or numbers")
+    if not np.issubdtype(occupancy.dtype, np.number) or occupancy.dtype.kind == "c":
+        raise ConfigError(f"occupancy array of dtype {occupancy.dtype}: expected bool or real numbers")
     values = occupancy.astype(np.float64)
     bad = ~np.isfinite(values) | (values > 100.0)
     if bad.any():

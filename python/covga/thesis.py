@@ -15,7 +15,7 @@ from typing import Any, Optional, Sequence, Union
 import numpy as np
 
 from . import _covga
-from ._arrays import rows_of_pairs
+from ._arrays import real_numbers, rows_of_pairs
 from ._covga import ConfigError
 
 #: The columns of :func:`evaluate`'s result.
@@ -25,6 +25,7 @@ COLUMNS = tuple(_covga.THESIS_COLUMNS)
 def _genomes(genomes: Any) -> Any:
     """An ``(n, L, 2)`` float array as it is, else a list of ``(L, 2)`` float arrays."""
     if isinstance(genomes, np.ndarray) and genomes.ndim == 3:
+        real_numbers(genomes, "genomes", "numbers (heading in degrees, distance in metres)")
         return np.asarray(genomes, dtype=np.float64)
     if isinstance(genomes, np.ndarray) and genomes.ndim == 2:
         raise ConfigError(

@@ -206,6 +206,10 @@ def test_a_map_pickles_copies_and_compares_bit_for_bit():
         (lambda: covga.load_map("office", free_threshold="250"), "free_threshold = '250': expected a whole number"),
         (lambda: covga.thesis.evaluate("thesis-1", np.zeros((1, 3, 2)), start=1.0), "start = 1.0: expected a point"),
         (lambda: covga.grid("g.toml", jobs=1.5), "jobs = 1.5: expected a whole number"),
+        (lambda: covga.thesis.evaluate("thesis-1", np.zeros((1, 3, 2), dtype=bool)), "genomes: an array of booleans"),
+        (lambda: covga.thesis.evaluate("thesis-1", [np.zeros((3, 2), dtype=complex)]), "genome 0: an array of complex"),
+        (lambda: covga.load_map(np.zeros((3, 3), dtype=complex), resolution=0.1), "expected bool or real numbers"),
+        (lambda: covga.score("thesis-1", np.array([[1, 1], [2, 2]], dtype=bool)), "path 0: an array of booleans"),
     ],
 )
 def test_bad_python_arguments_raise_config_error_naming_the_key(call, message):
