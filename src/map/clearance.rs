@@ -175,8 +175,7 @@ impl<'m> Clearance<'m> {
 
     /// Whether every point of the segment fits (sampled every quarter cell).
     pub fn segment_fits(&self, a: Point, b: Point) -> bool {
-        let steps = ((b - a).norm() / (0.25 * self.map.resolution())).ceil().max(1.0) as usize;
-        (0..=steps).all(|i| self.fits(a + (b - a) * (i as f64 / steps as f64)))
+        self.segment_fits_within(a, b, 0.0)
     }
 
     /// [`Clearance::segment_fits`] with `slack` metres more tolerance than the planners' own,

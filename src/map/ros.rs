@@ -271,29 +271,27 @@ pub fn decode_map_image(
 }
 
 /// Resolves `--map`: a preset name, a ROS YAML file, or a bare image read as `image` says.
-/// A free threshold is refused for anything but a bare image: a YAML carries its own thresholds.
+/// A free threshold or a resolution is refused for anything but a bare image: a YAML and a
+/// preset carry their own.
 pub fn load_map(spec: &str, image: &BareImage) -> Result<GridMap, MapError> {
     let path = PathBuf::from(spec);
     let ext = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-    if let Some(t) = image.free_threshold
-        && (preset(spec).is_some() || !matches!(ext.as_str(), "pgm" | "png"))
-    {
-        return Err(MapError::OutOfRange {
-            source_name: spec.to_string(),
-            field: "free_threshold",
-            value: t.to_string(),
-            allowed: "a free threshold applies to a bare PGM/PNG image only (a ROS map YAML sets free_thresh and occupied_thresh; presets are drawn in three classes)",
-        });
-    }
-    if let Some(r) = image.resolution
-        && (preset(spec).is_some() || !matches!(ext.as_str(), "pgm" | "png"))
-    {
-        return Err(MapError::OutOfRange {
-            source_name: spec.to_string(),
-            field: "resolution",
-            value: r.to_string(),
-            allowed: "a resolution applies to a bare PGM/PNG image only (a ROS map YAML and a preset give their own); leave it out",
-        });
+    // Settings of a bare image only: a YAML and a preset bring their own.
+    let bare = preset(spec).is_none() && matches!(ext.as_str(), "pgm" | "png");
+    let only_bare = [
+        (
+            "free_threshold",
+            image.free_threshold.map(|t| t.to_string()),
+            "a free threshold applies to a bare PGM/PNG image only (a ROS map YAML sets free_thresh and occupied_thresh; presets are drawn in three classes)",
+        ),
+        (
+            "resolution",
+            image.resolution.map(|r| r.to_string()),
+            "a resolution applies to a bare PGM/PNG image only (a ROS map YAML and a preset give their own); leave it out",
+        ),
+    ];
+    if let Some((field, Some(value), allowed)) = only_bare.into_iter().find(|(_, v, _)| v.is_some() && !bare) {
+        return Err(MapError::OutOfRange { source_name: spec.to_string(), field, value, allowed });
     }
     if let Some(m) = preset(spec) {
         return Ok(m);
