@@ -26,6 +26,7 @@ use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, HashMap};
+use std::hash::{BuildHasherDefault, Hasher};
 
 /// Routes kept per worker before the cache starts again (about 24 bytes each plus points).
 const CACHE_ROUTES: usize = 1 << 17;
@@ -44,6 +45,44 @@ pub const HEURISTIC_WEIGHT: f64 = 1.5;
 pub const STAND_SLACK_M: f64 = 1e-8;
 /// Landmarks of the A* heuristic (one cache line of `f32` distances per cell).
 const LANDMARKS: usize = 16;
+/// Line-of-sight answers between two cell centres kept per worker before starting again.
+const CACHE_SIGHTS: usize = 1 << 20;
+
+/// A hasher for the caches' integer keys (the multiply-rotate of rustc's `FxHasher`): the keys
+/// are the bits of coordinates and cell indices, never chosen by an adversary, and the
+/// standard library's SipHash costs more than the lookup it serves. Which hasher a map uses
+/// changes no answer, only how fast it is found.
+#[derive(Clone, Copy, Debug, Default)]
+struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_u32(&mut self, x: u32) {
+        self.write_u64(u64::from(x));
+    }
+
+    fn write_usize(&mut self, x: usize) {
+        self.write_u64(x as u64);
+    }
+}
+
+/// A map keyed by integers, hashed by [`KeyHasher`].
+type KeyMap<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
 
 /// Where a robot of one width can stand and how it gets around on one map, from its stations.
 #[derive(Clone, Debug)]
@@ -85,11 +124,15 @@ pub struct RouteScratch {
     heap: BinaryHeap<Reverse<(u64, u64, u32)>>,
     raw: Vec<Point>,
     /// Routes by the bits of their two viewpoints: start and the range of their points.
-    cache: HashMap<[u64; 4], (Point, u32, u32)>,
+    cache: KeyMap<[u64; 4], (Point, u32, u32)>,
     points: Vec<Point>,
     /// Grid routes by their two cells: the range of their turning cells in `grid_cells`.
-    grid_paths: HashMap<(u32, u32), (u32, u32)>,
+    grid_paths: KeyMap<(u32, u32), (u32, u32)>,
     grid_cells: Vec<u32>,
+    /// [`Router::segment_clear`] between two cell centres, by the cells (first in the high
+    /// half): the line-of-sight pass asks the same pairs again and again along grid routes
+    /// it has straightened before.
+    sights: KeyMap<u64, bool>,
     /// Routes searched so far (cache misses).
     searches: u64,
 }
@@ -253,13 +296,26 @@ impl Router {
         raw.extend(scratch.grid_cells[from..from + len].iter().map(|&i| centre(i as usize)));
         raw.push(pb);
         // Line of sight, forwards: from each anchor go on while the rectangle stays clear.
+        // Between two of the route's cells (raw[1..=len]) the answer is the cells' own.
+        if scratch.sights.len() >= CACHE_SIGHTS {
+            scratch.sights.clear();
+        }
+        let RouteScratch { sights, grid_cells, points, .. } = scratch;
+        let cells = &grid_cells[from..from + len];
+        let mut sees = |i: usize, j: usize| {
+            if i == 0 || j == raw.len() - 1 {
+                return clear_segment(raw[i], raw[j]);
+            }
+            let key = (u64::from(cells[i - 1]) << 32) | u64::from(cells[j - 1]);
+            *sights.entry(key).or_insert_with(|| clear_segment(raw[i], raw[j]))
+        };
         let mut anchor = 0;
         while anchor + 1 < raw.len() {
             let mut next = anchor + 1;
-            while next + 1 < raw.len() && clear_segment(raw[anchor], raw[next + 1]) {
+            while next + 1 < raw.len() && sees(anchor, next + 1) {
                 next += 1;
             }
-            scratch.points.push(raw[next]);
+            points.push(raw[next]);
             anchor = next;
         }
         raw.clear();
