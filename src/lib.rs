@@ -11,9 +11,10 @@
 //! The modules form layers, bottom to top; each imports only from its own layer and those
 //! below (`tests/architecture.rs` holds the order):
 //!
-//! 1. [`geom`], [`io`], [`config`], [`ga`]: points and angles, files and numbers,
-//!    configuration errors and range checks, and what every GA shares (selection, control,
-//!    RNG streams, observers: it needs no map, and the coverage layer hashes with its streams);
+//! 1. [`geom`], [`stats`], [`io`], [`config`], [`ga`]: points and angles, the statistics
+//!    every report and Python share, files and numbers, configuration errors and range
+//!    checks, and what every GA shares (selection, control, RNG streams, observers: it needs no
+//!    map, and the coverage layer hashes with its streams);
 //! 2. [`map`]: grids, ROS files, presets, clearance and reachability;
 //! 3. [`coverage`]: the swept footprint, the camera, the thesis fitness equations and the
 //!    common scorer;
@@ -44,6 +45,7 @@ pub mod planner;
 pub mod plot;
 pub mod random_search;
 pub mod report;
+pub mod stats;
 pub mod study;
 pub mod thesis;
 pub mod waypoint;

@@ -10,7 +10,7 @@ use std::path::Path;
 /// needs nothing of the maps and sits below them, since the coverage layer hashes with its
 /// streams; `plot` draws maps and coverage and sits above them.
 const LAYERS: &[&[&str]] = &[
-    &["geom"],
+    &["geom", "stats"],
     &["io"],
     &["config"],
     &["ga"],

@@ -23,7 +23,7 @@ from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
 
-from . import _covga, thesis
+from . import _covga, stats, thesis
 from ._arrays import rows_of_pairs
 from ._covga import ConfigError, Map
 from ._tables import read_study, read_table
@@ -39,6 +39,7 @@ __all__ = [
     "report",
     "run",
     "score",
+    "stats",
     "thesis",
 ]
 __version__ = _covga.__version__

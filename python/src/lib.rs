@@ -9,6 +9,7 @@
 mod maps;
 mod runs;
 mod scoring;
+mod stats;
 
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -63,5 +64,12 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(runs::run_grid, m)?)?;
     m.add_function(wrap_pyfunction!(runs::write_report, m)?)?;
     m.add_function(wrap_pyfunction!(runs::raise_panic, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_mann_whitney, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_wilcoxon, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_sign_test, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_a12, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_holm, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_kruskal_wallis, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_bootstrap_ci, m)?)?;
     Ok(())
 }

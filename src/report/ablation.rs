@@ -6,10 +6,10 @@
 
 use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
 use super::search_objective::{self, MapRuns};
-use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
 use super::{ReportError, param_columns};
 use crate::coverage::CoverageGrid;
 use crate::plot::path::PathFigure;
+use crate::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

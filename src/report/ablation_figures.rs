@@ -122,7 +122,7 @@ impl Figure for BoxFigure {
                 if b.values.is_empty() {
                     continue;
                 }
-                let (q1, med, q3) = super::stats::quartiles(&b.values);
+                let (q1, med, q3) = crate::stats::quartiles(&b.values);
                 let min = b.values.iter().copied().fold(f64::INFINITY, f64::min);
                 let max = b.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
                 let (x0, x1, xc) = (k as f64 + 0.2, k as f64 + 0.8, k as f64 + 0.5);

@@ -8,7 +8,7 @@
 //! interactions. For the balanced grids covga runs (every combination of the unconditional
 //! factors, each with the same replicates) they equal the type II and III sums.
 
-use super::stats::ranks;
+use crate::stats::ranks;
 use faer::Mat;
 use statrs::distribution::{ChiSquared, ContinuousCDF, FisherSnedecor};
 use std::collections::BTreeSet;

@@ -9,7 +9,7 @@
 //! the diagonal `abs(cov_final − t_final)`, and outliers (`cov_final` below `Q1 − 1.5·IQR` of the
 //! figure panel the run belongs to).
 
-use super::stats::{a12_magnitude, mann_whitney_u, quartiles};
+use crate::stats::{a12_magnitude, mann_whitney_u, quartiles};
 use crate::study::records::RunsTable;
 use statrs::distribution::{ContinuousCDF, Normal};
 use std::fmt::Write as _;

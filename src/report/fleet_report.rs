@@ -5,7 +5,7 @@
 //! compared only through the fleet metrics of the common scorer ([`crate::fleet::metrics`]).
 
 use super::ReportError;
-use super::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, sign_test, vargha_delaney_a12};
+use crate::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, sign_test, vargha_delaney_a12};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

@@ -6,7 +6,7 @@
 //! The reports layer reads a study's records (`crate::study::records`) and nothing runs here.
 //! One module per report section: the planner comparison ([`ablation`]), the fleet study
 //! ([`fleet_report`]), the thesis's tables and claims ([`thesis_report`], [`claims`]), the
-//! ANOVA ([`anova`], [`anova_report`]) and the group tables; [`stats`] holds the tests they
+//! ANOVA ([`anova`], [`anova_report`]) and the group tables; [`crate::stats`] holds the tests they
 //! share, [`figures`] and [`ablation_figures`] the figures drawn with `crate::plot`'s
 //! primitives.
 
@@ -20,15 +20,14 @@ pub mod fleet_report;
 mod report_tables;
 pub mod rescore;
 pub mod search_objective;
-pub mod stats;
 pub mod thesis_report;
 
 use crate::coverage::CoverageGrid;
 use crate::ga::pareto::non_dominated;
 use crate::plot::path::PathFigure;
+use crate::stats::mean_ci95;
 use crate::study::records::RunsTable;
 use figures::{DiversityFigure, DiversityGroup, ParetoFacet, ParetoFigure, PathsGridFigure};
-use stats::mean_ci95;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;

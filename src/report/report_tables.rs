@@ -5,9 +5,9 @@
 
 use super::anova_report::{PROJECTION, projection_levels};
 use super::figures::ParetoFacet;
-use super::stats::{kruskal_wallis, mean_ci95, mean_min_max, quartiles};
 use super::{ConfigRow, Group, cmp_group_values};
 use crate::ga::pareto::hypervolume_2d;
+use crate::stats::{kruskal_wallis, mean_ci95, mean_min_max, quartiles};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

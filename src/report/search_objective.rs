@@ -4,7 +4,7 @@
 //! what it optimises. A table of the four cells per map and the findings that compare cells
 //! differing in one factor only.
 
-use super::stats::{a12_magnitude, quartiles};
+use crate::stats::{a12_magnitude, quartiles};
 use std::fmt::Write as _;
 
 /// The two searches, as the table names them.

@@ -30,7 +30,7 @@ pub fn durations(t: &RunsTable) -> BTreeMap<String, (usize, f64, f64, f64)> {
     }
     by.into_iter()
         .map(|(k, v)| {
-            let (mean, lo, hi) = super::stats::mean_min_max(&v);
+            let (mean, lo, hi) = crate::stats::mean_min_max(&v);
             (k, (v.len(), mean, lo, hi))
         })
         .collect()

@@ -1,0 +1,127 @@
+"""The statistics of ``covga report``, for notebooks: the same Rust code (``covga::stats``), so a
+number computed here is the number a committed summary prints.
+
+Every test is two-sided. Rank tests use mid-ranks for ties and are exact for small samples
+(at most 50 values in all for :func:`mann_whitney`, 50 non-tied pairs for :func:`wilcoxon`),
+conditionally on the ties; larger samples use the normal approximation. Each result says
+which (``method``). :func:`a12` counts in one direction, written in its name: the probability
+that a value of ``a`` exceeds one of ``b``.
+
+>>> from covga import stats
+>>> stats.mann_whitney([1, 2, 3], [4, 5, 6])["p_value"]
+0.1
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+from . import _covga
+from ._arrays import real_numbers
+from ._covga import ConfigError
+
+__all__ = ["a12", "bootstrap_ci", "holm", "kruskal_wallis", "mann_whitney", "sign_test", "wilcoxon"]
+
+
+def _sample(value: Any, what: str) -> list:
+    """``value`` as a list of finite floats, or a ``ConfigError`` naming ``what``."""
+    try:
+        real_numbers(value, what, "numbers")
+        a = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as e:
+        raise ConfigError(f"{what}: not an array of numbers ({e})") from None
+    if a.ndim != 1:
+        raise ConfigError(f"{what}: shape {a.shape}, expected a one-dimensional sample")
+    if not np.all(np.isfinite(a)):
+        raise ConfigError(f"{what}: holds NaN or infinite values; drop or impute them first")
+    return a.tolist()
+
+
+def _paired(a: Any, b: Any) -> tuple:
+    a, b = _sample(a, "a"), _sample(b, "b")
+    if len(a) != len(b):
+        raise ConfigError(f"b: {len(b)} values for the {len(a)} of a; paired samples have one each")
+    return a, b
+
+
+def mann_whitney(a: Sequence[float], b: Sequence[float]) -> Optional[dict]:
+    """Two-sided Mann–Whitney U test of independent samples: ``{"u", "p_value", "method"}``
+    (``u`` counts the pairs with ``a > b``, ties half), or ``None`` when every value is tied."""
+    a, b = _sample(a, "a"), _sample(b, "b")
+    if not a or not b:
+        raise ConfigError("a and b: each sample needs at least one value")
+    out = _covga.stats_mann_whitney(a, b)
+    return None if out is None else dict(zip(("u", "p_value", "method"), out))
+
+
+def wilcoxon(a: Sequence[float], b: Sequence[float]) -> Optional[dict]:
+    """Two-sided Wilcoxon signed-rank test of pairs ``(a[i], b[i])`` (for example the same seed
+    under two settings): ``{"w_plus", "pairs", "p_value", "method"}``; tied pairs are dropped
+    (``pairs`` counts the rest). ``None`` when every pair ties."""
+    a, b = _paired(a, b)
+    out = _covga.stats_wilcoxon(a, b)
+    return None if out is None else dict(zip(("w_plus", "pairs", "p_value", "method"), out))
+
+
+def sign_test(a: Sequence[float], b: Optional[Sequence[float]] = None, *, against: float = 0.0) -> Optional[float]:
+    """Two-sided exact sign test: of the pairs ``a[i] − b[i]`` against 0 when ``b`` is given,
+    else of ``a`` against the constant ``against``. Ties are dropped; ``None`` when all tie."""
+    if b is None:
+        return _covga.stats_sign_test(_sample(a, "a"), float(against))
+    a, b = _paired(a, b)
+    return _covga.stats_sign_test([x - y for x, y in zip(a, b)], 0.0)
+
+
+def a12(a: Sequence[float], b: Sequence[float]) -> float:
+    """Vargha–Delaney A₁₂: P(a > b) + ½ P(a = b) over all pairs (0.5: no effect)."""
+    a, b = _sample(a, "a"), _sample(b, "b")
+    if not a or not b:
+        raise ConfigError("a and b: each sample needs at least one value")
+    return _covga.stats_a12(a, b)
+
+
+def holm(p_values: Sequence[float]) -> np.ndarray:
+    """Holm–Bonferroni adjusted p-values of one family of tests, in the input order."""
+    p = _sample(p_values, "p_values")
+    if any(x < 0.0 or x > 1.0 for x in p):
+        raise ConfigError("p_values: every p-value lies in [0, 1]")
+    return np.asarray(_covga.stats_holm(p))
+
+
+def kruskal_wallis(*groups: Sequence[float]) -> Optional[dict]:
+    """Kruskal–Wallis test of k independent groups: ``{"h", "df", "p_value", "epsilon_squared"}``,
+    or ``None`` with fewer than two non-empty groups or every value tied."""
+    samples = [_sample(g, f"groups[{i}]") for i, g in enumerate(groups)]
+    out = _covga.stats_kruskal_wallis(samples)
+    return None if out is None else dict(zip(("h", "df", "p_value", "epsilon_squared"), out))
+
+
+def bootstrap_ci(
+    a: Sequence[float],
+    b: Sequence[float],
+    contrast: str = "median_difference",
+    *,
+    paired: bool = False,
+    level: float = 0.95,
+    resamples: int = 10_000,
+    seed: int = 0,
+) -> Optional[dict]:
+    """Percentile bootstrap interval of ``median(a) − median(b)`` (``contrast =
+    "median_difference"``) or ``median(a) / median(b)`` (``"median_ratio"``): ``{"estimate",
+    "low", "high"}``. With ``paired`` a resample keeps each pair together. Seeded: the same
+    inputs and seed give the same interval. ``None`` for a ratio whose ``b`` is not positive."""
+    if contrast not in ("median_difference", "median_ratio"):
+        raise ConfigError(f'contrast = {contrast!r}: expected "median_difference" or "median_ratio"')
+    a, b = _paired(a, b) if paired else (_sample(a, "a"), _sample(b, "b"))
+    if not a or not b:
+        raise ConfigError("a and b: each sample needs at least one value")
+    if isinstance(level, bool) or not isinstance(level, (int, float)) or not (0.0 < level < 1.0) or math.isnan(level):
+        raise ConfigError(f"level = {level!r}: expected a number in (0, 1)")
+    for name, value, low, high in (("resamples", resamples, 1, 10**8), ("seed", seed, 0, 2**64 - 1)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not (low <= value <= high):
+            raise ConfigError(f"{name} = {value!r}: expected a whole number in [{low}, {high}]")
+    out = _covga.stats_bootstrap_ci(a, b, contrast, bool(paired), float(level), int(resamples), int(seed))
+    return None if out is None else dict(zip(("estimate", "low", "high"), out))
