@@ -297,6 +297,12 @@ pub struct ReportArgs {
     /// columns that moved), into the report folder.
     #[arg(long, value_name = "RUNS_CSV")]
     previous: Option<PathBuf>,
+    /// Compare every other value of a swept parameter with BASELINE, within each combination of
+    /// the other parameters, runs paired by seed, executable plans only (coverage and mission
+    /// time; bootstrap intervals, Wilcoxon signed-rank tests, Holm-corrected): writes
+    /// `compare-KEY.md` and `.csv` into the report folder. Repeatable.
+    #[arg(long, value_name = "KEY=BASELINE")]
+    compare: Vec<String>,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
@@ -307,6 +313,19 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
         };
         filter.push((k.trim().to_string(), v.trim().to_string()));
     }
+    let comparisons = a
+        .compare
+        .iter()
+        .map(|c| crate::report::compare::Comparison::parse(c))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(CliError::Input)?;
+    let input = |e| match e {
+        crate::report::ReportError::Input(m) => CliError::Input(m),
+        other => CliError::internal(other),
+    };
+    // Comparisons are made before anything is written, so that one that cannot be made leaves
+    // no half-written report.
+    let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons).map_err(input)?;
     let opts = crate::report::ReportOptions { by: a.by, filter, name: a.name };
     let path = crate::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
         crate::report::ReportError::Input(m) => CliError::Input(m),
@@ -320,6 +339,10 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
             other => CliError::internal(other),
         })?;
         println!("wrote {}", file.display());
+    }
+    let folder = path.parent().unwrap_or(&a.dir);
+    for r in &rendered {
+        println!("wrote {}", r.save(folder).map_err(input)?.display());
     }
     Ok(())
 }

@@ -15,6 +15,7 @@ pub mod ablation_figures;
 pub mod anova;
 pub mod anova_report;
 pub mod claims;
+pub mod compare;
 pub mod figures;
 pub mod fleet_report;
 mod report_tables;
@@ -127,7 +128,7 @@ pub struct ReportOptions {
 }
 
 /// Whether a cell of runs.csv equals a `--where` value: as numbers when both parse, else as text.
-fn cell_matches(cell: &str, want: &str) -> bool {
+pub(super) fn cell_matches(cell: &str, want: &str) -> bool {
     match (cell.parse::<f64>(), want.parse::<f64>()) {
         (Ok(a), Ok(b)) => a == b,
         _ => cell == want,

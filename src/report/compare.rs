@@ -1,0 +1,598 @@
+//! `covga report DIR --compare KEY=BASELINE`: every other value of one swept parameter against
+//! a baseline value, within each combination of the other parameters (a *stratum*), on the
+//! plans a robot can drive.
+//!
+//! Runs of one stratum are paired by their seed: a grid gives replicate `i` of every
+//! configuration the same seed, so a pair differs in the compared parameter only. A pair counts
+//! where both plans are executable. Per pair and metric: reachable coverage as a difference
+//! (higher is better), mission time as a ratio (lower is better). Each comparison reports the
+//! medians, the median contrast with its seeded paired bootstrap interval, how many pairs went
+//! which way, `A₁₂`, and the two-sided Wilcoxon signed-rank test, Holm-corrected over the
+//! family of all comparisons of that metric in the file (the family is stated). A comparison
+//! whose pairs all tie is reported as such and not tested. Parameters whose value follows
+//! from the others (a budget set per map) are not strata of their own and are named.
+
+use super::{ReportError, cmp_group_values, param_columns};
+use crate::stats::{Contrast, Family, bootstrap_ci, vargha_delaney_a12, wilcoxon_signed_rank};
+use crate::study::records::RunsTable;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Bootstrap resamples of each interval.
+const RESAMPLES: usize = 10_000;
+/// Seed of the bootstrap streams: fixed, so that a report re-makes its intervals exactly.
+const BOOTSTRAP_SEED: u64 = 1;
+/// Level of the comparisons' intervals and of the Holm-corrected tests.
+const LEVEL: f64 = 0.95;
+
+/// One parameter's values against a baseline value.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Comparison {
+    /// The swept key (a column of runs.csv), e.g. `thesis.moves`.
+    pub key: String,
+    /// Its value the others are compared with, e.g. `straight`.
+    pub baseline: String,
+}
+
+impl Comparison {
+    /// Parses `KEY=BASELINE`.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        match text.split_once('=') {
+            Some((k, v)) if !k.trim().is_empty() => Ok(Self { key: k.trim().into(), baseline: v.trim().into() }),
+            _ => Err(format!("--compare {text}: expected KEY=BASELINE, e.g. thesis.moves=straight")),
+        }
+    }
+}
+
+/// A metric compared pair by pair.
+struct Metric {
+    column: &'static str,
+    higher_is_better: bool,
+    contrast: Contrast,
+    /// Decimals of its medians.
+    decimals: usize,
+}
+
+const METRICS: [Metric; 2] = [
+    Metric { column: "cov_final_reach", higher_is_better: true, contrast: Contrast::MedianDifference, decimals: 4 },
+    Metric { column: "time_s", higher_is_better: false, contrast: Contrast::MedianRatio, decimals: 1 },
+];
+
+/// One value against the baseline in one stratum, for one metric.
+struct Row {
+    stratum: String,
+    value: String,
+    runs: (usize, usize),
+    executable: (usize, usize),
+    /// `(baseline, value)` of each pair where both plans are executable.
+    pairs: Vec<(f64, f64)>,
+}
+
+/// The rows of runs.csv by stratum (the other parameters that vary on their own) and value.
+struct Design {
+    strata: Vec<String>,
+    /// Their columns.
+    kept: Vec<usize>,
+    /// Parameters that follow the strata's own (confounded with them), with the ones they follow.
+    followers: Vec<(String, String)>,
+    /// `(stratum, value) → seed → row`.
+    cells: BTreeMap<(String, String), BTreeMap<String, usize>>,
+}
+
+/// Whether the column `c` is a function of the columns `of` over the rows.
+fn follows(t: &RunsTable, c: usize, of: &[usize]) -> bool {
+    let mut seen: BTreeMap<Vec<&str>, &str> = BTreeMap::new();
+    t.rows.iter().all(|r| {
+        let key: Vec<&str> = of.iter().map(|&i| r[i].as_str()).collect();
+        *seen.entry(key).or_insert(r[c].as_str()) == r[c].as_str()
+    })
+}
+
+/// The columns among `kept` that `c` follows: one alone where one suffices, else all of them;
+/// `None` when `c` does not follow them.
+fn followed_by(t: &RunsTable, c: usize, kept: &[usize]) -> Option<String> {
+    let names = |cols: &[usize]| cols.iter().map(|&i| t.header[i].as_str()).collect::<Vec<_>>().join(", ");
+    if kept.is_empty() || !follows(t, c, kept) {
+        return None;
+    }
+    Some(kept.iter().find(|&&k| follows(t, c, &[k])).map_or_else(|| names(kept), |&k| names(&[k])))
+}
+
+fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
+    let mut strata = Vec::new();
+    let mut followers = Vec::new();
+    let mut kept: Vec<usize> = Vec::new();
+    for name in param_columns(t).into_iter().filter(|p| *p != cmp.key) {
+        let Some(c) = t.col(&name) else { continue };
+        let values: std::collections::BTreeSet<&str> = t.rows.iter().map(|r| r[c].as_str()).collect();
+        if values.len() < 2 {
+            continue;
+        }
+        if let Some(of) = followed_by(t, c, &kept) {
+            followers.push((name, of));
+        } else {
+            kept.push(c);
+            strata.push(name);
+        }
+    }
+    let seed = t.col("seed").unwrap_or(0);
+    let mut cells: BTreeMap<(String, String), BTreeMap<String, usize>> = BTreeMap::new();
+    for (i, r) in t.rows.iter().enumerate() {
+        let label = kept.iter().map(|&c| format!("{}={}", t.header[c], r[c])).collect::<Vec<_>>().join(", ");
+        cells.entry((label, r[key].clone())).or_default().insert(r[seed].clone(), i);
+    }
+    Design { strata, kept, followers, cells }
+}
+
+/// A comparison made, not yet written: its files' names and texts.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// `compare-KEY` (the key's characters other than letters, digits, `.` and `-` as `_`).
+    pub stem: String,
+    /// The markdown report.
+    pub markdown: String,
+    /// One row per stratum, value and metric.
+    pub csv: String,
+}
+
+impl Rendered {
+    /// Writes `STEM.md` and `STEM.csv` into `out`; returns the markdown's path.
+    pub fn save(&self, out: &Path) -> Result<PathBuf, ReportError> {
+        let md = out.join(format!("{}.md", self.stem));
+        let csv = out.join(format!("{}.csv", self.stem));
+        for (path, text) in [(&md, &self.markdown), (&csv, &self.csv)] {
+            crate::io::write_atomic(path, text.as_bytes())
+                .map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
+        }
+        Ok(md)
+    }
+}
+
+/// Reads `dir`'s runs.csv (failed runs left out, the `--where` pairs of `filter` applied as
+/// the report applies them) and makes each comparison, writing nothing: a comparison that
+/// cannot be made is refused before the report folder is touched.
+pub fn render_all(
+    dir: &Path,
+    filter: &[(String, String)],
+    comparisons: &[Comparison],
+) -> Result<Vec<Rendered>, ReportError> {
+    if comparisons.is_empty() {
+        return Ok(Vec::new());
+    }
+    let file = dir.join("runs.csv");
+    let text = std::fs::read_to_string(&file).map_err(|e| ReportError::Input(format!("{}: {e}", file.display())))?;
+    let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", file.display())))?;
+    super::take_failed(&mut t);
+    for (key, want) in filter {
+        if let Some(c) = t.col(key) {
+            t.rows.retain(|r| super::cell_matches(&r[c], want));
+        }
+    }
+    comparisons.iter().map(|c| render(&t, c)).collect()
+}
+
+/// Writes `compare-KEY.md` and `compare-KEY.csv` into `out` and returns the markdown's path.
+pub fn write(t: &RunsTable, cmp: &Comparison, out: &Path) -> Result<PathBuf, ReportError> {
+    render(t, cmp)?.save(out)
+}
+
+/// Makes the comparison `cmp` of the runs `t`.
+pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
+    let input = |m: String| ReportError::Input(m);
+    let params = param_columns(t);
+    let key = match t.col(&cmp.key) {
+        Some(c) if params.contains(&cmp.key) => c,
+        _ => return Err(input(format!("--compare {}: not a swept parameter; swept: {}", cmp.key, params.join(", ")))),
+    };
+    let mut values: Vec<String> = t.rows.iter().map(|r| r[key].clone()).collect();
+    values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
+    values.dedup();
+    if !values.contains(&cmp.baseline) {
+        return Err(input(format!(
+            "--compare {}={}: no run has that value; values: {}",
+            cmp.key,
+            cmp.baseline,
+            values.join(", ")
+        )));
+    }
+    for m in &METRICS {
+        if t.col(m.column).is_none() {
+            return Err(input(format!("--compare: runs.csv has no `{}` column (written by an older covga)", m.column)));
+        }
+    }
+    let d = design(t, cmp, key);
+    let executable = |r: usize| t.col("executable").is_none_or(|c| t.rows[r][c] == "true");
+    let mut rows = Vec::new();
+    let mut strata: Vec<&String> = d.cells.keys().map(|(s, _)| s).collect();
+    strata.dedup();
+    for stratum in strata {
+        let Some(base) = d.cells.get(&(stratum.clone(), cmp.baseline.clone())) else { continue };
+        for value in values.iter().filter(|v| **v != cmp.baseline) {
+            let Some(other) = d.cells.get(&(stratum.clone(), value.clone())) else { continue };
+            let exec = |m: &BTreeMap<String, usize>| m.values().filter(|&&r| executable(r)).count();
+            let pairs: Vec<(usize, usize)> =
+                base.iter().filter_map(|(seed, &b)| other.get(seed).map(|&o| (b, o))).collect();
+            rows.push((stratum.clone(), value.clone(), (base.len(), other.len()), (exec(base), exec(other)), pairs));
+        }
+    }
+    if rows.is_empty() {
+        let why = match followed_by(t, key, &d.kept) {
+            Some(of) => format!("`{}` follows {of} (confounded with it)", cmp.key),
+            None => "the grid never crosses it with the other parameters".to_string(),
+        };
+        return Err(input(format!(
+            "--compare {}={}: no stratum of the other parameters holds both the baseline and another value: {why}",
+            cmp.key, cmp.baseline
+        )));
+    }
+    let num = |r: usize, c: &str| t.col(c).and_then(|i| t.rows[r][i].parse::<f64>().ok()).unwrap_or(f64::NAN);
+    let mut md = String::new();
+    let mut csv = String::from(
+        "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,median_baseline,\
+         median_value,contrast,estimate,ci_low,ci_high,value_better,value_worse,a12_value_greater,test,p,\
+         p_holm,note\n",
+    );
+    let _ = writeln!(md, "# `{}`: each value against `{}`\n", cmp.key, cmp.baseline);
+    let _ = writeln!(md, "{}\n", intro(&d, cmp));
+    let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
+        rows.iter()
+            .map(|(stratum, value, runs, exec, pairs)| Row {
+                stratum: stratum.clone(),
+                value: value.clone(),
+                runs: *runs,
+                executable: *exec,
+                pairs: pairs
+                    .iter()
+                    .filter(|&&(b, o)| !both_executable || (executable(b) && executable(o)))
+                    .map(|&(b, o)| (value_of(b), value_of(o)))
+                    .collect(),
+            })
+            .collect()
+    };
+    executability(&mut md, &mut csv, &as_rows(&|r| f64::from(u8::from(executable(r))), false), cmp);
+    for m in &METRICS {
+        let metric_rows = as_rows(&|r| num(r, m.column), true);
+        section(&mut md, &mut csv, m, &metric_rows, cmp);
+    }
+    let safe: String =
+        cmp.key.chars().map(|c| if c.is_ascii_alphanumeric() || c == '.' || c == '-' { c } else { '_' }).collect();
+    Ok(Rendered { stem: format!("compare-{safe}"), markdown: md, csv })
+}
+
+/// The paragraph saying how the comparison is made.
+fn intro(d: &Design, cmp: &Comparison) -> String {
+    let strata = if d.strata.is_empty() {
+        "one stratum (no other parameter varies)".to_string()
+    } else {
+        format!("within each combination of {}", d.strata.join(", "))
+    };
+    let mut s = format!(
+        "Each value of `{}` against `{}`, {strata}. Runs are paired by seed (replicate `i` of every \
+         configuration has the same seed); a pair counts where both plans are executable. Coverage is \
+         `cov_final_reach` (higher is better), compared as the median of the value's runs minus the \
+         baseline's; time is `time_s` (lower is better), compared as the ratio of medians. Intervals: \
+         {:.0} % percentile bootstrap over pairs ({RESAMPLES} resamples, seed {BOOTSTRAP_SEED}). Tests: \
+         two-sided Wilcoxon signed-rank over the pairs (exact up to 50 pairs), Holm–Bonferroni over \
+         the family of the metric's comparisons below; \"shown\" means a Holm-adjusted p below {:.2}.",
+        cmp.key,
+        cmp.baseline,
+        LEVEL * 100.0,
+        1.0 - LEVEL
+    );
+    for (name, of) in &d.followers {
+        let _ = write!(s, " `{name}` follows {of} (confounded with it: not a stratum of its own).");
+    }
+    s
+}
+
+/// The executable plans of each value against the baseline's, pair by pair: the exact
+/// McNemar test, i.e. the sign test over the pairs where one plan is executable and the other
+/// not, Holm-corrected over the file's comparisons. `pairs` hold 1 (executable) or 0.
+fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp: &Comparison) {
+    let mut family =
+        Family::new(format!("executability ({} comparisons of `{}` against `{}`)", rows.len(), cmp.key, cmp.baseline));
+    let split = |r: &Row| {
+        let gained = r.pairs.iter().filter(|(b, v)| v > b).count();
+        let lost = r.pairs.iter().filter(|(b, v)| v < b).count();
+        (gained, lost)
+    };
+    let tests: Vec<Option<f64>> = rows
+        .iter()
+        .map(|r| {
+            let (gained, lost) = split(r);
+            let signs: Vec<f64> = std::iter::repeat_n(1.0, gained).chain(std::iter::repeat_n(-1.0, lost)).collect();
+            crate::stats::sign_test(&signs, 0.0)
+        })
+        .collect();
+    for (r, p) in rows.iter().zip(&tests) {
+        if let Some(p) = p {
+            family.push(format!("{} {}", r.stratum, r.value), *p);
+        }
+    }
+    let mut adjusted = family.adjusted().into_iter();
+    let _ = writeln!(
+        md,
+        "## Executable plans
+"
+    );
+    let _ = writeln!(
+        md,
+        "| stratum | value | executable (baseline, value) | pairs | only the value's executable | only the baseline's executable | p (exact McNemar) | p (Holm) | finding |"
+    );
+    let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    let mut shown = (0, 0);
+    for (r, p) in rows.iter().zip(&tests) {
+        let (gained, lost) = split(r);
+        let holm = p.map(|_| adjusted.next().expect("one adjusted p per test"));
+        let finding = match holm {
+            _ if r.pairs.is_empty() => "no pair: not compared".to_string(),
+            None => "the same in every pair: not tested".to_string(),
+            Some(h) if h < 1.0 - LEVEL => {
+                let more = gained > lost;
+                if more {
+                    shown.0 += 1
+                } else {
+                    shown.1 += 1
+                }
+                format!("{} often executable than {} (shown)", if more { "more" } else { "less" }, cmp.baseline)
+            }
+            Some(_) => "not shown".to_string(),
+        };
+        let _ = writeln!(
+            md,
+            "| {} | {} | {}/{}, {}/{} | {} | {gained} | {lost} | {} | {} | {finding} |",
+            if r.stratum.is_empty() { "all" } else { &r.stratum },
+            r.value,
+            r.executable.0,
+            r.runs.0,
+            r.executable.1,
+            r.runs.1,
+            r.pairs.len(),
+            p.map_or("–".into(), p_text),
+            holm.map_or("–".into(), p_text),
+        );
+        let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
+        let _ = writeln!(
+            csv,
+            "\"{}\",\"{}\",executable,{},{},{},{},{},,,,,,,{gained},{lost},,{},{},{},\"{finding}\"",
+            r.stratum,
+            r.value,
+            r.runs.0,
+            r.runs.1,
+            r.executable.0,
+            r.executable.1,
+            r.pairs.len(),
+            if p.is_some() { "mcnemar exact" } else { "" },
+            field(*p),
+            field(holm),
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n{} Of {} comparisons, {} show the value's plans more often executable than `{}`'s and {} less often.\n",
+        family.statement(),
+        rows.len(),
+        shown.0,
+        cmp.baseline,
+        shown.1
+    );
+}
+
+fn p_text(p: f64) -> String {
+    if p < 1e-4 { format!("{p:.1e}") } else { format!("{p:.4}") }
+}
+
+/// The table and findings of one metric.
+fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row], cmp: &Comparison) {
+    let mut family =
+        Family::new(format!("`{}` ({} comparisons of `{}` against `{}`)", m.column, rows.len(), cmp.key, cmp.baseline));
+    let tests: Vec<Option<crate::stats::SignedRank>> = rows
+        .iter()
+        .map(|r| {
+            let (b, v): (Vec<f64>, Vec<f64>) = r.pairs.iter().copied().unzip();
+            wilcoxon_signed_rank(&v, &b)
+        })
+        .collect();
+    for (r, t) in rows.iter().zip(&tests) {
+        if let Some(t) = t {
+            family.push(format!("{} {}", r.stratum, r.value), t.p_value);
+        }
+    }
+    let mut adjusted = family.adjusted().into_iter();
+    let (effect, unit) = match m.contrast {
+        Contrast::MedianDifference => ("difference of medians", ""),
+        Contrast::MedianRatio => ("ratio of medians", "×"),
+    };
+    let _ = writeln!(md, "## `{}`\n", m.column);
+    let _ = writeln!(
+        md,
+        "| stratum | value | executable (baseline, value) | pairs | median baseline | median value | {effect} [{:.0} % CI] | value better in | A₁₂ (value > baseline) | p | p (Holm) | finding |",
+        LEVEL * 100.0
+    );
+    let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    let mut shown = (0, 0);
+    for (r, t) in rows.iter().zip(&tests) {
+        let (b, v): (Vec<f64>, Vec<f64>) = r.pairs.iter().copied().unzip();
+        let better = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v > b } else { v < b }).count();
+        let worse = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v < b } else { v > b }).count();
+        let median = |x: &[f64]| crate::stats::quartiles(x).1;
+        let ci = bootstrap_ci(&v, &b, m.contrast, true, LEVEL, RESAMPLES, BOOTSTRAP_SEED);
+        let a12 = if r.pairs.is_empty() { f64::NAN } else { vargha_delaney_a12(&v, &b) };
+        let holm = t.map(|_| adjusted.next().expect("one adjusted p per test"));
+        let d = m.decimals;
+        let (ci_text, est) = match ci {
+            Some(c) if m.contrast == Contrast::MedianRatio => {
+                (format!("{:.3}{unit} [{:.3}, {:.3}]", c.estimate, c.low, c.high), Some(c))
+            }
+            Some(c) => (format!("{:+.4} [{:+.4}, {:+.4}]", c.estimate, c.low, c.high), Some(c)),
+            None => ("–".into(), None),
+        };
+        let min_p = 2.0 * 0.5f64.powi(r.pairs.len() as i32);
+        let finding = match (t, holm) {
+            _ if r.pairs.is_empty() => "no pair of executable plans: not compared".to_string(),
+            (None, _) => "equal in every pair: not tested".to_string(),
+            (Some(_), Some(h)) if h < 1.0 - LEVEL => {
+                let word = if better > worse { "better" } else { "worse" };
+                if better > worse {
+                    shown.0 += 1
+                } else {
+                    shown.1 += 1
+                }
+                format!("{word} than {} (shown)", cmp.baseline)
+            }
+            (Some(_), _) if min_p >= 1.0 - LEVEL => {
+                format!("not shown: {} pairs cannot reach p < {:.2}", r.pairs.len(), 1.0 - LEVEL)
+            }
+            (Some(_), _) => "not shown".to_string(),
+        };
+        let _ = writeln!(
+            md,
+            "| {} | {} | {}/{}, {}/{} | {} | {} | {} | {} | {} of {} | {} | {} | {} | {} |",
+            if r.stratum.is_empty() { "all" } else { &r.stratum },
+            r.value,
+            r.executable.0,
+            r.runs.0,
+            r.executable.1,
+            r.runs.1,
+            r.pairs.len(),
+            if b.is_empty() { "–".into() } else { format!("{:.d$}", median(&b)) },
+            if v.is_empty() { "–".into() } else { format!("{:.d$}", median(&v)) },
+            ci_text,
+            better,
+            r.pairs.len(),
+            if a12.is_nan() { "–".into() } else { format!("{a12:.2}") },
+            t.map_or("–".into(), |t| format!("{} ({})", p_text(t.p_value), t.method.name())),
+            holm.map_or("–".into(), p_text),
+            finding
+        );
+        let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
+        let _ = writeln!(
+            csv,
+            "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+            r.stratum,
+            r.value,
+            m.column,
+            r.runs.0,
+            r.runs.1,
+            r.executable.0,
+            r.executable.1,
+            r.pairs.len(),
+            field((!b.is_empty()).then(|| median(&b))),
+            field((!v.is_empty()).then(|| median(&v))),
+            match m.contrast {
+                Contrast::MedianDifference => "difference",
+                Contrast::MedianRatio => "ratio",
+            },
+            field(est.map(|c| c.estimate)),
+            field(est.map(|c| c.low)),
+            field(est.map(|c| c.high)),
+            better,
+            worse,
+            field((!a12.is_nan()).then_some(a12)),
+            t.map_or(String::new(), |t| format!("wilcoxon {}", t.method.name())),
+            field(t.map(|t| t.p_value)),
+            field(holm),
+            finding
+        );
+    }
+    let _ = writeln!(
+        md,
+        "\n{} Of {} comparisons, {} show the value better than `{}` and {} worse; the rest show no \
+         difference at this level (which is not evidence of equality).\n",
+        family.statement(),
+        rows.len(),
+        shown.0,
+        cmp.baseline,
+        shown.1
+    );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::records::metric_columns;
+
+    /// A runs table of `a` (a, b) × `map` (m1, m2, with `budget` following it) × 6 seeds; `b`
+    /// covers `shift` more and takes 20 s longer; one `b` plan on m2 is not executable.
+    fn table(shift: f64) -> RunsTable {
+        let metrics = metric_columns();
+        let mut text = format!("run_id,config_id,replicate,seed,a,map,budget,{}\n", metrics.join(","));
+        for (ai, a) in ["a", "b"].iter().enumerate() {
+            for (mi, map) in ["m1", "m2"].iter().enumerate() {
+                for s in 0..6 {
+                    let cov = 0.5 + 0.01 * s as f64 + if ai == 1 { shift } else { 0.0 };
+                    let time = 100.0 + s as f64 * 3.0 + if ai == 1 { 20.0 } else { 0.0 };
+                    let exec = !(ai == 1 && mi == 1 && s == 0);
+                    let fields: Vec<String> = metrics
+                        .iter()
+                        .map(|m| match m.as_str() {
+                            "planner" => "thesis".into(),
+                            "executable" => exec.to_string(),
+                            "cov_final_reach" => cov.to_string(),
+                            "time_s" => time.to_string(),
+                            _ => "0".into(),
+                        })
+                        .collect();
+                    let budget = 1000 * (mi + 1);
+                    let _ = writeln!(
+                        text,
+                        "r{ai}{mi}{s},c{ai}{mi},{s},{},{a},{map},{budget},{}",
+                        100 + s,
+                        fields.join(",")
+                    );
+                }
+            }
+        }
+        RunsTable::parse(&text).unwrap()
+    }
+
+    #[test]
+    fn pairs_by_seed_within_strata_corrects_the_family_and_names_the_confounded_column() {
+        let dir = tempfile::tempdir().unwrap();
+        let t = table(0.1);
+        let md = write(&t, &Comparison::parse("a=a").unwrap(), dir.path()).unwrap();
+        let text = std::fs::read_to_string(&md).unwrap();
+        assert!(text.contains("within each combination of map"), "{text}");
+        assert!(text.contains("`budget` follows map"), "{text}");
+        let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
+        let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
+        assert_eq!(csv.rows.len(), 6, "two strata × executability and two metrics");
+        let exec_m2 =
+            csv.rows.iter().find(|r| get(r, "metric") == "executable" && get(r, "stratum") == "map=m2").unwrap();
+        // Seed 0 of b on m2 is the only discordant pair: McNemar's exact p = 1.
+        assert_eq!((get(exec_m2, "value_better"), get(exec_m2, "value_worse")), ("0".into(), "1".into()));
+        assert_eq!((get(exec_m2, "test"), get(exec_m2, "p")), ("mcnemar exact".into(), "1".into()));
+        let time_m1 = csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "stratum") == "map=m1").unwrap();
+        // Six pairs, b slower in each: exact p = 2/2⁶; m2 has five pairs (2/2⁵). Holm over the
+        // two: 2 · 1/32 and 1/16, both 0.0625 — nothing shown.
+        assert_eq!(get(time_m1, "pairs"), "6");
+        assert_eq!(get(time_m1, "value_worse"), "6");
+        assert_eq!(get(time_m1, "p").parse::<f64>().unwrap(), 2.0 / 64.0);
+        assert_eq!(get(time_m1, "p_holm").parse::<f64>().unwrap(), 0.0625);
+        assert_eq!(get(time_m1, "estimate").parse::<f64>().unwrap(), 127.5 / 107.5);
+        let time_m2 = csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "stratum") == "map=m2").unwrap();
+        assert_eq!((get(time_m2, "pairs"), get(time_m2, "executable_value")), ("5".into(), "5".into()));
+        assert!(get(time_m2, "note").contains("5 pairs cannot reach p < 0.05"), "{:?}", get(time_m2, "note"));
+        // No difference in coverage: every pair ties, not tested.
+        let same = table(0.0);
+        write(&same, &Comparison::parse("a=a").unwrap(), dir.path()).unwrap();
+        let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
+        let cov = csv.rows.iter().find(|r| get(r, "metric") == "cov_final_reach").unwrap();
+        assert_eq!((get(cov, "p"), get(cov, "note")), (String::new(), "equal in every pair: not tested".into()));
+    }
+
+    #[test]
+    fn comparisons_that_cannot_be_made_are_refused_with_the_reason() {
+        let dir = tempfile::tempdir().unwrap();
+        let t = table(0.1);
+        let err = |text: &str| match write(&t, &Comparison::parse(text).unwrap(), dir.path()) {
+            Err(ReportError::Input(m)) => m,
+            other => panic!("{text}: {other:?}"),
+        };
+        assert!(err("budget=1000").contains("`budget` follows map (confounded with it)"), "{}", err("budget=1000"));
+        assert!(err("a=c").contains("no run has that value; values: a, b"), "{}", err("a=c"));
+        assert!(err("time_s=1").contains("not a swept parameter; swept: a, map, budget"), "{}", err("time_s=1"));
+        assert!(Comparison::parse("a").is_err() && Comparison::parse("=x").is_err());
+    }
+}
