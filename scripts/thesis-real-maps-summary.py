@@ -7,7 +7,7 @@ the summary is computed here from the study's data.
 reads OUT/runs.csv and each run's OUT/runs/<run_id>/population.csv, and SEEDS/runs.csv (the
 boustrophedon seed plans, grids/thesis-real-maps-seeds.toml); writes RESULTS/runs.csv,
 RESULTS/seeds.csv, RESULTS/finals.csv (per run: the hypervolume and size of the final
-population's executable non-dominated set; for a seeded run, whether that population still
+population's non-dominated set of members sweeping no obstacle cell; for a seeded run, whether that population still
 holds a plan at least as good as the seed plan on both objectives, and the best cov_final of
 its initial population, read from history.csv) and RESULTS/summary.md. With RESULTS alone
 (`python3 scripts/thesis-real-maps-summary.py - - results/thesis-real-maps`) it rewrites
@@ -15,10 +15,9 @@ summary.md from the three CSV files.
 
 Coverage is the common scorer's cov_final_reach, time its time_s (length at robot.speed; the
 robot turns for free). The hypervolume is the area dominated by the final population's
-executable members in (cov_final, t_final), 003's two objectives (both to be maximised), above
-the reference point (0, 0). Mann-Whitney U: two-sided, normal approximation with tie and
-continuity corrections; A12: the probability that a run of the first group scores higher than
-one of the second (ties count half).
+members that sweep no obstacle cell in (cov_final, t_final), 003's two objectives (both to be maximised), above
+the reference point (0, 0). The statistical comparisons of the factors are not made here:
+`covga report OUT --compare KEY=BASELINE` writes them (README.md of the results folder).
 """
 
 import csv
@@ -27,14 +26,9 @@ import shutil
 import statistics
 import sys
 
-from study_stats import map_name, mann_whitney, median_iqr, read_csv
+from study_stats import map_name, median_iqr, read_csv
 
 MAP_ORDER = ["thesis-2", "office", "office-ring", "basement"]
-FACTORS = [
-    ("thesis.moves", "moves", ["routed", "straight"]),
-    ("thesis.seed_population", "seeding", ["boustrophedon", "none"]),
-    ("thesis.selection", "selection", ["nsga2", "elite"]),
-]
 
 
 # Relative slack when a plan is compared with its seed plan on both objectives.
@@ -43,10 +37,6 @@ SEED_TOLERANCE = 1e-3
 
 def seeding(value):
     return "boustrophedon" if "boustrophedon" in value else "none"
-
-
-def level(r, key):
-    return seeding(r[key]) if key == "thesis.seed_population" else r[key]
 
 
 def hypervolume(points):
@@ -110,10 +100,11 @@ def summarise(results):
         "Written by `scripts/thesis-real-maps-summary.py` from `runs.csv`, `seeds.csv` and `finals.csv` of this",
         "folder; the commands that made the study and its wall time are in README.md. Coverage is",
         "`cov_final_reach` (the reachable space), time `time_s` of the common scorer (length at 0.2 m/s; the",
-        "robot turns for free), HV the hypervolume of the final population's executable non-dominated set",
-        "in (cov_final, t_final) above (0, 0); medians [quartiles] over the seeds. Executable: the plan",
-        "sweeps no obstacle cell; coverage and time_s are over the executable plans, with the median coverage",
-        "of all plans beside them.",
+        "robot turns for free), HV the hypervolume of the non-dominated set of the final population's members",
+        "that sweep no obstacle cell (the population file records no more), in (cov_final, t_final) above",
+        "(0, 0); medians [quartiles] over the seeds. Executable: the robot's body keeps clear of every wall",
+        "and unknown cell along the whole plan (covga's executability rule); coverage and time_s are over",
+        "the executable plans (– where there is none), with the median coverage of all plans beside them.",
         "",
         "## Every setting",
         "",
@@ -194,43 +185,9 @@ def summarise(results):
                     f"({min(dt):+.1%} to {max(dt):+.1%}) | {both}/{len(rs)} | {fitter}/{len(rs)} | {held}/{len(rs)} | "
                     f"{start:.4f} ({float(seed['cov_final_free']):.4f}) |"
                 )
-    contrasts = []
-    out += ["", "## What each ingredient does", ""]
-    out.append("For each map and each factor, its two levels compared with the other two factors held fixed (10")
-    out.append("seeds against 10; coverage over the executable plans): median coverage and HV of each level,")
-    out.append("Mann–Whitney p and A12 = P(the first level scores higher). p < 0.05 counts as a difference; with 4 maps × 3 factors × 4 cells × 2 measures =")
-    out.append("96 tests, a handful of p values near 0.05 are expected by chance.")
-    out.append("")
-    out.append("| map | factor: first vs second | other factors | coverage first | coverage second | p | A12 | HV first | HV second | p | A12 |")
-    out.append("|---|---|---|---|---|---|---|---|---|---|---|")
-    for m in maps:
-        for key, name, (first, second) in FACTORS:
-            others = [f for f in FACTORS if f[0] != key]
-            cells = sorted({tuple(level(r, f[0]) for f in others) for r in rows if map_name(r["map.source"]) == m})
-            for cell in cells:
-                pick = lambda lv: [
-                    r for r in rows
-                    if map_name(r["map.source"]) == m and level(r, key) == lv
-                    and tuple(level(r, f[0]) for f in others) == cell
-                ]
-                a, b = pick(first), pick(second)
-                if not a or not b:
-                    continue
-                ca, cb = num(executable(a), "cov_final_reach"), num(executable(b), "cov_final_reach")
-                pc, ac = mann_whitney(cb, ca)
-                ha, hb = hv(a), hv(b)
-                ph, ah = mann_whitney(hb, ha)
-                label = ", ".join(f"{f[1]} {v}" for f, v in zip(others, cell))
-                contrasts.append((name, first, second, m, label,
-                                  statistics.median(ca) - statistics.median(cb), pc, ac,
-                                  statistics.median(ha) - statistics.median(hb), ph, ah))
-                out.append(
-                    f"| {m} | {name}: {first} vs {second} | {label} | {statistics.median(ca):.4f} | {statistics.median(cb):.4f} | "
-                    f"{pc:.3g} | {ac:.2f} | {statistics.median(ha):.4f} | {statistics.median(hb):.4f} | {ph:.3g} | {ah:.2f} |"
-                )
     out.append("")
     at = out.index("## Every setting")
-    text = out[:at] + findings(contrasts, seeded, met, groups, maps, num) + out[at:]
+    text = out[:at] + findings(seeded, met, groups, maps, num) + out[at:]
     with open(os.path.join(results, "summary.md"), "w") as f:
         f.write("\n".join(text))
 
@@ -240,33 +197,16 @@ def span(xs, fmt):
     return fmt.format(lo) if fmt.format(lo) == fmt.format(hi) else f"{fmt.format(lo)} to {fmt.format(hi)}"
 
 
-def findings(contrasts, seeded, met, groups, maps, num):
+def findings(seeded, met, groups, maps, num):
     """The findings in words, each sentence built from the tables below it."""
     out = ["## Findings", ""]
-    out.append("Each finding counts the comparisons of the last table (one per map and setting of the other two")
-    out.append("factors, 10 seeds against 10, coverage over the executable plans; a difference is p < 0.05) or the")
-    out.append("rows of the others.")
+    out.append("What each factor does, seed by seed, is in `report/compare-thesis.moves.md`,")
+    out.append("`report/compare-thesis.seed_population.md` and `report/compare-thesis.selection.md`, written by")
+    out.append("`covga report --compare` (runs paired by seed within each map and setting of the other factors,")
+    out.append("executable plans only, Wilcoxon signed-rank and exact McNemar tests Holm-corrected per family,")
+    out.append("bootstrap intervals). The findings below count the rows of the tables that follow.")
     out.append("")
     n = 1
-    for key, name, (first, second) in FACTORS:
-        rows = [c for c in contrasts if c[0] == name]
-        if not rows:
-            continue
-        for label, at, dcol, pcol in (("coverage", "4", 5, 6), ("HV", "4", 8, 9)):
-            up = [c for c in rows if c[pcol] < 0.05 and c[dcol] > 0]
-            down = [c for c in rows if c[pcol] < 0.05 and c[dcol] < 0]
-            diffs = [c[dcol] for c in rows]
-            words = (
-                f"{n}. **{name}, {first} against {second}, {label}**: higher with {first} in {len(up)} of "
-                f"{len(rows)} comparisons, lower in {len(down)}, no difference in {len(rows) - len(up) - len(down)}; "
-                f"the medians differ by {span(diffs, '{:+.' + at + 'f}')}."
-            )
-            if up:
-                words += " Higher on " + ", ".join(sorted({c[3] for c in up}, key=maps.index)) + "."
-            if down:
-                words += " Lower where " + "; ".join(f"{c[3]} ({c[4]})" for c in down) + "."
-            out.append(words)
-            n += 1
     if seeded:
         total = sum(s[7] for s in seeded)
         both = sum(s[5] for s in seeded)
