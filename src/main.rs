@@ -11,7 +11,7 @@ fn main() -> ExitCode {
     match covga::cli::run(std::env::args_os()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            e.print();
             ExitCode::from(e.exit_code())
         }
     }

@@ -211,7 +211,7 @@ fn killed_study_resumes_to_the_same_results() {
     // the process like SIGKILL would: no clean-up, the lock released by the OS).
     let killed_run = Command::new(env!("CARGO_BIN_EXE_covga"))
         .args(["grid", g.to_str().unwrap(), "--jobs", "1", "--order", "seeds", "--out", killed.to_str().unwrap()])
-        .env(covga::study::runner::ABORT_AFTER_ENV, "4")
+        .args(["--abort-after-runs", "4"])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .status()
@@ -231,7 +231,7 @@ fn killed_study_resumes_to_the_same_results() {
     // Killed again after 3 more runs (with two jobs), then resumed to the end.
     let again = Command::new(env!("CARGO_BIN_EXE_covga"))
         .args(["grid", g.to_str().unwrap(), "--jobs", "2", "--out", killed.to_str().unwrap()])
-        .env(covga::study::runner::ABORT_AFTER_ENV, "3")
+        .args(["--abort-after-runs", "3"])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .status()

@@ -690,7 +690,7 @@ fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
     let aborted = Command::new(env!("CARGO_BIN_EXE_covga"))
         .current_dir(dir.path())
         .args(args("killed", "1"))
-        .env(covga::study::runner::ABORT_AFTER_ENV, "2")
+        .args(["--abort-after-runs", "2"])
         .stdout(Stdio::null())
         .stderr(Stdio::null())
         .status()

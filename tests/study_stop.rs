@@ -38,6 +38,7 @@ fn a_stopped_study_keeps_its_finished_runs_and_resumes_to_the_same_rows() {
         on_done: &quiet,
         stop: None,
         order: covga::study::order::RunOrder::Seeds,
+        abort_after_runs: None,
     };
     let stopping = RunnerOptions { on_done: &stop_after_first, stop: Some(&stop), ..opts(&folder) };
     match run_study(&study, &stopping) {

@@ -152,6 +152,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
         on_done: &on_done,
         stop: Some(&stop),
         order,
+        abort_after_runs: None,
     };
     match interruptible(py, &stop, || run_study(&study, &opts))? {
         Ok(o) => match o.first_failure {

@@ -36,6 +36,9 @@ pub struct GridArgs {
     /// seeds runs replicate by replicate. Results are the same in either order.
     #[arg(long, value_enum, default_value_t = RunOrder::LongestFirst)]
     order: RunOrder,
+    /// Crash tests only: abort like a killed process after N runs are recorded.
+    #[arg(long, hide = true, value_name = "N")]
+    abort_after_runs: Option<usize>,
     /// Write study.sbatch (a Slurm job array over shards) instead of running.
     #[arg(long)]
     slurm: bool,
@@ -133,6 +136,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
         on_done: &on_done,
         stop: None,
         order: a.order,
+        abort_after_runs: a.abort_after_runs,
     };
     let outcome = run_study(&study, &opts).map_err(|e| match e {
         crate::study::runner::StudyError::Config(c) => CliError::input(c),

@@ -17,14 +17,32 @@ pub enum CliError {
     /// Something failed that is not the user's input (a file could not be written, …).
     #[error("{0}")]
     Internal(String),
+    /// The command line did not parse, or asked for help or the version: clap's own text,
+    /// which the caller prints with [`CliError::print`] (help and version on stdout).
+    #[error("{0}")]
+    Usage(#[from] clap::Error),
 }
 
 impl CliError {
-    /// Process exit code: 2 for bad input, 1 otherwise.
+    /// Process exit code: 2 for bad input (a usage error included), 1 for an internal
+    /// failure, 0 for help and the version.
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Input(_) => 2,
             CliError::Internal(_) => 1,
+            CliError::Usage(e) if e.use_stderr() => 2,
+            CliError::Usage(_) => 0,
+        }
+    }
+
+    /// Prints the error as the command line shows it: `error: …` on stderr, or clap's usage
+    /// error, help or version text where clap sends it.
+    pub fn print(&self) {
+        match self {
+            CliError::Usage(e) => {
+                let _ = e.print();
+            }
+            CliError::Input(_) | CliError::Internal(_) => eprintln!("error: {self}"),
         }
     }
     /// Wraps any displayable error as bad input.
@@ -66,15 +84,8 @@ where
     I: IntoIterator<Item = T>,
     T: Into<OsString> + Clone,
 {
-    let cli = match Cli::try_parse_from(args) {
-        Ok(cli) => cli,
-        Err(e) => {
-            // Help and version go to stdout with success; usage errors exit 2 like bad input.
-            let code = if e.use_stderr() { 2 } else { 0 };
-            let _ = e.print();
-            std::process::exit(code);
-        }
-    };
+    // Help and version come back as `Usage` errors with exit code 0, for `main` to print.
+    let cli = Cli::try_parse_from(args)?;
     match cli.command {
         Command::Run(a) => run::run(a),
         Command::Eval(a) => eval::run(a),

@@ -93,10 +93,6 @@ impl Shard {
     }
 }
 
-/// Environment variable for crash tests: abort the process (as if killed) right after this
-/// many runs were recorded by this invocation.
-pub const ABORT_AFTER_ENV: &str = "COVGA_ABORT_AFTER_RUNS";
-
 /// Progress of a study, handed to the caller after every run.
 pub struct RunDone<'a> {
     /// The run.
@@ -130,6 +126,10 @@ pub struct RunnerOptions<'a> {
     pub stop: Option<&'a AtomicBool>,
     /// The order the runs start in (results never depend on it).
     pub order: super::order::RunOrder,
+    /// Fault injection for crash-and-resume tests: abort the process, as a kill would, right
+    /// after this many runs were recorded by this invocation (`covga grid --abort-after-runs`,
+    /// hidden). `None` in every real use.
+    pub abort_after_runs: Option<usize>,
 }
 
 /// What a study invocation did.
@@ -343,7 +343,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let first_error: Mutex<Option<StudyError>> = Mutex::new(None);
     let counter = AtomicUsize::new(0);
     let written = AtomicUsize::new(0);
-    let abort_after: Option<usize> = std::env::var(ABORT_AFTER_ENV).ok().and_then(|v| v.parse().ok());
+    let abort_after = opts.abort_after_runs;
     // A run its planner refuses while planning (what validation cannot see without planning)
     // is recorded with its reason and the study goes on; any other failure stops the study.
     let run_one = |run: &RunSpec| -> Result<RunResult, StudyError> {
