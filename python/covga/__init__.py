@@ -329,9 +329,15 @@ def report(
     by: Union[str, Sequence[str]] = (),
     where: Optional[Mapping[str, Any]] = None,
     name: Optional[str] = None,
+    compare: Optional[Mapping[str, Any]] = None,
 ) -> Path:
     """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
-    runs ``where`` each column equals its value; returns the path of ``summary.md``."""
+    runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
+    maps swept keys to their baseline values (``{"thesis.moves": "straight"}``): each adds
+    ``compare-KEY.md`` and ``.csv`` beside it (``covga report --compare``; the tables read back
+    with :func:`read_table`)."""
     by = [by] if isinstance(by, str) else list(by)
-    pairs = [(str(k), str(v).lower() if isinstance(v, bool) else str(v)) for k, v in (where or {}).items()]
-    return Path(_covga.write_report(os.fspath(dir), by, pairs, name))
+    text = lambda v: str(v).lower() if isinstance(v, bool) else str(v)
+    pairs = [(str(k), text(v)) for k, v in (where or {}).items()]
+    comparisons = [f"{k}={text(v)}" for k, v in (compare or {}).items()]
+    return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons))

@@ -172,22 +172,39 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
     }
 }
 
-/// `covga report`: writes the report of study folder `dir` and returns the path of its
-/// `summary.md`.
+/// `covga report`: writes the report of study folder `dir` (with the comparisons `compare`,
+/// each `KEY=BASELINE`, made first so that one that cannot be made writes nothing) and
+/// returns the path of its `summary.md`.
 #[pyfunction]
-#[pyo3(signature = (dir, by, filter, name))]
+#[pyo3(signature = (dir, by, filter, name, compare))]
 pub fn write_report(
     py: Python<'_>,
     dir: &str,
     by: Vec<String>,
     filter: Vec<(String, String)>,
     name: Option<String>,
+    compare: Vec<String>,
 ) -> PyResult<String> {
-    let opts = covga::report::ReportOptions { by, filter, name };
-    crate::released(py, || match covga::report::write_report_with(Path::new(dir), &opts) {
-        Ok(path) => Ok(path.display().to_string()),
-        Err(covga::report::ReportError::Input(m)) => Err(config_error(m)),
-        Err(other) => Err(PyRuntimeError::new_err(other.to_string())),
+    use covga::report::ReportError;
+    let error = |e: ReportError| match e {
+        ReportError::Input(m) => config_error(m),
+        other => PyRuntimeError::new_err(other.to_string()),
+    };
+    let comparisons = compare
+        .iter()
+        .map(|c| covga::report::compare::Comparison::parse(c))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(config_error)?;
+    crate::released(py, || {
+        let dir = Path::new(dir);
+        let rendered = covga::report::compare::render_all(dir, &filter, &comparisons).map_err(error)?;
+        let opts = covga::report::ReportOptions { by, filter, name };
+        let path = covga::report::write_report_with(dir, &opts).map_err(error)?;
+        let folder = path.parent().unwrap_or(dir);
+        for r in &rendered {
+            r.save(folder).map_err(error)?;
+        }
+        Ok(path.display().to_string())
     })
 }
 

@@ -182,6 +182,17 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     assert sorted(set(runs["thesis.selection"])) == ["elite", "tournament"]
     summary = covga.report(tmp_path / "py", by="thesis.selection", where={"thesis.projection": "f2"})
     assert summary.name == "summary.md" and "elite" in summary.read_text()
+    # A comparison paired by seed, the same file the command line writes.
+    covga.report(tmp_path / "py", compare={"thesis.selection": "elite"})
+    cli("report", tmp_path / "cli", "--compare", "thesis.selection=elite")
+    table = covga.read_table(tmp_path / "py" / "report" / "compare-thesis.selection.csv")
+    assert set(table["metric"]) == {"executable", "cov_final_reach", "time_s"}
+    assert (tmp_path / "py/report/compare-thesis.selection.csv").read_bytes() == (
+        tmp_path / "cli/report/compare-thesis.selection.csv"
+    ).read_bytes()
+    with pytest.raises(covga.ConfigError, match="no run has that value"):
+        covga.report(tmp_path / "py", name="bad", compare={"thesis.selection": "rrws"})
+    assert not (tmp_path / "py" / "report-bad").exists()
     with pytest.raises(covga.ConfigError, match="not a study folder"):
         covga.report(tmp_path / "nothing")
     with pytest.raises(covga.ConfigError, match="not a study folder"):
