@@ -69,6 +69,37 @@ struct Row {
     pairs: Vec<(f64, f64)>,
 }
 
+impl Row {
+    /// The table cells every section starts a row with: stratum, value, executable runs of
+    /// each side, pairs.
+    fn lead_md(&self) -> String {
+        format!(
+            "| {} | {} | {}/{}, {}/{} | {} |",
+            if self.stratum.is_empty() { "all" } else { &self.stratum },
+            self.value,
+            self.executable.0,
+            self.runs.0,
+            self.executable.1,
+            self.runs.1,
+            self.pairs.len()
+        )
+    }
+
+    /// The CSV fields every section starts a row with, `metric` among them.
+    fn lead_csv(&self, metric: &str) -> String {
+        format!(
+            "\"{}\",\"{}\",{metric},{},{},{},{},{}",
+            self.stratum,
+            self.value,
+            self.runs.0,
+            self.runs.1,
+            self.executable.0,
+            self.executable.1,
+            self.pairs.len()
+        )
+    }
+}
+
 /// The rows of runs.csv by stratum (the other parameters that vary on their own) and value.
 struct Design {
     strata: Vec<String>,
@@ -341,28 +372,16 @@ fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp: &Comparis
         };
         let _ = writeln!(
             md,
-            "| {} | {} | {}/{}, {}/{} | {} | {gained} | {lost} | {} | {} | {finding} |",
-            if r.stratum.is_empty() { "all" } else { &r.stratum },
-            r.value,
-            r.executable.0,
-            r.runs.0,
-            r.executable.1,
-            r.runs.1,
-            r.pairs.len(),
+            "{} {gained} | {lost} | {} | {} | {finding} |",
+            r.lead_md(),
             p.map_or("–".into(), p_text),
             holm.map_or("–".into(), p_text),
         );
         let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
         let _ = writeln!(
             csv,
-            "\"{}\",\"{}\",executable,{},{},{},{},{},,,,,,,{gained},{lost},,{},{},{},\"{finding}\"",
-            r.stratum,
-            r.value,
-            r.runs.0,
-            r.runs.1,
-            r.executable.0,
-            r.executable.1,
-            r.pairs.len(),
+            "{},,,,,,,{gained},{lost},,{},{},{},\"{finding}\"",
+            r.lead_csv("executable"),
             if p.is_some() { "mcnemar exact" } else { "" },
             field(*p),
             field(holm),
@@ -448,14 +467,8 @@ fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row], cmp: &Co
         };
         let _ = writeln!(
             md,
-            "| {} | {} | {}/{}, {}/{} | {} | {} | {} | {} | {} of {} | {} | {} | {} | {} |",
-            if r.stratum.is_empty() { "all" } else { &r.stratum },
-            r.value,
-            r.executable.0,
-            r.runs.0,
-            r.executable.1,
-            r.runs.1,
-            r.pairs.len(),
+            "{} {} | {} | {} | {} of {} | {} | {} | {} | {} |",
+            r.lead_md(),
             if b.is_empty() { "–".into() } else { format!("{:.d$}", median(&b)) },
             if v.is_empty() { "–".into() } else { format!("{:.d$}", median(&v)) },
             ci_text,
@@ -469,15 +482,8 @@ fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row], cmp: &Co
         let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
         let _ = writeln!(
             csv,
-            "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
-            r.stratum,
-            r.value,
-            m.column,
-            r.runs.0,
-            r.runs.1,
-            r.executable.0,
-            r.executable.1,
-            r.pairs.len(),
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+            r.lead_csv(m.column),
             field((!b.is_empty()).then(|| median(&b))),
             field((!v.is_empty()).then(|| median(&v))),
             match m.contrast {
