@@ -20,10 +20,10 @@
 //!    common scorer;
 //! 4. [`plot`]: figure primitives (maps, paths, charts, legends);
 //! 5. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
-//! 6. the planners — [`thesis`], [`waypoint`], [`patterns`], [`cell_order`] (a GA over the
-//!    patterns' cells), then [`random_search`] (the
-//!    thesis genome drawn at random) and [`fleet`] (teams planned by the others), each
-//!    validating its own section and drawing its own figures;
+//! 6. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`] and
+//!    [`fleet`]: the planners (the cell-order GA orders the patterns' cells, random search
+//!    draws the thesis genome at random, a fleet is planned by the others), each validating its
+//!    own section and drawing its own figures;
 //! 7. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
 //! 8. [`study`]: grids, the runner, records, merge, estimates, Slurm;
 //! 9. [`report`]: the sections of `covga report`;

@@ -183,3 +183,85 @@ fn the_checker_finds_an_upward_import_a_cycle_and_grouped_imports() {
     // A module the order does not know is named.
     assert_eq!(violations(&[file("newthing.rs", "")]).len(), 1);
 }
+
+/// The module names of each layer as `text` writes them: one group per line that `starts`
+/// accepts, the backticked names up to the line's `stop` (the README's table cell, the lib.rs
+/// list item's colon).
+fn described_layers(text: &str, starts: impl Fn(&str) -> Option<&str>, stop: char) -> Vec<Vec<String>> {
+    text.lines()
+        .filter_map(|l| starts(l.trim_start()))
+        .map(|rest| {
+            let names = rest.split(stop).next().unwrap_or("");
+            names.split('`').skip(1).step_by(2).map(str::to_string).collect()
+        })
+        .collect()
+}
+
+/// Whether `described` (coarser groups, in order) is `LAYERS` read in order, each group a run of
+/// whole layers; the problems otherwise.
+fn layer_order_problems(what: &str, described: &[Vec<String>]) -> Vec<String> {
+    let flat: Vec<&str> = described.iter().flatten().map(String::as_str).collect();
+    let ordered: Vec<&str> = LAYERS.iter().flat_map(|l| l.iter().copied()).collect();
+    if flat != ordered {
+        return vec![format!("{what} lists the modules as {flat:?}; tests/architecture.rs as {ordered:?}")];
+    }
+    // With the order equal, groups are runs of whole layers when each starts a layer.
+    described
+        .iter()
+        .filter(|g| g.first().is_some_and(|m| layer(m).is_some_and(|l| LAYERS[l][0] != m.as_str())))
+        .map(|g| format!("{what}: the group {g:?} splits a layer of tests/architecture.rs"))
+        .collect()
+}
+
+#[test]
+fn the_readme_and_lib_rs_describe_the_layer_order_of_this_test() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    let layout = readme.split("## Layout").nth(1).expect("a Layout section").split("\n## ").next().unwrap();
+    let table = described_layers(
+        layout,
+        |l| {
+            l.strip_prefix("| ")
+                .filter(|r| r.starts_with(|c: char| c.is_ascii_digit()))
+                .and_then(|r| r.split_once(" | "))
+                .map(|(_, r)| r)
+        },
+        '|',
+    );
+    // A list item of lib.rs's doc may run over several indented lines: one line per item.
+    let mut lib = String::new();
+    for line in std::fs::read_to_string(root.join("src/lib.rs")).unwrap().lines() {
+        match line.strip_prefix("//!    ") {
+            Some(more) if !lib.is_empty() => lib = format!("{} {}", lib.trim_end_matches('\n'), more.trim()) + "\n",
+            _ => lib += &format!("{line}\n"),
+        }
+    }
+    let list = described_layers(
+        &lib,
+        |l| {
+            let item = l.strip_prefix("//! ")?;
+            let (number, rest) = item.split_once(". ")?;
+            number.parse::<u32>().ok().map(|_| rest)
+        },
+        ':',
+    );
+    let mut problems = layer_order_problems("README.md's Layout table", &table);
+    problems.extend(layer_order_problems("src/lib.rs's list of layers", &list));
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // The check fails where it should: two modules swapped.
+    let mut swapped = table.clone();
+    swapped[1].insert(0, "cli".into());
+    assert!(!layer_order_problems("swapped", &swapped).is_empty());
+    // And where a group starts inside a layer: `waypoint` split from `thesis`.
+    let split: Vec<Vec<String>> = LAYERS
+        .iter()
+        .flat_map(|l| {
+            if l[0] == "thesis" {
+                vec![vec![l[0].to_string()], l[1..].iter().map(|m| m.to_string()).collect()]
+            } else {
+                vec![l.iter().map(|m| m.to_string()).collect()]
+            }
+        })
+        .collect();
+    assert!(layer_order_problems("split", &split).iter().any(|p| p.contains("splits a layer")), "{split:?}");
+}
