@@ -118,3 +118,31 @@ fn routed_moves_are_refused_for_fleets() {
     };
     assert!(e.contains("thesis.moves") && e.contains("fleet"), "{e}");
 }
+
+/// A place on the basement floor plan where the body fits but the cell centre nearest to it
+/// (by grid distance) lies across a wall's corner: routes from it drove that leg untested, a
+/// few millimetres into the wall (a committed run's plan was refused so). A route now joins
+/// the grid at the nearest centre whose leg keeps clear.
+#[test]
+fn a_route_from_beside_a_wall_joins_the_grid_where_the_body_keeps_clear() {
+    use covga::coverage::routes::{RouteScratch, Router};
+    use covga::geom::Point;
+    let map = covga::map::ros::load_ros_yaml(Path::new("experiments/maps/basement.yaml")).unwrap();
+    let router = Router::new(&map, 0.6, &[Point::new(0.0, 0.0)]);
+    let mut scratch = RouteScratch::default();
+    let beside = Point::new(-12.329195025071385, 8.624999999869033);
+    assert!(router.can_stand(beside));
+    let (o, w, h) = (map.origin(), map.width_m(), map.height_m());
+    let lattice = (0..(w / 2.0) as usize).flat_map(|i| (0..(h / 2.0) as usize).map(move |j| (i, j)));
+    let targets: Vec<Point> =
+        lattice.map(|(i, j)| Point::new(o.x + 2.0 * i as f64 + 1.0, o.y + 2.0 * j as f64 + 1.0)).collect();
+    for &target in &targets {
+        for (a, b) in [(beside, target), (target, beside)] {
+            let route = router.route(a, b, &mut scratch);
+            let mut path = vec![route.start];
+            path.extend_from_slice(route.points);
+            let (cells, off_map) = covga::map::body::touched_cells(&map, &path, 0.6);
+            assert!(cells.is_empty() && !off_map, "{a:?} → {b:?} touches {cells:?}");
+        }
+    }
+}

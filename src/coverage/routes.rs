@@ -2,19 +2,27 @@
 //! thesis genome to the next, the remedy 003 §5.3 names for moves that run into obstacles.
 //!
 //! A move `a → b` is driven straight, exactly as 003 sweeps it, when both viewpoints are places
-//! the robot can stand ([`Router::position`]) and the swept rectangle of the segment holds no
-//! obstacle cell. Otherwise the robot drives from where it stands near `a` to where it stands
-//! near `b` (a viewpoint inside a wall or an unreachable pocket is replaced by the nearest
-//! reachable cell centre the robot fits on) along a path of robot centres with clearance ≥
-//! width/2: weighted A* over the cell centres of the stations' component, 8-connected without
-//! corner cutting (the moves of [`Clearance::steps`], as the cell-order GA's transit
-//! matrix in [`super::transit`]), shortened by line of sight where the straight segment's
-//! swept rectangle holds no obstacle cell. The heuristic is the larger of the octile distance
-//! and a landmark bound, weighted by [`HEURISTIC_WEIGHT`]: a grid route at most that factor
-//! longer than the shortest, found some five times faster on the office floor plan; the
-//! line-of-sight pass then straightens it. Each move's route depends on its two viewpoints
-//! only, so a routed path is the concatenation of its moves' routes and the incremental
-//! evaluator's segment-by-segment bookkeeping holds unchanged; routes are cached per worker.
+//! the robot can stand ([`Router::position`]) and its body along the segment touches no
+//! non-free cell (the executability rule of `map::body`, tested exactly:
+//! [`Router::segment_clear`]). Otherwise the robot drives from where it stands near `a` to where
+//! it stands near `b` (a viewpoint inside a wall or an unreachable pocket is replaced by the
+//! nearest reachable cell centre the robot fits on) along a path of robot centres with
+//! clearance ≥ width/2: it joins the grid of reachable centres at the nearest one its body
+//! reaches along a clear leg ([`Router::entry_centre`]), follows weighted A* over that grid,
+//! 8-connected without corner cutting (the moves of [`Clearance::steps`], as the cell-order
+//! GA's transit matrix in [`super::transit`]), and is shortened by line of sight where the
+//! body keeps clear. The heuristic is the larger of the octile distance and a landmark bound,
+//! weighted by [`HEURISTIC_WEIGHT`]: a grid route at most that factor longer than the
+//! shortest, found some five times faster on the office floor plan; the line-of-sight pass
+//! then straightens it. Each move's route depends on its two viewpoints only, so a routed
+//! path is the concatenation of its moves' routes and the incremental evaluator's
+//! segment-by-segment bookkeeping holds unchanged; routes are cached per worker.
+//!
+//! One case stays outside the rule: a place where the body fits, in a pocket the grid of
+//! reachable centres does not enter, with no reachable centre within a robot's width that a
+//! clear leg joins (a lane at the clearance limit in a corridor too narrow for any cell centre).
+//! A route from or to it takes the leg to the nearest centre all the same, and the scorer
+//! refuses the plan; nothing is hidden.
 //!
 //! On a map with no obstacle cells every viewpoint is a place to stand and every segment is
 //! clear, so routed moves are the straight moves bit for bit.
@@ -22,6 +30,7 @@
 use super::bits::BitLayers;
 use crate::geom::Point;
 use crate::map::GridMap;
+use crate::map::body;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 use std::cmp::Reverse;
@@ -133,6 +142,8 @@ pub struct RouteScratch {
     /// half): the line-of-sight pass asks the same pairs again and again along grid routes
     /// it has straightened before.
     sights: KeyMap<u64, bool>,
+    /// Centres near a route's end, by distance ([`Router::entry_centre`]).
+    candidates: Vec<(f64, u32)>,
     /// Routes searched so far (cache misses).
     searches: u64,
 }
@@ -174,23 +185,63 @@ impl Router {
     }
 
     /// Whether the robot's body along `p → q`, both places it fits, keeps clear of every
-    /// non-free cell and the map's edge (the executability rule of `map::body`, to the
-    /// planners' sampling): at once where the segment's rectangle widened by a cell on either
-    /// side holds only free cells (every other cell square then lies more than a radius from
-    /// the segment, and the map's edge stays clear between two ends that keep clear of it),
-    /// refused at once where the rectangle half a cell narrower than the robot holds another,
-    /// else decided by [`Clearance::segment_fits_within`].
+    /// non-free cell and the map's edge: exactly the executability rule of `map::body`, so that
+    /// a move driven straight is never one the scorer refuses. Accepted at once where the
+    /// segment's rectangle widened by a cell on either side and lengthened by a cell at either
+    /// end holds no non-free cell centre (a cell square nearer than a radius to the segment has
+    /// its centre in that rectangle, or lies wholly beyond an end, where the end's own
+    /// clearance keeps it off; the map's edge stays clear between two ends that keep clear of
+    /// it); refused at once where the rectangle half a cell narrower than the robot holds one
+    /// (its square then lies nearer than the radius less the rule's slack); else decided by
+    /// [`body::segment_clear_of_cells`].
     pub fn segment_clear(&self, p: Point, q: Point) -> bool {
-        let res = self.clear.map().resolution();
-        if self.bits.obstacle_cells(p, q, self.width + 2.0 * res) == 0 {
+        let map = self.clear.map();
+        let res = map.resolution();
+        let along = q - p;
+        let len = along.norm();
+        if len == 0.0 {
             return true;
         }
-        // A non-free cell centre half a cell inside the body's band lies inside the disc at a
-        // sample a quarter cell from its foot: the sampled test refuses the segment too.
+        let step = along * (res / len);
+        if self.bits.obstacle_cells(p - step, q + step, self.width + 2.0 * res) == 0 {
+            return true;
+        }
         if self.width > 2.0 * res && self.bits.obstacle_cells(p, q, self.width - res) > 0 {
             return false;
         }
-        self.clear.segment_fits_within(p, q, STAND_SLACK_M)
+        body::segment_clear_of_cells(map, p, q, self.width)
+    }
+
+    /// The reachable centre where a route from or to `p` (a place the robot stands) joins the
+    /// grid: the nearest one by grid distance ([`Router::nearest`]) when the straight leg
+    /// between them is clear ([`Router::segment_clear`]), else the fitting centre nearest to
+    /// `p` within a robot's width whose leg is clear (ties to the lower index), else the
+    /// nearest one all the same (its leg then touches what it touches, and the scorer counts
+    /// it). Grid routes between centres need no test of their own: a step between two
+    /// fitting centres, diagonal ones without cutting a corner, comes no nearer to any cell
+    /// square than its ends do.
+    fn entry_centre(&self, p: Point, candidates: &mut Vec<(f64, u32)>) -> Option<usize> {
+        let map = self.clear.map();
+        let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
+        let nearest = self.nearest_centre(p)?;
+        if self.segment_clear(p, centre(nearest)) {
+            return Some(nearest);
+        }
+        let i = self.cell_of(map.clamp(p))?;
+        let (r0, c0, cols) = ((i / map.cols()) as isize, (i % map.cols()) as isize, map.cols() as isize);
+        let reach = (self.width / map.resolution()).ceil() as isize;
+        candidates.clear();
+        for r in (r0 - reach).max(0)..=(r0 + reach).min(map.rows() as isize - 1) {
+            for c in (c0 - reach).max(0)..=(c0 + reach).min(cols - 1) {
+                let j = (r * cols + c) as usize;
+                if self.clear.centre_fits(j) {
+                    candidates.push(((centre(j) - p).norm(), j as u32));
+                }
+            }
+        }
+        candidates.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let clear = candidates.iter().find(|&&(_, j)| self.segment_clear(p, centre(j as usize)));
+        Some(clear.map_or(nearest, |&(_, j)| j as usize))
     }
 
     /// The robot width the routes are planned for.
@@ -280,7 +331,10 @@ impl Router {
         }
         let map = self.clear.map();
         let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
-        let Some((from, len)) = (match (self.nearest_centre(pa), self.nearest_centre(pb)) {
+        let mut candidates = std::mem::take(&mut scratch.candidates);
+        let ends = (self.entry_centre(pa, &mut candidates), self.entry_centre(pb, &mut candidates));
+        scratch.candidates = candidates;
+        let Some((from, len)) = (match ends {
             (Some(s), Some(t)) => self.turning_cells(s, t, scratch),
             _ => None,
         }) else {
@@ -513,117 +567,5 @@ fn dijkstra(clear: &Clearance, from: usize) -> Vec<f32> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::coverage::CoverageGrid;
-    use crate::map::presets::preset;
-    use crate::map::{CellState, GridMap};
-
-    fn layers(map: &GridMap) -> BitLayers {
-        BitLayers::new(&CoverageGrid::new(map))
-    }
-
-    #[test]
-    fn the_wide_rectangle_shortcut_agrees_with_the_sampled_segment_test() {
-        use rand::{Rng, SeedableRng};
-        for name in ["office", "thesis-2"] {
-            let map = preset(name).unwrap();
-            let router = Router::new(&map, 0.6, &[Point::new(2.0, 2.0)]);
-            let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
-            let mut stand = || loop {
-                let p = Point::new(rng.random_range(0.0..map.width_m()), rng.random_range(0.0..map.height_m()));
-                if router.can_stand(p) {
-                    return p;
-                }
-            };
-            let (mut clear, mut blocked) = (0, 0);
-            for _ in 0..3000 {
-                let (p, q) = (stand(), stand());
-                let sampled = router.clear.segment_fits_within(p, q, STAND_SLACK_M);
-                assert_eq!(router.segment_clear(p, q), sampled, "{name}: {p:?} → {q:?}");
-                if sampled { clear += 1 } else { blocked += 1 }
-            }
-            assert!(clear > 100 && blocked > 100, "{name}: {clear} clear, {blocked} blocked");
-        }
-    }
-
-    #[test]
-    fn a_move_through_the_disc_goes_around_it_and_sweeps_no_obstacle() {
-        let map = preset("thesis-2").unwrap();
-        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]), layers(&map));
-        let (a, b) = (Point::new(2.0, 5.5), Point::new(9.0, 5.5));
-        assert!(bits.obstacle_cells(a, b, 0.6) > 0);
-        let mut scratch = RouteScratch::default();
-        let route = router.route(a, b, &mut scratch);
-        assert_eq!((route.start, *route.points.last().unwrap()), (a, b));
-        assert!(route.points.len() >= 2, "a detour, not the straight segment");
-        let mut prev = route.start;
-        let mut length = 0.0;
-        for &p in route.points {
-            assert_eq!(bits.obstacle_cells(prev, p, 0.6), 0, "{prev:?} → {p:?}");
-            length += (p - prev).norm();
-            prev = p;
-        }
-        // Around a 2 m disc with 0.3 m clearance: longer than 7 m, far shorter than the way
-        // round the map.
-        assert!(length > 7.0 && length < 10.0, "{length}");
-        // The cache returns the same route.
-        let again: Vec<Point> = router.route(a, b, &mut scratch).points.to_vec();
-        assert_eq!(scratch.searches(), 1);
-        let fresh = router.route(a, b, &mut RouteScratch::default()).points.to_vec();
-        assert_eq!(again, fresh);
-    }
-
-    #[test]
-    fn a_clear_move_is_the_straight_segment() {
-        let map = preset("thesis-2").unwrap();
-        let router = Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]);
-        let (a, b) = (Point::new(1.5, 1.5), Point::new(8.5, 1.5));
-        let mut scratch = RouteScratch::default();
-        assert_eq!(router.route(a, b, &mut scratch), Route { start: a, points: &[b] });
-    }
-
-    #[test]
-    fn targets_in_walls_and_closed_rooms_are_replaced_by_reachable_places() {
-        // Two rooms of 4 m at 0.1 m with a closed wall between them (x in [4, 4.2)).
-        let (cols, rows) = (84, 40);
-        let cells: Vec<CellState> = (0..rows * cols)
-            .map(|i| if (40..42).contains(&(i % cols)) { CellState::Occupied } else { CellState::Free })
-            .collect();
-        let map = GridMap::new("two-rooms", cols, rows, 0.1, Point::origin(), cells).unwrap();
-        let (router, bits) = (Router::new(&map, 0.6, &[Point::new(1.0, 1.0)]), layers(&map));
-        let wall = Point::new(4.1, 2.0);
-        let closed = Point::new(6.0, 2.0);
-        for p in [wall, closed] {
-            let q = router.position(p);
-            assert!(router.can_stand(q), "{p:?} → {q:?}");
-            assert!(q.x < 4.0 - 0.3 + 1e-9, "{q:?} is on the stations' side");
-        }
-        let mut scratch = RouteScratch::default();
-        let route = router.route(Point::new(1.0, 2.0), closed, &mut scratch);
-        let mut prev = route.start;
-        for &p in route.points {
-            assert_eq!(bits.obstacle_cells(prev, p, 0.6), 0);
-            prev = p;
-        }
-        assert_eq!(prev, router.position(closed));
-    }
-
-    #[test]
-    fn on_a_map_without_obstacles_every_move_is_straight_between_places_the_body_fits() {
-        let map = GridMap::new("open", 40, 30, 0.2, Point::origin(), vec![CellState::Free; 1200]).unwrap();
-        let router = Router::new(&map, 0.6, &[Point::new(1.0, 1.0)]);
-        let mut scratch = RouteScratch::default();
-        // Where the body fits at both ends: the straight move itself.
-        for (a, b) in [((0.3, 0.3), (7.7, 5.7)), ((0.35, 5.6), (7.65, 0.4)), ((4.0, 3.0), (4.0, 3.0))] {
-            let (a, b) = (Point::new(a.0, a.1), Point::new(b.0, b.1));
-            assert_eq!(router.route(a, b, &mut scratch), Route { start: a, points: &[b] });
-        }
-        // A viewpoint past the reach of the body (on the map's edge) is driven to the nearest
-        // place it fits, then straight.
-        let (a, b) = (Point::new(0.0, 0.0), Point::new(8.0, 6.0));
-        let (pa, pb) = (router.position(a), router.position(b));
-        assert!(pa != a && pb != b && router.can_stand(pa) && router.can_stand(pb));
-        assert_eq!(router.route(a, b, &mut scratch), Route { start: pa, points: &[pb] });
-    }
-}
+#[path = "routes/tests.rs"]
+mod tests;

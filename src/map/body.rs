@@ -111,11 +111,30 @@ fn disc_on_map(map: &GridMap, p: Point, lim: f64) -> bool {
 }
 
 /// Pushes onto `out` the non-free cells whose square lies nearer than `lim` to the segment
-/// `a → b`. Row by row: the capsule's points in a row's band come from the segment's points
-/// within `lim` of that band, so only their x range (widened by `lim`) is read.
+/// `a → b`.
 fn touched_by_segment(map: &GridMap, a: Point, b: Point, lim: f64, out: &mut Vec<usize>) {
+    for_each_touched(map, a, b, lim, |i| {
+        out.push(i);
+        true
+    });
+}
+
+/// Whether a disc of diameter `width` along `a → b` keeps clear of every non-free cell, to the
+/// contact slack of [`touched_cells`] (the map's edge not tested: a planner tests the ends).
+/// What a router asks before it drives a move straight, so that its moves pass this rule.
+pub fn segment_clear_of_cells(map: &GridMap, a: Point, b: Point, width: f64) -> bool {
+    let radius = 0.5 * width;
+    let lim = radius - contact_slack(map.resolution(), radius);
+    for_each_touched(map, a, b, lim, |_| false)
+}
+
+/// Calls `visit` with each non-free cell whose square lies nearer than `lim` to the segment
+/// `a → b`, row by row, until it returns `false`; returns whether every call returned `true`.
+/// The capsule's points in a row's band come from the segment's points within `lim` of that
+/// band, so only their x range (widened by `lim`) is read.
+fn for_each_touched(map: &GridMap, a: Point, b: Point, lim: f64, mut visit: impl FnMut(usize) -> bool) -> bool {
     if lim <= 0.0 || !(a.x.is_finite() && a.y.is_finite() && b.x.is_finite() && b.y.is_finite()) {
-        return;
+        return true;
     }
     let (res, o) = (map.resolution(), map.origin());
     let to_row = |y: f64| ((y - o.y) / res).floor();
@@ -123,7 +142,7 @@ fn touched_by_segment(map: &GridMap, a: Point, b: Point, lim: f64, out: &mut Vec
     let clamp = |v: f64, n: usize| v.clamp(0.0, n as f64 - 1.0) as usize;
     let (y_lo, y_hi) = (a.y.min(b.y) - lim, a.y.max(b.y) + lim);
     if to_row(y_hi) < 0.0 || to_row(y_lo) >= map.rows() as f64 {
-        return;
+        return true;
     }
     let lim2 = lim * lim;
     for row in clamp(to_row(y_lo), map.rows())..=clamp(to_row(y_hi), map.rows()) {
@@ -139,11 +158,12 @@ fn touched_by_segment(map: &GridMap, a: Point, b: Point, lim: f64, out: &mut Vec
             }
             let lo = Point::new(o.x + col as f64 * res, band.0);
             let hi = Point::new(lo.x + res, band.1);
-            if segment_box_d2(a, b, lo, hi) < lim2 {
-                out.push(i);
+            if segment_box_d2(a, b, lo, hi) < lim2 && !visit(i) {
+                return false;
             }
         }
     }
+    true
 }
 
 /// The x range of the points of segment `a → b` whose y lies in `[y0, y1]`, if any.
