@@ -59,6 +59,6 @@ fn main() {
     // `cargo bench` passes `--bench`; any other run (e.g. `cargo test --benches`) also counts.
     let row_e = ThesisParams::thesis_elite();
     count("reference run (row e, Elite, 2000 iterations)", row_e, 2000);
-    let tournament = architecture_a(Selection::Tournament { size: 3 });
+    let tournament = architecture_a(Selection::tournament(3));
     count("tournament, Init_I 1000, 200 iterations", tournament, 200);
 }

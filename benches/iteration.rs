@@ -44,9 +44,9 @@ fn iteration(c: &mut Criterion) {
     let cases = [
         ("elite_row_e/incremental", row_e),
         ("elite_row_e/full", ThesisParams { evaluation: EvaluationMode::Full, ..row_e }),
-        ("tournament_3", architecture_a(Selection::Tournament { size: 3 })),
-        ("prws", architecture_a(Selection::Prws)),
-        ("rrws_2", architecture_a(Selection::Rrws { pressure: 2.0 })),
+        ("tournament_3", architecture_a(Selection::tournament(3))),
+        ("prws", architecture_a(Selection::prws())),
+        ("rrws_2", architecture_a(Selection::rrws(2.0))),
     ];
     let mut group = c.benchmark_group("iteration");
     // Every sample times the same number of iterations from the same point of the run.

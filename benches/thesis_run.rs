@@ -28,7 +28,7 @@ fn reference(c: &mut Criterion) {
     let row_a = ThesisParams { c_len: 0.6, c_child: ChildMode::Changing, p_ma: 0.01, p_mi: 0.1, ..row_e };
     group.bench_function("elite_2000_iterations/row_e_default", |b| b.iter(|| pool.install(|| run(row_e, 2000))));
     group.bench_function("elite_2000_iterations/row_a", |b| b.iter(|| pool.install(|| run(row_a, 2000))));
-    let tournament = architecture_a(Selection::Tournament { size: 3 });
+    let tournament = architecture_a(Selection::tournament(3));
     group.throughput(Throughput::Elements(200));
     group.bench_function("tournament_init1000/200_iterations", |b| b.iter(|| pool.install(|| run(tournament, 200))));
     group.finish();

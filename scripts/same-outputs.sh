@@ -63,6 +63,38 @@ start = [2.0, 2.0]
 name = "b"
 start = [2.0, 3.0]
 TOML
+# Every parent-selection scheme of both GAs that draw parents (the registry of ga::parents).
+for scheme in elite tournament prws rrws; do
+  cat > "$work/extra/cell-order-$scheme.toml" <<TOML
+planner = "cell_order"
+seed = 5
+[map]
+source = "thesis-2"
+[stations]
+start = [1.3, 1.3]
+[cell_order]
+selection = "$scheme"
+population = 30
+select = 8
+[budget]
+evaluations = 3000
+TOML
+done
+for scheme in prws rrws; do
+  cat > "$work/extra/thesis-$scheme.toml" <<TOML
+planner = "thesis"
+seed = 6
+[map]
+source = "thesis-1"
+[thesis]
+selection = "$scheme"
+selection_pressure = 1.6
+pop_min = 30
+init_individuals = 60
+[budget]
+iterations = 40
+TOML
+done
 echo "base: $base_rev; new: the working tree"
 outputs "$work/covga-base" "$work/base"
 outputs "$work/covga-new" "$work/new"

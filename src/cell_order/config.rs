@@ -1,8 +1,9 @@
 //! `[cell_order]`: the cell-order planner's settings as written, validated once into
 //! [`CellOrderConfig`].
 
-use super::search::{GaParams, Selection};
+use super::search::GaParams;
 use crate::config::{ConfigError, check_range};
+use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
 use crate::planner::Context;
 use crate::planner::memory::MemoryEstimate;
 use serde::{Deserialize, Serialize};
@@ -30,20 +31,6 @@ pub enum Completion {
     None,
 }
 
-/// Parent selection as written.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SelectionName {
-    /// Elite families: parents from the `select` best.
-    Elite,
-    /// Tournament of `tournament_size`.
-    Tournament,
-    /// Proportionate roulette wheel.
-    Prws,
-    /// Rank-based roulette wheel with pressure `sp`.
-    Rrws,
-}
-
 /// `[cell_order]` as written.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
@@ -54,8 +41,8 @@ pub struct CellOrderSection {
     pub directions: Vec<f64>,
     /// Individuals per generation.
     pub population: usize,
-    /// Parent selection.
-    pub selection: SelectionName,
+    /// Parent selection: the name of a scheme of [`crate::ga::parents::SCHEMES`].
+    pub selection: SchemeName,
     /// Tournament size `TS`.
     pub tournament_size: usize,
     /// Selection pressure `SP` of the rank-based wheel.
@@ -87,7 +74,7 @@ impl Default for CellOrderSection {
             solver: Solver::Ga,
             directions: vec![0.0, 45.0, 90.0, 135.0],
             population: 100,
-            selection: SelectionName::Tournament,
+            selection: SchemeName::parse("tournament").expect("registered"),
             tournament_size: 3,
             sp: 1.7,
             select: 20,
@@ -119,6 +106,15 @@ pub struct CellOrderConfig {
     pub width: f64,
 }
 
+/// The `[cell_order]` key that sets a selection parameter.
+pub fn param_key(param: Param) -> &'static str {
+    match param {
+        Param::TournamentSize => "cell_order.tournament_size",
+        Param::Pressure => "cell_order.sp",
+        Param::Select => "cell_order.select",
+    }
+}
+
 impl CellOrderSection {
     /// Checks every key against its range.
     pub fn validate(&self, ctx: &Context) -> Result<CellOrderConfig, ConfigError> {
@@ -137,11 +133,13 @@ impl CellOrderSection {
         count("cell_order.population", self.population, 2, 100_000)?;
         // Each scheme's own key is checked under that scheme only: a default the scheme never
         // reads (`select` = 20 under tournament selection) must not refuse a small population.
-        match self.selection {
-            SelectionName::Tournament => count("cell_order.tournament_size", self.tournament_size, 1, self.population)?,
-            SelectionName::Elite => count("cell_order.select", self.select, 1, self.population)?,
-            SelectionName::Rrws => check_range(o, "cell_order.sp", self.sp, 1.0, 2.0, "[1, 2]")?,
-            SelectionName::Prws => {}
+        let scheme = self.selection.scheme();
+        for &param in scheme.reads() {
+            match param {
+                Param::TournamentSize => count(param_key(param), self.tournament_size, 1, self.population)?,
+                Param::Select => count(param_key(param), self.select, 1, self.population)?,
+                Param::Pressure => check_range(o, param_key(param), self.sp, 1.0, 2.0, "[1, 2]")?,
+            }
         }
         count("cell_order.keep", self.keep, 0, self.population - 1)?;
         check_range(o, "cell_order.p_c", self.p_c, 0.0, 1.0, "[0, 1]")?;
@@ -168,12 +166,8 @@ impl CellOrderSection {
                 ));
             }
         }
-        let selection = match self.selection {
-            SelectionName::Elite => Selection::Elite { select: self.select },
-            SelectionName::Tournament => Selection::Tournament { size: self.tournament_size },
-            SelectionName::Prws => Selection::Prws,
-            SelectionName::Rrws => Selection::Rrws { pressure: self.sp },
-        };
+        let params = DrawParams { tournament_size: self.tournament_size, pressure: self.sp, select: self.select };
+        let selection = ParentDraw { scheme, params };
         Ok(CellOrderConfig {
             solver: self.solver,
             directions: self.directions.clone(),

@@ -1,5 +1,5 @@
 //! The genetic search over tours: a generational GA whose parents are drawn by covga's
-//! selection schemes ([`crate::ga::selection`]), with the `keep` best carried over unchanged,
+//! parent-selection schemes ([`crate::ga::parents`]), with the `keep` best carried over unchanged,
 //! order crossover and uniform choice crossover, order and choice mutation, and optionally the
 //! memetic step ([`super::local::improve`]) on the best child and one random child of every
 //! generation. The first
@@ -9,42 +9,21 @@
 use super::local::improve_within;
 use super::operators::{choice_mutation, cuts, mutate_order, order_crossover, uniform_choices};
 use super::tour::{Instance, Tour};
+use crate::ga::parents::ParentDraw;
 use crate::ga::rng::{Purpose, stream};
-use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
+use crate::ga::selection::best_k;
 use crate::planner::{Budget, StopReason};
 use rand::Rng;
 use rand::seq::SliceRandom;
 use std::time::Instant;
-
-/// How parents are drawn (the schemes of 003 §2.2.1, from [`crate::ga::selection`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Selection {
-    /// Elite families: parents drawn uniformly from the `select` best.
-    Elite {
-        /// How many of the best may be parents.
-        select: usize,
-    },
-    /// Tournament of `size`.
-    Tournament {
-        /// `TS`.
-        size: usize,
-    },
-    /// Proportionate roulette wheel over fitness `T_NN / T`.
-    Prws,
-    /// Rank-based roulette wheel with pressure `SP`.
-    Rrws {
-        /// `SP` in [1, 2].
-        pressure: f64,
-    },
-}
 
 /// The GA's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct GaParams {
     /// Individuals per generation.
     pub population: usize,
-    /// Parent selection.
-    pub selection: Selection,
+    /// Parent selection: a scheme of the registry ([`crate::ga::parents`]) and its parameters.
+    pub selection: ParentDraw,
     /// The best carried over unchanged each generation.
     pub keep: usize,
     /// Crossover probability.
@@ -176,12 +155,12 @@ pub fn search<E>(
             break StopReason::Stall;
         }
         iteration += 1;
-        let parents = Parents::new(&fitness, params.selection);
+        let mut parents = params.selection.prepare(&fitness);
         let mut next: Vec<(Tour, f64)> =
             best_k(&fitness, params.keep.min(pop.len())).into_iter().map(|i| pop[i].clone()).collect();
         let first_child = next.len();
         while next.len() < params.population {
-            let (a, b) = (&pop[parents.draw(&mut rng)].0, &pop[parents.draw(&mut rng)].0);
+            let (a, b) = (&pop[parents.pick(&mut rng)].0, &pop[parents.pick(&mut rng)].0);
             let mut child = if n > 1 && rng.random::<f64>() < params.p_c {
                 let (i, j) = cuts(n, &mut rng);
                 Tour {
@@ -236,38 +215,17 @@ fn best_of(pop: &[(Tour, f64)]) -> (Tour, f64) {
     pop[best_index(pop)].clone()
 }
 
-/// A parent draw prepared once per generation.
-enum Parents<'f> {
-    Uniform(Vec<usize>),
-    Tournament(&'f [f64], usize),
-    Wheel(Vec<f64>),
-}
-
-impl<'f> Parents<'f> {
-    fn new(fitness: &'f [f64], selection: Selection) -> Self {
-        match selection {
-            Selection::Elite { select } => Parents::Uniform(best_k(fitness, select.clamp(1, fitness.len()))),
-            Selection::Tournament { size } => Parents::Tournament(fitness, size),
-            Selection::Prws => Parents::Wheel(cumulative(&proportionate_probabilities(fitness))),
-            Selection::Rrws { pressure } => Parents::Wheel(cumulative(&rank_probabilities(fitness, pressure))),
-        }
-    }
-
-    fn draw<R: Rng + ?Sized>(&self, rng: &mut R) -> usize {
-        match self {
-            Parents::Uniform(best) => best[rng.random_range(0..best.len())],
-            Parents::Tournament(fitness, size) => tournament(fitness, *size, rng),
-            Parents::Wheel(cum) => spin(cum, rng),
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::tour::tests::line;
     use super::*;
 
-    fn params(selection: Selection, memetic: bool) -> GaParams {
+    /// The scheme `name` with `TS` = `size`, `SP` = `pressure`, `select` = `select`.
+    fn draw(name: &str, size: usize, pressure: f64, select: usize) -> ParentDraw {
+        ParentDraw::named(name, crate::ga::parents::DrawParams { tournament_size: size, pressure, select }).unwrap()
+    }
+
+    fn params(selection: ParentDraw, memetic: bool) -> GaParams {
         GaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic }
     }
 
@@ -276,10 +234,10 @@ mod tests {
         let inst = line(8);
         let optimum = super::super::exact::held_karp(&inst).unwrap().1;
         for selection in [
-            Selection::Elite { select: 10 },
-            Selection::Tournament { size: 3 },
-            Selection::Prws,
-            Selection::Rrws { pressure: 1.8 },
+            draw("elite", 3, 1.7, 10),
+            draw("tournament", 3, 1.7, 20),
+            draw("prws", 3, 1.7, 20),
+            draw("rrws", 3, 1.8, 20),
         ] {
             let mut last = f64::INFINITY;
             let out = search(&inst, &params(selection, false), (7, Instant::now()), &Budget::iterations(300), |g| {
@@ -299,7 +257,7 @@ mod tests {
         let run = |seed| {
             search(
                 &inst,
-                &params(Selection::Tournament { size: 2 }, true),
+                &params(draw("tournament", 2, 1.7, 20), true),
                 (seed, Instant::now()),
                 &Budget::iterations(20),
                 |_| Ok::<(), ()>(()),
@@ -309,7 +267,7 @@ mod tests {
         assert_eq!(run(3), run(3));
         let mut evals = 0;
         let budget = Budget { evaluations: Some(500), ..Budget::iterations(1_000_000) };
-        let out = search(&inst, &params(Selection::Prws, true), (4, Instant::now()), &budget, |g| {
+        let out = search(&inst, &params(draw("prws", 3, 1.7, 20), true), (4, Instant::now()), &budget, |g| {
             assert!(g.evaluations >= evals);
             evals = g.evaluations;
             Ok::<(), ()>(())

@@ -5,30 +5,20 @@
 
 use super::file::ExperimentFile;
 use super::registry::PlannerKind;
+use crate::ga::parents::{self, Param};
 use crate::thesis::config::SelectionName;
 use crate::thesis::seeding::SeedPlan;
 
-/// The `[thesis]` keys each selection scheme does not read (003 §3.4: Elite keeps the
-/// `Pop_min` best of parents and children; the others draw `Select` parents).
-fn unread_by_selection(s: SelectionName) -> &'static [&'static str] {
+/// The `[thesis]` keys Elite's families and NSGA-II do not read (003 §3.4: Elite keeps the
+/// `Pop_min` best of parents and children; architecture (a) draws `Select` pairs of parents).
+const UNREAD_BY_ELITE_AND_NSGA2: [&str; 5] =
+    ["thesis.init_individuals", "thesis.keep", "thesis.select", "thesis.tournament_size", "thesis.selection_pressure"];
+
+/// Whether the thesis GA under `s` does not read `key` of `[thesis]`.
+fn unread_by_selection(s: SelectionName, key: &str) -> bool {
     match s {
-        SelectionName::Elite => &[
-            "thesis.init_individuals",
-            "thesis.keep",
-            "thesis.select",
-            "thesis.tournament_size",
-            "thesis.selection_pressure",
-        ],
-        SelectionName::Tournament => &["thesis.selection_pressure"],
-        SelectionName::Prws => &["thesis.tournament_size", "thesis.selection_pressure"],
-        SelectionName::Rrws => &["thesis.tournament_size"],
-        SelectionName::Nsga2 => &[
-            "thesis.init_individuals",
-            "thesis.keep",
-            "thesis.select",
-            "thesis.tournament_size",
-            "thesis.selection_pressure",
-        ],
+        SelectionName::Elite | SelectionName::Nsga2 => UNREAD_BY_ELITE_AND_NSGA2.contains(&key),
+        SelectionName::Draw(name) => unread_by_scheme(name.as_str(), key, crate::thesis::config::param_key),
     }
 }
 
@@ -55,35 +45,26 @@ const CELL_ORDER_GA_KEYS: [&str; 10] = [
     "cell_order.memetic",
 ];
 
-/// The `[cell_order]` keys each of its GA's selection schemes does not read.
-fn unread_by_cell_order_selection(s: crate::cell_order::config::SelectionName) -> &'static [&'static str] {
-    use crate::cell_order::config::SelectionName;
-    match s {
-        SelectionName::Elite => &["cell_order.tournament_size", "cell_order.sp"],
-        SelectionName::Tournament => &["cell_order.select", "cell_order.sp"],
-        SelectionName::Prws => &["cell_order.tournament_size", "cell_order.select", "cell_order.sp"],
-        SelectionName::Rrws => &["cell_order.tournament_size", "cell_order.select"],
-    }
+/// Whether `key` sets a selection parameter that the scheme `scheme` (a name of the registry,
+/// [`crate::ga::parents`]) does not read, with `param_key` spelling the GA's keys.
+fn unread_by_scheme(scheme: &str, key: &str, param_key: impl Fn(Param) -> Option<&'static str>) -> bool {
+    parents::scheme(scheme)
+        .is_some_and(|s| Param::ALL.iter().any(|&p| param_key(p) == Some(key) && !s.reads().contains(&p)))
 }
 
 /// Why the cell-order planner of `file` does not read `key` of `[cell_order]`.
 fn unread_by_cell_order(file: &ExperimentFile, key: &str) -> Option<String> {
-    use crate::cell_order::config::{SelectionName, Solver};
+    use crate::cell_order::config::Solver;
     let section = file.cell_order.clone().unwrap_or_default();
     match section.solver {
         Solver::Exact if CELL_ORDER_GA_KEYS.contains(&key) => {
             Some("cell_order.solver = \"exact\" runs no GA (Held–Karp reads only the directions and completion)".into())
         }
         Solver::Exact => None,
-        Solver::Ga => unread_by_cell_order_selection(section.selection).contains(&key).then(|| {
-            let name = match section.selection {
-                SelectionName::Elite => "elite",
-                SelectionName::Tournament => "tournament",
-                SelectionName::Prws => "prws",
-                SelectionName::Rrws => "rrws",
-            };
-            format!("cell_order.selection = \"{name}\" does not use it")
-        }),
+        Solver::Ga => {
+            unread_by_scheme(section.selection.as_str(), key, |p| Some(crate::cell_order::config::param_key(p)))
+                .then(|| format!("cell_order.selection = \"{}\" does not use it", section.selection.as_str()))
+        }
     }
 }
 
@@ -160,7 +141,7 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
                 if key == "thesis.seed_share" && file.thesis.seed_population.is_empty() {
                     return Some("thesis.seed_population names no pattern to seed with".into());
                 }
-                if unread_by_selection(selection).contains(&key) {
+                if unread_by_selection(selection, key) {
                     return Some(format!("thesis.selection = \"{}\" does not use it", selection.name()));
                 }
             }

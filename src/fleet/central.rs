@@ -266,12 +266,7 @@ mod tests {
     use crate::thesis::run::{Ga, ThesisGa, ThesisOutcome};
 
     fn params(pop: usize, selection: &str) -> ThesisParams {
-        use crate::thesis::config::SelectionName;
-        let selection = match selection {
-            "elite" => SelectionName::Elite,
-            "tournament" => SelectionName::Tournament,
-            _ => SelectionName::Rrws,
-        };
+        let selection = crate::thesis::config::SelectionName::parse(selection).unwrap();
         let section = crate::thesis::config::ThesisSection { pop_min: pop, selection, ..Default::default() };
         crate::thesis::config::validate_params(&section, "test").unwrap()
     }

@@ -8,9 +8,10 @@
 
 use super::individual::EvalScratch;
 use super::member::{Member, Op, Origin, Variation};
-use super::params::{Draw, ThesisParams};
+use super::params::ThesisParams;
+use crate::ga::parents::{DrawParams, ParentDraw};
 use crate::ga::rng::{Purpose, Rng, from_stream_seed, stream_seed};
-use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
+use crate::ga::selection::best_k;
 use rand::Rng as _;
 use rand::seq::SliceRandom;
 use rayon::prelude::*;
@@ -240,7 +241,7 @@ impl<T: Member> Generation<'_, T> {
     /// contents overwritten); the members that do not pass on are put there.
     pub fn step_a(
         &self,
-        draw: Draw,
+        draw: ParentDraw,
         pop: Vec<T>,
         rng: &mut Rng,
         scratches: &mut [EvalScratch],
@@ -250,15 +251,10 @@ impl<T: Member> Generation<'_, T> {
         let n = pop.len();
         let fit: Vec<f64> = pop.iter().map(T::fitness).collect();
         let elite = best_k(&fit, p.keep.min(n));
-        let wheel = match draw {
-            Draw::Prws => cumulative(&proportionate_probabilities(&fit)),
-            Draw::Rrws => cumulative(&rank_probabilities(&fit, e.pressure)),
-            Draw::Tournament => Vec::new(),
-        };
-        let pick = |rng: &mut Rng| match draw {
-            Draw::Tournament => tournament(&fit, e.tournament_size, rng),
-            Draw::Prws | Draw::Rrws => spin(&wheel, rng),
-        };
+        // The effective `TS` and `SP` of this generation (parameter control may ramp them).
+        let params = DrawParams { tournament_size: e.tournament_size, pressure: e.pressure, ..draw.params };
+        let mut parents = ParentDraw { params, ..draw }.prepare(&fit);
+        let mut pick = |rng: &mut Rng| parents.pick(rng);
         let mut jobs: Vec<Job<T>> = Vec::with_capacity(4 * p.select);
         let mut kids = Vec::with_capacity(4);
         for _ in 0..p.select {

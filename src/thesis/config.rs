@@ -12,6 +12,7 @@ use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::coverage::fitness::Projection;
 use crate::ga::control::AdaptiveConstants;
+use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
 use crate::planner::memory::MemoryEstimate;
 use crate::planner::{Checks, Context};
 use serde::{Deserialize, Serialize};
@@ -22,7 +23,7 @@ use serde::{Deserialize, Serialize};
 pub struct ThesisSection {
     /// `f1` or `f2`.
     pub projection: Projection,
-    /// `elite`, `tournament`, `prws` or `rrws`.
+    /// `elite`, `nsga2`, or a registered parent draw (`tournament`, `prws`, `rrws`, …).
     pub selection: SelectionName,
     /// `Pop_min`.
     pub pop_min: usize,
@@ -83,32 +84,61 @@ pub struct ThesisSection {
     pub objective: Objective,
 }
 
-/// Selection scheme names.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "lowercase")]
+/// `thesis.selection` as written: one of the thesis GA's own architectures, or a parent draw
+/// of the registry ([`crate::ga::parents`]) for architecture (a).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SelectionName {
-    /// Elite families.
+    /// Elite families (architecture (b)); shadows the registry's `"elite"` draw.
     Elite,
-    /// Tournament ("Turn").
-    Tournament,
-    /// Proportionate roulette wheel.
-    Prws,
-    /// Rank-based roulette wheel.
-    Rrws,
     /// NSGA-II (Pareto fronts and crowding over `cov_final` and `t_final`).
     Nsga2,
+    /// Architecture (a) with a registered parent draw (`tournament`, `prws`, `rrws`, …).
+    Draw(SchemeName),
 }
 
 impl SelectionName {
+    /// The thesis GA's names of its own, which no registered draw can take.
+    const OWN: [&'static str; 2] = ["elite", "nsga2"];
+
     /// The name as written in experiment files.
     pub fn name(self) -> &'static str {
         match self {
             SelectionName::Elite => "elite",
-            SelectionName::Tournament => "tournament",
-            SelectionName::Prws => "prws",
-            SelectionName::Rrws => "rrws",
             SelectionName::Nsga2 => "nsga2",
+            SelectionName::Draw(d) => d.as_str(),
         }
+    }
+
+    /// The name `name` means for the thesis GA, if any.
+    pub fn parse(name: &str) -> Option<Self> {
+        match name {
+            "elite" => Some(SelectionName::Elite),
+            "nsga2" => Some(SelectionName::Nsga2),
+            _ => SchemeName::parse(name).map(SelectionName::Draw),
+        }
+    }
+}
+
+impl Serialize for SelectionName {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for SelectionName {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        Self::parse(&name).ok_or_else(|| crate::ga::parents::unknown_scheme(&name, &Self::OWN))
+    }
+}
+
+/// The `[thesis]` key that sets a selection parameter, if the section has one (it has no key
+/// for "how many of the best may be parents": its `select` counts the pairs drawn).
+pub fn param_key(param: Param) -> Option<&'static str> {
+    match param {
+        Param::TournamentSize => Some("thesis.tournament_size"),
+        Param::Pressure => Some("thesis.selection_pressure"),
+        Param::Select => None,
     }
 }
 
@@ -402,16 +432,24 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
         .ok_or_else(|| err("thesis.c_child", format!("= {} is out of range {{0, 1, 2}}", t.c_child)))?;
     let selection = match t.selection {
         SelectionName::Elite => Selection::Elite,
-        SelectionName::Tournament => {
-            count("thesis.tournament_size", t.tournament_size, 1, t.pop_min)?;
-            Selection::Tournament { size: t.tournament_size }
-        }
-        SelectionName::Prws => Selection::Prws,
-        SelectionName::Rrws => {
-            check_range(origin, "thesis.selection_pressure", t.selection_pressure, 1.0, 2.0, "[1, 2]")?;
-            Selection::Rrws { pressure: t.selection_pressure }
-        }
         SelectionName::Nsga2 => Selection::Nsga2,
+        SelectionName::Draw(name) => {
+            let scheme = name.scheme();
+            for &param in scheme.reads() {
+                match (param, param_key(param)) {
+                    (Param::TournamentSize, Some(key)) => count(key, t.tournament_size, 1, t.pop_min)?,
+                    (Param::Pressure, Some(key)) => check_range(origin, key, t.selection_pressure, 1.0, 2.0, "[1, 2]")?,
+                    (_, _) => {
+                        return Err(err(
+                            "thesis.selection",
+                            format!("= \"{}\" reads {param:?}, which [thesis] does not set", name.as_str()),
+                        ));
+                    }
+                }
+            }
+            let params = DrawParams { tournament_size: t.tournament_size, pressure: t.selection_pressure, select: 0 };
+            Selection::Draw(ParentDraw { scheme, params })
+        }
     };
     if selection.draw().is_some() {
         count("thesis.init_individuals", t.init_individuals, t.pop_min, 10_000_000)?;
@@ -421,13 +459,18 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
     let control = match t.control {
         ControlSection::None => Control::None,
         ControlSection::Ramp { min, max } => {
-            let (lo, hi, what) = match selection {
-                Selection::Rrws { .. } => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
-                Selection::Tournament { .. } => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
-                Selection::Elite | Selection::Prws | Selection::Nsga2 => {
+            let (lo, hi, what) = match selection.draw().and_then(|d| d.scheme.ramped()) {
+                Some(Param::Pressure) => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
+                Some(Param::TournamentSize) => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
+                Some(Param::Select) | None => {
+                    let ramped: Vec<String> = crate::ga::parents::SCHEMES
+                        .iter()
+                        .filter(|s| s.ramped().is_some_and(|p| param_key(p).is_some()))
+                        .map(|s| format!("\"{}\"", s.name()))
+                        .collect();
                     return Err(err(
                         "thesis.control.kind",
-                        "= \"ramp\" needs selection \"rrws\" or \"tournament\"".into(),
+                        format!("= \"ramp\" needs selection {}", ramped.join(" or ")),
                     ));
                 }
             };

@@ -4,60 +4,62 @@
 use super::crossover::{ChildMode, ShortGenomes};
 use super::individual::{EvaluationMode, InitParams};
 use crate::ga::control::AdaptiveConstants;
+use crate::ga::parents::{DrawParams, ParentDraw};
 
-/// Selection scheme and its parameter (003 §3.4, spec §10).
+/// Selection scheme and its parameters (003 §3.4, spec §10).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Selection {
     /// Elite families, architecture (b).
     Elite,
-    /// Tournament of size `TS`, architecture (a).
-    Tournament {
-        /// `TS`.
-        size: usize,
-    },
-    /// Proportionate roulette wheel, architecture (a).
-    Prws,
-    /// Rank-based roulette wheel with selection pressure `SP`, architecture (a).
-    Rrws {
-        /// `SP` in [1, 2].
-        pressure: f64,
-    },
+    /// Architecture (a): parents drawn by a scheme of the registry ([`crate::ga::parents`]):
+    /// the tournament of size `TS`, the proportionate wheel, the rank wheel of pressure `SP`, or
+    /// any scheme added there.
+    Draw(ParentDraw),
     /// NSGA-II over 003's two objectives (`cov_final`, `t_final`) with the swept obstacle
     /// cells as the constraint: crowded binary tournaments for mating, `Pop_min` survivors of
     /// parents and offspring by front and crowding distance (003 §5.3's combined selection).
     Nsga2,
 }
 
-/// How architecture (a) draws its parents: every selection scheme but Elite's families.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Draw {
-    /// A tournament of the effective size `TS`.
-    Tournament,
-    /// Spins of the proportionate wheel.
-    Prws,
-    /// Spins of the rank wheel at the effective pressure `SP`.
-    Rrws,
-}
-
 impl Selection {
+    /// Architecture (a) drawing its parents by the registered scheme `name` with `params`.
+    pub fn drawn(name: &str, params: DrawParams) -> Option<Self> {
+        ParentDraw::named(name, params).map(Selection::Draw)
+    }
+
+    /// Architecture (a) with the tournament of size `TS` = `size` (003 §2.2.1.1).
+    pub fn tournament(size: usize) -> Self {
+        Self::registered("tournament", DrawParams { tournament_size: size, pressure: 0.0, select: 0 })
+    }
+
+    /// Architecture (a) with the proportionate wheel (003 §2.2.1.2).
+    pub fn prws() -> Self {
+        Self::registered("prws", DrawParams { tournament_size: 0, pressure: 0.0, select: 0 })
+    }
+
+    /// Architecture (a) with the rank wheel at pressure `SP` = `pressure` (003 §2.2.1.3).
+    pub fn rrws(pressure: f64) -> Self {
+        Self::registered("rrws", DrawParams { tournament_size: 0, pressure, select: 0 })
+    }
+
+    fn registered(name: &str, params: DrawParams) -> Self {
+        Self::drawn(name, params).expect("a scheme of the registry")
+    }
+
     /// The parent draw of architecture (a), or `None` for Elite's families (architecture (b))
     /// and NSGA-II (its crowded tournaments).
-    pub fn draw(&self) -> Option<Draw> {
+    pub fn draw(&self) -> Option<ParentDraw> {
         match self {
             Selection::Elite | Selection::Nsga2 => None,
-            Selection::Tournament { .. } => Some(Draw::Tournament),
-            Selection::Prws => Some(Draw::Prws),
-            Selection::Rrws { .. } => Some(Draw::Rrws),
+            Selection::Draw(d) => Some(*d),
         }
     }
 
-    /// Short name used in files (`elite`, `tournament`, `prws`, `rrws`).
+    /// Short name used in files (`elite`, `nsga2`, or the drawing scheme's: `tournament`, …).
     pub fn name(&self) -> &'static str {
         match self {
             Selection::Elite => "elite",
-            Selection::Tournament { .. } => "tournament",
-            Selection::Prws => "prws",
-            Selection::Rrws { .. } => "rrws",
+            Selection::Draw(d) => d.scheme.name(),
             Selection::Nsga2 => "nsga2",
         }
     }
@@ -186,7 +188,7 @@ impl ThesisParams {
     pub fn initial_size(&self) -> usize {
         match self.selection {
             Selection::Elite | Selection::Nsga2 => self.pop_min,
-            Selection::Tournament { .. } | Selection::Prws | Selection::Rrws { .. } => self.init_individuals,
+            Selection::Draw(_) => self.init_individuals,
         }
     }
 }

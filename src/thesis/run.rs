@@ -11,6 +11,7 @@ use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::control;
 use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
+use crate::ga::parents::Param;
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::planner::Budget;
 use crate::planner::StopReason;
@@ -120,11 +121,12 @@ impl<T: Member> Ga<T> {
 
     fn fixed_effective(&self) -> Effective {
         let p = &self.params;
-        let (tournament_size, pressure) = match p.selection {
-            Selection::Tournament { size } => (size, 0.0),
-            Selection::Rrws { pressure } => (0, pressure),
-            Selection::Elite | Selection::Prws | Selection::Nsga2 => (0, 0.0),
-        };
+        // A parameter the scheme does not read is 0 (the history's `sp` column then reads the other).
+        let (tournament_size, pressure) = p.selection.draw().map_or((0, 0.0), |d| {
+            let reads = |param| d.scheme.reads().contains(&param);
+            let size = if reads(Param::TournamentSize) { d.params.tournament_size } else { 0 };
+            (size, if reads(Param::Pressure) { d.params.pressure } else { 0.0 })
+        });
         Effective { p_c: p.p_c, p_mi: p.p_mi, p_ma: MutationRate::Fixed(p.p_ma), tournament_size, pressure }
     }
 
@@ -133,14 +135,14 @@ impl<T: Member> Ga<T> {
         let mut e = self.fixed_effective();
         match self.params.control {
             Control::None => {}
-            Control::Ramp { min, max } => match self.params.selection {
-                Selection::Tournament { .. } => {
+            // Validation allows a ramp only for a scheme with a ramped parameter.
+            Control::Ramp { min, max } => match self.params.selection.draw().and_then(|d| d.scheme.ramped()) {
+                Some(Param::TournamentSize) => {
                     let ts = control::ramp_tournament_size(iteration, iter_max, min, max);
                     e.tournament_size = ts.min(state.population.len());
                 }
-                Selection::Rrws { .. } => e.pressure = control::linear_ramp(iteration, iter_max, min, max),
-                // Validation allows a ramp only for the tournament and RRWS.
-                Selection::Elite | Selection::Prws | Selection::Nsga2 => {}
+                Some(Param::Pressure) => e.pressure = control::linear_ramp(iteration, iter_max, min, max),
+                Some(Param::Select) | None => {}
             },
             Control::Adaptive(c) => {
                 let fit = state.population.iter().map(T::fitness);
@@ -214,10 +216,7 @@ impl<T: Member> Ga<T> {
         let (next, evaluations) = match self.params.selection {
             Selection::Nsga2 => generation.step_nsga2(pop, rng, scratches, spare),
             Selection::Elite => generation.step_b(pop, rng, scratches, spare),
-            Selection::Tournament { .. } | Selection::Prws | Selection::Rrws { .. } => {
-                let draw = self.params.selection.draw().expect("architecture (a) draws its parents");
-                generation.step_a(draw, pop, rng, scratches, spare)
-            }
+            Selection::Draw(draw) => generation.step_a(draw, pop, rng, scratches, spare),
         };
         state.population = next;
         state.evaluations += evaluations;

@@ -219,7 +219,7 @@ fn copied_pairs(next: &[Probe], keep: usize) -> Vec<(u64, u64)> {
 #[test]
 fn prws_selects_in_proportion_to_fitness() {
     // Member 2 holds the whole wheel: every parent is member 2, the redraw included.
-    let p = params(Selection::Prws, 0, 6, 0);
+    let p = params(Selection::prws(), 0, 6, 0);
     let out = step(probes(&[0.0, 0.0, 1.0, 0.0]), &p, quiet(), &no_crossover(), &mut main_rng());
     assert_eq!(copied_pairs(&out.next, 0), vec![(2, 2); 6]);
 }
@@ -227,7 +227,7 @@ fn prws_selects_in_proportion_to_fitness() {
 #[test]
 fn rrws_with_full_pressure_never_selects_the_worst() {
     // SP = 2 gives the worst rank the weight 2 − SP = 0 (003 §2.2.1.3).
-    let p = params(Selection::Rrws { pressure: 2.0 }, 0, 40, 0);
+    let p = params(Selection::rrws(2.0), 0, 40, 0);
     let out = step(probes(&[0.5, 0.1, 0.9]), &p, quiet(), &no_crossover(), &mut main_rng());
     let pairs = copied_pairs(&out.next, 0);
     assert_eq!(pairs.len(), 40);
@@ -239,7 +239,7 @@ fn rrws_with_full_pressure_never_selects_the_worst() {
 fn the_second_parent_is_redrawn_until_it_differs_from_the_first() {
     // Two members and uniform picks (TS 1): a pair of one member twice survives ten redraws
     // with probability 2^-11, where a single draw gives it half the time.
-    let p = params(Selection::Tournament { size: 1 }, 0, 40, 0);
+    let p = params(Selection::tournament(1), 0, 40, 0);
     let e = Effective { tournament_size: 1, ..quiet() };
     let out = step(probes(&[0.5, 0.6]), &p, e, &no_crossover(), &mut main_rng());
     let pairs = copied_pairs(&out.next, 0);
@@ -252,7 +252,7 @@ fn the_second_parent_is_redrawn_until_it_differs_from_the_first() {
 fn a_population_of_one_is_paired_with_itself_without_redraws() {
     // PRWS on one member: each pair draws two spins and the crossover decision, one u64 (two
     // ChaCha words) each; redrawing a second parent that cannot differ would draw more.
-    let p = params(Selection::Prws, 0, 5, 0);
+    let p = params(Selection::prws(), 0, 5, 0);
     let mut rng = main_rng();
     let before = rng.get_word_pos();
     let out = step(probes(&[0.5]), &p, quiet(), &no_crossover(), &mut rng);
@@ -265,7 +265,7 @@ fn architecture_a_children_go_to_their_receivers_with_their_rates_and_slots() {
     // Four children per crossover: child k is received by the first parent for even k, by
     // the second for odd k, and mutated with the adaptive P_mA of its receiver's fitness.
     let fitness = [0.2, 0.5, 0.9, 0.4];
-    let p = params(Selection::Tournament { size: 2 }, 1, 3, 0);
+    let p = params(Selection::tournament(2), 1, 3, 0);
     let rate = MutationRate::Adaptive { diversity_part: 0.2, k: 0.5, f_min: 0.2, f_max: 0.9 };
     let world = World { children: Some(4), child_fitness: vec![0.1; 4], evaluations: 3 };
     let out = step(probes(&fitness), &p, effective(1.0, 0.25, rate), &world, &mut main_rng());
@@ -286,7 +286,7 @@ fn architecture_a_refills_to_pop_min_from_the_members_left() {
     // keep 1 + 2 copies < Pop_min 6: three of the nine members left pass on unchanged (R22);
     // the six others are put aside for reuse.
     let fitness = [0.3, 0.1, 0.8, 0.5, 0.2, 0.6, 0.7, 0.4, 0.05, 0.15];
-    let p = params(Selection::Tournament { size: 2 }, 1, 1, 6);
+    let p = params(Selection::tournament(2), 1, 1, 6);
     let out = step(probes(&fitness), &p, quiet(), &no_crossover(), &mut main_rng());
     assert_eq!(out.next.len(), 6);
     assert_eq!(out.next[0].id, 2);
@@ -302,12 +302,12 @@ fn architecture_a_refills_to_pop_min_from_the_members_left() {
 #[test]
 fn architecture_a_without_refill_keeps_its_size() {
     // keep 2 + 2·2 copies = Pop_min 6: nothing is refilled, and the refill draws nothing.
-    let p = params(Selection::Tournament { size: 2 }, 2, 2, 6);
+    let p = params(Selection::tournament(2), 2, 2, 6);
     let fitness = [0.3, 0.1, 0.8, 0.5, 0.2, 0.6, 0.7];
     let mut with_refill_off = main_rng();
     let out = step(probes(&fitness), &p, quiet(), &no_crossover(), &mut with_refill_off);
     assert_eq!(out.next.len(), 6);
-    let unrefilled = params(Selection::Tournament { size: 2 }, 2, 2, 0);
+    let unrefilled = params(Selection::tournament(2), 2, 2, 0);
     let mut reference = main_rng();
     step(probes(&fitness), &unrefilled, quiet(), &no_crossover(), &mut reference);
     assert_eq!(with_refill_off.get_word_pos(), reference.get_word_pos());

@@ -136,7 +136,7 @@ fn a_run_keeps_the_full_pass_diversity() {
     use crate::thesis::scenario::Scenario;
     let s = Point::new(1.3, 1.3);
     let tournament = ThesisParams {
-        selection: Selection::Tournament { size: 3 },
+        selection: Selection::tournament(3),
         init_individuals: 200,
         keep: 10,
         select: 20,
