@@ -11,13 +11,14 @@
 pub mod best;
 pub mod prws;
 pub mod rrws;
+pub mod sus;
 pub mod tournament;
 
 use rand::RngCore;
 
 /// Every parent-selection scheme, by the name experiment files give it. The registration
 /// point: a new scheme's file adds its line here.
-pub const SCHEMES: &[&dyn ParentScheme] = &[&tournament::Tournament, &prws::Prws, &rrws::Rrws, &best::Best];
+pub const SCHEMES: &[&dyn ParentScheme] = &[&tournament::Tournament, &prws::Prws, &rrws::Rrws, &best::Best, &sus::Sus];
 
 /// A parameter a scheme may read; each GA section spells it as its own key.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
