@@ -68,6 +68,12 @@ fn unread_by_cell_order(file: &ExperimentFile, key: &str) -> Option<String> {
     }
 }
 
+/// Whether a planner other than the waypoint planner reads `waypoint.alpha_cov`: the thesis GA
+/// with the camera objective weighs walls and open floor by it.
+fn reads_alpha_cov(file: &ExperimentFile) -> bool {
+    file.planner == PlannerKind::Thesis && file.thesis.objective == crate::thesis::objective::Objective::Camera
+}
+
 /// Whether `key` (dotted) lies in the section or key `prefix`.
 fn within(key: &str, prefix: &str) -> bool {
     key == prefix || key.strip_prefix(prefix).is_some_and(|rest| rest.starts_with('.'))
@@ -114,6 +120,17 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
         && let Some(why) = unread_by_cell_order(file, key)
     {
         return Some(why);
+    }
+    if within(key, "waypoint")
+        && key != "waypoint"
+        && planner != PlannerKind::Waypoint
+        && !crate::waypoint::config::READ_BY_THE_SCORER.contains(&key)
+        && !(key == "waypoint.alpha_cov" && reads_alpha_cov(file))
+    {
+        return Some(format!(
+            "planner = \"{name}\" reads [waypoint] only for the common scorer's camera ({})",
+            crate::waypoint::config::READ_BY_THE_SCORER.map(|k| k.trim_start_matches("waypoint.")).join(", ")
+        ));
     }
     if key == "output.diversity_every" && planner != PlannerKind::Thesis {
         return Some(format!("only the thesis GA measures the population's diversity; planner = \"{name}\""));

@@ -174,6 +174,21 @@ pub struct WaypointConfig {
     pub ga: super::run::GaParams,
 }
 
+/// The `[waypoint]` keys that change the common scorer's camera, and so every planner's scores
+/// ([`camera_spec`]: scale, depth range, field of view, sections, and the wall band, which
+/// follows from the hallway or the safety buffer unless set). A planner other than the waypoint
+/// planner reads no other key of the section (the rest are checked, not used).
+pub const READ_BY_THE_SCORER: [&str; 8] = [
+    "waypoint.scale",
+    "waypoint.d_min",
+    "waypoint.d_max",
+    "waypoint.fov_deg",
+    "waypoint.sections",
+    "waypoint.hallway",
+    "waypoint.safety_buffer",
+    "waypoint.wall_band",
+];
+
 /// The camera of `[waypoint]` as the common scorer uses it (checked for every planner, since
 /// every run is scored with it): scale, depth range, field of view, sections, and the wall band
 /// of the planner's geometry (by default the safety buffer, 000 eq. 2).

@@ -1,0 +1,115 @@
+//! The contract every planner keeps, checked for every kind of the registry
+//! (`PlannerKind::ALL`), so that a planner added there is covered without an edit here: the
+//! same file and seed give the same files; the evaluation budget is kept to within one step
+//! (one generation, or one batch, of the planner's own); the history counts iterations 0..n
+//! with evaluations that never fall and end at the summary's; the returned plan is what the
+//! common scorer says of it (`covga eval` of its `best_path.csv`); and a key of a section the
+//! planner does not read is named in a warning.
+
+use covga::experiment::file::ExperimentFile;
+use covga::experiment::ignored::why_ignored;
+use covga::experiment::output::run_experiment;
+use covga::experiment::registry::PlannerKind;
+use std::path::Path;
+use std::process::Command;
+
+/// The evaluation budget of every contract run.
+const BUDGET: u64 = 900;
+
+/// A small run of `kind` on map 2 of the thesis.
+fn experiment(kind: PlannerKind) -> String {
+    format!(
+        "planner = \"{}\"\nseed = 4\n[map]\nsource = \"thesis-2\"\n[stations]\nstart = [1.3, 1.3]\n\
+         [thesis]\npop_min = 20\ninit_individuals = 20\ninit_actions = 20\n\
+         [waypoint]\npopulation = 20\n\
+         [cell_order]\npopulation = 20\n\
+         [budget]\nevaluations = {BUDGET}\n",
+        kind.name()
+    )
+}
+
+/// Runs `text` into a fresh folder; returns the folder.
+fn run(text: &str) -> tempfile::TempDir {
+    let tmp = tempfile::tempdir().unwrap();
+    let exp = ExperimentFile::parse(text, "c.toml").unwrap().validate("c.toml", Path::new("."), "c").unwrap();
+    run_experiment(&exp, tmp.path(), false, &mut []).unwrap();
+    tmp
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    let mut s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    for timing in ["wall_s", "precompute_s"] {
+        s.as_object_mut().unwrap().remove(timing);
+    }
+    s
+}
+
+/// `(iteration, evaluations)` of each row of `history.csv`.
+fn history(dir: &Path) -> Vec<(u64, u64)> {
+    let mut rows = csv::Reader::from_path(dir.join("history.csv")).unwrap();
+    let head = rows.headers().unwrap().clone();
+    let col = |name: &str| head.iter().position(|h| h == name).unwrap();
+    let (it, ev) = (col("iteration"), col("evaluations"));
+    rows.records().map(|r| r.unwrap()).map(|r| (r[it].parse().unwrap(), r[ev].parse().unwrap())).collect()
+}
+
+#[test]
+fn every_planner_keeps_the_contract() {
+    for kind in PlannerKind::ALL {
+        let name = kind.name();
+        let text = experiment(kind);
+        let (a, b) = (run(&text), run(&text));
+        // Deterministic for a seed.
+        let s = summary(a.path());
+        assert_eq!(s, summary(b.path()), "{name}: two runs of one seed differ");
+        for file in ["best_path.csv", "history.csv"] {
+            let read = |d: &tempfile::TempDir| std::fs::read(d.path().join(file)).unwrap();
+            assert_eq!(read(&a), read(&b), "{name}: {file} differs between two runs of one seed");
+        }
+        // Records 0..n, evaluations never falling, ending at the summary's.
+        let rows = history(a.path());
+        assert!(!rows.is_empty(), "{name}: no history");
+        for (k, w) in rows.iter().enumerate() {
+            assert_eq!(w.0, k as u64, "{name}: history row {k} is iteration {}", w.0);
+        }
+        assert!(rows.windows(2).all(|w| w[0].1 <= w[1].1), "{name}: evaluations fall: {rows:?}");
+        let evaluations = s["evaluations"].as_u64().unwrap();
+        assert_eq!(rows.last().unwrap().1, evaluations, "{name}: the history ends elsewhere than the summary");
+        // The summary's iterations are the last record's, the initial population being 0 —
+        // except random search, whose summary counts its batches (one more than the last
+        // record): unifying it changes the committed ablation's `iterations` column, so it goes
+        // with that study's next re-run.
+        let last = rows.last().unwrap().0;
+        let want = if kind == PlannerKind::RandomSearch { last + 1 } else { last };
+        assert_eq!(s["iterations"].as_u64().unwrap(), want, "{name}: iterations");
+        // The budget, to within one step of the planner's own.
+        let step = rows.windows(2).map(|w| w[1].1 - w[0].1).max().unwrap_or(rows[0].1);
+        assert!(
+            evaluations <= BUDGET + step,
+            "{name}: {evaluations} evaluations of a budget of {BUDGET} (step {step})"
+        );
+        // The returned plan is what the common scorer says of it.
+        let eval = Command::new(env!("CARGO_BIN_EXE_covga"))
+            .args(["eval", "--map", "thesis-2", "--start", "1.3,1.3", "--json", "--path"])
+            .arg(a.path().join("best_path.csv"))
+            .output()
+            .unwrap();
+        assert!(eval.status.success(), "{name}: {}", String::from_utf8_lossy(&eval.stderr));
+        let eval: serde_json::Value = serde_json::from_slice(&eval.stdout).unwrap();
+        for key in ["executable", "cov_final_free", "cov_final_reach", "obstacle_cells", "length_m", "time_s"] {
+            assert_eq!(s["score"][key], eval["common"][key], "{name}: score.{key}");
+        }
+    }
+}
+
+#[test]
+fn every_planner_names_the_sections_it_does_not_read() {
+    let sections = ["thesis.pop_min", "waypoint.population", "pattern.angle_deg", "cell_order.population"];
+    for kind in PlannerKind::ALL {
+        let file = ExperimentFile::parse(&experiment(kind), "c.toml").unwrap();
+        let read: Vec<&str> = sections.iter().copied().filter(|k| why_ignored(&file, k).is_none()).collect();
+        // A planner reads its own section, and random search the thesis's genome keys.
+        assert!(read.len() <= 1, "{}: reads {read:?}", kind.name());
+    }
+}
