@@ -460,3 +460,37 @@ fn a_map_smaller_than_the_default_hallway_is_scored() {
     assert_eq!(v["common"]["executable"], true, "{v}");
     assert!(v["common"]["cam_open_free"].as_f64().unwrap() > 0.0, "{v}");
 }
+
+/// `covga maps generate` writes a seeded floor plan as ROS files and prints a start station
+/// that `covga eval` accepts; the same seed writes the same bytes; a bad kind or size is
+/// refused (exit 2) with nothing written.
+#[test]
+fn maps_generate_writes_a_plan_that_eval_scores_from_the_printed_start() {
+    let dir = tempfile::tempdir().unwrap();
+    let covga = |args: &[&str]| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_covga")).args(args).current_dir(dir.path()).output().unwrap()
+    };
+    let o = covga(&["maps", "generate", "--kind", "house", "--seed", "5", "--noisy", "--out", "a"]);
+    assert!(o.status.success(), "{o:?}");
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    let start = out.lines().find_map(|l| l.strip_prefix("start = [")).expect("a start station").trim_end_matches(']');
+    let start = start.replace(' ', "");
+    let e =
+        covga(&["eval", "--map", "a/house-5-noisy.yaml", "--pattern", "boustrophedon", "--start", &start, "--json"]);
+    assert!(e.status.success(), "{e:?}");
+    let json: serde_json::Value = serde_json::from_slice(&e.stdout).unwrap();
+    assert_eq!(json["common"]["executable"], true, "{json}");
+    let again = covga(&["maps", "generate", "--kind", "house", "--seed", "5", "--noisy", "--out", "b"]);
+    assert!(again.status.success());
+    let read = |p: &str| std::fs::read(dir.path().join(p)).unwrap();
+    assert_eq!(read("a/house-5-noisy.pgm"), read("b/house-5-noisy.pgm"));
+    for (args, want) in [
+        (&["maps", "generate", "--kind", "castle", "--out", "c"][..], "castle"),
+        (&["maps", "generate", "--kind", "hall", "--width", "3", "--out", "c"][..], "width = 3 m"),
+    ] {
+        let o = covga(args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {o:?}");
+        assert!(String::from_utf8_lossy(&o.stderr).contains(want), "{args:?}: {o:?}");
+    }
+    assert!(!dir.path().join("c").exists(), "nothing written for a refused plan");
+}

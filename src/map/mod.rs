@@ -8,6 +8,7 @@
 pub mod body;
 pub mod clearance;
 pub mod coverable;
+pub mod generate;
 pub mod presets;
 pub mod reach;
 pub mod ros;
