@@ -683,16 +683,36 @@ fn a_resume_refuses_a_runs_file_holding_a_run_twice() {
     assert_eq!(std::fs::read_to_string(out.join("runs.csv")).unwrap(), format!("{runs}{last}\n"));
 }
 
-/// Whether a grid or experiment file names a map of `../shared/maps`, which only this
-/// project's own machines have beside the checkout.
-fn reads_shared_maps(text: &str) -> bool {
-    text.contains("../shared/maps")
+/// Whether the file `file` names a path that leaves the repository `root` (a quoted string
+/// starting `../` that is no file beside `file` and, read from the root, lies outside it):
+/// a fresh clone does not have it, and every shipped file must run from a clean clone.
+fn reads_outside_the_repository(root: &Path, file: &Path, text: &str) -> bool {
+    let code = text.lines().map(|l| l.split('#').next().unwrap_or(""));
+    code.flat_map(|l| l.split('"').skip(1).step_by(2).map(str::to_string).collect::<Vec<_>>())
+        .filter(|quoted| quoted.starts_with("../"))
+        .any(|quoted| !file.parent().unwrap().join(&quoted).exists() && !lexical(&root.join(&quoted)).starts_with(root))
 }
 
+/// `p` with `..` taken lexically (no file system reads).
+fn lexical(p: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in p.components() {
+        match c {
+            std::path::Component::ParentDir => {
+                out.pop();
+            }
+            std::path::Component::CurDir => {}
+            other => out.push(other),
+        }
+    }
+    out
+}
+
+/// A fresh clone runs every shipped file: each grid dry-runs, each experiment validates, and
+/// none names a file outside the repository.
 #[test]
 fn every_shipped_grid_dry_runs_and_every_shipped_experiment_validates() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let shared = root.join("../shared/maps").is_dir();
     let mut checked = 0;
     let mut grids: Vec<PathBuf> = std::fs::read_dir(root.join("grids"))
         .unwrap()
@@ -702,13 +722,7 @@ fn every_shipped_grid_dry_runs_and_every_shipped_experiment_validates() {
     grids.sort();
     for g in &grids {
         let text = std::fs::read_to_string(g).unwrap();
-        if reads_shared_maps(&text) && !shared {
-            eprintln!(
-                "{}: skipped, it reads ../shared/maps (moves to experiments/maps with its study's re-run)",
-                g.display()
-            );
-            continue;
-        }
+        assert!(!reads_outside_the_repository(root, g, &text), "{}: names a file outside the repository", g.display());
         let o = Command::new(env!("CARGO_BIN_EXE_covga"))
             .current_dir(root)
             .args([
@@ -731,13 +745,26 @@ fn every_shipped_grid_dry_runs_and_every_shipped_experiment_validates() {
     experiments.sort();
     for e in &experiments {
         let text = std::fs::read_to_string(e).unwrap();
-        if reads_shared_maps(&text) && !shared {
-            continue;
-        }
+        assert!(!reads_outside_the_repository(root, e, &text), "{}: names a file outside the repository", e.display());
         let file = covga::experiment::file::ExperimentFile::parse(&text, &e.display().to_string())
             .unwrap_or_else(|err| panic!("{err}"));
         file.validate(&e.display().to_string(), root, "t").unwrap_or_else(|err| panic!("{err}"));
         checked += 1;
     }
     assert!(checked >= 25, "only {checked} shipped files checked");
+}
+
+#[test]
+fn a_path_that_leaves_the_repository_is_found() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let grid = root.join("grids/x.toml");
+    let cases = [
+        ("\"map.source\" = [\"../shared/maps/basement.yaml\"]", true),
+        ("base = \"../experiments/thesis-map1-elite.toml\"", false),
+        ("source = \"experiments/maps/basement.yaml\"", false),
+        ("# source = \"../shared/maps/basement.yaml\"", false),
+    ];
+    for (text, leaves) in cases {
+        assert_eq!(reads_outside_the_repository(root, &grid, text), leaves, "{text}");
+    }
 }

@@ -155,9 +155,8 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         let own: Vec<String> = summary.objectives.iter().map(|(k, v)| format!("{k} {v:.4}")).collect();
         println!("planner's objectives: {}", own.join("  "));
         if let Some(f) = &summary.fleet {
-            if let Some(rounds) = summary.details.get("rounds") {
-                let settled = summary.details.get("converged").and_then(|c| c.as_bool()).unwrap_or(false);
-                println!("negotiation: {rounds} rounds, {}", if settled { "settled" } else { "budget ended" });
+            if let Some(n) = crate::fleet::details::FleetDetails::read(&summary.details).negotiation {
+                println!("negotiation: {} rounds, {}", n.rounds, if n.converged { "settled" } else { "budget ended" });
             }
             println!(
                 "fleet of {} ({}): union {:.4} of free ({:.4} of reachable), overlap {:.4}, makespan {:.0} s, balance {}, cov_final {:.4}, t_final {:.4}",

@@ -7,6 +7,7 @@
 
 pub mod central;
 pub mod config;
+pub mod details;
 pub mod division;
 pub mod metrics;
 pub mod negotiation;

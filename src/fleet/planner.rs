@@ -6,6 +6,7 @@
 
 use super::Fleet;
 use super::config::FleetMethod;
+use super::details::{FleetDetails, Negotiation};
 use super::metrics::FleetScorer;
 use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer};
@@ -133,11 +134,15 @@ impl FleetPlanner {
             evaluations: out.evaluations,
             iterations,
             stop,
-            details: serde_json::json!({
-                "rounds": out.rounds,
-                "converged": out.converged,
-                "last_round_change": changes.chunks(self.fleet.len()).last().map(|c| c.iter().copied().fold(0.0, f64::max)),
-            }),
+            details: serde_json::to_value(Negotiation {
+                rounds: out.rounds,
+                converged: out.converged,
+                last_round_change: changes
+                    .chunks(self.fleet.len())
+                    .last()
+                    .map(|c| c.iter().copied().fold(0.0, f64::max)),
+            })
+            .expect("a negotiation serialises"),
             violations: Vec::new(),
             history: History::Own(history.into_inner().expect("in memory")),
             files: Vec::new(),
@@ -228,9 +233,7 @@ impl Planner for FleetPlanner {
         let score = FleetScorer::new(map, &self.fleet).score(&plan.paths).expect("one path per robot");
         let mut details = crate::planner::details(plan.details);
         details.insert("mode".into(), serde_json::to_value(self.method.mode()).expect("modes serialise"));
-        if let Some(name) = &self.name {
-            details.insert("fleet_name".into(), name.clone().into());
-        }
+        FleetDetails { fleet_name: self.name.clone(), negotiation: None }.write_into(&mut details);
         let mut violations = plan.violations;
         violations.extend(obstacle_violations(score.obstacle_cells));
         Ok(RunOutcome {

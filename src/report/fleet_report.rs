@@ -292,14 +292,15 @@ fn convergence(dir: &Path, t: &RunsTable, cells: &Cells) -> String {
                 // Studies recorded before these columns existed: the run's own summary.
                 let Some(i) = id else { continue };
                 let path = dir.join("runs").join(&t.rows[r][i]).join("summary.json");
-                let Some(v) =
-                    std::fs::read_to_string(path).ok().and_then(|s| serde_json::from_str::<serde_json::Value>(&s).ok())
+                let read = std::fs::read_to_string(path).ok();
+                let Some(details) = read.and_then(|s| serde_json::from_str::<crate::fleet::details::Details>(&s).ok())
                 else {
                     continue;
                 };
-                rounds.extend(v["rounds"].as_f64());
-                settled += usize::from(v["converged"].as_bool() == Some(true));
-                change.extend(v["last_round_change"].as_f64());
+                let Some(n) = crate::fleet::details::FleetDetails::read(&details).negotiation else { continue };
+                rounds.push(f64::from(n.rounds));
+                settled += usize::from(n.converged);
+                change.extend(n.last_round_change);
             }
             let _ = writeln!(
                 md,

@@ -113,16 +113,12 @@ pub fn failed_row(params: &[String], run: &RunSpec, reason: &str, wall_s: f64) -
 /// The [`FLEET_COLUMNS`] of a run (empty fields for a single robot's plan).
 fn fleet_fields(summary: &Summary) -> Vec<String> {
     let Some(f) = &summary.fleet else { return vec![String::new(); FLEET_COLUMNS.len()] };
-    let name = summary.details.get("fleet_name").and_then(|v| v.as_str()).unwrap_or_default().to_string();
+    let details = crate::fleet::details::FleetDetails::read(&summary.details);
     let num = |v: f64| format!("{v}");
     // Only a negotiation has rounds; other fleet methods leave the fields empty.
-    let detail = |key: &str| match summary.details.get(key) {
-        Some(serde_json::Value::Number(n)) => n.to_string(),
-        Some(serde_json::Value::Bool(b)) => b.to_string(),
-        _ => String::new(),
-    };
+    let [rounds, settled, change] = details.negotiation.map(|n| n.fields()).unwrap_or_default();
     vec![
-        name,
+        details.fleet_name.unwrap_or_default(),
         f.robots.len().to_string(),
         num(f.union_free),
         num(f.union_reach),
@@ -131,9 +127,9 @@ fn fleet_fields(summary: &Summary) -> Vec<String> {
         f.balance.map(num).unwrap_or_default(),
         num(f.cov_final),
         num(f.t_final),
-        detail("rounds"),
-        detail("converged"),
-        detail("last_round_change"),
+        rounds,
+        settled,
+        change,
     ]
 }
 
