@@ -3,8 +3,9 @@
 //! same runs, and the cheapest committed row of each (planner, map) pair, run again with
 //! today's code, gives the committed row in every column but the timings.
 //!
-//! Rows on the real maps of `../shared/maps` are skipped, with a message, where that folder is
-//! not beside the checkout. When a change alters a result, this test fails until the affected study is re-run and
+//! Every committed study reads its maps from the repository (presets or `experiments/maps/`),
+//! so a fresh clone re-runs them all; a row whose map file is missing fails. When a change
+//! alters a result, this test fails until the affected study is re-run and
 //! re-committed in the same change.
 
 use covga::study::grid::Study;
@@ -57,8 +58,7 @@ fn committed_runs(dir: &Path) -> RunsTable {
     RunsTable::parse(&text).unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
 }
 
-/// Whether a run's map is a file that is not beside this checkout (the real maps are read from
-/// `../shared/maps`, never copied into the project).
+/// Whether a run's map is a file that is not in this checkout.
 fn map_missing(source: &str) -> bool {
     (source.contains('/') || source.contains('.')) && !repo().join(source).exists()
 }
@@ -170,10 +170,11 @@ fn committed_study_rows_re_run_exactly() {
                 eprintln!("{name} {id}: skipped, its routed moves were planned by the earlier routes");
                 continue;
             }
-            if map_missing(&run.file.map.source) {
-                eprintln!("{name} {id}: skipped, its map {} is not beside this checkout", run.file.map.source);
-                continue;
-            }
+            assert!(
+                !map_missing(&run.file.map.source),
+                "{name} {id}: its map {} is not in this checkout, which must re-run every committed study",
+                run.file.map.source
+            );
             let exp = experiment_of(&study, run, &maps).unwrap_or_else(|e| panic!("{name} {id}: {e}"));
             let out = scratch.path().join(&name).join(&id);
             let summary = covga::experiment::output::run_experiment(&exp, &out, false, &mut [])
