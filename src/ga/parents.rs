@@ -34,20 +34,6 @@ pub enum Param {
 impl Param {
     /// Every parameter, in the order messages list them.
     pub const ALL: [Param; 3] = [Param::TournamentSize, Param::Pressure, Param::Select];
-
-    /// Whether `value` is allowed for a population of `population`, and the range as a message
-    /// writes it.
-    pub fn check(self, value: f64, population: usize) -> Result<(), String> {
-        let (lo, hi, range) = match self {
-            Param::TournamentSize | Param::Select => (1.0, population as f64, format!("[1, {population}]")),
-            Param::Pressure => (1.0, 2.0, "[1, 2]".to_string()),
-        };
-        let integral = !matches!(self, Param::Pressure);
-        if !value.is_finite() || value < lo || value > hi || (integral && value.fract() != 0.0) {
-            return Err(format!("= {value} is out of range {range}"));
-        }
-        Ok(())
-    }
 }
 
 /// The values of the parameters a draw reads (the others are ignored).
@@ -96,11 +82,6 @@ pub trait Draw {
 /// The scheme called `name`, if one is registered.
 pub fn scheme(name: &str) -> Option<&'static dyn ParentScheme> {
     SCHEMES.iter().copied().find(|s| s.name() == name)
-}
-
-/// The registered names, as a message lists them (`"tournament", "prws", …`).
-pub fn names() -> String {
-    SCHEMES.iter().map(|s| format!("\"{}\"", s.name())).collect::<Vec<_>>().join(", ")
 }
 
 /// The name of a registered scheme, as a GA's section holds it: parsed against [`SCHEMES`]
