@@ -135,7 +135,9 @@ impl Planner for RandomSearch {
             warnings: Vec::new(),
             violations: obstacle_violations(best.sweep.obj_pix),
             evaluations,
-            iterations: iteration,
+            // The last record's iteration, the first batch being 0 (as every planner's initial
+            // population).
+            iterations: iteration - 1,
             stop,
             wall_s: started.elapsed().as_secs_f64(),
             details,

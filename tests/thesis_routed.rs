@@ -146,3 +146,37 @@ fn a_route_from_beside_a_wall_joins_the_grid_where_the_body_keeps_clear() {
         }
     }
 }
+
+#[test]
+fn a_route_from_a_pocket_no_grid_centre_joins_starts_where_the_body_keeps_clear() {
+    // The basement corridor near (−9.85, −1.7) m is too narrow for any cell centre of the
+    // stations' grid, yet the body fits at points on its axis: from there no clear leg joins
+    // the grid, so such a point is no place to stand and the route starts at a centre.
+    use covga::coverage::routes::{RouteScratch, Router};
+    use covga::geom::Point;
+    let map = covga::map::ros::load_ros_yaml(Path::new("experiments/maps/basement.yaml")).unwrap();
+    let router = Router::new(&map, 0.6, &[Point::new(0.0, 0.0)]);
+    let mut scratch = RouteScratch::default();
+    let far = [Point::new(0.0, 0.0), Point::new(-12.0, 8.0), Point::new(-9.85, -4.0), Point::new(-9.85, 1.0)];
+    let (mut standing, mut moved) = (0, 0);
+    for i in 0..=60 {
+        for j in 0..=60 {
+            let p = Point::new(-10.35 + 0.0167 * i as f64, -2.2 + 0.0167 * j as f64);
+            if !router.can_stand(p) {
+                continue;
+            }
+            standing += 1;
+            moved += usize::from(router.position(p) != p);
+            for &q in &far {
+                for (a, b) in [(p, q), (q, p)] {
+                    let route = router.route(a, b, &mut scratch);
+                    let mut path = vec![route.start];
+                    path.extend_from_slice(route.points);
+                    let (cells, off_map) = covga::map::body::touched_cells(&map, &path, 0.6);
+                    assert!(cells.is_empty() && !off_map, "{a:?} → {b:?} touches {cells:?}");
+                }
+            }
+        }
+    }
+    assert!(standing > 0 && moved > 0, "{standing} places to stand, {moved} moved");
+}

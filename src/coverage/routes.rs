@@ -18,11 +18,9 @@
 //! path is the concatenation of its moves' routes and the incremental evaluator's
 //! segment-by-segment bookkeeping holds unchanged; routes are cached per worker.
 //!
-//! One case stays outside the rule: a place where the body fits, in a pocket the grid of
-//! reachable centres does not enter, with no reachable centre within a robot's width that a
-//! clear leg joins (a lane at the clearance limit in a corridor too narrow for any cell centre).
-//! A route from or to it takes the leg to the nearest centre all the same, and the scorer
-//! refuses the plan; nothing is hidden.
+//! A place where the body fits but no clear leg joins it to the grid (a lane at the clearance
+//! limit in a corridor too narrow for any cell centre) counts as no place to stand, and the
+//! robot stands at the nearest reachable centre instead: every route then passes the rule.
 //!
 //! On a map with no obstacle cells every viewpoint is a place to stand and every segment is
 //! clear, so routed moves are the straight moves bit for bit.
@@ -142,8 +140,6 @@ pub struct RouteScratch {
     /// half): the line-of-sight pass asks the same pairs again and again along grid routes
     /// it has straightened before.
     sights: KeyMap<u64, bool>,
-    /// Centres near a route's end, by distance ([`Router::entry_centre`]).
-    candidates: Vec<(f64, u32)>,
     /// Routes searched so far (cache misses).
     searches: u64,
 }
@@ -212,15 +208,14 @@ impl Router {
         body::segment_clear_of_cells(map, p, q, self.width)
     }
 
-    /// The reachable centre where a route from or to `p` (a place the robot stands) joins the
-    /// grid: the nearest one by grid distance ([`Router::nearest`]) when the straight leg
-    /// between them is clear ([`Router::segment_clear`]), else the fitting centre nearest to
-    /// `p` within a robot's width whose leg is clear (ties to the lower index), else the
-    /// nearest one all the same (its leg then touches what it touches, and the scorer counts
-    /// it). Grid routes between centres need no test of their own: a step between two
-    /// fitting centres, diagonal ones without cutting a corner, comes no nearer to any cell
-    /// square than its ends do.
-    fn entry_centre(&self, p: Point, candidates: &mut Vec<(f64, u32)>) -> Option<usize> {
+    /// The reachable centre where a route from or to `p` joins the grid, if a clear leg
+    /// ([`Router::segment_clear`]) joins them: the nearest one by grid distance
+    /// ([`Router::nearest`]) when its leg is clear, else the fitting centre nearest to `p`
+    /// within a robot's width whose leg is clear (ties to the lower index). `None` where there
+    /// is none: `p` is then no place to stand ([`Router::position`]). Grid routes between
+    /// centres need no test of their own: a step between two fitting centres, diagonal ones
+    /// without cutting a corner, comes no nearer to any cell square than its ends do.
+    fn entry_centre(&self, p: Point) -> Option<usize> {
         let map = self.clear.map();
         let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
         let nearest = self.nearest_centre(p)?;
@@ -230,18 +225,20 @@ impl Router {
         let i = self.cell_of(map.clamp(p))?;
         let (r0, c0, cols) = ((i / map.cols()) as isize, (i % map.cols()) as isize, map.cols() as isize);
         let reach = (self.width / map.resolution()).ceil() as isize;
-        candidates.clear();
+        // The least (distance, index) among the clear legs; a leg is tested only when it would
+        // be the best so far, the costly test last.
+        let mut best: Option<(f64, usize)> = None;
         for r in (r0 - reach).max(0)..=(r0 + reach).min(map.rows() as isize - 1) {
             for c in (c0 - reach).max(0)..=(c0 + reach).min(cols - 1) {
                 let j = (r * cols + c) as usize;
-                if self.clear.centre_fits(j) {
-                    candidates.push(((centre(j) - p).norm(), j as u32));
+                let d = (centre(j) - p).norm();
+                let better = best.is_none_or(|(bd, bj)| d.total_cmp(&bd).then(j.cmp(&bj)).is_lt());
+                if better && self.clear.centre_fits(j) && self.segment_clear(p, centre(j)) {
+                    best = Some((d, j));
                 }
             }
         }
-        candidates.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let clear = candidates.iter().find(|&&(_, j)| self.segment_clear(p, centre(j as usize)));
-        Some(clear.map_or(nearest, |&(_, j)| j as usize))
+        best.map(|(_, j)| j)
     }
 
     /// The robot width the routes are planned for.
@@ -277,10 +274,13 @@ impl Router {
         (self.nearest[i] != u32::MAX).then_some(self.nearest[i] as usize)
     }
 
-    /// Where the robot stands when aimed at `p`: `p` itself where it can stand there, else the
-    /// nearest reachable cell centre it fits on (`p` if there is none).
+    /// Where the robot stands when aimed at `p`: `p` itself where it can stand there and a
+    /// clear leg joins it to the grid of reachable centres ([`Router::entry_centre`]), else the
+    /// nearest reachable cell centre it fits on (`p` if there is none). A place where the body
+    /// fits but no such leg exists (a lane at the clearance limit in a corridor too narrow for
+    /// any cell centre) is no place to stand: every route from or to it would touch a wall.
     pub fn position(&self, p: Point) -> Point {
-        if self.can_stand(p) {
+        if self.can_stand(p) && self.entry_centre(p).is_some() {
             return p;
         }
         let map = self.clear.map();
@@ -331,9 +331,7 @@ impl Router {
         }
         let map = self.clear.map();
         let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
-        let mut candidates = std::mem::take(&mut scratch.candidates);
-        let ends = (self.entry_centre(pa, &mut candidates), self.entry_centre(pb, &mut candidates));
-        scratch.candidates = candidates;
+        let ends = (self.entry_centre(pa), self.entry_centre(pb));
         let Some((from, len)) = (match ends {
             (Some(s), Some(t)) => self.turning_cells(s, t, scratch),
             _ => None,
