@@ -40,7 +40,7 @@ static GLOBAL: Counting = Counting;
 
 fn count(name: &str, params: ThesisParams, iterations: u32) {
     let mut ga = thesis1_ga(params);
-    let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
+    let budget = Budget::iterations(iterations);
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
     let (a0, b0) = (ALLOCATIONS.load(Ordering::Relaxed), BYTES.load(Ordering::Relaxed));
     let outcome = pool.install(|| ga.run(&budget, None, &mut []).expect("run"));

@@ -37,8 +37,7 @@ fn run(map: &GridMap, start: Point, moves: Moves) -> f64 {
         ..ThesisParams::thesis_elite()
     };
     let mut ga = ThesisGa { scenario, params, seed: 1, seeds: (Vec::new(), 0) };
-    let budget =
-        Budget { iterations: 1_000_000, evaluations: Some(EVALUATIONS), wall_clock: None, stall_iterations: None };
+    let budget = Budget { evaluations: Some(EVALUATIONS), ..Budget::iterations(1_000_000) };
     ga.run(&budget, None, &mut []).expect("run").best.fitness()
 }
 

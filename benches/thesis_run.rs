@@ -16,7 +16,7 @@ use std::time::Duration;
 
 fn run(params: ThesisParams, iterations: u32) -> f64 {
     let mut ga = thesis1_ga(params);
-    let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
+    let budget = Budget::iterations(iterations);
     ga.run(&budget, None, &mut []).expect("run").best.fitness()
 }
 

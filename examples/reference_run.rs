@@ -37,7 +37,7 @@ fn main() {
     }
     let mut ga = ThesisGa { scenario, params, seed, seeds: (Vec::new(), 0) };
     let mut rec = Recorder::default();
-    let budget = Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None };
+    let budget = Budget::iterations(iterations);
     // NO_OBSERVER=1: no observer, hence no diversity measured (as in `cargo bench --bench thesis_run`).
     let out = if std::env::var_os("NO_OBSERVER").is_some() {
         ga.run(&budget, None, &mut [])

@@ -1,13 +1,14 @@
 //! Random search: the control that tells whether a GA's machinery helps at all. It draws
 //! random action genomes exactly as the thesis GA draws its initial population (003 §3.3.1,
 //! spec §6: `Init_AC` actions, moves up to `init_dist_max`, corrected and evaluated as in R17)
-//! in batches of `Pop_min`, until the evaluation budget is spent, and keeps the fittest by the
+//! in batches of `Pop_min`, until the budget is spent (the executor's stop rules, as every planner's), and keeps the fittest by the
 //! thesis fitness `f_obstacle`. Budget-matched to the GAs through `budget.evaluations`.
 
 use crate::config::ConfigError;
 use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::ga::rng::{Purpose, stream};
+use crate::planner::executor::{Search, StopRules, execute};
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario};
 use crate::thesis::config::ThesisSection;
@@ -69,57 +70,14 @@ impl Planner for RandomSearch {
         let started = Instant::now();
         let th = ThesisScenario::from_common(scenario);
         let reach = if observers.is_empty() { ReachMask::default() } else { Individual::reach_mask(&th) };
+        let mut batches =
+            Batches { search: self, th: &th, seed, reach, iteration: 0, evaluations: 0, best: None, mean: 0.0 };
+        // The first batch is the run's start, as a GA's initial population (iteration 0).
+        batches.draw(0);
         // Without an evaluation budget (a library caller's), one batch.
-        let budget = Budget { evaluations: Some(budget.evaluations.unwrap_or(self.batch as u64)), ..*budget };
-        let mut best: Option<Individual> = None;
-        let (mut evaluations, mut iteration) = (0u64, 0u32);
-        let stop = loop {
-            if let Some(stop) = budget.spent(evaluations, started) {
-                break stop;
-            }
-            let batch: Vec<(Individual, u64)> = (0..self.batch)
-                .into_par_iter()
-                .map_init(EvalScratch::default, |scratch, slot| {
-                    let mut rng = stream(seed, Purpose::Individual, &[u64::from(iteration), slot as u64]);
-                    let mut ind = Individual::default();
-                    random_genome(&mut rng, self.init.actions, self.init.dist_max, &mut ind.genome);
-                    let e = correct_and_evaluate(
-                        &mut ind,
-                        &th,
-                        Base::None,
-                        EvaluationMode::Full,
-                        scratch,
-                        &self.init,
-                        &mut rng,
-                    );
-                    (ind, e)
-                })
-                .collect();
-            let mean = batch.iter().map(|(i, _)| i.fitness()).sum::<f64>() / batch.len() as f64;
-            for (ind, e) in batch {
-                evaluations += e;
-                if best.as_ref().is_none_or(|b| ind.fitness() > b.fitness()) {
-                    best = Some(ind);
-                }
-            }
-            let b = best.as_ref().expect("a batch was drawn");
-            let record = GenerationRecord {
-                iteration,
-                evaluations,
-                best_fitness: b.fitness(),
-                mean_fitness: mean,
-                best_coverage: b.score.cov_final,
-                best_coverage_reach: Some(reach.coverage(b.reached(&reach))),
-                feasible: None,
-                diversity: None,
-                robots: Vec::new(),
-                extras: vec![("best_t_final", b.score.t_final), ("best_genome_len", b.len() as f64)],
-            };
-            for o in observers.iter_mut() {
-                o.generation(&record)?;
-            }
-            iteration += 1;
-        };
+        let budget = Budget { evaluations: Some(budget.evaluations.unwrap_or(self.batch as u64)), ..budget.clone() };
+        let finish = execute(&mut batches, &StopRules::of_budget(&budget, None, started), observers)?;
+        let (iteration, evaluations, stop, best) = (finish.iterations, finish.evaluations, finish.stop, batches.best);
         let best = best.ok_or_else(|| PlannerError::Input("random search: the evaluation budget is 0".into()))?;
         let sc = best.score;
         let details = crate::planner::details(serde_json::json!({
@@ -135,9 +93,7 @@ impl Planner for RandomSearch {
             warnings: Vec::new(),
             violations: obstacle_violations(best.sweep.obj_pix),
             evaluations,
-            // The last record's iteration, the first batch being 0 (as every planner's initial
-            // population).
-            iterations: iteration - 1,
+            iterations: iteration,
             stop,
             wall_s: started.elapsed().as_secs_f64(),
             details,
@@ -146,5 +102,79 @@ impl Planner for RandomSearch {
             agents: Vec::new(),
             artifacts: Box::new(()),
         })
+    }
+}
+
+/// A random search between batches, as [`execute`] drives it.
+struct Batches<'a> {
+    search: &'a RandomSearch,
+    th: &'a ThesisScenario,
+    seed: u64,
+    reach: ReachMask,
+    /// The last batch drawn (0: the first).
+    iteration: u32,
+    evaluations: u64,
+    best: Option<Individual>,
+    /// The last batch's mean fitness.
+    mean: f64,
+}
+
+impl Batches<'_> {
+    /// Draws batch `iteration` and keeps its fittest if it beats the best so far; whether it did.
+    fn draw(&mut self, iteration: u32) -> bool {
+        let (th, seed, init) = (self.th, self.seed, &self.search.init);
+        let batch: Vec<(Individual, u64)> = (0..self.search.batch)
+            .into_par_iter()
+            .map_init(EvalScratch::default, |scratch, slot| {
+                let mut rng = stream(seed, Purpose::Individual, &[u64::from(iteration), slot as u64]);
+                let mut ind = Individual::default();
+                random_genome(&mut rng, init.actions, init.dist_max, &mut ind.genome);
+                let e = correct_and_evaluate(&mut ind, th, Base::None, EvaluationMode::Full, scratch, init, &mut rng);
+                (ind, e)
+            })
+            .collect();
+        self.mean = batch.iter().map(|(i, _)| i.fitness()).sum::<f64>() / batch.len() as f64;
+        self.iteration = iteration;
+        let mut improved = false;
+        for (ind, e) in batch {
+            self.evaluations += e;
+            if self.best.as_ref().is_none_or(|b| ind.fitness() > b.fitness()) {
+                self.best = Some(ind);
+                improved = true;
+            }
+        }
+        improved
+    }
+}
+
+impl<'o> Search<[&'o mut dyn Observer]> for Batches<'_> {
+    type Error = std::io::Error;
+
+    fn progress(&self) -> (u32, u64) {
+        (self.iteration, self.evaluations)
+    }
+
+    fn step(&mut self, _: &mut [&'o mut dyn Observer]) -> std::io::Result<bool> {
+        Ok(self.draw(self.iteration + 1))
+    }
+
+    fn report(&mut self, observers: &mut [&'o mut dyn Observer]) -> std::io::Result<()> {
+        let b = self.best.as_ref().expect("a batch was drawn");
+        let record = GenerationRecord {
+            iteration: self.iteration,
+            evaluations: self.evaluations,
+            best_fitness: b.fitness(),
+            mean_fitness: self.mean,
+            best_coverage: b.score.cov_final,
+            best_coverage_reach: Some(self.reach.coverage(b.reached(&self.reach))),
+            feasible: None,
+            diversity: None,
+            robots: Vec::new(),
+            extras: vec![("best_t_final", b.score.t_final), ("best_genome_len", b.len() as f64)],
+        };
+        for o in observers.iter_mut() {
+            o.generation(&record)?;
+        }
+        Ok(())
     }
 }

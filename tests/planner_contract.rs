@@ -109,3 +109,26 @@ fn every_planner_names_the_sections_it_does_not_read() {
         assert!(read.len() <= 1, "{}: reads {read:?}", kind.name());
     }
 }
+
+/// Every planner that iterates reads the budget through the one executor: an iteration limit
+/// stops it there, a stall limit of one stops it at the first iteration with no better best.
+#[test]
+fn every_iterative_planner_stops_on_the_budgets_iterations_and_stalls() {
+    for kind in PlannerKind::ALL {
+        let name = kind.name();
+        let cases = [
+            ("evaluations = 200000\niterations = 3\n".to_string(), "iterations"),
+            ("evaluations = 200000\niterations = 100000\nstall_iterations = 1\n".to_string(), "stall"),
+        ];
+        for (budget, stop) in cases {
+            let text = experiment(kind).replace(&format!("evaluations = {BUDGET}\n"), &budget);
+            let s = summary(run(&text).path());
+            if s["stop"] == "completed" {
+                continue; // a planner that plans in one step
+            }
+            assert_eq!(s["stop"], stop, "{name}: {budget}");
+            let iterations = s["iterations"].as_u64().unwrap();
+            assert!(if stop == "iterations" { iterations == 3 } else { iterations < 100_000 }, "{name}: {iterations}");
+        }
+    }
+}

@@ -8,7 +8,7 @@
 use crate::{config_error, guarded, panic_error};
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::output::OutputError;
-use covga::ga::observer::{GenerationRecord, Observer};
+use covga::planner::executor::Interrupt;
 use covga::study::runner::{RunDone, RunnerOptions, StudyError, run_study};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
@@ -17,10 +17,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// Runs `work` on its own thread until it ends or Python raises a signal's exception (Ctrl-C's
-/// `KeyboardInterrupt`); then `stop` is set, the work is waited for, and the exception returned.
+/// `KeyboardInterrupt`); then `stop` is called, the work is waited for, and the exception
+/// returned.
 pub(crate) fn interruptible<T: Send>(
     py: Python<'_>,
-    stop: &AtomicBool,
+    stop: &(dyn Fn() + Sync),
     work: impl FnOnce() -> T + Send,
 ) -> PyResult<T> {
     std::thread::scope(|scope| {
@@ -31,7 +32,7 @@ pub(crate) fn interruptible<T: Send>(
             if signal.is_none()
                 && let Err(e) = py.check_signals()
             {
-                stop.store(true, Ordering::SeqCst);
+                stop();
                 signal = Some(e);
             }
         }
@@ -41,18 +42,6 @@ pub(crate) fn interruptible<T: Send>(
             None => Ok(result),
         }
     })
-}
-
-/// Ends a run at its next generation once `stop` is set.
-struct StopAt<'a>(&'a AtomicBool);
-
-impl Observer for StopAt<'_> {
-    fn generation(&mut self, _: &GenerationRecord) -> std::io::Result<()> {
-        if self.0.load(Ordering::Relaxed) {
-            return Err(std::io::Error::new(std::io::ErrorKind::Interrupted, "stopped by the caller"));
-        }
-        Ok(())
-    }
 }
 
 /// The experiment text, its origin in messages, the folder relative map paths start from, and
@@ -91,7 +80,7 @@ pub fn run_experiment(
     out: &str,
     figures: bool,
 ) -> PyResult<Vec<String>> {
-    let (exp, origin, mut warnings) = guarded(|| {
+    let (mut exp, origin, mut warnings) = guarded(|| {
         let (text, origin, base, stem) = experiment_text(kind, payload)?;
         let mut file = ExperimentFile::parse(&text, &origin).map_err(config_error)?;
         let ignored = covga::experiment::ignored::ignored_in_text(&text, &file);
@@ -109,9 +98,11 @@ pub fn run_experiment(
     let existed = dir.exists();
     std::fs::create_dir_all(&dir)
         .map_err(|e| config_error(format!("{}: cannot create the results folder: {e}", dir.display())))?;
-    let stop = AtomicBool::new(false);
-    let outcome = interruptible(py, &stop, || {
-        covga::experiment::output::run_experiment(&exp, &dir, figures, &mut [&mut StopAt(&stop)])
+    // Ctrl-C raises the run's interrupt: it ends at its next iteration and writes nothing.
+    let interrupt = Interrupt::new();
+    exp.budget.interrupt = Some(interrupt.clone());
+    let outcome = interruptible(py, &|| interrupt.raise(), || {
+        covga::experiment::output::run_experiment(&exp, &dir, figures, &mut [])
     })
     .and_then(|run| {
         run.map_err(|e| match e {
@@ -154,7 +145,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
         order,
         abort_after_runs: None,
     };
-    match interruptible(py, &stop, || run_study(&study, &opts))? {
+    match interruptible(py, &|| stop.store(true, Ordering::SeqCst), || run_study(&study, &opts))? {
         Ok(o) => match o.first_failure {
             Some((id, why)) => Err(config_error(format!(
                 "{out}/runs.csv: {} of {} runs failed while running and are recorded as such (stop = failed, the \

@@ -231,8 +231,10 @@ pub fn thesis_evaluate<'py>(
     // Ctrl-C stops the batch within about one evaluation per thread (KeyboardInterrupt).
     let stop = std::sync::atomic::AtomicBool::new(false);
     // A panic in the evaluation reaches Python as a RuntimeError (the thread's join).
-    let rows =
-        crate::runs::interruptible(py, &stop, || evaluate_genomes_until(&scenario, built, &stop))?.unwrap_or_default();
+    let rows = crate::runs::interruptible(py, &|| stop.store(true, std::sync::atomic::Ordering::SeqCst), || {
+        evaluate_genomes_until(&scenario, built, &stop)
+    })?
+    .unwrap_or_default();
     let out = Array2::from_shape_fn((rows.len(), COLUMNS.len()), |(i, k)| rows[i].row()[k]);
     Ok(out.to_pyarray(py))
 }

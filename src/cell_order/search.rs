@@ -12,6 +12,7 @@ use super::tour::{Instance, Tour};
 use crate::ga::parents::ParentDraw;
 use crate::ga::rng::{Purpose, stream};
 use crate::ga::selection::best_k;
+use crate::planner::executor::{Search, StopRules, execute};
 use crate::planner::{Budget, StopReason};
 use rand::Rng;
 use rand::seq::SliceRandom;
@@ -113,13 +114,9 @@ pub fn search<E>(
     let scale = nearest_time_s.max(f64::MIN_POSITIVE);
     let mut pop: Vec<(Tour, f64)> = Vec::with_capacity(params.population);
     let mut first = nearest;
-    // Leg reads the memetic step may still spend: what is left of an evaluation budget, so
-    // that a long local search does not run far past it.
-    let reads_left = |charged: f64| {
-        budget.evaluations.map_or(u64::MAX, |e| ((e as f64 - charged).max(0.0) * legs_per_tour).ceil() as u64)
-    };
     if params.memetic {
-        charged += improve_within(inst, &mut first, ROUNDS, reads_left(charged)) as f64 / legs_per_tour;
+        let left = reads_left(budget.evaluations, charged, legs_per_tour);
+        charged += improve_within(inst, &mut first, ROUNDS, left) as f64 / legs_per_tour;
     }
     let t = inst.time(&first);
     pop.push((first, t));
@@ -132,76 +129,130 @@ pub fn search<E>(
         pop.push((tour, t));
     }
     charged += params.population as f64;
-    let mut best = best_of(&pop);
-    let mut since_better = 0u32;
-    let mut iteration = 0u32;
-    let stop = loop {
-        let fitness: Vec<f64> = pop.iter().map(|(_, t)| scale / t).collect();
-        let mean_time_s = pop.iter().map(|(_, t)| t).sum::<f64>() / pop.len() as f64;
-        report(&Generation {
-            iteration,
-            evaluations: charged.ceil() as u64,
-            best: (&best.0, best.1),
-            mean_time_s,
-            fitness: (scale / best.1, fitness.iter().sum::<f64>() / fitness.len() as f64),
-        })?;
-        if let Some(reason) = budget.spent(charged.ceil() as u64, started) {
-            break reason;
-        }
-        if iteration >= budget.iterations {
-            break StopReason::Iterations;
-        }
-        if budget.stall_iterations.is_some_and(|s| since_better >= s) {
-            break StopReason::Stall;
-        }
-        iteration += 1;
+    let best = best_of(&pop);
+    let budget_evaluations = budget.evaluations;
+    let mut ga = Generations {
+        inst,
+        params,
+        counts,
+        p_choice,
+        rng,
+        legs_per_tour,
+        scale,
+        pop,
+        best,
+        charged,
+        budget_evaluations,
+        iteration: 0,
+    };
+    let mut report = |g: &Generation| report(g);
+    let finish = execute(&mut ga, &StopRules::of_budget(budget, None, started), &mut report)?;
+    Ok(Searched {
+        best: ga.best,
+        evaluations: finish.evaluations,
+        iterations: finish.iterations,
+        stop: finish.stop,
+        nearest_time_s,
+    })
+}
+
+/// The cell-order GA between generations, as [`execute`] drives it.
+struct Generations<'a> {
+    inst: &'a Instance,
+    params: &'a GaParams,
+    /// Choices per cell.
+    counts: Vec<usize>,
+    p_choice: f64,
+    rng: crate::ga::rng::Rng,
+    legs_per_tour: f64,
+    /// The nearest-neighbour tour's time: fitness is `scale / T`.
+    scale: f64,
+    pop: Vec<(Tour, f64)>,
+    /// The best tour so far (replaced only by one faster by more than 1e-9 s).
+    best: (Tour, f64),
+    /// Evaluations charged, local search by the legs it reads.
+    charged: f64,
+    /// The evaluation budget, which the memetic step keeps to.
+    budget_evaluations: Option<u64>,
+    iteration: u32,
+}
+
+/// Leg reads a memetic step may still spend: what is left of an evaluation `budget` after
+/// `charged`, so that a long local search does not run far past it.
+fn reads_left(budget: Option<u64>, charged: f64, legs_per_tour: f64) -> u64 {
+    budget.map_or(u64::MAX, |e| ((e as f64 - charged).max(0.0) * legs_per_tour).ceil() as u64)
+}
+
+impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Generations<'_> {
+    type Error = E;
+
+    fn progress(&self) -> (u32, u64) {
+        (self.iteration, self.charged.ceil() as u64)
+    }
+
+    fn step(&mut self, _: &mut F) -> Result<bool, E> {
+        let (inst, params, n) = (self.inst, self.params, self.inst.cells());
+        self.iteration += 1;
+        let fitness: Vec<f64> = self.pop.iter().map(|(_, t)| self.scale / t).collect();
+        let rng = &mut self.rng;
+        let pop = &self.pop;
         let mut parents = params.selection.prepare(&fitness);
         let mut next: Vec<(Tour, f64)> =
             best_k(&fitness, params.keep.min(pop.len())).into_iter().map(|i| pop[i].clone()).collect();
         let first_child = next.len();
         while next.len() < params.population {
-            let (a, b) = (&pop[parents.pick(&mut rng)].0, &pop[parents.pick(&mut rng)].0);
+            let (a, b) = (&pop[parents.pick(rng)].0, &pop[parents.pick(rng)].0);
             let mut child = if n > 1 && rng.random::<f64>() < params.p_c {
-                let (i, j) = cuts(n, &mut rng);
+                let (i, j) = cuts(n, rng);
                 Tour {
                     order: order_crossover(&a.order, &b.order, i, j),
-                    choice: uniform_choices(&a.choice, &b.choice, &mut rng),
+                    choice: uniform_choices(&a.choice, &b.choice, rng),
                 }
             } else {
                 a.clone()
             };
             if rng.random::<f64>() < params.p_m {
-                mutate_order(&mut child.order, &mut rng);
+                mutate_order(&mut child.order, rng);
             }
-            choice_mutation(&mut child.choice, &counts, p_choice, &mut rng);
+            choice_mutation(&mut child.choice, &self.counts, self.p_choice, rng);
             let t = inst.time(&child);
             next.push((child, t));
         }
-        charged += (params.population - first_child) as f64;
+        self.charged += (params.population - first_child) as f64;
         if params.memetic && first_child < next.len() {
             // The best child, and one drawn at random so that orders whose choices are still
             // poor get their chance too.
             let best_child = first_child + best_index(&next[first_child..]);
-            let drawn = rng.random_range(first_child..next.len());
+            let drawn = self.rng.random_range(first_child..next.len());
             for k in if drawn == best_child { vec![best_child] } else { vec![best_child, drawn] } {
-                let left = reads_left(charged);
+                let left = reads_left(self.budget_evaluations, self.charged, self.legs_per_tour);
                 if left == 0 {
                     break;
                 }
-                charged += improve_within(inst, &mut next[k].0, ROUNDS, left) as f64 / legs_per_tour;
+                self.charged += improve_within(inst, &mut next[k].0, ROUNDS, left) as f64 / self.legs_per_tour;
                 next[k].1 = inst.time(&next[k].0);
             }
         }
-        pop = next;
-        let candidate = best_of(&pop);
-        if candidate.1 < best.1 - 1e-9 {
-            best = candidate;
-            since_better = 0;
-        } else {
-            since_better += 1;
+        self.pop = next;
+        let candidate = best_of(&self.pop);
+        let improved = candidate.1 < self.best.1 - 1e-9;
+        if improved {
+            self.best = candidate;
         }
-    };
-    Ok(Searched { best, evaluations: charged.ceil() as u64, iterations: iteration, stop, nearest_time_s })
+        Ok(improved)
+    }
+
+    fn report(&mut self, report: &mut F) -> Result<(), E> {
+        let fitness: Vec<f64> = self.pop.iter().map(|(_, t)| self.scale / t).collect();
+        let mean_time_s = self.pop.iter().map(|(_, t)| t).sum::<f64>() / self.pop.len() as f64;
+        report(&Generation {
+            iteration: self.iteration,
+            evaluations: self.charged.ceil() as u64,
+            best: (&self.best.0, self.best.1),
+            mean_time_s,
+            fitness: (self.scale / self.best.1, fitness.iter().sum::<f64>() / fitness.len() as f64),
+        })
+    }
 }
 
 /// Rounds of local search allowed per memetic step (a bound; it usually stops far earlier).

@@ -260,6 +260,7 @@ impl ExperimentFile {
             evaluations: (b.evaluations > 0).then_some(b.evaluations),
             wall_clock: (b.wall_clock_s > 0.0).then(|| Duration::from_secs_f64(b.wall_clock_s)),
             stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
+            interrupt: None,
         };
         let planner =
             PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget, checks })?;

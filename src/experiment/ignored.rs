@@ -135,14 +135,6 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     if key == "output.diversity_every" && planner != PlannerKind::Thesis {
         return Some(format!("only the thesis GA measures the population's diversity; planner = \"{name}\""));
     }
-    if key == "budget.stall_iterations" && matches!(planner, PlannerKind::Waypoint | PlannerKind::RandomSearch) {
-        return Some(format!(
-            "planner = \"{name}\" does not stop on stalls (its budget is evaluations and wall clock)"
-        ));
-    }
-    if key == "budget.iterations" && planner == PlannerKind::RandomSearch {
-        return Some("random search draws `budget.evaluations` genomes; it has no iterations".into());
-    }
     if key == "waypoint.alpha_cov" && file.waypoint.objective == crate::waypoint::world::ObjectiveKind::Footprint {
         return Some(
             "waypoint.objective = \"footprint\" measures the swept area; only the camera objective blends walls and open floor by alpha_cov".into(),

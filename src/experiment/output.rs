@@ -29,6 +29,12 @@ pub enum OutputError {
     /// A figure could not be drawn.
     #[error(transparent)]
     Plot(#[from] crate::plot::PlotError),
+    /// The run's interrupt flag was raised: it stopped part-way and wrote nothing.
+    #[error("the run was interrupted after {iterations} iterations; nothing was written")]
+    Interrupted {
+        /// Iterations it had completed.
+        iterations: u32,
+    },
 }
 
 fn io_err(path: &Path) -> impl FnOnce(std::io::Error) -> OutputError + '_ {
@@ -198,6 +204,11 @@ pub fn run_experiment(
         planner.run(&exp.scenario, exp.seed, &exp.budget, &mut observers)
     };
     let outcome = match outcome {
+        Ok(o) if o.stop == crate::planner::StopReason::Interrupted => {
+            // A run cut short by its caller is not the run the file asks for: nothing of it stays.
+            history.discard();
+            return Err(OutputError::Interrupted { iterations: o.iterations });
+        }
         Ok(o) => o,
         Err(e) => {
             // A refused run leaves nothing behind: not even its partial history.

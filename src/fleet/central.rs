@@ -272,7 +272,7 @@ mod tests {
     }
 
     fn budget(iterations: u32) -> Budget {
-        Budget { iterations, evaluations: None, wall_clock: None, stall_iterations: None }
+        Budget::iterations(iterations)
     }
 
     const HETERO: &str = "[[robots]]\nname = \"small\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\

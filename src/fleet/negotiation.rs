@@ -216,8 +216,7 @@ mod tests {
             seed: 11,
             seeds: (Vec::new(), 0),
         };
-        let budget =
-            crate::planner::Budget { iterations: 150, evaluations: None, wall_clock: None, stall_iterations: None };
+        let budget = crate::planner::Budget::iterations(150);
         let alone = single.run(&budget, None, &mut []).unwrap();
         assert_eq!(negotiated.paths, vec![alone.best.points.clone()]);
         assert_eq!(negotiated.evaluations, alone.evaluations);

@@ -12,6 +12,7 @@
 //! runner) sees only `&dyn Planner`. The closed list of planners lives one layer up, in
 //! the registry of the experiment layer, so that this layer depends on no planner.
 
+pub mod executor;
 pub mod legs;
 pub mod memory;
 pub mod sections;
@@ -79,8 +80,9 @@ impl Agent {
     }
 }
 
-/// When a run stops (any planner: iterations are generations for the GAs).
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// When a run stops (any planner: iterations are generations for the GAs). The executor reads
+/// it as stop rules ([`executor::StopRules::of_budget`]), the same for every planner.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Budget {
     /// `Iter_max`.
     pub iterations: u32,
@@ -90,12 +92,14 @@ pub struct Budget {
     pub wall_clock: Option<Duration>,
     /// Optional stall limit: stop after this many iterations without a better best.
     pub stall_iterations: Option<u32>,
+    /// Optional flag that ends the run at its next iteration when raised (Ctrl-C, a notebook).
+    pub interrupt: Option<executor::Interrupt>,
 }
 
 impl Budget {
     /// No limit but `iterations`.
     pub fn iterations(iterations: u32) -> Self {
-        Self { iterations, evaluations: None, wall_clock: None, stall_iterations: None }
+        Self { iterations, evaluations: None, wall_clock: None, stall_iterations: None, interrupt: None }
     }
 
     /// The one stop rule every planner checks before an iteration (generation, batch): the
@@ -161,6 +165,8 @@ pub enum StopReason {
     Completed,
     /// A fleet's negotiated plans settled within the tolerance.
     Settled,
+    /// The caller raised the run's interrupt flag ([`executor::Interrupt`]).
+    Interrupted,
 }
 
 /// The result of one run of any planner.

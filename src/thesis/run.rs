@@ -1,7 +1,8 @@
 //! The run loop of the thesis GA: the algorithm ([`ThesisGa`]: scenario, parameters, seed) is
 //! kept apart from the state it evolves ([`GaState`]); every iteration's statistics go to
-//! observers. Stops at `Iter_max`, at the optional wall-clock or stall limit; optionally marks
-//! a region as covered part-way (retrain, 003 §3.5.3).
+//! observers. The loop is the planner layer's executor: it stops at `Iter_max`, at the
+//! optional evaluation, wall-clock or stall limit, or when interrupted; optionally marks a
+//! region as covered part-way (retrain, 003 §3.5.3).
 
 use super::architecture::{Effective, Generation, MutationRate, bounded_fitness};
 use super::diversity::DiversityScratch;
@@ -15,6 +16,7 @@ use crate::ga::parents::Param;
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::planner::Budget;
 use crate::planner::StopReason;
+use crate::planner::executor::{Search, StopRules, execute};
 use std::time::Instant;
 
 /// The algorithm: what stays fixed during a run. `T` is what the population holds: one
@@ -247,7 +249,8 @@ impl<T: Member> Ga<T> {
         self.reevaluate(state);
     }
 
-    /// Runs to the end of the budget, handing statistics to `observers`.
+    /// Runs to the end of the budget ([`execute`]: the stop rules of `budget`), handing
+    /// statistics to `observers`.
     pub fn run(
         &mut self,
         budget: &Budget,
@@ -258,69 +261,31 @@ impl<T: Member> Ga<T> {
         T::World: Premark,
     {
         let started = Instant::now();
-        let mut history = Vec::new();
-        let mut changes = Vec::new();
         let diversity_every: Vec<u32> = observers.iter().filter_map(|o| o.diversity_every()).collect();
-        let mut state = self.init(!diversity_every.is_empty());
-        let mut scratches = self.scratches();
-        let fixed = self.fixed_effective();
-        let first = stats(&state, &fixed, self.pareto());
+        let state = self.init(!diversity_every.is_empty());
         // Reachability is measured only for someone who reads the records.
         let reach = if observers.is_empty() { ReachMask::default() } else { T::reach_mask(&self.scenario) };
-        for o in observers.iter_mut() {
-            o.generation(&record(&first, &state, &self.scenario, &reach))?;
-        }
-        history.push(first);
-        let mut best_seen = bounded_fitness(
+        let best_seen = bounded_fitness(
             &state.population[best_index_within(&state.population, &state.seed_points)],
             &state.seed_points,
         );
-        let mut stalled = 0u32;
-        let mut best_before_retrain = None;
-        let mut stop = StopReason::Iterations;
-        while state.iteration < budget.iterations {
-            if let Some(spent) = budget.spent(state.evaluations, started) {
-                stop = spent;
-                break;
-            }
-            if let Some(r) = retrain.filter(|r| r.at_iteration == state.iteration) {
-                best_before_retrain =
-                    Some(state.population[best_index_within(&state.population, &state.seed_points)].clone());
-                self.change_environment(&mut state, r.region);
-                scratches = self.scratches();
-                for o in observers.iter_mut() {
-                    o.event(RunEvent::EnvironmentChanged { iteration: state.iteration + 1 })?;
-                }
-                changes.push(state.iteration + 1);
-                best_seen = f64::NEG_INFINITY;
-            }
-            let effective = self.effective(&state, state.iteration + 1, budget.iterations);
-            let wanted = diversity_every.iter().any(|&e| (state.iteration + 1).is_multiple_of(e.max(1)));
-            self.step(&mut state, effective, &mut scratches, wanted);
-            let now = stats(&state, &effective, self.pareto());
-            if !observers.is_empty() {
-                let r = record(&now, &state, &self.scenario, &reach);
-                for o in observers.iter_mut() {
-                    o.generation(&r)?;
-                }
-            }
-            history.push(now);
-            let best = bounded_fitness(
-                &state.population[best_index_within(&state.population, &state.seed_points)],
-                &state.seed_points,
-            );
-            if best > best_seen {
-                best_seen = best;
-                stalled = 0;
-            } else {
-                stalled += 1;
-            }
-            if budget.stall_iterations.is_some_and(|s| stalled >= s) {
-                stop = StopReason::Stall;
-                break;
-            }
-        }
-        let reported = if self.pareto() {
+        let mut running = Running {
+            scratches: self.scratches(),
+            effective: self.fixed_effective(),
+            ga: self,
+            state,
+            reach,
+            history: Vec::new(),
+            changes: Vec::new(),
+            best_seen,
+            best_before_retrain: None,
+            retrain,
+            diversity_every,
+            iter_max: budget.iterations,
+        };
+        let finish = execute(&mut running, &StopRules::of_budget(budget, None, started), observers)?;
+        let Running { ga, state, history, changes, best_before_retrain, .. } = running;
+        let reported = if ga.pareto() {
             knee_index(&state.population, &state.seed_points)
         } else {
             best_index_within(&state.population, &state.seed_points)
@@ -334,12 +299,83 @@ impl<T: Member> Ga<T> {
             changes,
             best,
             best_before_retrain,
-            iterations: state.iteration,
-            evaluations: state.evaluations,
-            stop,
+            iterations: finish.iterations,
+            evaluations: finish.evaluations,
+            stop: finish.stop,
             wall_s: started.elapsed().as_secs_f64(),
             seed_points: state.seed_points,
         })
+    }
+}
+
+/// A thesis GA run between generations, as [`execute`] drives it.
+struct Running<'a, T: Member> {
+    ga: &'a mut Ga<T>,
+    state: GaState<T>,
+    scratches: Vec<EvalScratch>,
+    /// The parameters the last generation ran with (the fixed ones before the first).
+    effective: Effective,
+    reach: ReachMask,
+    history: Vec<GenerationStats>,
+    /// Iterations at which the environment changed.
+    changes: Vec<u32>,
+    /// The best bounded fitness so far (since the last environment change).
+    best_seen: f64,
+    best_before_retrain: Option<T>,
+    retrain: Option<&'a Retrain>,
+    diversity_every: Vec<u32>,
+    /// `Iter_max`, which ramped parameters read.
+    iter_max: u32,
+}
+
+impl<'o, T: Member> Search<[&'o mut dyn Observer]> for Running<'_, T>
+where
+    T::World: Premark,
+{
+    type Error = std::io::Error;
+
+    fn progress(&self) -> (u32, u64) {
+        (self.state.iteration, self.state.evaluations)
+    }
+
+    fn step(&mut self, observers: &mut [&'o mut dyn Observer]) -> std::io::Result<bool> {
+        let (ga, state) = (&mut *self.ga, &mut self.state);
+        if let Some(r) = self.retrain.filter(|r| r.at_iteration == state.iteration) {
+            self.best_before_retrain =
+                Some(state.population[best_index_within(&state.population, &state.seed_points)].clone());
+            ga.change_environment(state, r.region);
+            self.scratches = ga.scratches();
+            for o in observers.iter_mut() {
+                o.event(RunEvent::EnvironmentChanged { iteration: state.iteration + 1 })?;
+            }
+            self.changes.push(state.iteration + 1);
+            self.best_seen = f64::NEG_INFINITY;
+        }
+        let effective = ga.effective(state, state.iteration + 1, self.iter_max);
+        let wanted = self.diversity_every.iter().any(|&e| (state.iteration + 1).is_multiple_of(e.max(1)));
+        ga.step(state, effective, &mut self.scratches, wanted);
+        self.effective = effective;
+        let best = bounded_fitness(
+            &state.population[best_index_within(&state.population, &state.seed_points)],
+            &state.seed_points,
+        );
+        let improved = best > self.best_seen;
+        if improved {
+            self.best_seen = best;
+        }
+        Ok(improved)
+    }
+
+    fn report(&mut self, observers: &mut [&'o mut dyn Observer]) -> std::io::Result<()> {
+        let now = stats(&self.state, &self.effective, self.ga.pareto());
+        if !observers.is_empty() {
+            let r = record(&now, &self.state, &self.ga.scenario, &self.reach);
+            for o in observers.iter_mut() {
+                o.generation(&r)?;
+            }
+        }
+        self.history.push(now);
+        Ok(())
     }
 }
 

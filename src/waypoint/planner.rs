@@ -111,7 +111,8 @@ impl Planner for WaypointConfig {
             .map_err(|e| PlannerError::Input(format!("waypoint planner on map `{}`: {e}", scenario.map.name())))?;
         let precompute_s = started.elapsed().as_secs_f64();
         // The wall clock counts the precompute too: the GA gets what is left of it.
-        let budget = &Budget { wall_clock: budget.wall_clock.map(|d| d.saturating_sub(started.elapsed())), ..*budget };
+        let budget =
+            &Budget { wall_clock: budget.wall_clock.map(|d| d.saturating_sub(started.elapsed())), ..budget.clone() };
         let grid = CoverageGrid::new(&scenario.map);
         let mut scratch = SweepScratch::new(&grid);
         let reach = scenario.reach();

@@ -11,6 +11,7 @@ use crate::ga::maximin::maximin;
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::ga::selection::low_variance_sample;
 use crate::planner::Budget;
+use crate::planner::executor::{Search, StopRules, execute};
 use rand::Rng as _;
 use rand::seq::SliceRandom;
 use rayon::prelude::*;
@@ -171,10 +172,10 @@ pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
     w.iter().map(|x| x / total).collect()
 }
 
-/// Runs the GA on a built world for `p.generations`, within the evaluation and wall-clock
-/// limits of `limits` (its iteration count is not read: the generations are `p.generations`);
-/// `on_generation` receives each generation's statistics, the population, the index of the
-/// reported organism and the evaluations so far.
+/// Runs the GA on a built world for `p.generations` (or `limits.iterations`, if fewer), within
+/// the evaluation, wall-clock and stall limits and the interrupt of `limits` (a stall: no plan
+/// better than the best so far, more coverage or as much in less time); `on_generation` receives each generation's statistics,
+/// the population, the index of the reported organism and the evaluations so far.
 pub fn run(
     world: &World,
     p: &GaParams,
@@ -244,39 +245,87 @@ pub fn run(
     let initial_feasible = accepted.len();
     let mut pop = accepted;
     pop.extend(rejected.into_iter().take(p.population - pop.len()));
-    let mut rng = stream(seed, Purpose::Main, &[]);
-    let snap_at = [0, p.generations / 3, 2 * p.generations / 3, p.generations];
-    let mut snapshots = Vec::new();
-    let snapshot = |g: u32, pop: &[Organism]| {
-        (
-            g,
-            pop.iter()
-                .map(|o| {
-                    (
-                        o.eval.coverage,
-                        o.eval.flight_time,
-                        o.eval.violations(&p.objectives, required_coverage(&p.objectives, g)) == 0,
-                    )
-                })
-                .collect::<Vec<_>>(),
-        )
+    let first = &pop[reported(&pop, p, 0)].eval;
+    let best_seen = (first.coverage, first.flight_time);
+    let mut run = Generations {
+        p,
+        seed,
+        graph: g,
+        evaluate_all: &evaluate_all,
+        rng: stream(seed, Purpose::Main, &[]),
+        snap_at: [0, p.generations / 3, 2 * p.generations / 3, p.generations],
+        snapshots: Vec::new(),
+        pop,
+        evaluations: attempt,
+        generation: 0,
+        best_seen,
     };
-    on_generation(&stats(0, &pop, p), &pop, reported(&pop, p, 0), attempt);
-    snapshots.push(snapshot(0, &pop));
-    let mut evaluations = attempt;
-    let mut generations = 0;
-    let mut stop = crate::planner::StopReason::Iterations;
-    for gen_ in 1..=p.generations {
-        if let Some(spent) = limits.spent(evaluations, started) {
-            stop = spent;
-            break;
-        }
+    run.snapshots.push(snapshot(p, 0, &run.pop));
+    // 000's generations, or fewer where the budget's iteration limit says so.
+    let rules = StopRules::of_budget(limits, Some(p.generations.min(limits.iterations)), started);
+    let finish = match execute(&mut run, &rules, on_generation) {
+        Ok(finish) => finish,
+        Err(never) => match never {},
+    };
+    let Generations { pop, mut snapshots, .. } = run;
+    let generations = finish.iterations;
+    if generations > 0 && snapshots.last().is_none_or(|s| s.0 != generations) {
+        snapshots.push(snapshot(p, generations, &pop));
+    }
+    let best = reported(&pop, p, generations);
+    WaypointOutcome {
+        population: pop,
+        best,
+        generations,
+        evaluations: finish.evaluations,
+        stop: finish.stop,
+        snapshots,
+        initial_feasible,
+    }
+}
+
+/// Each organism's (coverage, flight time, feasible at generation `g`'s constraints).
+fn snapshot(p: &GaParams, g: u32, pop: &[Organism]) -> Snapshot {
+    let c_req = required_coverage(&p.objectives, g);
+    let of = |o: &Organism| (o.eval.coverage, o.eval.flight_time, o.eval.violations(&p.objectives, c_req) == 0);
+    (g, pop.iter().map(of).collect())
+}
+
+/// The waypoint GA between generations, as [`execute`] drives it.
+struct Generations<'a> {
+    p: &'a GaParams,
+    seed: u64,
+    graph: &'a super::graph::Graph,
+    evaluate_all: &'a dyn Fn(Vec<Vec<Vec<u32>>>) -> Vec<Organism>,
+    rng: Rng,
+    /// Generations whose population is kept for the figures (0, a third, two thirds, last).
+    snap_at: [u32; 4],
+    snapshots: Vec<Snapshot>,
+    pop: Vec<Organism>,
+    evaluations: u64,
+    generation: u32,
+    /// The reported plan's best (coverage, flight time) so far: better is more coverage, then
+    /// less time.
+    best_seen: (f64, f64),
+}
+
+impl Search<GenerationCallback<'_>> for Generations<'_> {
+    type Error = std::convert::Infallible;
+
+    fn progress(&self) -> (u32, u64) {
+        (self.generation, self.evaluations)
+    }
+
+    fn step(&mut self, _: &mut GenerationCallback<'_>) -> Result<bool, Self::Error> {
+        let (p, seed, g) = (self.p, self.seed, self.graph);
+        let gen_ = self.generation + 1;
+        let rng = &mut self.rng;
         let c_req = required_coverage(&p.objectives, gen_);
-        let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
+        let objs: Vec<[f64; 2]> = self.pop.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
         let probs = pressure_weights(&maximin(&objs), p.gamma);
-        let mut parents = low_variance_sample(&probs, p.population, &mut rng);
-        parents.shuffle(&mut rng);
-        let pop_ref = &pop;
+        let mut parents = low_variance_sample(&probs, p.population, rng);
+        parents.shuffle(rng);
+        let pop_ref = &self.pop;
         let children: Vec<Vec<Vec<u32>>> = parents
             .par_chunks(2)
             .enumerate()
@@ -310,27 +359,35 @@ pub fn run(
                 [c1, c2]
             })
             .collect();
-        let mut pool = std::mem::take(&mut pop);
-        evaluations += children.len() as u64;
-        pool.extend(evaluate_all(children));
+        let mut pool = std::mem::take(&mut self.pop);
+        self.evaluations += children.len() as u64;
+        pool.extend((self.evaluate_all)(children));
         let objs: Vec<[f64; 2]> = pool.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
         let fit = maximin(&objs);
         let ties: Vec<u64> = (0..pool.len()).map(|_| rng.random()).collect();
         let mut order: Vec<usize> = (0..pool.len()).collect();
         order.sort_by(|&x, &y| fit[x].total_cmp(&fit[y]).then(ties[x].cmp(&ties[y])));
         let mut slots: Vec<Option<Organism>> = pool.into_iter().map(Some).collect();
-        pop = order.iter().take(p.population).map(|&i| slots[i].take().expect("kept once")).collect();
-        generations = gen_;
-        on_generation(&stats(gen_, &pop, p), &pop, reported(&pop, p, gen_), evaluations);
-        if snap_at[1..].contains(&gen_) && snapshots.last().is_none_or(|s| s.0 != gen_) {
-            snapshots.push(snapshot(gen_, &pop));
+        self.pop = order.iter().take(p.population).map(|&i| slots[i].take().expect("kept once")).collect();
+        self.generation = gen_;
+        if self.snap_at[1..].contains(&gen_) && self.snapshots.last().is_none_or(|s| s.0 != gen_) {
+            self.snapshots.push(snapshot(p, gen_, &self.pop));
         }
+        let b = &self.pop[reported(&self.pop, p, gen_)].eval;
+        let (coverage, time) = self.best_seen;
+        let improved = b.coverage > coverage || (b.coverage == coverage && b.flight_time < time);
+        if improved {
+            self.best_seen = (b.coverage, b.flight_time);
+        }
+        Ok(improved)
     }
-    if generations > 0 && snapshots.last().is_none_or(|s| s.0 != generations) {
-        snapshots.push(snapshot(generations, &pop));
+
+    fn report(&mut self, on_generation: &mut GenerationCallback<'_>) -> Result<(), Self::Error> {
+        let (p, g) = (self.p, self.generation);
+        let best = reported(&self.pop, p, g);
+        on_generation(&stats(g, &self.pop, p), &self.pop, best, self.evaluations);
+        Ok(())
     }
-    let best = reported(&pop, p, generations);
-    WaypointOutcome { population: pop, best, generations, evaluations, stop, snapshots, initial_feasible }
 }
 
 #[cfg(test)]

@@ -1,0 +1,256 @@
+//! The run loop every iterative planner shares, after argmin's `Executor`: a planner is a
+//! [`Search`] (its state and one step), and [`execute`] owns what is common to all of them —
+//! the stop conditions, the stall count, the interrupt and the order in which records reach
+//! the observers. No planner writes its own loop, so a budget means the same for every one.
+//!
+//! Stop conditions combine as MAHF's do: a [`StopRules`] is any of several [`StopRule`]s, the
+//! first met, in order, naming why the run ended. A run's budget gives the rules
+//! [`StopRules::of_budget`]; a library caller adds its own with `|`.
+
+use super::{Budget, StopReason};
+use std::ops::BitOr;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
+
+/// A flag another thread raises to end a run at its next iteration (Ctrl-C, a notebook's
+/// interrupt, a study that is stopping): the run then ends with [`StopReason::Interrupted`]
+/// and returns what it has. Clones share the flag.
+#[derive(Clone, Debug, Default)]
+pub struct Interrupt(Arc<AtomicBool>);
+
+impl Interrupt {
+    /// A flag not yet raised.
+    pub fn new() -> Self {
+        Self::default()
+    }
+    /// Raises the flag: every run reading it stops at its next iteration.
+    pub fn raise(&self) {
+        self.0.store(true, Ordering::SeqCst);
+    }
+    /// Whether the flag is raised.
+    pub fn is_raised(&self) -> bool {
+        self.0.load(Ordering::Relaxed)
+    }
+}
+
+impl PartialEq for Interrupt {
+    /// The same flag.
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+/// Where a run stands between two iterations: what the stop rules read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// Iterations completed (0: the initial population, or first batch, only).
+    pub iteration: u32,
+    /// Fitness evaluations spent.
+    pub evaluations: u64,
+    /// Iterations since the last one that improved the best.
+    pub since_better: u32,
+}
+
+/// One condition that ends a run.
+#[derive(Clone, Debug, PartialEq)]
+pub enum StopRule {
+    /// The flag is raised.
+    Interrupted(Interrupt),
+    /// This many iterations in a row without a better best.
+    Stall(u32),
+    /// This many iterations completed.
+    Iterations(u32),
+    /// This many evaluations spent.
+    Evaluations(u64),
+    /// This much wall time passed since `since` (the run's start: preparation counts).
+    WallClock {
+        /// The limit.
+        limit: Duration,
+        /// When the clock started.
+        since: Instant,
+    },
+}
+
+impl StopRule {
+    /// Why the run ends now under this rule, if it does.
+    pub fn met(&self, at: &Progress) -> Option<StopReason> {
+        let met = match self {
+            Self::Interrupted(flag) => flag.is_raised(),
+            Self::Stall(limit) => at.since_better >= *limit,
+            Self::Iterations(limit) => at.iteration >= *limit,
+            Self::Evaluations(limit) => at.evaluations >= *limit,
+            Self::WallClock { limit, since } => since.elapsed() >= *limit,
+        };
+        met.then_some(match self {
+            Self::Interrupted(_) => StopReason::Interrupted,
+            Self::Stall(_) => StopReason::Stall,
+            Self::Iterations(_) => StopReason::Iterations,
+            Self::Evaluations(_) => StopReason::Evaluations,
+            Self::WallClock { .. } => StopReason::WallClock,
+        })
+    }
+}
+
+/// Any of several rules; the first met, in order, names the stop.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct StopRules(Vec<StopRule>);
+
+impl StopRules {
+    /// The rules of `budget` for a run started at `started`, in the order that names a stop
+    /// when several hold at once: the interrupt, the stall limit, the iteration limit, the
+    /// evaluation budget, the wall clock. `iterations` is the planner's own limit when it has
+    /// one of its own (the waypoint planner's `generations`), else `budget.iterations`.
+    pub fn of_budget(budget: &Budget, iterations: Option<u32>, started: Instant) -> Self {
+        let mut rules = Vec::with_capacity(5);
+        rules.extend(budget.interrupt.clone().map(StopRule::Interrupted));
+        rules.extend(budget.stall_iterations.map(StopRule::Stall));
+        rules.extend(iterations.or(Some(budget.iterations)).map(StopRule::Iterations));
+        rules.extend(budget.evaluations.map(StopRule::Evaluations));
+        rules.extend(budget.wall_clock.map(|limit| StopRule::WallClock { limit, since: started }));
+        Self(rules)
+    }
+    /// The first rule met at `at`, if any.
+    pub fn first_met(&self, at: &Progress) -> Option<StopReason> {
+        self.0.iter().find_map(|rule| rule.met(at))
+    }
+    /// The rules, in order.
+    pub fn rules(&self) -> &[StopRule] {
+        &self.0
+    }
+}
+
+impl BitOr<StopRule> for StopRules {
+    type Output = StopRules;
+    /// These rules, then `rule`.
+    fn bitor(mut self, rule: StopRule) -> StopRules {
+        self.0.push(rule);
+        self
+    }
+}
+
+/// A planner's search as the executor drives it: its state between iterations, one step, and
+/// the record of where it stands. `O` is what records go to (observers, a callback).
+pub trait Search<O: ?Sized> {
+    /// What a step or a report can fail with (an observer's write, the caller's own error).
+    type Error;
+    /// Iterations completed and evaluations spent so far.
+    fn progress(&self) -> (u32, u64);
+    /// One iteration (a generation, a batch); whether it made the best better (the planner
+    /// says what better means). Run events (an environment change) go to `out`.
+    fn step(&mut self, out: &mut O) -> Result<bool, Self::Error>;
+    /// Hands the record of where the search stands to `out` (after the initial population and
+    /// after every step).
+    fn report(&mut self, out: &mut O) -> Result<(), Self::Error>;
+}
+
+/// How an executed search ended.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Finish {
+    /// Why it ended.
+    pub stop: StopReason,
+    /// Iterations completed.
+    pub iterations: u32,
+    /// Evaluations spent.
+    pub evaluations: u64,
+}
+
+/// Runs `search` from its initial state until a rule of `rules` is met: reports the initial
+/// state, then, while no rule is met, steps and reports. The stall count is the executor's:
+/// iterations since the last step that said it improved the best.
+pub fn execute<O: ?Sized, S: Search<O>>(search: &mut S, rules: &StopRules, out: &mut O) -> Result<Finish, S::Error> {
+    search.report(out)?;
+    let mut since_better = 0u32;
+    loop {
+        let (iteration, evaluations) = search.progress();
+        if let Some(stop) = rules.first_met(&Progress { iteration, evaluations, since_better }) {
+            return Ok(Finish { stop, iterations: iteration, evaluations });
+        }
+        let improved = search.step(out)?;
+        since_better = if improved { 0 } else { since_better + 1 };
+        search.report(out)?;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planner::PlannerError;
+
+    /// Counts up by `per_step` evaluations, better every `better_every` steps; keeps reports.
+    struct Counter {
+        iteration: u32,
+        evaluations: u64,
+        per_step: u64,
+        better_every: u32,
+    }
+
+    impl Search<Vec<(u32, u64)>> for Counter {
+        type Error = PlannerError;
+        fn progress(&self) -> (u32, u64) {
+            (self.iteration, self.evaluations)
+        }
+        fn step(&mut self, _: &mut Vec<(u32, u64)>) -> Result<bool, PlannerError> {
+            self.iteration += 1;
+            self.evaluations += self.per_step;
+            Ok(self.iteration.is_multiple_of(self.better_every))
+        }
+        fn report(&mut self, out: &mut Vec<(u32, u64)>) -> Result<(), PlannerError> {
+            out.push((self.iteration, self.evaluations));
+            Ok(())
+        }
+    }
+
+    fn budget(iterations: u32, evaluations: Option<u64>, stall: Option<u32>) -> Budget {
+        Budget { evaluations, stall_iterations: stall, ..Budget::iterations(iterations) }
+    }
+
+    #[test]
+    fn each_rule_stops_where_it_says_and_the_first_met_names_the_stop() {
+        // (budget, better every, iterations run, stop)
+        let cases = [
+            (budget(7, None, None), 1, 7, StopReason::Iterations),
+            (budget(100, Some(35), None), 1, 4, StopReason::Evaluations),
+            (budget(100, Some(40), None), 1, 4, StopReason::Evaluations),
+            (budget(100, None, Some(3)), 50, 3, StopReason::Stall),
+            // Better every 4th step: never 4 in a row without, so the stall limit 4 never holds.
+            (budget(20, None, Some(4)), 4, 20, StopReason::Iterations),
+            // Stall and iterations at once: the stall names it.
+            (budget(3, None, Some(3)), 50, 3, StopReason::Stall),
+            // Iterations and evaluations at once: the iterations name it.
+            (budget(4, Some(40), None), 1, 4, StopReason::Iterations),
+        ];
+        for (b, better_every, iterations, stop) in cases {
+            let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 10, better_every };
+            let mut reports = Vec::new();
+            let finish = execute(&mut counter, &StopRules::of_budget(&b, None, Instant::now()), &mut reports).unwrap();
+            assert_eq!((finish.iterations, finish.stop), (iterations, stop), "{b:?}");
+            assert_eq!(finish.evaluations, u64::from(iterations) * 10);
+            let want: Vec<(u32, u64)> = (0..=iterations).map(|k| (k, u64::from(k) * 10)).collect();
+            assert_eq!(reports, want, "{b:?}: one report for the start and one per step");
+        }
+    }
+
+    #[test]
+    fn a_raised_interrupt_stops_before_the_next_step_and_a_planners_own_limit_replaces_the_budgets() {
+        let flag = Interrupt::new();
+        let b = Budget { interrupt: Some(flag.clone()), ..budget(100, None, None) };
+        let rules = StopRules::of_budget(&b, Some(5), Instant::now());
+        let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 1, better_every: 1 };
+        assert_eq!(execute(&mut counter, &rules, &mut Vec::new()).unwrap().iterations, 5);
+        flag.raise();
+        let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 1, better_every: 1 };
+        let finish = execute(&mut counter, &rules, &mut Vec::new()).unwrap();
+        assert_eq!((finish.iterations, finish.stop), (0, StopReason::Interrupted));
+    }
+
+    #[test]
+    fn rules_combine_with_or_in_order() {
+        let rules = StopRules::default() | StopRule::Evaluations(5) | StopRule::Iterations(5);
+        let at = Progress { iteration: 5, evaluations: 5, since_better: 0 };
+        assert_eq!(rules.first_met(&at), Some(StopReason::Evaluations));
+        let clock = StopRule::WallClock { limit: Duration::ZERO, since: Instant::now() };
+        assert_eq!((StopRules::default() | clock).first_met(&at), Some(StopReason::WallClock));
+        assert_eq!(StopRules::default().first_met(&at), None);
+    }
+}
