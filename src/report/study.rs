@@ -1,0 +1,331 @@
+//! A study folder as `covga report` reads it: the runs table checked once ([`Loaded`]), and the
+//! groups, Pareto facets, best runs and configurations every section shares ([`Study`]).
+
+use super::figures::ParetoFacet;
+use super::{
+    ConfigRow, Group, ReportError, ReportOptions, cell_matches, check_finite, cmp_group_values, coverage_front,
+    failed_note, incomplete_note, param_columns, take_failed,
+};
+use crate::stats::mean_ci95;
+use crate::study::records::RunsTable;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// A study folder's runs, checked and filtered, and where its report goes.
+pub(super) struct Loaded {
+    /// The runs that finished, after `--where`.
+    pub t: RunsTable,
+    /// The `--where` filters, in words (`key = value`).
+    pub selected: Vec<String>,
+    /// The report folder (created).
+    pub out: PathBuf,
+    /// The notes the report begins with (an incomplete study, failed runs, no `runs/` folder).
+    pub incomplete: Option<String>,
+}
+
+impl Loaded {
+    /// Reads `dir`'s `study.json` and `runs.csv`, sets failed runs apart, applies the filters
+    /// of `opts`, checks its `--by` columns and creates the report folder.
+    pub fn read(dir: &Path, opts: &ReportOptions) -> Result<Self, ReportError> {
+        check_study_json(dir)?;
+        let runs_file = dir.join("runs.csv");
+        let text = std::fs::read_to_string(&runs_file).map_err(|e| missing_runs(dir, &runs_file, e))?;
+        let input = |m: String| ReportError::Input(format!("{}: {m}", runs_file.display()));
+        let mut t = RunsTable::parse(&text).map_err(input)?;
+        check_finite(&t).map_err(input)?;
+        let recorded = t.rows.len();
+        let failed = take_failed(&mut t);
+        if t.rows.is_empty() && !failed.is_empty() {
+            return Err(ReportError::Input(format!(
+                "{}: every recorded run failed while running ({} runs, stop = failed); the first: {}",
+                runs_file.display(),
+                failed.len(),
+                failed[0]
+            )));
+        }
+        let selected = apply_filters(&mut t, &opts.filter, &runs_file)?;
+        if t.rows.is_empty() {
+            return Err(ReportError::Input(format!("{}: no runs recorded yet", runs_file.display())));
+        }
+        if let Some(b) = opts.by.iter().find(|b| t.col(b).is_none()) {
+            return Err(ReportError::Input(format!(
+                "--by `{b}` is not a column of {}; columns: {}",
+                runs_file.display(),
+                t.header.join(", ")
+            )));
+        }
+        let out = report_folder(dir, opts.name.as_deref())?;
+        std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
+        // Without the runs' own files the report has tables only: say so rather than leave the
+        // path and history figures out without a word.
+        let no_run_files = (!dir.join("runs").is_dir()).then(|| {
+            format!(
+                "**No `runs/` folder in {}**: the tables below come from runs.csv alone; the best paths and the \
+                 histories (diversity, convergence) that the runs' folders hold are not drawn.",
+                dir.display()
+            )
+        });
+        let notes: Vec<String> =
+            incomplete_note(dir, recorded).into_iter().chain(failed_note(&failed)).chain(no_run_files).collect();
+        let incomplete = (!notes.is_empty()).then(|| notes.join("\n\n"));
+        Ok(Self { t, selected, out, incomplete })
+    }
+}
+
+/// Refuses a folder without a readable `study.json` holding the grid's run count.
+fn check_study_json(dir: &Path) -> Result<(), ReportError> {
+    if !dir.join("study.json").is_file() {
+        return Err(ReportError::Input(format!(
+            "{}: not a study folder (no study.json); run `covga grid` into it first",
+            dir.display()
+        )));
+    }
+    let runs_count = std::fs::read_to_string(dir.join("study.json"))
+        .map_err(|e| e.to_string())
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).map_err(|e| e.to_string()))
+        .and_then(|m| m.get("runs").and_then(serde_json::Value::as_u64).ok_or_else(|| "no `runs` count".to_string()));
+    match runs_count {
+        Ok(_) => Ok(()),
+        Err(e) => Err(ReportError::Input(format!(
+            "{}: not a covga study description ({e}); it is written by `covga grid`",
+            dir.join("study.json").display()
+        ))),
+    }
+}
+
+/// The error for a `runs.csv` that cannot be read: a sharded study names `covga merge`.
+fn missing_runs(dir: &Path, runs_file: &Path, e: std::io::Error) -> ReportError {
+    let shards = std::fs::read_dir(dir)
+        .map(|d| d.flatten().any(|e| e.file_name().to_string_lossy().starts_with("runs-shard-")))
+        .unwrap_or(false);
+    if shards {
+        ReportError::Input(format!(
+            "{}: missing; this study has shard files: run `covga merge {}` first",
+            runs_file.display(),
+            dir.display()
+        ))
+    } else {
+        ReportError::Input(format!("{}: {e}", runs_file.display()))
+    }
+}
+
+/// Keeps the rows of `t` that every `--where` filter accepts; the filters in words.
+fn apply_filters(t: &mut RunsTable, filter: &[(String, String)], runs_file: &Path) -> Result<Vec<String>, ReportError> {
+    let mut selected = Vec::new();
+    for (key, want) in filter {
+        let Some(c) = t.col(key) else {
+            return Err(ReportError::Input(format!(
+                "--where `{key}` is not a column of {}; columns: {}",
+                runs_file.display(),
+                t.header.join(", ")
+            )));
+        };
+        let before = t.rows.len();
+        t.rows.retain(|r| cell_matches(&r[c], want));
+        if t.rows.is_empty() && before > 0 {
+            return Err(ReportError::Input(format!(
+                "--where {key}={want}: no recorded run of {} has that value",
+                runs_file.display()
+            )));
+        }
+        selected.push(format!("{key} = {want}"));
+    }
+    Ok(selected)
+}
+
+/// `<dir>/report`, or `<dir>/report-NAME` for `--name NAME`.
+fn report_folder(dir: &Path, name: Option<&str>) -> Result<PathBuf, ReportError> {
+    match name {
+        Some(name) => {
+            if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+                return Err(ReportError::Input(format!(
+                    "--name `{name}`: expected letters, digits, `-` and `_` only (it names the folder report-NAME)"
+                )));
+            }
+            Ok(dir.join(format!("report-{name}")))
+        }
+        None => Ok(dir.join("report")),
+    }
+}
+
+/// What the sections of a report share, computed once.
+pub(super) struct Study<'a> {
+    /// The study folder.
+    pub dir: &'a Path,
+    /// The `--by` columns.
+    pub by: &'a [String],
+    /// The runs, the filters and notes, and the report folder.
+    pub t: RunsTable,
+    pub selected: Vec<String>,
+    pub out: PathBuf,
+    pub incomplete: Option<String>,
+    /// The groups of `--by`, in order.
+    pub groups: Vec<Group>,
+    /// Rows × columns of the panels when two columns group the runs.
+    pub shape: Option<(usize, usize)>,
+    /// The planners compared, in the registry's order.
+    pub kinds: Vec<String>,
+    /// Each group's Pareto facet (executable plans on the front).
+    pub facets: Vec<ParetoFacet>,
+    /// The best run of each group (and projection, where f1 and f2 both occur), labelled.
+    pub best: Vec<(String, usize)>,
+    /// The swept-parameter columns.
+    pub params: Vec<String>,
+    /// Configurations over their replicates, best mean f first.
+    pub configs: Vec<ConfigRow>,
+}
+
+impl<'a> Study<'a> {
+    /// Groups, facets, best runs and configurations of `loaded`.
+    pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded) -> Self {
+        let Loaded { t, selected, out, incomplete } = loaded;
+        let mut study = Self {
+            dir,
+            by,
+            t,
+            selected,
+            out,
+            incomplete,
+            groups: Vec::new(),
+            shape: None,
+            kinds: Vec::new(),
+            facets: Vec::new(),
+            best: Vec::new(),
+            params: Vec::new(),
+            configs: Vec::new(),
+        };
+        study.groups = study.group_rows();
+        study.shape = match by {
+            [a, b] => Some((study.distinct(a), study.distinct(b))),
+            _ => None,
+        };
+        // The planners of a comparison, in the registry's order, each with its own colour.
+        study.kinds = crate::experiment::registry::PlannerKind::ALL
+            .iter()
+            .map(|k| k.name().to_string())
+            .filter(|k| study.t.col("planner").is_some_and(|c| study.t.rows.iter().any(|row| &row[c] == k)))
+            .collect();
+        study.facets = study.pareto_facets();
+        study.best = study.best_runs();
+        study.params = param_columns(&study.t);
+        study.configs = study.configurations();
+        study
+    }
+
+    /// A number of row `r` (NaN where absent).
+    pub fn num(&self, r: usize, c: &str) -> f64 {
+        self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
+    }
+
+    /// A cell of row `r` (empty where absent).
+    pub fn get(&self, r: usize, c: &str) -> String {
+        self.t.col(c).map(|i| self.t.rows[r][i].clone()).unwrap_or_default()
+    }
+
+    /// Whether row `r`'s plan is executable (a table without the column, written before
+    /// executability was reported, counts every run).
+    pub fn executable(&self, r: usize) -> bool {
+        self.t.col("executable").is_none_or(|i| self.t.rows[r][i] == "true")
+    }
+
+    /// Distinct values of column `c`.
+    fn distinct(&self, c: &str) -> usize {
+        (0..self.t.rows.len()).map(|r| self.get(r, c)).collect::<BTreeSet<_>>().len()
+    }
+
+    /// The rows grouped by the `--by` columns, groups ordered by their values.
+    fn group_rows(&self) -> Vec<Group> {
+        let mut by_values: BTreeMap<Vec<String>, Vec<usize>> = BTreeMap::new();
+        for r in 0..self.t.rows.len() {
+            by_values.entry(self.by.iter().map(|b| self.get(r, b)).collect()).or_default().push(r);
+        }
+        let mut by_values: Vec<(Vec<String>, Vec<usize>)> = by_values.into_iter().collect();
+        by_values.sort_by(|(a, _), (b, _)| cmp_group_values(a, b));
+        by_values
+            .into_iter()
+            .map(|(values, rows)| {
+                let label = if self.by.is_empty() {
+                    "all runs".to_string()
+                } else {
+                    self.by.iter().zip(&values).map(|(b, v)| format!("{b}={v}")).collect::<Vec<_>>().join(", ")
+                };
+                Group { label, rows }
+            })
+            .collect()
+    }
+
+    /// `(t_final, cov_final_free)` of row `r`.
+    pub fn point(&self, r: usize) -> (f64, f64) {
+        (self.num(r, "t_final"), self.num(r, "cov_final_free"))
+    }
+
+    /// Each group's front over the plans a robot can drive; the others are drawn apart.
+    fn pareto_facets(&self) -> Vec<ParetoFacet> {
+        let kind_of = |r: usize| self.kinds.iter().position(|k| *k == self.get(r, "planner")).unwrap_or(0);
+        self.groups
+            .iter()
+            .map(|g| {
+                let rows: Vec<usize> = g.rows.iter().copied().filter(|&r| self.executable(r)).collect();
+                let points: Vec<(f64, f64)> = rows.iter().map(|&r| self.point(r)).collect();
+                let excluded = g.rows.iter().filter(|&&r| !self.executable(r)).map(|&r| self.point(r)).collect();
+                let front = coverage_front(&points);
+                let kinds = rows.iter().map(|&r| kind_of(r)).collect();
+                ParetoFacet { label: g.label.clone(), points, front, rows, excluded, kinds }
+            })
+            .collect()
+    }
+
+    /// Best run per group (per group and projection where the study sweeps it: f1 and f2 are
+    /// different functions): the best executable one by `f_free`; a scope without one shows
+    /// its best run all the same.
+    fn best_runs(&self) -> Vec<(String, usize)> {
+        self.groups
+            .iter()
+            .flat_map(|g| {
+                super::report_tables::projection_scopes(&self.t, &g.rows).into_iter().map(|(suffix, rows)| {
+                    let pool: Vec<usize> = rows.iter().copied().filter(|&r| self.executable(r)).collect();
+                    let pool = if pool.is_empty() { rows } else { pool };
+                    let r = *pool
+                        .iter()
+                        .max_by(|&&a, &&b| self.num(a, "f_free").total_cmp(&self.num(b, "f_free")))
+                        .expect("non-empty scope");
+                    (format!("{}{suffix}", g.label), r)
+                })
+            })
+            .collect()
+    }
+
+    /// Per-configuration means over seeds, best mean f first.
+    fn configurations(&self) -> Vec<ConfigRow> {
+        let mut configs: BTreeMap<String, Vec<usize>> = BTreeMap::new();
+        for r in 0..self.t.rows.len() {
+            configs.entry(self.get(r, "config_id")).or_default().push(r);
+        }
+        let mut rows: Vec<ConfigRow> = configs
+            .into_iter()
+            .map(|(id, rows)| {
+                let cov: Vec<f64> = rows.iter().map(|&r| self.num(r, "cov_final_free")).collect();
+                let tf: Vec<f64> = rows.iter().map(|&r| self.num(r, "t_final")).collect();
+                let f = rows.iter().map(|&r| self.num(r, "f_free")).sum::<f64>() / rows.len() as f64;
+                (id, rows, mean_ci95(&cov), mean_ci95(&tf), f)
+            })
+            .collect();
+        rows.sort_by(|a, b| b.4.total_cmp(&a.4).then(a.0.cmp(&b.0)));
+        rows
+    }
+
+    /// Writes `configurations.csv`: each configuration's swept values and its means over seeds.
+    pub fn write_configurations(&self) -> Result<(), ReportError> {
+        let mut csv = String::from("config_id,");
+        for p in &self.params {
+            csv.push_str(&format!("{p},"));
+        }
+        csv.push_str("n,cov_final_mean,cov_final_ci95,t_final_mean,t_final_ci95,fitness_mean\n");
+        for (id, rows, c, tf, f) in &self.configs {
+            let vals: Vec<String> = self.params.iter().map(|p| self.get(rows[0], p)).collect();
+            csv.push_str(&format!("{id},{},{},{},{},{},{},{}\n", vals.join(","), rows.len(), c.0, c.1, tf.0, tf.1, f));
+        }
+        crate::io::write_atomic(&self.out.join("configurations.csv"), csv.as_bytes())
+            .map_err(|e| ReportError::Io(e.to_string()))
+    }
+}
