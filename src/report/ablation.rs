@@ -4,14 +4,11 @@
 //! the best path of each planner on each map, and findings in plain words derived from those
 //! numbers. Planners are compared only through the common scorer's columns.
 
-use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
 use super::search_objective::{self, MapRuns};
 use super::{ReportError, param_columns};
-use crate::coverage::CoverageGrid;
-use crate::plot::path::PathFigure;
 use crate::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
 use crate::study::records::RunsTable;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -29,9 +26,6 @@ const TABLE: [(&str, &str, usize); 10] = [
     ("obstacle_cells", "obstacle cells", 0),
 ];
 
-/// A best run loaded for its panel: map, visit grid, plan, robot width, title.
-type LoadedPanel = (crate::map::GridMap, CoverageGrid, Vec<Vec<crate::geom::Point>>, f64, String);
-
 /// The metrics tested pairwise.
 const TESTED: [&str; 4] = ["cov_final_reach", "t_final", "f_reach", "cam_walls_free"];
 
@@ -41,7 +35,8 @@ pub struct Comparison {
     pub markdown: String,
 }
 
-fn short_map(source: &str) -> String {
+/// A map's short name: its file stem.
+pub(super) fn short_map(source: &str) -> String {
     Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| source.to_string())
 }
 
@@ -119,134 +114,159 @@ fn labels(t: &RunsTable) -> Vec<String> {
         .collect()
 }
 
-/// The best coverage at evaluation `e` of a history (a step function of the evaluations).
-fn at(curve: &[(f64, f64)], e: f64) -> Option<f64> {
-    curve.iter().take_while(|(x, _)| *x <= e).last().map(|(_, y)| *y)
+/// A planner comparison: the runs with each row's planner label, the maps in order of first
+/// appearance and the labels in the registry's order of their planners.
+pub(super) struct Comparing<'a> {
+    pub t: &'a RunsTable,
+    label: Vec<String>,
+    /// The `map` column.
+    mc: usize,
+    pub maps: Vec<String>,
+    pub variants: Vec<String>,
+    /// Variants whose initial population holds a planner's plan (`thesis.seed_population`):
+    /// compared with that plan, not with random search.
+    seeded: BTreeMap<String, String>,
+    /// Variants of the thesis GA optimising the camera (`thesis.objective`): random search
+    /// draws for the footprint's fitness, so their footprint coverage is not its to compare.
+    camera_objective: BTreeSet<String>,
 }
 
-/// A run's `(evaluations, best_coverage_reach)` curve: the reachable coverage the tables
-/// headline (histories written before that column existed have none).
-fn history(path: &Path) -> Option<Vec<(f64, f64)>> {
-    let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
-    let (e, c) = (t.col("evaluations")?, t.col("best_coverage_reach")?);
-    let v: Option<Vec<(f64, f64)>> = t.rows.iter().map(|r| Some((r[e].parse().ok()?, r[c].parse().ok()?))).collect();
-    v.filter(|v| v.len() > 1)
+/// (map, metric, first, second) -> (Holm p, A12) of the pairs tested, for the sentences.
+type Tested = BTreeMap<(String, &'static str, String, String), (f64, f64)>;
+
+/// What the comparison writes as it goes through the maps.
+#[derive(Default)]
+struct Written {
+    md: String,
+    /// `planners.csv`.
+    csv: String,
+    /// `pairwise.csv`.
+    pair_csv: String,
+    findings: Vec<String>,
+    tested: Tested,
+    /// The rows of the search-versus-objective table, on the maps that have all four cells.
+    two_by_two: String,
 }
 
-/// Writes the comparison's files into `out` and returns its markdown section.
-pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, ReportError> {
-    let label = labels(t);
-    let mc = t.col("map").ok_or_else(|| ReportError::Input("runs.csv has no `map` column".into()))?;
-    let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
-    // Maps in order of first appearance, planners in a fixed order of their names.
-    let mut maps: Vec<String> = Vec::new();
-    for r in &t.rows {
-        if !maps.contains(&r[mc]) {
-            maps.push(r[mc].clone());
+impl<'a> Comparing<'a> {
+    fn new(t: &'a RunsTable) -> Result<Self, ReportError> {
+        let label = labels(t);
+        let mc = t.col("map").ok_or_else(|| ReportError::Input("runs.csv has no `map` column".into()))?;
+        let mut maps: Vec<String> = Vec::new();
+        for r in &t.rows {
+            if !maps.contains(&r[mc]) {
+                maps.push(r[mc].clone());
+            }
         }
+        let order: Vec<&str> = crate::experiment::registry::PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        let mut variants: Vec<String> = label.clone();
+        variants.sort_by_key(|l| (order.iter().position(|o| l.starts_with(o)).unwrap_or(order.len()), l.clone()));
+        variants.dedup();
+        let seeded = t
+            .col("thesis.seed_population")
+            .map(|c| {
+                (0..t.rows.len())
+                    .map(|r| (label[r].clone(), label_part(&t.rows[r][c])))
+                    .filter(|(_, seed)| !seed.is_empty())
+                    .collect()
+            })
+            .unwrap_or_default();
+        let camera_objective = t
+            .col("thesis.objective")
+            .map(|c| (0..t.rows.len()).filter(|&r| t.rows[r][c] == "camera").map(|r| label[r].clone()).collect())
+            .unwrap_or_default();
+        Ok(Self { t, label, mc, maps, variants, seeded, camera_objective })
     }
-    let order: Vec<&str> = crate::experiment::registry::PlannerKind::ALL.iter().map(|k| k.name()).collect();
-    let mut variants: Vec<String> = label.clone();
-    variants.sort_by_key(|l| (order.iter().position(|o| l.starts_with(o)).unwrap_or(order.len()), l.clone()));
-    variants.dedup();
-    let flag = |r: usize, c: &str| t.col(c).is_some_and(|i| t.rows[r][i] == "true");
-    let all_rows_of = |map: &str, v: &str| -> Vec<usize> {
-        (0..t.rows.len()).filter(|&r| t.rows[r][mc] == map && label[r] == v).collect()
-    };
-    // Tables, tests and findings compare executable plans only (plans a robot can drive:
-    // the robot's body touches no occupied, unknown or off-map cell); the share and the all-plans coverage
-    // stand beside them.
-    let rows_of = |map: &str, v: &str| -> Vec<usize> {
-        all_rows_of(map, v).into_iter().filter(|&r| flag(r, "executable")).collect()
-    };
-    let mut md = String::new();
-    let mut csv = String::from("map,planner,metric,n,median,q1,q3,mean\n");
-    let mut pair_csv = String::from("map,metric,a,b,n_a,n_b,u,p,p_holm,a12\n");
-    let _ = writeln!(md, "## Planner comparison\n");
-    let _ = writeln!(
-        md,
-        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. `executable`: plans a robot can drive (its body touches no occupied, unknown or off-map cell along the path); `planner-feasible`: plans that also meet their planner's own constraints. Metric values are median [q1, q3] over the executable plans of the replicates (deterministic planners run once); `cov (all plans)` is the median reachable coverage over every plan, executable or not. Tests and findings compare executable plans only. All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
-    );
-    let _ = writeln!(
-        md,
-        "![Box plots](boxplots_cov.png)\n\n![Box plots](boxplots_time.png)\n\n![Convergence](convergence.png)\n\n![Best paths](planner_paths.png)\n"
-    );
-    let mut findings = Vec::new();
-    // Variants whose initial population holds a planner's plan (`thesis.seed_population`):
-    // compared with that plan, not with random search.
-    let seeded: BTreeMap<&String, String> = t
-        .col("thesis.seed_population")
-        .map(|c| {
-            (0..t.rows.len())
-                .map(|r| (&label[r], label_part(&t.rows[r][c])))
-                .filter(|(_, seed)| !seed.is_empty())
-                .collect()
-        })
-        .unwrap_or_default();
-    // Variants of the thesis GA optimising the camera (`thesis.objective`): random search
-    // draws for the footprint's fitness, so their footprint coverage is not its to compare.
-    let camera_objective: std::collections::BTreeSet<&String> = t
-        .col("thesis.objective")
-        .map(|c| (0..t.rows.len()).filter(|&r| t.rows[r][c] == "camera").map(|r| &label[r]).collect())
-        .unwrap_or_default();
-    // (map, metric, first, second) -> (Holm p, A12), for the sentences below.
-    let mut tested: BTreeMap<(String, &str, String, String), (f64, f64)> = BTreeMap::new();
-    // The rows of the search-versus-objective table, on the maps that have all four cells.
-    let mut two_by_two = String::new();
-    for map in &maps {
-        let name = short_map(map);
-        let present: Vec<&String> = variants.iter().filter(|v| !rows_of(map, v).is_empty()).collect();
-        let _ = writeln!(md, "### {name}\n");
+
+    /// A number of row `r` (NaN where absent).
+    pub fn num(&self, r: usize, c: &str) -> f64 {
+        self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
+    }
+
+    /// Whether row `r`'s column `c` is `true`.
+    pub fn flag(&self, r: usize, c: &str) -> bool {
+        self.t.col(c).is_some_and(|i| self.t.rows[r][i] == "true")
+    }
+
+    /// Every run of variant `v` on `map`.
+    pub fn all_rows_of(&self, map: &str, v: &str) -> Vec<usize> {
+        (0..self.t.rows.len()).filter(|&r| self.t.rows[r][self.mc] == map && self.label[r] == v).collect()
+    }
+
+    /// The executable runs of variant `v` on `map`: tables, tests and findings compare plans a
+    /// robot can drive (its body touches no occupied, unknown or off-map cell); the share and
+    /// the all-plans coverage stand beside them.
+    pub fn rows_of(&self, map: &str, v: &str) -> Vec<usize> {
+        self.all_rows_of(map, v).into_iter().filter(|&r| self.flag(r, "executable")).collect()
+    }
+
+    /// The variants with a run on `map` (`executable`: with an executable one).
+    fn present(&self, map: &str, executable: bool) -> Vec<&String> {
+        let rows = |v: &str| if executable { self.rows_of(map, v) } else { self.all_rows_of(map, v) };
+        self.variants.iter().filter(|v| !rows(v).is_empty()).collect()
+    }
+
+    /// The table of one map: each variant's runs, executable and feasible shares, and the
+    /// median [quartiles] of every metric of [`TABLE`].
+    fn map_table(&self, map: &str, name: &str, w: &mut Written) {
+        let _ = writeln!(w.md, "### {name}\n");
         let _ = writeln!(
-            md,
+            w.md,
             "| planner | runs | executable | planner-feasible | {} | cov (all plans) |",
             TABLE.iter().map(|(_, h, _)| *h).collect::<Vec<_>>().join(" | ")
         );
-        let _ = writeln!(md, "|---|---|---|---|{}---|", "---|".repeat(TABLE.len()));
-        let present_all: Vec<&String> = variants.iter().filter(|v| !all_rows_of(map, v).is_empty()).collect();
-        for v in &present_all {
-            let all = all_rows_of(map, v);
-            let rows = rows_of(map, v);
-            let feasible = all.iter().filter(|&&r| flag(r, "planner_feasible")).count();
+        let _ = writeln!(w.md, "|---|---|---|---|{}---|", "---|".repeat(TABLE.len()));
+        for v in self.present(map, false) {
+            let all = self.all_rows_of(map, v);
+            let rows = self.rows_of(map, v);
+            let feasible = all.iter().filter(|&&r| self.flag(r, "planner_feasible")).count();
             let mut cells = Vec::new();
             for (c, _, d) in TABLE {
-                let vals: Vec<f64> = rows.iter().map(|&r| num(r, c)).collect();
+                let vals: Vec<f64> = rows.iter().map(|&r| self.num(r, c)).collect();
                 if vals.is_empty() {
                     cells.push("–".to_string());
                     continue;
                 }
                 let (q1, med, q3) = quartiles(&vals);
                 let mean = vals.iter().sum::<f64>() / vals.len() as f64;
-                let _ = writeln!(csv, "{name},{v},{c},{},{med},{q1},{q3},{mean}", vals.len());
+                let _ = writeln!(w.csv, "{name},{v},{c},{},{med},{q1},{q3},{mean}", vals.len());
                 cells.push(if vals.len() > 1 {
                     format!("{med:.d$} [{q1:.d$}, {q3:.d$}]")
                 } else {
                     format!("{med:.d$}")
                 });
             }
-            let cov_all = quartiles(&all.iter().map(|&r| num(r, "cov_final_reach")).collect::<Vec<_>>()).1;
+            let cov_all = quartiles(&all.iter().map(|&r| self.num(r, "cov_final_reach")).collect::<Vec<_>>()).1;
             let _ = writeln!(
-                md,
+                w.md,
                 "| {v} | {n} | {}/{n} | {feasible}/{n} | {} | {cov_all:.3} |",
                 rows.len(),
                 cells.join(" | "),
                 n = all.len()
             );
         }
-        // Pairwise tests.
+    }
+
+    /// Pairwise two-sided Mann–Whitney U tests on one map, Holm-corrected over the pairs of a
+    /// metric, with A₁₂; a GA against random search in words.
+    fn pairwise_tests(&self, map: &str, name: &str, w: &mut Written) {
         let _ = writeln!(
-            md,
+            w.md,
             "\nPairwise two-sided Mann–Whitney U tests (Holm-corrected over the pairs of a metric), A₁₂ = P(first > second):\n"
         );
-        let _ = writeln!(md, "| metric | first | second | p (Holm) | A₁₂ | effect |\n|---|---|---|---|---|---|");
-        let samples: Vec<(&String, Vec<usize>)> =
-            present.iter().map(|v| (*v, rows_of(map, v))).filter(|(_, r)| r.len() >= 2).collect();
+        let _ = writeln!(w.md, "| metric | first | second | p (Holm) | A₁₂ | effect |\n|---|---|---|---|---|---|");
+        let samples: Vec<(&String, Vec<usize>)> = self
+            .present(map, true)
+            .into_iter()
+            .map(|v| (v, self.rows_of(map, v)))
+            .filter(|(_, r)| r.len() >= 2)
+            .collect();
         for metric in TESTED {
             let mut pairs = Vec::new();
             for i in 0..samples.len() {
                 for j in i + 1..samples.len() {
-                    let a: Vec<f64> = samples[i].1.iter().map(|&r| num(r, metric)).collect();
-                    let b: Vec<f64> = samples[j].1.iter().map(|&r| num(r, metric)).collect();
+                    let a: Vec<f64> = samples[i].1.iter().map(|&r| self.num(r, metric)).collect();
+                    let b: Vec<f64> = samples[j].1.iter().map(|&r| self.num(r, metric)).collect();
                     let a12 = vargha_delaney_a12(&a, &b);
                     let test = mann_whitney_u(&a, &b);
                     pairs.push((samples[i].0, samples[j].0, a.len(), b.len(), test, a12));
@@ -256,17 +276,21 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             let adjusted = holm(&raw);
             for (k, (a, b, na, nb, test, a12)) in pairs.iter().enumerate() {
                 let u = test.map_or(f64::NAN, |t| t.u);
-                let _ = writeln!(pair_csv, "{name},{metric},{a},{b},{na},{nb},{u},{},{},{a12}", raw[k], adjusted[k]);
-                tested.insert((name.clone(), metric, a.to_string(), b.to_string()), (adjusted[k], *a12));
-                let _ =
-                    writeln!(md, "| {metric} | {a} | {b} | {:.2e} | {a12:.2} | {} |", adjusted[k], a12_magnitude(*a12));
+                let _ = writeln!(w.pair_csv, "{name},{metric},{a},{b},{na},{nb},{u},{},{},{a12}", raw[k], adjusted[k]);
+                w.tested.insert((name.to_string(), metric, a.to_string(), b.to_string()), (adjusted[k], *a12));
+                let _ = writeln!(
+                    w.md,
+                    "| {metric} | {a} | {b} | {:.2e} | {a12:.2} | {} |",
+                    adjusted[k],
+                    a12_magnitude(*a12)
+                );
                 if metric == "cov_final_reach"
                     && b.as_str() == "random_search"
                     && a.starts_with("thesis")
-                    && !seeded.contains_key(a)
-                    && !camera_objective.contains(a)
+                    && !self.seeded.contains_key(*a)
+                    && !self.camera_objective.contains(*a)
                 {
-                    findings.push(format!(
+                    w.findings.push(format!(
                         "On {name}, {a} against random search with the same evaluations: A₁₂ = {a12:.2} ({}), Holm-corrected p = {:.1e}: the GA's machinery {} coverage here.",
                         a12_magnitude(*a12),
                         adjusted[k],
@@ -275,46 +299,57 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
                 }
             }
         }
-        let _ = writeln!(md);
-        // Search versus objective (`search_objective`): one search with two objectives, and
-        // two searches with one objective.
+        let _ = writeln!(w.md);
+    }
+
+    /// Search against objective (`search_objective`: one search with two objectives, and two
+    /// searches with one objective) and seeded variants against their seed, on one map.
+    fn designed_findings(&self, map: &str, name: &str, w: &mut Written) {
+        let tested = &w.tested;
         let pair = |a: &str, b: &str, metric: &str| {
-            tested.get(&(name.clone(), metric, a.to_string(), b.to_string())).copied().or_else(|| {
-                tested.get(&(name.clone(), metric, b.to_string(), a.to_string())).map(|&(p, x)| (p, 1.0 - x))
-            })
+            let key = |a: &str, b: &str| (name.to_string(), metric, a.to_string(), b.to_string());
+            let swap = |&(p, x): &(f64, f64)| (p, 1.0 - x);
+            tested.get(&key(a, b)).copied().or_else(|| tested.get(&key(b, a)).map(swap))
         };
         let split = |v: &str| {
-            let all = all_rows_of(map, v);
-            let exec = all.iter().copied().filter(|&r| flag(r, "executable")).collect();
+            let all = self.all_rows_of(map, v);
+            let exec = all.iter().copied().filter(|&r| self.flag(r, "executable")).collect();
             (all, exec)
         };
-        let cell_list: Vec<(&String, Option<(&'static str, &'static str)>)> = present_all
-            .iter()
+        let num = |r: usize, c: &str| self.num(r, c);
+        let cell_list: Vec<(&String, Option<(&'static str, &'static str)>)> = self
+            .present(map, false)
+            .into_iter()
             .map(|v| {
-                let first = all_rows_of(map, v)[0];
-                (*v, search_objective::cell_of(&|c: &str| t.col(c).map(|i| t.rows[first][i].clone())))
+                let first = self.all_rows_of(map, v)[0];
+                (v, search_objective::cell_of(&|c: &str| self.t.col(c).map(|i| self.t.rows[first][i].clone())))
             })
             .collect();
-        let cells = MapRuns { name: &name, cells: &cell_list, rows: &split, num: &num, pair: &pair };
+        let cells = MapRuns { name, cells: &cell_list, rows: &split, num: &num, pair: &pair };
         if cells.complete() {
-            cells.table_rows(&mut two_by_two);
+            cells.table_rows(&mut w.two_by_two);
         }
-        findings.extend(cells.findings());
-        for (v, seed) in &seeded {
-            let (runs, plan) = (rows_of(map, v), rows_of(map, seed));
-            if let Some(sentence) = against_seed(&name, v, seed, &runs, &plan, num) {
-                findings.push(sentence);
-            }
+        let mut found = cells.findings();
+        for (v, seed) in &self.seeded {
+            let (runs, plan) = (self.rows_of(map, v), self.rows_of(map, seed));
+            found.extend(against_seed(name, v, seed, &runs, &plan, num));
         }
-        // Findings per map: coverage and time leaders.
-        let med = |v: &String, c: &str| quartiles(&rows_of(map, v).iter().map(|&r| num(r, c)).collect::<Vec<_>>()).1;
+        w.findings.extend(found);
+    }
+
+    /// The coverage and time leaders of one map, and the plans left out and why.
+    fn leaders_and_left_out(&self, map: &str, name: &str, w: &mut Written) {
+        let present = self.present(map, true);
+        let med = |v: &String, c: &str| {
+            quartiles(&self.rows_of(map, v).iter().map(|&r| self.num(r, c)).collect::<Vec<_>>()).1
+        };
         let mut by_cov: Vec<&String> = present.clone();
         by_cov.sort_by(|a, b| med(b, "cov_final_reach").total_cmp(&med(a, "cov_final_reach")));
         let mut by_time: Vec<&String> = present.clone();
         by_time.sort_by(|a, b| med(a, "time_s").total_cmp(&med(b, "time_s")));
         if let (Some(first), Some(fast)) = (by_cov.first(), by_time.first()) {
             let ranking: Vec<String> = by_cov.iter().map(|v| format!("{v} {:.3}", med(v, "cov_final_reach"))).collect();
-            findings.push(format!(
+            w.findings.push(format!(
                 "On {name}, median coverage of the reachable cells ranks {}; {first} covers most, {fast} has the shortest median time ({:.0} s, against {:.0} s for {first}).",
                 ranking.join(" > "),
                 med(fast, "time_s"),
@@ -322,146 +357,70 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
             ));
         }
         let count_of = |f: &dyn Fn(usize) -> bool| -> Vec<String> {
-            present_all
-                .iter()
+            self.present(map, false)
+                .into_iter()
                 .filter_map(|v| {
-                    let all = all_rows_of(map, v);
+                    let all = self.all_rows_of(map, v);
                     let bad = all.iter().filter(|&&r| f(r)).count();
                     (bad > 0).then(|| format!("{v} {bad}/{}", all.len()))
                 })
                 .collect()
         };
-        let not_executable = count_of(&|r| !flag(r, "executable"));
+        let not_executable = count_of(&|r| !self.flag(r, "executable"));
         if !not_executable.is_empty() {
-            findings.push(format!(
+            w.findings.push(format!(
                 "On {name}, plans a robot cannot drive (its body touches an occupied, unknown or off-map cell), left out of the medians, tests and rankings above: {}.",
                 not_executable.join(", ")
             ));
         }
-        let infeasible = count_of(&|r| flag(r, "executable") && !flag(r, "planner_feasible"));
+        let infeasible = count_of(&|r| self.flag(r, "executable") && !self.flag(r, "planner_feasible"));
         if !infeasible.is_empty() {
-            findings.push(format!(
+            w.findings.push(format!(
                 "On {name}, executable plans that break their planner's own constraints (loop closures, connectivity or the coverage ramp for the waypoint planner): {}.",
                 infeasible.join(", ")
             ));
         }
     }
+}
+
+/// Writes the comparison's files into `out` and returns its markdown section.
+pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, ReportError> {
+    let c = Comparing::new(t)?;
+    let mut w = Written {
+        csv: String::from("map,planner,metric,n,median,q1,q3,mean\n"),
+        pair_csv: String::from("map,metric,a,b,n_a,n_b,u,p,p_holm,a12\n"),
+        ..Written::default()
+    };
+    let _ = writeln!(w.md, "## Planner comparison\n");
+    let _ = writeln!(
+        w.md,
+        "Every run is scored by the common scorer (same robot footprint, same camera); `reachable` coverage divides by the cells the footprint can sweep from the start, `all free` by every free cell. `executable`: plans a robot can drive (its body touches no occupied, unknown or off-map cell along the path); `planner-feasible`: plans that also meet their planner's own constraints. Metric values are median [q1, q3] over the executable plans of the replicates (deterministic planners run once); `cov (all plans)` is the median reachable coverage over every plan, executable or not. Tests and findings compare executable plans only. All values per metric: `planners.csv`; all pairwise tests: `pairwise.csv`.\n"
+    );
+    let _ = writeln!(
+        w.md,
+        "![Box plots](boxplots_cov.png)\n\n![Box plots](boxplots_time.png)\n\n![Convergence](convergence.png)\n\n![Best paths](planner_paths.png)\n"
+    );
+    for map in &c.maps {
+        let name = short_map(map);
+        c.map_table(map, &name, &mut w);
+        c.pairwise_tests(map, &name, &mut w);
+        c.designed_findings(map, &name, &mut w);
+        c.leaders_and_left_out(map, &name, &mut w);
+    }
     let write = |name: &str, text: &str| {
         crate::io::write_atomic(&out.join(name), text.as_bytes()).map_err(|e| ReportError::Io(format!("{name}: {e}")))
     };
-    write("planners.csv", &csv)?;
-    write("pairwise.csv", &pair_csv)?;
-    // Box plots.
-    let boxes = |metric: &str| -> Vec<(String, Vec<BoxSeries>)> {
-        maps.iter()
-            .map(|map| {
-                let series = variants
-                    .iter()
-                    .map(|v| BoxSeries {
-                        label: v.clone(),
-                        values: rows_of(map, v).iter().map(|&r| num(r, metric)).collect(),
-                        excluded: all_rows_of(map, v)
-                            .into_iter()
-                            .filter(|&r| !flag(r, "executable"))
-                            .map(|r| num(r, metric))
-                            .collect(),
-                    })
-                    .filter(|b| !b.values.is_empty() || !b.excluded.is_empty())
-                    .collect();
-                (short_map(map), series)
-            })
-            .collect()
-    };
-    crate::plot::save(
-        &BoxFigure { metric: "cov_final over reachable cells".into(), panels: boxes("cov_final_reach") },
-        &out.join("boxplots_cov"),
-    )?;
-    crate::plot::save(&BoxFigure { metric: "time [s]".into(), panels: boxes("time_s") }, &out.join("boxplots_time"))?;
-    // Convergence curves of the planners with a history.
-    let mut panels = Vec::new();
-    for map in &maps {
-        let mut curves = Vec::new();
-        for v in &variants {
-            let hs: Vec<Vec<(f64, f64)>> = rows_of(map, v)
-                .iter()
-                .filter_map(|&r| history(&dir.join("runs").join(&t.rows[r][0]).join("history.csv")))
-                .collect();
-            if hs.is_empty() {
-                continue;
-            }
-            let x_max = hs.iter().flat_map(|h| h.last().map(|p| p.0)).fold(0.0, f64::max);
-            let points = (0..=60)
-                .map(|k| {
-                    let e = x_max * k as f64 / 60.0;
-                    let vals: Vec<f64> = hs.iter().filter_map(|h| at(h, e)).collect();
-                    let (q1, m, q3) = quartiles(&vals);
-                    (e, q1, m, q3)
-                })
-                .filter(|p| p.2.is_finite())
-                .collect();
-            curves.push(Curve { label: v.clone(), runs: hs.len(), points });
-        }
-        panels.push((short_map(map), curves));
-    }
-    crate::plot::save(&ConvergenceFigure { panels }, &out.join("convergence"))?;
-    // Best path of each planner on each map.
-    let mut loaded: Vec<Vec<Option<LoadedPanel>>> = Vec::new();
-    // What an empty panel says: a planner that ran on the map without an executable plan.
-    let mut missing: Vec<Vec<Option<String>>> = Vec::new();
-    for map in &maps {
-        let (mut row, mut notes) = (Vec::new(), Vec::new());
-        for v in &variants {
-            let rows = rows_of(map, v);
-            let ran = all_rows_of(map, v).len();
-            notes.push((ran > 0 && rows.is_empty()).then(|| format!("{v}: no executable plan (0/{ran})")));
-            let Some(&best) = rows.iter().max_by(|&&a, &&b| num(a, "f_reach").total_cmp(&num(b, "f_reach"))) else {
-                row.push(None);
-                continue;
-            };
-            let run_dir = dir.join("runs").join(&t.rows[best][0]);
-            let cfg = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")).ok();
-            let paths = crate::io::read_path_csv(&run_dir.join("best_path.csv")).ok();
-            let panel = cfg.zip(paths).and_then(|(cfg, paths)| {
-                let m = crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()).ok()?;
-                let g = CoverageGrid::new(&m);
-                let title = format!(
-                    "{v}, {}: cov {:.3}, t {:.3}",
-                    short_map(map),
-                    num(best, "cov_final_reach"),
-                    num(best, "t_final")
-                );
-                Some((m, g, paths, cfg.robot.width, title))
-            });
-            row.push(panel);
-        }
-        loaded.push(row);
-        missing.push(notes);
-    }
-    let rows: Vec<Vec<Option<PathFigure>>> = loaded
-        .iter()
-        .map(|row| {
-            row.iter()
-                .map(|p| {
-                    p.as_ref().map(|(m, g, paths, w, title)| PathFigure {
-                        map: m,
-                        grid: g,
-                        paths: paths.clone(),
-                        width: *w,
-                        robots: Vec::new(),
-                        title: title.clone(),
-                    })
-                })
-                .collect()
-        })
-        .collect();
-    crate::plot::save(&PlannerPathsFigure { rows, missing }, &out.join("planner_paths"))?;
-    if !two_by_two.is_empty() {
+    write("planners.csv", &w.csv)?;
+    write("pairwise.csv", &w.pair_csv)?;
+    super::ablation_plots::draw(&c, dir, out)?;
+    let mut md = w.md;
+    if !w.two_by_two.is_empty() {
         search_objective::table_head(&mut md);
-        md.push_str(&two_by_two);
+        md.push_str(&w.two_by_two);
         let _ = writeln!(md);
     }
     let _ = writeln!(md, "## Findings\n");
-    for f in &findings {
+    for f in &w.findings {
         let _ = writeln!(md, "- {f}");
     }
     let _ = writeln!(md);

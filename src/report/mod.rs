@@ -13,6 +13,7 @@
 
 pub mod ablation;
 pub mod ablation_figures;
+mod ablation_plots;
 pub mod anova;
 pub mod anova_report;
 pub mod claims;

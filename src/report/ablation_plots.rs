@@ -1,0 +1,164 @@
+//! The figures of the planner comparison ([`super::ablation`]): box plots of coverage and
+//! time per map, the GAs' convergence curves (median and quartiles over seeds) and the best
+//! executable path of each planner on each map.
+
+use super::ReportError;
+use super::ablation::{Comparing, short_map};
+use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
+use crate::coverage::CoverageGrid;
+use crate::plot::path::PathFigure;
+use crate::stats::quartiles;
+use crate::study::records::RunsTable;
+use std::path::Path;
+
+/// A best run loaded for its panel: map, visit grid, plan, robot width, title.
+type LoadedPanel = (crate::map::GridMap, CoverageGrid, Vec<Vec<crate::geom::Point>>, f64, String);
+
+/// Draws the comparison's figures into `out`; `dir` holds the runs' folders.
+pub(super) fn draw(c: &Comparing, dir: &Path, out: &Path) -> Result<(), ReportError> {
+    crate::plot::save(
+        &BoxFigure { metric: "cov_final over reachable cells".into(), panels: boxes(c, "cov_final_reach") },
+        &out.join("boxplots_cov"),
+    )?;
+    crate::plot::save(
+        &BoxFigure { metric: "time [s]".into(), panels: boxes(c, "time_s") },
+        &out.join("boxplots_time"),
+    )?;
+    crate::plot::save(&convergence(c, dir), &out.join("convergence"))?;
+    let loaded = best_paths(c, dir);
+    let missing = c
+        .maps
+        .iter()
+        .map(|map| {
+            c.variants
+                .iter()
+                .map(|v| {
+                    let ran = c.all_rows_of(map, v).len();
+                    (ran > 0 && c.rows_of(map, v).is_empty()).then(|| format!("{v}: no executable plan (0/{ran})"))
+                })
+                .collect()
+        })
+        .collect();
+    let rows: Vec<Vec<Option<PathFigure>>> = loaded
+        .iter()
+        .map(|row| {
+            row.iter()
+                .map(|p| {
+                    p.as_ref().map(|(m, g, paths, w, title)| PathFigure {
+                        map: m,
+                        grid: g,
+                        paths: paths.clone(),
+                        width: *w,
+                        robots: Vec::new(),
+                        title: title.clone(),
+                    })
+                })
+                .collect()
+        })
+        .collect();
+    crate::plot::save(&PlannerPathsFigure { rows, missing }, &out.join("planner_paths"))?;
+    Ok(())
+}
+
+/// The box plot panels of `metric`: per map, each variant's executable values and the others'.
+fn boxes(c: &Comparing, metric: &str) -> Vec<(String, Vec<BoxSeries>)> {
+    c.maps
+        .iter()
+        .map(|map| {
+            let series = c
+                .variants
+                .iter()
+                .map(|v| BoxSeries {
+                    label: v.clone(),
+                    values: c.rows_of(map, v).iter().map(|&r| c.num(r, metric)).collect(),
+                    excluded: c
+                        .all_rows_of(map, v)
+                        .into_iter()
+                        .filter(|&r| !c.flag(r, "executable"))
+                        .map(|r| c.num(r, metric))
+                        .collect(),
+                })
+                .filter(|b| !b.values.is_empty() || !b.excluded.is_empty())
+                .collect();
+            (short_map(map), series)
+        })
+        .collect()
+}
+
+/// The convergence curves of the planners with a history: reachable coverage against
+/// evaluations, median and quartiles over the executable runs, per map.
+fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
+    let mut panels = Vec::new();
+    for map in &c.maps {
+        let mut curves = Vec::new();
+        for v in &c.variants {
+            let hs: Vec<Vec<(f64, f64)>> = c
+                .rows_of(map, v)
+                .iter()
+                .filter_map(|&r| history(&dir.join("runs").join(&c.t.rows[r][0]).join("history.csv")))
+                .collect();
+            if hs.is_empty() {
+                continue;
+            }
+            let x_max = hs.iter().flat_map(|h| h.last().map(|p| p.0)).fold(0.0, f64::max);
+            let points = (0..=60)
+                .map(|k| {
+                    let e = x_max * k as f64 / 60.0;
+                    let vals: Vec<f64> = hs.iter().filter_map(|h| at(h, e)).collect();
+                    let (q1, m, q3) = quartiles(&vals);
+                    (e, q1, m, q3)
+                })
+                .filter(|p| p.2.is_finite())
+                .collect();
+            curves.push(Curve { label: v.clone(), runs: hs.len(), points });
+        }
+        panels.push((short_map(map), curves));
+    }
+    ConvergenceFigure { panels }
+}
+
+/// The best executable run (by `f_reach`) of each variant on each map, loaded for its panel.
+fn best_paths(c: &Comparing, dir: &Path) -> Vec<Vec<Option<LoadedPanel>>> {
+    let mut loaded = Vec::new();
+    for map in &c.maps {
+        let mut row = Vec::new();
+        for v in &c.variants {
+            let rows = c.rows_of(map, v);
+            let Some(&best) = rows.iter().max_by(|&&a, &&b| c.num(a, "f_reach").total_cmp(&c.num(b, "f_reach"))) else {
+                row.push(None);
+                continue;
+            };
+            let run_dir = dir.join("runs").join(&c.t.rows[best][0]);
+            let cfg = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")).ok();
+            let paths = crate::io::read_path_csv(&run_dir.join("best_path.csv")).ok();
+            let panel = cfg.zip(paths).and_then(|(cfg, paths)| {
+                let m = crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()).ok()?;
+                let g = CoverageGrid::new(&m);
+                let title = format!(
+                    "{v}, {}: cov {:.3}, t {:.3}",
+                    short_map(map),
+                    c.num(best, "cov_final_reach"),
+                    c.num(best, "t_final")
+                );
+                Some((m, g, paths, cfg.robot.width, title))
+            });
+            row.push(panel);
+        }
+        loaded.push(row);
+    }
+    loaded
+}
+
+/// The best coverage at evaluation `e` of a history (a step function of the evaluations).
+fn at(curve: &[(f64, f64)], e: f64) -> Option<f64> {
+    curve.iter().take_while(|(x, _)| *x <= e).last().map(|(_, y)| *y)
+}
+
+/// A run's `(evaluations, best_coverage_reach)` curve: the reachable coverage the tables
+/// headline (histories written before that column existed have none).
+fn history(path: &Path) -> Option<Vec<(f64, f64)>> {
+    let t = RunsTable::parse(&std::fs::read_to_string(path).ok()?).ok()?;
+    let (e, c) = (t.col("evaluations")?, t.col("best_coverage_reach")?);
+    let v: Option<Vec<(f64, f64)>> = t.rows.iter().map(|r| Some((r[e].parse().ok()?, r[c].parse().ok()?))).collect();
+    v.filter(|v| v.len() > 1)
+}
