@@ -5,11 +5,11 @@
 
 use crate::config::ConfigError;
 use crate::experiment::file::ExperimentFile;
-use crate::ga::rng::{Purpose, derive};
 use serde::Deserialize;
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use toml::{Table, Value};
+
+mod expand;
 
 /// The base experiment: a path (relative to the grid file) or an inline table.
 #[derive(Clone, Debug, Deserialize)]
@@ -234,72 +234,20 @@ impl Study {
     pub fn parse(text: &str, path: &Path) -> Result<Self, ConfigError> {
         let origin = path.display().to_string();
         let grid: GridFile = toml::from_str(text).map_err(|e| ConfigError::from_toml(&origin, text, &e))?;
-        let mut base = match &grid.base {
-            BaseRef::Inline(t) => t.clone(),
-            BaseRef::Path(p) => {
-                let full = path.parent().unwrap_or(Path::new(".")).join(p);
-                let body = crate::io::read_text_bounded(&full, crate::io::MAX_TEXT_FILE_BYTES)
-                    .map_err(|e| ConfigError::new(&origin, "base", format!("cannot read {}: {e}", full.display())))?;
-                // Its map path, like every relative map path, is read from the working directory.
-                toml::from_str(&body).map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?
-            }
-        };
-        base.remove("output");
-        // The base itself must be a valid experiment file.
-        Value::Table(base.clone())
-            .try_into::<ExperimentFile>()
-            .map_err(|e| ConfigError::new(&origin, "base", e.message().trim().to_string()))?;
+        let base = read_base(&grid, path, &origin)?;
         if grid.seeds == 0 {
             return Err(ConfigError::new(&origin, "seeds", "= 0 is out of range: at least 1 replicate"));
         }
         let axes = values_of(&grid.axes, &origin, "axes")?;
-        let mut columns: Vec<String> = axes.iter().map(|(k, _)| k.clone()).collect();
         for (k, vals) in &axes {
             check_key(&base, k, &vals[0], &origin, "axes")?;
         }
-        let mut conds = Vec::new();
-        for (n, c) in grid.conditional.iter().enumerate() {
-            let section = format!("conditional[{n}].axes");
-            let cax = values_of(&c.axes, &origin, &section)?;
-            for (k, v) in &cax {
-                check_key(&base, k, &v[0], &origin, &section)?;
-                // Overriding an unconditional axis would fold its values into one
-                // configuration: several runs with one id. Say so instead.
-                if axes.iter().any(|(a, _)| a == k) {
-                    return Err(ConfigError::new(
-                        &origin,
-                        &format!("{section}.\"{k}\""),
-                        "is also an unconditional axis; a conditional axis may not override it (move its values into the conditional, or split the axis into conditionals)",
-                    ));
-                }
-                if !columns.contains(k) {
-                    columns.push(k.clone());
-                }
-            }
-            for (k, v) in &c.when {
-                let swept =
-                    axes.iter().any(|(a, _)| a == k) || grid.conditional[..n].iter().any(|p| p.axes.contains_key(k));
-                if get(&base, k).is_none() && !swept && !default_has(k) {
-                    return Err(ConfigError::new(
-                        &origin,
-                        &format!("conditional[{n}].when.\"{k}\""),
-                        "names a key that is neither in the base experiment nor swept",
-                    ));
-                }
-                check_key(&base, k, v, &origin, &format!("conditional[{n}].when"))?;
-            }
-            conds.push((c.when.clone(), cax));
-        }
-        // Cartesian product of the unconditional axes, then each conditional in order.
-        // Depth first: each combination of the unconditional axes goes through the
-        // conditionals and becomes runs at once, so only the runs stay in memory.
-        let mut runs = Vec::new();
-        let radix: Vec<usize> = axes.iter().map(|(_, v)| v.len()).collect();
+        let (columns, conds) = conditionals(&grid, &base, &axes, &origin)?;
         // Count before enumerating: an upper bound (every conditional applying everywhere),
         // refused above the limit without allocating anything for the runs.
-        let bound = radix
+        let bound = axes
             .iter()
-            .copied()
+            .map(|(_, v)| v.len())
             .chain(conds.iter().flat_map(|(_, cax)| cax.iter().map(|(_, v)| v.len())))
             .fold(f64::from(grid.seeds), |acc, n| acc * n as f64);
         if bound > MAX_RUNS as f64 {
@@ -311,157 +259,11 @@ impl Study {
                 ),
             ));
         }
-        let combos: usize = radix.iter().product();
-        let mut applied = vec![false; conds.len()];
-        for mut index in 0..combos {
-            let mut table = base.clone();
-            let mut params = Vec::with_capacity(axes.len());
-            for (k, vals) in axes.iter().rev() {
-                let v = &vals[index % vals.len()];
-                index /= vals.len();
-                set(&mut table, k, v.clone()).map_err(|m| ConfigError::new(&origin, k, m))?;
-                params.push((k.clone(), v.clone()));
-            }
-            params.reverse();
-            let mut stack = vec![(table, params, Vec::<String>::new(), 0usize)];
-            while let Some((t, params, branch, next_cond)) = stack.pop() {
-                let Some((when, cax)) = conds.get(next_cond) else {
-                    self_runs(&origin, &grid, &columns, t, &params, &branch, &mut runs)?;
-                    continue;
-                };
-                let resolved: ExperimentFile = Value::Table(t.clone())
-                    .try_into()
-                    .map_err(|e| ConfigError::new(&origin, "", e.message().trim().to_string()))?;
-                let resolved_table = Table::try_from(resolved).expect("experiment files serialise");
-                if !when.iter().all(|(k, v)| get(&resolved_table, k).map(scalar_text) == Some(scalar_text(v))) {
-                    stack.push((t, params, branch, next_cond + 1));
-                    continue;
-                }
-                applied[next_cond] = true;
-                // A key an earlier conditional already set in this run: the later one would
-                // silently replace its values (and fold its configurations into one).
-                if let Some((k, _)) = cax.iter().find(|(k, _)| params.iter().any(|(p, _)| p == k)) {
-                    let earlier = (0..next_cond)
-                        .rev()
-                        .find(|&m| grid.conditional[m].axes.contains_key(k.as_str()))
-                        .map_or_else(|| "an earlier conditional".to_string(), |m| format!("conditional[{m}]"));
-                    return Err(ConfigError::new(
-                        &origin,
-                        &format!("conditional[{next_cond}].axes.\"{k}\""),
-                        format!(
-                            "is also set by {earlier}, and both apply to the runs with {}: conditional axes that set the same key must not both apply (make their `when` tables exclusive, or merge their values into one conditional)",
-                            params
-                                .iter()
-                                .map(|(k, v)| format!("{k} = {}", scalar_text(v)))
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
-                    ));
-                }
-                let mut b = branch.clone();
-                b.push(when.iter().map(|(k, v)| format!("{k}={}", scalar_text(v))).collect::<Vec<_>>().join(","));
-                let mut expanded = vec![(t, params)];
-                for (k, vals) in cax {
-                    let mut next = Vec::with_capacity(expanded.len() * vals.len());
-                    for (t, p) in &expanded {
-                        for v in vals {
-                            let mut t = t.clone();
-                            set(&mut t, k, v.clone()).map_err(|m| ConfigError::new(&origin, k, m))?;
-                            let mut p = p.clone();
-                            p.push((k.clone(), v.clone()));
-                            next.push((t, p));
-                        }
-                    }
-                    expanded = next;
-                }
-                // Reversed, so that the stack pops them in expansion order.
-                for (t, p) in expanded.into_iter().rev() {
-                    stack.push((t, p, b.clone(), next_cond + 1));
-                }
-            }
-        }
-        if let Some(n) = applied.iter().position(|a| !a) {
-            let when: Vec<String> =
-                grid.conditional[n].when.iter().map(|(k, v)| format!("{k} = {}", scalar_text(v))).collect();
-            return Err(ConfigError::new(
-                &origin,
-                &format!("conditional[{n}].when"),
-                format!(
-                    "({}) matches no run of the grid, so its axes would be silently dropped: check the values against the axes, the earlier conditionals and the base",
-                    when.join(", ")
-                ),
-            ));
-        }
-        // A key a run's planner or selection does not read, swept so that two runs differ only
-        // in such keys, makes runs that differ in a value nothing reads (the same run twice
-        // under two ids). A key set but unread where no other run differs from it only there
-        // (the exact solver on the branch of a GA setting) is what it is: a recorded value.
-        let mut unread_alike: std::collections::HashMap<(Vec<Option<String>>, u32), &RunSpec> =
-            std::collections::HashMap::new();
-        for r in &runs {
-            let mut read = r.params.clone();
-            let mut unread = Vec::new();
-            for ((k, v), kept) in columns.iter().zip(&r.params).zip(read.iter_mut()) {
-                if v.is_some()
-                    && let Some(why) = crate::experiment::ignored::why_ignored(&r.file, k)
-                {
-                    *kept = None;
-                    unread.push((k, why));
-                }
-            }
-            if let Some(other) = unread_alike.insert((read, r.replicate), r) {
-                let differs = |k: &String| {
-                    let i = columns.iter().position(|c| c == k).expect("a column");
-                    other.params[i] != r.params[i]
-                };
-                if let Some((k, why)) = unread.iter().find(|(k, _)| differs(k)) {
-                    return Err(ConfigError::new(
-                        &origin,
-                        k,
-                        format!(
-                            "is swept but ignored in run {} ({why}), which then differs from run {} only in keys \
-                             nothing reads; sweep it in a conditional axis where it is read, e.g. [[conditional]] \
-                             when = {{ {} }}",
-                            r.id,
-                            other.id,
-                            deciding_key(k)
-                        ),
-                    ));
-                }
-            }
-        }
-        // Two conditionals setting one key can still fold configurations together.
-        let mut seen: std::collections::HashMap<&str, &RunSpec> = std::collections::HashMap::new();
-        for r in &runs {
-            if let Some(first) = seen.insert(&r.id, r) {
-                let setting = |run: &RunSpec| {
-                    let set: Vec<String> = columns
-                        .iter()
-                        .zip(&run.params)
-                        .filter_map(|(k, v)| v.as_ref().map(|v| format!("{k} = {v}")))
-                        .collect();
-                    format!("{} (branch `{}`)", set.join(", "), run.branch)
-                };
-                let (key, why) = if grid.conditional.is_empty() {
-                    ("axes", "two values of an axis that read as one setting (such as 1 and 1.0) fold into one run")
-                } else {
-                    (
-                        "conditional",
-                        "conditional axes that set the same key must not both apply, and two values that read as one setting (such as 1 and 1.0) fold into one run",
-                    )
-                };
-                return Err(ConfigError::new(
-                    &origin,
-                    key,
-                    format!(
-                        "two runs resolve to one configuration (run id {}): {} and {}; {why}",
-                        r.id,
-                        setting(first),
-                        setting(r)
-                    ),
-                ));
-            }
-        }
+        let expansion =
+            expand::Expansion { origin: &origin, grid: &grid, columns: &columns, axes: &axes, conds: &conds };
+        let runs = expansion.runs(&base)?;
+        expand::check_unread_alike(&origin, &columns, &runs)?;
+        expand::check_distinct_ids(&origin, &grid, &columns, &runs)?;
         Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs })
     }
 
@@ -485,49 +287,76 @@ impl Study {
     }
 }
 
-/// Turns one fully expanded configuration into its replicate runs.
-fn self_runs(
-    origin: &str,
-    grid: &GridFile,
-    columns: &[String],
-    t: Table,
-    params: &[(String, Value)],
-    branch: &[String],
-    runs: &mut Vec<RunSpec>,
-) -> Result<(), ConfigError> {
-    let mut file: ExperimentFile =
-        Value::Table(t).try_into().map_err(|e| ConfigError::new(origin, "", e.message().trim().to_string()))?;
-    file.output.dir = None;
-    let by_key: BTreeMap<&String, &Value> = params.iter().map(|(k, v)| (k, v)).collect();
-    let cells: Vec<Option<String>> = columns.iter().map(|c| by_key.get(c).map(|v| scalar_text(v))).collect();
-    file.seed = 0;
-    let config_text = toml::to_string(&file).expect("experiment files serialise");
-    let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
-    let branch = if branch.is_empty() { "no conditional axes".to_string() } else { branch.join(" & ") };
-    // A deterministic planner gives the same plan for every seed: it runs once.
-    let replicates = if file.is_deterministic() { 1 } else { grid.seeds };
-    for replicate in 0..replicates {
-        let mut f = file.clone();
-        // TOML integers are signed 64-bit: keep run seeds below 2^63.
-        f.seed = derive(grid.seed, &[Purpose::Run as u64, u64::from(replicate)]) >> 1;
-        let text = toml::to_string(&f).expect("experiment files serialise");
-        let id = format!("{:016x}", fnv1a(format!("{text}\nreplicate={replicate}").as_bytes()));
-        runs.push(RunSpec {
-            id,
-            config_id: config_id.clone(),
-            replicate,
-            file: f,
-            params: cells.clone(),
-            branch: branch.clone(),
-        });
-    }
-    Ok(())
-}
-
 /// Keys that an experiment has through defaults even when the base omits them.
 fn default_has(key: &str) -> bool {
     let t = Table::try_from(ExperimentFile::default()).expect("experiment files serialise");
     get(&t, key).is_some()
+}
+
+/// The grid's base experiment (inline, or the file it names beside the grid), without its
+/// `[output]`, checked as an experiment file.
+fn read_base(grid: &GridFile, path: &Path, origin: &str) -> Result<Table, ConfigError> {
+    let mut base = match &grid.base {
+        BaseRef::Inline(t) => t.clone(),
+        BaseRef::Path(p) => {
+            let full = path.parent().unwrap_or(Path::new(".")).join(p);
+            let body = crate::io::read_text_bounded(&full, crate::io::MAX_TEXT_FILE_BYTES)
+                .map_err(|e| ConfigError::new(origin, "base", format!("cannot read {}: {e}", full.display())))?;
+            // Its map path, like every relative map path, is read from the working directory.
+            toml::from_str(&body).map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?
+        }
+    };
+    base.remove("output");
+    // The base itself must be a valid experiment file.
+    Value::Table(base.clone())
+        .try_into::<ExperimentFile>()
+        .map_err(|e| ConfigError::new(origin, "base", e.message().trim().to_string()))?;
+    Ok(base)
+}
+
+/// The grid's columns (the unconditional axes', then each conditional's new keys) and its
+/// conditionals (`when` and axes), each key checked against the base.
+fn conditionals(
+    grid: &GridFile,
+    base: &Table,
+    axes: &expand::Axes,
+    origin: &str,
+) -> Result<(Vec<String>, Vec<expand::Conditional>), ConfigError> {
+    let mut columns: Vec<String> = axes.iter().map(|(k, _)| k.clone()).collect();
+    let mut conds = Vec::new();
+    for (n, c) in grid.conditional.iter().enumerate() {
+        let section = format!("conditional[{n}].axes");
+        let cax = values_of(&c.axes, origin, &section)?;
+        for (k, v) in &cax {
+            check_key(base, k, &v[0], origin, &section)?;
+            // Overriding an unconditional axis would fold its values into one
+            // configuration: several runs with one id. Say so instead.
+            if axes.iter().any(|(a, _)| a == k) {
+                return Err(ConfigError::new(
+                    origin,
+                    &format!("{section}.\"{k}\""),
+                    "is also an unconditional axis; a conditional axis may not override it (move its values into the conditional, or split the axis into conditionals)",
+                ));
+            }
+            if !columns.contains(k) {
+                columns.push(k.clone());
+            }
+        }
+        for (k, v) in &c.when {
+            let swept =
+                axes.iter().any(|(a, _)| a == k) || grid.conditional[..n].iter().any(|p| p.axes.contains_key(k));
+            if get(base, k).is_none() && !swept && !default_has(k) {
+                return Err(ConfigError::new(
+                    origin,
+                    &format!("conditional[{n}].when.\"{k}\""),
+                    "names a key that is neither in the base experiment nor swept",
+                ));
+            }
+            check_key(base, k, v, origin, &format!("conditional[{n}].when"))?;
+        }
+        conds.push((c.when.clone(), cax));
+    }
+    Ok((columns, conds))
 }
 
 #[cfg(test)]
