@@ -50,15 +50,33 @@ pub(super) struct GroupTables<'a> {
 impl GroupTables<'_> {
     /// Appends the tables to `md`.
     pub fn write(&self, md: &mut String) {
-        let (t, groups, best, facets, params) = (self.t, self.groups, self.best, self.facets, self.params);
-        let conf_rows = self.configs;
-        let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
-        let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
-        // A configuration's cells: its parameter values, replicates, means with CIs, mean f.
-        let config_cells = |(_, rows, c, tf, f): &ConfigRow| {
-            let vals: Vec<String> = params.iter().map(|p| get(rows[0], p)).collect();
-            format!("{} | {} | {} | {} | {:.4} |", vals.join(" | "), rows.len(), mean_ci_cell(*c), mean_ci_cell(*tf), f)
-        };
+        self.best_runs(md);
+        self.best_configurations(md);
+        self.fronts(md);
+        self.per_group(md);
+        self.top_configurations(md);
+        self.kruskal_tables(md);
+    }
+
+    /// A number of row `r` (NaN where absent).
+    fn num(&self, r: usize, c: &str) -> f64 {
+        self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
+    }
+
+    /// A cell of row `r` (empty where absent).
+    fn get(&self, r: usize, c: &str) -> String {
+        self.t.col(c).map(|i| self.t.rows[r][i].clone()).unwrap_or_default()
+    }
+
+    /// A configuration's cells: its parameter values, replicates, means with CIs, mean f.
+    fn config_cells(&self, (_, rows, c, tf, f): &ConfigRow) -> String {
+        let vals: Vec<String> = self.params.iter().map(|p| self.get(rows[0], p)).collect();
+        format!("{} | {} | {} | {} | {:.4} |", vals.join(" | "), rows.len(), mean_ci_cell(*c), mean_ci_cell(*tf), f)
+    }
+
+    /// The best run of each group (of each projection where f1 and f2 both occur).
+    fn best_runs(&self, md: &mut String) {
+        let (groups, best, params) = (self.groups, self.best, self.params);
         let _ = writeln!(md, "## Best configuration per group (highest f over all free cells)\n");
         if best.len() > groups.len() {
             let _ = writeln!(md, "f1 and f2 are different functions: the best run of each projection.\n");
@@ -67,18 +85,23 @@ impl GroupTables<'_> {
         let _ = writeln!(md, "|---|---|{}---|---|---|", "---|".repeat(params.len()));
         for (label, r) in best {
             let r = *r;
-            let vals: Vec<String> = params.iter().map(|p| get(r, p)).collect();
+            let vals: Vec<String> = params.iter().map(|p| self.get(r, p)).collect();
             let _ = writeln!(
                 md,
                 "| {} | {} | {} | {:.6} | {:.6} | {:.6} |",
                 label,
-                get(r, "run_id"),
+                self.get(r, "run_id"),
                 vals.join(" | "),
-                num(r, "cov_final_free"),
-                num(r, "t_final"),
-                num(r, "f_free")
+                self.num(r, "cov_final_free"),
+                self.num(r, "t_final"),
+                self.num(r, "f_free")
             );
         }
+    }
+
+    /// The best configuration of each group over its seeds (003 Tables A.1/A.2).
+    fn best_configurations(&self, md: &mut String) {
+        let (t, groups, params, conf_rows) = (self.t, self.groups, self.params, self.configs);
         let _ = writeln!(
             md,
             "\n## Best configuration per group over seeds (highest mean f; 003 Tables A.1/A.2 with 95 % CIs)\n"
@@ -93,10 +116,15 @@ impl GroupTables<'_> {
             for (suffix, rows) in projection_scopes(t, &g.rows) {
                 let members: std::collections::HashSet<usize> = rows.into_iter().collect();
                 if let Some(c) = conf_rows.iter().find(|c| members.contains(&c.1[0])) {
-                    let _ = writeln!(md, "| {}{suffix} | {}", g.label, config_cells(c));
+                    let _ = writeln!(md, "| {}{suffix} | {}", g.label, self.config_cells(c));
                 }
             }
         }
+    }
+
+    /// Each group's front of executable runs, its hypervolume and the run durations.
+    fn fronts(&self, md: &mut String) {
+        let (groups, facets) = (self.groups, self.facets);
         let _ = writeln!(
             md,
             "\n## Fronts of the executable runs, hypervolume (reference point (0, 0)) and run durations per group\n"
@@ -106,7 +134,7 @@ impl GroupTables<'_> {
             "| group | runs | front size | hypervolume | wall s mean | min | max |\n|---|---|---|---|---|---|---|"
         );
         for (g, f) in groups.iter().zip(facets) {
-            let w: Vec<f64> = g.rows.iter().map(|&r| num(r, "wall_s")).collect();
+            let w: Vec<f64> = g.rows.iter().map(|&r| self.num(r, "wall_s")).collect();
             let (mean, lo, hi) = mean_min_max(&w);
             let _ = writeln!(
                 md,
@@ -120,6 +148,11 @@ impl GroupTables<'_> {
                 hi
             );
         }
+    }
+
+    /// Each group's means with 95 % intervals, over its executable runs and over all.
+    fn per_group(&self, md: &mut String) {
+        let (t, groups) = (self.t, self.groups);
         let _ = writeln!(md, "\n## Per group: mean ± 95 % CI over its runs\n");
         let _ = writeln!(
             md,
@@ -139,15 +172,17 @@ impl GroupTables<'_> {
             "---|".repeat(f_count)
         );
         for g in groups {
-            let drivable: Vec<usize> = g.rows.iter().copied().filter(|&r| get(r, "executable") == "true").collect();
-            let ci = |c: &str, rows: &[usize]| mean_ci95(&rows.iter().map(|&r| num(r, c)).collect::<Vec<_>>());
+            let drivable: Vec<usize> =
+                g.rows.iter().copied().filter(|&r| self.get(r, "executable") == "true").collect();
+            let ci = |c: &str, rows: &[usize]| mean_ci95(&rows.iter().map(|&r| self.num(r, c)).collect::<Vec<_>>());
             let (c, tf) = (ci("cov_final_free", &drivable), ci("t_final", &drivable));
             let f_cells: Vec<String> = match &f_levels {
                 None => vec![ci("f_free", &drivable)],
                 Some(levels) => levels
                     .iter()
                     .map(|l| {
-                        let rows: Vec<usize> = drivable.iter().copied().filter(|&r| get(r, PROJECTION) == *l).collect();
+                        let rows: Vec<usize> =
+                            drivable.iter().copied().filter(|&r| self.get(r, PROJECTION) == *l).collect();
                         ci("f_free", &rows)
                     })
                     .collect(),
@@ -169,6 +204,11 @@ impl GroupTables<'_> {
                 mean_ci_cell(all)
             );
         }
+    }
+
+    /// The 20 configurations with the highest mean f (within one projection).
+    fn top_configurations(&self, md: &mut String) {
+        let (t, params, conf_rows) = (self.t, self.params, self.configs);
         // f1 and f2 are different functions: configurations are ranked by f within one
         // projection only.
         let scopes: Vec<(String, Vec<&ConfigRow>)> = match projection_levels(t, "f_free") {
@@ -176,7 +216,7 @@ impl GroupTables<'_> {
             Some(levels) => levels
                 .into_iter()
                 .map(|l| {
-                    let rows = conf_rows.iter().filter(|c| get(c.1[0], PROJECTION) == l).collect();
+                    let rows = conf_rows.iter().filter(|c| self.get(c.1[0], PROJECTION) == l).collect();
                     (format!(" with {PROJECTION} = {l}"), rows)
                 })
                 .collect(),
@@ -193,9 +233,14 @@ impl GroupTables<'_> {
                 "---|".repeat(params.len())
             );
             for c in rows.into_iter().take(20) {
-                let _ = writeln!(md, "| {}", config_cells(c));
+                let _ = writeln!(md, "| {}", self.config_cells(c));
             }
         }
+    }
+
+    /// Kruskal–Wallis tests per swept parameter and metric.
+    fn kruskal_tables(&self, md: &mut String) {
+        let (t, params) = (self.t, self.params);
         let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
         let _ = writeln!(
             md,
@@ -215,7 +260,7 @@ impl GroupTables<'_> {
                     Some(levels) => levels
                         .into_iter()
                         .map(|l| {
-                            let rows = (0..t.rows.len()).filter(|&r| get(r, PROJECTION) == l).collect();
+                            let rows = (0..t.rows.len()).filter(|&r| self.get(r, PROJECTION) == l).collect();
                             (format!("{metric} ({l})"), rows)
                         })
                         .collect(),
