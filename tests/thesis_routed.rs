@@ -119,6 +119,23 @@ fn routed_moves_are_refused_for_fleets() {
     assert!(e.contains("thesis.moves") && e.contains("fleet"), "{e}");
 }
 
+/// The routes `p → q` and `q → p` of a 0.6 m robot touch no non-free cell and stay on the map.
+fn assert_routes_clear(
+    router: &covga::coverage::routes::Router,
+    map: &covga::map::GridMap,
+    p: covga::geom::Point,
+    q: covga::geom::Point,
+    scratch: &mut covga::coverage::routes::RouteScratch,
+) {
+    for (a, b) in [(p, q), (q, p)] {
+        let route = router.route(a, b, scratch);
+        let mut path = vec![route.start];
+        path.extend_from_slice(route.points);
+        let (cells, off_map) = covga::map::body::touched_cells(map, &path, 0.6);
+        assert!(cells.is_empty() && !off_map, "{a:?} → {b:?} touches {cells:?}");
+    }
+}
+
 /// A place on the basement floor plan where the body fits but the cell centre nearest to it
 /// (by grid distance) lies across a wall's corner: routes from it drove that leg untested, a
 /// few millimetres into the wall (a committed run's plan was refused so). A route now joins
@@ -137,13 +154,7 @@ fn a_route_from_beside_a_wall_joins_the_grid_where_the_body_keeps_clear() {
     let targets: Vec<Point> =
         lattice.map(|(i, j)| Point::new(o.x + 2.0 * i as f64 + 1.0, o.y + 2.0 * j as f64 + 1.0)).collect();
     for &target in &targets {
-        for (a, b) in [(beside, target), (target, beside)] {
-            let route = router.route(a, b, &mut scratch);
-            let mut path = vec![route.start];
-            path.extend_from_slice(route.points);
-            let (cells, off_map) = covga::map::body::touched_cells(&map, &path, 0.6);
-            assert!(cells.is_empty() && !off_map, "{a:?} → {b:?} touches {cells:?}");
-        }
+        assert_routes_clear(&router, &map, beside, target, &mut scratch);
     }
 }
 
@@ -168,13 +179,7 @@ fn a_route_from_a_pocket_no_grid_centre_joins_starts_where_the_body_keeps_clear(
             standing += 1;
             moved += usize::from(router.position(p) != p);
             for &q in &far {
-                for (a, b) in [(p, q), (q, p)] {
-                    let route = router.route(a, b, &mut scratch);
-                    let mut path = vec![route.start];
-                    path.extend_from_slice(route.points);
-                    let (cells, off_map) = covga::map::body::touched_cells(&map, &path, 0.6);
-                    assert!(cells.is_empty() && !off_map, "{a:?} → {b:?} touches {cells:?}");
-                }
+                assert_routes_clear(&router, &map, p, q, &mut scratch);
             }
         }
     }
