@@ -26,7 +26,7 @@ use crate::geom::Point;
 use crate::map::GridMap;
 use std::any::Any;
 use std::path::Path;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// What every planner plans for: the map, the robot, the stations and the camera.
 #[derive(Clone, Debug)]
@@ -100,19 +100,6 @@ impl Budget {
     /// No limit but `iterations`.
     pub fn iterations(iterations: u32) -> Self {
         Self { iterations, evaluations: None, wall_clock: None, stall_iterations: None, interrupt: None }
-    }
-
-    /// The one stop rule every planner checks before an iteration (generation, batch): the
-    /// evaluation budget once `evaluations` reach it, then the wall clock once it has passed
-    /// since `started`. The iteration count and the stall limit are the loop's own.
-    pub fn spent(&self, evaluations: u64, started: Instant) -> Option<StopReason> {
-        if self.evaluations.is_some_and(|limit| evaluations >= limit) {
-            Some(StopReason::Evaluations)
-        } else if self.wall_clock.is_some_and(|limit| started.elapsed() >= limit) {
-            Some(StopReason::WallClock)
-        } else {
-            None
-        }
     }
 }
 
