@@ -27,7 +27,8 @@
 //! 7. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
 //! 8. [`study`]: grids, the runner, records, merge, estimates, Slurm;
 //! 9. [`report`]: the sections of `covga report`;
-//! 10. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
+//! 10. [`usecase`]: run and eval as library functions, under the command line and Python;
+//! 11. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
 
 pub mod cell_order;
 pub mod cli;
@@ -48,4 +49,5 @@ pub mod report;
 pub mod stats;
 pub mod study;
 pub mod thesis;
+pub mod usecase;
 pub mod waypoint;

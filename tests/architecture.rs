@@ -24,6 +24,7 @@ const LAYERS: &[&[&str]] = &[
     &["experiment"],
     &["study"],
     &["report"],
+    &["usecase"],
     &["cli"],
     &["fuzz_entry"],
 ];

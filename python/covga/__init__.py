@@ -282,7 +282,8 @@ def run(
     """Runs one experiment: a TOML file path, TOML text, or a dict with the experiment file's
     keys (``{"planner": "thesis", "map": {"source": "thesis-1"}, ...}``). ``seed`` overrides the
     file's. With ``out``, the run's folder is written there as ``covga run --out`` writes it
-    (figures too unless ``figures=False``); without, it is read back and removed. The GIL is
+    (figures too unless ``figures=False``), and refused in the same way when it holds another
+    run's files; without, it is read back and removed. The GIL is
     released while it runs; Ctrl-C stops it and raises ``KeyboardInterrupt``."""
     kind, payload = _experiment(experiment)
     if seed is not None and not (isinstance(seed, (int, np.integer)) and 0 <= int(seed) <= 2**63 - 1):

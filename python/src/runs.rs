@@ -6,10 +6,10 @@
 //! further run, keeps the rows of the runs it finished, and resumes when run again.
 
 use crate::{config_error, guarded, panic_error};
-use covga::experiment::file::ExperimentFile;
-use covga::experiment::output::OutputError;
 use covga::planner::executor::Interrupt;
 use covga::study::runner::{RunDone, RunnerOptions, StudyError, run_study};
+use covga::usecase::UseCaseError;
+use covga::usecase::run::{ExperimentText, prepare, run_in_folder};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
@@ -44,27 +44,30 @@ pub(crate) fn interruptible<T: Send>(
     })
 }
 
-/// The experiment text, its origin in messages, the folder relative map paths start from, and
-/// the default folder name, of `payload` read as `kind` (`path`, `text` or `json`).
-fn experiment_text(kind: &str, payload: &str) -> PyResult<(String, String, PathBuf, String)> {
+/// The experiment text of `payload` read as `kind` (`path`, `text` or `json`), with its origin
+/// in messages and its default folder name.
+fn experiment_text(kind: &str, payload: &str) -> PyResult<ExperimentText> {
+    let inline = |text: String, origin: &str| ExperimentText { text, origin: origin.into(), stem: "experiment".into() };
     match kind {
-        "path" => {
-            let path = Path::new(payload);
-            let text = ExperimentFile::read_text(path).map_err(config_error)?;
-            // Relative map paths are read from the working directory, as the CLI reads them.
-            let base = PathBuf::from(".");
-            let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
-            Ok((text, payload.to_string(), base, stem))
-        }
-        "text" => Ok((payload.to_string(), "experiment text".into(), PathBuf::from("."), "experiment".into())),
+        "path" => ExperimentText::read(Path::new(payload)).map_err(use_case_error),
+        "text" => Ok(inline(payload.to_string(), "experiment text")),
         "json" => {
             let origin = "experiment dict";
             let value: toml::Value =
                 serde_json::from_str(payload).map_err(|e| config_error(format!("{origin}: {e}")))?;
             let text = toml::to_string(&value).map_err(|e| config_error(format!("{origin}: {e}")))?;
-            Ok((text, origin.into(), PathBuf::from("."), "experiment".into()))
+            Ok(inline(text, origin))
         }
         other => Err(config_error(format!("experiment kind '{other}': expected path, text or json"))),
+    }
+}
+
+/// A use case's failure as Python sees it: the user's input a `ValueError` (`ConfigError`),
+/// anything else a `RuntimeError`.
+fn use_case_error(e: UseCaseError) -> PyErr {
+    match e {
+        UseCaseError::Input(m) => config_error(m),
+        UseCaseError::Internal(m) | UseCaseError::Interrupted(m) => PyRuntimeError::new_err(m),
     }
 }
 
@@ -80,42 +83,16 @@ pub fn run_experiment(
     out: &str,
     figures: bool,
 ) -> PyResult<Vec<String>> {
-    let (mut exp, origin, mut warnings) = guarded(|| {
-        let (text, origin, base, stem) = experiment_text(kind, payload)?;
-        let mut file = ExperimentFile::parse(&text, &origin).map_err(config_error)?;
-        let ignored = covga::experiment::ignored::ignored_in_text(&text, &file);
-        if let Some(seed) = seed {
-            file.seed = seed;
-        }
-        let exp = file.validate(&origin, &base, &stem).map_err(config_error)?;
-        let limit = covga::experiment::memory::memory_limit(None);
-        exp.check_memory(&origin, limit, 1, rayon::current_num_threads()).map_err(config_error)?;
-        let warnings: Vec<String> =
-            ignored.into_iter().map(|(key, why)| format!("{origin}: `{key}` is ignored: {why}")).collect();
-        Ok((exp, origin, warnings))
-    })?;
-    let dir = PathBuf::from(out);
-    let existed = dir.exists();
-    std::fs::create_dir_all(&dir)
-        .map_err(|e| config_error(format!("{}: cannot create the results folder: {e}", dir.display())))?;
+    let mut prepared = guarded(|| prepare(&experiment_text(kind, payload)?, seed, None).map_err(use_case_error))?;
     // Ctrl-C raises the run's interrupt: it ends at its next iteration and writes nothing.
     let interrupt = Interrupt::new();
-    exp.budget.interrupt = Some(interrupt.clone());
-    let outcome = interruptible(py, &|| interrupt.raise(), || {
-        covga::experiment::output::run_experiment(&exp, &dir, figures, &mut [])
-    })
-    .and_then(|run| {
-        run.map_err(|e| match e {
-            OutputError::Planner(m) => config_error(format!("{origin}: {m}")),
-            other => PyRuntimeError::new_err(other.to_string()),
-        })
-    });
-    if outcome.is_err() && !existed {
-        // A refused or stopped run leaves no folder behind that it made itself.
-        let _ = std::fs::remove_dir(&dir);
-    }
-    let summary = outcome?;
-    warnings.extend(summary.warnings.iter().map(|w| format!("{origin}: {w}")));
+    prepared.experiment.budget.interrupt = Some(interrupt.clone());
+    let dir = PathBuf::from(out);
+    let (summary, _) =
+        interruptible(py, &|| interrupt.raise(), || run_in_folder(&prepared, Some(&dir), figures, &mut []))
+            .and_then(|run| run.map_err(use_case_error))?;
+    let mut warnings = prepared.warnings;
+    warnings.extend(summary.warnings.iter().map(|w| format!("{}: {w}", prepared.origin)));
     Ok(warnings)
 }
 

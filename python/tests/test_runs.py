@@ -30,6 +30,22 @@ def test_run_from_python_writes_the_clis_files(tmp_path, cli, short_thesis):
     assert result.path[0].tolist() == [1.3, 1.3]
 
 
+def test_a_folder_with_another_runs_files_is_refused_as_the_cli_refuses_it(tmp_path, cli, short_thesis):
+    covga.run(short_thesis, seed=9, out=tmp_path / "py")
+    before = sorted(p.name for p in (tmp_path / "py").iterdir())
+    # The same experiment again is the same run: the folder is its own.
+    covga.run(short_thesis, seed=9, out=tmp_path / "py")
+    # Another seed is another run: refused, and the folder keeps the first run's files alone.
+    with pytest.raises(covga.ConfigError, match="holds files of another run"):
+        covga.run(short_thesis, seed=10, out=tmp_path / "py")
+    assert sorted(p.name for p in (tmp_path / "py").iterdir()) == before
+    (tmp_path / "cli").mkdir()
+    (tmp_path / "cli" / "notes.txt").write_text("mine")
+    with pytest.raises(covga.ConfigError, match="holds files of another run"):
+        covga.run(short_thesis, out=tmp_path / "cli")
+    assert [p.name for p in (tmp_path / "cli").iterdir()] == ["notes.txt"]
+
+
 def test_text_dict_and_file_give_the_same_run(tmp_path, short_thesis):
     from_file = covga.run(short_thesis)
     from_text = covga.run(SHORT_THESIS)

@@ -2,13 +2,9 @@
 //! fitness, print every metric and draw the path.
 
 use super::{CliError, parse_point};
-use crate::coverage::fitness::{Projection, ThesisScore, score};
-use crate::coverage::score::{Score, Scorer};
-use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
-use crate::map::ros::load_map;
-use crate::patterns::hand_made::{HandMade, hand_made};
-use crate::patterns::{self, Pattern};
-use crate::plot::path::PathFigure;
+use crate::coverage::Footprint;
+use crate::coverage::fitness::Projection;
+use crate::usecase::eval::{EvalPattern, EvalPlan, EvalReport, EvalRequest, evaluate};
 use std::path::PathBuf;
 
 #[derive(clap::ValueEnum, Clone, Copy, Debug)]
@@ -139,267 +135,76 @@ fn check_robot(a: &EvalArgs) -> Result<Footprint, CliError> {
     Ok(Footprint { width: a.width, speed: a.speed, rot_speed: a.rot_speed })
 }
 
-/// Everything `eval` reports, as printed in JSON.
-#[derive(serde::Serialize)]
-struct Report<'a> {
-    map: &'a str,
-    source: String,
-    robot: Footprint,
-    projection: Projection,
-    agents: usize,
-    #[serde(flatten)]
-    metrics: PathMetrics,
-    #[serde(flatten)]
-    score: ThesisScore,
-    f_obstacle: f64,
-    /// The common scorer's metrics (both denominators, camera, time).
-    common: Score,
-    /// Free pockets a pattern could not reach (patterns only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pockets: Option<usize>,
-    /// Their area in m².
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pocket_area_m2: Option<f64>,
-    /// Fleet metrics (with `--fleet`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    fleet: Option<crate::fleet::metrics::FleetScore>,
-}
-
-/// Reads and validates `--fleet`.
-fn read_fleet(file: &std::path::Path, map: &crate::map::GridMap) -> Result<crate::fleet::Fleet, CliError> {
-    let origin = file.display().to_string();
-    let text = crate::io::read_text_bounded(file, crate::io::MAX_TEXT_FILE_BYTES)
-        .map_err(|e| CliError::Input(format!("{origin}: cannot read: {e}")))?;
-    crate::fleet::config::FleetFile::parse(&text, &origin, map).map_err(CliError::input)
+impl EvalArgs {
+    /// The use case's request: the flags checked and parsed (the plan's stations only when a
+    /// pattern is planned).
+    fn request(&self) -> Result<EvalRequest, CliError> {
+        let a = self;
+        let robot = check_robot(a)?;
+        if let Some(r) = a.resolution
+            && !(r.is_finite() && r > 0.0)
+        {
+            return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
+        }
+        let obstacles = a
+            .obstacles
+            .iter()
+            .map(|text| {
+                let rect = parse_rect(text).map_err(|m| CliError::Input(format!("--obstacle {text}: {m}")))?;
+                Ok((text.clone(), rect))
+            })
+            .collect::<Result<Vec<_>, CliError>>()?;
+        let plan = match &a.path {
+            _ if a.divide => EvalPlan::Divide { angle_deg: a.angle },
+            Some(file) => EvalPlan::PathFile(file.clone()),
+            None => {
+                let start = parse_point(&a.start).map_err(|m| CliError::Input(format!("--start: {m}")))?;
+                let end = match &a.end {
+                    Some(e) => parse_point(e).map_err(|m| CliError::Input(format!("--end: {m}")))?,
+                    None => start,
+                };
+                let pattern = match a.pattern {
+                    Some(PatternName::Spiral) => EvalPattern::Spiral,
+                    Some(PatternName::ThesisBoustrophedon) => EvalPattern::ThesisBoustrophedon,
+                    Some(PatternName::ThesisSpiral) => EvalPattern::ThesisSpiral,
+                    Some(PatternName::Boustrophedon) | None => EvalPattern::Boustrophedon { angle_deg: a.angle },
+                };
+                EvalPlan::Pattern { pattern, complete: !a.no_complete, start, end }
+            }
+        };
+        Ok(EvalRequest {
+            map: a.map.clone(),
+            image: crate::map::ros::BareImage { resolution: a.resolution, free_threshold: a.free_threshold },
+            robot,
+            obstacles,
+            obstacle_in_area: a.obstacle_in_area,
+            projection: match a.projection {
+                ProjectionName::F1 => Projection::F1,
+                ProjectionName::F2 => Projection::F2,
+            },
+            plan,
+            fleet: a.fleet.clone(),
+        })
+    }
 }
 
 /// Runs `covga eval` with its parsed arguments.
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
-    let robot = check_robot(&a)?;
-    if let Some(r) = a.resolution
-        && !(r.is_finite() && r > 0.0)
-    {
-        return Err(CliError::Input(format!("--resolution = {r} is out of range: expected metres per pixel > 0")));
-    }
-    let image = crate::map::ros::BareImage { resolution: a.resolution, free_threshold: a.free_threshold };
-    let mut map = load_map(&a.map, &image).map_err(CliError::input)?;
-    let camera = eval_camera(&map, &a.map)?;
-    let unobstructed = map.clone();
-    if a.obstacle_in_area && a.obstacles.is_empty() {
-        return Err(CliError::Input("--obstacle-in-area needs at least one --obstacle X0,Y0,X1,Y1".into()));
-    }
-    let mut placed = 0;
-    for text in &a.obstacles {
-        let rect = parse_rect(text).map_err(|m| CliError::Input(format!("--obstacle {text}: {m}")))?;
-        let (with, n) = map.with_obstacle(rect).map_err(|e| CliError::Input(format!("--obstacle {text}: {e}")))?;
-        if n == 0 && with.cells() == map.cells() {
-            return Err(CliError::Input(format!(
-                "--obstacle {text}: holds no free cell centre of map `{}` ({} m cells: a cell is blocked when its \
-                 centre lies inside), so it would change nothing",
-                map.name(),
-                map.resolution()
-            )));
-        }
-        map = with;
-        placed += n;
-    }
-    robot.check_fits(&map).map_err(|m| CliError::Input(format!("--width {m}")))?;
-    let projection = match a.projection {
-        ProjectionName::F1 => Projection::F1,
-        ProjectionName::F2 => Projection::F2,
-    };
-    let mut pockets = None;
-    let fleet = match &a.fleet {
-        Some(file) => Some((file.display().to_string(), read_fleet(file, &map)?)),
-        None => None,
-    };
-    if fleet.is_some() && a.path.is_none() && !a.divide {
-        return Err(CliError::Input("--fleet needs a plan: --path FILE (one path per robot) or --divide".into()));
-    }
-    let (paths, source) = match &a.path {
-        _ if a.divide => {
-            let (_, f) = fleet.as_ref().expect("--divide requires --fleet");
-            let (paths, division) = crate::fleet::division::plan(&map, f, a.angle).map_err(CliError::input)?;
-            let sizes: Vec<String> = division.sizes.iter().map(usize::to_string).collect();
-            let detached = if division.detached > 0 {
-                format!(", {} of them apart from their region", division.detached)
-            } else {
-                String::new()
-            };
-            (paths, format!("area division ({} cells{detached}, boustrophedon {}°)", sizes.join("/"), a.angle))
-        }
-        Some(file) => {
-            let crate::io::PathFile { paths, robots: names } =
-                crate::io::read_path_file(file).map_err(CliError::input)?;
-            // With a fleet, the `robot` column must name the fleet's robot of each agent.
-            if let Some((origin, f)) = &fleet {
-                for (k, name) in names.iter().enumerate() {
-                    let Some(name) = name else { continue };
-                    match f.robots().get(k) {
-                        Some(r) if &r.name == name => {}
-                        Some(r) => {
-                            return Err(CliError::Input(format!(
-                                "{}: agent {k} names robot `{name}`, but robot {k} of {origin} is `{}` (agents follow \
-                                 the fleet's [[robots]] in order)",
-                                file.display(),
-                                r.name
-                            )));
-                        }
-                        None => {
-                            return Err(CliError::Input(format!(
-                                "{}: agent {k} names robot `{name}`, but {origin} has {} robots",
-                                file.display(),
-                                f.robots().len()
-                            )));
-                        }
-                    }
-                }
-            }
-            crate::coverage::score::check_camera_poses(&paths)
-                .map_err(|m| CliError::Input(format!("{}: {m}", file.display())))?;
-            for (k, p) in paths.iter().enumerate() {
-                let what = |end: &str| format!("{}: agent {k} {end}", file.display());
-                map.check_station(p[0], &what("start")).map_err(CliError::Input)?;
-                map.check_station(*p.last().expect("non-empty"), &what("end")).map_err(CliError::Input)?;
-            }
-            (paths, file.display().to_string())
-        }
-        None => {
-            let start = parse_point(&a.start).map_err(|m| CliError::Input(format!("--start: {m}")))?;
-            let end = match &a.end {
-                Some(e) => parse_point(e).map_err(|m| CliError::Input(format!("--end: {m}")))?,
-                None => start,
-            };
-            patterns::check_plan_inputs(&map, robot.width, start, end, ["--start", "--end", "--width"])
-                .map_err(CliError::Input)?;
-            let hand = match a.pattern {
-                Some(PatternName::ThesisBoustrophedon) => Some((HandMade::Boustrophedon, "thesis boustrophedon")),
-                Some(PatternName::ThesisSpiral) => Some((HandMade::Spiral, "thesis spiral")),
-                Some(PatternName::Boustrophedon | PatternName::Spiral) | None => None,
-            };
-            if let Some((kind, name)) = hand {
-                if end != start {
-                    return Err(CliError::Input(
-                        "--end: the hand-made thesis patterns start and end at the same station (003 §3.2.2); leave --end out".into(),
-                    ));
-                }
-                // Drawn over the map as it was before `--obstacle`: the thesis puts the obstacle
-                // under the path afterwards (003 §3.2.2).
-                let path = hand_made(&unobstructed, kind, robot.width, start).map_err(CliError::input)?;
-                (vec![path], name.to_string())
-            } else {
-                let pattern = match a.pattern {
-                    Some(PatternName::Spiral) => Pattern::Spiral,
-                    Some(PatternName::Boustrophedon | PatternName::ThesisBoustrophedon | PatternName::ThesisSpiral)
-                    | None => Pattern::Boustrophedon { angle_deg: a.angle },
-                };
-                let planned =
-                    patterns::plan(&map, pattern, robot.width, start, end, !a.no_complete).map_err(CliError::input)?;
-                pockets = Some((planned.pockets, planned.pocket_area_m2));
-                let name = match pattern {
-                    Pattern::Boustrophedon { angle_deg } => format!("boustrophedon {angle_deg}°"),
-                    Pattern::Spiral => "spiral".into(),
-                };
-                (vec![planned.points], name)
-            }
-        }
-    };
-    let fleet_score = match &fleet {
-        Some((origin, f)) => Some(
-            crate::fleet::metrics::FleetScorer::new(&map, f)
-                .score(&paths)
-                .map_err(|m| CliError::Input(format!("{origin}: {m} (one path per robot, by the `agent` column)")))?,
-        ),
-        None => None,
-    };
-    // A fleet's robots sweep at their own widths and drive at their own speeds, in the headline
-    // as in the fleet block; any other plan is the command line's robot on every path.
-    let robots: Vec<crate::coverage::Footprint> = match &fleet {
-        Some((_, f)) => f.robots().iter().map(|r| r.footprint).collect(),
-        None => vec![robot; paths.len()],
-    };
-    let widths: Vec<f64> = robots.iter().map(|r| r.width).collect();
-    let grid = CoverageGrid::new(&map);
-    let mut metrics = robot.measure_fleet(&grid, &mut SweepScratch::new(&grid), &paths, &widths);
-    if a.obstacle_in_area {
-        metrics.area_cells += placed as u64;
-    }
-    let sc = score(&metrics, &robot, map.resolution(), projection);
-    let stations: Vec<crate::geom::Point> = paths.iter().filter_map(|p| p.first().copied()).collect();
-    let common = Scorer::for_widths(&map, robot, &widths, projection, &camera, &stations).score_agents(&paths, &robots);
-    let report = Report {
-        map: map.name(),
-        source,
-        robot,
-        projection,
-        agents: paths.len(),
-        metrics,
-        score: sc,
-        f_obstacle: sc.fitness,
-        common,
-        pockets: pockets.map(|p| p.0),
-        pocket_area_m2: pockets.map(|p| p.1),
-        fleet: fleet_score,
-    };
-    let json = serde_json::to_string_pretty(&report).map_err(CliError::internal)?;
-    std::fs::create_dir_all(&a.out)
-        .map_err(|e| CliError::Input(format!("{}: cannot create the output folder: {e}", a.out.display())))?;
-    crate::io::write_atomic(&a.out.join("metrics.json"), json.as_bytes()).map_err(CliError::internal)?;
-    let names: Vec<String> =
-        fleet.as_ref().map(|(_, f)| f.robots().iter().map(|r| r.name.clone()).collect()).unwrap_or_default();
-    crate::io::write_atomic(&a.out.join("path.csv"), &crate::io::fleet_path_csv(&paths, &names))
-        .map_err(CliError::internal)?;
-    let figure = PathFigure {
-        map: &map,
-        grid: &grid,
-        paths: paths.clone(),
-        width: robot.width,
-        robots: fleet
-            .as_ref()
-            .map(|(_, f)| f.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect())
-            .unwrap_or_default(),
-        title: match &report.fleet {
-            Some(f) => format!(
-                "{} robots on {}: union {:.3} of reachable, makespan {:.0} s",
-                f.robots.len(),
-                map.name(),
-                f.union_reach,
-                f.makespan_s
-            ),
-            None => {
-                format!(
-                    "{} on {}: cov_final {:.3}, t_final {:.3}",
-                    short(&report.source),
-                    map.name(),
-                    sc.cov_final,
-                    sc.t_final
-                )
-            }
-        },
-    };
-    crate::plot::save(&figure, &a.out.join("path")).map_err(CliError::internal)?;
+    let evaluation = evaluate(&a.request()?)?;
+    evaluation.write(&a.out)?;
     if a.json {
-        println!("{json}");
+        println!("{}", evaluation.json()?);
     } else {
-        print_table(&report);
+        print_table(&evaluation.report);
         println!("wrote {}/path.png, path.svg, path.csv, metrics.json", a.out.display());
     }
     Ok(())
 }
 
-/// Why the common scorer calls a plan not executable, in words.
-pub fn not_executable_why(s: &crate::coverage::score::Score) -> String {
-    if s.obstacle_cells > 0 {
-        format!("the robot's body touches {} occupied or unknown cells", s.obstacle_cells)
-    } else {
-        "the robot's body reaches past the map's edge".to_string()
-    }
-}
-
-fn print_table(r: &Report) {
+fn print_table(r: &EvalReport) {
     let m = &r.metrics;
     let c = &r.common;
-    let executable = if c.executable { "yes".to_string() } else { format!("NO ({})", not_executable_why(c)) };
+    let executable = if c.executable { "yes".to_string() } else { format!("NO ({})", c.not_executable_why()) };
     let rows: [(&str, String); 23] = [
         ("map", r.map.to_string()),
         ("path", r.source.clone()),
@@ -446,52 +251,6 @@ fn print_table(r: &Report) {
         ];
         for (k, v) in rows {
             println!("  {k:<26} {v}");
-        }
-    }
-}
-
-/// A path file named by its last two components (its folder and name), so that a long path
-/// does not run off the figure's title; a pattern's name as it is.
-fn short(source: &str) -> String {
-    let parts: Vec<&str> = source.split(['/', '\\']).filter(|p| !p.is_empty()).collect();
-    match parts.len() {
-        0..=2 => source.to_string(),
-        n => format!(".../{}/{}", parts[n - 2], parts[n - 1]),
-    }
-}
-
-/// The camera of the common scorer's `cov_cam`: 000's default. Its narrowest hallway bounds the
-/// map's cell size, and `eval` has no camera flags, so a coarser map is blamed on its resolution.
-fn eval_camera(map: &crate::map::GridMap, source: &str) -> Result<crate::coverage::score::CameraSpec, CliError> {
-    let mut defaults = crate::waypoint::config::WaypointSection::default();
-    // A map smaller than 000's narrowest hallway is one hallway: the camera's waypoint step
-    // cannot exceed the map (maps under 1.5 m could not be scored at all).
-    defaults.hallway = defaults.hallway.min(map.width_m().max(map.height_m()));
-    let finest_needed = defaults.hallway;
-    if map.resolution() > finest_needed {
-        return Err(CliError::Input(format!(
-            "map `{source}` has cells of {} m: the camera coverage eval reports (000's default camera, narrowest hallway {} m) needs cells of at most {} m; give a finer map (`--resolution` for a bare image, `resolution:` in a ROS map YAML)",
-            crate::io::short_number(map.resolution()),
-            crate::io::short_number(defaults.hallway),
-            crate::io::short_number(finest_needed)
-        )));
-    }
-    crate::waypoint::config::camera_spec(&defaults, "default camera", map).map_err(CliError::input)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::short;
-
-    #[test]
-    fn titles_name_a_path_by_its_folder_and_file() {
-        let cases = [
-            ("out/study/runs/6f13/best_path.csv", ".../6f13/best_path.csv"),
-            ("runs/best_path.csv", "runs/best_path.csv"),
-            ("boustrophedon 0°", "boustrophedon 0°"),
-        ];
-        for (source, shown) in cases {
-            assert_eq!(short(source), shown);
         }
     }
 }

@@ -67,6 +67,22 @@ pub struct MergeArgs {
     allow_partial: bool,
 }
 
+/// One finished run as `covga grid` shows it: the progress bar on a terminal, else one line
+/// on stderr (a failure with its reason).
+fn show_run_done(bar: &indicatif::ProgressBar, terminal: bool, d: RunDone) {
+    let count = format!("[{}/{}] {} replicate {}", d.done + d.skipped, d.total + d.skipped, d.run.id, d.run.replicate);
+    if terminal {
+        bar.set_length(d.total as u64);
+        bar.set_position(d.done as u64);
+        bar.set_message(format!("last cov {:.3} t {:.3}", d.result.0, d.result.1));
+    } else if let Some(why) = d.failure {
+        eprintln!("{count} failed: {why}");
+    } else {
+        eprintln!("{count} cov_final {:.4} t_final {:.4} {:.2} s", d.result.0, d.result.1, d.result.2);
+    }
+}
+
+/// Runs `covga grid`: a study, its dry run, or its Slurm script.
 pub fn run(a: GridArgs) -> Result<(), CliError> {
     let study = Study::load(&a.file).map_err(CliError::input)?;
     if a.jobs == 0 {
@@ -102,32 +118,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     }
     let terminal = std::io::stderr().is_terminal();
     let bar = super::progress_bar(0, "runs", terminal);
-    let on_done = |d: RunDone| {
-        if terminal {
-            bar.set_length(d.total as u64);
-            bar.set_position(d.done as u64);
-            bar.set_message(format!("last cov {:.3} t {:.3}", d.result.0, d.result.1));
-        } else if let Some(why) = d.failure {
-            eprintln!(
-                "[{}/{}] {} replicate {} failed: {why}",
-                d.done + d.skipped,
-                d.total + d.skipped,
-                d.run.id,
-                d.run.replicate
-            );
-        } else {
-            eprintln!(
-                "[{}/{}] {} replicate {} cov_final {:.4} t_final {:.4} {:.2} s",
-                d.done + d.skipped,
-                d.total + d.skipped,
-                d.run.id,
-                d.run.replicate,
-                d.result.0,
-                d.result.1,
-                d.result.2
-            );
-        }
-    };
+    let on_done = |d: RunDone| show_run_done(&bar, terminal, d);
     let opts = RunnerOptions {
         jobs: a.jobs,
         shard,

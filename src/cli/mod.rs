@@ -55,6 +55,17 @@ impl CliError {
     }
 }
 
+impl From<crate::usecase::UseCaseError> for CliError {
+    fn from(e: crate::usecase::UseCaseError) -> Self {
+        match e {
+            crate::usecase::UseCaseError::Input(m) => CliError::Input(m),
+            crate::usecase::UseCaseError::Internal(m) | crate::usecase::UseCaseError::Interrupted(m) => {
+                CliError::Internal(m)
+            }
+        }
+    }
+}
+
 #[derive(Parser, Debug)]
 #[command(name = "covga", version, about = "Coverage path planning with genetic algorithms")]
 struct Cli {

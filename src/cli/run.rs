@@ -1,10 +1,10 @@
 //! `covga run`: one experiment, with a progress bar on a terminal.
 
 use super::CliError;
-use crate::experiment::file::ExperimentFile;
-use crate::experiment::output::{OutputError, run_experiment};
+use crate::experiment::output::Summary;
 use crate::experiment::registry::PlannerConfig;
 use crate::ga::observer::{GenerationRecord, Observer};
+use crate::usecase::run::{ExperimentText, Prepared, prepare, run_in_folder};
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
@@ -44,109 +44,40 @@ impl Observer for Progress {
     }
 }
 
-/// Refuses a results folder that holds files of another run: a folder is this run's when it
-/// is empty (but for the folder lock) or its `config.toml` is the one this run writes (the
-/// same experiment run again). Another run's `best_genome.csv` or `history.png` would
-/// otherwise stay beside this run's results.
-fn check_results_folder(dir: &std::path::Path, file: &ExperimentFile) -> Result<(), String> {
-    let entries: Vec<String> = std::fs::read_dir(dir)
-        .map_err(|e| format!("{}: {e}", dir.display()))?
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n != ".covga.lock")
-        .collect();
-    if entries.is_empty() {
-        return Ok(());
-    }
-    let ours = toml::to_string_pretty(file).expect("experiment files serialise");
-    if std::fs::read_to_string(dir.join("config.toml")).is_ok_and(|t| t == ours) {
-        return Ok(());
-    }
-    let mut shown = entries.clone();
-    shown.sort();
-    shown.truncate(4);
-    Err(format!(
-        "{}: holds files of another run ({}{}): choose an empty folder with --out, or remove them",
-        dir.display(),
-        shown.join(", "),
-        if entries.len() > shown.len() { ", …" } else { "" }
-    ))
-}
-
+/// Runs `covga run` with its parsed arguments.
 pub fn run(a: RunArgs) -> Result<(), CliError> {
-    let (mut file, origin, base, stem, ignored) = match &a.file {
-        Some(path) => {
-            let origin = path.display().to_string();
-            let text = ExperimentFile::read_text(path).map_err(CliError::input)?;
-            let file = ExperimentFile::parse(&text, &origin).map_err(CliError::input)?;
-            let ignored = crate::experiment::ignored::ignored_in_text(&text, &file);
-            // One rule for relative map paths in run and grid files: the working directory.
-            // A run's config.toml, a study's runs and `covga report` re-read the same path
-            // from there, wherever the file that first named it lies.
-            let base = PathBuf::from(".");
-            let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
-            (file, origin, base, stem, ignored)
-        }
-        None => {
-            let origin = "built-in experiment thesis-map1-elite";
-            (
-                ExperimentFile::parse(DEFAULT_EXPERIMENT, origin).map_err(CliError::input)?,
-                origin.to_string(),
-                PathBuf::from("."),
-                "thesis-map1-elite".to_string(),
-                Vec::new(),
-            )
-        }
+    let source = match &a.file {
+        Some(path) => ExperimentText::read(path)?,
+        None => ExperimentText {
+            text: DEFAULT_EXPERIMENT.to_string(),
+            origin: "built-in experiment thesis-map1-elite".into(),
+            stem: "thesis-map1-elite".into(),
+        },
     };
-    if let Some(seed) = a.seed {
-        file.seed = seed;
+    let prepared = prepare(&source, a.seed, a.max_memory)?;
+    for w in &prepared.warnings {
+        eprintln!("warning: {w}");
     }
-    let exp = file.validate(&origin, &base, &stem).map_err(CliError::input)?;
-    for (key, why) in ignored {
-        eprintln!("warning: {origin}: `{key}` is ignored: {why}");
-    }
-    exp.check_memory(&origin, crate::experiment::memory::memory_limit(a.max_memory), 1, rayon::current_num_threads())
-        .map_err(CliError::input)?;
-    let dir = a.out.clone().unwrap_or_else(|| exp.output_dir.clone());
-    let existed = dir.exists();
-    let lock_existed = dir.join(".covga.lock").exists();
-    std::fs::create_dir_all(&dir)
-        .map_err(|e| CliError::Input(format!("{}: cannot create the results folder: {e}", dir.display())))?;
-    // A refused run leaves nothing behind that it made itself: its lock file, and the folder
-    // while still empty.
-    let discard_folder = || {
-        if !lock_existed {
-            let _ = std::fs::remove_file(dir.join(".covga.lock"));
-        }
-        if !existed {
-            let _ = std::fs::remove_dir(&dir);
-        }
-    };
-    let _lock = crate::io::FolderLock::take(&dir, true).map_err(|m| {
-        if !existed {
-            let _ = std::fs::remove_dir(&dir);
-        }
-        CliError::Input(m)
-    })?;
-    check_results_folder(&dir, &exp.file).map_err(|m| {
-        discard_folder();
-        CliError::Input(m)
-    })?;
+    let exp = &prepared.experiment;
+    let origin = &prepared.origin;
     let show = !a.quiet && std::io::stderr().is_terminal();
     let length = exp.planner.progress_length(&exp.budget);
     let mut progress = Progress(super::progress_bar(length, "it", show));
-    let summary = run_experiment(&exp, &dir, true, &mut [&mut progress]).map_err(|e| {
-        discard_folder();
-        match e {
-            OutputError::Planner(m) => CliError::Input(format!("{origin}: {m}")),
-            other => CliError::internal(other),
-        }
-    })?;
+    let (summary, dir) = run_in_folder(&prepared, a.out.as_deref(), true, &mut [&mut progress])?;
     progress.0.finish_and_clear();
     for w in &summary.warnings {
         eprintln!("warning: {origin}: {w}");
     }
     if !a.quiet {
+        print_summary(&prepared, &summary, &dir);
+    }
+    Ok(())
+}
+
+/// The run's summary as `covga run` prints it.
+fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) {
+    let (exp, origin) = (&prepared.experiment, &prepared.origin);
+    {
         let s = &summary.score;
         println!(
             "{origin}: {} on {}, seed {}, {} iterations, {} evaluations, {:.2} s",
@@ -180,7 +111,7 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         if s.executable {
             println!("executable: yes");
         } else {
-            println!("executable: NO ({})", super::eval::not_executable_why(s));
+            println!("executable: NO ({})", s.not_executable_why());
         }
         if summary.planner_feasible {
             println!("planner constraints: met");
@@ -189,5 +120,4 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
         }
         println!("wrote {}", dir.display());
     }
-    Ok(())
 }

@@ -140,6 +140,15 @@ pub struct Score {
 }
 
 impl Score {
+    /// Why the plan is not executable, in words (for a plan that is not).
+    pub fn not_executable_why(&self) -> String {
+        if self.obstacle_cells > 0 {
+            format!("the robot's body touches {} occupied or unknown cells", self.obstacle_cells)
+        } else {
+            "the robot's body reaches past the map's edge".to_string()
+        }
+    }
+
     /// The scalar metrics as `(column, value)` pairs, in a fixed order (the common columns of
     /// `runs.csv`).
     pub fn columns(&self) -> Vec<(&'static str, String)> {

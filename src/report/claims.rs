@@ -184,33 +184,11 @@ struct Row {
     rate: bool,
 }
 
-/// The claims section of the thesis report, for the runs of `t` recorded in `dir`.
-pub fn section(dir: &Path, t: &RunsTable) -> String {
-    let mut md = String::from("\n## The claims of 003 §5.1, checked\n\n");
-    let rows: Vec<usize> = (0..t.rows.len())
-        .filter(|&r| {
-            let row = &t.rows[r];
-            t.col("map.source").is_none_or(|c| row[c] == "thesis-1")
-                && t.num(row, "robot.rot_speed").is_none_or(|v| v == 0.0)
-        })
-        .collect();
-    let run_id = t.col("run_id");
-    let diversity = rows
-        .iter()
-        .map(|&r| run_id.and_then(|c| final_diversity(&dir.join("runs").join(&t.rows[r][c]).join("history.csv"))))
-        .collect();
-    let runs = Runs { t, rows, diversity };
-    let _ = writeln!(
-        md,
-        "On the {} runs of map 1 without rotation cost ({} with a history for the diversity). Two-sided tests, \
-         p < 0.05; A₁₂ = P(A > B); \"does not hold\" also when groups of ≥ 30 runs show no difference.\n",
-        runs.rows.len(),
-        runs.diversity.iter().flatten().count()
-    );
+/// The claims about the selection schemes and the projection (003 §5.1).
+fn selection_claims(runs: &Runs, out: &mut Vec<Row>) {
     let sel = |f: &[(&str, &str)]| runs.select(f);
-    let elite = sel(&[("thesis.selection", "elite")]);
-    let mut out: Vec<Row> = Vec::new();
     let mut push = |claim, test: String, result, rate| out.push(Row { claim, test, result, rate });
+    let elite = sel(&[("thesis.selection", "elite")]);
     for other in ["tournament", "prws", "rrws"] {
         let o = sel(&[("thesis.selection", other)]);
         push(
@@ -239,6 +217,13 @@ pub fn section(dir: &Path, t: &RunsTable) -> String {
             false,
         );
     }
+}
+
+/// The claims about the tournament size, the selection pressure, the chromosome length, the
+/// child types and the mutation rates (003 §5.1).
+fn parameter_claims(runs: &Runs, out: &mut Vec<Row>) {
+    let sel = |f: &[(&str, &str)]| runs.select(f);
+    let mut push = |claim, test: String, result, rate| out.push(Row { claim, test, result, rate });
     let ts = |v| sel(&[("thesis.selection", "tournament"), ("thesis.tournament_size", v)]);
     push(
         "Higher TS lowers diversity",
@@ -310,6 +295,34 @@ pub fn section(dir: &Path, t: &RunsTable) -> String {
         compare(&runs.diversity(&both_high), &runs.diversity(&both_off), Expect::Higher),
         false,
     );
+}
+
+/// The claims section of the thesis report, for the runs of `t` recorded in `dir`.
+pub fn section(dir: &Path, t: &RunsTable) -> String {
+    let mut md = String::from("\n## The claims of 003 §5.1, checked\n\n");
+    let rows: Vec<usize> = (0..t.rows.len())
+        .filter(|&r| {
+            let row = &t.rows[r];
+            t.col("map.source").is_none_or(|c| row[c] == "thesis-1")
+                && t.num(row, "robot.rot_speed").is_none_or(|v| v == 0.0)
+        })
+        .collect();
+    let run_id = t.col("run_id");
+    let diversity = rows
+        .iter()
+        .map(|&r| run_id.and_then(|c| final_diversity(&dir.join("runs").join(&t.rows[r][c]).join("history.csv"))))
+        .collect();
+    let runs = Runs { t, rows, diversity };
+    let _ = writeln!(
+        md,
+        "On the {} runs of map 1 without rotation cost ({} with a history for the diversity). Two-sided tests, \
+         p < 0.05; A₁₂ = P(A > B); \"does not hold\" also when groups of ≥ 30 runs show no difference.\n",
+        runs.rows.len(),
+        runs.diversity.iter().flatten().count()
+    );
+    let mut out: Vec<Row> = Vec::new();
+    selection_claims(&runs, &mut out);
+    parameter_claims(&runs, &mut out);
     let _ = writeln!(md, "| claim | test (A vs B) | runs A / B | effect | p | verdict |\n|---|---|---|---|---|---|");
     for r in out {
         let effect = if r.rate {

@@ -402,6 +402,104 @@ fn p_text(p: f64) -> String {
     if p < 1e-4 { format!("{p:.1e}") } else { format!("{p:.4}") }
 }
 
+/// One compared row's numbers: both sides' medians, pairs better and worse, the bootstrap
+/// interval of the contrast, A₁₂, the signed-rank test and its Holm-adjusted p, the finding.
+struct RowStats {
+    medians: (Option<f64>, Option<f64>),
+    better: usize,
+    worse: usize,
+    ci: Option<crate::stats::Interval>,
+    a12: f64,
+    test: Option<crate::stats::SignedRank>,
+    holm: Option<f64>,
+    finding: String,
+}
+
+/// The numbers of row `r` of metric `m` against `cmp`'s baseline, with its test's Holm-adjusted
+/// p; `shown` counts the rows shown better and worse.
+fn row_stats(
+    m: &Metric,
+    r: &Row,
+    cmp: &Comparison,
+    (test, holm): (Option<crate::stats::SignedRank>, Option<f64>),
+    shown: &mut (usize, usize),
+) -> RowStats {
+    let (b, v): (Vec<f64>, Vec<f64>) = r.pairs.iter().copied().unzip();
+    let better = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v > b } else { v < b }).count();
+    let worse = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v < b } else { v > b }).count();
+    let median = |x: &[f64]| (!x.is_empty()).then(|| crate::stats::quartiles(x).1);
+    let ci = bootstrap_ci(&v, &b, m.contrast, true, LEVEL, RESAMPLES, BOOTSTRAP_SEED);
+    let a12 = if r.pairs.is_empty() { f64::NAN } else { vargha_delaney_a12(&v, &b) };
+    let min_p = 2.0 * 0.5f64.powi(r.pairs.len() as i32);
+    let finding = match (test, holm) {
+        _ if r.pairs.is_empty() => "no pair of executable plans: not compared".to_string(),
+        (None, _) => "equal in every pair: not tested".to_string(),
+        (Some(_), Some(h)) if h < 1.0 - LEVEL => {
+            let word = if better > worse { "better" } else { "worse" };
+            if better > worse {
+                shown.0 += 1
+            } else {
+                shown.1 += 1
+            }
+            format!("{word} than {} (shown)", cmp.baseline)
+        }
+        (Some(_), _) if min_p >= 1.0 - LEVEL => {
+            format!("not shown: {} pairs cannot reach p < {:.2}", r.pairs.len(), 1.0 - LEVEL)
+        }
+        (Some(_), _) => "not shown".to_string(),
+    };
+    RowStats { medians: (median(&b), median(&v)), better, worse, ci, a12, test, holm, finding }
+}
+
+/// Row `r`'s line of the metric's table in `summary.md`.
+fn md_row(m: &Metric, r: &Row, st: &RowStats) -> String {
+    let d = m.decimals;
+    let ci_text = match st.ci {
+        Some(c) if m.contrast == Contrast::MedianRatio => format!("{:.3}× [{:.3}, {:.3}]", c.estimate, c.low, c.high),
+        Some(c) => format!("{:+.4} [{:+.4}, {:+.4}]", c.estimate, c.low, c.high),
+        None => "–".into(),
+    };
+    let median = |x: Option<f64>| x.map_or("–".into(), |x| format!("{x:.d$}"));
+    format!(
+        "{} {} | {} | {} | {} of {} | {} | {} | {} | {} |",
+        r.lead_md(),
+        median(st.medians.0),
+        median(st.medians.1),
+        ci_text,
+        st.better,
+        r.pairs.len(),
+        if st.a12.is_nan() { "–".into() } else { format!("{:.2}", st.a12) },
+        st.test.map_or("–".into(), |t| format!("{} ({})", p_text(t.p_value), t.method.name())),
+        st.holm.map_or("–".into(), p_text),
+        st.finding
+    )
+}
+
+/// Row `r`'s line of the comparisons CSV.
+fn csv_row(m: &Metric, r: &Row, st: &RowStats) -> String {
+    let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
+    format!(
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+        r.lead_csv(m.column),
+        field(st.medians.0),
+        field(st.medians.1),
+        match m.contrast {
+            Contrast::MedianDifference => "difference",
+            Contrast::MedianRatio => "ratio",
+        },
+        field(st.ci.map(|c| c.estimate)),
+        field(st.ci.map(|c| c.low)),
+        field(st.ci.map(|c| c.high)),
+        st.better,
+        st.worse,
+        field((!st.a12.is_nan()).then_some(st.a12)),
+        st.test.map_or(String::new(), |t| format!("wilcoxon {}", t.method.name())),
+        field(st.test.map(|t| t.p_value)),
+        field(st.holm),
+        st.finding
+    )
+}
+
 /// The table and findings of one metric.
 fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row], cmp: &Comparison) {
     let mut family =
@@ -419,9 +517,9 @@ fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row], cmp: &Co
         }
     }
     let mut adjusted = family.adjusted().into_iter();
-    let (effect, unit) = match m.contrast {
-        Contrast::MedianDifference => ("difference of medians", ""),
-        Contrast::MedianRatio => ("ratio of medians", "×"),
+    let effect = match m.contrast {
+        Contrast::MedianDifference => "difference of medians",
+        Contrast::MedianRatio => "ratio of medians",
     };
     let _ = writeln!(md, "## `{}`\n", m.column);
     let _ = writeln!(
@@ -432,75 +530,10 @@ fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row], cmp: &Co
     let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let mut shown = (0, 0);
     for (r, t) in rows.iter().zip(&tests) {
-        let (b, v): (Vec<f64>, Vec<f64>) = r.pairs.iter().copied().unzip();
-        let better = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v > b } else { v < b }).count();
-        let worse = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v < b } else { v > b }).count();
-        let median = |x: &[f64]| crate::stats::quartiles(x).1;
-        let ci = bootstrap_ci(&v, &b, m.contrast, true, LEVEL, RESAMPLES, BOOTSTRAP_SEED);
-        let a12 = if r.pairs.is_empty() { f64::NAN } else { vargha_delaney_a12(&v, &b) };
         let holm = t.map(|_| adjusted.next().expect("one adjusted p per test"));
-        let d = m.decimals;
-        let (ci_text, est) = match ci {
-            Some(c) if m.contrast == Contrast::MedianRatio => {
-                (format!("{:.3}{unit} [{:.3}, {:.3}]", c.estimate, c.low, c.high), Some(c))
-            }
-            Some(c) => (format!("{:+.4} [{:+.4}, {:+.4}]", c.estimate, c.low, c.high), Some(c)),
-            None => ("–".into(), None),
-        };
-        let min_p = 2.0 * 0.5f64.powi(r.pairs.len() as i32);
-        let finding = match (t, holm) {
-            _ if r.pairs.is_empty() => "no pair of executable plans: not compared".to_string(),
-            (None, _) => "equal in every pair: not tested".to_string(),
-            (Some(_), Some(h)) if h < 1.0 - LEVEL => {
-                let word = if better > worse { "better" } else { "worse" };
-                if better > worse {
-                    shown.0 += 1
-                } else {
-                    shown.1 += 1
-                }
-                format!("{word} than {} (shown)", cmp.baseline)
-            }
-            (Some(_), _) if min_p >= 1.0 - LEVEL => {
-                format!("not shown: {} pairs cannot reach p < {:.2}", r.pairs.len(), 1.0 - LEVEL)
-            }
-            (Some(_), _) => "not shown".to_string(),
-        };
-        let _ = writeln!(
-            md,
-            "{} {} | {} | {} | {} of {} | {} | {} | {} | {} |",
-            r.lead_md(),
-            if b.is_empty() { "–".into() } else { format!("{:.d$}", median(&b)) },
-            if v.is_empty() { "–".into() } else { format!("{:.d$}", median(&v)) },
-            ci_text,
-            better,
-            r.pairs.len(),
-            if a12.is_nan() { "–".into() } else { format!("{a12:.2}") },
-            t.map_or("–".into(), |t| format!("{} ({})", p_text(t.p_value), t.method.name())),
-            holm.map_or("–".into(), p_text),
-            finding
-        );
-        let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
-        let _ = writeln!(
-            csv,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
-            r.lead_csv(m.column),
-            field((!b.is_empty()).then(|| median(&b))),
-            field((!v.is_empty()).then(|| median(&v))),
-            match m.contrast {
-                Contrast::MedianDifference => "difference",
-                Contrast::MedianRatio => "ratio",
-            },
-            field(est.map(|c| c.estimate)),
-            field(est.map(|c| c.low)),
-            field(est.map(|c| c.high)),
-            better,
-            worse,
-            field((!a12.is_nan()).then_some(a12)),
-            t.map_or(String::new(), |t| format!("wilcoxon {}", t.method.name())),
-            field(t.map(|t| t.p_value)),
-            field(holm),
-            finding
-        );
+        let st = row_stats(m, r, cmp, (*t, holm), &mut shown);
+        let _ = writeln!(md, "{}", md_row(m, r, &st));
+        let _ = writeln!(csv, "{}", csv_row(m, r, &st));
     }
     let _ = writeln!(
         md,

@@ -1,0 +1,134 @@
+//! Running one experiment into its results folder: read and validate the experiment (the
+//! ignored keys as warnings, the seed overridden, the memory checked before anything is
+//! allocated), then run it into a folder that holds no other run's files, under the folder's
+//! lock, leaving nothing behind that it made itself when it is refused or interrupted.
+
+use super::UseCaseError;
+use crate::experiment::file::{Experiment, ExperimentFile};
+use crate::experiment::output::{OutputError, Summary, run_experiment};
+use crate::ga::observer::Observer;
+use std::path::{Path, PathBuf};
+
+/// An experiment's text and where it came from.
+#[derive(Clone, Debug)]
+pub struct ExperimentText {
+    /// The TOML text.
+    pub text: String,
+    /// How messages name it (the file's path, "experiment text", …).
+    pub origin: String,
+    /// The default results folder's name (`out/<stem>`).
+    pub stem: String,
+}
+
+impl ExperimentText {
+    /// The experiment file at `path` (bounded in size).
+    pub fn read(path: &Path) -> Result<Self, UseCaseError> {
+        let text = ExperimentFile::read_text(path).map_err(UseCaseError::input)?;
+        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "run".into());
+        Ok(Self { text, origin: path.display().to_string(), stem })
+    }
+}
+
+/// A validated experiment ready to run, with the warnings about its file.
+pub struct Prepared {
+    /// The experiment.
+    pub experiment: Experiment,
+    /// How messages name its file.
+    pub origin: String,
+    /// Warnings in words, each naming the file (keys the planner does not read).
+    pub warnings: Vec<String>,
+}
+
+/// Parses and validates `source`, with `seed` in place of the file's when given, and checks
+/// that one run fits in `max_memory` (default: the memory available). Relative map paths are
+/// read from the working directory, whichever folder the file lies in: a run's `config.toml`,
+/// a study's runs and `covga report` re-read the same path from there.
+pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u64>) -> Result<Prepared, UseCaseError> {
+    let origin = &source.origin;
+    let mut file = ExperimentFile::parse(&source.text, origin).map_err(UseCaseError::input)?;
+    let ignored = crate::experiment::ignored::ignored_in_text(&source.text, &file);
+    if let Some(seed) = seed {
+        file.seed = seed;
+    }
+    let experiment = file.validate(origin, &PathBuf::from("."), &source.stem).map_err(UseCaseError::input)?;
+    let limit = crate::experiment::memory::memory_limit(max_memory);
+    experiment.check_memory(origin, limit, 1, rayon::current_num_threads()).map_err(UseCaseError::input)?;
+    let warnings = ignored.into_iter().map(|(key, why)| format!("{origin}: `{key}` is ignored: {why}")).collect();
+    Ok(Prepared { experiment, origin: origin.clone(), warnings })
+}
+
+/// Refuses a results folder that holds files of another run: a folder is this run's when it
+/// is empty (but for the folder lock) or its `config.toml` is the one this run writes (the
+/// same experiment run again). Another run's `best_genome.csv` or `history.png` would
+/// otherwise stay beside this run's results.
+fn check_results_folder(dir: &Path, file: &ExperimentFile) -> Result<(), String> {
+    let entries: Vec<String> = std::fs::read_dir(dir)
+        .map_err(|e| format!("{}: {e}", dir.display()))?
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != ".covga.lock")
+        .collect();
+    if entries.is_empty() {
+        return Ok(());
+    }
+    let ours = toml::to_string_pretty(file).expect("experiment files serialise");
+    if std::fs::read_to_string(dir.join("config.toml")).is_ok_and(|t| t == ours) {
+        return Ok(());
+    }
+    let mut shown = entries.clone();
+    shown.sort();
+    shown.truncate(4);
+    Err(format!(
+        "{}: holds files of another run ({}{}): choose an empty folder with --out, or remove them",
+        dir.display(),
+        shown.join(", "),
+        if entries.len() > shown.len() { ", …" } else { "" }
+    ))
+}
+
+/// Runs `prepared` into `dir` (default: the experiment's own folder), with figures when
+/// `figures`, handing each generation to `observers` too. The folder is made if missing and
+/// locked while the run writes it; a folder with another run's files is refused. A refused,
+/// failed or interrupted run removes its lock file and the folder when it made them.
+pub fn run_in_folder(
+    prepared: &Prepared,
+    dir: Option<&Path>,
+    figures: bool,
+    observers: &mut [&mut dyn Observer],
+) -> Result<(Summary, PathBuf), UseCaseError> {
+    let exp = &prepared.experiment;
+    let dir = dir.map_or_else(|| exp.output_dir.clone(), Path::to_path_buf);
+    let existed = dir.exists();
+    let lock_existed = dir.join(".covga.lock").exists();
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| UseCaseError::Input(format!("{}: cannot create the results folder: {e}", dir.display())))?;
+    let discard_folder = || {
+        if !lock_existed {
+            let _ = std::fs::remove_file(dir.join(".covga.lock"));
+        }
+        if !existed {
+            let _ = std::fs::remove_dir(&dir);
+        }
+    };
+    let lock = crate::io::FolderLock::take(&dir, true).map_err(|m| {
+        if !existed {
+            let _ = std::fs::remove_dir(&dir);
+        }
+        UseCaseError::Input(m)
+    })?;
+    check_results_folder(&dir, &exp.file).map_err(|m| {
+        discard_folder();
+        UseCaseError::Input(m)
+    })?;
+    let outcome = run_experiment(exp, &dir, figures, observers);
+    drop(lock);
+    let summary = outcome.map_err(|e| {
+        discard_folder();
+        match e {
+            OutputError::Planner(m) => UseCaseError::Input(format!("{}: {m}", prepared.origin)),
+            OutputError::Interrupted { .. } => UseCaseError::Interrupted(format!("{}: {e}", prepared.origin)),
+            other => UseCaseError::internal(other),
+        }
+    })?;
+    Ok((summary, dir))
+}
