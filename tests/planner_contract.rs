@@ -96,6 +96,34 @@ fn every_planner_keeps_the_contract() {
         for key in ["executable", "cov_final_free", "cov_final_reach", "obstacle_cells", "length_m", "time_s"] {
             assert_eq!(s["score"][key], eval["common"][key], "{name}: score.{key}");
         }
+        // The time-to-coverage curve rises to the scorer's reachable coverage at the plan's
+        // makespan, and the summary's times are read off it.
+        let curve: Vec<(f64, f64)> = std::fs::read_to_string(a.path().join("coverage_curve.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let (t, c) = l.split_once(',').unwrap();
+                (t.parse().unwrap(), c.parse().unwrap())
+            })
+            .collect();
+        assert!(curve.windows(2).all(|w| w[0].0 < w[1].0 && w[0].1 <= w[1].1), "{name}: {curve:?}");
+        let (end_t, end_c) = *curve.last().unwrap();
+        let makespan = s["score"]["makespan_s"].as_f64().unwrap();
+        assert!(
+            (end_t - makespan).abs() <= 1e-6 * makespan.max(1.0),
+            "{name}: curve ends at {end_t} s, makespan {makespan}"
+        );
+        // (serde_json reads floats to within an ulp, the CSV exactly.)
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-12 * b.abs().max(1.0);
+        let cov = s["score"]["cov_final_reach"].as_f64().unwrap();
+        assert!(close(end_c, cov), "{name}: the curve ends at {end_c}, the scorer says {cov}");
+        for (key, level) in [("time_to_80_s", 0.8), ("time_to_90_s", 0.9), ("time_to_95_s", 0.95)] {
+            let first = curve.iter().find(|p| p.1 >= level - 1e-12).map(|p| p.0);
+            let read = s["coverage_curve"][key].as_f64();
+            assert_eq!(read.is_some(), first.is_some(), "{name}: {key} {read:?} vs {first:?}");
+            assert!(read.zip(first).is_none_or(|(a, b)| close(a, b)), "{name}: {key} {read:?} vs {first:?}");
+        }
     }
 }
 

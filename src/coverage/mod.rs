@@ -8,6 +8,7 @@
 
 pub mod bits;
 pub mod camera;
+pub mod curve;
 #[cfg(test)]
 pub(crate) mod exact;
 pub mod fitness;

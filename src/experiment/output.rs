@@ -114,6 +114,9 @@ pub struct Summary {
     pub objectives: std::collections::BTreeMap<String, f64>,
     /// The common scorer's metrics of the plan.
     pub score: Score,
+    /// The plan's time-to-coverage curve in figures: times to 80, 90 and 95 % of the reachable
+    /// cells and the area over the curve (the curve itself is `coverage_curve.csv`).
+    pub coverage_curve: crate::coverage::curve::CurveSummary,
     /// Fleet metrics of a plan of several agents (the experiment's robot for each; union,
     /// overlap, makespan, balance), as `covga eval --fleet` reports them.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -145,6 +148,22 @@ fn common_score(scorer: &Scorer, plan: &[Vec<crate::geom::Point>], agents: &[Age
     } else {
         scorer.score(plan)
     }
+}
+
+/// The time-to-coverage curve of a plan, each agent on its own clock: each named robot at its
+/// own width and speeds, any other plan with the experiment's robot on every path.
+fn coverage_curve(
+    exp: &Experiment,
+    scorer: &Scorer,
+    plan: &[Vec<crate::geom::Point>],
+    agents: &[Agent],
+) -> crate::coverage::curve::CoverageCurve {
+    let robots: Vec<_> = if agents.len() == plan.len() && !agents.is_empty() {
+        agents.iter().map(|a| a.footprint).collect()
+    } else {
+        vec![exp.scenario.robot; plan.len()]
+    };
+    crate::coverage::curve::CoverageCurve::of_plan(scorer.grid(), scorer.reach(), plan, &robots)
 }
 
 /// The fleet metrics of a plan: for a plan that names its robots (a fleet), each robot at its
@@ -242,6 +261,8 @@ pub fn run_experiment(
     let scorer = scorer_of(exp, &outcome.plan, &outcome.agents);
     let score = common_score(&scorer, &outcome.plan, &outcome.agents);
     let fleet = team_score(exp, &outcome.plan, &outcome.agents);
+    let curve = coverage_curve(exp, &scorer, &outcome.plan, &outcome.agents);
+    write("coverage_curve.csv", &curve.csv())?;
     let summary = Summary {
         planner: planner.name(),
         map: exp.scenario.map.name().to_string(),
@@ -254,6 +275,7 @@ pub fn run_experiment(
         warnings: outcome.warnings.clone(),
         objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         score,
+        coverage_curve: curve.summary(),
         fleet,
         details: outcome.details.clone(),
         wall_s: outcome.wall_s,

@@ -18,6 +18,7 @@ pub mod anova;
 pub mod anova_report;
 pub mod claims;
 pub mod compare;
+mod curves;
 pub mod figures;
 pub mod fleet_report;
 mod report_tables;

@@ -21,8 +21,17 @@ pub(super) trait Section: Sync {
 }
 
 /// Every section, in the order of `summary.md`.
-pub(super) const SECTIONS: &[&dyn Section] =
-    &[&Heading, &ParetoFronts, &Diversity, &BestPaths, &Comparison, &GroupTables, &ThesisTables, &Anova];
+pub(super) const SECTIONS: &[&dyn Section] = &[
+    &Heading,
+    &ParetoFronts,
+    &Diversity,
+    &BestPaths,
+    &super::curves::CoverageCurves,
+    &Comparison,
+    &GroupTables,
+    &ThesisTables,
+    &Anova,
+];
 
 /// The title, the notes, the filters and the counts.
 struct Heading;

@@ -1,0 +1,233 @@
+//! Time-to-coverage curves of a study (issue of comparing plans at equal coverage): per map,
+//! one curve per planner (or per group, where the study has one planner) — the median over its
+//! runs of the reachable coverage reached by each time, with the band between the quartiles —
+//! and a table of the times to 80, 90 and 95 % of the reachable cells. Read from each run's
+//! `coverage_curve.csv` ([`crate::coverage::curve`]); executable plans only.
+
+use super::ReportError;
+use super::study::Study;
+use crate::plot::{Figure, err, text};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+
+/// Sample times per panel.
+const SAMPLES: usize = 240;
+
+/// A run's curve: `(time_s, coverage)` steps.
+type Curve = Vec<(f64, f64)>;
+
+/// One series of a panel: its label, the runs' curves.
+struct Series {
+    label: String,
+    curves: Vec<Curve>,
+}
+
+/// A run's curve from its `coverage_curve.csv` (`None` when the run has none or it does not
+/// parse).
+fn read_curve(path: &std::path::Path) -> Option<Vec<(f64, f64)>> {
+    let text = std::fs::read_to_string(path).ok()?;
+    let mut lines = text.lines();
+    (lines.next()? == "time_s,coverage_reach").then_some(())?;
+    lines
+        .map(|l| {
+            let (t, c) = l.split_once(',')?;
+            Some((t.parse().ok()?, c.parse().ok()?))
+        })
+        .collect()
+}
+
+/// The coverage a curve has reached by `t`.
+fn at(curve: &[(f64, f64)], t: f64) -> f64 {
+    let k = curve.partition_point(|p| p.0 <= t);
+    if k == 0 { 0.0 } else { curve[k - 1].1 }
+}
+
+/// The first time a curve reaches `level`.
+fn time_to(curve: &[(f64, f64)], level: f64) -> Option<f64> {
+    curve.iter().find(|p| p.1 >= level - 1e-12).map(|p| p.0)
+}
+
+/// Median, first and third quartile of `v`.
+fn quartiles(v: &[f64]) -> (f64, f64, f64) {
+    let (q1, m, q3) = crate::stats::quartiles(v);
+    (m, q1, q3)
+}
+
+/// The panels: per map, its series in the order the study lists them.
+fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
+    let runs = s.dir.join("runs");
+    let one_planner = s.kinds.len() <= 1;
+    let mut by_map: BTreeMap<String, BTreeMap<String, Vec<Curve>>> = BTreeMap::new();
+    let mut order: Vec<String> = Vec::new();
+    for g in &s.groups {
+        for &r in &g.rows {
+            if !s.executable(r) {
+                continue;
+            }
+            let Some(curve) = read_curve(&runs.join(s.get(r, "run_id")).join("coverage_curve.csv")) else { continue };
+            let series = if one_planner { g.label.clone() } else { s.get(r, "planner") };
+            if !order.contains(&series) {
+                order.push(series.clone());
+            }
+            by_map.entry(s.get(r, "map")).or_default().entry(series).or_default().push(curve);
+        }
+    }
+    by_map
+        .into_iter()
+        .map(|(map, mut series)| {
+            let list = order
+                .iter()
+                .filter_map(|label| series.remove(label).map(|curves| Series { label: label.clone(), curves }))
+                .collect();
+            (map, list)
+        })
+        .collect()
+}
+
+/// The section: the figure and the table, where runs have curves.
+pub(super) struct CoverageCurves;
+
+impl super::sections::Section for CoverageCurves {
+    fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
+        let panels = panels(s);
+        if panels.is_empty() {
+            return Ok(());
+        }
+        let figure = CurvesFigure { panels: panels.iter().map(|(m, series)| (m.clone(), summarise(series))).collect() };
+        crate::plot::save(&figure, &s.out.join("coverage_curves"))?;
+        let _ = writeln!(md, "## Time to coverage\n");
+        let _ = writeln!(
+            md,
+            "Reachable coverage against mission time along each executable plan (median over the runs, band \
+             between the quartiles; a segment's cells count once it is driven). Times to a level are medians over \
+             the runs that reach it.\n\n![Time-to-coverage curves](coverage_curves.png)\n"
+        );
+        let _ = writeln!(
+            md,
+            "| map | series | runs | reach 80 % | time to 80 % [s] | reach 90 % | time to 90 % [s] | reach 95 % | time to 95 % [s] |"
+        );
+        let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+        for (map, series) in &panels {
+            for se in series {
+                let mut cells = Vec::new();
+                for level in crate::coverage::curve::LEVELS {
+                    let times: Vec<f64> = se.curves.iter().filter_map(|c| time_to(c, level)).collect();
+                    cells.push(format!("{} of {}", times.len(), se.curves.len()));
+                    cells.push(if times.is_empty() { "–".into() } else { format!("{:.0}", quartiles(&times).0) });
+                }
+                let _ = writeln!(md, "| {map} | {} | {} | {} |", se.label, se.curves.len(), cells.join(" | "));
+            }
+        }
+        let _ = writeln!(md);
+        Ok(())
+    }
+}
+
+/// A series drawn: label, runs, and `(time, median, q1, q3)` at the panel's sample times.
+struct Drawn {
+    label: String,
+    runs: usize,
+    curve: Vec<(f64, f64, f64, f64)>,
+}
+
+/// Samples every series of a panel at [`SAMPLES`] times up to the longest plan's end.
+fn summarise(series: &[Series]) -> Vec<Drawn> {
+    let end = series.iter().flat_map(|s| s.curves.iter().filter_map(|c| c.last().map(|p| p.0))).fold(0.0, f64::max);
+    let end = if end > 0.0 { end } else { 1.0 };
+    series
+        .iter()
+        .map(|s| Drawn {
+            label: s.label.clone(),
+            runs: s.curves.len(),
+            curve: (0..=SAMPLES)
+                .map(|k| {
+                    let t = end * k as f64 / SAMPLES as f64;
+                    let v: Vec<f64> = s.curves.iter().map(|c| at(c, t)).collect();
+                    let (m, q1, q3) = quartiles(&v);
+                    (t, m, q1, q3)
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+/// One panel per map, one median line and quartile band per series.
+struct CurvesFigure {
+    panels: Vec<(String, Vec<Drawn>)>,
+}
+
+impl Figure for CurvesFigure {
+    fn size(&self) -> (u32, u32) {
+        (1000, 60 + 320 * self.panels.len().max(1) as u32)
+    }
+
+    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
+        let title = "Time to coverage: reachable coverage over mission time (median, band = quartiles over runs)";
+        let root = root.titled(title, crate::plot::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
+        for (area, (map, series)) in root.split_evenly((self.panels.len().max(1), 1)).iter().zip(&self.panels) {
+            let (plot, legend_area) = area.split_horizontally(area.dim_in_pixel().0 - 230);
+            let x_max = series.iter().flat_map(|s| s.curve.last().map(|c| c.0)).fold(1.0, f64::max);
+            let mut chart = ChartBuilder::on(&plot)
+                .caption(format!("map {map}"), text(14.0))
+                .margin(8)
+                .margin_right(16)
+                .x_label_area_size(45)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0.0..x_max, 0.0..1.0)
+                .map_err(err)?;
+            chart
+                .configure_mesh()
+                .y_label_formatter(&|v| format!("{v:.1}"))
+                .x_label_formatter(&|v| format!("{v:.0}"))
+                .light_line_style(RGBColor(235, 235, 235))
+                .x_desc("mission time [s]")
+                .y_desc("coverage of reachable")
+                .label_style(text(14.0))
+                .axis_desc_style(text(14.0))
+                .draw()
+                .map_err(err)?;
+            let one_px = 1.0 / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
+            let mut entries = Vec::new();
+            for (k, s) in series.iter().enumerate() {
+                let colour = crate::plot::series_colour(k);
+                let band: Vec<(f64, f64)> =
+                    s.curve.iter().map(|c| (c.0, c.3)).chain(s.curve.iter().rev().map(|c| (c.0, c.2))).collect();
+                chart.draw_series([Polygon::new(band, colour.mix(0.15).filled())]).map_err(err)?;
+                let median: Vec<(f64, f64)> = s.curve.iter().map(|c| (c.0, c.1)).collect();
+                crate::plot::draw_series_line(&mut chart, &median, colour, one_px)?;
+                entries.push((colour, format!("{} ({} runs)", s.label, s.runs)));
+            }
+            crate::plot::legend(&legend_area, &entries, 40)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn curves_are_read_and_sampled_as_steps() {
+        let dir = std::env::temp_dir().join(format!("covga-curves-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("coverage_curve.csv");
+        std::fs::write(&file, "time_s,coverage_reach\n0,0\n10,0.5\n20,0.9\n30,0.95\n").unwrap();
+        let c = read_curve(&file).unwrap();
+        assert_eq!(c.len(), 4);
+        assert_eq!((at(&c, 9.9), at(&c, 10.0), at(&c, 25.0), at(&c, 99.0)), (0.0, 0.5, 0.9, 0.95));
+        assert_eq!((time_to(&c, 0.8), time_to(&c, 0.95), time_to(&c, 0.96)), (Some(20.0), Some(30.0), None));
+        std::fs::write(&file, "x,y\n0,0\n").unwrap();
+        assert_eq!(read_curve(&file), None, "another file's header is not a curve");
+        let series =
+            [Series { label: "a".into(), curves: vec![c.clone(), c.iter().map(|p| (2.0 * p.0, p.1)).collect()] }];
+        let drawn = summarise(&series);
+        assert_eq!(drawn[0].curve.len(), SAMPLES + 1);
+        // At the end of the longer plan both runs have reached 0.95.
+        let last = drawn[0].curve.last().unwrap();
+        assert_eq!((last.0, last.1), (60.0, 0.95));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
