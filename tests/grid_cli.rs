@@ -405,7 +405,12 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
     ok(&covga(&["report", out.to_str().unwrap()]));
     let md = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
     assert!(md.contains("## Search versus objective"), "{md}");
-    assert_eq!(md.lines().filter(|l| l.starts_with("| thesis-1 | ")).count(), 2, "{md}");
+    let section = md.split("## Search versus objective").nth(1).unwrap().split("\n## ").next().unwrap();
+    assert_eq!(section.lines().filter(|l| l.starts_with("| thesis-1 | ")).count(), 2, "{md}");
+    // Every planner's plans have their time-to-coverage curves, one series per planner.
+    assert!(out.join("report/coverage_curves.png").is_file());
+    let curves = md.split("## Time to coverage").nth(1).unwrap().split("\n## ").next().unwrap();
+    assert!(curves.lines().filter(|l| l.starts_with("| thesis-1 | ")).count() >= 2, "{curves}");
     // Each pair of cells that differs in one factor gets a finding: the comparison, or why it
     // cannot be made on executable plans (the thesis GA's plans often touch a wall with the
     // robot's body at a vertex, which 003's penalty does not see).
