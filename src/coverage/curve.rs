@@ -85,6 +85,21 @@ impl CoverageCurve {
         Self { points }
     }
 
+    /// The curve [`CoverageCurve::csv`] wrote, or `None` for text that is not one (another
+    /// header, a field that is no number, times or coverage that fall).
+    pub fn parse_csv(text: &str) -> Option<Self> {
+        let mut lines = text.lines();
+        (lines.next()? == "time_s,coverage_reach").then_some(())?;
+        let points: Vec<(f64, f64)> = lines
+            .map(|l| {
+                let (t, c) = l.split_once(',')?;
+                Some((t.parse().ok()?, c.parse().ok()?))
+            })
+            .collect::<Option<_>>()?;
+        let rising = points.windows(2).all(|w| w[0].0 <= w[1].0 && w[0].1 <= w[1].1);
+        (rising && !points.is_empty()).then_some(Self { points })
+    }
+
     /// The `(time_s, coverage)` pairs.
     pub fn points(&self) -> &[(f64, f64)] {
         &self.points

@@ -6,6 +6,7 @@
 
 use super::ReportError;
 use super::study::Study;
+use crate::coverage::curve::CoverageCurve;
 use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -15,38 +16,16 @@ use std::fmt::Write as _;
 /// Sample times per panel.
 const SAMPLES: usize = 240;
 
-/// A run's curve: `(time_s, coverage)` steps.
-type Curve = Vec<(f64, f64)>;
-
 /// One series of a panel: its label, the runs' curves.
 struct Series {
     label: String,
-    curves: Vec<Curve>,
+    curves: Vec<CoverageCurve>,
 }
 
 /// A run's curve from its `coverage_curve.csv` (`None` when the run has none or it does not
 /// parse).
-fn read_curve(path: &std::path::Path) -> Option<Vec<(f64, f64)>> {
-    let text = std::fs::read_to_string(path).ok()?;
-    let mut lines = text.lines();
-    (lines.next()? == "time_s,coverage_reach").then_some(())?;
-    lines
-        .map(|l| {
-            let (t, c) = l.split_once(',')?;
-            Some((t.parse().ok()?, c.parse().ok()?))
-        })
-        .collect()
-}
-
-/// The coverage a curve has reached by `t`.
-fn at(curve: &[(f64, f64)], t: f64) -> f64 {
-    let k = curve.partition_point(|p| p.0 <= t);
-    if k == 0 { 0.0 } else { curve[k - 1].1 }
-}
-
-/// The first time a curve reaches `level`.
-fn time_to(curve: &[(f64, f64)], level: f64) -> Option<f64> {
-    curve.iter().find(|p| p.1 >= level - 1e-12).map(|p| p.0)
+fn read_curve(path: &std::path::Path) -> Option<CoverageCurve> {
+    CoverageCurve::parse_csv(&std::fs::read_to_string(path).ok()?)
 }
 
 /// Median, first and third quartile of `v`.
@@ -59,7 +38,7 @@ fn quartiles(v: &[f64]) -> (f64, f64, f64) {
 fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
     let runs = s.dir.join("runs");
     let one_planner = s.kinds.len() <= 1;
-    let mut by_map: BTreeMap<String, BTreeMap<String, Vec<Curve>>> = BTreeMap::new();
+    let mut by_map: BTreeMap<String, BTreeMap<String, Vec<CoverageCurve>>> = BTreeMap::new();
     let mut order: Vec<String> = Vec::new();
     for g in &s.groups {
         for &r in &g.rows {
@@ -113,7 +92,7 @@ impl super::sections::Section for CoverageCurves {
             for se in series {
                 let mut cells = Vec::new();
                 for level in crate::coverage::curve::LEVELS {
-                    let times: Vec<f64> = se.curves.iter().filter_map(|c| time_to(c, level)).collect();
+                    let times: Vec<f64> = se.curves.iter().filter_map(|c| c.time_to(level)).collect();
                     cells.push(format!("{} of {}", times.len(), se.curves.len()));
                     cells.push(if times.is_empty() { "–".into() } else { format!("{:.0}", quartiles(&times).0) });
                 }
@@ -134,7 +113,8 @@ struct Drawn {
 
 /// Samples every series of a panel at [`SAMPLES`] times up to the longest plan's end.
 fn summarise(series: &[Series]) -> Vec<Drawn> {
-    let end = series.iter().flat_map(|s| s.curves.iter().filter_map(|c| c.last().map(|p| p.0))).fold(0.0, f64::max);
+    let end =
+        series.iter().flat_map(|s| s.curves.iter().filter_map(|c| c.points().last().map(|p| p.0))).fold(0.0, f64::max);
     let end = if end > 0.0 { end } else { 1.0 };
     series
         .iter()
@@ -144,7 +124,7 @@ fn summarise(series: &[Series]) -> Vec<Drawn> {
             curve: (0..=SAMPLES)
                 .map(|k| {
                     let t = end * k as f64 / SAMPLES as f64;
-                    let v: Vec<f64> = s.curves.iter().map(|c| at(c, t)).collect();
+                    let v: Vec<f64> = s.curves.iter().map(|c| c.coverage_at(t)).collect();
                     let (m, q1, q3) = quartiles(&v);
                     (t, m, q1, q3)
                 })
@@ -216,13 +196,16 @@ mod tests {
         let file = dir.join("coverage_curve.csv");
         std::fs::write(&file, "time_s,coverage_reach\n0,0\n10,0.5\n20,0.9\n30,0.95\n").unwrap();
         let c = read_curve(&file).unwrap();
-        assert_eq!(c.len(), 4);
-        assert_eq!((at(&c, 9.9), at(&c, 10.0), at(&c, 25.0), at(&c, 99.0)), (0.0, 0.5, 0.9, 0.95));
-        assert_eq!((time_to(&c, 0.8), time_to(&c, 0.95), time_to(&c, 0.96)), (Some(20.0), Some(30.0), None));
-        std::fs::write(&file, "x,y\n0,0\n").unwrap();
-        assert_eq!(read_curve(&file), None, "another file's header is not a curve");
-        let series =
-            [Series { label: "a".into(), curves: vec![c.clone(), c.iter().map(|p| (2.0 * p.0, p.1)).collect()] }];
+        assert_eq!(c.points().len(), 4);
+        let at = |t| c.coverage_at(t);
+        assert_eq!((at(9.9), at(10.0), at(25.0), at(99.0)), (0.0, 0.5, 0.9, 0.95));
+        assert_eq!((c.time_to(0.8), c.time_to(0.95), c.time_to(0.96)), (Some(20.0), Some(30.0), None));
+        for bad in ["x,y\n0,0\n", "time_s,coverage_reach\n0,0\n10,x\n", "time_s,coverage_reach\n0,0.5\n10,0.4\n"] {
+            std::fs::write(&file, bad).unwrap();
+            assert!(read_curve(&file).is_none(), "{bad:?} is not a curve");
+        }
+        let slower = CoverageCurve::parse_csv("time_s,coverage_reach\n0,0\n20,0.5\n40,0.9\n60,0.95\n").unwrap();
+        let series = [Series { label: "a".into(), curves: vec![c, slower] }];
         let drawn = summarise(&series);
         assert_eq!(drawn[0].curve.len(), SAMPLES + 1);
         // At the end of the longer plan both runs have reached 0.95.
