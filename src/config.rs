@@ -22,8 +22,17 @@ impl ConfigError {
 
     /// Condenses a TOML error into one line with its line number.
     pub fn from_toml(file: &str, text: &str, e: &toml::de::Error) -> Self {
-        let line = e.span().map(|s| text[..s.start.min(text.len())].matches('\n').count() + 1);
-        let message = e.message().replace('\n', " ").trim().to_string();
+        let before = e.span().map(|s| &text[..s.start.min(text.len())]);
+        let line = before.map(|b| b.matches('\n').count() + 1);
+        let mut message = e.message().replace('\n', " ").trim().to_string();
+        if message.is_empty() {
+            // The parser gives no words where the text simply ends too early (`planner = `).
+            let column = before.map(|b| b.len() - b.rfind('\n').map_or(0, |k| k + 1) + 1);
+            message = format!(
+                "the TOML is incomplete{}: a value, a closing quote or bracket is missing",
+                column.map_or(String::new(), |c| format!(" at column {c}"))
+            );
+        }
         match line {
             Some(l) => Self::new(format!("{file}:{l}"), "", message),
             None => Self::new(file, "", message),
@@ -43,4 +52,25 @@ pub fn check_range(file: &str, key: &str, v: f64, lo: f64, hi: f64, allowed: &st
 /// Checks a probability or fraction in [0, 1].
 pub fn check_unit(file: &str, key: &str, v: f64) -> Result<(), ConfigError> {
     check_range(file, key, v, 0.0, 1.0, "[0, 1]")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every TOML error gets words, the one the parser leaves empty (text ending too early)
+    /// included.
+    #[test]
+    fn toml_errors_name_the_line_and_say_what_is_wrong() {
+        for (text, line, words) in [
+            ("planner = ", "x.toml:1", "incomplete at column 11"),
+            ("seed = 1\nplanner = \"thesis", "x.toml:2", "string"),
+            ("seed = 1\n[map\n", "x.toml:2", ""),
+        ] {
+            let e = toml::from_str::<toml::Value>(text).unwrap_err();
+            let c = ConfigError::from_toml("x.toml", text, &e);
+            assert_eq!(c.file, line, "{text:?}: {c}");
+            assert!(!c.message.is_empty() && c.message.contains(words), "{text:?}: {c}");
+        }
+    }
 }

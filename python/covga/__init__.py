@@ -44,9 +44,10 @@ __all__ = [
 ]
 __version__ = _covga.__version__
 
-# map_server's default thresholds on the occupancy percentages of a ROS OccupancyGrid.
-_OCCUPIED_ABOVE = 65.0
-_FREE_BELOW = 19.6
+# map_server's default thresholds on the occupancy percentages of a ROS OccupancyGrid, as the
+# Rust map reader defines them.
+_OCCUPIED_ABOVE = _covga.OCCUPIED_ABOVE_PERCENT
+_FREE_BELOW = _covga.FREE_BELOW_PERCENT
 
 
 def _cell_states(occupancy: np.ndarray) -> np.ndarray:

@@ -60,6 +60,10 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scoring::pattern, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::thesis_evaluate, m)?)?;
     m.add("THESIS_COLUMNS", covga::thesis::batch::COLUMNS.to_vec())?;
+    // map_server's default thresholds, as the map reader applies them, in occupancy percent.
+    let rule = covga::map::ros::PixelRule::default();
+    m.add("OCCUPIED_ABOVE_PERCENT", 100.0 * rule.occupied_thresh)?;
+    m.add("FREE_BELOW_PERCENT", 100.0 * rule.free_thresh)?;
     m.add_function(wrap_pyfunction!(runs::run_experiment, m)?)?;
     m.add_function(wrap_pyfunction!(runs::run_grid, m)?)?;
     m.add_function(wrap_pyfunction!(runs::write_report, m)?)?;

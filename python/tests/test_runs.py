@@ -115,6 +115,7 @@ def test_patterns_and_fleets_run_with_one_path_per_agent(tmp_path):
         ('planner = "thesis"\n[thesis]\nbogus = 1\n', "unknown field `bogus`"),
         ('planner = "nope"\n', "unknown variant `nope`"),
         ('planner = "thesis"\n[map]\nsource = "nowhere.yaml"\n', "nowhere.yaml"),
+        ("planner = ", "bad.toml:1: the TOML is incomplete at column 11"),
     ],
 )
 def test_bad_experiments_raise_the_clis_message(tmp_path, cli, text, message):
