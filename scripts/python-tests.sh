@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The Python package's tests: builds the package into a fresh virtual environment
-# (target/python-venv) with its test extras (pytest, pandas, pymoo), then runs python/tests,
+# (target/python-venv) with its test extras (pytest, pandas, pymoo, mypy), type-checks the package (`mypy --strict`)
+# and runs python/tests,
 # which compare the package with the release binary of this checkout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,4 +11,6 @@ rm -rf "$venv"
 python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet --upgrade pip
 "$venv/bin/pip" install --quiet "./python[test]"
+# The package's own annotations, against its stubs of the compiled module.
+(cd python && MYPYPATH=. "../$venv/bin/mypy" --strict --no-incremental covga)
 COVGA_BIN="$PWD/target/release/covga" "$venv/bin/pytest" -q python/tests

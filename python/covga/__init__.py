@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any, Mapping, Optional, Sequence, Union
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _covga, stats, thesis
 from ._arrays import rows_of_pairs
@@ -69,9 +70,10 @@ def _cell_states(occupancy: np.ndarray) -> np.ndarray:
     return states
 
 
-def _map_from_pickle(states: np.ndarray, resolution: float, origin: tuple, name: str) -> Map:
+def _map_from_pickle(states: npt.NDArray[Any], resolution: float, origin: tuple[float, float], name: str) -> Map:
     """Rebuilds a pickled :class:`Map` (``Map.__reduce__``) bit for bit."""
-    return _covga.map_from_states(np.ascontiguousarray(states, dtype=np.int8), float(resolution), tuple(origin), str(name))
+    x, y = origin
+    return _covga.map_from_states(np.ascontiguousarray(states, dtype=np.int8), float(resolution), (float(x), float(y)), str(name))
 
 
 def _number(value: Any, key: str, integer: bool = False) -> Any:
@@ -86,7 +88,7 @@ def _number(value: Any, key: str, integer: bool = False) -> Any:
     return int(value) if integer else float(value)
 
 
-def _point(value: Any, key: str) -> tuple:
+def _point(value: Any, key: str) -> tuple[float, float]:
     """``value`` as ``(x, y)`` in metres, or ConfigError naming ``key``."""
     try:
         items = list(value)
@@ -98,7 +100,7 @@ def _point(value: Any, key: str) -> tuple:
 
 
 def load_map(
-    source: Union[str, os.PathLike, np.ndarray, Map],
+    source: Union[str, "os.PathLike[str]", npt.NDArray[Any], Map],
     resolution: Optional[float] = None,
     origin: Sequence[float] = (0.0, 0.0),
     name: str = "array",
@@ -139,7 +141,7 @@ def load_map(
     return _covga.map_from_states(_cell_states(occupancy), _number(resolution, "resolution"), (x, y), str(name))
 
 
-def _paths(path: Any) -> list:
+def _paths(path: Any) -> list[npt.NDArray[np.float64]]:
     """One ``(N, 2)`` float array per agent."""
     if isinstance(path, (list, tuple)) and len(path) > 0 and np.ndim(path[0]) == 2:
         items = list(path)
@@ -156,7 +158,7 @@ def score(
     rot_speed: float = 0.0,
     camera: Optional[Mapping[str, Any]] = None,
     projection: str = "f1",
-) -> dict:
+) -> dict[str, Any]:
     """The common scorer's metrics of a plan, as ``covga eval`` reports them (``common``).
 
     ``path`` is an ``(N, 2)`` array of metres, or a list of them (one per agent, all with this
@@ -167,7 +169,8 @@ def score(
     text = _covga.score(
         load_map(map), _paths(path), float(width), float(speed), float(rot_speed), camera_json, projection
     )
-    return json.loads(text)
+    metrics: dict[str, Any] = json.loads(text)
+    return metrics
 
 
 def pattern(
@@ -182,8 +185,8 @@ def pattern(
     """A ``boustrophedon`` (lanes at ``angle`` degrees from +x) or ``spiral`` plan from
     ``start`` back to ``end`` (default: the start), as an ``(N, 2)`` array of metres; with
     ``complete``, the strips the pattern leaves are visited afterwards (as ``covga eval``)."""
-    s = tuple(float(v) for v in start)
-    e = None if end is None else tuple(float(v) for v in end)
+    s = _point(start, "start")
+    e = None if end is None else _point(end, "end")
     return _covga.pattern(load_map(map), kind, s, float(width), float(angle), e, bool(complete))
 
 
@@ -195,15 +198,15 @@ class Result:
     ``None`` for other planners), ``dir`` (the results folder, ``None`` when not kept) and
     ``warnings``."""
 
-    summary: dict
+    summary: dict[str, Any]
     history: Any
-    plan: list
+    plan: list[npt.NDArray[np.float64]]
     population: Any = None
     dir: Optional[Path] = None
-    warnings: list = field(default_factory=list)
+    warnings: list[str] = field(default_factory=list)
 
     @property
-    def path(self) -> np.ndarray:
+    def path(self) -> npt.NDArray[np.float64]:
         """The first (for one robot, the only) agent's path."""
         return self.plan[0]
 
@@ -243,7 +246,7 @@ def _plain(value: Any, key: str) -> Any:
     )
 
 
-def _experiment(experiment: Any) -> tuple:
+def _experiment(experiment: Any) -> tuple[str, str]:
     """``(kind, payload)`` of a TOML path, TOML text or dict."""
     if isinstance(experiment, Mapping):
         return "json", json.dumps(_plain(experiment, ""))
@@ -256,15 +259,15 @@ def _experiment(experiment: Any) -> tuple:
     raise ConfigError(f"experiment of type {type(experiment).__name__}: expected a TOML path, TOML text or a dict")
 
 
-def _read_plan(csv_path: Path) -> list:
-    table = np.genfromtxt(csv_path, delimiter=",", names=True, dtype=np.float64)
-    table = np.atleast_1d(table)
-    agents = table["agent"].astype(np.int64) if "agent" in table.dtype.names else np.zeros(len(table), np.int64)
+def _read_plan(csv_path: Path) -> list[npt.NDArray[np.float64]]:
+    table: Any = np.atleast_1d(np.genfromtxt(csv_path, delimiter=",", names=True, dtype=np.float64))
+    names = table.dtype.names or ()
+    agents = table["agent"].astype(np.int64) if "agent" in names else np.zeros(len(table), np.int64)
     points = np.column_stack([table["x_m"], table["y_m"]])
     return [points[agents == k] for k in range(int(agents.max()) + 1 if len(agents) else 0)]
 
 
-def _read_result(folder: Path, kept: bool, messages: list) -> Result:
+def _read_result(folder: Path, kept: bool, messages: list[str]) -> Result:
     summary = json.loads((folder / "summary.json").read_text())
     tables = {}
     for name in ("history", "population"):
@@ -277,7 +280,7 @@ def _read_result(folder: Path, kept: bool, messages: list) -> Result:
 def run(
     experiment: Any,
     seed: Optional[int] = None,
-    out: Optional[Union[str, os.PathLike]] = None,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
     figures: Optional[bool] = None,
 ) -> Result:
     """Runs one experiment: a TOML file path, TOML text, or a dict with the experiment file's
@@ -305,11 +308,11 @@ def run(
 
 
 def grid(
-    file: Union[str, os.PathLike],
+    file: Union[str, "os.PathLike[str]"],
     jobs: Optional[int] = None,
-    out: Optional[Union[str, os.PathLike]] = None,
+    out: Optional[Union[str, "os.PathLike[str]"]] = None,
     order: str = "longest-first",
-):
+) -> Any:
     """Runs (or resumes) a grid study as ``covga grid`` does, ``jobs`` runs at a time (default:
     one per CPU), into ``out`` (default ``out/<grid stem>``); returns :func:`read_study` of it.
     ``order`` is ``covga grid --order``: ``"longest-first"`` (by recorded or budgeted time, so
@@ -327,7 +330,7 @@ def grid(
 
 
 def report(
-    dir: Union[str, os.PathLike],
+    dir: Union[str, "os.PathLike[str]"],
     by: Union[str, Sequence[str]] = (),
     where: Optional[Mapping[str, Any]] = None,
     name: Optional[str] = None,
@@ -339,7 +342,10 @@ def report(
     ``compare-KEY.md`` and ``.csv`` beside it (``covga report --compare``; the tables read back
     with :func:`read_table`)."""
     by = [by] if isinstance(by, str) else list(by)
-    text = lambda v: str(v).lower() if isinstance(v, bool) else str(v)
+
+    def text(v: Any) -> str:
+        return str(v).lower() if isinstance(v, bool) else str(v)
+
     pairs = [(str(k), text(v)) for k, v in (where or {}).items()]
     comparisons = [f"{k}={text(v)}" for k, v in (compare or {}).items()]
     return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons))

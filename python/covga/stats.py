@@ -18,6 +18,7 @@ import math
 from typing import Any, Optional, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 from . import _covga
 from ._arrays import real_numbers
@@ -26,7 +27,7 @@ from ._covga import ConfigError
 __all__ = ["a12", "bootstrap_ci", "holm", "kruskal_wallis", "mann_whitney", "sign_test", "wilcoxon"]
 
 
-def _sample(value: Any, what: str) -> list:
+def _sample(value: Any, what: str) -> list[float]:
     """``value`` as a list of finite floats, or a ``ConfigError`` naming ``what``."""
     try:
         real_numbers(value, what, "numbers")
@@ -37,17 +38,18 @@ def _sample(value: Any, what: str) -> list:
         raise ConfigError(f"{what}: shape {a.shape}, expected a one-dimensional sample")
     if not np.all(np.isfinite(a)):
         raise ConfigError(f"{what}: holds NaN or infinite values; drop or impute them first")
-    return a.tolist()
+    values: list[float] = a.tolist()
+    return values
 
 
-def _paired(a: Any, b: Any) -> tuple:
-    a, b = _sample(a, "a"), _sample(b, "b")
-    if len(a) != len(b):
-        raise ConfigError(f"b: {len(b)} values for the {len(a)} of a; paired samples have one each")
-    return a, b
+def _paired(a: Any, b: Any) -> tuple[list[float], list[float]]:
+    x, y = _sample(a, "a"), _sample(b, "b")
+    if len(x) != len(y):
+        raise ConfigError(f"b: {len(y)} values for the {len(x)} of a; paired samples have one each")
+    return x, y
 
 
-def mann_whitney(a: Sequence[float], b: Sequence[float]) -> Optional[dict]:
+def mann_whitney(a: Sequence[float], b: Sequence[float]) -> Optional[dict[str, Any]]:
     """Two-sided Mann–Whitney U test of independent samples: ``{"u", "p_value", "method"}``
     (``u`` counts the pairs with ``a > b``, ties half), or ``None`` when every value is tied."""
     a, b = _sample(a, "a"), _sample(b, "b")
@@ -57,7 +59,7 @@ def mann_whitney(a: Sequence[float], b: Sequence[float]) -> Optional[dict]:
     return None if out is None else dict(zip(("u", "p_value", "method"), out))
 
 
-def wilcoxon(a: Sequence[float], b: Sequence[float]) -> Optional[dict]:
+def wilcoxon(a: Sequence[float], b: Sequence[float]) -> Optional[dict[str, Any]]:
     """Two-sided Wilcoxon signed-rank test of pairs ``(a[i], b[i])`` (for example the same seed
     under two settings): ``{"w_plus", "pairs", "p_value", "method"}``; tied pairs are dropped
     (``pairs`` counts the rest). ``None`` when every pair ties."""
@@ -83,7 +85,7 @@ def a12(a: Sequence[float], b: Sequence[float]) -> float:
     return _covga.stats_a12(a, b)
 
 
-def holm(p_values: Sequence[float]) -> np.ndarray:
+def holm(p_values: Sequence[float]) -> npt.NDArray[np.float64]:
     """Holm–Bonferroni adjusted p-values of one family of tests, in the input order."""
     p = _sample(p_values, "p_values")
     if any(x < 0.0 or x > 1.0 for x in p):
@@ -91,7 +93,7 @@ def holm(p_values: Sequence[float]) -> np.ndarray:
     return np.asarray(_covga.stats_holm(p))
 
 
-def kruskal_wallis(*groups: Sequence[float]) -> Optional[dict]:
+def kruskal_wallis(*groups: Sequence[float]) -> Optional[dict[str, Any]]:
     """Kruskal–Wallis test of k independent groups: ``{"h", "df", "p_value", "epsilon_squared"}``,
     or ``None`` with fewer than two non-empty groups or every value tied."""
     samples = [_sample(g, f"groups[{i}]") for i, g in enumerate(groups)]
@@ -108,7 +110,7 @@ def bootstrap_ci(
     level: float = 0.95,
     resamples: int = 10_000,
     seed: int = 0,
-) -> Optional[dict]:
+) -> Optional[dict[str, Any]]:
     """Percentile bootstrap interval of ``median(a) − median(b)`` (``contrast =
     "median_difference"``) or ``median(a) / median(b)`` (``"median_ratio"``): ``{"estimate",
     "low", "high"}``. With ``paired`` a resample keeps each pair together. Seeded: the same

@@ -64,7 +64,7 @@ def evaluate(
     )
 
 
-def read_genome(run_dir: Union[str, os.PathLike]) -> np.ndarray:
+def read_genome(run_dir: Union[str, "os.PathLike[str]"]) -> np.ndarray:
     """The live actions of a thesis run's best genome (``best_genome.csv``: the start's move
     and every action, without the connector and the end) as an ``(L, 2)`` array."""
     path = Path(run_dir) / "best_genome.csv"

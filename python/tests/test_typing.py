@@ -1,0 +1,57 @@
+"""The package is typed: a notebook's code that misuses covga's API fails `mypy --strict`, and
+correct code passes, with the types the installed package ships (`py.typed`, `_covga.pyi`)."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import covga
+
+GOOD = '''
+import numpy as np
+import covga
+
+m: covga.Map = covga.load_map("thesis-1")
+path = covga.pattern(m, "boustrophedon", start=(1.3, 1.3), width=0.6, angle=90.0)
+s = covga.score(m, path, width=0.6, speed=0.2)
+coverage: float = s["cov_final_reach"]
+rows, cols = m.shape
+free: np.ndarray = m.free
+p = covga.stats.holm([0.01, 0.04])
+test = covga.stats.mann_whitney([1.0, 2.0], [3.0, 4.0])
+'''
+
+BAD = '''
+import covga
+
+m = covga.load_map("thesis-1")
+name: int = m.name
+covga.pattern(m, "spiral", width="wide")
+'''
+
+
+def _mypy(tmp_path: Path, text: str) -> subprocess.CompletedProcess:
+    file = tmp_path / "snippet.py"
+    file.write_text(text)
+    return subprocess.run(
+        [sys.executable, "-m", "mypy", "--strict", "--no-incremental", str(file)],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        timeout=300,
+    )
+
+
+def test_the_installed_package_ships_its_types():
+    folder = Path(covga.__file__).parent
+    assert (folder / "py.typed").is_file()
+    assert (folder / "_covga.pyi").is_file()
+
+
+def test_mypy_strict_checks_code_that_uses_covga(tmp_path):
+    good = _mypy(tmp_path, GOOD)
+    assert good.returncode == 0, good.stdout + good.stderr
+    bad = _mypy(tmp_path, BAD)
+    assert bad.returncode == 1, bad.stdout
+    assert 'Incompatible types in assignment (expression has type "str", variable has type "int")' in bad.stdout
+    assert 'Argument "width" to "pattern" has incompatible type "str"' in bad.stdout
