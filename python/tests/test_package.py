@@ -1,5 +1,6 @@
-"""The package is typed: a notebook's code that misuses covga's API fails `mypy --strict`, and
-correct code passes, with the types the installed package ships (`py.typed`, `_covga.pyi`)."""
+"""The installed package: typed (a notebook's code that misuses covga's API fails `mypy
+--strict`, correct code passes, with the types the package ships: `py.typed`, `_covga.pyi`) and
+stripped of the release profile's debug info."""
 
 import subprocess
 import sys
@@ -46,6 +47,13 @@ def test_the_installed_package_ships_its_types():
     folder = Path(covga.__file__).parent
     assert (folder / "py.typed").is_file()
     assert (folder / "_covga.pyi").is_file()
+
+
+def test_the_compiled_module_is_stripped():
+    # With debug info the module is about 87 MB; stripped, about 10 MB.
+    folder = Path(covga.__file__).parent
+    (module,) = [p for p in folder.iterdir() if p.name.startswith("_covga") and p.suffix in (".so", ".pyd")]
+    assert module.stat().st_size < 30_000_000, module.stat().st_size
 
 
 def test_mypy_strict_checks_code_that_uses_covga(tmp_path):
