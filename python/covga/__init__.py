@@ -88,6 +88,16 @@ def _number(value: Any, key: str, integer: bool = False) -> Any:
     return int(value) if integer else float(value)
 
 
+def _threads(value: Any) -> Optional[int]:
+    """``threads=`` as a count of worker threads (``None``: one per CPU, or ``RAYON_NUM_THREADS``)."""
+    if value is None:
+        return None
+    n = int(_number(value, "threads", integer=True))
+    if not 1 <= n <= _covga.MAX_THREADS:
+        raise ConfigError(f"threads = {value!r} is out of range: allowed [1, {_covga.MAX_THREADS}]")
+    return n
+
+
 def _point(value: Any, key: str) -> tuple[float, float]:
     """``value`` as ``(x, y)`` in metres, or ConfigError naming ``key``."""
     try:
@@ -282,25 +292,31 @@ def run(
     seed: Optional[int] = None,
     out: Optional[Union[str, "os.PathLike[str]"]] = None,
     figures: Optional[bool] = None,
+    threads: Optional[int] = None,
 ) -> Result:
     """Runs one experiment: a TOML file path, TOML text, or a dict with the experiment file's
     keys (``{"planner": "thesis", "map": {"source": "thesis-1"}, ...}``). ``seed`` overrides the
     file's. With ``out``, the run's folder is written there as ``covga run --out`` writes it
     (figures too unless ``figures=False``), and refused in the same way when it holds another
     run's files; without, it is read back and removed. The GIL is
-    released while it runs; Ctrl-C stops it and raises ``KeyboardInterrupt``."""
+    released while it runs; Ctrl-C stops it and raises ``KeyboardInterrupt``. ``threads``: worker
+    threads of the run (default one per CPU, or ``RAYON_NUM_THREADS``); results do not depend on
+    it."""
     kind, payload = _experiment(experiment)
+    n_threads = _threads(threads)
     if seed is not None and not (isinstance(seed, (int, np.integer)) and 0 <= int(seed) <= 2**63 - 1):
         raise ConfigError(f"seed = {seed!r} is out of range: expected an integer in [0, {2**63 - 1}]")
     seed = None if seed is None else int(seed)
     if out is None:
         with tempfile.TemporaryDirectory(prefix="covga-run-") as tmp:
             folder = Path(tmp) / "run"
-            messages = _covga.run_experiment(kind, payload, seed, str(folder), bool(figures))
+            messages = _covga.run_experiment(kind, payload, seed, str(folder), bool(figures), n_threads)
             result = _read_result(folder, False, messages)
     else:
         folder = Path(out)
-        messages = _covga.run_experiment(kind, payload, seed, str(folder), figures is None or bool(figures))
+        messages = _covga.run_experiment(
+            kind, payload, seed, str(folder), figures is None or bool(figures), n_threads
+        )
         result = _read_result(folder, True, messages)
     for m in messages:
         warnings.warn(m, stacklevel=2)

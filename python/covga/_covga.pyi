@@ -9,6 +9,7 @@ __version__: str
 THESIS_COLUMNS: list[str]
 OCCUPIED_ABOVE_PERCENT: float
 FREE_BELOW_PERCENT: float
+MAX_THREADS: int
 
 class ConfigError(ValueError): ...
 
@@ -68,8 +69,11 @@ def thesis_evaluate(
     end: Optional[tuple[float, float]],
     projection_name: str,
     moves_name: str,
+    threads: Optional[int] = None,
 ) -> npt.NDArray[np.float64]: ...
-def run_experiment(kind: str, payload: str, seed: Optional[int], out: str, figures: bool) -> list[str]: ...
+def run_experiment(
+    kind: str, payload: str, seed: Optional[int], out: str, figures: bool, threads: Optional[int] = None
+) -> list[str]: ...
 def run_grid(file: str, jobs: int, out: str, order: str) -> tuple[int, int, int]: ...
 def write_report(
     dir: str, by: list[str], filter: list[tuple[str, str]], name: Optional[str], compare: list[str]

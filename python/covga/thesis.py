@@ -46,6 +46,7 @@ def evaluate(
     end: Optional[Sequence[float]] = None,
     projection: str = "f2",
     moves: str = "straight",
+    threads: Optional[int] = None,
 ) -> np.ndarray:
     """Scores a batch of genomes with the thesis GA's fitness, in parallel in Rust.
 
@@ -53,14 +54,24 @@ def evaluate(
     array with the columns :data:`COLUMNS`: ``cov_final``, ``t_final``, ``f`` (``f_obstacle``
     with ``projection``, maximised) and ``obstacle_cells`` (0 for a plan that stays in free
     space). ``end`` defaults to ``start``. ``moves``: ``"straight"`` (003) or ``"routed"`` (a move
-    that would sweep an obstacle drives around it, as ``thesis.moves = "routed"``).
+    that would sweep an obstacle drives around it, as ``thesis.moves = "routed"``). ``threads``:
+    worker threads (default one per CPU, or ``RAYON_NUM_THREADS``); the scores do not depend on it.
     """
-    from . import _point, load_map
+    from . import _point, _threads, load_map
 
     s = _point(start, "start")
     e = None if end is None else _point(end, "end")
     return _covga.thesis_evaluate(
-        load_map(map), _genomes(genomes), float(width), float(speed), float(rot_speed), s, e, projection, moves
+        load_map(map),
+        _genomes(genomes),
+        float(width),
+        float(speed),
+        float(rot_speed),
+        s,
+        e,
+        projection,
+        moves,
+        _threads(threads),
     )
 
 

@@ -48,6 +48,27 @@ pub(crate) fn guarded<T>(work: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
     catch_unwind(AssertUnwindSafe(work)).unwrap_or_else(|p| Err(panic_error(p)))
 }
 
+/// The most threads a call may ask for.
+pub(crate) const MAX_THREADS: usize = 1024;
+
+/// Runs `work` on a pool of `threads` worker threads, or on rayon's global pool (one thread
+/// per CPU, or `RAYON_NUM_THREADS`) when `None`. Results do not depend on the count.
+pub(crate) fn with_threads<T: Send>(threads: Option<usize>, work: impl FnOnce() -> T + Send) -> PyResult<T> {
+    match threads {
+        None => Ok(work()),
+        Some(n) if !(1..=MAX_THREADS).contains(&n) => {
+            Err(config_error(format!("threads = {n} is out of range: allowed [1, {MAX_THREADS}]")))
+        }
+        Some(n) => {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| PyRuntimeError::new_err(format!("cannot start {n} threads: {e}")))?;
+            Ok(pool.install(work))
+        }
+    }
+}
+
 /// The module.
 #[pymodule]
 fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -60,6 +81,7 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scoring::pattern, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::thesis_evaluate, m)?)?;
     m.add("THESIS_COLUMNS", covga::thesis::batch::COLUMNS.to_vec())?;
+    m.add("MAX_THREADS", MAX_THREADS)?;
     // map_server's default thresholds, as the map reader applies them, in occupancy percent.
     let rule = covga::map::ros::PixelRule::default();
     m.add("OCCUPIED_ABOVE_PERCENT", 100.0 * rule.occupied_thresh)?;

@@ -74,7 +74,7 @@ fn use_case_error(e: UseCaseError) -> PyErr {
 /// Runs one experiment into `out` (with figures when `figures`); returns the warnings about it
 /// in words. `summary.json`, `history.csv` and `best_path.csv` are in `out` afterwards.
 #[pyfunction]
-#[pyo3(signature = (kind, payload, seed, out, figures))]
+#[pyo3(signature = (kind, payload, seed, out, figures, threads=None))]
 pub fn run_experiment(
     py: Python<'_>,
     kind: &str,
@@ -82,6 +82,7 @@ pub fn run_experiment(
     seed: Option<u64>,
     out: &str,
     figures: bool,
+    threads: Option<usize>,
 ) -> PyResult<Vec<String>> {
     let mut prepared = guarded(|| prepare(&experiment_text(kind, payload)?, seed, None).map_err(use_case_error))?;
     // Ctrl-C raises the run's interrupt: it ends at its next iteration and writes nothing.

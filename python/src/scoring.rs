@@ -185,7 +185,7 @@ fn check_batch_memory(genomes: usize, actions: usize) -> PyResult<()> {
 /// the connector to E added), as an `(n, 4)` array with the columns of `THESIS_COLUMNS`;
 /// evaluated in parallel, with straight or routed moves (`thesis.moves`).
 #[pyfunction]
-#[pyo3(signature = (map, genomes, width, speed, rot_speed, start, end, projection_name, moves_name))]
+#[pyo3(signature = (map, genomes, width, speed, rot_speed, start, end, projection_name, moves_name, threads=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn thesis_evaluate<'py>(
     py: Python<'py>,
@@ -198,6 +198,7 @@ pub fn thesis_evaluate<'py>(
     end: Option<(f64, f64)>,
     projection_name: &str,
     moves_name: &str,
+    threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
     let built = guarded(|| {
         // One (n, L, 2) array is read in place; a list is read array by array. The genomes'
@@ -232,8 +233,8 @@ pub fn thesis_evaluate<'py>(
     let stop = std::sync::atomic::AtomicBool::new(false);
     // A panic in the evaluation reaches Python as a RuntimeError (the thread's join).
     let rows = crate::runs::interruptible(py, &|| stop.store(true, std::sync::atomic::Ordering::SeqCst), || {
-        evaluate_genomes_until(&scenario, built, &stop)
-    })?
+        crate::with_threads(threads, || evaluate_genomes_until(&scenario, built, &stop))
+    })??
     .unwrap_or_default();
     let out = Array2::from_shape_fn((rows.len(), COLUMNS.len()), |(i, k)| rows[i].row()[k]);
     Ok(out.to_pyarray(py))

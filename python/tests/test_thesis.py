@@ -123,3 +123,19 @@ def test_ctrl_c_stops_a_batch_within_a_second():
     assert time.monotonic() - started < 1.5
     # The library goes on as before.
     assert covga.thesis.evaluate("thesis-1", batch[:2]).shape == (2, 4)
+
+
+def test_the_thread_count_changes_nothing_but_the_threads(tmp_path, short_thesis):
+    genomes = np.random.default_rng(3).uniform([0, 0], [360, 3], size=(64, 40, 2))
+    one = thesis.evaluate("thesis-1", genomes, threads=1)
+    assert np.array_equal(one, thesis.evaluate("thesis-1", genomes, threads=np.int64(2)))
+    assert np.array_equal(one, thesis.evaluate("thesis-1", genomes))
+    runs = [covga.run(short_thesis, seed=2, threads=n, out=tmp_path / f"t{n}", figures=False) for n in (1, 2)]
+    assert np.array_equal(runs[0].path, runs[1].path)
+    assert runs[0].summary["score"] == runs[1].summary["score"]
+    for bad, message in [(0, r"threads = 0 is out of range: allowed \[1, 1024\]"), (1.5, "expected a whole number"),
+                         ("2", "expected a whole number"), (-1, "out of range")]:
+        with pytest.raises(covga.ConfigError, match=message):
+            thesis.evaluate("thesis-1", genomes, threads=bad)
+        with pytest.raises(covga.ConfigError, match=message):
+            covga.run(short_thesis, threads=bad)
