@@ -89,9 +89,10 @@ pub fn run_experiment(
     let interrupt = Interrupt::new();
     prepared.experiment.budget.interrupt = Some(interrupt.clone());
     let dir = PathBuf::from(out);
-    let (summary, _) =
-        interruptible(py, &|| interrupt.raise(), || run_in_folder(&prepared, Some(&dir), figures, &mut []))
-            .and_then(|run| run.map_err(use_case_error))?;
+    let (summary, _) = interruptible(py, &|| interrupt.raise(), || {
+        crate::with_threads(threads, || run_in_folder(&prepared, Some(&dir), figures, &mut []))
+    })
+    .and_then(|run| run?.map_err(use_case_error))?;
     let mut warnings = prepared.warnings;
     warnings.extend(summary.warnings.iter().map(|w| format!("{}: {w}", prepared.origin)));
     Ok(warnings)
