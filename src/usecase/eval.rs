@@ -118,6 +118,8 @@ pub struct Evaluation {
     pub report: EvalReport,
     /// The map scored on, obstacles placed.
     pub map: GridMap,
+    /// Its coverage grid (the figure draws the swept cells on it).
+    pub grid: CoverageGrid,
     /// The paths, one per agent.
     pub paths: Vec<Vec<Point>>,
     /// The fleet's robots (name, width) in path order; empty without a fleet.
@@ -341,7 +343,7 @@ pub fn evaluate(req: &EvalRequest) -> Result<Evaluation, UseCaseError> {
     let robots = fleet_ref
         .map(|(_, f)| f.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect())
         .unwrap_or_default();
-    Ok(Evaluation { report, map, paths, robots })
+    Ok(Evaluation { report, map, grid, paths, robots })
 }
 
 impl Evaluation {
@@ -380,10 +382,9 @@ impl Evaluation {
         let names: Vec<String> = self.robots.iter().map(|(n, _)| n.clone()).collect();
         crate::io::write_atomic(&out.join("path.csv"), &crate::io::fleet_path_csv(&self.paths, &names))
             .map_err(UseCaseError::internal)?;
-        let grid = CoverageGrid::new(&self.map);
         let figure = PathFigure {
             map: &self.map,
-            grid: &grid,
+            grid: &self.grid,
             paths: self.paths.clone(),
             width: self.report.robot.width,
             robots: self.robots.clone(),
