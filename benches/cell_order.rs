@@ -6,8 +6,8 @@
 //! `RAYON_NUM_THREADS=1 cargo bench --bench cell_order`
 
 use covga::cell_order::config::CellOrderSection;
-use covga::cell_order::prepare;
 use covga::cell_order::search::nearest_neighbour;
+use covga::cell_order::{Preparation, prepare};
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::registry::PlannerKind;
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -24,13 +24,14 @@ fn bench(c: &mut Criterion) {
     file.map.source = map.display().to_string();
     file.stations.start = [0.0, 0.0];
     let exp = file.validate("bench", Path::new("."), "bench").expect("valid");
-    let directions = CellOrderSection::default().directions;
+    let section = CellOrderSection::default();
+    let how = Preparation::of(&section);
     let mut group = c.benchmark_group("cell_order");
     group.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(30));
     group.bench_function("setup_basement", |b| {
-        b.iter(|| prepare(&exp.scenario, &directions, 20.0).expect("prepared").instance.cells())
+        b.iter(|| prepare(&exp.scenario, how).expect("prepared").instance.cells())
     });
-    let prepared = prepare(&exp.scenario, &directions, 20.0).expect("prepared");
+    let prepared = prepare(&exp.scenario, how).expect("prepared");
     let tour = nearest_neighbour(&prepared.instance);
     group.measurement_time(Duration::from_secs(5));
     group.bench_function("evaluate_tour_basement", |b| b.iter(|| prepared.instance.time(&tour)));

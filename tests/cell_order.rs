@@ -62,7 +62,7 @@ fn the_ga_reaches_the_exact_optimum_on_small_maps() {
         let budget = Budget { evaluations: Some(50_000), ..Budget::iterations(1_000_000) };
         let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
         let config = section.validate(&ctx).unwrap();
-        let prepared = prepare(&s, &config.directions, config.completion_m_per_m2).unwrap();
+        let prepared = prepare(&s, covga::cell_order::Preparation::of(&section)).unwrap();
         let cells = prepared.instance.cells();
         if !(2..=10).contains(&cells) {
             continue;
@@ -97,6 +97,64 @@ fn plans_are_executable_from_station_to_station_and_repeatable() {
     let score = scorer.score(&a.plan);
     assert!(score.executable && score.obstacle_cells == 0, "{score:?}");
     assert!(score.cov_final_reach > 0.9, "{}", score.cov_final_reach);
+}
+
+/// With a coverage goal the returned plan is the finalist whose common-scorer curve reaches
+/// the goal first, cut where it does and driven to the end station: the curve of the returned
+/// plan reaches the goal at the time the run reports, no finalist reaches it sooner, the plan
+/// stays executable and is shorter than the whole plan.
+#[test]
+fn a_coverage_goal_ends_the_plan_where_the_scorer_reaches_it() {
+    use covga::cell_order::config::Completion;
+    use covga::coverage::curve::CoverageCurve;
+    let s = scenario(random_map(7, 3));
+    let budget = Budget { evaluations: Some(3_000), ..Budget::iterations(1_000_000) };
+    let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
+    let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
+    for completion in [Completion::Boundary, Completion::Cells] {
+        let whole = CellOrderSection { completion, ..CellOrderSection::default() }.validate(&ctx).unwrap();
+        let goal = CellOrderSection { completion, coverage_goal: Some(0.9), ..CellOrderSection::default() };
+        let planner = goal.validate(&ctx).unwrap();
+        let a = planner.run(&s, 5, &budget, &mut []).unwrap();
+        assert_eq!(a.plan, planner.run(&s, 5, &budget, &mut []).unwrap().plan, "same seed, same plan");
+        let path = &a.plan[0];
+        assert_eq!((path[0], *path.last().unwrap()), (s.start, s.end));
+        let score = scorer.score(&a.plan);
+        assert!(score.executable && score.obstacle_cells == 0, "{completion:?}: {score:?}");
+        assert!(score.cov_final_reach >= 0.9 - 1e-9, "{completion:?}: {}", score.cov_final_reach);
+        let curve = CoverageCurve::of_plan(scorer.grid(), scorer.reach(), &a.plan, &[s.robot]);
+        let reported = a.details["time_to_goal_s"].as_f64().unwrap();
+        assert!((curve.time_to(0.9).unwrap() - reported).abs() < 1e-6, "{completion:?}: {reported}");
+        let finalists: Vec<f64> =
+            a.details["finalists_time_to_goal_s"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+        assert!(!finalists.is_empty() && finalists.iter().all(|&t| t >= reported), "{finalists:?}");
+        let full = whole.run(&s, 5, &budget, &mut []).unwrap();
+        let length = |p: &[Point]| covga::coverage::motion::path_length(p);
+        assert!(length(path) < length(&full.plan[0]), "{completion:?}: the goal ends the plan early");
+    }
+    let bad = CellOrderSection { coverage_goal: Some(1.5), ..CellOrderSection::default() }.validate(&ctx);
+    let message = bad.unwrap_err().to_string();
+    assert!(message.contains("cell_order.coverage_goal") && message.contains("(0, 1]"), "{message}");
+}
+
+/// The cost the GA ranks tours by with a coverage goal ranks plans as the common scorer's time
+/// to that goal does, far better than the whole tour's time it ranked by before (on the disc
+/// map, 1 000 plans sampled around the tours the search meets).
+#[test]
+fn the_goal_cost_ranks_plans_as_the_scorer_does() {
+    use covga::cell_order::config::Completion;
+    use covga::cell_order::rank::sample;
+    let m = covga::map::presets::preset("thesis-2").unwrap();
+    let s = Scenario { robot: Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 }, ..scenario(m) };
+    let s = Scenario { start: Point::new(1.3, 1.3), end: Point::new(1.3, 1.3), ..s };
+    for (completion, least) in [(Completion::Boundary, 0.93), (Completion::Cells, 0.9)] {
+        let section = CellOrderSection { completion, ..CellOrderSection::default() };
+        let prepared = prepare(&s, covga::cell_order::Preparation::of(&section)).unwrap();
+        let ranked = sample(&prepared, &s, completion, 0.9, 1000, 1);
+        let (rho, before) = (ranked.rho().unwrap(), ranked.rho_tour_time().unwrap());
+        assert!(rho >= least, "{completion:?}: ρ = {rho}");
+        assert!(rho > before, "{completion:?}: ρ = {rho}, the whole tour's {before}");
+    }
 }
 
 #[test]

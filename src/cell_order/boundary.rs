@@ -18,8 +18,22 @@ use crate::map::clearance::Clearance;
 /// where a straight move fits and strays less than a quarter cell from them.
 pub fn chains(clear: &Clearance, targets: &[bool]) -> Vec<Vec<Point>> {
     let map = clear.map();
+    chains_within(clear, targets, (0..map.rows(), 0..map.cols()))
+}
+
+/// [`chains`] whose walks start and run only in the map rows and columns of `window` (the
+/// targets lie inside it, less half a width): a cell's own completion reads its region alone.
+pub fn chains_within(
+    clear: &Clearance,
+    targets: &[bool],
+    window: (std::ops::Range<usize>, std::ops::Range<usize>),
+) -> Vec<Vec<Point>> {
+    let map = clear.map();
     let (rows, cols) = (map.rows() as isize, map.cols() as isize);
     let n = map.rows() * map.cols();
+    let (row_range, col_range) = window;
+    let inside = |i: usize| row_range.contains(&(i / map.cols())) && col_range.contains(&(i % map.cols()));
+    let indices = || row_range.clone().flat_map(|r| col_range.clone().map(move |c| r * map.cols() + c));
     let res = map.resolution();
     let r = clear.radius();
     let centre = |i: usize| map.cell_centre(i / map.cols(), i % map.cols());
@@ -38,28 +52,30 @@ pub fn chains(clear: &Clearance, targets: &[bool]) -> Vec<Vec<Point>> {
     };
     let fits = |i: usize| clear.centre_fits(i);
     let window = (r / res).ceil() as isize;
-    let useful: Vec<bool> = (0..n)
-        .map(|i| {
-            if !fits(i) || neighbours(i, false).all(fits) {
-                return false;
-            }
-            let (r0, c0) = ((i / map.cols()) as isize, (i % map.cols()) as isize);
-            let c = centre(i);
-            (-window..=window).any(|dr| {
-                (-window..=window).any(|dc| {
-                    let (nr, nc) = (r0 + dr, c0 + dc);
-                    if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
-                        return false;
-                    }
-                    let j = (nr * cols + nc) as usize;
-                    targets[j] && (centre(j) - c).norm() <= r
-                })
+    let is_useful = |i: usize| {
+        if !fits(i) || neighbours(i, false).all(fits) {
+            return false;
+        }
+        let (r0, c0) = ((i / map.cols()) as isize, (i % map.cols()) as isize);
+        let c = centre(i);
+        (-window..=window).any(|dr| {
+            (-window..=window).any(|dc| {
+                let (nr, nc) = (r0 + dr, c0 + dc);
+                if nr < 0 || nc < 0 || nr >= rows || nc >= cols {
+                    return false;
+                }
+                let j = (nr * cols + nc) as usize;
+                targets[j] && (centre(j) - c).norm() <= r
             })
         })
-        .collect();
+    };
+    let mut useful = vec![false; n];
+    for i in indices() {
+        useful[i] = is_useful(i);
+    }
     let mut seen = vec![false; n];
     let mut out = Vec::new();
-    for start in 0..n {
+    for start in indices() {
         if !useful[start] || seen[start] {
             continue;
         }
@@ -70,7 +86,7 @@ pub fn chains(clear: &Clearance, targets: &[bool]) -> Vec<Vec<Point>> {
         let mut here = start;
         let mut heading: Option<Vector> = None;
         loop {
-            let next = neighbours(here, true).filter(|&j| useful[j] && !seen[j]).min_by(|&a, &b| {
+            let next = neighbours(here, true).filter(|&j| inside(j) && useful[j] && !seen[j]).min_by(|&a, &b| {
                 let turn = |j: usize| heading.map_or(0.0, |h| -(centre(j) - centre(here)).normalize().dot(&h));
                 turn(a).total_cmp(&turn(b)).then(a.cmp(&b))
             });
@@ -113,8 +129,8 @@ fn simplify(clear: &Clearance, pts: &[Point]) -> Vec<Point> {
 }
 
 /// The chains in the order and direction that a tour from `from` to `to` drives them fastest,
-/// straight-line legs standing in for transit.
-pub fn order(chains: &[Vec<Point>], from: Point, to: Point, speed: f64) -> Vec<Vec<Point>> {
+/// straight-line legs standing in for transit; `to` = `None` leaves the tour's end free.
+pub fn order(chains: &[Vec<Point>], from: Point, to: Option<Point>, speed: f64) -> Vec<Vec<Point>> {
     let z = Vector::zeros();
     let length = |c: &[Point]| crate::coverage::motion::path_length(c);
     let cells: Vec<Vec<Candidate>> = chains
@@ -123,15 +139,15 @@ pub fn order(chains: &[Vec<Point>], from: Point, to: Point, speed: f64) -> Vec<V
             let (a, b) = (c[0], *c.last().expect("chains have points"));
             let t = length(c) / speed;
             vec![
-                Candidate { time_s: t, entry: (a, z), exit: (b, z) },
-                Candidate { time_s: t, entry: (b, z), exit: (a, z) },
+                Candidate { time_s: t, entry: (a, z), exit: (b, z), gain: 0.0, completion_s: 0.0 },
+                Candidate { time_s: t, entry: (b, z), exit: (a, z), gain: 0.0, completion_s: 0.0 },
             ]
         })
         .collect();
     let flat: Vec<Candidate> = cells.iter().flatten().copied().collect();
     let inst = Instance::new(&cells, |a, b| {
         let p = a.map_or(from, |a| flat[a].exit.0);
-        let q = b.map_or(to, |b| flat[b].entry.0);
+        let Some(q) = b.map(|b| flat[b].entry.0).or(to) else { return 0.0 };
         leg_time((q - p).norm(), 0.0, speed, 0.0)
     });
     let mut tour: Tour = nearest_neighbour(&inst);
@@ -188,7 +204,7 @@ mod tests {
         let a = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)];
         let b = vec![Point::new(5.0, 0.0), Point::new(4.0, 0.0)];
         let c = vec![Point::new(2.0, 0.0), Point::new(3.0, 0.0)];
-        let ordered = order(&[b, a, c], Point::new(-1.0, 0.0), Point::new(6.0, 0.0), 1.0);
+        let ordered = order(&[b, a, c], Point::new(-1.0, 0.0), Some(Point::new(6.0, 0.0)), 1.0);
         let flat: Vec<f64> = ordered.iter().flatten().map(|p| p.x).collect();
         assert_eq!(flat, vec![0.0, 1.0, 2.0, 3.0, 4.0, 5.0]);
     }

@@ -25,6 +25,10 @@ pub enum Completion {
     /// Boundary chains along the walls near uncovered cells, then the greedy pass
     /// ([`super::boundary`]).
     Boundary,
+    /// Each candidate sweep ends with the boundary completion of its own cell
+    /// ([`super::cell_completion`]), so that its time is part of the tour's cost; what that
+    /// leaves gets the boundary pass after the tour.
+    Cells,
     /// The patterns' greedy pass alone (what boustrophedon and spiral do).
     Greedy,
     /// Nothing: the sweeps only.
@@ -61,8 +65,15 @@ pub struct CellOrderSection {
     /// Local search (best choices, Or-opt, 2-opt) on the best and one random child of every
     /// generation.
     pub memetic: bool,
-    /// `"boundary"`, `"greedy"` or `"none"`: how the strips the lanes leave are visited.
+    /// `"boundary"`, `"cells"`, `"greedy"` or `"none"`: how the strips the lanes leave are
+    /// visited.
     pub completion: Completion,
+    /// The share of the reachable coverable cells the plan must cover, in (0, 1]: the GA ranks
+    /// tours by when they reach it, the returned plan is the finalist whose common-scorer
+    /// coverage curve reaches it first, and it ends there (then drives to the end station).
+    /// Unset: tours are ranked by their whole time and the plan covers all it can.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub coverage_goal: Option<f64>,
     /// Completion driving charged per square metre a sweep leaves in its cell, in metres
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
     pub completion_m_per_m2: f64,
@@ -84,6 +95,7 @@ impl Default for CellOrderSection {
             p_choice: None,
             memetic: true,
             completion: Completion::Boundary,
+            coverage_goal: None,
             completion_m_per_m2: 20.0,
         }
     }
@@ -100,6 +112,8 @@ pub struct CellOrderConfig {
     pub ga: GaParams,
     /// Coverage completion after the tour.
     pub completion: Completion,
+    /// The coverage goal, a share of the reachable coverable cells.
+    pub coverage_goal: Option<f64>,
     /// Completion driving charged per square metre a sweep leaves, in metres.
     pub completion_m_per_m2: f64,
     /// The robot's width (for the memory estimate).
@@ -148,6 +162,14 @@ impl CellOrderSection {
         if let Some(p) = self.p_choice {
             check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
         }
+        if let Some(g) = self.coverage_goal
+            && !(g > 0.0 && g <= 1.0)
+        {
+            return Err(ctx.error(
+                "cell_order.coverage_goal",
+                format!("= {g} is outside (0, 1] (a share of the reachable cells)"),
+            ));
+        }
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             // The cells are known only after the decomposition: counted here so that a grid
             // refuses the configuration before it writes anything.
@@ -179,8 +201,10 @@ impl CellOrderSection {
                 p_m: self.p_m,
                 p_choice: self.p_choice,
                 memetic: self.memetic,
+                goal: self.coverage_goal,
             },
             completion: self.completion,
+            coverage_goal: self.coverage_goal,
             completion_m_per_m2: self.completion_m_per_m2,
             width: ctx.scenario.robot.width,
         })

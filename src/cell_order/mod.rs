@@ -9,14 +9,18 @@
 //! then to the end station: executable by construction.
 
 pub mod boundary;
+pub mod cell_completion;
 pub mod config;
 pub mod exact;
 pub mod local;
 pub mod operators;
+pub mod rank;
 pub mod search;
 pub mod sweeps;
 pub mod tour;
 
+use crate::coverage::CoverageGrid;
+use crate::coverage::curve::CoverageCurve;
 use crate::coverage::motion::rotation_time;
 use crate::coverage::transit::{Transit, distinct};
 use crate::ga::observer::{GenerationRecord, Observer};
@@ -28,7 +32,7 @@ use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopRe
 use config::{CellOrderConfig, Completion, Solver};
 use std::time::Instant;
 use sweeps::CellSweeps;
-use tour::{Candidate, Instance, Tour, leg_time, leg_turn_rad};
+use tour::{Candidate, Instance, Tour, UNREACHED_S, leg_time, leg_turn_rad};
 
 /// The most candidate sweeps a run accepts (cells × directions × 4 entries): the leg-time
 /// matrix and the transit lengths each hold the square of it in `f32`, 3.2 GB at this bound.
@@ -47,16 +51,36 @@ pub struct Prepared<'m> {
     pub instance: Instance,
 }
 
-/// Decomposes the map of `scenario`, builds every candidate sweep at `directions` and the leg
-/// times between them (wall-free transit at `robot.speed`, turning at `robot.rot_speed`). A
-/// sweep's cost is its own time plus the completion it leaves: `completion_m_per_m2` metres
-/// of driving per square metre of its region it does not sweep.
-pub fn prepare<'m>(
-    scenario: &'m Scenario,
-    directions: &[f64],
-    completion_m_per_m2: f64,
-) -> Result<Prepared<'m>, String> {
-    prepare_within(scenario, directions, completion_m_per_m2, None)
+/// How a map is prepared for tours: the lane directions offered to every cell, the driving
+/// charged per square metre a sweep leaves, and the completion (which, for
+/// [`Completion::Cells`], becomes part of every candidate sweep).
+#[derive(Clone, Copy, Debug)]
+pub struct Preparation<'a> {
+    /// Lane directions in degrees.
+    pub directions: &'a [f64],
+    /// Metres of completion driving charged per square metre a sweep leaves in its cell.
+    pub completion_m_per_m2: f64,
+    /// The plan's completion.
+    pub completion: Completion,
+}
+
+impl<'a> Preparation<'a> {
+    /// The preparation a `[cell_order]` section asks for.
+    pub fn of(section: &'a config::CellOrderSection) -> Self {
+        Self {
+            directions: &section.directions,
+            completion_m_per_m2: section.completion_m_per_m2,
+            completion: section.completion,
+        }
+    }
+}
+
+/// Decomposes the map of `scenario`, builds every candidate sweep at `how.directions` and the
+/// leg times between them (wall-free transit at `robot.speed`, turning at `robot.rot_speed`).
+/// A sweep's cost is its own time plus the completion it leaves: `how.completion_m_per_m2`
+/// metres of driving per square metre of its region it does not sweep.
+pub fn prepare<'m>(scenario: &'m Scenario, how: Preparation) -> Result<Prepared<'m>, String> {
+    prepare_within(scenario, how, None)
 }
 
 /// [`prepare`], refused once `deadline` has passed (checked after the decomposition and
@@ -64,11 +88,11 @@ pub fn prepare<'m>(
 /// clock covers its preparation.
 pub fn prepare_within<'m>(
     scenario: &'m Scenario,
-    directions: &[f64],
-    completion_m_per_m2: f64,
+    how: Preparation,
     deadline: Option<(Instant, std::time::Duration)>,
 ) -> Result<Prepared<'m>, String> {
     let s = scenario;
+    let (directions, completion_m_per_m2) = (how.directions, how.completion_m_per_m2);
     let begun = Instant::now();
     let out_of_time = |phase: &str| {
         let limit = deadline.map_or(0.0, |(_, d)| d.as_secs_f64());
@@ -79,7 +103,10 @@ pub fn prepare_within<'m>(
         )
     };
     let past = || deadline.is_some_and(|(d, _)| Instant::now() >= d);
-    let (clear, reach, sweeps) = decompose(scenario, directions)?;
+    let (clear, reach, mut sweeps) = decompose(scenario, directions)?;
+    if how.completion == Completion::Cells {
+        sweeps.complete_in_cells(&clear, s.robot.width, reach.coverable(), s.robot.speed);
+    }
     if past() {
         return Err(out_of_time("decomposing the map into cells"));
     }
@@ -102,15 +129,20 @@ pub fn prepare_within<'m>(
         ))
     })?;
     let (speed, rot) = (s.robot.speed, s.robot.rot_speed);
+    let reachable = reach.coverable_count().max(1) as f64;
+    // Seconds of completion charged for the map cells a sweep leaves (written as it always
+    // was, so that tour costs keep their last bits).
+    let charge = |missed: usize| completion_m_per_m2 * missed as f64 * s.map.resolution().powi(2) / speed;
     let candidates: Vec<Vec<Candidate>> = sweeps
         .cells
         .iter()
-        .map(|cell| {
+        .zip(&sweeps.region_cells)
+        .map(|(cell, &region)| {
             cell.iter()
                 .map(|w| Candidate {
-                    time_s: w.length_m / speed
-                        + rotation_time(w.turn_rad, rot)
-                        + completion_m_per_m2 * w.missed_cells as f64 * s.map.resolution().powi(2) / speed,
+                    gain: region.saturating_sub(w.missed_cells) as f64 / reachable,
+                    completion_s: charge(w.missed_cells),
+                    time_s: w.length_m / speed + rotation_time(w.turn_rad, rot) + charge(w.missed_cells),
                     entry: (w.start(), w.start_heading),
                     exit: (w.end(), w.end_heading),
                 })
@@ -119,13 +151,14 @@ pub fn prepare_within<'m>(
         .collect();
     let all: Vec<Candidate> = candidates.iter().flatten().copied().collect();
     let n = all.len();
-    let instance = Instance::new(&candidates, |a, b| {
+    let mut instance = Instance::new(&candidates, |a, b| {
         let from = a.map_or((s.start, Vector::zeros()), |a| all[a].exit);
         let to = b.map_or((s.end, Vector::zeros()), |b| all[b].entry);
         let metres = transit.metres(exit_id[a.unwrap_or(n)] as usize, entry_id[b.unwrap_or(n)] as usize);
         let turn = if rot > 0.0 { leg_turn_rad(from, to) } else { 0.0 };
         leg_time(metres, turn, speed, rot)
     });
+    instance.completion_s_per_share = completion_m_per_m2 * s.map.resolution().powi(2) / speed * reachable;
     Ok(Prepared { clear, reach, sweeps, instance })
 }
 
@@ -173,7 +206,7 @@ impl Prepared<'_> {
         match completion {
             Completion::None => {}
             Completion::Greedy => crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route),
-            Completion::Boundary => {
+            Completion::Boundary | Completion::Cells => {
                 let map = self.clear.map();
                 let grid = crate::coverage::CoverageGrid::new(map);
                 let mut covered = vec![false; grid.len()];
@@ -186,7 +219,7 @@ impl Prepared<'_> {
                 // reachable space; the greedy pass takes what the chains leave.
                 let targets: Vec<bool> = covered.iter().zip(self.reach.coverable()).map(|(&c, &k)| k && !c).collect();
                 let chains = boundary::chains(&self.clear, &targets);
-                for chain in boundary::order(&chains, route.last(), end, robot.speed) {
+                for chain in boundary::order(&chains, route.last(), Some(end), robot.speed) {
                     for p in chain {
                         route.go(&self.clear, p);
                     }
@@ -216,7 +249,7 @@ pub fn local_optimum_plan_within(
     section: &config::CellOrderSection,
     deadline: Option<(Instant, std::time::Duration)>,
 ) -> Result<Vec<Point>, String> {
-    let prepared = prepare_within(scenario, &section.directions, section.completion_m_per_m2, deadline)?;
+    let prepared = prepare_within(scenario, Preparation::of(section), deadline)?;
     let mut tour = search::nearest_neighbour(&prepared.instance);
     local::improve(&prepared.instance, &mut tour, search::ROUNDS);
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)
@@ -225,6 +258,9 @@ pub fn local_optimum_plan_within(
 /// A solved tour and what it cost to find.
 struct Solved {
     tour: Tour,
+    /// The tours the common scorer chooses among when the plan has a coverage goal, the
+    /// solver's best first.
+    finalists: Vec<Tour>,
     cost: f64,
     evaluations: u64,
     iterations: u32,
@@ -287,6 +323,7 @@ impl CellOrderConfig {
                 let (tour, cost) = out.best;
                 Ok(Solved {
                     tour,
+                    finalists: out.finalists,
                     cost,
                     evaluations: out.evaluations,
                     iterations: out.iterations,
@@ -308,6 +345,7 @@ impl CellOrderConfig {
                 // The states the dynamic programme fills stand in for evaluations.
                 let states = (1u64 << inst.cells()) * (0..inst.cells()).map(|k| inst.choices(k) as u64).sum::<u64>();
                 Ok(Solved {
+                    finalists: vec![tour.clone()],
                     tour,
                     cost,
                     evaluations: states,
@@ -321,8 +359,96 @@ impl CellOrderConfig {
     }
 }
 
+/// The plan a run returns, and how it was chosen.
+struct Chosen {
+    /// Which finalist.
+    index: usize,
+    /// Its path, ended at the coverage goal where there is one.
+    path: Vec<Point>,
+    /// Targets its completion had to skip.
+    skipped: usize,
+    /// With a coverage goal: the goal, the chosen plan's time to it on the common scorer's
+    /// curve, and every finalist's.
+    goal: Option<(f64, f64, Vec<f64>)>,
+}
+
+impl CellOrderConfig {
+    /// The plan of the solver's best tour; with a coverage goal, of the finalist whose path
+    /// reaches it first on the common scorer's coverage curve (not the tour cost's estimate),
+    /// ended where it does and driven to the end station.
+    fn chosen_plan(&self, prepared: &Prepared, finalists: &[Tour], s: &Scenario, grid: &CoverageGrid) -> Chosen {
+        let drive = |t: &Tour| prepared.path(t, &s.robot, (s.start, s.end), self.completion);
+        let Some(goal) = self.coverage_goal else {
+            let (path, skipped) = drive(&finalists[0]);
+            return Chosen { index: 0, path, skipped, goal: None };
+        };
+        let mut times = Vec::with_capacity(finalists.len());
+        let mut best: Option<(usize, Vec<Point>, usize)> = None;
+        for (i, tour) in finalists.iter().enumerate() {
+            let (path, skipped) = drive(tour);
+            let curve = CoverageCurve::of_plan(grid, &prepared.reach, std::slice::from_ref(&path), &[s.robot]);
+            let t = time_to_goal(&curve, goal);
+            if best.as_ref().is_none_or(|b| t < times[b.0]) {
+                best = Some((i, path, skipped));
+            }
+            times.push(t);
+        }
+        let (index, path, skipped) = best.expect("a solver hands over one tour at least");
+        let path = end_at_goal(&prepared.clear, &prepared.reach, grid, &s.robot, path, goal, s.end);
+        Chosen { index, path, skipped, goal: Some((goal, times[index], times)) }
+    }
+}
+
+/// The common scorer's time to the coverage `goal` on a plan's `curve`; a plan that never
+/// reaches it costs [`UNREACHED_S`] per unit of shortfall plus [`UNREACHED_S`] plus its whole
+/// time, behind every plan that does (as [`Instance::time_to_goal`] ranks tours).
+pub fn time_to_goal(curve: &CoverageCurve, goal: f64) -> f64 {
+    let end = curve.points().last().map_or(0.0, |p| p.0);
+    curve.time_to(goal).unwrap_or(UNREACHED_S * (1.0 + goal - curve.coverage_at(end)) + end)
+}
+
+/// `path` cut after the segment whose sweep brings the coverage of `reach`'s cells to `goal`
+/// (the whole path when none does), then driven to `end` on a wall-free route.
+fn end_at_goal(
+    clear: &Clearance,
+    reach: &Reach,
+    grid: &CoverageGrid,
+    robot: &crate::coverage::Footprint,
+    mut path: Vec<Point>,
+    goal: f64,
+    end: Point,
+) -> Vec<Point> {
+    let needed = (goal * reach.coverable_count() as f64 - 1e-9).ceil().max(0.0) as usize;
+    let mut covered = vec![false; grid.len()];
+    let mut count = 0usize;
+    let mut cut = None;
+    for (j, w) in path.windows(2).enumerate() {
+        crate::coverage::raster::for_each_swept_cell(grid.raster(), w[0], w[1], robot.width, |i| {
+            if !covered[i] && reach.is_coverable(i) {
+                covered[i] = true;
+                count += 1;
+            }
+        });
+        if count >= needed {
+            cut = Some(j + 2);
+            break;
+        }
+    }
+    let Some(keep) = cut else { return path };
+    path.truncate(keep);
+    let mut route = Route::new(*path.last().expect("kept two points"));
+    route.finish(clear, end);
+    path.extend_from_slice(&route.points()[1..]);
+    path
+}
+
 /// The planner's own fields of `summary.json`.
-fn details_of(prepared: &Prepared, solved: &Solved, skipped: usize) -> serde_json::Map<String, serde_json::Value> {
+fn details_of(
+    prepared: &Prepared,
+    solved: &Solved,
+    skipped: usize,
+    goal: Option<(f64, f64, Vec<f64>)>,
+) -> serde_json::Map<String, serde_json::Value> {
     let inst = &prepared.instance;
     let tour: Vec<serde_json::Value> = prepared
         .sweeps_of(&solved.tour)
@@ -342,6 +468,11 @@ fn details_of(prepared: &Prepared, solved: &Solved, skipped: usize) -> serde_jso
     if let Some(t) = solved.exact {
         details.insert("exact_cost_s".into(), t.into());
     }
+    if let Some((goal, time_s, finalists)) = goal {
+        details.insert("coverage_goal".into(), goal.into());
+        details.insert("time_to_goal_s".into(), time_s.into());
+        details.insert("finalists_time_to_goal_s".into(), finalists.into());
+    }
     details
 }
 
@@ -360,11 +491,22 @@ impl Planner for CellOrderConfig {
         let started = Instant::now();
         let s = scenario;
         let deadline = budget.wall_clock.map(|d| (started + d, d));
-        let prepared = prepare_within(s, &self.directions, self.completion_m_per_m2, deadline)
+        let how = Preparation {
+            directions: &self.directions,
+            completion_m_per_m2: self.completion_m_per_m2,
+            completion: self.completion,
+        };
+        let prepared = prepare_within(s, how, deadline)
             .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
-        let solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
-        let (path, skipped) = prepared.path(&solved.tour, &s.robot, (s.start, s.end), self.completion);
+        let mut solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
+        let chosen = self.chosen_plan(&prepared, &solved.finalists, s, &grid);
+        if self.coverage_goal.is_some() {
+            solved.evaluations += solved.finalists.len() as u64;
+        }
+        solved.tour = solved.finalists[chosen.index].clone();
+        solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
+        let (path, skipped) = (chosen.path, chosen.skipped);
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
         Ok(RunOutcome {
@@ -377,7 +519,7 @@ impl Planner for CellOrderConfig {
             iterations: solved.iterations,
             stop: solved.stop,
             wall_s: started.elapsed().as_secs_f64(),
-            details: details_of(&prepared, &solved, skipped),
+            details: details_of(&prepared, &solved, skipped, chosen.goal),
             files: Vec::new(),
             history: match self.solver {
                 Solver::Ga => crate::planner::History::Generations,

@@ -35,6 +35,8 @@ pub struct GaParams {
     pub p_choice: Option<f64>,
     /// Local search on the best and one random child of every generation (memetic step).
     pub memetic: bool,
+    /// The coverage goal tours are ranked by ([`Instance::cost`]); `None`: their whole time.
+    pub goal: Option<f64>,
 }
 
 /// One generation as the search reports it.
@@ -63,9 +65,16 @@ pub struct Searched {
     pub iterations: u32,
     /// Why it stopped.
     pub stop: StopReason,
-    /// The nearest-neighbour tour's time (the fitness scale).
+    /// The nearest-neighbour tour's cost (the fitness scale).
     pub nearest_time_s: f64,
+    /// The best tour and the fastest other distinct tours of the last population, best
+    /// first, at most [`FINALISTS`]: what the planner scores with the common scorer when it
+    /// chooses by a coverage goal.
+    pub finalists: Vec<Tour>,
 }
+
+/// The tours a search hands over for the common scorer's choice.
+pub const FINALISTS: usize = 8;
 
 /// The nearest-neighbour tour: from the start, the candidate of an unswept cell with the
 /// shortest leg (then the shortest own time), until every cell is swept.
@@ -110,7 +119,7 @@ pub fn search<E>(
     let mut charged = 0.0f64;
     let legs_per_tour = (n + 1) as f64;
     let nearest = nearest_neighbour(inst);
-    let nearest_time_s = inst.time(&nearest);
+    let nearest_time_s = inst.cost(&nearest, params.goal);
     let scale = nearest_time_s.max(f64::MIN_POSITIVE);
     let mut pop: Vec<(Tour, f64)> = Vec::with_capacity(params.population);
     let mut first = nearest;
@@ -118,14 +127,14 @@ pub fn search<E>(
         let left = reads_left(budget.evaluations, charged, legs_per_tour);
         charged += improve_within(inst, &mut first, ROUNDS, left) as f64 / legs_per_tour;
     }
-    let t = inst.time(&first);
+    let t = inst.cost(&first, params.goal);
     pop.push((first, t));
     while pop.len() < params.population {
         let mut order: Vec<u32> = (0..n as u32).collect();
         order.shuffle(&mut rng);
         let choice = counts.iter().map(|&c| rng.random_range(0..c.max(1)) as u16).collect();
         let tour = Tour { order, choice };
-        let t = inst.time(&tour);
+        let t = inst.cost(&tour, params.goal);
         pop.push((tour, t));
     }
     charged += params.population as f64;
@@ -147,7 +156,9 @@ pub fn search<E>(
     };
     let mut report = |g: &Generation| report(g);
     let finish = execute(&mut ga, &StopRules::of_budget(budget, None, started), &mut report)?;
+    let finalists = finalists(&ga.best.0, &ga.pop);
     Ok(Searched {
+        finalists,
         best: ga.best,
         evaluations: finish.evaluations,
         iterations: finish.iterations,
@@ -215,7 +226,7 @@ impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Generations<'_> {
                 mutate_order(&mut child.order, rng);
             }
             choice_mutation(&mut child.choice, &self.counts, self.p_choice, rng);
-            let t = inst.time(&child);
+            let t = inst.cost(&child, params.goal);
             next.push((child, t));
         }
         self.charged += (params.population - first_child) as f64;
@@ -230,7 +241,7 @@ impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Generations<'_> {
                     break;
                 }
                 self.charged += improve_within(inst, &mut next[k].0, ROUNDS, left) as f64 / self.legs_per_tour;
-                next[k].1 = inst.time(&next[k].0);
+                next[k].1 = inst.cost(&next[k].0, params.goal);
             }
         }
         self.pop = next;
@@ -258,6 +269,23 @@ impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Generations<'_> {
 /// Rounds of local search allowed per memetic step (a bound; it usually stops far earlier).
 pub const ROUNDS: usize = 10_000;
 
+/// `best`, then the distinct tours of `pop` other than it, fastest first (the population's
+/// order among equals), [`FINALISTS`] in all at most.
+fn finalists(best: &Tour, pop: &[(Tour, f64)]) -> Vec<Tour> {
+    let mut ranked: Vec<&(Tour, f64)> = pop.iter().collect();
+    ranked.sort_by(|a, b| a.1.total_cmp(&b.1));
+    let mut out = vec![best.clone()];
+    for (tour, _) in ranked {
+        if out.len() == FINALISTS {
+            break;
+        }
+        if !out.contains(tour) {
+            out.push(tour.clone());
+        }
+    }
+    out
+}
+
 fn best_index(pop: &[(Tour, f64)]) -> usize {
     (0..pop.len()).fold(0, |b, i| if pop[i].1 < pop[b].1 { i } else { b })
 }
@@ -277,7 +305,7 @@ mod tests {
     }
 
     fn params(selection: ParentDraw, memetic: bool) -> GaParams {
-        GaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic }
+        GaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic, goal: None }
     }
 
     #[test]

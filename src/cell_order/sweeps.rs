@@ -39,7 +39,7 @@ pub struct Sweep {
 }
 
 impl Sweep {
-    fn new(direction_deg: f64, entry: u8, points: Vec<Point>) -> Self {
+    pub(super) fn new(direction_deg: f64, entry: u8, points: Vec<Point>) -> Self {
         let (turn_rad, _) = crate::coverage::motion::turning(&points);
         let heading = |w: &[Point]| {
             let v = w[1] - w[0];
@@ -76,6 +76,10 @@ pub struct CellSweeps {
     pub base_direction_deg: f64,
     /// Per cell, its candidate sweeps (at least one).
     pub cells: Vec<Vec<Sweep>>,
+    /// Which cell each map cell's region belongs to (`u32::MAX`: none).
+    pub labels: Vec<u32>,
+    /// Per cell, the coverable map cells of its region.
+    pub region_cells: Vec<usize>,
 }
 
 impl CellSweeps {
@@ -92,7 +96,12 @@ impl CellSweeps {
             .unwrap_or(0);
         let base_cells = &decompositions[base];
         if base_cells.is_empty() {
-            return Self { base_direction_deg: directions[base], cells: Vec::new() };
+            return Self {
+                base_direction_deg: directions[base],
+                cells: Vec::new(),
+                labels: Vec::new(),
+                region_cells: Vec::new(),
+            };
         }
         let labels = region_labels(clear, width, directions[base], base_cells);
         let mut cells: Vec<Vec<Sweep>> = (0..base_cells.len())
@@ -116,8 +125,15 @@ impl CellSweeps {
                 out
             })
             .collect();
-        count_missed(clear.map(), width, &labels, coverable, &mut cells);
-        Self { base_direction_deg: directions[base], cells }
+        let region_cells = count_missed(clear.map(), width, &labels, coverable, &mut cells);
+        Self { base_direction_deg: directions[base], cells, labels, region_cells }
+    }
+
+    /// Ends every candidate sweep with the completion of its own region
+    /// ([`super::cell_completion`]) and counts what each then leaves.
+    pub fn complete_in_cells(&mut self, clear: &Clearance, width: f64, coverable: &[bool], speed: f64) {
+        super::cell_completion::extend(clear, width, &self.labels, coverable, speed, &mut self.cells);
+        count_missed(clear.map(), width, &self.labels, coverable, &mut self.cells);
     }
 
     /// The number of cells.
@@ -131,8 +147,15 @@ impl CellSweeps {
     }
 }
 
-/// Sets every sweep's `missed_cells`: its region's coverable cells minus those it sweeps.
-fn count_missed(map: &crate::map::GridMap, width: f64, labels: &[u32], coverable: &[bool], cells: &mut [Vec<Sweep>]) {
+/// Sets every sweep's `missed_cells`: its region's coverable cells minus those it sweeps;
+/// returns the coverable cells of each region.
+fn count_missed(
+    map: &crate::map::GridMap,
+    width: f64,
+    labels: &[u32],
+    coverable: &[bool],
+    cells: &mut [Vec<Sweep>],
+) -> Vec<usize> {
     let grid = crate::coverage::CoverageGrid::new(map);
     let raster = *grid.raster();
     let mut in_region = vec![0usize; cells.len()];
@@ -159,6 +182,7 @@ fn count_missed(map: &crate::map::GridMap, width: f64, labels: &[u32], coverable
             sweep.missed_cells = in_region[k] - swept;
         }
     }
+    in_region
 }
 
 /// The four entry corners of a cell's (sub-)cells: both ends of the first lane's first piece

@@ -17,6 +17,11 @@ pub struct Candidate {
     pub entry: (Point, Vector),
     /// Exit point and the heading the sweep ends with.
     pub exit: (Point, Vector),
+    /// The share of the reachable coverable cells it sweeps in its own cell's region.
+    pub gain: f64,
+    /// The part of `time_s` that charges the completion of what it leaves (not driven by the
+    /// sweep itself).
+    pub completion_s: f64,
 }
 
 /// The turning of a leg in radians: from the heading `from` onto the straight direction to the
@@ -37,6 +42,13 @@ pub struct Instance {
     offsets: Vec<usize>,
     /// Every candidate's own time.
     own: Vec<f64>,
+    /// Every candidate's share of the reachable coverable cells (its own region's).
+    gain: Vec<f64>,
+    /// Every candidate's completion charge, part of its own time.
+    completion: Vec<f64>,
+    /// Seconds of completion charged per unit share of the reachable cells a tour's sweeps
+    /// leave (the rate of the candidates' charges; 0 when nothing is charged).
+    pub completion_s_per_share: f64,
     /// Leg times between candidates, row = from, column = to (flat).
     legs: Vec<f32>,
     /// Leg time from the start station to each candidate.
@@ -57,6 +69,8 @@ impl Instance {
         }
         let n = *offsets.last().expect("starts with 0");
         let own = cells.iter().flatten().map(|c| c.time_s).collect();
+        let gain = cells.iter().flatten().map(|c| c.gain).collect();
+        let completion = cells.iter().flatten().map(|c| c.completion_s).collect();
         use rayon::prelude::*;
         let legs = (0..n)
             .into_par_iter()
@@ -65,6 +79,9 @@ impl Instance {
             .collect();
         Self {
             own,
+            gain,
+            completion,
+            completion_s_per_share: 0.0,
             legs,
             from_start: (0..n).map(|b| leg(None, Some(b))).collect(),
             to_end: (0..n).map(|a| leg(Some(a), None)).collect(),
@@ -115,6 +132,41 @@ impl Instance {
         t + self.leg(prev, None)
     }
 
+    /// The tour's cost as the search ranks it: its mission time, or with a coverage `goal`
+    /// (a share of the reachable coverable cells) [`Instance::time_to_goal`].
+    pub fn cost(&self, tour: &Tour, goal: Option<f64>) -> f64 {
+        goal.map_or_else(|| self.time(tour), |g| self.time_to_goal(tour, g))
+    }
+
+    /// When the tour reaches the coverage `goal`: each candidate adds its gain evenly over the
+    /// time it drives (its own time less its completion charge; legs add none), and what the
+    /// sweeps leave below the goal is charged at [`Instance::completion_s_per_share`] after
+    /// the last sweep. With no charge, a tour that never reaches the goal costs
+    /// [`UNREACHED_S`] per unit of shortfall plus [`UNREACHED_S`] plus its whole time: behind
+    /// every tour that does.
+    pub fn time_to_goal(&self, tour: &Tour, goal: f64) -> f64 {
+        let mut prev: Option<usize> = None;
+        let (mut t, mut covered) = (0.0, 0.0);
+        for &k in &tour.order {
+            let g = self.flat(k as usize, tour.choice[k as usize] as usize);
+            t += self.leg(prev, Some(g));
+            let (gain, driven) = (self.gain[g], self.own[g] - self.completion[g]);
+            if gain > 0.0 && covered + gain >= goal {
+                return t + driven * ((goal - covered) / gain).clamp(0.0, 1.0);
+            }
+            covered += gain;
+            t += driven;
+            prev = Some(g);
+        }
+        if covered >= goal {
+            return t;
+        }
+        if self.completion_s_per_share > 0.0 {
+            return t + (goal - covered) * self.completion_s_per_share;
+        }
+        UNREACHED_S * (1.0 + goal - covered) + t + self.leg(prev, None)
+    }
+
     /// The flat candidate at position `i` of `tour` (`None` before the first and after the last).
     pub fn at(&self, tour: &Tour, i: isize) -> Option<usize> {
         if i < 0 || i as usize >= tour.order.len() {
@@ -124,6 +176,10 @@ impl Instance {
         Some(self.flat(k, tour.choice[k] as usize))
     }
 }
+
+/// The cost floor of a tour that never reaches its coverage goal, in seconds: above any
+/// mission time a map of [`super::MAX_CANDIDATES`] sweeps can take.
+pub const UNREACHED_S: f64 = 1e12;
 
 /// A tour: the cells in visiting order and each cell's sweep choice (indexed by cell).
 #[derive(Clone, Debug, PartialEq, Eq, Hash)]
@@ -152,8 +208,8 @@ pub(super) mod tests {
                 let (a, b) = (Point::new(10.0 * k as f64, 0.0), Point::new(10.0 * k as f64 + 1.0, 0.0));
                 let z = Vector::zeros();
                 vec![
-                    Candidate { time_s: 1.0, entry: (a, z), exit: (b, z) },
-                    Candidate { time_s: 1.0, entry: (b, z), exit: (a, z) },
+                    Candidate { time_s: 1.0, entry: (a, z), exit: (b, z), gain: 1.0 / n as f64, completion_s: 0.0 },
+                    Candidate { time_s: 1.0, entry: (b, z), exit: (a, z), gain: 1.0 / n as f64, completion_s: 0.0 },
                 ]
             })
             .collect();
@@ -176,6 +232,25 @@ pub(super) mod tests {
         assert!((inst.time(&reversed) - (26.0 + 3.0 + 18.0 + 5.0)).abs() < 1e-9);
         let zigzag = Tour { order: vec![1, 0, 2], choice: vec![0, 0, 0] };
         assert!(inst.time(&zigzag) > inst.time(&tour));
+    }
+
+    #[test]
+    fn time_to_goal_stops_inside_the_sweep_that_reaches_it() {
+        let inst = line(4);
+        let tour = Tour { order: vec![0, 1, 2, 3], choice: vec![0; 4] };
+        // Each cell a quarter: half the goal is reached at the end of the second sweep (5 + 1 +
+        // 9 + 1), 0.6 a tenth of the way (0.4 of its 1 s) into the third.
+        assert!((inst.time_to_goal(&tour, 0.5) - 16.0).abs() < 1e-9);
+        assert!((inst.time_to_goal(&tour, 0.6) - (16.0 + 9.0 + 0.4)).abs() < 1e-9);
+        // The whole map: the whole tour but the way back.
+        assert!((inst.time_to_goal(&tour, 1.0) - (inst.time(&tour) - 36.0)).abs() < 1e-9);
+        assert_eq!(inst.cost(&tour, None), inst.time(&tour));
+        // Beyond what the sweeps cover: behind every tour that reaches its goal, by shortfall.
+        let short = inst.time_to_goal(&tour, 1.2);
+        assert!(short > UNREACHED_S && short < inst.time_to_goal(&tour, 1.3));
+        // With a completion rate, the shortfall is charged at it after the last sweep.
+        let charged = Instance { completion_s_per_share: 100.0, ..inst.clone() };
+        assert!((charged.time_to_goal(&tour, 1.2) - (inst.time(&tour) - 36.0 + 20.0)).abs() < 1e-9);
     }
 
     #[test]

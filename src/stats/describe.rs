@@ -1,5 +1,5 @@
 //! Descriptive statistics of a sample: mean with its confidence interval, range, quartiles,
-//! and the mid-ranks every rank test shares.
+//! the mid-ranks every rank test shares, and Spearman's rank correlation of two.
 
 use statrs::distribution::{ContinuousCDF, StudentsT};
 
@@ -40,6 +40,24 @@ pub fn ranks(values: &[f64]) -> (Vec<f64>, f64) {
         k = end;
     }
     (r, ties)
+}
+
+/// Spearman's rank correlation of paired samples: Pearson's correlation of their mid-ranks
+/// (ties share a rank); `None` for fewer than two pairs or a constant sample.
+pub fn spearman(a: &[f64], b: &[f64]) -> Option<f64> {
+    assert_eq!(a.len(), b.len(), "paired samples");
+    if a.len() < 2 {
+        return None;
+    }
+    let (ra, rb) = (ranks(a).0, ranks(b).0);
+    let mean = (a.len() as f64 + 1.0) / 2.0;
+    let (mut cov, mut va, mut vb) = (0.0, 0.0, 0.0);
+    for (x, y) in ra.iter().zip(&rb) {
+        cov += (x - mean) * (y - mean);
+        va += (x - mean).powi(2);
+        vb += (y - mean).powi(2);
+    }
+    (va > 0.0 && vb > 0.0).then(|| cov / (va * vb).sqrt())
 }
 
 /// `(mean, min, max)` of `values`; NaN mean and infinite bounds for no values.
@@ -88,5 +106,16 @@ mod tests {
         let (m, h) = mean_ci95(&[1.0, 3.0]);
         assert_eq!(m, 2.0);
         assert!((h - 12.706_204_736_174_7).abs() < 1e-6, "{h}");
+    }
+
+    #[test]
+    fn spearman_by_hand() {
+        // Monotone: 1 either way; reversed: −1; constant: none.
+        assert_eq!(spearman(&[1.0, 2.0, 3.0], &[10.0, 40.0, 90.0]), Some(1.0));
+        assert_eq!(spearman(&[1.0, 2.0, 3.0], &[3.0, 2.0, 1.0]), Some(-1.0));
+        assert_eq!(spearman(&[1.0, 1.0], &[1.0, 2.0]), None);
+        // Ranks (1, 2, 3, 4) against (2, 1, 4, 3): Σd² = 4, ρ = 1 − 6·4 / (4·15) = 0.6.
+        let r = spearman(&[1.0, 2.0, 3.0, 4.0], &[2.0, 1.0, 4.0, 3.0]).unwrap();
+        assert!((r - 0.6).abs() < 1e-12, "{r}");
     }
 }
