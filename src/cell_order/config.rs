@@ -74,6 +74,9 @@ pub struct CellOrderSection {
     /// Unset: tours are ranked by their whole time and the plan covers all it can.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub coverage_goal: Option<f64>,
+    /// Seed the GA's first population with the nearest-neighbour tour at each single lane
+    /// direction of `directions` (the no-search control's tours), kept among the finalists.
+    pub seed_directions: bool,
     /// Completion driving charged per square metre a sweep leaves in its cell, in metres
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
     pub completion_m_per_m2: f64,
@@ -96,6 +99,7 @@ impl Default for CellOrderSection {
             memetic: true,
             completion: Completion::Boundary,
             coverage_goal: None,
+            seed_directions: false,
             completion_m_per_m2: 20.0,
         }
     }
@@ -114,6 +118,8 @@ pub struct CellOrderConfig {
     pub completion: Completion,
     /// The coverage goal, a share of the reachable coverable cells.
     pub coverage_goal: Option<f64>,
+    /// Seed the GA with the nearest-neighbour tour at each single direction.
+    pub seed_directions: bool,
     /// Completion driving charged per square metre a sweep leaves, in metres.
     pub completion_m_per_m2: f64,
     /// The robot's width (for the memory estimate).
@@ -205,6 +211,7 @@ impl CellOrderSection {
             },
             completion: self.completion,
             coverage_goal: self.coverage_goal,
+            seed_directions: self.seed_directions,
             completion_m_per_m2: self.completion_m_per_m2,
             width: ctx.scenario.robot.width,
         })

@@ -255,6 +255,16 @@ pub fn local_optimum_plan_within(
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)
 }
 
+/// The nearest-neighbour tour at each of `directions` alone (a cell with no sweep at it takes
+/// any of its own): the tours of the no-search control.
+fn direction_tours(prepared: &Prepared, directions: &[f64]) -> Vec<Tour> {
+    let cells = &prepared.sweeps.cells;
+    directions
+        .iter()
+        .map(|&d| search::nearest_neighbour_among(&prepared.instance, |k, c| cells[k][c].direction_deg == d))
+        .collect()
+}
+
 /// A solved tour and what it cost to find.
 struct Solved {
     tour: Tour,
@@ -303,7 +313,8 @@ impl CellOrderConfig {
                     lanes = Some((tour.clone(), c));
                     c
                 };
-                let out = search::search(inst, &self.ga, (seed, started), budget, |g| {
+                let seeds = if self.seed_directions { direction_tours(prepared, &self.directions) } else { Vec::new() };
+                let out = search::search_from(inst, &self.ga, &seeds, (seed, started), budget, |g| {
                     let (best_coverage, best_coverage_reach) = lane_coverage(g.best.0);
                     let record = GenerationRecord {
                         iteration: g.iteration,

@@ -68,8 +68,8 @@ pub struct Searched {
     /// The nearest-neighbour tour's cost (the fitness scale).
     pub nearest_time_s: f64,
     /// The best tour and the fastest other distinct tours of the last population, best
-    /// first, at most [`FINALISTS`]: what the planner scores with the common scorer when it
-    /// chooses by a coverage goal.
+    /// first, at most [`FINALISTS`], then the seeds not among them: what the planner scores
+    /// with the common scorer when it chooses by a coverage goal.
     pub finalists: Vec<Tour>,
 }
 
@@ -79,14 +79,21 @@ pub const FINALISTS: usize = 8;
 /// The nearest-neighbour tour: from the start, the candidate of an unswept cell with the
 /// shortest leg (then the shortest own time), until every cell is swept.
 pub fn nearest_neighbour(inst: &Instance) -> Tour {
+    nearest_neighbour_among(inst, |_, _| true)
+}
+
+/// [`nearest_neighbour`] over the candidates `allowed(cell, choice)` admits (every candidate of
+/// a cell it admits none of): the tour of the no-search control at one lane direction.
+pub fn nearest_neighbour_among(inst: &Instance, allowed: impl Fn(usize, usize) -> bool) -> Tour {
     let n = inst.cells();
+    let open: Vec<bool> = (0..n).map(|k| !(0..inst.choices(k)).any(|c| allowed(k, c))).collect();
     let mut done = vec![false; n];
     let mut tour = Tour { order: Vec::with_capacity(n), choice: vec![0; n] };
     let mut here: Option<usize> = None;
     for _ in 0..n {
         let mut best: Option<(f64, f64, usize, usize)> = None;
         for k in (0..n).filter(|&k| !done[k]) {
-            for c in 0..inst.choices(k) {
+            for c in (0..inst.choices(k)).filter(|&c| open[k] || allowed(k, c)) {
                 let g = inst.flat(k, c);
                 let key = (inst.leg(here, Some(g)), inst.own(g));
                 if best.is_none_or(|b| key.0 < b.0 - 1e-12 || (key.0 <= b.0 + 1e-12 && key.1 < b.1 - 1e-12)) {
@@ -108,6 +115,20 @@ pub fn nearest_neighbour(inst: &Instance) -> Tour {
 pub fn search<E>(
     inst: &Instance,
     params: &GaParams,
+    run: (u64, Instant),
+    budget: &Budget,
+    report: impl FnMut(&Generation) -> Result<(), E>,
+) -> Result<Searched, E> {
+    search_from(inst, params, &[], run, budget, report)
+}
+
+/// [`search`] whose first population holds `seeds` after the nearest-neighbour tour (as many as
+/// fit), and whose finalists end with them: a plan the seeds give is among those the common
+/// scorer chooses from, so the search returns nothing worse than its seeds on the scorer.
+pub fn search_from<E>(
+    inst: &Instance,
+    params: &GaParams,
+    seeds: &[Tour],
     (seed, started): (u64, Instant),
     budget: &Budget,
     mut report: impl FnMut(&Generation) -> Result<(), E>,
@@ -129,6 +150,9 @@ pub fn search<E>(
     }
     let t = inst.cost(&first, params.goal);
     pop.push((first, t));
+    for tour in seeds.iter().take(params.population.saturating_sub(1)) {
+        pop.push((tour.clone(), inst.cost(tour, params.goal)));
+    }
     while pop.len() < params.population {
         let mut order: Vec<u32> = (0..n as u32).collect();
         order.shuffle(&mut rng);
@@ -156,7 +180,12 @@ pub fn search<E>(
     };
     let mut report = |g: &Generation| report(g);
     let finish = execute(&mut ga, &StopRules::of_budget(budget, None, started), &mut report)?;
-    let finalists = finalists(&ga.best.0, &ga.pop);
+    let mut finalists = finalists(&ga.best.0, &ga.pop);
+    for tour in seeds {
+        if !finalists.contains(tour) {
+            finalists.push(tour.clone());
+        }
+    }
     Ok(Searched {
         finalists,
         best: ga.best,
@@ -354,6 +383,24 @@ mod tests {
         .unwrap();
         assert_eq!(out.stop, StopReason::Evaluations);
         assert!(out.evaluations >= 500 && out.evaluations < 500 + 40 + 200, "{}", out.evaluations);
+    }
+
+    #[test]
+    fn seeds_join_the_first_population_and_the_finalists() {
+        let inst = line(6);
+        // Every cell swept right to left only: the control's tour at that one "direction".
+        let seed = nearest_neighbour_among(&inst, |_, c| c == 1);
+        assert!(seed.choice.iter().all(|&c| c == 1), "{seed:?}");
+        assert_eq!(nearest_neighbour_among(&inst, |_, _| true), nearest_neighbour(&inst));
+        let p = params(draw("tournament", 3, 1.7, 20), false);
+        let out =
+            search_from(&inst, &p, std::slice::from_ref(&seed), (3, Instant::now()), &Budget::iterations(2), |_| {
+                Ok::<(), ()>(())
+            })
+            .unwrap();
+        assert!(out.finalists.contains(&seed), "{:?}", out.finalists);
+        assert!(out.best.1 <= inst.time(&seed) + 1e-9, "the best is no worse than a seed");
+        assert_eq!(out.finalists[0], out.best.0);
     }
 
     /// The local search stops once its read budget is spent: it overshoots by at most one

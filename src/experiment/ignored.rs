@@ -32,7 +32,7 @@ const READ_BY_CELL_ORDER_SEED: [&str; 3] =
     ["cell_order.directions", "cell_order.completion", "cell_order.completion_m_per_m2"];
 
 /// The `[cell_order]` keys of its GA, which the exact solver does not read.
-const CELL_ORDER_GA_KEYS: [&str; 10] = [
+const CELL_ORDER_GA_KEYS: [&str; 11] = [
     "cell_order.population",
     "cell_order.selection",
     "cell_order.tournament_size",
@@ -43,6 +43,7 @@ const CELL_ORDER_GA_KEYS: [&str; 10] = [
     "cell_order.p_m",
     "cell_order.p_choice",
     "cell_order.memetic",
+    "cell_order.seed_directions",
 ];
 
 /// Whether `key` sets a selection parameter that the scheme `scheme` (a name of the registry,
