@@ -8,9 +8,10 @@ because they are about the thesis rather than the study:
 2. 003 Tables A.1/A.2 (the best individual of each map x R_rot x fitness function x selection
    cell of the thesis's single-seed grid) beside the same cells of this study: our best run,
    the median run, and how many runs reach or dominate the thesis's point.
-3. Where the infeasible runs (best path sweeping obstacle cells) lie: per replicate, map and
-   C_child, and how many of them share their first viewpoint (the end of S's move) with other
-   runs of the same replicate. Every configuration of a replicate runs with the same seed, so
+3. Where the infeasible runs (best path sweeping obstacle cells: 003's penalty,
+   `obstacle_sweeps` > 0) lie: per replicate, map and C_child, and how many of them share their
+   first viewpoint (the end of S's move) with other runs of the same replicate; beside them, the
+   runs whose plan is not executable (the robot's body touches a wall somewhere). Every configuration of a replicate runs with the same seed, so
    configurations with the same initial-population settings start from the same individuals.
 
 Usage: python3 scripts/thesis-table-4-3-numbers.py out/thesis-table-4-3/runs.csv
@@ -152,20 +153,24 @@ def main(path):
                     )
 
     print("\n## Infeasible runs\n")
-    print("| replicate | map | C_child | infeasible runs | of |")
-    print("|---|---|---|---|---|")
-    groups = defaultdict(lambda: [0, 0])
+    print("Infeasible: the best path's footprint rectangles sweep obstacle cells (003's penalty,")
+    print("`obstacle_sweeps` > 0). Not executable: the robot's body touches a non-free cell anywhere")
+    print("on the path, vertices and turns included (`executable` false).\n")
+    print("| replicate | map | C_child | infeasible runs | not executable | of |")
+    print("|---|---|---|---|---|---|")
+    groups = defaultdict(lambda: [0, 0, 0])
     for r in rows:
         g = groups[(r["replicate"], r["map.source"], r["thesis.c_child"])]
-        g[0] += r["executable"] == "false"
-        g[1] += 1
+        g[0] += int(r["obstacle_sweeps"]) > 0
+        g[1] += r["executable"] == "false"
+        g[2] += 1
     for key in sorted(groups):
-        bad, n = groups[key]
-        print(f"| {key[0]} | {key[1]} | {key[2]} | {bad} ({bad / n:.1%}) | {n} |")
+        bad, body, n = groups[key]
+        print(f"| {key[0]} | {key[1]} | {key[2]} | {bad} ({bad / n:.1%}) | {body} ({body / n:.1%}) | {n} |")
     runs_dir = path.rsplit("/", 1)[0] + "/runs" if "/" in path else "runs"
     first = defaultdict(lambda: defaultdict(int))
     for r in rows:
-        if r["executable"] != "false":
+        if int(r["obstacle_sweeps"]) == 0:
             continue
         try:
             with open(f"{runs_dir}/{r['run_id']}/best_path.csv") as f:

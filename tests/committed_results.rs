@@ -14,24 +14,6 @@ use covga::study::runner::{MapCache, experiment_of, grid_hash};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-/// Studies whose `runs.csv` was written before the body rule of executability
-/// (`covga::map::body`): their `executable` column is the earlier rule's (swept rectangles
-/// only, no vertices, turns or end caps) and their `obstacle_cells` column is today's
-/// `obstacle_sweeps`. Their rows are compared in every other column, `obstacle_cells` against
-/// `obstacle_sweeps`; each study's README says its executable figures await the re-score. A
-/// study re-run under the body rule must leave this list (the test fails until it does), and
-/// no study may join it.
-const SCORED_BEFORE_THE_BODY_RULE: &[&str] = &["thesis-table-4-3"];
-
-/// Of those studies, the rows with routed moves were planned by the earlier routes, which
-/// tested a move's swept rectangle for obstacle cell centres and let the robot stand with its
-/// body past the map's edge; today's routes keep the body clear of every non-free cell and the
-/// edge (`coverage::routes::Router::segment_clear`), so those rows plan differently and are not
-/// re-run until their studies are.
-fn planned_by_the_earlier_routes(table: &RunsTable, row: &[String]) -> bool {
-    table.col("thesis.moves").is_some_and(|c| row[c] == "routed")
-}
-
 /// Committed rows whose recorded run took longer than this are not re-run (seconds).
 const MAX_ROW_SECONDS: f64 = 25.0;
 
@@ -109,24 +91,6 @@ fn cheap_rows(table: &RunsTable, columns: &[String]) -> Vec<String> {
     picked
 }
 
-/// Today's header as a study scored before the body rule wrote it: no `obstacle_sweeps`
-/// column (its `obstacle_cells` held those sweeps).
-fn earlier_rule_header(today: &[String]) -> Vec<String> {
-    today.iter().filter(|h| *h != "obstacle_sweeps").cloned().collect()
-}
-
-/// A fresh row laid out as [`earlier_rule_header`]: `obstacle_sweeps` moved into the
-/// `obstacle_cells` column, whose meaning it had then.
-fn as_earlier_rule_row(today: &[String], fresh: &[String]) -> Vec<String> {
-    let sweeps = today.iter().position(|h| h == "obstacle_sweeps").expect("an obstacle_sweeps column");
-    today
-        .iter()
-        .zip(fresh)
-        .filter(|(h, _)| *h != "obstacle_sweeps")
-        .map(|(h, v)| if h == "obstacle_cells" { fresh[sweeps].clone() } else { v.clone() })
-        .collect()
-}
-
 #[test]
 fn committed_study_rows_re_run_exactly() {
     let dirs = study_dirs();
@@ -146,19 +110,9 @@ fn committed_study_rows_re_run_exactly() {
         }
         let table = committed_runs(&dir);
         let today = covga::study::records::header(&study.columns);
-        let before_body_rule = SCORED_BEFORE_THE_BODY_RULE.contains(&name.as_str());
-        let expected = if before_body_rule { earlier_rule_header(&today) } else { today.clone() };
-        if table.header != expected {
-            failures.push(format!(
-                "{name}: runs.csv's columns differ from today's{}",
-                if before_body_rule { " (before the body rule)" } else { "" }
-            ));
+        if table.header != today {
+            failures.push(format!("{name}: runs.csv's columns differ from today's"));
             continue;
-        }
-        if before_body_rule {
-            eprintln!(
-                "{name}: scored before the body rule: `executable` not compared, `obstacle_cells` against `obstacle_sweeps`"
-            );
         }
         let committed = table.by_id();
         // The metric `planner` column, not a swept `planner` key of the same name before it.
@@ -166,10 +120,6 @@ fn committed_study_rows_re_run_exactly() {
         let maps = MapCache::default();
         for id in cheap_rows(&table, &study.columns) {
             let run = study.runs.iter().find(|r| r.id == id).unwrap_or_else(|| panic!("{name}: no run {id}"));
-            if before_body_rule && planned_by_the_earlier_routes(&table, committed[&id]) {
-                eprintln!("{name} {id}: skipped, its routed moves were planned by the earlier routes");
-                continue;
-            }
             assert!(
                 !map_missing(&run.file.map.source),
                 "{name} {id}: its map {} is not in this checkout, which must re-run every committed study",
@@ -180,11 +130,9 @@ fn committed_study_rows_re_run_exactly() {
             let summary = covga::experiment::output::run_experiment(&exp, &out, false, &mut [])
                 .unwrap_or_else(|e| panic!("{name} {id}: {e}"));
             let fresh = row(&study.columns, run, &summary);
-            let fresh = if before_body_rule { as_earlier_rule_row(&today, &fresh) } else { fresh };
             let old = committed[&id];
             for ((h, a), b) in table.header.iter().zip(old).zip(&fresh) {
-                let skipped = TIMING_COLUMNS.contains(&h.as_str()) || (before_body_rule && h == "executable");
-                if !skipped && a != b {
+                if !TIMING_COLUMNS.contains(&h.as_str()) && a != b {
                     failures.push(format!(
                         "{name} {id} ({}, {}): {h} committed {a}, today {b}",
                         fresh[metric_planner],
@@ -194,12 +142,6 @@ fn committed_study_rows_re_run_exactly() {
             }
             eprintln!("{name} {id}: re-run ({}, {})", fresh[metric_planner], fresh[table.col("map").unwrap()]);
             checked += 1;
-        }
-    }
-    for name in SCORED_BEFORE_THE_BODY_RULE {
-        let header = committed_runs(&repo().join("results").join(name)).header;
-        if header.iter().any(|h| h == "obstacle_sweeps") {
-            failures.push(format!("{name}: re-scored under the body rule; take it off SCORED_BEFORE_THE_BODY_RULE"));
         }
     }
     assert!(failures.is_empty(), "{} differences over {checked} re-run rows:\n{}", failures.len(), failures.join("\n"));
