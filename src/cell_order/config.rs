@@ -76,6 +76,8 @@ pub struct CellOrderSection {
     pub coverage_goal: Option<f64>,
     /// Seed the GA's first population with the nearest-neighbour tour at each single lane
     /// direction of `directions` (the no-search control's tours), kept among the finalists.
+    /// Left out of the canonical form while off, so that run ids made before it stay.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub seed_directions: bool,
     /// Completion driving charged per square metre a sweep leaves in its cell, in metres
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
