@@ -79,6 +79,11 @@ pub struct CellOrderSection {
     /// Left out of the canonical form while off, so that run ids made before it stay.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub seed_directions: bool,
+    /// How many of the map's dominant wall orientations
+    /// ([`crate::map::orientation::wall_orientations`]) join `directions` as lane directions
+    /// (those within 1° of one already there are not added twice); 0 to 8.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub wall_directions: usize,
     /// Completion driving charged per square metre a sweep leaves in its cell, in metres
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
     pub completion_m_per_m2: f64,
@@ -102,6 +107,7 @@ impl Default for CellOrderSection {
             completion: Completion::Boundary,
             coverage_goal: None,
             seed_directions: false,
+            wall_directions: 0,
             completion_m_per_m2: 20.0,
         }
     }
@@ -122,10 +128,36 @@ pub struct CellOrderConfig {
     pub coverage_goal: Option<f64>,
     /// Seed the GA with the nearest-neighbour tour at each single direction.
     pub seed_directions: bool,
+    /// How many of `directions` were added from the map's walls (the last ones).
+    pub wall_directions: usize,
     /// Completion driving charged per square metre a sweep leaves, in metres.
     pub completion_m_per_m2: f64,
     /// The robot's width (for the memory estimate).
     pub width: f64,
+}
+
+/// Whether a count is zero (a key left out of the canonical form at its default).
+fn is_zero(n: &usize) -> bool {
+    *n == 0
+}
+
+/// `directions` and, after them, the `count` dominant wall orientations of `map` that lie more
+/// than 1° from each of them.
+pub fn with_wall_directions(directions: &[f64], map: &crate::map::GridMap, count: usize) -> Vec<f64> {
+    let mut out = directions.to_vec();
+    if count == 0 {
+        return out;
+    }
+    for a in crate::map::orientation::wall_orientations(map, count) {
+        let near = |d: f64| {
+            let gap = (d - a).rem_euclid(180.0);
+            gap.min(180.0 - gap) <= 1.0
+        };
+        if !out.iter().any(|&d| near(d)) {
+            out.push(a);
+        }
+    }
+    out
 }
 
 /// The `[cell_order]` key that sets a selection parameter.
@@ -148,6 +180,14 @@ impl CellOrderSection {
         }
         for &d in &self.directions {
             check_range(o, "cell_order.directions", d, -360.0, 360.0, "[-360, 360] degrees")?;
+        }
+        check_range(o, "cell_order.wall_directions", self.wall_directions as f64, 0.0, 8.0, "integers 0..=8")?;
+        let directions = with_wall_directions(&self.directions, &ctx.scenario.map, self.wall_directions);
+        if directions.len() > 36 {
+            return Err(ctx.error(
+                "cell_order.wall_directions",
+                format!("adds to {} lane directions, more than 36: offer fewer", directions.len()),
+            ));
         }
         let count = |key: &str, v: usize, lo: usize, hi: usize| {
             check_range(o, key, v as f64, lo as f64, hi as f64, &format!("integers {lo}..={hi}"))
@@ -181,7 +221,7 @@ impl CellOrderSection {
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             // The cells are known only after the decomposition: counted here so that a grid
             // refuses the configuration before it writes anything.
-            let (_, _, sweeps) = super::decompose(ctx.scenario, &self.directions).map_err(|m| {
+            let (_, _, sweeps) = super::decompose(ctx.scenario, &directions).map_err(|m| {
                 ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name()))
             })?;
             if sweeps.len() > super::exact::MAX_EXACT_CELLS {
@@ -200,7 +240,7 @@ impl CellOrderSection {
         let selection = ParentDraw { scheme, params };
         Ok(CellOrderConfig {
             solver: self.solver,
-            directions: self.directions.clone(),
+            directions,
             ga: GaParams {
                 population: self.population,
                 selection,
@@ -214,6 +254,7 @@ impl CellOrderSection {
             completion: self.completion,
             coverage_goal: self.coverage_goal,
             seed_directions: self.seed_directions,
+            wall_directions: self.wall_directions,
             completion_m_per_m2: self.completion_m_per_m2,
             width: ctx.scenario.robot.width,
         })
@@ -237,5 +278,39 @@ impl CellOrderConfig {
             key: "cell_order.directions",
             what: format!("leg times and transit lengths between about {candidates:.0} candidate sweeps"),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Point;
+    use crate::map::{CellState, GridMap};
+
+    /// A room whose walls run at 20° and 110°.
+    fn turned_room() -> GridMap {
+        let (s, c) = 20f64.to_radians().sin_cos();
+        let cells = (0..100 * 100)
+            .map(|i| {
+                let (x, y) = ((i % 100) as f64 - 50.0, (i / 100) as f64 - 50.0);
+                let (u, v) = (c * x + s * y, -s * x + c * y);
+                if u.abs() < 33.0 && v.abs() < 33.0 { CellState::Free } else { CellState::Occupied }
+            })
+            .collect();
+        GridMap::new("turned", 100, 100, 0.05, Point::origin(), cells).unwrap()
+    }
+
+    #[test]
+    fn wall_directions_join_the_offered_ones_once() {
+        let map = turned_room();
+        assert_eq!(with_wall_directions(&[0.0, 90.0], &map, 0), vec![0.0, 90.0]);
+        let with = with_wall_directions(&[0.0, 90.0], &map, 2);
+        assert_eq!(with.len(), 4, "{with:?}");
+        assert!(
+            with[2..].iter().any(|a| (a - 20.0).abs() <= 1.5) && with[2..].iter().any(|a| (a - 110.0).abs() <= 1.5)
+        );
+        // A wall direction within 1° of an offered one is not offered twice.
+        let again = with_wall_directions(&with, &map, 2);
+        assert_eq!(again, with);
     }
 }

@@ -384,6 +384,11 @@ struct Chosen {
 }
 
 impl CellOrderConfig {
+    /// Every lane direction offered, where some came from the map's walls (for the summary).
+    fn wall_directions_used(&self) -> Option<&[f64]> {
+        (self.wall_directions > 0).then_some(self.directions.as_slice())
+    }
+
     /// The plan of the solver's best tour; with a coverage goal, of the finalist whose path
     /// reaches it first on the common scorer's coverage curve (not the tour cost's estimate),
     /// ended where it does and driven to the end station.
@@ -459,6 +464,7 @@ fn details_of(
     solved: &Solved,
     skipped: usize,
     goal: Option<(f64, f64, Vec<f64>)>,
+    directions: Option<&[f64]>,
 ) -> serde_json::Map<String, serde_json::Value> {
     let inst = &prepared.instance;
     let tour: Vec<serde_json::Value> = prepared
@@ -478,6 +484,9 @@ fn details_of(
     }));
     if let Some(t) = solved.exact {
         details.insert("exact_cost_s".into(), t.into());
+    }
+    if let Some(d) = directions {
+        details.insert("directions_deg".into(), d.into());
     }
     if let Some((goal, time_s, finalists)) = goal {
         details.insert("coverage_goal".into(), goal.into());
@@ -530,7 +539,7 @@ impl Planner for CellOrderConfig {
             iterations: solved.iterations,
             stop: solved.stop,
             wall_s: started.elapsed().as_secs_f64(),
-            details: details_of(&prepared, &solved, skipped, chosen.goal),
+            details: details_of(&prepared, &solved, skipped, chosen.goal, self.wall_directions_used()),
             files: Vec::new(),
             history: match self.solver {
                 Solver::Ga => crate::planner::History::Generations,

@@ -9,6 +9,7 @@ pub mod body;
 pub mod clearance;
 pub mod coverable;
 pub mod generate;
+pub mod orientation;
 pub mod presets;
 pub mod reach;
 pub mod ros;
