@@ -308,6 +308,21 @@ fn a_fleet_grid_runs_every_method_and_reports_them() {
     let col = |name: &str| header.iter().rposition(|h| h == name).unwrap_or_else(|| panic!("{name}"));
     let rows: Vec<Vec<String>> = r.records().map(|x| x.unwrap().iter().map(str::to_string).collect()).collect();
     assert_eq!(rows.len(), 7);
+    // Every id and metric column holds what its declared kind says (or nothing).
+    for (i, name) in header.iter().enumerate() {
+        use covga::study::records::{ColumnKind, column_kind};
+        let Some(kind) = column_kind(name) else { continue };
+        for v in rows.iter().map(|r| &r[i]).filter(|v| !v.is_empty()) {
+            let fits = match kind {
+                ColumnKind::Integer => v.parse::<i64>().is_ok(),
+                ColumnKind::Unsigned => v.parse::<u64>().is_ok(),
+                ColumnKind::Float => v.parse::<f64>().is_ok(),
+                ColumnKind::Flag => v == "true" || v == "false",
+                ColumnKind::Text => true,
+            };
+            assert!(fits, "{name} = {v:?} is not {}", kind.name());
+        }
+    }
     let planners: std::collections::BTreeSet<&str> = rows.iter().map(|r| r[col("planner")].as_str()).collect();
     assert_eq!(
         planners.into_iter().collect::<Vec<_>>(),

@@ -9,6 +9,7 @@ __version__: str
 THESIS_COLUMNS: list[str]
 OCCUPIED_ABOVE_PERCENT: float
 FREE_BELOW_PERCENT: float
+RUNS_COLUMN_KINDS: dict[str, str]
 MAX_THREADS: int
 
 class ConfigError(ValueError): ...

@@ -86,6 +86,13 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let rule = covga::map::ros::PixelRule::default();
     m.add("OCCUPIED_ABOVE_PERCENT", 100.0 * rule.occupied_thresh)?;
     m.add("FREE_BELOW_PERCENT", 100.0 * rule.free_thresh)?;
+    // What each id and metric column of runs.csv holds, so that a study reads with the same
+    // dtypes whatever its values happen to be.
+    let kinds: std::collections::BTreeMap<String, &str> = covga::study::records::header(&[])
+        .into_iter()
+        .filter_map(|c| covga::study::records::column_kind(&c).map(|k| (c, k.name())))
+        .collect();
+    m.add("RUNS_COLUMN_KINDS", kinds)?;
     m.add_function(wrap_pyfunction!(runs::run_experiment, m)?)?;
     m.add_function(wrap_pyfunction!(runs::run_grid, m)?)?;
     m.add_function(wrap_pyfunction!(runs::write_report, m)?)?;

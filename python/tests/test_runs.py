@@ -193,8 +193,8 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     with pytest.raises(covga.ConfigError, match="not one of"):
         covga.grid(grid_file, jobs=2, out=tmp_path / "bad", order="shortest-first")
     assert len(runs) == 8
-    assert all(isinstance(i, str) and len(i) == 16 for i in runs["run_id"]) and runs["seed"].dtype == np.int64
-    assert runs["executable"].dtype == bool and runs["cov_final_reach"].dtype == np.float64
+    assert all(isinstance(i, str) and len(i) == 16 for i in runs["run_id"]) and str(runs["seed"].dtype) == "UInt64"
+    assert str(runs["executable"].dtype) == "boolean" and runs["cov_final_reach"].dtype == np.float64
     assert list(runs.columns).count("planner") == 1
     assert sorted(set(runs["thesis.selection"])) == ["elite", "tournament"]
     summary = covga.report(tmp_path / "py", by="thesis.selection", where={"thesis.projection": "f2"})
@@ -264,3 +264,35 @@ def test_a_run_that_fails_while_planning_is_recorded_and_raises_after_the_others
     assert sorted(runs["stop"]) != [] and list(runs["stop"]).count("failed") == 1
     failed = runs[runs["stop"] == "failed"]
     assert "lies outside its region" in failed["violations"].iloc[0]
+
+
+def _write_runs(folder, cam, size, fleet):
+    folder.mkdir()
+    header = "run_id,config_id,replicate,seed,thesis.tournament_size,planner,map,planner_feasible,executable,cam_walls_free,turns,stop,fleet_name,fleet_robots,union_reach,negotiation_settled\n"
+    rows = [
+        f"0123,4567,0,18446744073709551615,{size},thesis,thesis-1,true,true,{cam},12,iterations,{fleet},,,\n",
+        "89ab,cdef,1,7,,thesis,thesis-1,false,false,0,3,failed,,,,\n",
+    ]
+    (folder / "runs.csv").write_text(header + "".join(rows))
+
+
+def test_read_study_dtypes_do_not_depend_on_the_values(tmp_path):
+    pd = pytest.importorskip("pandas")
+    # One study whose camera share happens to be whole, whose fleet columns are empty and whose
+    # swept integer key is set in one row; another with other values: the same dtypes.
+    _write_runs(tmp_path / "a", "0", "3", "")
+    _write_runs(tmp_path / "b", "0.25", "7", "pair")
+    a, b = covga.read_study(tmp_path / "a"), covga.read_study(tmp_path / "b")
+    assert list(a.dtypes) == list(b.dtypes)
+    assert a["cam_walls_free"].dtype == np.float64
+    assert a["turns"].dtype == pd.Int64Dtype() and a["replicate"].dtype == pd.Int64Dtype()
+    assert a["seed"].dtype == pd.UInt64Dtype() and a["seed"][0] == 2**64 - 1
+    assert a["executable"].dtype == pd.BooleanDtype() and bool(a["executable"][0])
+    assert a["run_id"].dtype == pd.StringDtype() and a["run_id"][0] == "0123"
+    assert a["fleet_name"].dtype == pd.StringDtype() and a["fleet_name"][1] == ""
+    assert a["fleet_robots"].dtype == pd.Int64Dtype() and a["fleet_robots"].isna().all()
+    assert a["union_reach"].dtype == np.float64 and a["union_reach"].isna().all()
+    assert a["negotiation_settled"].dtype == pd.BooleanDtype() and a["negotiation_settled"].isna().all()
+    # A swept key's column is typed by its values: whole numbers with a gap stay integers.
+    assert a["thesis.tournament_size"].dtype == pd.Int64Dtype()
+    assert a["thesis.tournament_size"].isna().tolist() == [False, True]

@@ -31,6 +31,78 @@ pub const FLEET_COLUMNS: [&str; 12] = [
 /// Columns that measure time and so differ between otherwise identical runs.
 pub const TIMING_COLUMNS: [&str; 1] = ["wall_s"];
 
+/// What a column of `runs.csv` holds, whatever values a study happens to have (a float column
+/// whose values are all whole still holds floats): what a reader types it as. Any column may
+/// be empty in a row (a failed run's metrics, a single robot's fleet columns).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColumnKind {
+    /// Whole numbers (counts).
+    Integer,
+    /// Whole numbers that may exceed a signed 64-bit integer (seeds).
+    Unsigned,
+    /// Real numbers.
+    Float,
+    /// `true` or `false`.
+    Flag,
+    /// Text: ids, names, messages.
+    Text,
+}
+
+impl ColumnKind {
+    /// The kind's name as the Python package reads it.
+    pub fn name(self) -> &'static str {
+        match self {
+            ColumnKind::Integer => "integer",
+            ColumnKind::Unsigned => "unsigned",
+            ColumnKind::Float => "float",
+            ColumnKind::Flag => "flag",
+            ColumnKind::Text => "text",
+        }
+    }
+}
+
+/// Columns of whole numbers among the id and metric columns.
+const INTEGER_COLUMNS: [&str; 16] = [
+    "replicate",
+    "agents",
+    "unique_cells",
+    "unique_reach_cells",
+    "cells_swept",
+    "crossings",
+    "obstacle_cells",
+    "obstacle_sweeps",
+    "free_cells",
+    "reachable_cells",
+    "pocket_cells",
+    "turns",
+    "evaluations",
+    "iterations",
+    "fleet_robots",
+    "negotiation_rounds",
+];
+/// Flag columns among the id and metric columns.
+const FLAG_COLUMNS: [&str; 3] = ["executable", "planner_feasible", "negotiation_settled"];
+/// Text columns among the id and metric columns.
+const TEXT_COLUMNS: [&str; 7] = ["run_id", "config_id", "planner", "map", "violations", "stop", "fleet_name"];
+
+/// The kind of an id or metric column of `runs.csv` (every other metric column is a float);
+/// `None` for a swept key's column, whose kind is its key's.
+pub fn column_kind(name: &str) -> Option<ColumnKind> {
+    if name == "seed" {
+        Some(ColumnKind::Unsigned)
+    } else if INTEGER_COLUMNS.contains(&name) {
+        Some(ColumnKind::Integer)
+    } else if FLAG_COLUMNS.contains(&name) {
+        Some(ColumnKind::Flag)
+    } else if TEXT_COLUMNS.contains(&name) {
+        Some(ColumnKind::Text)
+    } else if ID_COLUMNS.contains(&name) || metric_columns().iter().any(|c| c == name) {
+        Some(ColumnKind::Float)
+    } else {
+        None
+    }
+}
+
 /// The metric columns of every run, whatever its planner: run columns, the common scorer's
 /// ([`crate::coverage::score::Score::columns`]), effort, fleet.
 pub fn metric_columns() -> Vec<String> {
@@ -213,6 +285,19 @@ impl RunsTable {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_id_and_metric_column_has_a_kind_and_the_kind_lists_name_real_columns() {
+        let all = header(&[]);
+        for name in &all {
+            assert!(column_kind(name).is_some(), "{name}");
+        }
+        for name in INTEGER_COLUMNS.iter().chain(&FLAG_COLUMNS).chain(&TEXT_COLUMNS) {
+            assert!(all.iter().any(|c| c == name), "{name} is no column");
+        }
+        assert_eq!(column_kind("thesis.tournament_size"), None, "a swept key's kind is its key's");
+        assert_eq!(column_kind("cam_walls_free"), Some(ColumnKind::Float));
+    }
 
     #[test]
     fn half_written_last_line_is_dropped() {
