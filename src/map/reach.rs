@@ -108,6 +108,28 @@ pub fn unreachable_end(clear: &Clearance, start: Point, end: Point) -> Option<St
     }
 }
 
+/// Where the flood of the coverable positions starts: each station where the body fits, and
+/// the reachable centres of the stations where it does not (a plan evaluated from such a
+/// station is not executable; its denominator is the nearest fitting centre's component, as
+/// the planners see it).
+///
+/// A fitting station seeds the flood itself, not its nearest fitting cell centre: in a
+/// corridor barely wider than the robot the band where the body fits can hold no cell centre
+/// (the centre raster is one cell apart), and the nearest fitting centre may lie beyond a wall.
+/// From the station, the coverable cells are those of the positions the robot can really drive
+/// to, the same positions the body rule accepts.
+fn coverable_seeds(clear: &Clearance, stations: &[Point], centres: &[bool]) -> Vec<Point> {
+    let map = clear.map();
+    let mut seeds: Vec<Point> = stations.iter().copied().filter(|&p| clear.fits_geometry(p)).collect();
+    if seeds.len() < stations.len() {
+        let misfits: Vec<Point> = stations.iter().copied().filter(|&p| !clear.fits_geometry(p)).collect();
+        let theirs = reachable_centres(clear, &misfits);
+        seeds
+            .extend((0..centres.len()).filter(|&i| theirs[i]).map(|i| map.cell_centre(i / map.cols(), i % map.cols())));
+    }
+    seeds
+}
+
 impl Reach {
     /// Flood-fills the fitting cell centres from each station (8-connected, no corner cutting,
     /// as the connecting moves of the patterns), then marks the coverable free cells and groups
@@ -155,8 +177,7 @@ impl Reach {
         let centres = reachable_centres(clear, stations);
         let res = map.resolution();
         let (rows, cols) = (map.rows() as isize, map.cols() as isize);
-        let seeds: Vec<Point> =
-            (0..n).filter(|&i| centres[i]).map(|i| map.cell_centre(i / map.cols(), i % map.cols())).collect();
+        let seeds = coverable_seeds(clear, stations, &centres);
         let coverable = super::coverable::coverable_cells(map, clear.radius(), &seeds);
         let coverable_count = coverable.iter().filter(|c| **c).count();
         // Pockets: connected groups of free cells that are not coverable.
@@ -268,6 +289,30 @@ mod tests {
         assert_eq!(reach.pocket_count(), 1);
         assert_eq!(reach.pocket_cells(), 16);
         assert!((reach.pocket_area_m2() - 0.16).abs() < 1e-12);
+    }
+
+    /// A station in a chamber two cells high, where a 0.19 m robot fits only between the
+    /// cell centres, with a room behind a one-cell wall: the chamber is what the robot covers,
+    /// not the room whose fitting centre lies nearest to the station.
+    #[test]
+    fn a_station_between_cell_centres_covers_its_own_chamber() {
+        let (cols, rows) = (12, 10);
+        let mut cells = vec![CellState::Occupied; cols * rows];
+        for c in 1..11 {
+            for r in (1..3).chain(4..9) {
+                cells[r * cols + c] = CellState::Free;
+            }
+        }
+        let map = GridMap::new("chamber", cols, rows, 0.1, Point::origin(), cells).unwrap();
+        let clear = Clearance::new(&map, 0.19);
+        let station = Point::new(0.55, 0.2);
+        assert!(clear.fits_geometry(station));
+        let reach = Reach::new(&clear, &[station]);
+        let chamber: Vec<usize> =
+            (0..rows * cols).filter(|&i| (1..3).contains(&(i / cols)) && map.is_free(i / cols, i % cols)).collect();
+        assert!(chamber.iter().all(|&i| reach.is_coverable(i)), "the chamber the robot stands in");
+        assert_eq!(reach.coverable_count(), chamber.len(), "nothing of the room behind the wall");
+        assert_eq!((reach.pocket_count(), reach.pocket_cells()), (1, 50), "the room is a pocket");
     }
 
     #[test]
