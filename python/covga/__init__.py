@@ -351,12 +351,14 @@ def report(
     where: Optional[Mapping[str, Any]] = None,
     name: Optional[str] = None,
     compare: Optional[Mapping[str, Any]] = None,
+    compare_every_plan: Optional[Mapping[str, Any]] = None,
 ) -> Path:
     """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
     runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
     maps swept keys to their baseline values (``{"thesis.moves": "straight"}``): each adds
     ``compare-KEY.md`` and ``.csv`` beside it (``covga report --compare``; the tables read back
-    with :func:`read_table`)."""
+    with :func:`read_table`). ``compare_every_plan`` does the same over every plan, executable
+    or not (``--compare-every-plan``, ``compare-KEY-every-plan.md``)."""
     by = [by] if isinstance(by, str) else list(by)
 
     def text(v: Any) -> str:
@@ -364,4 +366,5 @@ def report(
 
     pairs = [(str(k), text(v)) for k, v in (where or {}).items()]
     comparisons = [f"{k}={text(v)}" for k, v in (compare or {}).items()]
-    return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons))
+    every = [f"{k}={text(v)}" for k, v in (compare_every_plan or {}).items()]
+    return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every))

@@ -142,11 +142,11 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
     }
 }
 
-/// `covga report`: writes the report of study folder `dir` (with the comparisons `compare`,
-/// each `KEY=BASELINE`, made first so that one that cannot be made writes nothing) and
-/// returns the path of its `summary.md`.
+/// `covga report`: writes the report of study folder `dir` (with the comparisons `compare` of
+/// executable plans and `compare_every_plan` of every plan, each `KEY=BASELINE`, made first so
+/// that one that cannot be made writes nothing) and returns the path of its `summary.md`.
 #[pyfunction]
-#[pyo3(signature = (dir, by, filter, name, compare))]
+#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan))]
 pub fn write_report(
     py: Python<'_>,
     dir: &str,
@@ -154,6 +154,7 @@ pub fn write_report(
     filter: Vec<(String, String)>,
     name: Option<String>,
     compare: Vec<String>,
+    compare_every_plan: Vec<String>,
 ) -> PyResult<String> {
     use covga::report::ReportError;
     let error = |e: ReportError| match e {
@@ -163,6 +164,7 @@ pub fn write_report(
     let comparisons = compare
         .iter()
         .map(|c| covga::report::compare::Comparison::parse(c))
+        .chain(compare_every_plan.iter().map(|c| covga::report::compare::Comparison::parse_every_plan(c)))
         .collect::<Result<Vec<_>, _>>()
         .map_err(config_error)?;
     crate::released(py, || {

@@ -200,8 +200,12 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     summary = covga.report(tmp_path / "py", by="thesis.selection", where={"thesis.projection": "f2"})
     assert summary.name == "summary.md" and "elite" in summary.read_text()
     # A comparison paired by seed, the same file the command line writes.
-    covga.report(tmp_path / "py", compare={"thesis.selection": "elite"})
-    cli("report", tmp_path / "cli", "--compare", "thesis.selection=elite")
+    covga.report(
+        tmp_path / "py", compare={"thesis.selection": "elite"}, compare_every_plan={"thesis.selection": "elite"}
+    )
+    cli("report", tmp_path / "cli", "--compare", "thesis.selection=elite", "--compare-every-plan", "thesis.selection=elite")
+    every = "compare-thesis.selection-every-plan.csv"
+    assert (tmp_path / "py/report" / every).read_bytes() == (tmp_path / "cli/report" / every).read_bytes()
     table = covga.read_table(tmp_path / "py" / "report" / "compare-thesis.selection.csv")
     assert set(table["metric"]) == {"executable", "cov_final_reach", "time_s"}
     assert (tmp_path / "py/report/compare-thesis.selection.csv").read_bytes() == (

@@ -298,6 +298,11 @@ pub struct ReportArgs {
     /// `compare-KEY.md` and `.csv` into the report folder. Repeatable.
     #[arg(long, value_name = "KEY=BASELINE")]
     compare: Vec<String>,
+    /// As --compare, over every plan, executable or not (what the planner optimised, whether a
+    /// robot can drive its plan or not): writes `compare-KEY-every-plan.md` and `.csv`.
+    /// Repeatable.
+    #[arg(long, value_name = "KEY=BASELINE")]
+    compare_every_plan: Vec<String>,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
@@ -312,6 +317,7 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
         .compare
         .iter()
         .map(|c| crate::report::compare::Comparison::parse(c))
+        .chain(a.compare_every_plan.iter().map(|c| crate::report::compare::Comparison::parse_every_plan(c)))
         .collect::<Result<Vec<_>, _>>()
         .map_err(CliError::Input)?;
     let input = |e| match e {

@@ -12,6 +12,8 @@
 //! whose pairs all tie is reported as such and not tested. Parameters whose value follows
 //! from the others (a budget set per map) are not strata of their own and are named.
 
+mod pooled;
+
 use super::{ReportError, cmp_group_values, param_columns};
 use crate::stats::{Contrast, Family, bootstrap_ci, vargha_delaney_a12, wilcoxon_signed_rank};
 use crate::study::records::RunsTable;
@@ -33,15 +35,36 @@ pub struct Comparison {
     pub key: String,
     /// Its value the others are compared with, e.g. `straight`.
     pub baseline: String,
+    /// Which plans the metrics compare.
+    pub plans: Plans,
+}
+
+/// Which plans a comparison's metrics are read from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Plans {
+    /// Pairs where both plans are executable: what a robot can drive (the default).
+    Executable,
+    /// Every pair, executable or not: what the planner optimised, whether a robot can drive it
+    /// or not (`--compare-every-plan`). Reported under its own file name, beside the default.
+    Every,
 }
 
 impl Comparison {
-    /// Parses `KEY=BASELINE`.
+    /// Parses `KEY=BASELINE`, comparing executable plans.
     pub fn parse(text: &str) -> Result<Self, String> {
         match text.split_once('=') {
-            Some((k, v)) if !k.trim().is_empty() => Ok(Self { key: k.trim().into(), baseline: v.trim().into() }),
+            Some((k, v)) if !k.trim().is_empty() => {
+                Ok(Self { key: k.trim().into(), baseline: v.trim().into(), plans: Plans::Executable })
+            }
             _ => Err(format!("--compare {text}: expected KEY=BASELINE, e.g. thesis.moves=straight")),
         }
+    }
+
+    /// Parses `KEY=BASELINE`, comparing every plan.
+    pub fn parse_every_plan(text: &str) -> Result<Self, String> {
+        Self::parse(text)
+            .map(|c| Self { plans: Plans::Every, ..c })
+            .map_err(|m| m.replacen("--compare", "--compare-every-plan", 1))
     }
 }
 
@@ -128,6 +151,14 @@ fn followed_by(t: &RunsTable, c: usize, kept: &[usize]) -> Option<String> {
         return None;
     }
     Some(kept.iter().find(|&&k| follows(t, c, &[k])).map_or_else(|| names(kept), |&k| names(&[k])))
+}
+
+impl Design {
+    /// Whether the comparisons are also pooled over the strata: when there is more than one.
+    fn pooled(&self) -> bool {
+        let mut strata = self.cells.keys().map(|(s, _)| s);
+        strata.next().is_some_and(|first| strata.any(|s| s != first))
+    }
 }
 
 fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
@@ -264,7 +295,11 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
          median_value,contrast,estimate,ci_low,ci_high,value_better,value_worse,a12_value_greater,test,p,\
          p_holm,note\n",
     );
-    let _ = writeln!(md, "# `{}`: each value against `{}`\n", cmp.key, cmp.baseline);
+    let every = match cmp.plans {
+        Plans::Executable => "",
+        Plans::Every => ", every plan",
+    };
+    let _ = writeln!(md, "# `{}`: each value against `{}`{every}\n", cmp.key, cmp.baseline);
     let _ = writeln!(md, "{}\n", intro(&d, cmp));
     let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
         rows.iter()
@@ -281,14 +316,26 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
             })
             .collect()
     };
-    executability(&mut md, &mut csv, &as_rows(&|r| f64::from(u8::from(executable(r))), false), cmp);
+    let both_executable = cmp.plans == Plans::Executable;
+    let executable_rows = as_rows(&|r| f64::from(u8::from(executable(r))), false);
+    if d.pooled() {
+        pooled::executability(&mut md, &mut csv, &pooled::pool(&executable_rows), cmp);
+        for m in &METRICS {
+            pooled::section(&mut md, &mut csv, m, &pooled::pool(&as_rows(&|r| num(r, m.column), both_executable)), cmp);
+        }
+    }
+    executability(&mut md, &mut csv, &executable_rows, cmp);
     for m in &METRICS {
-        let metric_rows = as_rows(&|r| num(r, m.column), true);
+        let metric_rows = as_rows(&|r| num(r, m.column), both_executable);
         section(&mut md, &mut csv, m, &metric_rows, cmp);
     }
     let safe: String =
         cmp.key.chars().map(|c| if c.is_ascii_alphanumeric() || c == '.' || c == '-' { c } else { '_' }).collect();
-    Ok(Rendered { stem: format!("compare-{safe}"), markdown: md, csv })
+    let suffix = match cmp.plans {
+        Plans::Executable => "",
+        Plans::Every => "-every-plan",
+    };
+    Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv })
 }
 
 /// The paragraph saying how the comparison is made.
@@ -298,9 +345,16 @@ fn intro(d: &Design, cmp: &Comparison) -> String {
     } else {
         format!("within each combination of {}", d.strata.join(", "))
     };
+    let which = match cmp.plans {
+        Plans::Executable => "a pair counts where both plans are executable",
+        Plans::Every => {
+            "every pair counts, executable or not (what the planner optimised, whether a robot can drive \
+             its plan or not)"
+        }
+    };
     let mut s = format!(
         "Each value of `{}` against `{}`, {strata}. Runs are paired by seed (replicate `i` of every \
-         configuration has the same seed); a pair counts where both plans are executable. Coverage is \
+         configuration has the same seed); {which}. Coverage is \
          `cov_final_reach` (higher is better), compared as the median of the value's runs minus the \
          baseline's; time is `time_s` (lower is better), compared as the ratio of medians. Intervals: \
          {:.0} % percentile bootstrap over pairs ({RESAMPLES} resamples, seed {BOOTSTRAP_SEED}). Tests: \
@@ -313,6 +367,14 @@ fn intro(d: &Design, cmp: &Comparison) -> String {
     );
     for (name, of) in &d.followers {
         let _ = write!(s, " `{name}` follows {of} (confounded with it: not a stratum of its own).");
+    }
+    if d.pooled() {
+        s.push_str(
+            " The comparisons are made twice: first pooled over the strata (every stratum's pairs \
+             together; the pair effect is the difference, or for time the ratio, within each pair; \
+             its median with a paired bootstrap interval; the signed-rank test of the differences, \
+             of the log-ratios for time; Holm over the values of each metric), then stratum by stratum.",
+        );
     }
     s
 }
@@ -596,7 +658,7 @@ mod tests {
         assert!(text.contains("`budget` follows map"), "{text}");
         let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
         let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
-        assert_eq!(csv.rows.len(), 6, "two strata × executability and two metrics");
+        assert_eq!(csv.rows.len(), 9, "pooled and two strata × executability and two metrics");
         let exec_m2 =
             csv.rows.iter().find(|r| get(r, "metric") == "executable" && get(r, "stratum") == "map=m2").unwrap();
         // Seed 0 of b on m2 is the only discordant pair: McNemar's exact p = 1.
@@ -622,6 +684,54 @@ mod tests {
     }
 
     #[test]
+    fn pooled_over_the_strata_pairs_every_strata_pair_in_one_test() {
+        let dir = tempfile::tempdir().unwrap();
+        let md = write(&table(0.1), &Comparison::parse("a=a").unwrap(), dir.path()).unwrap();
+        let text = std::fs::read_to_string(&md).unwrap();
+        assert!(text.contains("## `time_s`, pooled over the strata"), "{text}");
+        assert!(text.contains("One test of `time_s` pooled over the strata (1 value against `a`)"), "{text}");
+        let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
+        let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
+        let pooled = |metric: &str| {
+            csv.rows.iter().find(|r| get(r, "metric") == metric && get(r, "stratum") == "pooled").unwrap().clone()
+        };
+        // Six pairs on m1 and five on m2 (one plan of b there is not executable), b covers 0.1
+        // more in each: exact p = 2/2¹¹, one test, nothing to correct.
+        let cov = pooled("cov_final_reach");
+        assert_eq!((get(&cov, "pairs"), get(&cov, "value_better")), ("11".into(), "11".into()));
+        assert_eq!(get(&cov, "contrast"), "pair difference");
+        assert!((get(&cov, "estimate").parse::<f64>().unwrap() - 0.1).abs() < 1e-12);
+        assert_eq!(get(&cov, "p").parse::<f64>().unwrap(), 2.0 / 2048.0);
+        assert_eq!(get(&cov, "p_holm"), get(&cov, "p"));
+        // Time: the ratio within each pair, (120 + 3s)/(100 + 3s); the median of the eleven is
+        // seed 3's.
+        let time = pooled("time_s");
+        assert_eq!((get(&time, "contrast"), get(&time, "value_worse")), ("pair ratio".into(), "11".into()));
+        assert_eq!(get(&time, "estimate").parse::<f64>().unwrap(), 129.0 / 109.0);
+        let exec = pooled("executable");
+        assert_eq!(
+            (get(&exec, "pairs"), get(&exec, "value_worse"), get(&exec, "p")),
+            ("12".into(), "1".into(), "1".into())
+        );
+        // Every plan: the pair with b's plan not executable counts too, in a file of its own.
+        let every = Comparison::parse_every_plan("a=a").unwrap();
+        write(&table(0.1), &every, dir.path()).unwrap();
+        let text = std::fs::read_to_string(dir.path().join("compare-a-every-plan.md")).unwrap();
+        assert!(text.contains("every pair counts, executable or not"), "{text}");
+        let csv =
+            RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a-every-plan.csv")).unwrap()).unwrap();
+        let time = csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "stratum") == "pooled").unwrap();
+        assert_eq!(get(time, "pairs"), "12");
+        // One stratum: nothing to pool.
+        let one: Vec<Vec<String>> = table(0.1).rows.into_iter().filter(|r| r[5] == "m1").collect();
+        let mut t = table(0.1);
+        t.rows = one;
+        write(&t, &Comparison::parse("a=a").unwrap(), dir.path()).unwrap();
+        let text = std::fs::read_to_string(dir.path().join("compare-a.md")).unwrap();
+        assert!(!text.contains("pooled"), "{text}");
+    }
+
+    #[test]
     fn comparisons_that_cannot_be_made_are_refused_with_the_reason() {
         let dir = tempfile::tempdir().unwrap();
         let t = table(0.1);
@@ -633,5 +743,6 @@ mod tests {
         assert!(err("a=c").contains("no run has that value; values: a, b"), "{}", err("a=c"));
         assert!(err("time_s=1").contains("not a swept parameter; swept: a, map, budget"), "{}", err("time_s=1"));
         assert!(Comparison::parse("a").is_err() && Comparison::parse("=x").is_err());
+        assert!(Comparison::parse_every_plan("a").unwrap_err().starts_with("--compare-every-plan a:"));
     }
 }

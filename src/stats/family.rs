@@ -42,7 +42,10 @@ impl Family {
 
     /// The sentence a report prints under the family's table.
     pub fn statement(&self) -> String {
-        format!("Holm–Bonferroni over the {} tests of {}.", self.tests.len(), self.name)
+        match self.tests.len() {
+            1 => format!("One test of {}: nothing to correct (Holm's p is its own).", self.name),
+            n => format!("Holm–Bonferroni over the {n} tests of {}.", self.name),
+        }
     }
 }
 
@@ -58,5 +61,12 @@ mod tests {
         f.push("c", 0.02);
         assert_eq!(f.adjusted(), holm(&[0.04, 0.01, 0.02]));
         assert_eq!(f.statement(), "Holm–Bonferroni over the 3 tests of each setting against the control.");
+        let mut one = Family::new("one setting against the control");
+        one.push("a", 0.04);
+        assert_eq!(one.adjusted(), vec![0.04]);
+        assert_eq!(
+            one.statement(),
+            "One test of one setting against the control: nothing to correct (Holm's p is its own)."
+        );
     }
 }
