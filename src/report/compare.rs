@@ -14,6 +14,7 @@
 
 mod pooled;
 
+use super::design::{followed_by, split_followers};
 use super::{ReportError, cmp_group_values, param_columns};
 use crate::stats::{Contrast, Family, bootstrap_ci, vargha_delaney_a12, wilcoxon_signed_rank};
 use crate::study::records::RunsTable;
@@ -134,25 +135,6 @@ struct Design {
     cells: BTreeMap<(String, String), BTreeMap<String, usize>>,
 }
 
-/// Whether the column `c` is a function of the columns `of` over the rows.
-fn follows(t: &RunsTable, c: usize, of: &[usize]) -> bool {
-    let mut seen: BTreeMap<Vec<&str>, &str> = BTreeMap::new();
-    t.rows.iter().all(|r| {
-        let key: Vec<&str> = of.iter().map(|&i| r[i].as_str()).collect();
-        *seen.entry(key).or_insert(r[c].as_str()) == r[c].as_str()
-    })
-}
-
-/// The columns among `kept` that `c` follows: one alone where one suffices, else all of them;
-/// `None` when `c` does not follow them.
-fn followed_by(t: &RunsTable, c: usize, kept: &[usize]) -> Option<String> {
-    let names = |cols: &[usize]| cols.iter().map(|&i| t.header[i].as_str()).collect::<Vec<_>>().join(", ");
-    if kept.is_empty() || !follows(t, c, kept) {
-        return None;
-    }
-    Some(kept.iter().find(|&&k| follows(t, c, &[k])).map_or_else(|| names(kept), |&k| names(&[k])))
-}
-
 impl Design {
     /// Whether the comparisons are also pooled over the strata: when there is more than one.
     fn pooled(&self) -> bool {
@@ -162,22 +144,11 @@ impl Design {
 }
 
 fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
-    let mut strata = Vec::new();
-    let mut followers = Vec::new();
-    let mut kept: Vec<usize> = Vec::new();
-    for name in param_columns(t).into_iter().filter(|p| *p != cmp.key) {
-        let Some(c) = t.col(&name) else { continue };
-        let values: std::collections::BTreeSet<&str> = t.rows.iter().map(|r| r[c].as_str()).collect();
-        if values.len() < 2 {
-            continue;
-        }
-        if let Some(of) = followed_by(t, c, &kept) {
-            followers.push((name, of));
-        } else {
-            kept.push(c);
-            strata.push(name);
-        }
-    }
+    let candidates: Vec<usize> =
+        param_columns(t).into_iter().filter(|p| *p != cmp.key).filter_map(|name| t.col(&name)).collect();
+    let (kept, followers) = split_followers(t, &candidates);
+    let strata: Vec<String> = kept.iter().map(|&c| t.header[c].clone()).collect();
+    let followers: Vec<(String, String)> = followers.into_iter().map(|(c, of)| (t.header[c].clone(), of)).collect();
     let seed = t.col("seed").unwrap_or(0);
     let mut cells: BTreeMap<(String, String), BTreeMap<String, usize>> = BTreeMap::new();
     for (i, r) in t.rows.iter().enumerate() {

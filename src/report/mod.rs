@@ -19,6 +19,8 @@ pub mod anova_report;
 pub mod claims;
 pub mod compare;
 mod curves;
+mod design;
+mod effects;
 pub mod figures;
 pub mod fleet_report;
 mod report_tables;

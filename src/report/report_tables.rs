@@ -1,15 +1,13 @@
 //! The per-group tables of `covga report`'s summary: best run and best configuration per
 //! group (003 Tables A.1/A.2), fronts with hypervolume and run durations (Table 4.4), means
-//! with confidence intervals, and Kruskal–Wallis tests per swept parameter with the median of
-//! each value.
+//! with confidence intervals, and the Kruskal–Wallis tests of [`super::effects`].
 
 use super::anova_report::{PROJECTION, projection_levels};
 use super::figures::ParetoFacet;
-use super::{ConfigRow, Group, cmp_group_values};
+use super::{ConfigRow, Group};
 use crate::ga::pareto::hypervolume_2d;
-use crate::stats::{kruskal_wallis, mean_ci95, mean_min_max, quartiles};
+use crate::stats::{mean_ci95, mean_min_max};
 use crate::study::records::RunsTable;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
 /// `rows` per projection where the study sweeps it (f1 and f2 are different functions, so a
@@ -55,7 +53,7 @@ impl GroupTables<'_> {
         self.fronts(md);
         self.per_group(md);
         self.top_configurations(md);
-        self.kruskal_tables(md);
+        super::effects::section(md, self.t, self.params);
     }
 
     /// A number of row `r` (NaN where absent).
@@ -236,66 +234,6 @@ impl GroupTables<'_> {
                 let _ = writeln!(md, "| {}", self.config_cells(c));
             }
         }
-    }
-
-    /// Kruskal–Wallis tests per swept parameter and metric.
-    fn kruskal_tables(&self, md: &mut String) {
-        let (t, params) = (self.t, self.params);
-        let _ = writeln!(md, "\n## Kruskal–Wallis tests per swept parameter\n");
-        let _ = writeln!(
-            md,
-            "Does the parameter's value shift the distribution of the run results? H (tie-corrected), degrees of freedom, p-value, effect size ε² = H/(N−1) and the median of each value's runs (which way it shifts); runs where the parameter does not apply are left out.\n"
-        );
-        let _ = writeln!(
-            md,
-            "| parameter | metric | groups | H | df | p | ε² | median per value |\n|---|---|---|---|---|---|---|---|"
-        );
-        for p in params {
-            for metric in ["cov_final_free", "t_final", "f_free"] {
-                // f is tested within one projection (f1 and f2 are different functions), and
-                // not at all against the projection itself.
-                let scopes: Vec<(String, Vec<usize>)> = match projection_levels(t, metric) {
-                    None => vec![(metric.to_string(), (0..t.rows.len()).collect())],
-                    Some(_) if p == PROJECTION => continue,
-                    Some(levels) => levels
-                        .into_iter()
-                        .map(|l| {
-                            let rows = (0..t.rows.len()).filter(|&r| self.get(r, PROJECTION) == l).collect();
-                            (format!("{metric} ({l})"), rows)
-                        })
-                        .collect(),
-                };
-                for (label, rows) in scopes {
-                    self.kruskal_row(md, p, &label, metric, &rows);
-                }
-            }
-        }
-    }
-
-    /// One Kruskal–Wallis row: does `p`'s value shift `metric` over `rows`?
-    fn kruskal_row(&self, md: &mut String, p: &str, label: &str, metric: &str, rows: &[usize]) {
-        let t = self.t;
-        let num = |r: usize, c: &str| t.num(&t.rows[r], c).unwrap_or(f64::NAN);
-        let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
-        let mut by_value: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-        for &r in rows {
-            let v = get(r, p);
-            if !v.is_empty() {
-                by_value.entry(v).or_default().push(num(r, metric));
-            }
-        }
-        let mut values: Vec<(String, Vec<f64>)> = by_value.into_iter().collect();
-        values.sort_by(|(a, _), (b, _)| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
-        let medians: Vec<String> = values.iter().map(|(v, runs)| format!("{v}: {:.4}", quartiles(runs).1)).collect();
-        let k = values.len();
-        let stats = match kruskal_wallis(&values.into_iter().map(|(_, runs)| runs).collect::<Vec<_>>()) {
-            Some(kw) => {
-                let p = if kw.p_value > 0.0 { format!("{:.3e}", kw.p_value) } else { "< 1e-300".into() };
-                format!("{:.3} | {} | {p} | {:.4}", kw.h, kw.df, kw.epsilon_squared)
-            }
-            None => "– | – | – | –".to_string(),
-        };
-        let _ = writeln!(md, "| {p} | {label} | {k} | {stats} | {} |", medians.join(" · "));
     }
 }
 
