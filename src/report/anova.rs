@@ -5,8 +5,9 @@
 //! between seeds of one configuration beside the parameter effects.
 //!
 //! Sums of squares are sequential (type I) in the order of the terms: main effects first, then
-//! interactions. For the balanced grids covga runs (every combination of the unconditional
-//! factors, each with the same replicates) they equal the type II and III sums.
+//! interactions. For balanced, crossed grids (every combination of the unconditional factors,
+//! each with the same replicates) they equal the type II and III sums; the report fits only
+//! such grids and says why it fits none otherwise ([`super::anova_report::factors_of_design`]).
 
 use crate::stats::ranks;
 use faer::Mat;

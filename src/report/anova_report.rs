@@ -2,6 +2,7 @@
 //! each metric's spread, and how much is left to the seed.
 
 use super::anova::{Anova, Factor, TermSpec, anova, replicate_spread};
+use super::design::{Crossing, crossing, split_followers};
 use crate::study::records::RunsTable;
 use std::fmt::Write as _;
 
@@ -119,9 +120,82 @@ fn analyse(md: &mut String, t: &RunsTable, factors: &[Factor], terms: &[TermSpec
     }
 }
 
+/// The swept parameters an analysis of variance can take as factors, and the sentence that
+/// names the ones it leaves out: a parameter that follows another is aliased with it (named,
+/// left out); the rest must form a crossed, balanced grid (every parameter set in every run
+/// crossed with the others, each combination of them run equally often), where sequential
+/// sums of squares equal the type II ones; parameters set under some values of another only
+/// are nested in it and enter after the crossed ones. `Err` says why the design is no such grid.
+pub fn factors_of_design(t: &RunsTable, params: &[String]) -> Result<(Vec<String>, String), String> {
+    let candidates: Vec<usize> = params.iter().filter_map(|p| t.col(p)).collect();
+    let (kept, followers) = split_followers(t, &candidates);
+    let name = |c: usize| t.header[c].clone();
+    let crossed: Vec<usize> = kept.iter().copied().filter(|&c| t.rows.iter().all(|r| !r[c].is_empty())).collect();
+    let all: Vec<usize> = (0..t.rows.len()).collect();
+    for &p in &crossed {
+        if let Crossing::NotCrossed { with } = crossing(t, p, &all, &crossed) {
+            let with: Vec<String> = with.into_iter().map(name).collect();
+            return Err(format!("{} is not crossed with {}", name(p), with.join(", ")));
+        }
+    }
+    for &q in kept.iter().filter(|c| !crossed.contains(c)) {
+        let set = |r: &Vec<String>| !r[q].is_empty();
+        let parent = crossed.iter().copied().find(|&p| {
+            let mut decided: std::collections::BTreeMap<&str, bool> = std::collections::BTreeMap::new();
+            t.rows.iter().all(|r| *decided.entry(r[p].as_str()).or_insert(set(r)) == set(r))
+        });
+        if parent.is_none() {
+            return Err(format!(
+                "{} is set in some runs only, and no parameter set in every run decides which (the runs are not one grid)",
+                name(q)
+            ));
+        }
+        let rows: Vec<usize> = (0..t.rows.len()).filter(|&r| set(&t.rows[r])).collect();
+        if let Crossing::NotCrossed { with } = crossing(t, q, &rows, &kept) {
+            let with: Vec<String> = with.into_iter().map(name).collect();
+            return Err(format!("{} is not crossed with {} where it is set", name(q), with.join(", ")));
+        }
+    }
+    // Every configuration of the factors run equally often: the crossed factors then have
+    // proportional cell frequencies (nested ones multiply a parent's cells evenly).
+    let mut cells: std::collections::BTreeMap<Vec<&str>, usize> = std::collections::BTreeMap::new();
+    for r in &t.rows {
+        *cells.entry(kept.iter().map(|&c| r[c].as_str()).collect()).or_default() += 1;
+    }
+    let counts: std::collections::BTreeSet<usize> = cells.values().copied().collect();
+    if counts.len() > 1 {
+        return Err(format!(
+            "its configurations hold {} to {} runs each (not balanced)",
+            counts.first().copied().unwrap_or(0),
+            counts.last().copied().unwrap_or(0)
+        ));
+    }
+    let left_out = if followers.is_empty() {
+        String::new()
+    } else {
+        let names: Vec<String> = followers.iter().map(|(c, of)| format!("{} follows {of}", name(*c))).collect();
+        format!(" Left out as aliased with the parameter they follow: {}.", names.join("; "))
+    };
+    Ok((kept.into_iter().map(name).collect(), left_out))
+}
+
 /// The markdown section, or a line saying why there is none.
 pub fn section(t: &RunsTable, params: &[String]) -> String {
     let mut md = String::from("\n## Analysis of variance (003 §5.3)\n\n");
+    let (params, left_out) = match factors_of_design(t, params) {
+        Ok(design) => design,
+        Err(why) => {
+            let _ = writeln!(
+                md,
+                "Not made: an analysis of variance of these runs would attribute to one parameter what \
+                 another did, because {why}. The Kruskal–Wallis section tests each parameter where it is \
+                 crossed with the others, and `covga report --compare` compares values paired by seed \
+                 within each setting of the others."
+            );
+            return md;
+        }
+    };
+    let params = &params[..];
     let (factors, terms, with_pairs) = model(t, params);
     if factors.is_empty() {
         md.push_str("No parameter takes two or more values: nothing to analyse.\n");
@@ -130,7 +204,10 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
     let _ = writeln!(
         md,
         "A linear model of each metric over the swept parameters as categorical factors ({}), \
-         solved by least squares (QR); sequential sums of squares, main effects first{}. \
+         solved by least squares (QR); sequential sums of squares, main effects first{}; the \
+         parameters set in every run form a crossed, balanced grid, where these equal the type II \
+         sums of squares, and those set under some values of another only are nested in it and \
+         come after them.{left_out} \
          η² is each term's share of the total sum of squares; the residual row is what the model \
          leaves, and its part between replicates of one configuration (same parameters, other \
          seed) is the share of the spread that is luck. \"p on ranks\" refits the model to the \
@@ -168,4 +245,38 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
         }
     }
     md
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(header: &str, rows: &[&str]) -> RunsTable {
+        RunsTable::parse(&format!("{header}\n{}\n", rows.join("\n"))).unwrap()
+    }
+
+    #[test]
+    fn the_design_decides_whether_an_anova_is_made() {
+        let names = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+        // a × m crossed, two runs each; b follows m (a budget per map).
+        let grid = table("a,m,b", &["1,x,5", "1,x,5", "2,x,5", "2,x,5", "1,y,9", "1,y,9", "2,y,9", "2,y,9"]);
+        let (kept, left_out) = factors_of_design(&grid, &names(&["a", "m", "b"])).unwrap();
+        assert_eq!(kept, names(&["a", "m"]));
+        assert!(left_out.contains("b follows m"), "{left_out}");
+        // One configuration run once more than the others.
+        let mut uneven = grid.clone();
+        uneven.rows.push(uneven.rows[0].clone());
+        assert!(factors_of_design(&uneven, &names(&["a", "m"])).unwrap_err().contains("2 to 3 runs"));
+        // t set under s = tour only (a tournament size), crossed with m there: nested, made.
+        let nested = table("s,t,m", &["elite,,x", "elite,,y", "tour,3,x", "tour,7,x", "tour,3,y", "tour,7,y"]);
+        assert_eq!(factors_of_design(&nested, &names(&["s", "t", "m"])).unwrap().0, names(&["s", "t", "m"]));
+        // k set in some runs only and decided by no parameter set in every run: not one grid.
+        let mixed = table("k,m", &["c,x", ",x", "c,y", ",y"]);
+        let why = factors_of_design(&mixed, &names(&["k", "m"])).unwrap_err();
+        assert!(why.contains("k is set in some runs only"), "{why}");
+        // a runs 1, 2 on x and 2, 3 on y: neither follows the other, and they are not crossed.
+        let apart = table("a,m", &["1,x", "2,x", "2,y", "3,y"]);
+        let why = factors_of_design(&apart, &names(&["a", "m"])).unwrap_err();
+        assert!(why.contains("is not crossed with"), "{why}");
+    }
 }
