@@ -537,7 +537,26 @@ fn relative_map_paths_are_read_from_the_working_directory() {
     ] {
         let o = at_root(&args);
         assert!(o.status.success(), "{args:?}: {}", String::from_utf8_lossy(&o.stderr));
+        // A run's own config.toml sets every key, read or not: run again it warns of none.
+        if args[1] == "r1/config.toml" {
+            assert!(
+                !String::from_utf8_lossy(&o.stderr).contains("is ignored"),
+                "{}",
+                String::from_utf8_lossy(&o.stderr)
+            );
+        }
     }
+    // The same file edited by hand is the user's own: its unread keys are warned about.
+    let edited =
+        std::fs::read_to_string(dir.path().join("r1/config.toml")).unwrap().replacen("seed = ", "seed = 7\n# ", 1);
+    write(dir.path(), "edited.toml", &edited);
+    let o = at_root(&["run", "edited.toml", "--out", "r4", "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("`thesis.c_len` is ignored"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     // From inside the run file's folder the same path names nothing, and the message says which.
     let o = Command::new(env!("CARGO_BIN_EXE_covga"))
         .current_dir(dir.path().join("experiments"))

@@ -46,7 +46,11 @@ pub struct Prepared {
 pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u64>) -> Result<Prepared, UseCaseError> {
     let origin = &source.origin;
     let mut file = ExperimentFile::parse(&source.text, origin).map_err(UseCaseError::input)?;
-    let ignored = crate::experiment::ignored::ignored_in_text(&source.text, &file);
+    // A run's own `config.toml` spells out every key with its default, read or not: run again,
+    // it is not the user's choice of keys, and warning about each would bury the rest.
+    let written_by_covga = toml::to_string_pretty(&file).is_ok_and(|t| t == source.text);
+    let ignored =
+        if written_by_covga { Vec::new() } else { crate::experiment::ignored::ignored_in_text(&source.text, &file) };
     if let Some(seed) = seed {
         file.seed = seed;
     }
