@@ -55,9 +55,20 @@ pub fn best_choices(inst: &Instance, tour: &mut Tour) -> u64 {
     reads
 }
 
+/// The leg reads [`best_choices`] spends on `tour` (counted without reading a leg), so that a
+/// search can tell whether its budget still holds them.
+pub fn choice_reads(inst: &Instance, tour: &Tour) -> u64 {
+    let order = &tour.order;
+    let (Some(&first), Some(&last)) = (order.first(), order.last()) else { return 0 };
+    let pairs: u64 = order.windows(2).map(|w| (inst.choices(w[0] as usize) * inst.choices(w[1] as usize)) as u64).sum();
+    inst.choices(first as usize) as u64 + pairs + inst.choices(last as usize) as u64
+}
+
 /// One pass of Or-opt: for each run of 1–3 cells in turn, the first move of it to another
-/// place that shortens the tour is made; returns whether any was made and the leg reads.
-pub fn or_opt(inst: &Instance, tour: &mut Tour) -> (bool, u64) {
+/// place that shortens the tour is made, until `max_reads` leg reads are spent (the pass then
+/// stops where it is, over by at most one candidate's six); returns whether any move was made
+/// and the leg reads.
+pub fn or_opt(inst: &Instance, tour: &mut Tour, max_reads: u64) -> (bool, u64) {
     let n = tour.order.len() as isize;
     let mut reads = 0u64;
     let mut moved = false;
@@ -70,6 +81,9 @@ pub fn or_opt(inst: &Instance, tour: &mut Tour) -> (bool, u64) {
             for p in -1..n {
                 if p >= i - 1 && p < i + len {
                     continue;
+                }
+                if reads >= max_reads {
+                    return (moved, reads);
                 }
                 let (a, b) = (at(tour, p), at(tour, p + 1));
                 let added = inst.leg(a, first) + inst.leg(last, b) - inst.leg(a, b);
@@ -90,13 +104,17 @@ pub fn or_opt(inst: &Instance, tour: &mut Tour) -> (bool, u64) {
 }
 
 /// One pass of 2-opt: every reversal of a run `i..=j` that shortens the tour, scanning in
-/// order, is made (the legs inside the run are re-read: leg times are not symmetric).
-pub fn two_opt(inst: &Instance, tour: &mut Tour) -> (bool, u64) {
+/// order, is made (the legs inside the run are re-read: leg times are not symmetric), until
+/// `max_reads` leg reads are spent (over by at most one candidate's `4 + 2n`).
+pub fn two_opt(inst: &Instance, tour: &mut Tour, max_reads: u64) -> (bool, u64) {
     let n = tour.order.len() as isize;
     let mut reads = 0u64;
     let mut reversed = false;
     for i in 0..n - 1 {
         for j in i + 1..n {
+            if reads >= max_reads {
+                return (reversed, reads);
+            }
             let before = inst.at(tour, i - 1);
             let after = inst.at(tour, j + 1);
             let mut old = inst.leg(before, inst.at(tour, i)) + inst.leg(inst.at(tour, j), after);
@@ -121,18 +139,29 @@ pub fn improve(inst: &Instance, tour: &mut Tour, rounds: usize) -> u64 {
     improve_within(inst, tour, rounds, u64::MAX)
 }
 
-/// As [`improve`], starting no round once `max_reads` leg reads are spent (a search's
-/// evaluation budget): it overshoots by at most one round.
+/// As [`improve`], within `max_reads` leg reads (a search's evaluation budget): the passes stop
+/// where the reads run out, and the best choices are set only while the budget holds their
+/// reads ([`choice_reads`]), so a step overshoots by at most one candidate move of a pass
+/// (`4 + 2n` reads for `n` cells). Without a limit it is exactly [`improve`].
 pub fn improve_within(inst: &Instance, tour: &mut Tour, rounds: usize, max_reads: u64) -> u64 {
-    let mut reads = best_choices(inst, tour);
+    let mut reads = 0u64;
+    let fits = |reads: u64, tour: &Tour| reads.saturating_add(choice_reads(inst, tour)) <= max_reads;
+    if fits(reads, tour) {
+        reads += best_choices(inst, tour);
+    }
     for _ in 0..rounds {
         if reads >= max_reads {
             break;
         }
-        let (moved, r1) = or_opt(inst, tour);
-        let (reversed, r2) = if moved { (false, 0) } else { two_opt(inst, tour) };
-        reads += r1 + r2;
+        let (moved, r1) = or_opt(inst, tour, max_reads - reads);
+        reads += r1;
+        let (reversed, r2) =
+            if moved || reads >= max_reads { (false, 0) } else { two_opt(inst, tour, max_reads - reads) };
+        reads += r2;
         if !moved && !reversed {
+            break;
+        }
+        if !fits(reads, tour) {
             break;
         }
         reads += best_choices(inst, tour);
@@ -163,6 +192,15 @@ mod tests {
     }
 
     #[test]
+    fn choice_reads_counts_what_best_choices_reads() {
+        let inst = line(5);
+        let mut t = Tour { order: vec![2, 0, 4, 1, 3], choice: vec![1, 0, 1, 0, 1] };
+        let expected = choice_reads(&inst, &t);
+        assert_eq!(best_choices(&inst, &mut t), expected);
+        assert_eq!(choice_reads(&inst, &Tour { order: vec![], choice: vec![] }), 0);
+    }
+
+    #[test]
     fn local_search_untangles_a_shuffled_line() {
         let inst = line(7);
         let mut t = Tour { order: vec![3, 0, 6, 1, 5, 2, 4], choice: vec![1; 7] };
@@ -176,7 +214,7 @@ mod tests {
         let inst = line(4);
         let mut t = Tour { order: vec![0, 2, 1, 3], choice: vec![0; 4] };
         let before = inst.time(&t);
-        let (moved, _) = or_opt(&inst, &mut t);
+        let (moved, _) = or_opt(&inst, &mut t, u64::MAX);
         assert!(moved && inst.time(&t) < before, "{t:?}");
         let mut s = t.order.clone();
         s.sort_unstable();
