@@ -24,7 +24,7 @@ from typing import Any, Mapping, Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
-from . import _covga, stats, thesis
+from . import _covga, plot, stats, thesis
 from ._arrays import rows_of_pairs
 from ._covga import ConfigError, Map
 from ._tables import read_study, read_table
@@ -36,6 +36,7 @@ __all__ = [
     "grid",
     "load_map",
     "pattern",
+    "plot",
     "read_study",
     "report",
     "run",
@@ -205,8 +206,8 @@ class Result:
     """One run: ``summary`` (``summary.json``), ``history`` (``history.csv``: a DataFrame with
     pandas, else a dict of arrays), ``plan`` (one ``(N, 2)`` array per agent), ``path`` (the
     first agent's), ``population`` (the thesis GA's final population, ``population.csv``;
-    ``None`` for other planners), ``dir`` (the results folder, ``None`` when not kept) and
-    ``warnings``."""
+    ``None`` for other planners), ``dir`` (the results folder, ``None`` when not kept),
+    ``warnings`` and ``config`` (the run's ``config.toml``); ``map`` and ``plot()`` draw it."""
 
     summary: dict[str, Any]
     history: Any
@@ -214,6 +215,23 @@ class Result:
     population: Any = None
     dir: Optional[Path] = None
     warnings: list[str] = field(default_factory=list)
+    config: str = ""
+
+    @property
+    def map(self) -> Map:
+        """The map the run planned on, loaded from its ``config.toml`` as ``covga run`` loads it."""
+        return _covga.experiment_map(self.config, "config.toml")
+
+    def plot(self, ax: Any = None) -> Any:
+        """The run's plan over its map (:func:`covga.plot.plot_plan`), titled with its planner,
+        seed, reachable coverage and executability; returns the matplotlib axes."""
+        s = self.summary.get("score", {})
+        title = (
+            f"{self.summary.get('planner')}, seed {self.summary.get('seed')}: "
+            f"coverage {s.get('cov_final_reach', float('nan')):.3f}, "
+            f"{'executable' if s.get('executable') else 'not executable'}"
+        )
+        return plot.plot_plan(self.map, self.plan, ax, title)
 
     @property
     def path(self) -> npt.NDArray[np.float64]:
@@ -284,7 +302,8 @@ def _read_result(folder: Path, kept: bool, messages: list[str]) -> Result:
         csv_file = folder / f"{name}.csv"
         tables[name] = read_table(csv_file) if csv_file.is_file() else None
     plan = _read_plan(folder / "best_path.csv")
-    return Result(summary, tables["history"], plan, tables["population"], folder if kept else None, messages)
+    config = (folder / "config.toml").read_text()
+    return Result(summary, tables["history"], plan, tables["population"], folder if kept else None, messages, config)
 
 
 def run(

@@ -77,6 +77,7 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<maps::Map>()?;
     m.add_function(wrap_pyfunction!(maps::load_map, m)?)?;
     m.add_function(wrap_pyfunction!(maps::map_from_states, m)?)?;
+    m.add_function(wrap_pyfunction!(maps::experiment_map, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::score, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::pattern, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::thesis_evaluate, m)?)?;

@@ -70,12 +70,12 @@ impl Map {
     /// `origin` have it): 254 free, 0 occupied, 205 unknown (map_server's trinary values).
     fn to_image<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<u8>> {
         let m = &self.inner;
-        Array2::from_shape_fn((m.rows(), m.cols()), |(r, c)| match m.state(m.rows() - 1 - r, c) {
-            CellState::Free => 254u8,
-            CellState::Occupied => 0,
-            CellState::Unknown => 205,
-        })
-        .to_pyarray(py)
+        Array2::from_shape_fn((m.rows(), m.cols()), |(r, c)| covga::map::picture::grey(m.state(m.rows() - 1 - r, c)))
+            .to_pyarray(py)
+    }
+    /// The map as a PNG picture (north up, small maps enlarged), which Jupyter shows inline.
+    fn _repr_png_<'py>(&self, py: Python<'py>) -> Bound<'py, pyo3::types::PyBytes> {
+        pyo3::types::PyBytes::new(py, &covga::map::picture::png(&self.inner))
     }
     /// Two maps are equal when their names, frames and every cell are.
     fn __eq__(&self, other: PyRef<'_, Map>) -> bool {
@@ -180,5 +180,16 @@ pub fn map_from_states(
         let inner =
             GridMap::new(name, cols, rows, resolution, Point::new(origin.0, origin.1), cells).map_err(config_error)?;
         Ok(Map { inner })
+    })
+}
+
+/// The map an experiment (TOML text, e.g. a run's `config.toml`) runs on, loaded and checked
+/// as `covga run` loads and checks it (relative paths from the working directory).
+#[pyfunction]
+pub fn experiment_map(py: Python<'_>, text: &str, origin: &str) -> PyResult<Map> {
+    crate::released(py, || {
+        let file = covga::experiment::file::ExperimentFile::parse(text, origin).map_err(config_error)?;
+        let experiment = file.validate(origin, std::path::Path::new("."), "run").map_err(config_error)?;
+        Ok(Map { inner: experiment.scenario.map })
     })
 }

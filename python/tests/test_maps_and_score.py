@@ -215,3 +215,24 @@ def test_a_map_pickles_copies_and_compares_bit_for_bit():
 def test_bad_python_arguments_raise_config_error_naming_the_key(call, message):
     with pytest.raises(covga.ConfigError, match=message.replace("(", r"\(").replace(")", r"\)")):
         call()
+
+
+def test_pictures_of_maps_plans_and_runs(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    m = covga.load_map("thesis-1")
+    png = m._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    plan = covga.pattern(m, "boustrophedon", start=(1.3, 1.3))
+    ax = covga.plot.plot_plan(m, plan, title="boustrophedon")
+    assert ax.get_aspect() == 1.0 and ax.get_xlabel() == "x [m]"
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert labels[:3] == ["path", "path start", "path end"] and "occupied" in labels
+    assert ax.get_xlim() == (m.extent[0], m.extent[1])
+    r = covga.run({"planner": "boustrophedon", "map": {"source": "thesis-1"}, "stations": {"start": [1.3, 1.3]}})
+    assert r.map == m
+    ax = r.plot()
+    assert ax.get_title().startswith("boustrophedon, seed 1: coverage ")
+    ax.figure.savefig(tmp_path / "run.png")
+    assert (tmp_path / "run.png").stat().st_size > 1000

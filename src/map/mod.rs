@@ -10,6 +10,7 @@ pub mod clearance;
 pub mod coverable;
 pub mod generate;
 pub mod orientation;
+pub mod picture;
 pub mod presets;
 pub mod reach;
 pub mod ros;
