@@ -210,8 +210,9 @@ pub fn write(t: &RunsTable, cmp: &Comparison, out: &Path) -> Result<PathBuf, Rep
     render(t, cmp)?.save(out)
 }
 
-/// Makes the comparison `cmp` of the runs `t`.
-pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
+/// The column of `cmp`'s key and its values (sorted), refused when the key is not swept, the
+/// baseline is none of its values, or runs.csv lacks a compared metric.
+fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String>), ReportError> {
     let input = |m: String| ReportError::Input(m);
     let params = param_columns(t);
     let key = match t.col(&cmp.key) {
@@ -234,6 +235,13 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
             return Err(input(format!("--compare: runs.csv has no `{}` column (written by an older covga)", m.column)));
         }
     }
+    Ok((key, values))
+}
+
+/// Makes the comparison `cmp` of the runs `t`.
+pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
+    let input = |m: String| ReportError::Input(m);
+    let (key, values) = compared_values(t, cmp)?;
     let d = design(t, cmp, key);
     let executable = |r: usize| t.col("executable").is_none_or(|c| t.rows[r][c] == "true");
     let mut rows = Vec::new();

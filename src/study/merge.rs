@@ -49,6 +49,28 @@ fn missing_shards(names: &[String]) -> Vec<String> {
 /// A missing shard file, or fewer runs than `study.json` records, is an error unless
 /// `allow_partial`, when it is reported in the third value instead.
 pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<String>), MergeError> {
+    let files = runs_files(dir)?;
+    let table = merged_rows(&files)?;
+    let names: Vec<String> =
+        files.iter().filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
+    let mut missing = missing_shards(&names);
+    missing.extend(check_against_study(dir, &table)?);
+    if !missing.is_empty() && !allow_partial {
+        return Err(MergeError::Incomplete(format!(
+            "{}: the study is incomplete, missing {}; rerun the missing shards (or merge with --allow-partial)",
+            dir.display(),
+            missing.join(", ")
+        )));
+    }
+    let out = dir.join("runs.csv");
+    crate::io::write_atomic(&out, &table.to_csv_sorted())
+        .map_err(|e| MergeError::File { path: out.display().to_string(), message: e.to_string() })?;
+    Ok((files.len(), table.rows.len(), missing))
+}
+
+/// The runs files of study folder `dir` (`runs.csv` and `runs-shard-*.csv`), sorted; refused
+/// when there are none or the folder is no study folder.
+fn runs_files(dir: &Path) -> Result<Vec<std::path::PathBuf>, MergeError> {
     let mut files: Vec<_> = std::fs::read_dir(dir)
         .map_err(|e| MergeError::File { path: dir.display().to_string(), message: e.to_string() })?
         .filter_map(|e| e.ok().map(|e| e.path()))
@@ -68,40 +90,47 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
             message: "not a study folder (no study.json): merge only folders that `covga grid` wrote".into(),
         });
     }
+    Ok(files)
+}
+
+/// Reads `file` as a covga runs file: the run's identity first, the common metrics last.
+fn read_runs_file(file: &Path) -> Result<RunsTable, MergeError> {
+    let name = file.display().to_string();
+    let text =
+        std::fs::read_to_string(file).map_err(|e| MergeError::File { path: name.clone(), message: e.to_string() })?;
+    let t = RunsTable::parse(&text).map_err(|m| MergeError::File { path: name.clone(), message: m })?;
     let metrics = super::records::metric_columns();
-    let mut header: Option<Vec<String>> = None;
+    let identity = ["run_id", "config_id", "replicate", "seed"];
+    if t.header.len() < identity.len() + metrics.len()
+        || t.header[..identity.len()] != identity
+        || t.header[t.header.len() - metrics.len()..] != metrics[..]
+    {
+        return Err(MergeError::File {
+            path: name,
+            message: format!(
+                "not a covga runs file: its header must start with {} and end with the metric columns ({} … {})",
+                identity.join(","),
+                metrics[0],
+                metrics[metrics.len() - 1]
+            ),
+        });
+    }
+    Ok(t)
+}
+
+/// The rows of every file, one per run id; a run recorded twice must be recorded alike (timings
+/// aside), and every file must have the same columns.
+fn merged_rows(files: &[std::path::PathBuf]) -> Result<RunsTable, MergeError> {
     let mut merged: BTreeMap<String, (Vec<String>, String)> = BTreeMap::new();
     let mut table = RunsTable::default();
-    for f in &files {
+    for (k, f) in files.iter().enumerate() {
         let name = f.display().to_string();
-        let text =
-            std::fs::read_to_string(f).map_err(|e| MergeError::File { path: name.clone(), message: e.to_string() })?;
-        let t = RunsTable::parse(&text).map_err(|m| MergeError::File { path: name.clone(), message: m })?;
-        // A covga runs file: the run's identity first, the common metrics last.
-        let identity = ["run_id", "config_id", "replicate", "seed"];
-        if t.header.len() < identity.len() + metrics.len()
-            || t.header[..identity.len()] != identity
-            || t.header[t.header.len() - metrics.len()..] != metrics[..]
-        {
+        let t = read_runs_file(f)?;
+        if k > 0 && t.header != table.header {
             return Err(MergeError::File {
                 path: name,
-                message: format!(
-                    "not a covga runs file: its header must start with {} and end with the metric columns ({} … {})",
-                    identity.join(","),
-                    metrics[0],
-                    metrics[metrics.len() - 1]
-                ),
+                message: "its columns differ from the other runs files".into(),
             });
-        }
-        match &header {
-            None => header = Some(t.header.clone()),
-            Some(h) if *h != t.header => {
-                return Err(MergeError::File {
-                    path: name,
-                    message: "its columns differ from the other runs files".into(),
-                });
-            }
-            _ => {}
         }
         table.header = t.header.clone();
         for (id, row) in t.by_id() {
@@ -121,44 +150,29 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
         }
     }
     table.rows = merged.into_values().map(|(r, _)| r).collect();
-    let names: Vec<String> =
-        files.iter().filter_map(|f| f.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
-    let mut missing = missing_shards(&names);
+    Ok(table)
+}
+
+/// The merged rows against the study's `study.json`: refused when they hold runs of another
+/// study (more runs than it has, or as many but not its runs: a study's identity is the hash of
+/// its sorted run ids); the runs still missing, in words, otherwise.
+fn check_against_study(dir: &Path, table: &RunsTable) -> Result<Option<String>, MergeError> {
     let meta = std::fs::read_to_string(dir.join("study.json"))
         .ok()
         .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
         .unwrap_or_default();
-    let expected = meta["runs"].as_u64();
-    // Runs of another study (a foreign shard file copied in): more runs than the study has, or
-    // as many but not its runs (the study's identity is the hash of its sorted run ids).
-    if let Some(n) = expected {
-        let hash = super::runner::ids_hash(table.rows.iter().map(|r| r[0].as_str()).collect());
-        let recorded = meta["grid_hash"].as_str().unwrap_or_default();
-        let foreign = table.rows.len() as u64 > n || (table.rows.len() as u64 == n && hash != recorded);
-        if foreign && !recorded.is_empty() {
-            return Err(MergeError::Incomplete(format!(
-                "{}: the runs files hold runs of another study ({} runs where study.json records {n} with hash {recorded}); remove the foreign shard files",
-                dir.display(),
-                table.rows.len()
-            )));
-        }
-    }
-    if let Some(n) = expected
-        && (table.rows.len() as u64) < n
-    {
-        missing.push(format!("{} of {n} runs", n - table.rows.len() as u64));
-    }
-    if !missing.is_empty() && !allow_partial {
+    let Some(n) = meta["runs"].as_u64() else { return Ok(None) };
+    let hash = super::runner::ids_hash(table.rows.iter().map(|r| r[0].as_str()).collect());
+    let recorded = meta["grid_hash"].as_str().unwrap_or_default();
+    let foreign = table.rows.len() as u64 > n || (table.rows.len() as u64 == n && hash != recorded);
+    if foreign && !recorded.is_empty() {
         return Err(MergeError::Incomplete(format!(
-            "{}: the study is incomplete, missing {}; rerun the missing shards (or merge with --allow-partial)",
+            "{}: the runs files hold runs of another study ({} runs where study.json records {n} with hash {recorded}); remove the foreign shard files",
             dir.display(),
-            missing.join(", ")
+            table.rows.len()
         )));
     }
-    let out = dir.join("runs.csv");
-    crate::io::write_atomic(&out, &table.to_csv_sorted())
-        .map_err(|e| MergeError::File { path: out.display().to_string(), message: e.to_string() })?;
-    Ok((files.len(), table.rows.len(), missing))
+    Ok(((table.rows.len() as u64) < n).then(|| format!("{} of {n} runs", n - table.rows.len() as u64)))
 }
 
 #[cfg(test)]

@@ -332,23 +332,41 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     };
     super::order::sort_runs(&mut pending, opts.order, |r| cost.get(&r.id).copied().unwrap_or(0.0));
     let skipped = selected.len() - pending.len();
-    let writer = Mutex::new(std::fs::OpenOptions::new().create(true).append(true).open(&file).map_err(io(&file))?);
+    let writer = std::fs::OpenOptions::new().create(true).append(true).open(&file).map_err(io(&file))?;
     if done_ids.is_empty() {
-        let mut w = writer.lock().expect("writer");
+        let mut w = &writer;
         w.set_len(0).map_err(io(&file))?;
         w.write_all(&csv_line(&head)).map_err(io(&file))?;
         w.sync_data().map_err(io(&file))?;
     }
-    let failed = AtomicBool::new(false);
-    let first_error: Mutex<Option<StudyError>> = Mutex::new(None);
-    let counter = AtomicUsize::new(0);
-    let written = AtomicUsize::new(0);
-    let abort_after = opts.abort_after_runs;
-    // A run its planner refuses while planning (what validation cannot see without planning)
-    // is recorded with its reason and the study goes on; any other failure stops the study.
-    let run_one = |run: &RunSpec| -> Result<RunResult, StudyError> {
-        let dir = opts.out.join("runs").join(&run.id);
-        let exp = experiment_of(study, run, &maps)?;
+    let execution =
+        Execution { study, opts, maps: &maps, file: &file, writer: Mutex::new(writer), written: AtomicUsize::new(0) };
+    let completed = execution.run_all(&pending, skipped, jobs)?;
+    if opts.stop.is_some_and(|s| s.load(Ordering::Relaxed)) && completed < pending.len() {
+        return Err(StudyError::Stopped { recorded: completed });
+    }
+    complete(&file, selected.len(), skipped, pending.len())
+}
+
+/// The runs of a study being made: what each worker needs to run one and record its row.
+struct Execution<'a> {
+    study: &'a Study,
+    opts: &'a RunnerOptions<'a>,
+    maps: &'a MapCache,
+    file: &'a Path,
+    writer: Mutex<std::fs::File>,
+    /// Rows written so far (for the fault injection of the crash-and-resume tests).
+    written: AtomicUsize,
+}
+
+impl Execution<'_> {
+    /// Runs `run` and appends its row. A run its planner refuses while planning (what
+    /// validation cannot see without planning) is recorded with its reason and the study goes
+    /// on; any other failure stops the study.
+    fn run_one(&self, run: &RunSpec) -> Result<RunResult, StudyError> {
+        let (study, file) = (self.study, self.file);
+        let dir = self.opts.out.join("runs").join(&run.id);
+        let exp = experiment_of(study, run, self.maps)?;
         let started = std::time::Instant::now();
         let (fields, result) = match crate::experiment::output::run_experiment(&exp, &dir, false, &mut []) {
             Ok(summary) => {
@@ -364,71 +382,76 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
             Err(other) => return Err(StudyError::Run { id: run.id.clone(), message: other.to_string() }),
         };
         let line = csv_line(&fields);
-        let mut w = writer.lock().expect("writer");
-        w.write_all(&line).map_err(io(&file))?;
-        w.flush().map_err(io(&file))?;
-        w.sync_data().map_err(io(&file))?;
-        let recorded = written.fetch_add(1, Ordering::SeqCst) + 1;
-        if abort_after == Some(recorded) {
+        let mut w = self.writer.lock().expect("writer");
+        w.write_all(&line).map_err(io(file))?;
+        w.flush().map_err(io(file))?;
+        w.sync_data().map_err(io(file))?;
+        let recorded = self.written.fetch_add(1, Ordering::SeqCst) + 1;
+        if self.opts.abort_after_runs == Some(recorded) {
             // Fault injection for crash-and-resume tests: die like a killed process,
             // with this run's row on disk and nothing cleaned up.
             std::process::abort();
         }
         Ok(result)
-    };
-    let fail = |e: StudyError| {
-        failed.store(true, Ordering::Relaxed);
-        first_error.lock().expect("error slot").get_or_insert(e);
-    };
-    // `jobs` workers take the runs in order, each run on one thread: the runs are what a study
-    // runs in parallel. A run given a pool of several threads keeps an evaluation scratch (with
-    // its segment cache, `coverage::segments::CACHE_BYTES`) per thread of the pool, `jobs²` in
-    // all. Each worker is a plain thread with a one-thread pool of its own, which the run's
-    // parallel loops see; results do not depend on the threads.
-    let next = AtomicUsize::new(0);
-    std::thread::scope(|scope| {
-        for _ in 0..jobs {
-            scope.spawn(|| {
-                let pool = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
-                    Ok(pool) => pool,
-                    Err(e) => return fail(StudyError::Run { id: String::new(), message: e.to_string() }),
-                };
-                let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
-                while !failed.load(Ordering::Relaxed) && !stopped() {
-                    let Some(&run) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else { break };
-                    match pool.install(|| run_one(run)) {
-                        Ok((result, failure)) => {
-                            let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
-                            let failure = failure.as_deref();
-                            (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result, failure });
+    }
+
+    /// Runs `pending` on `jobs` workers until done, stopped or failed; returns how many ran.
+    ///
+    /// The workers take the runs in order, each run on one thread: the runs are what a study
+    /// runs in parallel. A run given a pool of several threads keeps an evaluation scratch (with
+    /// its segment cache, `coverage::segments::CACHE_BYTES`) per thread of the pool, `jobs²` in
+    /// all. Each worker is a plain thread with a one-thread pool of its own, which the run's
+    /// parallel loops see; results do not depend on the threads.
+    fn run_all(&self, pending: &[&RunSpec], skipped: usize, jobs: usize) -> Result<usize, StudyError> {
+        let failed = AtomicBool::new(false);
+        let first_error: Mutex<Option<StudyError>> = Mutex::new(None);
+        let counter = AtomicUsize::new(0);
+        let fail = |e: StudyError| {
+            failed.store(true, Ordering::Relaxed);
+            first_error.lock().expect("error slot").get_or_insert(e);
+        };
+        let next = AtomicUsize::new(0);
+        let opts = self.opts;
+        std::thread::scope(|scope| {
+            for _ in 0..jobs {
+                scope.spawn(|| {
+                    let pool = match rayon::ThreadPoolBuilder::new().num_threads(1).build() {
+                        Ok(pool) => pool,
+                        Err(e) => return fail(StudyError::Run { id: String::new(), message: e.to_string() }),
+                    };
+                    let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
+                    while !failed.load(Ordering::Relaxed) && !stopped() {
+                        let Some(&run) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else { break };
+                        match pool.install(|| self.run_one(run)) {
+                            Ok((result, failure)) => {
+                                let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
+                                let failure = failure.as_deref();
+                                (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result, failure });
+                            }
+                            Err(e) => fail(e),
                         }
-                        Err(e) => fail(e),
                     }
-                }
-            });
+                });
+            }
+        });
+        match first_error.into_inner().expect("error slot") {
+            Some(e) => Err(e),
+            None => Ok(counter.load(Ordering::SeqCst)),
         }
-    });
-    if let Some(e) = first_error.into_inner().expect("error slot") {
-        return Err(e);
     }
-    if opts.stop.is_some_and(|s| s.load(Ordering::Relaxed)) && counter.load(Ordering::SeqCst) < pending.len() {
-        return Err(StudyError::Stopped { recorded: counter.load(Ordering::SeqCst) });
-    }
-    // Complete: rewrite sorted by run id, atomically.
-    let text = std::fs::read_to_string(&file).map_err(io(&file))?;
-    let table = RunsTable::parse(&text).map_err(|m| StudyError::Mismatch { path: file.clone(), message: m })?;
-    crate::io::write_atomic(&file, &table.to_csv_sorted()).map_err(io(&file))?;
+}
+
+/// A study run to its end: `runs.csv` rewritten sorted by run id (atomically), and the outcome
+/// with its failed rows counted.
+fn complete(file: &Path, selected: usize, skipped: usize, completed: usize) -> Result<StudyOutcome, StudyError> {
+    let text = std::fs::read_to_string(file).map_err(io(file))?;
+    let table = RunsTable::parse(&text).map_err(|m| StudyError::Mismatch { path: file.to_path_buf(), message: m })?;
+    crate::io::write_atomic(file, &table.to_csv_sorted()).map_err(io(file))?;
     let mut failures: Vec<&Vec<String>> = table.failed_rows();
     let (id, why) = (table.col("run_id").unwrap_or(0), table.col("violations").unwrap_or(0));
     failures.sort_by(|a, b| a[id].cmp(&b[id]));
     let first_failure = failures.first().map(|r| (r[id].clone(), r[why].clone()));
-    Ok(StudyOutcome {
-        selected: selected.len(),
-        skipped,
-        completed: pending.len(),
-        failed: failures.len(),
-        first_failure,
-    })
+    Ok(StudyOutcome { selected, skipped, completed, failed: failures.len(), first_failure })
 }
 
 /// Ids recorded in an existing runs file; drops a half-written last line in place.
