@@ -89,3 +89,47 @@ fn a_comparison_that_cannot_be_made_exits_2_and_writes_nothing() {
         assert!(!dir.path().join("report").exists(), "{arg}: a report folder was written");
     }
 }
+
+/// The committed comparison files are what `covga report` writes from the committed runs: each
+/// study's `compare-*` files re-made from its `runs.csv` and `study.json` alone, byte for byte.
+#[test]
+fn committed_comparisons_are_remade_byte_for_byte() {
+    let studies: [(&str, &[&str], &[&str]); 2] = [
+        ("results/init-dist", &["thesis.init_dist_max=3.0"], &["thesis.init_dist_max=3.0"]),
+        (
+            "results/thesis-real-maps",
+            &["thesis.moves=straight", "thesis.seed_population=[]", "thesis.selection=elite"],
+            &[],
+        ),
+    ];
+    for (folder, compare, every) in studies {
+        let dir = tempfile::tempdir().unwrap();
+        for f in ["runs.csv", "study.json"] {
+            std::fs::copy(Path::new(folder).join(f), dir.path().join(f)).unwrap();
+        }
+        let mut args = vec!["report".to_string(), dir.path().to_str().unwrap().to_string()];
+        for c in compare {
+            args.extend(["--compare".to_string(), c.to_string()]);
+        }
+        for c in every {
+            args.extend(["--compare-every-plan".to_string(), c.to_string()]);
+        }
+        let o = covga(&args.iter().map(String::as_str).collect::<Vec<_>>());
+        assert!(o.status.success(), "{folder}: {}", String::from_utf8_lossy(&o.stderr));
+        let mut compared = 0;
+        for entry in std::fs::read_dir(dir.path().join("report")).unwrap().flatten() {
+            let name = entry.file_name().to_string_lossy().into_owned();
+            if !name.starts_with("compare-") {
+                continue;
+            }
+            let committed = std::fs::read(Path::new(folder).join("report").join(&name))
+                .unwrap_or_else(|e| panic!("{folder}/report/{name} is not committed: {e}"));
+            assert!(
+                std::fs::read(entry.path()).unwrap() == committed,
+                "{folder}/report/{name} differs from covga report's"
+            );
+            compared += 1;
+        }
+        assert_eq!(compared, 2 * (compare.len() + every.len()), "{folder}");
+    }
+}
