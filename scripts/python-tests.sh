@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The Python package's tests: builds the package into a fresh virtual environment
-# (target/python-venv) with its test extras (pytest, pandas, pymoo, mypy), type-checks the package (`mypy --strict`)
-# and runs python/tests,
+# (target/python-venv) with its test extras (pytest, pandas, pymoo, mypy, nbclient), type-checks the package and
+# its pymoo example (`mypy --strict`) and runs python/tests (the example notebook included),
 # which compare the package with the release binary of this checkout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,4 +13,6 @@ python3 -m venv "$venv"
 "$venv/bin/pip" install --quiet "./python[test]"
 # The package's own annotations, against its stubs of the compiled module.
 (cd python && MYPYPATH=. "../$venv/bin/mypy" --strict --no-incremental covga)
+# The shipped example as a user's code: typed against the package.
+(cd python && MYPYPATH=. "../$venv/bin/mypy" --strict --no-incremental examples/pymoo_nsga2.py)
 COVGA_BIN="$PWD/target/release/covga" "$venv/bin/pytest" -q python/tests

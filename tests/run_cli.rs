@@ -625,3 +625,45 @@ fn the_history_counts_the_feasible_members_of_the_thesis_ga_and_cell_order() {
         }
     }
 }
+
+#[test]
+fn population_genomes_are_written_when_asked_and_change_nothing_else() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut outs = Vec::new();
+    for (name, tail) in [("plain", ""), ("genomes", "[output]\npopulation_genomes = true\n")] {
+        let exp = write(dir.path(), &format!("{name}.toml"), &(small("") + tail));
+        let out = dir.path().join(name);
+        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+        assert!(o.status.success(), "{name}: {}", String::from_utf8_lossy(&o.stderr));
+        assert!(o.stderr.is_empty(), "{name}: no warning: {}", String::from_utf8_lossy(&o.stderr));
+        outs.push(out);
+    }
+    assert!(!outs[0].join("population_genomes.csv").exists(), "not written unless asked");
+    for f in ["best_path.csv", "best_genome.csv", "population.csv", "history.csv"] {
+        assert_eq!(read(&outs[0].join(f)), read(&outs[1].join(f)), "{f}");
+    }
+    // One row per live move of each member: population.csv's genome_len less the connector and E.
+    let genomes = read(&outs[1].join("population_genomes.csv"));
+    assert_eq!(genomes.lines().next(), Some("member,index,alpha_deg,dist_m"));
+    let mut moves = std::collections::BTreeMap::<usize, usize>::new();
+    for line in genomes.lines().skip(1) {
+        *moves.entry(line.split(',').next().unwrap().parse().unwrap()).or_default() += 1;
+    }
+    let lengths = column(&read(&outs[1].join("population.csv")), "genome_len");
+    assert_eq!(moves.len(), lengths.len());
+    for (m, len) in lengths.iter().enumerate() {
+        assert_eq!(moves[&m] + 2, *len as usize, "member {m}");
+    }
+    // Another planner does not write them, and says so.
+    let exp = write(
+        dir.path(),
+        "spiral.toml",
+        "planner = \"spiral\"\n[map]\nsource = \"thesis-1\"\n[output]\npopulation_genomes = true\n",
+    );
+    let o =
+        covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join("spiral").to_str().unwrap(), "--quiet"], "1");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("output.population_genomes") && err.contains("only the single-robot thesis GA"), "{err}");
+    assert!(!dir.path().join("spiral/population_genomes.csv").exists());
+}

@@ -2,10 +2,10 @@
 //! package does on Ctrl-C) starts no further run, keeps the rows of the runs it finished, and
 //! resumes to the same rows a study run at once records.
 
+use covga::planner::executor::Interrupt;
 use covga::study::grid::Study;
 use covga::study::runner::{RunDone, RunnerOptions, StudyError, run_study};
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 const GRID: &str = "seed = 2\n[base]\nplanner = \"boustrophedon\"\n[axes]\n\"map.source\" = [\"thesis-1\", \"thesis-2\"]\n\
                     \"pattern.angle_deg\" = [0.0, 45.0, 90.0]\n";
@@ -26,8 +26,8 @@ fn a_stopped_study_keeps_its_finished_runs_and_resumes_to_the_same_rows() {
     std::fs::write(&grid, GRID).unwrap();
     let study = Study::load(&grid).unwrap();
     assert_eq!(study.runs.len(), 6);
-    let stop = AtomicBool::new(false);
-    let stop_after_first = |_: RunDone| stop.store(true, Ordering::SeqCst);
+    let stop = Interrupt::new();
+    let stop_after_first = |_: RunDone| stop.raise();
     let quiet = |_: RunDone| {};
     let folder = tmp.path().join("stopped");
     let opts = |out: &Path| RunnerOptions {
@@ -51,4 +51,53 @@ fn a_stopped_study_keeps_its_finished_runs_and_resumes_to_the_same_rows() {
     let at_once = tmp.path().join("at-once");
     run_study(&study, &opts(&at_once)).unwrap();
     assert_eq!(rows(&folder), rows(&at_once));
+}
+
+const LONG_GRID: &str = "seed = 4\nseeds = 2\n[base]\nplanner = \"thesis\"\n[base.map]\nsource = \"thesis-1\"\n\
+                         [base.budget]\niterations = 1000000\n[axes]\n\"thesis.selection\" = [\"elite\", \"tournament\"]\n";
+
+#[test]
+fn a_stop_ends_the_runs_in_progress_unrecorded_and_leaves_no_run_folder() {
+    let tmp = tempfile::tempdir().unwrap();
+    let grid = tmp.path().join("long.toml");
+    std::fs::write(&grid, LONG_GRID).unwrap();
+    let study = Study::load(&grid).unwrap();
+    let stop = Interrupt::new();
+    let quiet = |_: RunDone| {};
+    let folder = tmp.path().join("study");
+    let opts = RunnerOptions {
+        jobs: 2,
+        shard: None,
+        out: folder.clone(),
+        max_memory: None,
+        on_done: &quiet,
+        stop: Some(&stop),
+        order: covga::study::order::RunOrder::Seeds,
+        abort_after_runs: None,
+    };
+    let started = std::time::Instant::now();
+    let outcome = std::thread::scope(|scope| {
+        // Raised once both runs are under way (their folders exist), so that the stop meets
+        // runs in progress, not runs yet to start.
+        let raiser = scope.spawn(|| {
+            let in_progress = || std::fs::read_dir(folder.join("runs")).map_or(0, |d| d.count());
+            while in_progress() < 2 && started.elapsed().as_secs() < 20 {
+                std::thread::sleep(std::time::Duration::from_millis(10));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(200));
+            stop.raise();
+        });
+        let outcome = run_study(&study, &opts);
+        raiser.join().unwrap();
+        outcome
+    });
+    // Each run would take minutes (a million generations); the stop ends both within moments.
+    assert!(started.elapsed().as_secs_f64() < 25.0, "stopped after {:?}", started.elapsed());
+    match outcome {
+        Err(StudyError::Stopped { recorded }) => assert_eq!(recorded, 0),
+        other => panic!("expected a stop, got {other:?}"),
+    }
+    assert!(rows(&folder).is_empty(), "no interrupted run is recorded");
+    let left: Vec<_> = std::fs::read_dir(folder.join("runs")).map(|d| d.flatten().collect()).unwrap_or_default();
+    assert!(left.is_empty(), "no folder of an interrupted run is left: {left:?}");
 }

@@ -33,6 +33,7 @@ __all__ = [
     "ConfigError",
     "Map",
     "Result",
+    "Score",
     "grid",
     "load_map",
     "pattern",
@@ -146,6 +147,12 @@ def load_map(
     occupancy = np.asarray(source)
     if occupancy.ndim != 2:
         raise ConfigError(f"occupancy array of shape {occupancy.shape}: expected 2-D (rows, cols)")
+    if occupancy.size > _covga.MAX_MAP_CELLS:
+        # Refused before its cell states are built (a copy of the whole array).
+        raise ConfigError(
+            f"occupancy array of shape {occupancy.shape} has {occupancy.size} cells; a map has at most "
+            f"{_covga.MAX_MAP_CELLS}, as a map image file: crop or coarsen it first"
+        )
     if resolution is None:
         raise ConfigError("resolution: an occupancy array needs its metres per cell (resolution=...)")
     x, y = _point(origin, "origin")
@@ -161,6 +168,29 @@ def _paths(path: Any) -> list[npt.NDArray[np.float64]]:
     return [rows_of_pairs(p, f"path {k}", "N", "metres") for k, p in enumerate(items)]
 
 
+class Score(dict[str, Any]):
+    """The common scorer's metrics of a plan (a ``dict``, as ``covga eval`` reports them under
+    ``common``), with the map and plan they measure; with ``raster=True`` also ``visits``
+    (uint32 ``(rows, cols)``, row 0 at the bottom: how many times the footprint swept each free
+    cell) and ``reachable`` (bool, the cells ``cov_final_reach`` counts). ``plot()`` draws them."""
+
+    def __init__(self, metrics: Mapping[str, Any], map: Map, plan: list[npt.NDArray[np.float64]]) -> None:
+        super().__init__(metrics)
+        self.map = map
+        self.plan = plan
+
+    def plot(self, ax: Any = None) -> Any:
+        """The plan over the map, its swept cells in the CLI's colours when the score has its
+        raster (:func:`covga.plot.plot_coverage`), else the plan alone; returns the axes."""
+        title = (
+            f"coverage {self['cov_final_reach']:.3f} of the reachable cells, "
+            f"{'executable' if self['executable'] else 'not executable'}"
+        )
+        if "visits" in self:
+            return plot.plot_coverage(self.map, self["visits"], self.plan, ax, title)
+        return plot.plot_plan(self.map, self.plan, ax, title)
+
+
 def score(
     map: Map,
     path: Any,
@@ -169,19 +199,27 @@ def score(
     rot_speed: float = 0.0,
     camera: Optional[Mapping[str, Any]] = None,
     projection: str = "f1",
-) -> dict[str, Any]:
-    """The common scorer's metrics of a plan, as ``covga eval`` reports them (``common``).
+    raster: bool = False,
+) -> Score:
+    """The common scorer's metrics of a plan, as ``covga eval`` reports them (``common``), as a
+    :class:`Score` (a dict with ``plot()``).
 
     ``path`` is an ``(N, 2)`` array of metres, or a list of them (one per agent, all with this
     robot). ``camera`` holds ``[waypoint]`` camera keys (``scale``, ``d_min``, ``d_max``,
-    ``fov_deg``, ``sections``, ...); by default the experiment file's camera.
+    ``fov_deg``, ``sections``, ...); by default the experiment file's camera. With ``raster``,
+    the result also holds the cell layers the coverage counts (``visits``, ``reachable``).
     """
+    if not isinstance(raster, (bool, np.bool_)):
+        raise ConfigError(f"raster = {raster!r}: expected True or False")
     camera_json = None if camera is None else json.dumps(dict(camera))
-    text = _covga.score(
-        load_map(map), _paths(path), float(width), float(speed), float(rot_speed), camera_json, projection
+    the_map, paths = load_map(map), _paths(path)
+    text, layers = _covga.score(
+        the_map, paths, float(width), float(speed), float(rot_speed), camera_json, projection, bool(raster)
     )
-    metrics: dict[str, Any] = json.loads(text)
-    return metrics
+    result = Score(json.loads(text), the_map, paths)
+    if layers is not None:
+        result["visits"], result["reachable"] = layers
+    return result
 
 
 def pattern(
@@ -207,7 +245,10 @@ class Result:
     pandas, else a dict of arrays), ``plan`` (one ``(N, 2)`` array per agent), ``path`` (the
     first agent's), ``population`` (the thesis GA's final population, ``population.csv``;
     ``None`` for other planners), ``dir`` (the results folder, ``None`` when not kept),
-    ``warnings`` and ``config`` (the run's ``config.toml``); ``map`` and ``plot()`` draw it."""
+    ``warnings``, ``config`` (the run's ``config.toml``) and ``genomes`` (with
+    ``output.population_genomes = true``, the final population's genomes in the order of
+    ``population``: one ``(L, 2)`` array of live moves each, for :func:`covga.thesis.decode` and
+    :func:`covga.thesis.evaluate`; else ``None``); ``map`` and ``plot()`` draw it."""
 
     summary: dict[str, Any]
     history: Any
@@ -216,6 +257,7 @@ class Result:
     dir: Optional[Path] = None
     warnings: list[str] = field(default_factory=list)
     config: str = ""
+    genomes: Optional[list[npt.NDArray[np.float64]]] = None
 
     @property
     def map(self) -> Map:
@@ -303,7 +345,10 @@ def _read_result(folder: Path, kept: bool, messages: list[str]) -> Result:
         tables[name] = read_table(csv_file) if csv_file.is_file() else None
     plan = _read_plan(folder / "best_path.csv")
     config = (folder / "config.toml").read_text()
-    return Result(summary, tables["history"], plan, tables["population"], folder if kept else None, messages, config)
+    genomes = thesis.read_population_genomes(folder) if (folder / "population_genomes.csv").is_file() else None
+    return Result(
+        summary, tables["history"], plan, tables["population"], folder if kept else None, messages, config, genomes
+    )
 
 
 def run(

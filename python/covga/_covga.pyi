@@ -11,6 +11,7 @@ OCCUPIED_ABOVE_PERCENT: float
 FREE_BELOW_PERCENT: float
 RUNS_COLUMN_KINDS: dict[str, str]
 MAX_THREADS: int
+MAX_MAP_CELLS: int
 
 class ConfigError(ValueError): ...
 
@@ -52,7 +53,8 @@ def score(
     rot_speed: float,
     camera_json: Optional[str],
     projection_name: str,
-) -> str: ...
+    raster: bool = False,
+) -> tuple[str, Optional[tuple[npt.NDArray[np.uint32], npt.NDArray[np.bool_]]]]: ...
 def pattern(
     map: Map,
     kind: str,
@@ -73,6 +75,14 @@ def thesis_evaluate(
     projection_name: str,
     moves_name: str,
     threads: Optional[int] = None,
+) -> npt.NDArray[np.float64]: ...
+def thesis_decode(
+    map: Map,
+    genome: npt.NDArray[np.float64],
+    width: float,
+    start: tuple[float, float],
+    end: Optional[tuple[float, float]],
+    moves_name: str,
 ) -> npt.NDArray[np.float64]: ...
 def run_experiment(
     kind: str, payload: str, seed: Optional[int], out: str, figures: bool, threads: Optional[int] = None

@@ -75,6 +75,41 @@ def evaluate(
     )
 
 
+def decode(
+    map: Any,
+    genome: Any,
+    width: float = 0.6,
+    start: Sequence[float] = (1.3, 1.3),
+    end: Optional[Sequence[float]] = None,
+    moves: str = "straight",
+) -> np.ndarray:
+    """The path a genome drives, as an ``(N, 2)`` array of metres: ``genome`` (an ``(L, 2)``
+    array of live moves, as :func:`evaluate` takes them) decoded as the GA decodes its own
+    (moves leaving the map clamped, 003 eqs. 3.7-3.8, the connector aimed at ``end``), joined
+    by straight or routed ``moves``; for a run's best genome, its ``best_path.csv``."""
+    from . import _point, load_map
+
+    s = _point(start, "start")
+    e = None if end is None else _point(end, "end")
+    g = rows_of_pairs(genome, "genome", "L", "numbers (heading in degrees, distance in metres)")
+    return _covga.thesis_decode(load_map(map), g, float(width), s, e, moves)
+
+
+def read_population_genomes(run_dir: Union[str, "os.PathLike[str]"]) -> list[np.ndarray]:
+    """The genomes of a thesis run's final population (``population_genomes.csv``, written with
+    ``output.population_genomes = true``), one ``(L, 2)`` array of live moves per member in the
+    order of ``population.csv``."""
+    path = Path(run_dir) / "population_genomes.csv"
+    if not path.is_file():
+        raise ConfigError(f"{run_dir}: no population_genomes.csv (a thesis run with output.population_genomes = true writes one)")
+    table = np.atleast_2d(np.loadtxt(path, delimiter=",", skiprows=1, dtype=np.float64))
+    if table.size == 0:
+        return []
+    member = table[:, 0].astype(np.int64)
+    cuts = np.flatnonzero(np.diff(member)) + 1
+    return [np.ascontiguousarray(rows[:, 2:4]) for rows in np.split(table, cuts)]
+
+
 def read_genome(run_dir: Union[str, "os.PathLike[str]"]) -> np.ndarray:
     """The live actions of a thesis run's best genome (``best_genome.csv``: the start's move
     and every action, without the connector and the end) as an ``(L, 2)`` array."""

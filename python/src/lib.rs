@@ -81,8 +81,10 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scoring::score, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::pattern, m)?)?;
     m.add_function(wrap_pyfunction!(scoring::thesis_evaluate, m)?)?;
+    m.add_function(wrap_pyfunction!(scoring::thesis_decode, m)?)?;
     m.add("THESIS_COLUMNS", covga::thesis::batch::COLUMNS.to_vec())?;
     m.add("MAX_THREADS", MAX_THREADS)?;
+    m.add("MAX_MAP_CELLS", covga::map::ros::MAX_MAP_CELLS)?;
     // map_server's default thresholds, as the map reader applies them, in occupancy percent.
     let rule = covga::map::ros::PixelRule::default();
     m.add("OCCUPIED_ABOVE_PERCENT", 100.0 * rule.occupied_thresh)?;

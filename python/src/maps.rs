@@ -163,6 +163,14 @@ pub fn map_from_states(
         if rows == 0 || cols == 0 {
             return Err(config_error(format!("occupancy array of shape ({rows}, {cols}): expected at least one cell")));
         }
+        let max = covga::map::ros::MAX_MAP_CELLS;
+        if (rows as u64).saturating_mul(cols as u64) > max {
+            return Err(config_error(format!(
+                "occupancy array of shape ({rows}, {cols}) has {} cells; a map has at most {max}, as a map image \
+                 file: crop or coarsen it first",
+                rows as u64 * cols as u64
+            )));
+        }
         if !(origin.0.is_finite() && origin.1.is_finite()) {
             return Err(config_error(format!("origin = ({}, {}) is not a finite position", origin.0, origin.1)));
         }

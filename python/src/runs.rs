@@ -3,7 +3,8 @@
 //! The work runs on a thread of its own while the calling thread waits with the interpreter
 //! released, waking every few milliseconds to let Python see its signals. On Ctrl-C a stop flag
 //! is set: a run ends at its next generation and writes nothing more; a study starts no
-//! further run, keeps the rows of the runs it finished, and resumes when run again.
+//! further run, stops the runs in progress unrecorded, keeps the rows of the runs it finished,
+//! and resumes when run again.
 
 use crate::{config_error, guarded, panic_error};
 use covga::planner::executor::Interrupt;
@@ -13,7 +14,6 @@ use covga::usecase::run::{ExperimentText, prepare, run_in_folder};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 /// Runs `work` on its own thread until it ends or Python raises a signal's exception (Ctrl-C's
@@ -112,7 +112,9 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
             .ok_or_else(|| config_error(format!("order = {order:?} is not one of \"longest-first\", \"seeds\"")))?;
         Ok((covga::study::grid::Study::load(Path::new(file)).map_err(config_error)?, order))
     })?;
-    let stop = AtomicBool::new(false);
+    // Ctrl-C raises the flag: no further run starts, and the runs in progress stop at their
+    // next iteration, unrecorded (they run again when the study resumes).
+    let stop = Interrupt::new();
     let on_done = |_: RunDone| {};
     let opts = RunnerOptions {
         jobs,
@@ -124,7 +126,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
         order,
         abort_after_runs: None,
     };
-    match interruptible(py, &|| stop.store(true, Ordering::SeqCst), || run_study(&study, &opts))? {
+    match interruptible(py, &|| stop.raise(), || run_study(&study, &opts))? {
         Ok(o) => match o.first_failure {
             Some((id, why)) => Err(config_error(format!(
                 "{out}/runs.csv: {} of {} runs failed while running and are recorded as such (stop = failed, the \

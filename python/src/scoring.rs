@@ -82,21 +82,26 @@ fn genome_of_rows(i: usize, rows: ArrayView2<'_, f64>) -> PyResult<Vec<covga::th
     genome_of(i, &moves).map_err(config_error)
 }
 
+/// The layers of [`score`] with `raster`: visits per cell (uint32) and the coverable cells
+/// of `cov_final_reach` (bool), each `(rows, cols)` with row 0 at the bottom.
+type Raster<'py> = (Bound<'py, PyArray2<u32>>, Bound<'py, PyArray2<bool>>);
+
 /// The common scorer's metrics (as JSON text) of `paths`, one per agent of this robot, as
-/// `covga eval` reports them under `common`.
+/// `covga eval` reports them under `common`; with `raster`, the layers they count as well.
 #[pyfunction]
-#[pyo3(signature = (map, paths, width, speed, rot_speed, camera_json, projection_name))]
+#[pyo3(signature = (map, paths, width, speed, rot_speed, camera_json, projection_name, raster=false))]
 #[allow(clippy::too_many_arguments)]
-pub fn score(
-    py: Python<'_>,
+pub fn score<'py>(
+    py: Python<'py>,
     map: &Map,
-    paths: Vec<PyReadonlyArray2<'_, f64>>,
+    paths: Vec<PyReadonlyArray2<'py, f64>>,
     width: f64,
     speed: f64,
     rot_speed: f64,
     camera_json: Option<&str>,
     projection_name: &str,
-) -> PyResult<String> {
+    raster: bool,
+) -> PyResult<(String, Option<Raster<'py>>)> {
     let plan = guarded(|| {
         if paths.is_empty() {
             return Err(config_error("path: no path given (an (N, 2) array, or a list of them for agents)"));
@@ -107,7 +112,7 @@ pub fn score(
         Ok(plan)
     })?;
     let m = &map.inner;
-    released(py, || {
+    let (text, layers) = released(py, || {
         let robot = robot(map, width, speed, rot_speed)?;
         let projection = projection(projection_name)?;
         for (k, p) in plan.iter().enumerate() {
@@ -121,10 +126,22 @@ pub fn score(
         let camera = covga::waypoint::config::camera_spec(&section, "camera", m).map_err(config_error)?;
         let stations: Vec<Point> = plan.iter().map(|p| p[0]).collect();
         let widths = vec![width; plan.len()];
-        let score = Scorer::for_widths(m, robot, &widths, projection, &camera, &stations)
-            .score_agents(&plan, &vec![robot; plan.len()]);
-        serde_json::to_string(&score).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))
-    })
+        let scorer = Scorer::for_widths(m, robot, &widths, projection, &camera, &stations);
+        let score = scorer.score_agents(&plan, &vec![robot; plan.len()]);
+        let text =
+            serde_json::to_string(&score).map_err(|e| pyo3::exceptions::PyRuntimeError::new_err(e.to_string()))?;
+        let layers = raster.then(|| (scorer.visits(&plan, &widths), scorer.reach().coverable().to_vec()));
+        Ok((text, layers))
+    })?;
+    let shape = (m.rows(), m.cols());
+    let as_grid = |v: Vec<u32>, c: Vec<bool>| -> PyResult<Raster<'py>> {
+        let bad = |e: numpy::ndarray::ShapeError| pyo3::exceptions::PyRuntimeError::new_err(e.to_string());
+        Ok((
+            Array2::from_shape_vec(shape, v).map_err(bad)?.to_pyarray(py),
+            Array2::from_shape_vec(shape, c).map_err(bad)?.to_pyarray(py),
+        ))
+    };
+    Ok((text, layers.map(|(v, c)| as_grid(v, c)).transpose()?))
 }
 
 /// A boustrophedon or spiral plan from `start` to `end` (default: back to the start), as
@@ -180,6 +197,52 @@ fn check_batch_memory(genomes: usize, actions: usize) -> PyResult<()> {
     }
 }
 
+/// The thesis GA's scenario on `map` for the robot `(width, speed, rot_speed)` between the
+/// stations, each input checked as `covga run` checks it.
+fn thesis_scenario(
+    map: &Map,
+    (width, speed, rot_speed): (f64, f64, f64),
+    start: (f64, f64),
+    end: Option<(f64, f64)>,
+    projection_name: &str,
+    moves_name: &str,
+) -> PyResult<Scenario> {
+    let m = &map.inner;
+    let robot = robot(map, width, speed, rot_speed)?;
+    let projection = projection(projection_name)?;
+    let moves = moves(moves_name)?;
+    let start = point("start", start)?;
+    let end = match end {
+        Some(e) => point("end", e)?,
+        None => start,
+    };
+    m.check_station(start, "start").map_err(config_error)?;
+    m.check_station(end, "end").map_err(config_error)?;
+    Ok(Scenario::new(m.clone(), robot, start, end, projection).with_moves(moves))
+}
+
+/// The path a genome (an `(L, 2)` array of live moves: heading in degrees, distance in metres)
+/// drives, decoded as the thesis GA decodes its own, as an `(N, 2)` array of metres.
+#[pyfunction]
+#[pyo3(signature = (map, genome, width, start, end, moves_name))]
+pub fn thesis_decode<'py>(
+    py: Python<'py>,
+    map: &Map,
+    genome: PyReadonlyArray2<'py, f64>,
+    width: f64,
+    start: (f64, f64),
+    end: Option<(f64, f64)>,
+    moves_name: &str,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let genome = genome_of_rows(0, genome.as_array())?;
+    let moves: Vec<(f64, f64)> = genome[..genome.len() - 2].iter().map(|a| (a.alpha_deg(), a.dist_m())).collect();
+    let path = released(py, || {
+        let scenario = thesis_scenario(map, (width, 1.0, 0.0), start, end, "f2", moves_name)?;
+        covga::thesis::batch::decode(&scenario, &moves).map_err(config_error)
+    })?;
+    Ok(array_of(&path).to_pyarray(py))
+}
+
 /// The thesis GA's fitness of a batch of genomes (an `(n, L, 2)` array, or a list of `(L, 2)`
 /// arrays), each genome its live moves (heading in degrees, distance in metres; S's move first,
 /// the connector to E added), as an `(n, 4)` array with the columns of `THESIS_COLUMNS`;
@@ -215,20 +278,8 @@ pub fn thesis_evaluate<'py>(
         check_batch_memory(list.len(), list.iter().map(|g| g.as_array().nrows()).sum())?;
         list.iter().enumerate().map(|(i, g)| genome_of_rows(i, g.as_array())).collect::<PyResult<Vec<_>>>()
     })?;
-    let m = &map.inner;
-    let scenario = released(py, || {
-        let robot = robot(map, width, speed, rot_speed)?;
-        let projection = projection(projection_name)?;
-        let moves = moves(moves_name)?;
-        let start = point("start", start)?;
-        let end = match end {
-            Some(e) => point("end", e)?,
-            None => start,
-        };
-        m.check_station(start, "start").map_err(config_error)?;
-        m.check_station(end, "end").map_err(config_error)?;
-        Ok(Scenario::new(m.clone(), robot, start, end, projection).with_moves(moves))
-    })?;
+    let robot = (width, speed, rot_speed);
+    let scenario = released(py, || thesis_scenario(map, robot, start, end, projection_name, moves_name))?;
     // Ctrl-C stops the batch within about one evaluation per thread (KeyboardInterrupt).
     let stop = std::sync::atomic::AtomicBool::new(false);
     // A panic in the evaluation reaches Python as a RuntimeError (the thread's join).

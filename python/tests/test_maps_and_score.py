@@ -46,6 +46,15 @@ def test_map_from_arrays_and_ros_files_agree(tmp_path, cli):
     assert np.array_equal(from_percent.states, office.states)
 
 
+def test_an_array_map_beyond_the_image_files_cap_is_refused_before_it_is_copied():
+    # A broadcast view: 2^28 + 1 cells described without holding them.
+    huge = np.broadcast_to(np.zeros(1, dtype=np.bool_), (16385, 16385))
+    with pytest.raises(covga.ConfigError, match=r"\(16385, 16385\) has 268468225 cells; a map has at most 268435456"):
+        covga.load_map(huge, resolution=0.05)
+    with pytest.raises(covga.ConfigError, match="at most 268435456"):
+        covga._covga.map_from_states(np.broadcast_to(np.zeros(1, dtype=np.int8), (16385, 16385)), 0.05)
+
+
 @pytest.mark.parametrize(
     "value,state",
     [(0, 0), (19, 0), (19.6, 2), (50, 2), (65, 2), (66, 1), (100, 1), (-1, 2)],

@@ -3,6 +3,7 @@
 import _thread
 import json
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -237,6 +238,20 @@ def test_ctrl_c_stops_a_study_which_then_resumes(tmp_path):
     assert 1 <= len(recorded) < 9, "stopped part-way, with the header and the finished runs"
     runs = covga.grid(grid_file, jobs=2, out=tmp_path / "study")
     assert len(runs) == 8 and runs["run_id"].is_unique
+
+
+def test_ctrl_c_stops_the_runs_in_progress_without_recording_them(tmp_path):
+    grid_file = tmp_path / "long.toml"
+    grid_file.write_text(GRID.replace("iterations = 60", "iterations = 1000000"))
+    started = time.monotonic()
+    timer = _interrupt_after(1.0)
+    with pytest.raises(KeyboardInterrupt):
+        covga.grid(grid_file, jobs=2, out=tmp_path / "study")
+    timer.join()
+    # Each run would take minutes; Ctrl-C ends the two in progress at their next generation.
+    assert time.monotonic() - started < 10.0
+    assert (tmp_path / "study" / "runs.csv").read_text().count("\n") == 1, "the header only"
+    assert not any((tmp_path / "study" / "runs").iterdir()), "no interrupted run leaves a folder"
 
 
 FAILING_GRID = """

@@ -261,6 +261,17 @@ impl Scorer {
         counts.unique() as f64 / self.grid.area_cells().max(1) as f64
     }
 
+    /// The layers behind the plan's coverage, one entry per cell in the map's row-major order
+    /// (row 0 at the bottom): how many times the footprints swept each free cell (path `k`
+    /// of width `widths[k]`; obstacle cells 0), as `cov_final_free` counts them; which cells
+    /// count as coverable for `cov_final_reach` is [`Reach::coverable`] of [`Self::reach`].
+    pub fn visits(&self, paths: &[Vec<Point>], widths: &[f64]) -> Vec<u32> {
+        let mut scratch = SweepScratch::new(&self.grid);
+        let mut shares = vec![super::SweepCounts::default(); paths.len()];
+        scratch.sweep_fleet(&self.grid, paths, widths, &mut shares);
+        (0..self.grid.len()).map(|i| scratch.visits(i)).collect()
+    }
+
     /// Every metric of a plan (one path per agent), every agent the scorer's robot.
     pub fn score(&self, paths: &[Vec<Point>]) -> Score {
         self.score_agents(paths, &vec![self.robot; paths.len()])
@@ -353,6 +364,29 @@ mod tests {
         assert!((sc.length_m - 3.0).abs() < 1e-12 && (sc.time_s - 15.0).abs() < 1e-12);
         assert_eq!(sc.makespan_s, sc.time_s);
         assert!(sc.cam_walls_free > 0.0 && sc.cam_walls_free < 1.0 && sc.cam_open_free > 0.0);
+    }
+
+    #[test]
+    fn the_visit_layer_holds_the_scores_cells_and_crossings() {
+        // A lane there and back over its own cells, and a second agent across it.
+        let map = preset("thesis-1").unwrap();
+        let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
+        let s = Scorer::new(&map, robot, Projection::F2, &camera(), &[Point::new(1.3, 1.3)]);
+        let paths = vec![
+            vec![Point::new(1.3, 1.3), Point::new(4.3, 1.3), Point::new(1.3, 1.3)],
+            vec![Point::new(2.0, 0.5), Point::new(2.0, 3.0)],
+        ];
+        let sc = s.score(&paths);
+        let visits = s.visits(&paths, &[0.6, 0.6]);
+        assert_eq!(visits.len(), map.rows() * map.cols());
+        assert_eq!(visits.iter().filter(|&&v| v > 0).count() as u64, sc.unique_cells);
+        assert_eq!(visits.iter().map(|&v| u64::from(v)).sum::<u64>(), sc.cells_swept);
+        let reached = visits.iter().zip(s.reach().coverable()).filter(|(v, c)| **v > 0 && **c).count();
+        assert_eq!(reached as u64, sc.unique_reach_cells);
+        // Row 0 is the bottom row (0.2 m cells): the cell centred at (2.1, 1.3) m is swept by the
+        // lane both ways and by the second agent; (4.1, 1.3) by the lane both ways.
+        let at = |x: f64, y: f64| visits[(y / 0.2) as usize * map.cols() + (x / 0.2) as usize];
+        assert_eq!((at(2.1, 1.3), at(4.1, 1.3), at(2.1, 2.5), at(4.1, 3.5)), (3, 2, 1, 0));
     }
 
     /// Two rooms split by a thick wall: the camera's `_reach` figures count only the room of

@@ -75,6 +75,11 @@ pub struct OutputSection {
     /// they were.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub diversity_every: Option<u32>,
+    /// The thesis GA also writes its final population's genomes (`population_genomes.csv`:
+    /// each member's live moves, in the order of `population.csv`), for a notebook to decode
+    /// or re-score them. Absent means false (a study's runs never write them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub population_genomes: Option<bool>,
 }
 
 impl Default for ExperimentFile {

@@ -133,6 +133,12 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
             crate::waypoint::config::READ_BY_THE_SCORER.map(|k| k.trim_start_matches("waypoint.")).join(", ")
         ));
     }
+    if key == "output.population_genomes" && (planner != PlannerKind::Thesis || !file.robots.is_empty()) {
+        return Some(format!(
+            "only the single-robot thesis GA writes its population's genomes; planner = \"{name}\"{}",
+            if file.robots.is_empty() { "" } else { " with [[robots]]" }
+        ));
+    }
     if key == "output.diversity_every" && planner != PlannerKind::Thesis {
         return Some(format!("only the thesis GA measures the population's diversity; planner = \"{name}\""));
     }

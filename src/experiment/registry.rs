@@ -96,12 +96,9 @@ impl PlannerConfig {
                     pattern: &file.pattern,
                     cell_order: file.cell_order.as_ref().unwrap_or(&default_cell_order),
                 };
-                PlannerConfig::Thesis(file.thesis.validate(
-                    file.retrain.as_ref(),
-                    settings,
-                    file.waypoint.alpha_cov,
-                    ctx,
-                )?)
+                let thesis = file.thesis.validate(file.retrain.as_ref(), settings, file.waypoint.alpha_cov, ctx)?;
+                let population_genomes = file.output.population_genomes.unwrap_or(false);
+                PlannerConfig::Thesis(crate::thesis::config::ThesisConfig { population_genomes, ..thesis })
             }
             PlannerKind::Waypoint => PlannerConfig::Waypoint(Box::new(file.waypoint.validate(ctx)?)),
             PlannerKind::Boustrophedon => {

@@ -166,6 +166,7 @@ impl FleetPlanner {
                     seeded: 0,
                     moves: crate::thesis::scenario::Moves::Straight,
                     objective: (crate::thesis::objective::Objective::Footprint, 0.0),
+                    population_genomes: false,
                 };
                 let e = thesis.memory_estimate(map, threads);
                 MemoryEstimate { bytes: e.bytes * robots, what: format!("{} for each of {robots} robots", e.what), ..e }

@@ -121,9 +121,10 @@ pub struct RunnerOptions<'a> {
     pub max_memory: Option<u64>,
     /// Called after each finished run (from worker threads).
     pub on_done: &'a (dyn Fn(RunDone) + Sync),
-    /// When set (from another thread), no further run starts; the runs in progress finish and
-    /// are recorded, and the runner returns [`StudyError::Stopped`].
-    pub stop: Option<&'a AtomicBool>,
+    /// When raised (from another thread: Ctrl-C), no further run starts and the runs in
+    /// progress stop at their next iteration, unrecorded, their folders removed; the runs
+    /// finished before stay recorded, and the runner returns [`StudyError::Stopped`].
+    pub stop: Option<&'a crate::planner::executor::Interrupt>,
     /// The order the runs start in (results never depend on it).
     pub order: super::order::RunOrder,
     /// Fault injection for crash-and-resume tests: abort the process, as a kill would, right
@@ -342,7 +343,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     let execution =
         Execution { study, opts, maps: &maps, file: &file, writer: Mutex::new(writer), written: AtomicUsize::new(0) };
     let completed = execution.run_all(&pending, skipped, jobs)?;
-    if opts.stop.is_some_and(|s| s.load(Ordering::Relaxed)) && completed < pending.len() {
+    if opts.stop.is_some_and(|s| s.is_raised()) && completed < pending.len() {
         return Err(StudyError::Stopped { recorded: completed });
     }
     complete(&file, selected.len(), skipped, pending.len())
@@ -362,11 +363,14 @@ struct Execution<'a> {
 impl Execution<'_> {
     /// Runs `run` and appends its row. A run its planner refuses while planning (what
     /// validation cannot see without planning) is recorded with its reason and the study goes
-    /// on; any other failure stops the study.
-    fn run_one(&self, run: &RunSpec) -> Result<RunResult, StudyError> {
+    /// on; a run the stop flag interrupts is not recorded (`None`: it runs again on resuming);
+    /// any other failure stops the study.
+    fn run_one(&self, run: &RunSpec) -> Result<Option<RunResult>, StudyError> {
         let (study, file) = (self.study, self.file);
         let dir = self.opts.out.join("runs").join(&run.id);
-        let exp = experiment_of(study, run, self.maps)?;
+        let mut exp = experiment_of(study, run, self.maps)?;
+        // The flag is not part of the experiment: its id, files and results do not change.
+        exp.budget.interrupt = self.opts.stop.cloned();
         let started = std::time::Instant::now();
         let (fields, result) = match crate::experiment::output::run_experiment(&exp, &dir, false, &mut []) {
             Ok(summary) => {
@@ -378,6 +382,11 @@ impl Execution<'_> {
                 // A failed run has no files; its empty folder goes (a non-empty one stays).
                 let _ = std::fs::remove_dir(&dir);
                 (failed_row(&study.columns, run, &message, wall_s), ((f64::NAN, f64::NAN, wall_s), Some(message)))
+            }
+            Err(crate::experiment::output::OutputError::Interrupted { .. }) => {
+                // An interrupted run wrote nothing; its empty folder goes.
+                let _ = std::fs::remove_dir(&dir);
+                return Ok(None);
             }
             Err(other) => return Err(StudyError::Run { id: run.id.clone(), message: other.to_string() }),
         };
@@ -392,7 +401,7 @@ impl Execution<'_> {
             // with this run's row on disk and nothing cleaned up.
             std::process::abort();
         }
-        Ok(result)
+        Ok(Some(result))
     }
 
     /// Runs `pending` on `jobs` workers until done, stopped or failed; returns how many ran.
@@ -419,11 +428,12 @@ impl Execution<'_> {
                         Ok(pool) => pool,
                         Err(e) => return fail(StudyError::Run { id: String::new(), message: e.to_string() }),
                     };
-                    let stopped = || opts.stop.is_some_and(|s| s.load(Ordering::Relaxed));
+                    let stopped = || opts.stop.is_some_and(|s| s.is_raised());
                     while !failed.load(Ordering::Relaxed) && !stopped() {
                         let Some(&run) = pending.get(next.fetch_add(1, Ordering::SeqCst)) else { break };
                         match pool.install(|| self.run_one(run)) {
-                            Ok((result, failure)) => {
+                            Ok(None) => break,
+                            Ok(Some((result, failure))) => {
                                 let done = counter.fetch_add(1, Ordering::SeqCst) + 1;
                                 let failure = failure.as_deref();
                                 (opts.on_done)(RunDone { run, done, total: pending.len(), skipped, result, failure });

@@ -73,6 +73,16 @@ pub fn genome_of(index: usize, moves: &[(f64, f64)]) -> Result<Vec<Action>, Geno
     Ok(genome)
 }
 
+/// The path the robot drives for the genome of live moves `moves` (see [`genome_of`]): its
+/// viewpoints decoded as the GA decodes its own (the out-of-bounds correction of 003
+/// eqs. 3.7–3.8, the connector aimed at E), joined by straight or routed moves as the
+/// scenario's `thesis.moves` says: the plan the GA reports for such a genome.
+pub fn decode(scenario: &Scenario, moves: &[(f64, f64)]) -> Result<Vec<crate::geom::Point>, GenomeError> {
+    let mut ind = Individual::with_genome(genome_of(0, moves)?);
+    evaluate(&mut ind, scenario, Base::None, EvaluationMode::Full, &mut EvalScratch::default());
+    Ok(scenario.driven(&ind.points))
+}
+
 /// Scores every genome (live moves, see [`genome_of`]) in parallel on the current rayon pool.
 /// The result of each genome does not depend on the others or on the threads.
 pub fn evaluate_batch(scenario: &Scenario, genomes: &[Vec<(f64, f64)>]) -> Result<Vec<BatchScore>, GenomeError> {
@@ -160,6 +170,25 @@ mod tests {
             assert_eq!(g.obstacle_cells, *obj);
         }
         assert!(expected.iter().any(|(_, obj)| *obj > 0), "some random genome touches a wall");
+    }
+
+    #[test]
+    fn a_decoded_genome_runs_from_s_through_its_corrected_viewpoints_to_e() {
+        let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
+        let (start, end) = (Point::new(1.3, 1.3), Point::new(9.0, 9.0));
+        let sc = Scenario::new(preset("thesis-1").unwrap(), robot, start, end, Projection::F2);
+        // East 2 m, then north 20 m (past the map's top edge: clamped inside the map).
+        let path = decode(&sc, &[(0.0, 2.0), (90.0, 20.0)]).unwrap();
+        assert_eq!(path.first(), Some(&Point::new(1.3, 1.3)));
+        assert_eq!(path.last(), Some(&end));
+        assert!((path[1] - Point::new(3.3, 1.3)).norm() < 1e-9, "{path:?}");
+        // The move would end at y = 21.3; it is clamped to the map's top edge (11 m).
+        assert!((path[2] - Point::new(3.3, 11.0)).norm() < 1e-9, "{path:?}");
+        // The GA's own decode of the same genome, as its best_path.csv would hold it.
+        let mut ind = Individual::with_genome(genome_of(0, &[(0.0, 2.0), (90.0, 20.0)]).unwrap());
+        evaluate(&mut ind, &sc, Base::None, EvaluationMode::Incremental, &mut EvalScratch::default());
+        assert_eq!(path, sc.driven(&ind.points));
+        assert!(decode(&sc, &[]).is_err());
     }
 
     #[test]

@@ -250,6 +250,9 @@ pub struct ThesisConfig {
     pub moves: Moves,
     /// What `cov_final` measures, with `α_cov` for the camera.
     pub objective: (Objective, f64),
+    /// Whether the run writes its final population's genomes (`population_genomes.csv`,
+    /// `output.population_genomes`).
+    pub population_genomes: bool,
 }
 
 impl ThesisSection {
@@ -310,7 +313,8 @@ impl ThesisSection {
             }
         };
         let (seeds, seeded) = self.seeds(&params, settings, ctx)?;
-        Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves, objective: (self.objective, alpha_cov) })
+        let objective = (self.objective, alpha_cov);
+        Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves, objective, population_genomes: false })
     }
 
     /// The seed genomes and how many initial members are seeds.

@@ -28,6 +28,20 @@ pub fn population_csv(population: &[(ThesisScore, usize, u64)]) -> Vec<u8> {
     s.into_bytes()
 }
 
+/// `population_genomes.csv`: the live moves of each member of the final population (S's move
+/// and every action, as `best_genome.csv` has them, without the connector and E), one row per
+/// move; `member` is the row of `population.csv`.
+pub fn population_genomes_csv(population: &[Individual]) -> Vec<u8> {
+    let mut s = String::from("member,index,alpha_deg,dist_m\n");
+    for (m, ind) in population.iter().enumerate() {
+        let live = ind.genome.len().saturating_sub(2);
+        for (i, a) in ind.genome[..live].iter().enumerate() {
+            s.push_str(&format!("{m},{i},{},{}\n", a.alpha_deg(), a.dist_m()));
+        }
+    }
+    s.into_bytes()
+}
+
 /// The final first front of a Pareto run under constrained domination (within the seed
 /// plans' `bounds`, when it has them), as `[cov_final, t_final, fitness, genome_len]` rows
 /// sorted by `cov_final` (for `summary.json`).
@@ -104,6 +118,13 @@ impl Planner for ThesisConfig {
                 serde_json::json!([b.score.cov_final, b.score.t_final, b.score.fitness]),
             );
         }
+        let mut files = vec![
+            ("best_genome.csv".into(), best.genome_csv()),
+            ("population.csv".into(), population_csv(&out.final_population)),
+        ];
+        if self.population_genomes {
+            files.push(("population_genomes.csv".into(), population_genomes_csv(&out.population)));
+        }
         Ok(RunOutcome {
             plan: vec![ga.scenario.driven(&best.points)],
             objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
@@ -115,10 +136,7 @@ impl Planner for ThesisConfig {
             stop: out.stop,
             wall_s: out.wall_s,
             details,
-            files: vec![
-                ("best_genome.csv".into(), best.genome_csv()),
-                ("population.csv".into(), population_csv(&out.final_population)),
-            ],
+            files,
             history: crate::planner::History::Generations,
             agents: Vec::new(),
             artifacts: Box::new((out, seed)),

@@ -80,6 +80,9 @@ pub struct ThesisOutcome<T = Individual> {
     /// The final population's scores, genome lengths and obstacle sweeps, in population order
     /// (its front is what 003's Pareto figures show).
     pub final_population: Vec<(ThesisScore, usize, u64)>,
+    /// The final population's members themselves, in population order (their genomes for
+    /// `output.population_genomes`).
+    pub population: Vec<T>,
     /// The seed plans' `(cov_final, t_final)` that bounded Pareto selection (empty: none).
     pub seed_points: Vec<(f64, f64)>,
 }
@@ -295,6 +298,7 @@ impl<T: Member> Ga<T> {
             state.population.iter().map(|m| (m.score(), m.genome_len(), m.obstacle_cells())).collect();
         Ok(ThesisOutcome {
             final_population,
+            population: state.population,
             history,
             changes,
             best,
