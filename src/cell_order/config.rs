@@ -16,6 +16,9 @@ pub enum Solver {
     Ga,
     /// Held–Karp dynamic programming: the optimum, for maps of a few cells.
     Exact,
+    /// Iterated local search ([`super::ils`]): the GTSP reference where Held–Karp cannot run,
+    /// a strong search with no population and no crossover.
+    Ils,
 }
 
 /// What the plan does about the cells its sweeps leave uncovered.
@@ -39,7 +42,7 @@ pub enum Completion {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CellOrderSection {
-    /// `"ga"` or `"exact"`.
+    /// `"ga"`, `"exact"` or `"ils"`.
     pub solver: Solver,
     /// Lane directions offered to every cell, in degrees.
     pub directions: Vec<f64>,

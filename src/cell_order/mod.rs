@@ -3,8 +3,8 @@
 //! Bähnemann et al. (2019) that boustrophedon coverage is a generalised travelling-salesman
 //! problem. Cells and their candidate sweeps come from [`sweeps`], wall-free transit costs
 //! between sweep ends from [`transit`], the tour problem from [`tour`]; the GA ([`search`],
-//! operators in [`operators`], the memetic step in [`local`]) or the exact Held–Karp solver
-//! ([`exact`]) orders them. The plan drives the chosen sweeps joined by
+//! operators in [`operators`], the memetic step in [`local`]), the exact Held–Karp solver
+//! ([`exact`]) or the iterated local search of the GTSP reference ([`ils`]) orders them. The plan drives the chosen sweeps joined by
 //! [`crate::map::clearance::Clearance::connect`] routes, then the patterns' completion pass,
 //! then to the end station: executable by construction.
 
@@ -12,6 +12,7 @@ pub mod boundary;
 pub mod cell_completion;
 pub mod config;
 pub mod exact;
+pub mod ils;
 pub mod local;
 pub mod operators;
 pub mod rank;
@@ -279,6 +280,36 @@ struct Solved {
     exact: Option<f64>,
 }
 
+/// The lane coverage of a search's best tour (its sweeps without transit, over all free and
+/// over the reachable cells) for the history, swept again only when the best tour changes.
+struct LaneCoverage<'g> {
+    grid: &'g crate::coverage::CoverageGrid,
+    scratch: crate::coverage::SweepScratch,
+    last: Option<(Tour, (f64, f64))>,
+}
+
+impl<'g> LaneCoverage<'g> {
+    fn new(grid: &'g crate::coverage::CoverageGrid) -> Self {
+        Self { grid, scratch: crate::coverage::SweepScratch::new(grid), last: None }
+    }
+
+    fn of(&mut self, prepared: &Prepared, scenario: &Scenario, tour: &Tour) -> (f64, f64) {
+        if let Some((t, c)) = &self.last
+            && t == tour
+        {
+            return *c;
+        }
+        let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
+        let swept = self.scratch.sweep_all(self.grid, &paths, scenario.robot.width).unique();
+        let c = (
+            swept as f64 / self.grid.area_cells().max(1) as f64,
+            crate::coverage::score::reach_coverage(&prepared.reach, &self.scratch),
+        );
+        self.last = Some((tour.clone(), c));
+        c
+    }
+}
+
 impl CellOrderConfig {
     /// Orders the cells with the configured solver, handing the GA's generations to
     /// `observers` (with the lane coverage of each generation's best tour, swept on `grid`).
@@ -293,29 +324,15 @@ impl CellOrderConfig {
     ) -> Result<Solved, PlannerError> {
         let inst = &prepared.instance;
         match self.solver {
-            Solver::Ga => {
-                let mut scratch = crate::coverage::SweepScratch::new(grid);
-                // Lane coverage of the best tour (its sweeps without transit), recomputed when
-                // the best changes.
-                let mut lanes: Option<(Tour, (f64, f64))> = None;
-                let mut lane_coverage = |tour: &Tour| -> (f64, f64) {
-                    if let Some((t, c)) = &lanes
-                        && t == tour
-                    {
-                        return *c;
-                    }
-                    let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
-                    let swept = scratch.sweep_all(grid, &paths, scenario.robot.width).unique();
-                    let c = (
-                        swept as f64 / grid.area_cells().max(1) as f64,
-                        crate::coverage::score::reach_coverage(&prepared.reach, &scratch),
-                    );
-                    lanes = Some((tour.clone(), c));
-                    c
+            Solver::Ga | Solver::Ils => {
+                let mut lanes = LaneCoverage::new(grid);
+                // Every tour is driven on wall-free routes: all members are feasible.
+                let members = match self.solver {
+                    Solver::Ils => 1,
+                    Solver::Ga | Solver::Exact => self.ga.population as u32,
                 };
-                let seeds = if self.seed_directions { direction_tours(prepared, &self.directions) } else { Vec::new() };
-                let out = search::search_from(inst, &self.ga, &seeds, (seed, started), budget, |g| {
-                    let (best_coverage, best_coverage_reach) = lane_coverage(g.best.0);
+                let report = |g: &search::Generation| {
+                    let (best_coverage, best_coverage_reach) = lanes.of(prepared, scenario, g.best.0);
                     let record = GenerationRecord {
                         iteration: g.iteration,
                         evaluations: g.evaluations,
@@ -323,14 +340,22 @@ impl CellOrderConfig {
                         mean_fitness: g.fitness.1,
                         best_coverage,
                         best_coverage_reach: Some(best_coverage_reach),
-                        // Every tour is driven on wall-free routes: all members are feasible.
-                        feasible: Some(self.ga.population as u32),
+                        feasible: Some(members),
                         diversity: None,
                         extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
                         robots: Vec::new(),
                     };
                     observers.iter_mut().try_for_each(|o| o.generation(&record))
-                })?;
+                };
+                let seeds = if self.seed_directions { direction_tours(prepared, &self.directions) } else { Vec::new() };
+                let out = match self.solver {
+                    Solver::Ils => {
+                        ils::iterated_local_search(inst, self.ga.goal, &seeds, (seed, started), budget, report)?
+                    }
+                    Solver::Ga | Solver::Exact => {
+                        search::search_from(inst, &self.ga, &seeds, (seed, started), budget, report)?
+                    }
+                };
                 let (tour, cost) = out.best;
                 Ok(Solved {
                     tour,
@@ -542,7 +567,7 @@ impl Planner for CellOrderConfig {
             details: details_of(&prepared, &solved, skipped, chosen.goal, self.wall_directions_used()),
             files: Vec::new(),
             history: match self.solver {
-                Solver::Ga => crate::planner::History::Generations,
+                Solver::Ga | Solver::Ils => crate::planner::History::Generations,
                 Solver::Exact => crate::planner::History::None,
             },
             agents: Vec::new(),

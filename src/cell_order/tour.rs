@@ -182,7 +182,7 @@ impl Instance {
 pub const UNREACHED_S: f64 = 1e12;
 
 /// A tour: the cells in visiting order and each cell's sweep choice (indexed by cell).
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+#[derive(Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub struct Tour {
     /// Cells in the order they are swept.
     pub order: Vec<u32>,

@@ -62,6 +62,12 @@ fn unread_by_cell_order(file: &ExperimentFile, key: &str) -> Option<String> {
             Some("cell_order.solver = \"exact\" runs no GA (Held–Karp reads only the directions and completion)".into())
         }
         Solver::Exact => None,
+        Solver::Ils if CELL_ORDER_GA_KEYS.contains(&key) && key != "cell_order.seed_directions" => Some(
+            "cell_order.solver = \"ils\" runs no GA (iterated local search reads the directions, completion, \
+             coverage_goal and seed_directions)"
+                .into(),
+        ),
+        Solver::Ils => None,
         Solver::Ga => {
             unread_by_scheme(section.selection.as_str(), key, |p| Some(crate::cell_order::config::param_key(p)))
                 .then(|| format!("cell_order.selection = \"{}\" does not use it", section.selection.as_str()))
