@@ -2,7 +2,11 @@
 # Times covga as users run it (issue "speed as users meet it"), old binaries against new, each
 # run pinned to one core with one thread, the binaries interleaved run by run:
 #   the reference experiment (experiments/thesis-map1-elite.toml) for seeds 1-5, with and
-#   without output.diversity_every = 10; covga eval --pattern boustrophedon / spiral on a map.
+#   without output.diversity_every = 10; covga eval --pattern boustrophedon / spiral on a map;
+#   on basement (experiments/maps/basement.yaml), the real-map reference run with routed moves
+#   (start (0, 0), Elite, init_actions 150, init_dist_max 6, max_genome_len 600, 20 000
+#   evaluations) and experiments/cell-order-basement.toml (its set-up and 50 000 evaluations),
+#   three times each.
 # usage: scripts/speed-as-used.sh MAP_YAML BIG_MAP_IMAGE OUT_DIR BIN...   (the last BIN is the
 # newest; only it runs the diversity_every = 10 variant; binaries named in RUN_ONLY, e.g.
 # RUN_ONLY="covga-bc0", time only the reference run). EVAL_THREADS (default 1) lists the
@@ -46,5 +50,31 @@ for rep in 1 2 3; do
       timed "eval-big-boustrophedon$suffix" "$bin" "$rep" "$bin" eval --map "$big" --resolution 0.05 \
         --pattern boustrophedon --start 25.3,10.1 --out "$out/eval-big"
     done
+  done
+done
+cat > "$out/routed-basement.toml" <<TOML
+seed = 1
+planner = "thesis"
+[map]
+source = "experiments/maps/basement.yaml"
+[stations]
+start = [0.0, 0.0]
+[thesis]
+selection = "elite"
+pop_min = 100
+init_actions = 150
+init_dist_max = 6.0
+max_genome_len = 600
+moves = "routed"
+[budget]
+iterations = 1000000
+evaluations = 20000
+TOML
+threads=1
+for rep in 1 2 3; do
+  for bin in "${bins[@]}"; do
+    case " ${RUN_ONLY:-} " in *" $(basename "$bin") "*) continue ;; esac
+    rm -rf "$out/run"; timed run-routed-basement "$bin" "$rep" "$bin" run "$out/routed-basement.toml" --out "$out/run"
+    rm -rf "$out/run"; timed run-cell-order-basement "$bin" "$rep" "$bin" run experiments/cell-order-basement.toml --out "$out/run"
   done
 done

@@ -7,6 +7,7 @@
 //! thesis GA's routed moves). Planners build on this layer; it depends on none of them.
 
 pub mod bits;
+pub mod bucket_queue;
 pub mod camera;
 pub mod curve;
 #[cfg(test)]

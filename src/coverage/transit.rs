@@ -6,11 +6,11 @@
 //! route the plan finally drives ([`Clearance::connect`] shortens it by line of sight), so the
 //! search never counts on a shortcut that does not exist.
 
+use super::bucket_queue::BucketQueue;
 use crate::geom::Point;
 use crate::map::clearance::Clearance;
 use rayon::prelude::*;
-use std::cmp::Reverse;
-use std::collections::{BinaryHeap, HashMap};
+use std::collections::HashMap;
 
 /// Transit lengths in metres from exits to entries (`f32::INFINITY`: no wall-free route).
 #[derive(Clone, Debug)]
@@ -69,37 +69,33 @@ impl Transit {
         // Straight moves are checked only between points this close: farther pairs rarely see
         // each other on a floor plan, and the grid distance bounds them anyway.
         let near = 8.0 * clear.radius().max(res);
-        let metres: Vec<f32> = exits
-            .par_iter()
-            .map_init(
-                || vec![f64::INFINITY; map.rows() * cols],
-                |dist, &exit| {
-                    let mut row = vec![f32::INFINITY; entries.len()];
-                    if expired.load(std::sync::atomic::Ordering::Relaxed) || past() {
-                        return row;
-                    }
-                    if let Some((s, leg)) = snap(exit) {
-                        let touched = dijkstra(clear, s, leg, res, dist);
-                        for (k, snap) in entry_snap.iter().enumerate() {
-                            if let Some((j, leg)) = snap {
-                                row[k] = (dist[*j] + leg) as f32;
-                            }
-                        }
-                        for i in touched {
-                            dist[i] = f64::INFINITY;
+        let grid = StepGrid::of(clear);
+        // Each exit's row is written in place: no row is held twice (the matrix is most of the
+        // set-up's memory on a large map).
+        let mut metres = vec![f32::INFINITY; exits.len() * entries.len()];
+        metres.par_chunks_mut(entries.len().max(1)).zip(exits.par_iter()).for_each_init(
+            || Search::new(map.rows() * cols, res),
+            |search, (row, &exit)| {
+                if expired.load(std::sync::atomic::Ordering::Relaxed) || past() {
+                    return;
+                }
+                if let Some((s, leg)) = snap(exit) {
+                    search.dijkstra(&grid, s, leg, res);
+                    for (k, snap) in entry_snap.iter().enumerate() {
+                        if let Some((j, leg)) = snap {
+                            row[k] = (search.dist[*j] + leg) as f32;
                         }
                     }
-                    for (k, &entry) in entries.iter().enumerate() {
-                        let straight = (entry - exit).norm();
-                        if straight < f64::from(row[k]) && straight <= near && clear.segment_fits(exit, entry) {
-                            row[k] = straight as f32;
-                        }
+                    search.reset();
+                }
+                for (k, &entry) in entries.iter().enumerate() {
+                    let straight = (entry - exit).norm();
+                    if straight < f64::from(row[k]) && straight <= near && clear.segment_fits(exit, entry) {
+                        row[k] = straight as f32;
                     }
-                    row
-                },
-            )
-            .flatten()
-            .collect();
+                }
+            },
+        );
         (!expired.into_inner()).then_some(Self { entries: entries.len(), metres })
     }
 
@@ -109,31 +105,94 @@ impl Transit {
     }
 }
 
-/// Grid distances in metres from cell `source` (at `offset` metres from the exit) into `dist`
-/// (all infinite on entry); returns the cells it set, so the caller can reset them.
-fn dijkstra(clear: &Clearance, source: usize, offset: f64, res: f64, dist: &mut [f64]) -> Vec<usize> {
-    // Keys in micrometres keep the heap's order total and deterministic.
-    let key = |d: f64| (d * 1e6) as u64;
-    let mut heap = BinaryHeap::new();
-    let mut touched = vec![source];
-    dist[source] = offset;
-    heap.push(Reverse((key(offset), source)));
-    while let Some(Reverse((k, i))) = heap.pop() {
-        if k > key(dist[i]) {
-            continue;
-        }
-        for (j, step) in clear.steps(i) {
-            let cand = dist[i] + step * res;
-            if cand < dist[j] - 1e-12 {
-                if dist[j].is_infinite() {
-                    touched.push(j);
+/// The steps of [`Clearance::steps`] of every cell, as one byte of flags per cell (bit `d` for
+/// the `d`-th of its eight directions, in the order `steps` lists them), read once per map
+/// instead of once per search.
+struct StepGrid {
+    allowed: Vec<u8>,
+    /// Index offsets of the eight directions.
+    offsets: [isize; 8],
+}
+
+/// The eight directions of [`Clearance::steps`], in its order: (row, column) offsets.
+const DIRECTIONS: [(isize, isize); 8] = [(-1, -1), (-1, 0), (-1, 1), (0, -1), (0, 1), (1, -1), (1, 0), (1, 1)];
+
+impl StepGrid {
+    fn of(clear: &Clearance) -> Self {
+        let cols = clear.map().cols() as isize;
+        let offsets = DIRECTIONS.map(|(dr, dc)| dr * cols + dc);
+        let allowed = (0..clear.map().rows() * clear.map().cols())
+            .into_par_iter()
+            .map(|i| {
+                clear.steps(i).fold(0u8, |mask, (j, _)| {
+                    let d = offsets.iter().position(|&o| i as isize + o == j as isize).expect("a neighbour");
+                    mask | (1 << d)
+                })
+            })
+            .collect();
+        Self { allowed, offsets }
+    }
+}
+
+/// One worker's Dijkstra: the distances, the cells it set and its queue, reused search after
+/// search.
+struct Search {
+    dist: Vec<f64>,
+    touched: Vec<usize>,
+    heap: BucketQueue,
+}
+
+impl Search {
+    /// For a grid of `cells` cells of `res` metres: keys are micrometres, a step adds at most
+    /// √2 cells (plus one for the truncation), buckets are a 32nd of a cell wide.
+    fn new(cells: usize, res: f64) -> Self {
+        let (step, width) = ((res * 1e6 * std::f64::consts::SQRT_2).ceil() as u64 + 2, (res * 1e6 / 32.0) as u64);
+        Self { dist: vec![f64::INFINITY; cells], touched: Vec::new(), heap: BucketQueue::new(width, step) }
+    }
+
+    /// Grid distances in metres from cell `source` (at `offset` metres from the exit) into
+    /// `dist` (all infinite before). Cells are settled by their distance in whole micrometres,
+    /// then by index — a total, deterministic order, the one the binary heap this replaced
+    /// gave (`tests::the_bucket_queue_search_equals_the_binary_heap_search`) — and a cell takes a
+    /// new distance only when it is shorter by more than 1e-12 m.
+    fn dijkstra(&mut self, grid: &StepGrid, source: usize, offset: f64, res: f64) {
+        let key = |d: f64| (d * 1e6) as u64;
+        let (dist, touched, heap) = (&mut self.dist, &mut self.touched, &mut self.heap);
+        touched.push(source);
+        dist[source] = offset;
+        heap.push(key(offset), source as u32);
+        while let Some((k, i)) = heap.pop() {
+            let i = i as usize;
+            if k > key(dist[i]) {
+                continue;
+            }
+            let mask = grid.allowed[i];
+            for (d, &o) in grid.offsets.iter().enumerate() {
+                if mask & (1 << d) == 0 {
+                    continue;
                 }
-                dist[j] = cand;
-                heap.push(Reverse((key(cand), j)));
+                let j = (i as isize + o) as usize;
+                let step = if d == 0 || d == 2 || d == 5 || d == 7 { std::f64::consts::SQRT_2 } else { 1.0 };
+                let cand = dist[i] + step * res;
+                if cand < dist[j] - 1e-12 {
+                    if dist[j].is_infinite() {
+                        touched.push(j);
+                    }
+                    dist[j] = cand;
+                    heap.push(key(cand), j as u32);
+                }
             }
         }
     }
-    touched
+
+    /// Back to all infinite, for the next search.
+    fn reset(&mut self) {
+        for &i in &self.touched {
+            self.dist[i] = f64::INFINITY;
+        }
+        self.touched.clear();
+        self.heap.clear();
+    }
 }
 
 #[cfg(test)]
@@ -182,6 +241,65 @@ mod tests {
         clear.restrict(crate::map::reach::reachable_centres(&clear, &[Point::new(0.5, 0.5)]));
         let t = Transit::new(&clear, &[Point::new(0.5, 0.5)], &[Point::new(3.0, 0.5)]);
         assert!(t.metres(0, 0).is_infinite());
+    }
+
+    /// The search this module ran before the bucket queue and the step flags: a binary heap of
+    /// `Reverse((micrometres, cell))` over [`Clearance::steps`].
+    fn binary_heap_dijkstra(clear: &Clearance, source: usize, offset: f64, res: f64) -> Vec<f64> {
+        use std::cmp::Reverse;
+        let key = |d: f64| (d * 1e6) as u64;
+        let mut dist = vec![f64::INFINITY; clear.map().rows() * clear.map().cols()];
+        let mut heap = std::collections::BinaryHeap::new();
+        dist[source] = offset;
+        heap.push(Reverse((key(offset), source)));
+        while let Some(Reverse((k, i))) = heap.pop() {
+            if k > key(dist[i]) {
+                continue;
+            }
+            for (j, step) in clear.steps(i) {
+                let cand = dist[i] + step * res;
+                if cand < dist[j] - 1e-12 {
+                    dist[j] = cand;
+                    heap.push(Reverse((key(cand), j)));
+                }
+            }
+        }
+        dist
+    }
+
+    #[test]
+    fn the_bucket_queue_search_equals_the_binary_heap_search() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(2);
+        for round in 0..12 {
+            // A room with random pillars and walls, at a random resolution.
+            let (cols, rows) = (rng.random_range(20..90), rng.random_range(20..90));
+            let mut cells = vec![CellState::Free; cols * rows];
+            for _ in 0..rng.random_range(0..40) {
+                let (r, c) = (rng.random_range(0..rows), rng.random_range(0..cols));
+                let (h, w) = (rng.random_range(1..6), rng.random_range(1..6));
+                for rr in r..(r + h).min(rows) {
+                    for cc in c..(c + w).min(cols) {
+                        cells[rr * cols + cc] = CellState::Occupied;
+                    }
+                }
+            }
+            let res = [0.05, 0.1, 0.0732][round % 3];
+            let map = GridMap::new("pillars", cols, rows, res, Point::origin(), cells).unwrap();
+            let clear = Clearance::new(&map, 2.5 * res);
+            let grid = StepGrid::of(&clear);
+            let mut search = Search::new(cols * rows, res);
+            for _ in 0..5 {
+                let source = rng.random_range(0..cols * rows);
+                let offset = rng.random_range(0.0..res);
+                search.dijkstra(&grid, source, offset, res);
+                let expected = binary_heap_dijkstra(&clear, source, offset, res);
+                let same = search.dist.iter().zip(&expected).all(|(a, b)| a.to_bits() == b.to_bits());
+                assert!(same, "round {round}: the distances differ");
+                search.reset();
+                assert!(search.dist.iter().all(|d| d.is_infinite()), "reset for the next search");
+            }
+        }
     }
 
     #[test]
