@@ -9,7 +9,7 @@
 //! search that owes nothing to evolution, against which the GA has to earn its place.
 
 use super::local::improve_within;
-use super::search::{FINALISTS, Generation, ROUNDS, Searched, nearest_neighbour};
+use super::search::{FINALISTS, Generation, ROUNDS, Searched, finalists, nearest_neighbour};
 use super::tour::{Instance, Tour};
 use crate::ga::rng::{Purpose, stream};
 use crate::planner::Budget;
@@ -75,25 +75,8 @@ pub fn iterated_local_search<E>(
     (kicks.current, kicks.best) = (start.clone(), start);
     let mut report = |g: &Generation| report(g);
     let finish = execute(&mut kicks, &StopRules::of_budget(budget, None, started), &mut report)?;
-    let mut finalists = vec![kicks.best.0.clone()];
-    for (tour, _) in &kicks.optima {
-        if finalists.len() < FINALISTS && !finalists.contains(tour) {
-            finalists.push(tour.clone());
-        }
-    }
-    for tour in seeds {
-        if !finalists.contains(tour) {
-            finalists.push(tour.clone());
-        }
-    }
-    Ok(Searched {
-        finalists,
-        best: kicks.best,
-        evaluations: finish.evaluations,
-        iterations: finish.iterations,
-        stop: finish.stop,
-        nearest_time_s,
-    })
+    let finalists = finalists(&kicks.best.0, &kicks.optima);
+    Ok(Searched::ended(kicks.best, finalists, seeds, finish, nearest_time_s))
 }
 
 /// Iterated local search between iterations, as [`execute`] drives it.

@@ -180,20 +180,34 @@ pub fn search_from<E>(
     };
     let mut report = |g: &Generation| report(g);
     let finish = execute(&mut ga, &StopRules::of_budget(budget, None, started), &mut report)?;
-    let mut finalists = finalists(&ga.best.0, &ga.pop);
-    for tour in seeds {
-        if !finalists.contains(tour) {
-            finalists.push(tour.clone());
+    let finalists = finalists(&ga.best.0, &ga.pop);
+    Ok(Searched::ended(ga.best, finalists, seeds, finish, nearest_time_s))
+}
+
+impl Searched {
+    /// A search that ended with `best`, its `finalists` (best first), then those of `seeds`
+    /// not among them.
+    pub(super) fn ended(
+        best: (Tour, f64),
+        mut finalists: Vec<Tour>,
+        seeds: &[Tour],
+        finish: crate::planner::executor::Finish,
+        nearest_time_s: f64,
+    ) -> Self {
+        for tour in seeds {
+            if !finalists.contains(tour) {
+                finalists.push(tour.clone());
+            }
+        }
+        Self {
+            finalists,
+            best,
+            evaluations: finish.evaluations,
+            iterations: finish.iterations,
+            stop: finish.stop,
+            nearest_time_s,
         }
     }
-    Ok(Searched {
-        finalists,
-        best: ga.best,
-        evaluations: finish.evaluations,
-        iterations: finish.iterations,
-        stop: finish.stop,
-        nearest_time_s,
-    })
 }
 
 /// The cell-order GA between generations, as [`execute`] drives it.
@@ -300,7 +314,7 @@ pub const ROUNDS: usize = 10_000;
 
 /// `best`, then the distinct tours of `pop` other than it, fastest first (the population's
 /// order among equals), [`FINALISTS`] in all at most.
-fn finalists(best: &Tour, pop: &[(Tour, f64)]) -> Vec<Tour> {
+pub(super) fn finalists(best: &Tour, pop: &[(Tour, f64)]) -> Vec<Tour> {
     let mut ranked: Vec<&(Tour, f64)> = pop.iter().collect();
     ranked.sort_by(|a, b| a.1.total_cmp(&b.1));
     let mut out = vec![best.clone()];
