@@ -63,3 +63,22 @@ def test_mypy_strict_checks_code_that_uses_covga(tmp_path):
     assert bad.returncode == 1, bad.stdout
     assert 'Incompatible types in assignment (expression has type "str", variable has type "int")' in bad.stdout
     assert 'Argument "width" to "pattern" has incompatible type "str"' in bad.stdout
+
+
+def test_the_readmes_python_session_runs_as_written(tmp_path, monkeypatch):
+    """The README's "A short session" block, run as a user runs it from the repository root
+    (here a folder with the repository's experiments and grids, so that out/ lands in tmp)."""
+    import re
+
+    from conftest import REPO
+
+    text = (REPO / "README.md").read_text()
+    block = re.search(r"A short session:\n\n```python\n(.*?)```", text, re.S)
+    assert block, "the README's Python session"
+    for name in ("experiments", "grids"):
+        (tmp_path / name).symlink_to(REPO / name)
+    monkeypatch.chdir(tmp_path)
+    scope: dict = {}
+    exec(compile(block.group(1), "README.md", "exec"), scope)
+    assert scope["scores"].shape == (1000, 4)
+    assert len(scope["runs"]) == 36 and (tmp_path / "out" / "smoke" / "report" / "summary.md").is_file()
