@@ -281,10 +281,20 @@ impl WaypointConfig {
 
 /// Range checks of `[waypoint]` and the conversion into planner parameters.
 fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> Result<WaypointConfig, ConfigError> {
-    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     // Scale, UAV width and the camera: the same checks as the scorer's camera.
     camera_spec(w, origin, map)?;
     let geometry = super::geometry::Geometry::resolve(w, origin, map)?;
+    check_team(w, origin, map)?;
+    check_ga(w, origin)?;
+    check_view_and_weights(w, origin, map)?;
+    let starts: Vec<(f64, f64)> =
+        if w.starts.is_empty() { vec![(start.x, start.y)] } else { w.starts.iter().map(|s| (s[0], s[1])).collect() };
+    Ok(config_of(w, geometry, starts))
+}
+
+/// The moves and the team: `max_traverse`, `agents` and their `starts` (free stations).
+fn check_team(w: &WaypointSection, origin: &str, map: &GridMap) -> Result<(), ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     check_range(origin, "waypoint.max_traverse", w.max_traverse, 1e-4, 1e6, "[1e-4, 1e6] metres")?;
     if w.agents == 0 || w.agents > 64 {
         return Err(err("waypoint.agents", format!("= {} is out of range [1, 64]", w.agents)));
@@ -299,6 +309,12 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
         map.check_station(Point::new(s[0], s[1]), &format!("start of agent {k}"))
             .map_err(|m| err("waypoint.starts", m))?;
     }
+    Ok(())
+}
+
+/// The GA's probabilities, population, path lengths and shortcut tries.
+fn check_ga(w: &WaypointSection, origin: &str) -> Result<(), ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     for (key, v) in [
         ("waypoint.p_c", w.p_c),
         ("waypoint.p_a", w.p_a),
@@ -332,6 +348,12 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
             format!("= {} is out of range [0, {MAX_B_INSTANCES}] shortcut tries per mutation B", w.b_instances),
         ));
     }
+    Ok(())
+}
+
+/// The camera's reach for a fan view, and the objective's weights.
+fn check_view_and_weights(w: &WaypointSection, origin: &str, map: &GridMap) -> Result<(), ConfigError> {
+    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     let diagonal = map.width_m().hypot(map.height_m());
     if w.view_shape == crate::coverage::camera::ViewShape::Fan && w.d_max > diagonal {
         return Err(err(
@@ -345,11 +367,14 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
     check_range(origin, "waypoint.lambda", w.lambda, 0.0, 100.0, "[0, 100]")?;
     check_range(origin, "waypoint.rho", w.rho, 0.0, 100.0, "[0, 100]")?;
     check_range(origin, "waypoint.penalty", w.penalty, 0.0, 1e12, "[0, 1e12]")?;
-    let starts: Vec<(f64, f64)> =
-        if w.starts.is_empty() { vec![(start.x, start.y)] } else { w.starts.iter().map(|s| (s[0], s[1])).collect() };
+    Ok(())
+}
+
+/// The validated planner of a checked section (000's camera world and GA).
+fn config_of(w: &WaypointSection, geometry: super::geometry::Geometry, starts: Vec<(f64, f64)>) -> WaypointConfig {
     use super::evaluate::ObjectiveParams;
     use super::operators::OperatorParams;
-    Ok(WaypointConfig {
+    WaypointConfig {
         world: super::world::WorldParams {
             scale: w.scale,
             uav_width: w.uav_width,
@@ -398,5 +423,5 @@ fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> R
                 penalty: w.penalty,
             },
         },
-    })
+    }
 }

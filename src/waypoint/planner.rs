@@ -93,6 +93,97 @@ fn setup_warnings(cfg: &WaypointConfig, world: &World) -> Vec<String> {
     out
 }
 
+/// The history record of one generation: the best organism's coverage swept on the map
+/// (`best_coverage`, `best_coverage_reach`) and 000's objectives of the population.
+fn generation_record(
+    s: &WaypointStats,
+    b: &Organism,
+    evaluations: u64,
+    best_coverage: f64,
+    best_coverage_reach: f64,
+) -> GenerationRecord {
+    GenerationRecord {
+        iteration: s.generation,
+        evaluations,
+        best_fitness: b.eval.coverage,
+        mean_fitness: s.mean_coverage,
+        best_coverage,
+        best_coverage_reach: Some(best_coverage_reach),
+        feasible: Some(s.feasible),
+        diversity: None,
+        robots: Vec::new(),
+        extras: vec![
+            ("best_walls", b.eval.walls),
+            ("best_open", b.eval.open),
+            ("best_flight_time", b.eval.flight_time),
+            ("c_required", s.c_required),
+            ("mean_coverage", s.mean_coverage),
+            ("min_coverage", s.min_coverage),
+            ("max_coverage", s.max_coverage),
+            ("mean_open", s.mean_open),
+            ("mean_walls", s.mean_walls),
+            ("mean_flight_time", s.mean_flight_time),
+            ("min_flight_time", s.min_flight_time),
+            ("mean_f1", s.mean_f1),
+            ("mean_f2", s.mean_f2),
+            ("mean_length", s.mean_length),
+            ("mean_self_closures", s.mean_self_closures),
+        ],
+    }
+}
+
+impl WaypointConfig {
+    /// `summary.json`'s details of the best organism: 000's objectives, the team's loop
+    /// closures and connectivity, and the waypoint graph the run planned on.
+    fn details(
+        &self,
+        scenario: &Scenario,
+        world: &World,
+        best: &Organism,
+        outcome: &WaypointOutcome,
+        precompute_s: f64,
+    ) -> serde_json::Map<String, serde_json::Value> {
+        let e = &best.eval;
+        let adjacent: Vec<Vec<bool>> = e
+            .closures
+            .iter()
+            .enumerate()
+            .map(|(i, r)| r.iter().enumerate().map(|(j, &c)| i != j && c >= 1).collect())
+            .collect();
+        let counts = |rule: LoopClosureRule| -> Vec<usize> {
+            best.rows.iter().map(|r| rule.count(r, r, true, self.ga.objectives.lc_separation)).collect()
+        };
+        crate::planner::details(serde_json::json!({
+            "wall_coverage": e.walls,
+            "open_coverage": e.open,
+            "coverage": e.coverage,
+            "flight_time": e.flight_time,
+            "flight_time_s": e.flight_time * self.world.scale / scenario.robot.speed,
+            "loop_closures_ok": e.loops_ok(self.ga.objectives.lc_min),
+            "connected": e.connected(),
+            "closures": e.closures,
+            "laplacian_zero_eigenvalues": laplacian_zero_eigenvalues(&adjacent, 1e-9),
+            "agents": best.rows.len(),
+            "path_lengths": best.rows.iter().map(Vec::len).collect::<Vec<_>>(),
+            "generations": outcome.generations,
+            "lc_rule": self.ga.objectives.lc_rule.name(),
+            "self_closures_per_run": counts(LoopClosureRule::Run),
+            "self_closures_per_edge": counts(LoopClosureRule::Edge),
+            "waypoints": world.graph.points.len(),
+            "edges": world.graph.edge_count(),
+            "waypoints_dropped": world.dropped,
+            "gap_waypoints_added": world.gap_fills,
+            "passage_waypoints_added": world.passage_fills,
+            "reachable_wall_fraction": world.reachable_walls,
+            "grid_step_m": self.world.geometry.grid_step,
+            "safety_buffer_m": self.world.geometry.buffer,
+            "wall_band_m": self.world.geometry.wall_band,
+            "initial_feasible": outcome.initial_feasible,
+            "precompute_s": precompute_s,
+        }))
+    }
+}
+
 impl Planner for WaypointConfig {
     fn name(&self) -> &'static str {
         "waypoint"
@@ -126,34 +217,13 @@ impl Planner for WaypointConfig {
                 }
                 let b = &pop[best];
                 let counts = scratch.sweep_all(&grid, &paths_m(&world, b), scenario.robot.width);
-                let record = GenerationRecord {
-                    iteration: s.generation,
+                let record = generation_record(
+                    s,
+                    b,
                     evaluations,
-                    best_fitness: b.eval.coverage,
-                    mean_fitness: s.mean_coverage,
-                    best_coverage: counts.unique() as f64 / grid.area_cells().max(1) as f64,
-                    best_coverage_reach: Some(crate::coverage::score::reach_coverage(&reach, &scratch)),
-                    feasible: Some(s.feasible),
-                    diversity: None,
-                    robots: Vec::new(),
-                    extras: vec![
-                        ("best_walls", b.eval.walls),
-                        ("best_open", b.eval.open),
-                        ("best_flight_time", b.eval.flight_time),
-                        ("c_required", s.c_required),
-                        ("mean_coverage", s.mean_coverage),
-                        ("min_coverage", s.min_coverage),
-                        ("max_coverage", s.max_coverage),
-                        ("mean_open", s.mean_open),
-                        ("mean_walls", s.mean_walls),
-                        ("mean_flight_time", s.mean_flight_time),
-                        ("min_flight_time", s.min_flight_time),
-                        ("mean_f1", s.mean_f1),
-                        ("mean_f2", s.mean_f2),
-                        ("mean_length", s.mean_length),
-                        ("mean_self_closures", s.mean_self_closures),
-                    ],
-                };
+                    counts.unique() as f64 / grid.area_cells().max(1) as f64,
+                    crate::coverage::score::reach_coverage(&reach, &scratch),
+                );
                 for o in observers.iter_mut() {
                     if let Err(e) = o.generation(&record) {
                         failed.get_or_insert(e);
@@ -165,45 +235,9 @@ impl Planner for WaypointConfig {
         }
         let best = &outcome.population[outcome.best];
         let e = &best.eval;
-        let adjacent: Vec<Vec<bool>> = e
-            .closures
-            .iter()
-            .enumerate()
-            .map(|(i, r)| r.iter().enumerate().map(|(j, &c)| i != j && c >= 1).collect())
-            .collect();
         let viol = violations(self, best, outcome.generations);
         let warnings = setup_warnings(self, &world);
-        let counts = |rule: LoopClosureRule| -> Vec<usize> {
-            best.rows.iter().map(|r| rule.count(r, r, true, self.ga.objectives.lc_separation)).collect()
-        };
-        let details = crate::planner::details(serde_json::json!({
-            "wall_coverage": e.walls,
-            "open_coverage": e.open,
-            "coverage": e.coverage,
-            "flight_time": e.flight_time,
-            "flight_time_s": e.flight_time * self.world.scale / scenario.robot.speed,
-            "loop_closures_ok": e.loops_ok(self.ga.objectives.lc_min),
-            "connected": e.connected(),
-            "closures": e.closures,
-            "laplacian_zero_eigenvalues": laplacian_zero_eigenvalues(&adjacent, 1e-9),
-            "agents": best.rows.len(),
-            "path_lengths": best.rows.iter().map(Vec::len).collect::<Vec<_>>(),
-            "generations": outcome.generations,
-            "lc_rule": self.ga.objectives.lc_rule.name(),
-            "self_closures_per_run": counts(LoopClosureRule::Run),
-            "self_closures_per_edge": counts(LoopClosureRule::Edge),
-            "waypoints": world.graph.points.len(),
-            "edges": world.graph.edge_count(),
-            "waypoints_dropped": world.dropped,
-            "gap_waypoints_added": world.gap_fills,
-            "passage_waypoints_added": world.passage_fills,
-            "reachable_wall_fraction": world.reachable_walls,
-            "grid_step_m": self.world.geometry.grid_step,
-            "safety_buffer_m": self.world.geometry.buffer,
-            "wall_band_m": self.world.geometry.wall_band,
-            "initial_feasible": outcome.initial_feasible,
-            "precompute_s": precompute_s,
-        }));
+        let details = self.details(scenario, &world, best, &outcome, precompute_s);
         Ok(RunOutcome {
             // Every agent starts and ends at the stations, as every other planner's plan does.
             plan: {
