@@ -180,6 +180,43 @@ impl ExperimentFile {
             // The written config.toml shows every setting of the planner that ran.
             self.cell_order = Some(CellOrderSection::default());
         }
+        self.check_numbers(origin)?;
+        let map = self.load_map(origin, base, load)?;
+        let (robot, start, end) = self.robot_and_stations(origin, &map)?;
+        let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
+        let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
+        crate::fleet::config::waypoint_team(
+            &mut self.waypoint,
+            &self.robots,
+            self.fleet.as_ref(),
+            self.stations.start,
+            origin,
+        )?;
+        let b = self.budget;
+        let budget = Budget {
+            iterations: b.iterations,
+            evaluations: (b.evaluations > 0).then_some(b.evaluations),
+            wall_clock: (b.wall_clock_s > 0.0).then(|| Duration::from_secs_f64(b.wall_clock_s)),
+            stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
+            interrupt: None,
+        };
+        let planner =
+            PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget, checks })?;
+        let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
+        let diversity_every = self.output.diversity_every.unwrap_or(1);
+        if diversity_every == 0 {
+            return Err(err(
+                "output.diversity_every",
+                "= 0 is out of range: iterations between diversity measurements, at least 1".into(),
+            ));
+        }
+        self.stations.end = Some([end.x, end.y]);
+        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, diversity_every })
+    }
+
+    /// The seed, the robot's and the budget's numbers against their ranges.
+    fn check_numbers(&self, origin: &str) -> Result<(), ConfigError> {
+        let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         if self.seed > i64::MAX as u64 {
             return Err(err(
                 "seed",
@@ -202,7 +239,13 @@ impl ExperimentFile {
         if b.evaluations > i64::MAX as u64 {
             return Err(err("budget.evaluations", format!("= {} is out of range [0, {}]", b.evaluations, i64::MAX)));
         }
-        // The map: a preset by name, else a path (relative ones read from `base`).
+        Ok(())
+    }
+
+    /// The map of `[map]` (a preset by name, else a path, relative ones read from `base`),
+    /// loaded by `load` once its keys are checked.
+    fn load_map(&self, origin: &str, base: &Path, load: &MapLoader<'_>) -> Result<GridMap, ConfigError> {
+        let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let source =
             if crate::map::presets::preset(&self.map.source).is_some() || Path::new(&self.map.source).is_absolute() {
                 self.map.source.clone()
@@ -229,16 +272,23 @@ impl ExperimentFile {
                     .into(),
             ));
         }
-        let map = load(&source, &self.map.bare_image()).map_err(|e| err("map.source", e.to_string()))?;
+        load(&source, &self.map.bare_image()).map_err(|e| err("map.source", e.to_string()))
+    }
+
+    /// The robot and the stations on `map`: free, the robot's body fitting at both, and the end
+    /// reachable from the start.
+    fn robot_and_stations(&self, origin: &str, map: &GridMap) -> Result<(Footprint, Point, Point), ConfigError> {
+        let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+        let r = self.robot;
         let start = Point::new(self.stations.start[0], self.stations.start[1]);
         let end = self.stations.end.map_or(start, |e| Point::new(e[0], e[1]));
         map.check_station(start, "start").map_err(|m| err("stations.start", m))?;
         map.check_station(end, "end").map_err(|m| err("stations.end", m))?;
         let robot = Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed };
-        robot.check_fits(&map).map_err(|m| err("robot.width", m))?;
+        robot.check_fits(map).map_err(|m| err("robot.width", m))?;
         {
             use crate::map::reach::{station_misfit, unreachable_end};
-            let clear = crate::map::clearance::Clearance::new(&map, robot.width);
+            let clear = crate::map::clearance::Clearance::new(map, robot.width);
             if let Some(why) = station_misfit(&clear, start, "the start") {
                 return Err(err("stations.start", why));
             }
@@ -251,34 +301,6 @@ impl ExperimentFile {
                 return Err(err("stations.end", why));
             }
         }
-        let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
-        let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
-        crate::fleet::config::waypoint_team(
-            &mut self.waypoint,
-            &self.robots,
-            self.fleet.as_ref(),
-            self.stations.start,
-            origin,
-        )?;
-        let budget = Budget {
-            iterations: b.iterations,
-            evaluations: (b.evaluations > 0).then_some(b.evaluations),
-            wall_clock: (b.wall_clock_s > 0.0).then(|| Duration::from_secs_f64(b.wall_clock_s)),
-            stall_iterations: (b.stall_iterations > 0).then_some(b.stall_iterations),
-            interrupt: None,
-        };
-        let planner =
-            PlannerConfig::from_file(&self, &Context { origin, scenario: &scenario, budget: &budget, checks })?;
-        let output_dir = self.output.dir.clone().unwrap_or_else(|| PathBuf::from("out").join(stem));
-        let diversity_every = self.output.diversity_every.unwrap_or(1);
-        if diversity_every == 0 {
-            return Err(ConfigError::new(
-                origin,
-                "output.diversity_every",
-                "= 0 is out of range: iterations between diversity measurements, at least 1",
-            ));
-        }
-        self.stations.end = Some([end.x, end.y]);
-        Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, diversity_every })
+        Ok((robot, start, end))
     }
 }
