@@ -97,7 +97,17 @@ impl Figure for ParetoFigure {
             strip.draw(&Circle::new((x + 11, y), 5, crate::plot::series_colour(k).filled())).map_err(err)?;
             strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
         }
-        let (r, c) = self.shape();
+        let low = self.lower_corner();
+        for (area, facet) in root.split_evenly(self.shape()).iter().zip(&self.facets) {
+            draw_pareto_facet(area, facet, labels.is_empty(), low)?;
+        }
+        Ok(())
+    }
+}
+
+impl ParetoFigure {
+    /// The axes' lower corner shared by every panel: 0.05 below the lowest point, at least 0.
+    fn lower_corner(&self) -> (f64, f64) {
         let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
         for f in &self.facets {
             for p in f.points.iter().chain(&f.excluded) {
@@ -105,70 +115,77 @@ impl Figure for ParetoFigure {
                 lo_y = lo_y.min(p.1);
             }
         }
-        let (lo_x, lo_y) = ((lo_x - 0.05).max(0.0), (lo_y - 0.05).max(0.0));
-        for (area, facet) in root.split_evenly((r, c)).iter().zip(&self.facets) {
-            let caption = crate::plot::panel_label(&facet.label);
-            let mut chart = ChartBuilder::on(area)
-                .caption(&caption, crate::plot::fitting_text(&caption, area.dim_in_pixel().0, 16.0))
-                .margin(8)
-                .x_label_area_size(40)
-                .y_label_area_size(55)
-                .build_cartesian_2d(lo_x..1.0, lo_y..1.0)
-                .map_err(err)?;
-            chart
-                .configure_mesh()
-                .light_line_style(RGBColor(235, 235, 235))
-                .x_desc("t_final [-]")
-                .y_desc("cov_final [-]")
-                .label_style(text(13.0))
-                .axis_desc_style(text(14.0))
-                .draw()
-                .map_err(err)?;
-            if labels.is_empty() {
-                chart
-                    .draw_series(facet.points.iter().map(|&p| Circle::new(p, 3, RUN.filled())))
-                    .map_err(err)?
-                    .label(format!("executable runs ({})", facet.points.len()))
-                    .legend(|(x, y)| Circle::new((x + 8, y), 4, RUN.filled()));
-            } else {
-                let coloured = facet.points.iter().zip(&facet.kinds);
-                chart
-                    .draw_series(coloured.map(|(&p, &k)| Circle::new(p, 3, crate::plot::series_colour(k).filled())))
-                    .map_err(err)?;
-            }
-            if !facet.excluded.is_empty() {
-                let grey = RGBColor(120, 120, 120);
-                chart
-                    .draw_series(facet.excluded.iter().map(|&p| Cross::new(p, 4, grey.stroke_width(1))))
-                    .map_err(err)?
-                    .label(format!("not executable ({})", facet.excluded.len()))
-                    .legend(move |(x, y)| Cross::new((x + 8, y), 4, grey.stroke_width(1)));
-            }
-            let mut front: Vec<(f64, f64)> = facet.front.iter().map(|&i| facet.points[i]).collect();
-            front.sort_by(|a, b| a.0.total_cmp(&b.0));
-            chart.draw_series(LineSeries::new(front.iter().copied(), FRONT.stroke_width(1))).map_err(err)?;
-            if labels.is_empty() {
-                chart
-                    .draw_series(front.iter().map(|&p| Circle::new(p, 5, FRONT.filled())))
-                    .map_err(err)?
-                    .label(format!("non-dominated ({})", front.len()))
-                    .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
-            } else {
-                // A red ring around each front point, its planner's colour inside.
-                chart
-                    .draw_series(front.iter().map(|&p| Circle::new(p, 6, FRONT.stroke_width(2))))
-                    .map_err(err)?
-                    .label(format!("non-dominated ({})", front.len()))
-                    .legend(|(x, y)| Circle::new((x + 8, y), 6, FRONT.stroke_width(2)));
-                let on_front = facet.front.iter().map(|&i| (facet.points[i], facet.kinds[i]));
-                chart
-                    .draw_series(on_front.map(|(p, k)| Circle::new(p, 3, crate::plot::series_colour(k).filled())))
-                    .map_err(err)?;
-            }
-            crate::plot::series_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
-        }
-        Ok(())
+        ((lo_x - 0.05).max(0.0), (lo_y - 0.05).max(0.0))
     }
+}
+
+/// One panel of the Pareto figure: the executable runs (in their planner's colour when
+/// `one_kind` is false), the not executable ones as crosses, the front in red.
+fn draw_pareto_facet<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    facet: &ParetoFacet,
+    one_kind: bool,
+    (lo_x, lo_y): (f64, f64),
+) -> Result<(), String> {
+    let caption = crate::plot::panel_label(&facet.label);
+    let mut chart = ChartBuilder::on(area)
+        .caption(&caption, crate::plot::fitting_text(&caption, area.dim_in_pixel().0, 16.0))
+        .margin(8)
+        .x_label_area_size(40)
+        .y_label_area_size(55)
+        .build_cartesian_2d(lo_x..1.0, lo_y..1.0)
+        .map_err(err)?;
+    chart
+        .configure_mesh()
+        .light_line_style(RGBColor(235, 235, 235))
+        .x_desc("t_final [-]")
+        .y_desc("cov_final [-]")
+        .label_style(text(13.0))
+        .axis_desc_style(text(14.0))
+        .draw()
+        .map_err(err)?;
+    if one_kind {
+        chart
+            .draw_series(facet.points.iter().map(|&p| Circle::new(p, 3, RUN.filled())))
+            .map_err(err)?
+            .label(format!("executable runs ({})", facet.points.len()))
+            .legend(|(x, y)| Circle::new((x + 8, y), 4, RUN.filled()));
+    } else {
+        let coloured = facet.points.iter().zip(&facet.kinds);
+        chart
+            .draw_series(coloured.map(|(&p, &k)| Circle::new(p, 3, crate::plot::series_colour(k).filled())))
+            .map_err(err)?;
+    }
+    if !facet.excluded.is_empty() {
+        let grey = RGBColor(120, 120, 120);
+        chart
+            .draw_series(facet.excluded.iter().map(|&p| Cross::new(p, 4, grey.stroke_width(1))))
+            .map_err(err)?
+            .label(format!("not executable ({})", facet.excluded.len()))
+            .legend(move |(x, y)| Cross::new((x + 8, y), 4, grey.stroke_width(1)));
+    }
+    let mut front: Vec<(f64, f64)> = facet.front.iter().map(|&i| facet.points[i]).collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    chart.draw_series(LineSeries::new(front.iter().copied(), FRONT.stroke_width(1))).map_err(err)?;
+    if one_kind {
+        chart
+            .draw_series(front.iter().map(|&p| Circle::new(p, 5, FRONT.filled())))
+            .map_err(err)?
+            .label(format!("non-dominated ({})", front.len()))
+            .legend(|(x, y)| Circle::new((x + 8, y), 5, FRONT.filled()));
+    } else {
+        // A red ring around each front point, its planner's colour inside.
+        chart
+            .draw_series(front.iter().map(|&p| Circle::new(p, 6, FRONT.stroke_width(2))))
+            .map_err(err)?
+            .label(format!("non-dominated ({})", front.len()))
+            .legend(|(x, y)| Circle::new((x + 8, y), 6, FRONT.stroke_width(2)));
+        let on_front = facet.front.iter().map(|&i| (facet.points[i], facet.kinds[i]));
+        chart
+            .draw_series(on_front.map(|(p, k)| Circle::new(p, 3, crate::plot::series_colour(k).filled())))
+            .map_err(err)?;
+    }
+    crate::plot::series_legend(&mut chart, SeriesLabelPosition::LowerLeft)
 }
 
 /// Per-iteration diversity summary of one group: `(iteration, median, min, max)`.
