@@ -222,7 +222,16 @@ impl FleetSection {
         ctx: &Context,
     ) -> Result<super::planner::FleetPlanner, ConfigError> {
         let (origin, scenario, budget) = (ctx.origin, ctx.scenario, ctx.budget);
-        let method = match (self.mode, team) {
+        let method = self.method(team, budget, origin)?;
+        self.check_keys(retrain, budget, origin)?;
+        let fleet = validate(robots, scenario.robot, start, origin, &scenario.map)?;
+        self.check_fleet(&fleet, scenario, origin)?;
+        Ok(super::planner::FleetPlanner { fleet, name: self.name.clone(), method })
+    }
+
+    /// How the team plans under `fleet.mode`, refused where the file's planner cannot.
+    fn method(&self, team: Team, budget: &crate::planner::Budget, origin: &str) -> Result<FleetMethod, ConfigError> {
+        Ok(match (self.mode, team) {
             (FleetMode::Central, Team::Thesis(t)) => FleetMethod::Central(t),
             (FleetMode::Negotiate, Team::Thesis(t)) => FleetMethod::Negotiate(
                 t,
@@ -239,7 +248,11 @@ impl FleetSection {
                 return Err(wrong_planner(origin, "waypoint", mode));
             }
             (mode @ FleetMode::Waypoint, Team::Thesis(_)) => return Err(wrong_planner(origin, "thesis", mode)),
-        };
+        })
+    }
+
+    /// The section's own keys, and the budget keys and `[retrain]` a negotiation cannot honour.
+    fn check_keys(&self, retrain: bool, budget: &crate::planner::Budget, origin: &str) -> Result<(), ConfigError> {
         if self.mode == FleetMode::Negotiate {
             for (set, key) in [
                 (budget.wall_clock.is_some(), "budget.wall_clock_s"),
@@ -281,8 +294,13 @@ impl FleetSection {
                 ),
             ));
         }
+        Ok(())
+    }
+
+    /// The robots as the mode needs them: identical for the waypoint planner's team, distinct
+    /// start cells for area division.
+    fn check_fleet(&self, fleet: &Fleet, scenario: &crate::planner::Scenario, origin: &str) -> Result<(), ConfigError> {
         let r = scenario.robot;
-        let fleet = validate(robots, r, start, origin, &scenario.map)?;
         if self.mode == FleetMode::Waypoint
             && let Some(k) = fleet.robots().iter().position(|x| x.footprint != r)
         {
@@ -297,7 +315,7 @@ impl FleetSection {
             ));
         }
         if self.mode == FleetMode::Divide
-            && let Some((j, k)) = super::division::shared_start(&scenario.map, &fleet)
+            && let Some((j, k)) = super::division::shared_start(&scenario.map, fleet)
         {
             let names = (&fleet.robots()[j].name, &fleet.robots()[k].name);
             return Err(ConfigError::new(
@@ -310,7 +328,7 @@ impl FleetSection {
                 ),
             ));
         }
-        Ok(super::planner::FleetPlanner { fleet, name: self.name.clone(), method })
+        Ok(())
     }
 }
 
