@@ -9,7 +9,7 @@
 //! search that owes nothing to evolution, against which the GA has to earn its place.
 
 use super::local::improve_within;
-use super::search::{FINALISTS, Generation, ROUNDS, Searched, finalists, nearest_neighbour};
+use super::search::{FINALISTS, Generation, ROUNDS, Searched, finalists, nearest_neighbour, reads_left};
 use super::tour::{Instance, Tour};
 use crate::ga::rng::{Purpose, stream};
 use crate::planner::Budget;
@@ -109,9 +109,7 @@ impl Kicks<'_> {
     /// and remembered among the optima; with its cost.
     fn descend(&mut self, mut tour: Tour) -> (Tour, f64) {
         self.charged += 1.0;
-        let left = self
-            .budget_evaluations
-            .map_or(u64::MAX, |e| ((e as f64 - self.charged).max(0.0) * self.legs_per_tour).ceil() as u64);
+        let left = reads_left(self.budget_evaluations, self.charged, self.legs_per_tour);
         if left > 0 {
             self.charged += improve_within(self.inst, &mut tour, ROUNDS, left) as f64 / self.legs_per_tour;
         }

@@ -233,7 +233,7 @@ struct Generations<'a> {
 
 /// Leg reads a memetic step may still spend: what is left of an evaluation `budget` after
 /// `charged`, so that a long local search does not run far past it.
-fn reads_left(budget: Option<u64>, charged: f64, legs_per_tour: f64) -> u64 {
+pub(super) fn reads_left(budget: Option<u64>, charged: f64, legs_per_tour: f64) -> u64 {
     budget.map_or(u64::MAX, |e| ((e as f64 - charged).max(0.0) * legs_per_tour).ceil() as u64)
 }
 
