@@ -19,7 +19,7 @@ import tempfile
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping, Optional, Sequence, Union
+from typing import Any, List, Mapping, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -421,14 +421,23 @@ def report(
     runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
     maps swept keys to their baseline values (``{"thesis.moves": "straight"}``): each adds
     ``compare-KEY.md`` and ``.csv`` beside it (``covga report --compare``; the tables read back
-    with :func:`read_table`). ``compare_every_plan`` does the same over every plan, executable
-    or not (``--compare-every-plan``, ``compare-KEY-every-plan.md``)."""
+    with :func:`read_table`); a list of baselines (``{"cell_order.solver": ["nearest",
+    "boustrophedon"]}``) compares with each, into ``compare-KEY-BASELINE.md``.
+    ``compare_every_plan`` does the same over every plan, executable or not
+    (``--compare-every-plan``, ``compare-KEY-every-plan.md``)."""
     by = [by] if isinstance(by, str) else list(by)
 
     def text(v: Any) -> str:
         return str(v).lower() if isinstance(v, bool) else str(v)
 
     pairs = [(str(k), text(v)) for k, v in (where or {}).items()]
-    comparisons = [f"{k}={text(v)}" for k, v in (compare or {}).items()]
-    every = [f"{k}={text(v)}" for k, v in (compare_every_plan or {}).items()]
+    def each(m: Optional[Mapping[str, Any]]) -> List[str]:
+        out = []
+        for k, v in (m or {}).items():
+            values = v if isinstance(v, (list, tuple)) else [v]
+            out += [f"{k}={text(x)}" for x in values]
+        return out
+
+    comparisons = each(compare)
+    every = each(compare_every_plan)
     return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every))

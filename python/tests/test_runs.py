@@ -212,6 +212,11 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     assert (tmp_path / "py/report/compare-thesis.selection.csv").read_bytes() == (
         tmp_path / "cli/report/compare-thesis.selection.csv"
     ).read_bytes()
+    # Two baselines of one key: a file each, named by its baseline.
+    covga.report(tmp_path / "py", name="both", compare={"thesis.selection": ["elite", "tournament"]})
+    for baseline in ("elite", "tournament"):
+        both = covga.read_table(tmp_path / "py" / "report-both" / f"compare-thesis.selection-{baseline}.csv")
+        assert set(both["value"]) == {"elite", "tournament"} - {baseline}
     with pytest.raises(covga.ConfigError, match="no run has that value"):
         covga.report(tmp_path / "py", name="bad", compare={"thesis.selection": "rrws"})
     assert not (tmp_path / "py" / "report-bad").exists()

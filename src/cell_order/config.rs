@@ -19,6 +19,24 @@ pub enum Solver {
     /// Iterated local search ([`super::ils`]): the GTSP reference where Held–Karp cannot run,
     /// a strong search with no population and no crossover.
     Ils,
+    /// The no-search control ([`super::controls`]): the nearest-neighbour tour at each of
+    /// `directions` alone, completed as `completion` says; the common scorer picks the fastest.
+    Nearest,
+    /// The classical control ([`super::controls`]): one boustrophedon over the whole reachable
+    /// map at each of `directions`, completed as `completion` says (the GA's own completion);
+    /// the common scorer picks the fastest.
+    Boustrophedon,
+}
+
+impl Solver {
+    /// Whether this solver searches (reads the GA's or the local search's keys and the seed);
+    /// the exact solver and the two controls do not.
+    pub fn searches(self) -> bool {
+        match self {
+            Solver::Ga | Solver::Ils => true,
+            Solver::Exact | Solver::Nearest | Solver::Boustrophedon => false,
+        }
+    }
 }
 
 /// What the plan does about the cells its sweeps leave uncovered.
@@ -42,7 +60,7 @@ pub enum Completion {
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CellOrderSection {
-    /// `"ga"`, `"exact"` or `"ils"`.
+    /// `"ga"`, `"exact"`, `"ils"`, or a control: `"nearest"` or `"boustrophedon"`.
     pub solver: Solver,
     /// Lane directions offered to every cell, in degrees.
     pub directions: Vec<f64>,

@@ -4,13 +4,15 @@
 //! problem. Cells and their candidate sweeps come from [`sweeps`], wall-free transit costs
 //! between sweep ends from [`transit`], the tour problem from [`tour`]; the GA ([`search`],
 //! operators in [`operators`], the memetic step in [`local`]), the exact Held–Karp solver
-//! ([`exact`]) or the iterated local search of the GTSP reference ([`ils`]) orders them. The plan drives the chosen sweeps joined by
+//! ([`exact`]) or the iterated local search of the GTSP reference ([`ils`]) orders them; the
+//! controls with no search ([`controls`]) give the plans a search has to beat. The plan drives the chosen sweeps joined by
 //! [`crate::map::clearance::Clearance::connect`] routes, then the patterns' completion pass,
 //! then to the end station: executable by construction.
 
 pub mod boundary;
 pub mod cell_completion;
 pub mod config;
+pub mod controls;
 pub mod exact;
 pub mod ils;
 pub mod local;
@@ -199,11 +201,23 @@ impl Prepared<'_> {
         completion: Completion,
     ) -> (Vec<Point>, usize) {
         let (start, end) = stations;
-        let width = robot.width;
         let mut route = Route::new(start);
         for w in self.sweeps_of(tour) {
             route.drive(&self.clear, &w.points);
         }
+        self.complete(route, robot, end, completion)
+    }
+
+    /// `route` (a tour's sweeps or a control's lanes) with the strips it leaves uncovered
+    /// visited as `completion` says, then driven to `end`; with the targets it had to skip.
+    pub fn complete(
+        &self,
+        mut route: Route,
+        robot: &crate::coverage::Footprint,
+        end: Point,
+        completion: Completion,
+    ) -> (Vec<Point>, usize) {
+        let width = robot.width;
         match completion {
             Completion::None => {}
             Completion::Greedy => crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route),
@@ -256,16 +270,6 @@ pub fn local_optimum_plan_within(
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)
 }
 
-/// The nearest-neighbour tour at each of `directions` alone (a cell with no sweep at it takes
-/// any of its own): the tours of the no-search control.
-fn direction_tours(prepared: &Prepared, directions: &[f64]) -> Vec<Tour> {
-    let cells = &prepared.sweeps.cells;
-    directions
-        .iter()
-        .map(|&d| search::nearest_neighbour_among(&prepared.instance, |k, c| cells[k][c].direction_deg == d))
-        .collect()
-}
-
 /// A solved tour and what it cost to find.
 struct Solved {
     tour: Tour,
@@ -278,6 +282,9 @@ struct Solved {
     stop: StopReason,
     nearest: f64,
     exact: Option<f64>,
+    /// The boustrophedon control's plans, one per lane direction (a tour solver has none: its
+    /// plans are its finalists driven).
+    lanes: Vec<controls::Lanes>,
 }
 
 /// The lane coverage of a search's best tour (its sweeps without transit, over all free and
@@ -329,7 +336,7 @@ impl CellOrderConfig {
                 // Every tour is driven on wall-free routes: all members are feasible.
                 let members = match self.solver {
                     Solver::Ils => 1,
-                    Solver::Ga | Solver::Exact => self.ga.population as u32,
+                    Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => self.ga.population as u32,
                 };
                 let report = |g: &search::Generation| {
                     let (best_coverage, best_coverage_reach) = lanes.of(prepared, scenario, g.best.0);
@@ -347,12 +354,16 @@ impl CellOrderConfig {
                     };
                     observers.iter_mut().try_for_each(|o| o.generation(&record))
                 };
-                let seeds = if self.seed_directions { direction_tours(prepared, &self.directions) } else { Vec::new() };
+                let seeds = if self.seed_directions {
+                    controls::direction_tours(prepared, &self.directions)
+                } else {
+                    Vec::new()
+                };
                 let out = match self.solver {
                     Solver::Ils => {
                         ils::iterated_local_search(inst, self.ga.goal, &seeds, (seed, started), budget, report)?
                     }
-                    Solver::Ga | Solver::Exact => {
+                    Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => {
                         search::search_from(inst, &self.ga, &seeds, (seed, started), budget, report)?
                     }
                 };
@@ -366,6 +377,36 @@ impl CellOrderConfig {
                     stop: out.stop,
                     nearest: out.nearest_time_s,
                     exact: None,
+                    lanes: Vec::new(),
+                })
+            }
+            Solver::Nearest => {
+                let tours = controls::direction_tours(prepared, &self.directions);
+                Ok(Solved {
+                    tour: tours[0].clone(),
+                    cost: inst.cost(&tours[0], self.coverage_goal),
+                    finalists: tours,
+                    evaluations: 0,
+                    iterations: 0,
+                    stop: StopReason::Completed,
+                    nearest: inst.time(&search::nearest_neighbour(inst)),
+                    exact: None,
+                    lanes: Vec::new(),
+                })
+            }
+            Solver::Boustrophedon => {
+                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
+                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+                Ok(Solved {
+                    tour: Tour { order: Vec::new(), choice: Vec::new() },
+                    cost: 0.0,
+                    finalists: Vec::new(),
+                    evaluations: 0,
+                    iterations: 0,
+                    stop: StopReason::Completed,
+                    nearest: inst.time(&search::nearest_neighbour(inst)),
+                    exact: None,
+                    lanes,
                 })
             }
             Solver::Exact => {
@@ -389,6 +430,7 @@ impl CellOrderConfig {
                     stop: StopReason::Completed,
                     nearest: inst.time(&search::nearest_neighbour(inst)),
                     exact: Some(cost),
+                    lanes: Vec::new(),
                 })
             }
         }
@@ -414,27 +456,34 @@ impl CellOrderConfig {
         (self.wall_directions > 0).then_some(self.directions.as_slice())
     }
 
-    /// The plan of the solver's best tour; with a coverage goal, of the finalist whose path
-    /// reaches it first on the common scorer's coverage curve (not the tour cost's estimate),
-    /// ended where it does and driven to the end station.
-    fn chosen_plan(&self, prepared: &Prepared, finalists: &[Tour], s: &Scenario, grid: &CoverageGrid) -> Chosen {
-        let drive = |t: &Tour| prepared.path(t, &s.robot, (s.start, s.end), self.completion);
+    /// The plan a run returns among `candidates` (the solver's finalists driven, its best
+    /// first, or a control's plans): with a coverage goal, the one whose common-scorer coverage
+    /// curve reaches it first (not the tour cost's estimate), ended where it does and driven to
+    /// the end station; without one, a searching solver's best, or for a control the fastest of
+    /// the plans within [`controls::COVERAGE_TIE`] of the best coverage.
+    fn chosen_plan(
+        &self,
+        prepared: &Prepared,
+        candidates: Vec<(Vec<Point>, usize)>,
+        s: &Scenario,
+        grid: &CoverageGrid,
+    ) -> Chosen {
+        let curve =
+            |path: &Vec<Point>| CoverageCurve::of_plan(grid, &prepared.reach, std::slice::from_ref(path), &[s.robot]);
         let Some(goal) = self.coverage_goal else {
-            let (path, skipped) = drive(&finalists[0]);
-            return Chosen { index: 0, path, skipped, goal: None };
+            let index = match self.solver {
+                Solver::Ga | Solver::Ils | Solver::Exact => 0,
+                Solver::Nearest | Solver::Boustrophedon => {
+                    controls::fastest_at_best_coverage(&candidates.iter().map(|(p, _)| curve(p)).collect::<Vec<_>>())
+                }
+            };
+            let (path, skipped) = candidates.into_iter().nth(index).expect("a solver hands over one plan at least");
+            return Chosen { index, path, skipped, goal: None };
         };
-        let mut times = Vec::with_capacity(finalists.len());
-        let mut best: Option<(usize, Vec<Point>, usize)> = None;
-        for (i, tour) in finalists.iter().enumerate() {
-            let (path, skipped) = drive(tour);
-            let curve = CoverageCurve::of_plan(grid, &prepared.reach, std::slice::from_ref(&path), &[s.robot]);
-            let t = time_to_goal(&curve, goal);
-            if best.as_ref().is_none_or(|b| t < times[b.0]) {
-                best = Some((i, path, skipped));
-            }
-            times.push(t);
-        }
-        let (index, path, skipped) = best.expect("a solver hands over one tour at least");
+        let times: Vec<f64> = candidates.iter().map(|(p, _)| time_to_goal(&curve(p), goal)).collect();
+        // The first of the fastest: a searching solver's best wins a tie.
+        let index = (0..times.len()).fold(0, |best, i| if times[i] < times[best] { i } else { best });
+        let (path, skipped) = candidates.into_iter().nth(index).expect("a solver hands over one plan at least");
         let path = end_at_goal(&prepared.clear, &prepared.reach, grid, &s.robot, path, goal, s.end);
         Chosen { index, path, skipped, goal: Some((goal, times[index], times)) }
     }
@@ -490,6 +539,7 @@ fn details_of(
     skipped: usize,
     goal: Option<(f64, f64, Vec<f64>)>,
     directions: Option<&[f64]>,
+    control_direction: Option<f64>,
 ) -> serde_json::Map<String, serde_json::Value> {
     let inst = &prepared.instance;
     let tour: Vec<serde_json::Value> = prepared
@@ -512,6 +562,9 @@ fn details_of(
     }
     if let Some(d) = directions {
         details.insert("directions_deg".into(), d.into());
+    }
+    if let Some(d) = control_direction {
+        details.insert("control_direction_deg".into(), d.into());
     }
     if let Some((goal, time_s, finalists)) = goal {
         details.insert("coverage_goal".into(), goal.into());
@@ -545,13 +598,33 @@ impl Planner for CellOrderConfig {
             .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
         let mut solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
-        let chosen = self.chosen_plan(&prepared, &solved.finalists, s, &grid);
-        if self.coverage_goal.is_some() {
-            solved.evaluations += solved.finalists.len() as u64;
+        let candidates: Vec<(Vec<Point>, usize)> = match self.solver {
+            Solver::Boustrophedon => solved.lanes.iter().map(|l| (l.path.clone(), l.skipped)).collect(),
+            Solver::Ga | Solver::Ils | Solver::Exact | Solver::Nearest => {
+                // Without a goal a searching solver returns its best: only that one is driven.
+                let all = self.coverage_goal.is_some() || self.solver == Solver::Nearest;
+                let tours = if all { &solved.finalists[..] } else { &solved.finalists[..1] };
+                tours.iter().map(|t| prepared.path(t, &s.robot, (s.start, s.end), self.completion)).collect()
+            }
+        };
+        // The common scorer reads every candidate where it chooses among them.
+        if self.coverage_goal.is_some() || !self.solver.searches() && self.solver != Solver::Exact {
+            solved.evaluations += candidates.len() as u64;
         }
-        solved.tour = solved.finalists[chosen.index].clone();
-        solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
+        let chosen = self.chosen_plan(&prepared, candidates, s, &grid);
+        let control_direction = match self.solver {
+            Solver::Nearest | Solver::Boustrophedon => Some(self.directions[chosen.index]),
+            Solver::Ga | Solver::Ils | Solver::Exact => None,
+        };
+        if let Some(tour) = solved.finalists.get(chosen.index) {
+            solved.tour = tour.clone();
+            solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
+        }
         let (path, skipped) = (chosen.path, chosen.skipped);
+        if self.solver == Solver::Boustrophedon {
+            // No tour: the cost is the plan's own mission time.
+            solved.cost = crate::coverage::curve::segment_end_times(&path, &s.robot).last().copied().unwrap_or(0.0);
+        }
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, s.map.resolution(), s.projection);
         Ok(RunOutcome {
@@ -564,11 +637,18 @@ impl Planner for CellOrderConfig {
             iterations: solved.iterations,
             stop: solved.stop,
             wall_s: started.elapsed().as_secs_f64(),
-            details: details_of(&prepared, &solved, skipped, chosen.goal, self.wall_directions_used()),
+            details: details_of(
+                &prepared,
+                &solved,
+                skipped,
+                chosen.goal,
+                self.wall_directions_used(),
+                control_direction,
+            ),
             files: Vec::new(),
             history: match self.solver {
                 Solver::Ga | Solver::Ils => crate::planner::History::Generations,
-                Solver::Exact => crate::planner::History::None,
+                Solver::Exact | Solver::Nearest | Solver::Boustrophedon => crate::planner::History::None,
             },
             agents: Vec::new(),
             artifacts: Box::new(()),

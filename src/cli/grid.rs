@@ -295,7 +295,8 @@ pub struct ReportArgs {
     /// Compare every other value of a swept parameter with BASELINE, within each combination of
     /// the other parameters, runs paired by seed, executable plans only (coverage and mission
     /// time; bootstrap intervals, Wilcoxon signed-rank tests, Holm-corrected): writes
-    /// `compare-KEY.md` and `.csv` into the report folder. Repeatable.
+    /// `compare-KEY.md` and `.csv` into the report folder (`compare-KEY-BASELINE.*` where one
+    /// key is compared with several baselines). Repeatable.
     #[arg(long, value_name = "KEY=BASELINE")]
     compare: Vec<String>,
     /// As --compare, over every plan, executable or not (what the planner optimised, whether a

@@ -68,6 +68,14 @@ fn unread_by_cell_order(file: &ExperimentFile, key: &str) -> Option<String> {
                 .into(),
         ),
         Solver::Ils => None,
+        Solver::Nearest | Solver::Boustrophedon if CELL_ORDER_GA_KEYS.contains(&key) => Some(format!(
+            "cell_order.solver = \"{}\" is a control with no search (it reads the directions, completion and coverage_goal)",
+            if section.solver == Solver::Nearest { "nearest" } else { "boustrophedon" }
+        )),
+        Solver::Boustrophedon if key == "cell_order.completion_m_per_m2" => {
+            Some("cell_order.solver = \"boustrophedon\" drives whole-map lanes: no tour cost charges completion".into())
+        }
+        Solver::Nearest | Solver::Boustrophedon => None,
         Solver::Ga => {
             unread_by_scheme(section.selection.as_str(), key, |p| Some(crate::cell_order::config::param_key(p)))
                 .then(|| format!("cell_order.selection = \"{}\" does not use it", section.selection.as_str()))
@@ -237,6 +245,8 @@ mod tests {
         let cell_ga = file("planner = \"cell_order\"\n");
         let cell_elite = file("planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"\n");
         let cell_exact = file("planner = \"cell_order\"\n[cell_order]\nsolver = \"exact\"\n");
+        let cell_nearest = file("planner = \"cell_order\"\n[cell_order]\nsolver = \"nearest\"\n");
+        let cell_lanes = file("planner = \"cell_order\"\n[cell_order]\nsolver = \"boustrophedon\"\n");
         for (f, key, ignored) in [
             (&elite, "thesis.init_individuals", true),
             (&elite, "thesis.keep", true),
@@ -281,6 +291,14 @@ mod tests {
             (&cell_exact, "cell_order.memetic", true),
             (&cell_exact, "cell_order.directions", false),
             (&cell_exact, "cell_order.completion", false),
+            (&cell_nearest, "cell_order.population", true),
+            (&cell_nearest, "cell_order.seed_directions", true),
+            (&cell_nearest, "cell_order.coverage_goal", false),
+            (&cell_nearest, "cell_order.completion_m_per_m2", false),
+            (&cell_lanes, "cell_order.memetic", true),
+            (&cell_lanes, "cell_order.completion_m_per_m2", true),
+            (&cell_lanes, "cell_order.directions", false),
+            (&cell_lanes, "cell_order.completion", false),
         ] {
             assert_eq!(why_ignored(f, key).is_some(), ignored, "{key} under {:?}", f.planner);
         }

@@ -195,11 +195,14 @@ impl PlannerConfig {
 }
 
 impl ExperimentFile {
-    /// Whether the plan ignores the seed: a deterministic planner, or a fleet whose mode plans
-    /// in one step (area division). Grid studies run such a configuration once.
+    /// Whether the plan ignores the seed: a deterministic planner, a cell-order solver that does
+    /// not search (the exact solver and the controls), or a fleet whose mode plans in one step
+    /// (area division). Grid studies run such a configuration once.
     pub fn is_deterministic(&self) -> bool {
         if self.robots.is_empty() {
-            self.planner.is_deterministic()
+            let settled_cell_order = self.planner == PlannerKind::CellOrder
+                && self.cell_order.as_ref().is_some_and(|c| !c.solver.searches());
+            self.planner.is_deterministic() || settled_cell_order
         } else {
             self.fleet.as_ref().map_or(crate::fleet::config::FleetMode::default(), |f| f.mode).is_deterministic()
         }

@@ -13,6 +13,7 @@
 //! from the others (a budget set per map) are not strata of their own and are named.
 
 mod pooled;
+mod strongest;
 
 use super::design::{followed_by, split_followers};
 use super::{ReportError, cmp_group_values, param_columns};
@@ -131,11 +132,22 @@ struct Design {
     kept: Vec<usize>,
     /// Parameters that follow the strata's own (confounded with them), with the ones they follow.
     followers: Vec<(String, String)>,
+    /// Parameters set under some compared values only (never on the baseline's runs): written
+    /// into those values' labels.
+    nested: Vec<String>,
+    /// With several controls as the baseline: the strongest in each stratum.
+    strongest: BTreeMap<String, String>,
     /// `(stratum, value) → seed → row`.
     cells: BTreeMap<(String, String), BTreeMap<String, usize>>,
 }
 
 impl Design {
+    /// Whether some compared configuration ran once while others ran over several seeds.
+    fn once_run(&self) -> bool {
+        let sizes: std::collections::BTreeSet<usize> = self.cells.values().map(BTreeMap::len).collect();
+        sizes.contains(&1) && sizes.iter().any(|&n| n > 1)
+    }
+
     /// Whether the comparisons are also pooled over the strata: when there is more than one.
     fn pooled(&self) -> bool {
         let mut strata = self.cells.keys().map(|(s, _)| s);
@@ -144,8 +156,15 @@ impl Design {
 }
 
 fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
-    let candidates: Vec<usize> =
+    let others: Vec<usize> =
         param_columns(t).into_iter().filter(|p| *p != cmp.key).filter_map(|name| t.col(&name)).collect();
+    // A parameter set only under some of the compared values (the GA's memetic step under
+    // `solver = "ga"`) is empty on every baseline row: it is part of those values, not a stratum.
+    let controls = strongest::controls(&cmp.baseline);
+    let is_baseline = |r: &Vec<String>| controls.contains(&r[key].as_str());
+    let (nested, candidates): (Vec<usize>, Vec<usize>) = others.into_iter().partition(|&c| {
+        t.rows.iter().filter(|r| is_baseline(r)).all(|r| r[c].is_empty()) && t.rows.iter().any(|r| !r[c].is_empty())
+    });
     let (kept, followers) = split_followers(t, &candidates);
     let strata: Vec<String> = kept.iter().map(|&c| t.header[c].clone()).collect();
     let followers: Vec<(String, String)> = followers.into_iter().map(|(c, of)| (t.header[c].clone(), of)).collect();
@@ -153,9 +172,42 @@ fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
     let mut cells: BTreeMap<(String, String), BTreeMap<String, usize>> = BTreeMap::new();
     for (i, r) in t.rows.iter().enumerate() {
         let label = kept.iter().map(|&c| format!("{}={}", t.header[c], r[c])).collect::<Vec<_>>().join(", ");
-        cells.entry((label, r[key].clone())).or_default().insert(r[seed].clone(), i);
+        let mut value = r[key].clone();
+        for &c in nested.iter().filter(|&&c| !r[c].is_empty()) {
+            let _ = write!(value, " ({}={})", t.header[c], r[c]);
+        }
+        cells.entry((label, value)).or_default().insert(r[seed].clone(), i);
     }
-    Design { strata, kept, followers, cells }
+    let nested = nested.iter().map(|&c| t.header[c].clone()).collect();
+    // Several controls: each stratum's strongest stands for the baseline there, the controls
+    // themselves are not compared.
+    let mut strongest = BTreeMap::new();
+    if controls.len() > 1 {
+        strongest = strongest::per_stratum(t, &cells, &controls);
+        for (stratum, control) in &strongest {
+            let runs = cells[&(stratum.clone(), control.clone())].clone();
+            cells.insert((stratum.clone(), cmp.baseline.clone()), runs);
+        }
+        cells.retain(|(_, v), _| !controls.contains(&v.as_str()));
+    }
+    Design { strata, kept, followers, nested, strongest, cells }
+}
+
+/// The pairs of a baseline's runs and a value's, by seed; where one side ran once and the other
+/// over several seeds (a grid runs a configuration whose planner reads no seed once), its one
+/// run pairs with every run of the other.
+fn seed_pairs(base: &BTreeMap<String, usize>, other: &BTreeMap<String, usize>) -> Vec<(usize, usize)> {
+    match (base.len(), other.len()) {
+        (1, n) if n > 1 => {
+            let b = *base.values().next().expect("one run");
+            other.values().map(|&o| (b, o)).collect()
+        }
+        (n, 1) if n > 1 => {
+            let o = *other.values().next().expect("one run");
+            base.values().map(|&b| (b, o)).collect()
+        }
+        _ => base.iter().filter_map(|(seed, &b)| other.get(seed).map(|&o| (b, o))).collect(),
+    }
 }
 
 /// A comparison made, not yet written: its files' names and texts.
@@ -202,7 +254,25 @@ pub fn render_all(
             t.rows.retain(|r| super::cell_matches(&r[c], want));
         }
     }
-    comparisons.iter().map(|c| render(&t, c)).collect()
+    let mut rendered: Vec<Rendered> = comparisons.iter().map(|c| render(&t, c)).collect::<Result<_, _>>()?;
+    // Several baselines of one key (and kind of plans) would share a file: each then names its
+    // baseline.
+    let shared: Vec<bool> = rendered.iter().map(|r| rendered.iter().filter(|o| o.stem == r.stem).count() > 1).collect();
+    for i in 0..rendered.len() {
+        if shared[i] {
+            let safe = safe_name(&comparisons[i].baseline);
+            rendered[i].stem = match comparisons[i].plans {
+                Plans::Executable => format!("{}-{safe}", rendered[i].stem),
+                Plans::Every => format!("{}-{safe}-every-plan", rendered[i].stem.trim_end_matches("-every-plan")),
+            };
+        }
+    }
+    Ok(rendered)
+}
+
+/// `text` with characters other than letters, digits, `.` and `-` as `_`, for a file name.
+fn safe_name(text: &str) -> String {
+    text.chars().map(|c| if c.is_ascii_alphanumeric() || c == '.' || c == '-' { c } else { '_' }).collect()
 }
 
 /// Writes `compare-KEY.md` and `compare-KEY.csv` into `out` and returns the markdown's path.
@@ -222,9 +292,11 @@ fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String
     let mut values: Vec<String> = t.rows.iter().map(|r| r[key].clone()).collect();
     values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
     values.dedup();
-    if !values.contains(&cmp.baseline) {
+    let controls = strongest::controls(&cmp.baseline);
+    if let Some(missing) = controls.iter().find(|c| !values.iter().any(|v| v == *c)) {
+        let which = if controls.len() > 1 { format!("the value {missing}") } else { "that value".to_string() };
         return Err(input(format!(
-            "--compare {}={}: no run has that value; values: {}",
+            "--compare {}={}: no run has {which}; values: {}",
             cmp.key,
             cmp.baseline,
             values.join(", ")
@@ -241,8 +313,12 @@ fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String
 /// Makes the comparison `cmp` of the runs `t`.
 pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
     let input = |m: String| ReportError::Input(m);
-    let (key, values) = compared_values(t, cmp)?;
+    let (key, _) = compared_values(t, cmp)?;
     let d = design(t, cmp, key);
+    // The compared values as labelled (with the parameters nested in them), in order.
+    let mut values: Vec<String> = d.cells.keys().map(|(_, v)| v.clone()).collect();
+    values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
+    values.dedup();
     let executable = |r: usize| t.col("executable").is_none_or(|c| t.rows[r][c] == "true");
     let mut rows = Vec::new();
     let mut strata: Vec<&String> = d.cells.keys().map(|(s, _)| s).collect();
@@ -252,8 +328,7 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
         for value in values.iter().filter(|v| **v != cmp.baseline) {
             let Some(other) = d.cells.get(&(stratum.clone(), value.clone())) else { continue };
             let exec = |m: &BTreeMap<String, usize>| m.values().filter(|&&r| executable(r)).count();
-            let pairs: Vec<(usize, usize)> =
-                base.iter().filter_map(|(seed, &b)| other.get(seed).map(|&o| (b, o))).collect();
+            let pairs = seed_pairs(base, other);
             rows.push((stratum.clone(), value.clone(), (base.len(), other.len()), (exec(base), exec(other)), pairs));
         }
     }
@@ -280,6 +355,13 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
     };
     let _ = writeln!(md, "# `{}`: each value against `{}`{every}\n", cmp.key, cmp.baseline);
     let _ = writeln!(md, "{}\n", intro(&d, cmp));
+    if !d.strongest.is_empty() {
+        md.push_str("| stratum | strongest control |\n| --- | --- |\n");
+        for (stratum, control) in &d.strongest {
+            let _ = writeln!(md, "| {} | {control} |", if stratum.is_empty() { "all" } else { stratum });
+        }
+        md.push('\n');
+    }
     let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
         rows.iter()
             .map(|(stratum, value, runs, exec, pairs)| Row {
@@ -308,8 +390,7 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
         let metric_rows = as_rows(&|r| num(r, m.column), both_executable);
         section(&mut md, &mut csv, m, &metric_rows, cmp);
     }
-    let safe: String =
-        cmp.key.chars().map(|c| if c.is_ascii_alphanumeric() || c == '.' || c == '-' { c } else { '_' }).collect();
+    let safe = safe_name(&cmp.key);
     let suffix = match cmp.plans {
         Plans::Executable => "",
         Plans::Every => "-every-plan",
@@ -346,6 +427,27 @@ fn intro(d: &Design, cmp: &Comparison) -> String {
     );
     for (name, of) in &d.followers {
         let _ = write!(s, " `{name}` follows {of} (confounded with it: not a stratum of its own).");
+    }
+    for name in &d.nested {
+        let _ = write!(
+            s,
+            " `{name}` is set under some values of `{}` only: the values are told apart by it, not stratified.",
+            cmp.key
+        );
+    }
+    if !d.strongest.is_empty() {
+        let _ = write!(
+            s,
+            " `{}` stands for the strongest of these controls in each stratum: the one whose executable \
+             plans have the lowest median `time_s` there (named stratum by stratum below).",
+            cmp.baseline,
+        );
+    }
+    if d.once_run() {
+        s.push_str(
+            " Where one side of a comparison ran once (a configuration whose planner reads no seed \
+             runs once in a grid) its one run pairs with every seed of the other.",
+        );
     }
     if d.pooled() {
         s.push_str(
@@ -627,6 +729,54 @@ mod tests {
         RunsTable::parse(&text).unwrap()
     }
 
+    /// A control run once (it reads no seed) against a GA over 6 seeds, with and without a
+    /// step (`memetic`) that is set under `solver = "ga"` only.
+    fn control_table() -> RunsTable {
+        let metrics = metric_columns();
+        let mut text = format!("run_id,config_id,replicate,seed,solver,memetic,{}\n", metrics.join(","));
+        let mut line = |id: String, rep: usize, solver: &str, memetic: &str, time: f64| {
+            let fields: Vec<String> = metrics
+                .iter()
+                .map(|m| match m.as_str() {
+                    "planner" => "cell_order".into(),
+                    "executable" => "true".into(),
+                    "cov_final_reach" => "0.9".into(),
+                    "time_s" => time.to_string(),
+                    _ => "0".into(),
+                })
+                .collect();
+            let _ =
+                writeln!(text, "{id},c{solver}{memetic},{rep},{},{solver},{memetic},{}", 100 + rep, fields.join(","));
+        };
+        line("n".into(), 0, "nearest", "", 100.0);
+        for s in 0..6 {
+            line(format!("t{s}"), s, "ga", "true", 90.0 - s as f64);
+            line(format!("f{s}"), s, "ga", "false", 110.0 + s as f64);
+        }
+        RunsTable::parse(&text).unwrap()
+    }
+
+    #[test]
+    fn a_control_run_once_pairs_with_every_seed_and_nested_settings_label_the_values() {
+        let dir = tempfile::tempdir().unwrap();
+        let md = write(&control_table(), &Comparison::parse("solver=nearest").unwrap(), dir.path()).unwrap();
+        let text = std::fs::read_to_string(&md).unwrap();
+        assert!(text.contains("`memetic` is set under some values of `solver` only"), "{text}");
+        assert!(text.contains("its one run pairs with every seed of the other"), "{text}");
+        let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-solver.csv")).unwrap()).unwrap();
+        let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
+        let time = |value: &str| {
+            csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "value") == value).cloned().unwrap()
+        };
+        let (with, without) = (time("ga (memetic=true)"), time("ga (memetic=false)"));
+        assert_eq!((get(&with, "pairs"), get(&without, "pairs")), ("6".into(), "6".into()));
+        assert_eq!((get(&with, "runs_baseline"), get(&with, "runs_value")), ("1".into(), "6".into()));
+        // Faster in all six pairs, slower in all six: exact p = 2/2⁶ each.
+        assert_eq!((get(&with, "value_better"), get(&without, "value_worse")), ("6".into(), "6".into()));
+        assert_eq!(get(&with, "p").parse::<f64>().unwrap(), 2.0 / 64.0);
+        assert_eq!(get(&with, "estimate").parse::<f64>().unwrap(), 87.5 / 100.0);
+    }
+
     #[test]
     fn pairs_by_seed_within_strata_corrects_the_family_and_names_the_confounded_column() {
         let dir = tempfile::tempdir().unwrap();
@@ -720,6 +870,7 @@ mod tests {
         };
         assert!(err("budget=1000").contains("`budget` follows map (confounded with it)"), "{}", err("budget=1000"));
         assert!(err("a=c").contains("no run has that value; values: a, b"), "{}", err("a=c"));
+        assert!(err("a=a|c").contains("no run has the value c; values: a, b"), "{}", err("a=a|c"));
         assert!(err("time_s=1").contains("not a swept parameter; swept: a, map, budget"), "{}", err("time_s=1"));
         assert!(Comparison::parse("a").is_err() && Comparison::parse("=x").is_err());
         assert!(Comparison::parse_every_plan("a").unwrap_err().starts_with("--compare-every-plan a:"));

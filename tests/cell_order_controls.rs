@@ -1,0 +1,99 @@
+//! The cell-order planner's controls: plans with no search, from the same decomposition,
+//! routes and completion as its searches. The classical control at one direction with the
+//! patterns' completion is the boustrophedon planner's plan exactly; the controls read no seed
+//! and run once in a grid; the common scorer keeps the fastest of their plans; a GA seeded with
+//! the no-search control's tours never returns a plan slower to the goal than the control's.
+
+use covga::cell_order::config::{CellOrderSection, Completion, Solver};
+use covga::coverage::Footprint;
+use covga::coverage::fitness::Projection;
+use covga::coverage::score::{CameraSpec, Scorer};
+use covga::geom::Point;
+use covga::patterns::planner::{PatternKind, PatternSection};
+use covga::planner::{Budget, Checks, Context, Planner, Scenario};
+
+fn scenario(map: &str, start: Point, rot_speed: f64) -> Scenario {
+    Scenario {
+        map: covga::map::presets::preset(map).unwrap(),
+        robot: Footprint { width: 0.6, speed: 0.3, rot_speed },
+        start,
+        end: start,
+        projection: Projection::F2,
+        camera: CameraSpec { scale: 0.1, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 },
+    }
+}
+
+fn times(details: &serde_json::Map<String, serde_json::Value>, key: &str) -> Vec<f64> {
+    details[key].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect()
+}
+
+#[test]
+fn the_classical_control_at_one_direction_with_greedy_completion_is_the_boustrophedon_plan() {
+    let s = scenario("office", Point::new(2.0, 2.0), 0.52);
+    let budget = Budget::iterations(10);
+    let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: Checks::Full };
+    for angle in [0.0, 45.0] {
+        let control = CellOrderSection {
+            solver: Solver::Boustrophedon,
+            directions: vec![angle],
+            completion: Completion::Greedy,
+            ..CellOrderSection::default()
+        }
+        .validate(&ctx)
+        .unwrap();
+        let pattern =
+            PatternSection { angle_deg: angle, complete: true }.validate(PatternKind::Boustrophedon, &ctx).unwrap();
+        let a = control.run(&s, 1, &budget, &mut []).unwrap();
+        let b = pattern.run(&s, 1, &budget, &mut []).unwrap();
+        assert_eq!(a.plan, b.plan, "angle {angle}");
+        assert_eq!(a.details["control_direction_deg"].as_f64(), Some(angle));
+    }
+}
+
+#[test]
+fn the_controls_read_no_seed_and_keep_the_plan_the_scorer_finds_fastest_to_the_goal() {
+    let s = scenario("office", Point::new(2.0, 2.0), 0.52);
+    let budget = Budget::iterations(10);
+    let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: Checks::Full };
+    let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
+    for solver in [Solver::Nearest, Solver::Boustrophedon] {
+        let section = CellOrderSection { solver, coverage_goal: Some(0.9), ..CellOrderSection::default() };
+        let planner = section.validate(&ctx).unwrap();
+        let a = planner.run(&s, 1, &budget, &mut []).unwrap();
+        assert_eq!(a.plan, planner.run(&s, 2, &budget, &mut []).unwrap().plan, "{solver:?}: the seed is not read");
+        assert_eq!(a.evaluations, 4, "{solver:?}: one plan per direction, each scored once");
+        let finalists = times(&a.details, "finalists_time_to_goal_s");
+        let fastest = finalists.iter().copied().fold(f64::INFINITY, f64::min);
+        assert_eq!(a.details["time_to_goal_s"].as_f64(), Some(fastest), "{solver:?}: {finalists:?}");
+        let i = finalists.iter().position(|&t| t == fastest).unwrap();
+        assert_eq!(a.details["control_direction_deg"].as_f64(), Some(section.directions[i]));
+        let score = scorer.score(&a.plan);
+        assert!(score.executable && score.cov_final_reach >= 0.9 - 1e-9, "{solver:?}: {score:?}");
+    }
+}
+
+#[test]
+fn a_ga_seeded_with_the_control_tours_is_never_slower_to_the_goal_than_the_control() {
+    let s = scenario("office-ring", Point::new(8.75, 8.75), 0.52);
+    let budget = Budget { evaluations: Some(2_000), ..Budget::iterations(1_000_000) };
+    let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: Checks::Full };
+    let goal = Some(0.9);
+    let control = CellOrderSection { solver: Solver::Nearest, coverage_goal: goal, ..CellOrderSection::default() };
+    let control = control.validate(&ctx).unwrap().run(&s, 1, &budget, &mut []).unwrap();
+    let control_time = control.details["time_to_goal_s"].as_f64().unwrap();
+    for seed in [1, 2] {
+        let ga = CellOrderSection { seed_directions: true, coverage_goal: goal, ..CellOrderSection::default() };
+        let ga = ga.validate(&ctx).unwrap().run(&s, seed, &budget, &mut []).unwrap();
+        let t = ga.details["time_to_goal_s"].as_f64().unwrap();
+        assert!(t <= control_time, "seed {seed}: GA {t} s, control {control_time} s");
+    }
+}
+
+#[test]
+fn a_grid_runs_the_controls_and_the_exact_solver_once() {
+    for (solver, once) in [("ga", false), ("ils", false), ("exact", true), ("nearest", true), ("boustrophedon", true)] {
+        let text = format!("planner = \"cell_order\"\n[cell_order]\nsolver = \"{solver}\"\n");
+        let file = covga::experiment::ExperimentFile::parse(&text, "t.toml").unwrap();
+        assert_eq!(file.is_deterministic(), once, "{solver}");
+    }
+}
