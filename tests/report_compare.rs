@@ -5,6 +5,18 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
+/// A committed study's `runs.csv` (or its `runs.csv.xz`, decompressed).
+fn committed_runs(folder: &Path) -> Vec<u8> {
+    let plain = folder.join("runs.csv");
+    if plain.exists() {
+        return std::fs::read(plain).unwrap();
+    }
+    let packed = std::fs::read(folder.join("runs.csv.xz")).unwrap();
+    let mut out = Vec::new();
+    lzma_rs::xz_decompress(&mut std::io::Cursor::new(packed), &mut out).unwrap();
+    out
+}
+
 fn covga(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
 }
@@ -94,20 +106,33 @@ fn a_comparison_that_cannot_be_made_exits_2_and_writes_nothing() {
 /// study's `compare-*` files re-made from its `runs.csv` and `study.json` alone, byte for byte.
 #[test]
 fn committed_comparisons_are_remade_byte_for_byte() {
-    let studies: [(&str, &[&str], &[&str]); 2] = [
-        ("results/init-dist", &["thesis.init_dist_max=3.0"], &["thesis.init_dist_max=3.0"]),
+    // (study, report folder and the arguments that name and filter it, --compare, --compare-every-plan)
+    type Study<'a> = (&'a str, (&'a str, &'a [&'a str]), &'a [&'a str], &'a [&'a str]);
+    let studies: [Study; 3] = [
+        ("results/init-dist", ("report", &[]), &["thesis.init_dist_max=3.0"], &["thesis.init_dist_max=3.0"]),
         (
             "results/thesis-real-maps",
+            ("report", &[]),
             &["thesis.moves=straight", "thesis.seed_population=[]", "thesis.selection=elite"],
             &[],
         ),
+        (
+            "results/cell-order",
+            ("report-controls", &["--name", "controls", "--where", "planner=cell_order"]),
+            &[
+                "cell_order.solver=nearest|boustrophedon",
+                "cell_order.solver=nearest",
+                "cell_order.solver=boustrophedon",
+            ],
+            &[],
+        ),
     ];
-    for (folder, compare, every) in studies {
+    for (folder, (report, naming), compare, every) in studies {
         let dir = tempfile::tempdir().unwrap();
-        for f in ["runs.csv", "study.json"] {
-            std::fs::copy(Path::new(folder).join(f), dir.path().join(f)).unwrap();
-        }
+        std::fs::copy(Path::new(folder).join("study.json"), dir.path().join("study.json")).unwrap();
+        std::fs::write(dir.path().join("runs.csv"), committed_runs(Path::new(folder))).unwrap();
         let mut args = vec!["report".to_string(), dir.path().to_str().unwrap().to_string()];
+        args.extend(naming.iter().map(|a| a.to_string()));
         for c in compare {
             args.extend(["--compare".to_string(), c.to_string()]);
         }
@@ -117,16 +142,16 @@ fn committed_comparisons_are_remade_byte_for_byte() {
         let o = covga(&args.iter().map(String::as_str).collect::<Vec<_>>());
         assert!(o.status.success(), "{folder}: {}", String::from_utf8_lossy(&o.stderr));
         let mut compared = 0;
-        for entry in std::fs::read_dir(dir.path().join("report")).unwrap().flatten() {
+        for entry in std::fs::read_dir(dir.path().join(report)).unwrap().flatten() {
             let name = entry.file_name().to_string_lossy().into_owned();
             if !name.starts_with("compare-") {
                 continue;
             }
-            let committed = std::fs::read(Path::new(folder).join("report").join(&name))
-                .unwrap_or_else(|e| panic!("{folder}/report/{name} is not committed: {e}"));
+            let committed = std::fs::read(Path::new(folder).join(report).join(&name))
+                .unwrap_or_else(|e| panic!("{folder}/{report}/{name} is not committed: {e}"));
             assert!(
                 std::fs::read(entry.path()).unwrap() == committed,
-                "{folder}/report/{name} differs from covga report's"
+                "{folder}/{report}/{name} differs from covga report's"
             );
             compared += 1;
         }

@@ -12,6 +12,7 @@
 //! whose pairs all tie is reported as such and not tested. Parameters whose value follows
 //! from the others (a budget set per map) are not strata of their own and are named.
 
+mod findings;
 mod pooled;
 mod strongest;
 
@@ -113,9 +114,9 @@ impl Row {
     /// The CSV fields every section starts a row with, `metric` among them.
     fn lead_csv(&self, metric: &str) -> String {
         format!(
-            "\"{}\",\"{}\",{metric},{},{},{},{},{}",
-            self.stratum,
-            self.value,
+            "{},{},{metric},{},{},{},{},{}",
+            quoted(&self.stratum),
+            quoted(&self.value),
             self.runs.0,
             self.runs.1,
             self.executable.0,
@@ -123,6 +124,12 @@ impl Row {
             self.pairs.len()
         )
     }
+}
+
+/// `text` as one CSV field: in double quotes, a quote inside doubled (a stratum such as
+/// `thesis.seed_population=["boustrophedon"]` holds some).
+fn quoted(text: &str) -> String {
+    format!("\"{}\"", text.replace('"', "\"\""))
 }
 
 /// The rows of runs.csv by stratum (the other parameters that vary on their own) and value.
@@ -362,6 +369,7 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
         }
         md.push('\n');
     }
+    let findings_at = md.len();
     let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
         rows.iter()
             .map(|(stratum, value, runs, exec, pairs)| Row {
@@ -395,7 +403,28 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
         Plans::Executable => "",
         Plans::Every => "-every-plan",
     };
+    md.insert_str(findings_at, &findings::findings(&csv, &cmp.baseline, &effort(t, &d, &values)));
     Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv })
+}
+
+/// Per value (the baseline's own values first where it stands for several controls), its runs
+/// over every stratum and the most evaluations one of them made (nothing where runs.csv has
+/// no `evaluations`).
+fn effort(t: &RunsTable, d: &Design, values: &[String]) -> Vec<(String, usize, u64)> {
+    let Some(c) = t.col("evaluations") else { return Vec::new() };
+    values
+        .iter()
+        .map(|v| {
+            let rows: std::collections::BTreeSet<usize> = d
+                .cells
+                .iter()
+                .filter(|((_, value), _)| value == v)
+                .flat_map(|(_, runs)| runs.values().copied())
+                .collect();
+            let most = rows.iter().filter_map(|&r| t.rows[r][c].parse::<u64>().ok()).max().unwrap_or(0);
+            (v.clone(), rows.len(), most)
+        })
+        .collect()
 }
 
 /// The paragraph saying how the comparison is made.
@@ -523,11 +552,12 @@ fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp: &Comparis
         let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
         let _ = writeln!(
             csv,
-            "{},,,,,,,{gained},{lost},,{},{},{},\"{finding}\"",
+            "{},,,,,,,{gained},{lost},,{},{},{},{}",
             r.lead_csv("executable"),
             if p.is_some() { "mcnemar exact" } else { "" },
             field(*p),
             field(holm),
+            quoted(&finding),
         );
     }
     let _ = writeln!(
@@ -622,7 +652,7 @@ fn md_row(m: &Metric, r: &Row, st: &RowStats) -> String {
 fn csv_row(m: &Metric, r: &Row, st: &RowStats) -> String {
     let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
     format!(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},\"{}\"",
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
         r.lead_csv(m.column),
         field(st.medians.0),
         field(st.medians.1),
@@ -639,7 +669,7 @@ fn csv_row(m: &Metric, r: &Row, st: &RowStats) -> String {
         st.test.map_or(String::new(), |t| format!("wilcoxon {}", t.method.name())),
         field(st.test.map(|t| t.p_value)),
         field(st.holm),
-        st.finding
+        quoted(&st.finding)
     )
 }
 

@@ -118,11 +118,12 @@ pub(super) fn executability(md: &mut String, csv: &mut String, pooled: &[Pooled]
         let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
         let _ = writeln!(
             csv,
-            "{},,,,,,,{gained},{lost},,{},{},{},\"{finding}\"",
+            "{},,,,,,,{gained},{lost},,{},{},{},{}",
             r.lead_csv("executable"),
             if t.is_some() { "mcnemar exact" } else { "" },
             field(*t),
             field(holm),
+            super::quoted(&finding),
         );
     }
     let _ = writeln!(md, "\n{}\n", family.statement());
@@ -217,7 +218,7 @@ pub(super) fn section(md: &mut String, csv: &mut String, m: &Metric, pooled: &[P
         let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
         let _ = writeln!(
             csv,
-            "{},,,{},{},{},{},{},{},,{},{},{},\"{finding}\"",
+            "{},,,{},{},{},{},{},{},,{},{},{},{}",
             p.row.lead_csv(m.column),
             match m.contrast {
                 Contrast::MedianDifference => "pair difference",
@@ -231,6 +232,7 @@ pub(super) fn section(md: &mut String, csv: &mut String, m: &Metric, pooled: &[P
             s.test.map_or(String::new(), |t| format!("wilcoxon {}", t.method.name())),
             field(s.test.map(|t| t.p_value)),
             field(holm),
+            super::quoted(&finding),
         );
     }
     let _ = writeln!(md, "\n{}\n", family.statement());
