@@ -34,11 +34,52 @@ fn quartiles(v: &[f64]) -> (f64, f64, f64) {
     (m, q1, q3)
 }
 
-/// The panels: per map, its series in the order the study lists them.
+/// The swept columns that split a map's panel: set on every run, with two values or more,
+/// neither a `--by` column nor one that follows the map (a start station per map) — a second
+/// robot, say, whose runs must not share a median with the first's.
+fn panel_columns(s: &Study) -> Vec<usize> {
+    let map = s.t.col("map.source");
+    s.params
+        .iter()
+        .filter(|p| p.as_str() != "map.source" && !s.by.contains(p))
+        .filter_map(|p| s.t.col(p))
+        .filter(|&c| {
+            let values: std::collections::BTreeSet<&str> = s.t.rows.iter().map(|r| r[c].as_str()).collect();
+            values.len() > 1
+                && !values.contains("")
+                && map.is_none_or(|m| super::design::followed_by(&s.t, c, &[m]).is_none())
+        })
+        .collect()
+}
+
+/// `labels` for a legend: without the `key=value` parts every one of them shares
+/// (`planner=cell_order` where the report keeps one planner) or that set nothing (`key=`), and
+/// each key by its last name (`solver=ga`), so that the legend names what tells the series
+/// apart.
+fn distinct_parts(labels: &[String]) -> Vec<String> {
+    let parts: Vec<Vec<&str>> = labels.iter().map(|l| l.split(", ").collect()).collect();
+    let shared = |p: &str| labels.len() > 1 && parts.iter().all(|ps| ps.contains(&p));
+    let short = |p: &str| match p.split_once('=') {
+        Some((key, value)) => format!("{}={value}", key.rsplit('.').next().unwrap_or(key)),
+        None => p.to_string(),
+    };
+    parts
+        .iter()
+        .zip(labels)
+        .map(|(ps, whole)| {
+            let kept: Vec<String> = ps.iter().copied().filter(|p| !shared(p) && !p.ends_with('=')).map(short).collect();
+            if kept.is_empty() { whole.clone() } else { kept.join(", ") }
+        })
+        .collect()
+}
+
+/// The panels: per map (and value of each [`panel_columns`] column), its series in the order
+/// the study lists them.
 fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
     let runs = s.dir.join("runs");
     let one_planner = s.kinds.len() <= 1;
-    let mut by_map: BTreeMap<String, BTreeMap<String, Vec<CoverageCurve>>> = BTreeMap::new();
+    let splits = panel_columns(s);
+    let mut by_panel: BTreeMap<String, BTreeMap<String, Vec<CoverageCurve>>> = BTreeMap::new();
     let mut order: Vec<String> = Vec::new();
     for g in &s.groups {
         for &r in &g.rows {
@@ -50,17 +91,22 @@ fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
             if !order.contains(&series) {
                 order.push(series.clone());
             }
-            by_map.entry(s.get(r, "map")).or_default().entry(series).or_default().push(curve);
+            let mut panel = s.get(r, "map");
+            for &c in &splits {
+                panel.push_str(&format!(", {}={}", s.t.header[c], s.t.rows[r][c]));
+            }
+            by_panel.entry(panel).or_default().entry(series).or_default().push(curve);
         }
     }
-    by_map
+    let names: BTreeMap<String, String> = order.iter().cloned().zip(distinct_parts(&order)).collect();
+    by_panel
         .into_iter()
-        .map(|(map, mut series)| {
+        .map(|(panel, mut series)| {
             let list = order
                 .iter()
-                .filter_map(|label| series.remove(label).map(|curves| Series { label: label.clone(), curves }))
+                .filter_map(|label| series.remove(label).map(|curves| Series { label: names[label].clone(), curves }))
                 .collect();
-            (map, list)
+            (panel, list)
         })
         .collect()
 }
@@ -138,19 +184,28 @@ struct CurvesFigure {
     panels: Vec<(String, Vec<Drawn>)>,
 }
 
+impl CurvesFigure {
+    /// Rows and columns of panels: one column up to three panels, two beyond.
+    fn grid(&self) -> (usize, usize) {
+        let n = self.panels.len().max(1);
+        if n <= 3 { (n, 1) } else { (n.div_ceil(2), 2) }
+    }
+}
+
 impl Figure for CurvesFigure {
     fn size(&self) -> (u32, u32) {
-        (1000, 60 + 320 * self.panels.len().max(1) as u32)
+        let (rows, columns) = self.grid();
+        (1100 * columns as u32, 60 + 320 * rows as u32)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
         let title = "Time to coverage: reachable coverage over mission time (median, band = quartiles over runs)";
         let root = root.titled(title, crate::plot::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
-        for (area, (map, series)) in root.split_evenly((self.panels.len().max(1), 1)).iter().zip(&self.panels) {
-            let (plot, legend_area) = area.split_horizontally(area.dim_in_pixel().0 - 230);
+        for (area, (map, series)) in root.split_evenly(self.grid()).iter().zip(&self.panels) {
+            let (plot, legend_area) = area.split_horizontally(area.dim_in_pixel().0 - 400);
             let x_max = series.iter().flat_map(|s| s.curve.last().map(|c| c.0)).fold(1.0, f64::max);
             let mut chart = ChartBuilder::on(&plot)
-                .caption(format!("map {map}"), text(14.0))
+                .caption(format!("map {map}"), text(15.0))
                 .margin(8)
                 .margin_right(16)
                 .x_label_area_size(45)
@@ -188,6 +243,18 @@ impl Figure for CurvesFigure {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn legend_labels_keep_what_tells_the_series_apart() {
+        let labels: Vec<String> = [
+            "planner=cell_order, cell_order.solver=ga, cell_order.seed_directions=true",
+            "planner=cell_order, cell_order.solver=nearest, cell_order.seed_directions=",
+        ]
+        .map(String::from)
+        .to_vec();
+        assert_eq!(distinct_parts(&labels), ["solver=ga, seed_directions=true", "solver=nearest"]);
+        assert_eq!(distinct_parts(&["planner=thesis".to_string()]), ["planner=thesis"]);
+    }
 
     #[test]
     fn curves_are_read_and_sampled_as_steps() {

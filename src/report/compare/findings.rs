@@ -90,7 +90,10 @@ mod tests {
                    m=2,ga,time_s,10,1.1,0.9,1.2,not shown\n\
                    m=1,ga,cov_final_reach,10,0.001,0,0.002,not shown\n";
         let text = findings(csv, "c", &[("ga".into(), 20, 50_009)]);
-        assert!(text.contains("time, pooled over the strata: median pair ratio 0.900× [0.850×, 0.950×] over 20 pairs"), "{text}");
+        assert!(
+            text.contains("time, pooled over the strata: median pair ratio 0.900× [0.850×, 0.950×] over 20 pairs"),
+            "{text}"
+        );
         assert!(text.contains("shown better than `c` in 1 of 2, shown worse in 0"), "{text}");
         assert!(text.contains("ratio of medians from 0.800× (m=1) to 1.100× (m=2)"), "{text}");
         assert!(text.contains("reachable coverage, stratum by stratum: shown better than `c` in 0 of 1"), "{text}");
