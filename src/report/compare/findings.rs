@@ -57,6 +57,11 @@ pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> S
                 "  - {what}, stratum by stratum: shown better than `{baseline}` in {better} of {}, shown worse in {worse}",
                 strata.len()
             );
+            if as_ratio {
+                let below = with_effect.iter().filter(|e| e.0 < 1.0).count();
+                let above = with_effect.iter().filter(|e| e.0 > 1.0).count();
+                let _ = write!(out, "; its median time is below the baseline's in {below}, above in {above}");
+            }
             if let (Some(lo), Some(hi)) = (lowest, highest) {
                 let name = |s: &str| if s.is_empty() { "all".to_string() } else { s.to_string() };
                 let kind = if as_ratio { "ratio of medians" } else { "difference of medians" };
@@ -95,7 +100,7 @@ mod tests {
             "{text}"
         );
         assert!(text.contains("shown better than `c` in 1 of 2, shown worse in 0"), "{text}");
-        assert!(text.contains("ratio of medians from 0.800× (m=1) to 1.100× (m=2)"), "{text}");
+        assert!(text.contains("its median time is below the baseline's in 1, above in 1; ratio of medians from 0.800× (m=1) to 1.100× (m=2)"), "{text}");
         assert!(text.contains("reachable coverage, stratum by stratum: shown better than `c` in 0 of 1"), "{text}");
         assert!(text.contains("Evaluations per run: `ga` at most 50009 (20 runs)."), "{text}");
     }
