@@ -28,19 +28,19 @@ pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> S
             let rows: Vec<&Vec<String>> = t.rows.iter().filter(|r| r[value] == v && r[metric] == m).collect();
             let number = |r: &Vec<String>, c: usize| r[c].parse::<f64>().ok();
             let effect = |x: f64| if as_ratio { format!("{x:.3}×") } else { format!("{x:+.4}") };
-            if let Some(p) = rows.iter().find(|r| r[stratum] == "pooled") {
-                if let (Some(e), Some(lo), Some(hi)) = (number(p, estimate), number(p, low), number(p, high)) {
-                    let kind = if as_ratio { "ratio" } else { "difference" };
-                    let _ = writeln!(
-                        out,
-                        "  - {what}, pooled over the strata: median pair {kind} {} [{}, {}] over {} pairs; {}.",
-                        effect(e),
-                        effect(lo),
-                        effect(hi),
-                        p[pairs],
-                        p[note]
-                    );
-                }
+            if let Some(p) = rows.iter().find(|r| r[stratum] == "pooled")
+                && let (Some(e), Some(lo), Some(hi)) = (number(p, estimate), number(p, low), number(p, high))
+            {
+                let kind = if as_ratio { "ratio" } else { "difference" };
+                let _ = writeln!(
+                    out,
+                    "  - {what}, pooled over the strata: median pair {kind} {} [{}, {}] over {} pairs; {}.",
+                    effect(e),
+                    effect(lo),
+                    effect(hi),
+                    p[pairs],
+                    p[note]
+                );
             }
             let strata: Vec<&&Vec<String>> = rows.iter().filter(|r| r[stratum] != "pooled").collect();
             if strata.is_empty() {
