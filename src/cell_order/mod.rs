@@ -270,6 +270,23 @@ pub fn local_optimum_plan_within(
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)
 }
 
+/// The history record of a search's generation (or kick): its best tour's time and lane
+/// coverage (`(over all free cells, over the reachable ones)`), with `members` feasible.
+fn generation_record(g: &search::Generation, (best_coverage, reach): (f64, f64), members: u32) -> GenerationRecord {
+    GenerationRecord {
+        iteration: g.iteration,
+        evaluations: g.evaluations,
+        best_fitness: g.fitness.0,
+        mean_fitness: g.fitness.1,
+        best_coverage,
+        best_coverage_reach: Some(reach),
+        feasible: Some(members),
+        diversity: None,
+        extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
+        robots: Vec::new(),
+    }
+}
+
 /// A solved tour and what it cost to find.
 struct Solved {
     tour: Tour,
@@ -339,19 +356,7 @@ impl CellOrderConfig {
                     Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => self.ga.population as u32,
                 };
                 let report = |g: &search::Generation| {
-                    let (best_coverage, best_coverage_reach) = lanes.of(prepared, scenario, g.best.0);
-                    let record = GenerationRecord {
-                        iteration: g.iteration,
-                        evaluations: g.evaluations,
-                        best_fitness: g.fitness.0,
-                        mean_fitness: g.fitness.1,
-                        best_coverage,
-                        best_coverage_reach: Some(best_coverage_reach),
-                        feasible: Some(members),
-                        diversity: None,
-                        extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
-                        robots: Vec::new(),
-                    };
+                    let record = generation_record(g, lanes.of(prepared, scenario, g.best.0), members);
                     observers.iter_mut().try_for_each(|o| o.generation(&record))
                 };
                 let seeds = if self.seed_directions {
@@ -380,35 +385,7 @@ impl CellOrderConfig {
                     lanes: Vec::new(),
                 })
             }
-            Solver::Nearest => {
-                let tours = controls::direction_tours(prepared, &self.directions);
-                Ok(Solved {
-                    tour: tours[0].clone(),
-                    cost: inst.cost(&tours[0], self.coverage_goal),
-                    finalists: tours,
-                    evaluations: 0,
-                    iterations: 0,
-                    stop: StopReason::Completed,
-                    nearest: inst.time(&search::nearest_neighbour(inst)),
-                    exact: None,
-                    lanes: Vec::new(),
-                })
-            }
-            Solver::Boustrophedon => {
-                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
-                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
-                Ok(Solved {
-                    tour: Tour { order: Vec::new(), choice: Vec::new() },
-                    cost: 0.0,
-                    finalists: Vec::new(),
-                    evaluations: 0,
-                    iterations: 0,
-                    stop: StopReason::Completed,
-                    nearest: inst.time(&search::nearest_neighbour(inst)),
-                    exact: None,
-                    lanes,
-                })
-            }
+            Solver::Nearest | Solver::Boustrophedon => self.solve_control(prepared, scenario),
             Solver::Exact => {
                 let (tour, cost) = exact::held_karp(inst).ok_or_else(|| {
                     PlannerError::Input(format!(
@@ -434,6 +411,35 @@ impl CellOrderConfig {
                 })
             }
         }
+    }
+
+    /// A control's plans ([`controls`]): the nearest-neighbour tour at each direction, or the
+    /// whole-map boustrophedon at each direction; the common scorer chooses among them later.
+    fn solve_control(&self, prepared: &Prepared, scenario: &Scenario) -> Result<Solved, PlannerError> {
+        let inst = &prepared.instance;
+        let nearest = inst.time(&search::nearest_neighbour(inst));
+        let (tour, cost, finalists, lanes) = match self.solver {
+            Solver::Boustrophedon => {
+                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
+                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+                (Tour { order: Vec::new(), choice: Vec::new() }, 0.0, Vec::new(), lanes)
+            }
+            Solver::Nearest | Solver::Ga | Solver::Ils | Solver::Exact => {
+                let tours = controls::direction_tours(prepared, &self.directions);
+                (tours[0].clone(), inst.cost(&tours[0], self.coverage_goal), tours, Vec::new())
+            }
+        };
+        Ok(Solved {
+            tour,
+            cost,
+            finalists,
+            evaluations: 0,
+            iterations: 0,
+            stop: StopReason::Completed,
+            nearest,
+            exact: None,
+            lanes,
+        })
     }
 }
 

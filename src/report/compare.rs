@@ -362,13 +362,7 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
     };
     let _ = writeln!(md, "# `{}`: each value against `{}`{every}\n", cmp.key, cmp.baseline);
     let _ = writeln!(md, "{}\n", intro(&d, cmp));
-    if !d.strongest.is_empty() {
-        md.push_str("| stratum | strongest control |\n| --- | --- |\n");
-        for (stratum, control) in &d.strongest {
-            let _ = writeln!(md, "| {} | {control} |", if stratum.is_empty() { "all" } else { stratum });
-        }
-        md.push('\n');
-    }
+    md.push_str(&strongest_table(&d));
     let findings_at = md.len();
     let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
         rows.iter()
@@ -425,6 +419,19 @@ fn effort(t: &RunsTable, d: &Design, values: &[String]) -> Vec<(String, usize, u
             (v.clone(), rows.len(), most)
         })
         .collect()
+}
+
+/// With several controls as the baseline: which is the strongest in each stratum, as a table.
+fn strongest_table(d: &Design) -> String {
+    if d.strongest.is_empty() {
+        return String::new();
+    }
+    let mut md = String::from("| stratum | strongest control |\n| --- | --- |\n");
+    for (stratum, control) in &d.strongest {
+        let _ = writeln!(md, "| {} | {control} |", if stratum.is_empty() { "all" } else { stratum });
+    }
+    md.push('\n');
+    md
 }
 
 /// The paragraph saying how the comparison is made.
