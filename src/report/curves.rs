@@ -34,14 +34,15 @@ fn quartiles(v: &[f64]) -> (f64, f64, f64) {
     (m, q1, q3)
 }
 
-/// The swept columns that split a map's panel: set on every run, with two values or more,
-/// neither a `--by` column nor one that follows the map (a start station per map) — a second
-/// robot, say, whose runs must not share a median with the first's.
+/// The swept columns that split a map's panel: the robot's (`robot.*`: its speeds set the
+/// time axis, so a second robot's runs must not share a median with the first's) where set on
+/// every run with two values or more, neither a `--by` column nor one that follows the map. The
+/// planners' own settings stay within a panel, pooled or told apart by `--by`.
 fn panel_columns(s: &Study) -> Vec<usize> {
     let map = s.t.col("map.source");
     s.params
         .iter()
-        .filter(|p| p.as_str() != "map.source" && !s.by.contains(p))
+        .filter(|p| p.starts_with("robot.") && !s.by.contains(p))
         .filter_map(|p| s.t.col(p))
         .filter(|&c| {
             let values: std::collections::BTreeSet<&str> = s.t.rows.iter().map(|r| r[c].as_str()).collect();
