@@ -144,6 +144,9 @@ struct Design {
     nested: Vec<String>,
     /// With several controls as the baseline: the strongest in each stratum.
     strongest: BTreeMap<String, String>,
+    /// Whether a configuration recorded once pairs with every seed of the other side (a
+    /// finished study); else runs pair by seed only.
+    once_run_pairs: bool,
     /// `(stratum, value) → seed → row`.
     cells: BTreeMap<(String, String), BTreeMap<String, usize>>,
 }
@@ -197,14 +200,15 @@ fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
         }
         cells.retain(|(_, v), _| !controls.contains(&v.as_str()));
     }
-    Design { strata, kept, followers, nested, strongest, cells }
+    Design { strata, kept, followers, nested, strongest, once_run_pairs: true, cells }
 }
 
 /// The pairs of a baseline's runs and a value's, by seed; where one side ran once and the other
 /// over several seeds (a grid runs a configuration whose planner reads no seed once), its one
 /// run pairs with every run of the other.
-fn seed_pairs(base: &BTreeMap<String, usize>, other: &BTreeMap<String, usize>) -> Vec<(usize, usize)> {
+fn seed_pairs(base: &BTreeMap<String, usize>, other: &BTreeMap<String, usize>, once_run: bool) -> Vec<(usize, usize)> {
     match (base.len(), other.len()) {
+        _ if !once_run => base.iter().filter_map(|(seed, &b)| other.get(seed).map(|&o| (b, o))).collect(),
         (1, n) if n > 1 => {
             let b = *base.values().next().expect("one run");
             other.values().map(|&o| (b, o)).collect()
@@ -255,13 +259,21 @@ pub fn render_all(
     let file = dir.join("runs.csv");
     let text = std::fs::read_to_string(&file).map_err(|e| ReportError::Input(format!("{}: {e}", file.display())))?;
     let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", file.display())))?;
+    // A configuration recorded once pairs with every seed only in a finished study: in one
+    // stopped part-way it may be a seeded configuration whose other seeds have not run.
+    let expected = std::fs::read_to_string(dir.join("study.json"))
+        .ok()
+        .and_then(|j| serde_json::from_str::<serde_json::Value>(&j).ok())
+        .and_then(|v| v["runs"].as_u64());
+    let complete = expected.is_none_or(|n| t.rows.len() as u64 >= n);
     super::take_failed(&mut t);
     for (key, want) in filter {
         if let Some(c) = t.col(key) {
             t.rows.retain(|r| super::cell_matches(&r[c], want));
         }
     }
-    let mut rendered: Vec<Rendered> = comparisons.iter().map(|c| render(&t, c)).collect::<Result<_, _>>()?;
+    let mut rendered: Vec<Rendered> =
+        comparisons.iter().map(|c| render_with(&t, c, complete)).collect::<Result<_, _>>()?;
     // Several baselines of one key (and kind of plans) would share a file: each then names its
     // baseline.
     let shared: Vec<bool> = rendered.iter().map(|r| rendered.iter().filter(|o| o.stem == r.stem).count() > 1).collect();
@@ -317,11 +329,18 @@ fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String
     Ok((key, values))
 }
 
-/// Makes the comparison `cmp` of the runs `t`.
+/// Makes the comparison `cmp` of the runs `t` of a finished study.
 pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
+    render_with(t, cmp, true)
+}
+
+/// [`render`]; `complete` says whether the study is finished (else a configuration recorded
+/// once is paired by seed like any other).
+fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Rendered, ReportError> {
     let input = |m: String| ReportError::Input(m);
     let (key, _) = compared_values(t, cmp)?;
-    let d = design(t, cmp, key);
+    let mut d = design(t, cmp, key);
+    d.once_run_pairs = complete;
     // The compared values as labelled (with the parameters nested in them), in order.
     let mut values: Vec<String> = d.cells.keys().map(|(_, v)| v.clone()).collect();
     values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
@@ -335,7 +354,7 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
         for value in values.iter().filter(|v| **v != cmp.baseline) {
             let Some(other) = d.cells.get(&(stratum.clone(), value.clone())) else { continue };
             let exec = |m: &BTreeMap<String, usize>| m.values().filter(|&&r| executable(r)).count();
-            let pairs = seed_pairs(base, other);
+            let pairs = seed_pairs(base, other, d.once_run_pairs);
             rows.push((stratum.clone(), value.clone(), (base.len(), other.len()), (exec(base), exec(other)), pairs));
         }
     }
@@ -479,7 +498,12 @@ fn intro(d: &Design, cmp: &Comparison) -> String {
             cmp.baseline,
         );
     }
-    if d.once_run() {
+    if d.once_run() && !d.once_run_pairs {
+        s.push_str(
+            " The study is not finished: a configuration recorded once is paired by seed only, as if its \
+             other seeds had not run yet.",
+        );
+    } else if d.once_run() {
         s.push_str(
             " Where one side of a comparison ran once (a configuration whose planner reads no seed \
              runs once in a grid) its one run pairs with every seed of the other.",
@@ -812,6 +836,12 @@ mod tests {
         assert_eq!((get(&with, "value_better"), get(&without, "value_worse")), ("6".into(), "6".into()));
         assert_eq!(get(&with, "p").parse::<f64>().unwrap(), 2.0 / 64.0);
         assert_eq!(get(&with, "estimate").parse::<f64>().unwrap(), 87.5 / 100.0);
+        // A study not yet finished pairs by seed only: the control's one run meets replicate 0.
+        let part = render_with(&control_table(), &Comparison::parse("solver=nearest").unwrap(), false).unwrap();
+        assert!(part.markdown.contains("The study is not finished"), "{}", part.markdown);
+        let csv = RunsTable::parse(&part.csv).unwrap();
+        let time = csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "stratum") != "pooled").unwrap();
+        assert_eq!(get(time, "pairs"), "1");
     }
 
     #[test]
