@@ -29,6 +29,15 @@ pub enum Solver {
 }
 
 impl Solver {
+    /// Whether this is one of the controls with no search ([`super::controls`]), whose plans
+    /// all go to the common scorer.
+    pub fn is_control(self) -> bool {
+        match self {
+            Solver::Nearest | Solver::Boustrophedon => true,
+            Solver::Ga | Solver::Ils | Solver::Exact => false,
+        }
+    }
+
     /// Whether this solver searches (reads the GA's or the local search's keys and the seed);
     /// the exact solver and the two controls do not.
     pub fn searches(self) -> bool {

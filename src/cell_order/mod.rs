@@ -385,7 +385,14 @@ impl CellOrderConfig {
                     lanes: Vec::new(),
                 })
             }
-            Solver::Nearest | Solver::Boustrophedon => self.solve_control(prepared, scenario),
+            Solver::Nearest => {
+                Ok(self.control(prepared, controls::direction_tours(prepared, &self.directions), Vec::new()))
+            }
+            Solver::Boustrophedon => {
+                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
+                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+                Ok(self.control(prepared, Vec::new(), lanes))
+            }
             Solver::Exact => {
                 let (tour, cost) = exact::held_karp(inst).ok_or_else(|| {
                     PlannerError::Input(format!(
@@ -413,33 +420,22 @@ impl CellOrderConfig {
         }
     }
 
-    /// A control's plans ([`controls`]): the nearest-neighbour tour at each direction, or the
-    /// whole-map boustrophedon at each direction; the common scorer chooses among them later.
-    fn solve_control(&self, prepared: &Prepared, scenario: &Scenario) -> Result<Solved, PlannerError> {
+    /// A control's result, before the common scorer chooses: the no-search control's `tours`
+    /// (one per direction, the first standing for the solver's best), or the classical
+    /// control's `lanes` and no tour.
+    fn control(&self, prepared: &Prepared, tours: Vec<Tour>, lanes: Vec<controls::Lanes>) -> Solved {
         let inst = &prepared.instance;
-        let nearest = inst.time(&search::nearest_neighbour(inst));
-        let (tour, cost, finalists, lanes) = match self.solver {
-            Solver::Boustrophedon => {
-                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
-                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
-                (Tour { order: Vec::new(), choice: Vec::new() }, 0.0, Vec::new(), lanes)
-            }
-            Solver::Nearest | Solver::Ga | Solver::Ils | Solver::Exact => {
-                let tours = controls::direction_tours(prepared, &self.directions);
-                (tours[0].clone(), inst.cost(&tours[0], self.coverage_goal), tours, Vec::new())
-            }
-        };
-        Ok(Solved {
-            tour,
-            cost,
-            finalists,
+        Solved {
+            tour: tours.first().cloned().unwrap_or(Tour { order: Vec::new(), choice: Vec::new() }),
+            cost: tours.first().map_or(0.0, |t| inst.cost(t, self.coverage_goal)),
+            finalists: tours,
             evaluations: 0,
             iterations: 0,
             stop: StopReason::Completed,
-            nearest,
+            nearest: inst.time(&search::nearest_neighbour(inst)),
             exact: None,
             lanes,
-        })
+        }
     }
 }
 
@@ -614,7 +610,7 @@ impl Planner for CellOrderConfig {
             }
         };
         // The common scorer reads every candidate where it chooses among them.
-        if self.coverage_goal.is_some() || !self.solver.searches() && self.solver != Solver::Exact {
+        if self.coverage_goal.is_some() || self.solver.is_control() {
             solved.evaluations += candidates.len() as u64;
         }
         let chosen = self.chosen_plan(&prepared, candidates, s, &grid);
