@@ -40,7 +40,7 @@ fn bindings(c: &mut Criterion) {
     let planned = patterns::plan(&map, Pattern::Boustrophedon { angle_deg: 0.0 }, 0.6, start, start, true)
         .expect("a boustrophedon on thesis-1");
     let path = resample(&planned.points, 1000);
-    let camera = covga::waypoint::config::camera_spec(&Default::default(), "camera", &map).expect("camera");
+    let camera = covga::planner::sections::CameraSection::default().spec("camera", &map).expect("camera");
     let mut group = c.benchmark_group("bindings");
     group.bench_function("score_1000_points", |b| {
         b.iter(|| {

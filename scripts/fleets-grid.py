@@ -75,8 +75,9 @@ planner = "thesis"
 width = 0.6
 speed = 0.3
 rot_speed = 0.0
-[base.thesis]
+[base.scorer]
 projection = "f2"
+[base.thesis]
 selection = "elite"
 pop_min = 100
 init_individuals = 100
@@ -86,8 +87,9 @@ max_genome_len = 300
 [base.fleet]
 round_iterations = 25
 tolerance = 0.02
-[base.waypoint]
+[base.scorer.camera]
 scale = 0.15
+[base.waypoint]
 uav_width = 0.6
 hallway = 1.5
 objective = "footprint"

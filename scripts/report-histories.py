@@ -68,8 +68,8 @@ def needed(header, rows, alls, not_executable, reports):
                     if pts[i][1] >= FRONT_MIN_COVERAGE:
                         need.add(ex[i][h["run_id"]])
                     best_y, last = max(best_y, pts[i][1]), pts[i]
-            for proj in {r[h["thesis.projection"]] for r in g}:
-                scope = [r for r in g if r[h["thesis.projection"]] == proj]
+            for proj in {r[h["scorer.projection"]] for r in g}:
+                scope = [r for r in g if r[h["scorer.projection"]] == proj]
                 pool = [r for r in scope if r[h["executable"]] == "true"] or scope
                 top = max(float(r[h["f_free"]]) for r in pool)
                 need |= {r[h["run_id"]] for r in pool if float(r[h["f_free"]]) == top}

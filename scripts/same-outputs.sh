@@ -7,12 +7,15 @@
 #
 #   scripts/same-outputs.sh [BASE]          # e.g. scripts/same-outputs.sh 917f148
 #   BASE_BIN=path/to/covga scripts/same-outputs.sh   # a binary of the base already built
+#   BASE_FILES=REV scripts/same-outputs.sh  # the base binary runs the experiment and grid files
+#                                           # of REV (a change that moves keys: each binary
+#                                           # reads the files written for it)
 #
 # Exits 0 when every output file is identical, 1 (listing the files) otherwise.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 base_rev=${1:-HEAD}
-work=${SAME_OUTPUTS_DIR:-target/same-outputs}
+work=$(realpath -m "${SAME_OUTPUTS_DIR:-target/same-outputs}")
 rm -rf "$work"
 mkdir -p "$work"
 if [ -n "${BASE_BIN:-}" ]; then
@@ -95,8 +98,14 @@ init_individuals = 60
 iterations = 40
 TOML
 done
-echo "base: $base_rev; new: the working tree"
-outputs "$work/covga-base" "$work/base"
+echo "base: $base_rev${BASE_FILES:+ on the files of $BASE_FILES}; new: the working tree"
+if [ -n "${BASE_FILES:-}" ]; then
+  git worktree add --detach "$work/base-files" "$BASE_FILES" >/dev/null
+  (cd "$work/base-files" && outputs "$work/covga-base" "$work/base")
+  git worktree remove --force "$work/base-files"
+else
+  outputs "$work/covga-base" "$work/base"
+fi
 outputs "$work/covga-new" "$work/new"
 
 python3 - "$work/base" "$work/new" <<'PY'

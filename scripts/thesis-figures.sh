@@ -11,12 +11,12 @@ dir=${1:?usage: scripts/thesis-figures.sh STUDY_DIR}
 covga=${COVGA:-covga}
 m1=(--where map.source=thesis-1 --where robot.rot_speed=0)
 "$covga" report "$dir" --by thesis.selection
-"$covga" report "$dir" "${m1[@]}" --by thesis.selection --by thesis.projection --name fig-4-2
+"$covga" report "$dir" "${m1[@]}" --by thesis.selection --by scorer.projection --name fig-4-2
 "$covga" report "$dir" "${m1[@]}" --where thesis.selection=tournament \
-  --by thesis.tournament_size --by thesis.projection --name fig-4-3-ts
+  --by thesis.tournament_size --by scorer.projection --name fig-4-3-ts
 "$covga" report "$dir" "${m1[@]}" --where thesis.selection=rrws \
-  --by thesis.selection_pressure --by thesis.projection --name fig-4-3-sp
+  --by thesis.selection_pressure --by scorer.projection --name fig-4-3-sp
 "$covga" report "$dir" "${m1[@]}" --by thesis.c_len --by thesis.c_child --name fig-4-4
 "$covga" report "$dir" "${m1[@]}" --by thesis.p_mi --by thesis.p_ma --name fig-4-5
-"$covga" report "$dir" --by map.source --by robot.rot_speed --by thesis.selection --by thesis.projection \
+"$covga" report "$dir" --by map.source --by robot.rot_speed --by thesis.selection --by scorer.projection \
   --name tables-a1-a2

@@ -133,7 +133,7 @@ def main(path):
     print("|---|---|---|---|---|---|---|---|---|")
     cells = defaultdict(list)
     for r in rows:
-        cells[(r["map.source"], r["robot.rot_speed"], r["thesis.projection"], r["thesis.selection"])].append(r)
+        cells[(r["map.source"], r["robot.rot_speed"], r["scorer.projection"], r["thesis.selection"])].append(r)
     for m in ["thesis-1", "thesis-2"]:
         for rot in ["0.0", "6.28"]:
             for proj in ["f1", "f2"]:

@@ -478,6 +478,9 @@ fn bad_planner_sections_are_rejected_with_the_key() {
         ("planner = \"spiral\"\n[pattern]\nangle_deg = 1e9\n", "`pattern.angle_deg`"),
         ("planner = \"boustrophedon\"\n[pattern]\nlanes = 3\n", "lanes"),
         ("planner = \"genetic\"\n", "unknown variant `genetic`"),
+        ("planner = \"waypoint\"\n[scorer.camera]\nsections = 0\n", "`scorer.camera.sections`"),
+        // A key under its old name is checked under its new one, and the message says both.
+        ("planner = \"waypoint\"\n[waypoint]\nsections = 0\n", "`scorer.camera.sections`"),
         ("planner = \"waypoint\"\n[waypoint]\nsections = 0\n", "`waypoint.sections`"),
     ] {
         let p = dir.path().join("bad.toml");
@@ -787,4 +790,35 @@ fn a_path_that_leaves_the_repository_is_found() {
     for (text, leaves) in cases {
         assert_eq!(reads_outside_the_repository(root, &grid, text), leaves, "{text}");
     }
+}
+
+/// A grid that spells a moved key the old way (`thesis.projection`, now `scorer.projection`)
+/// runs the same runs under the same ids as one that spells it the new way, with a warning
+/// naming the new key, and its column takes the new name in the same place.
+#[test]
+fn a_grid_with_a_renamed_key_keeps_its_run_ids_and_warns() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = |key: &str, base: &str| {
+        format!(
+            "seed = 3\n[base]\n{base}pop_min = 10\ninit_individuals = 20\ninit_actions = 10\n[base.budget]\n\
+             iterations = 2\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n\"{key}\" = [\"f1\", \"f2\"]\n"
+        )
+    };
+    let mut plans = Vec::new();
+    for (name, key, base) in [
+        ("old", "thesis.projection", "[base.thesis]\nprojection = \"f1\"\n"),
+        ("new", "scorer.projection", "[base.scorer]\nprojection = \"f1\"\n[base.thesis]\n"),
+    ] {
+        let g = dir.path().join(format!("{name}.toml"));
+        std::fs::write(&g, grid(key, base)).unwrap();
+        let o = covga(&["grid", g.to_str().unwrap(), "--dry-run"]);
+        ok(&o);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(name == "old", err.contains("`thesis.projection` is now `scorer.projection`"), "{name}: {err}");
+        let study = covga::study::grid::Study::load(&g).unwrap();
+        assert_eq!(study.columns, ["thesis.c_len", "scorer.projection"]);
+        let ids: Vec<String> = study.runs.iter().map(|r| r.id.clone()).collect();
+        plans.push((covga::study::runner::grid_hash(&study), ids));
+    }
+    assert_eq!(plans[0], plans[1], "both spellings give the same runs and ids");
 }

@@ -133,9 +133,9 @@ const CASES: &[Case] = &[
     },
     Case {
         name: "a camera range beyond its bound names the bound",
-        files: &[("e.toml", "[waypoint]\nd_min = 1e18\n")],
+        files: &[("e.toml", "[scorer.camera]\nd_min = 1e18\n")],
         args: &["run", "e.toml", "--out", "OUT"],
-        needle: "`waypoint.d_min` = 1e18 is out of range: allowed [0, 1e6] metres",
+        needle: "`scorer.camera.d_min` = 1e18 is out of range: allowed [0, 1e6] metres",
     },
     Case {
         name: "waypoint paths of ten million waypoints",
@@ -156,10 +156,10 @@ const CASES: &[Case] = &[
         name: "a fan view deeper than the map",
         files: &[(
             "e.toml",
-            "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nview_shape = \"fan\"\nd_max = 1000\n",
+            "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[waypoint]\nview_shape = \"fan\"\n[scorer.camera]\nd_max = 1000\n",
         )],
         args: &["run", "e.toml", "--out", "OUT"],
-        needle: "`waypoint.d_max` = 1000 m is beyond the map's diagonal of 15.56 m",
+        needle: "`scorer.camera.d_max` = 1000 m is beyond the map's diagonal of 15.56 m",
     },
     Case {
         name: "a wall clock spent in the waypoint precompute",

@@ -148,7 +148,7 @@ fn the_claims_of_section_5_1_get_their_verdicts() {
         "map.source",
         "robot.rot_speed",
         "thesis.selection",
-        "thesis.projection",
+        "scorer.projection",
         "thesis.c_len",
         "thesis.c_child",
         "thesis.p_ma",
@@ -167,7 +167,7 @@ fn the_claims_of_section_5_1_get_their_verdicts() {
             ("map.source", map.to_string()),
             ("robot.rot_speed", "0".to_string()),
             ("thesis.selection", selection.to_string()),
-            ("thesis.projection", "f2".to_string()),
+            ("scorer.projection", "f2".to_string()),
             ("thesis.c_len", "0.2".to_string()),
             ("thesis.c_child", "2".to_string()),
             ("thesis.p_ma", "0.01".to_string()),
@@ -277,7 +277,7 @@ fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
 #[test]
 fn f_is_ranked_and_averaged_within_one_projection() {
     let dir = tempfile::tempdir().unwrap();
-    let params = vec!["thesis.projection".to_string()];
+    let params = vec!["scorer.projection".to_string()];
     let header = covga::study::records::header(&params);
     let mut csv = header.join(",") + "\n";
     // (run, config, projection, cov_final, t_final): f1 = (c + t)/2 is larger than f2 = c·t,
@@ -293,7 +293,7 @@ fn f_is_ranked_and_averaged_within_one_projection() {
             ("run_id", id.to_string()),
             ("config_id", config.to_string()),
             ("seed", "1".to_string()),
-            ("thesis.projection", projection.to_string()),
+            ("scorer.projection", projection.to_string()),
             ("planner", "thesis".to_string()),
             ("map", "thesis-1".to_string()),
             ("executable", "true".to_string()),
@@ -317,11 +317,11 @@ fn f_is_ranked_and_averaged_within_one_projection() {
     let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
     for line in [
         // The best run of each projection: p2 (f1 0.5) and q1 (f2 0.81).
-        "| all runs, thesis.projection=f1 | p2 | f1 | 0.500000 | 0.500000 | 0.500000 |",
-        "| all runs, thesis.projection=f2 | q1 | f2 | 0.900000 | 0.900000 | 0.810000 |",
+        "| all runs, scorer.projection=f1 | p2 | f1 | 0.500000 | 0.500000 | 0.500000 |",
+        "| all runs, scorer.projection=f2 | q1 | f2 | 0.900000 | 0.900000 | 0.810000 |",
         // The best configuration of each projection over its seeds.
-        "| all runs, thesis.projection=f1 | f1 | 2 |",
-        "| all runs, thesis.projection=f2 | f2 | 2 |",
+        "| all runs, scorer.projection=f1 | f1 | 2 |",
+        "| all runs, scorer.projection=f2 | f2 | 2 |",
         // Means of f per projection: f1 (0.45 + 0.5)/2, f2 (0.81 + 0.63)/2.
         "| group | runs | executable | cov_final | t_final | f (f1) | f (f2) | cov_final (all) |",
     ] {

@@ -111,9 +111,10 @@ fn three_agents_share_loop_closures() {
 #[test]
 fn bad_waypoint_settings_are_rejected() {
     for (extra, needle) in [
-        ("d_min = 8.0", "`waypoint.d_max` = 7 must exceed d_min"),
-        ("fov_deg = 0.0", "`waypoint.fov_deg` = 0 is out of range (0, 360]"),
-        ("fov_deg = 400.0", "`waypoint.fov_deg` = 400"),
+        // The camera's keys under their old names (in [waypoint]) are checked as [scorer.camera]'s.
+        ("d_min = 8.0", "`scorer.camera.d_max` = 7 must exceed d_min"),
+        ("fov_deg = 0.0", "`scorer.camera.fov_deg` = 0 is out of range (0, 360]"),
+        ("fov_deg = 400.0", "`waypoint.fov_deg`, its name before the move"),
         ("hallway = 0.1", "below the cell size"),
         ("agents = 0", "`waypoint.agents` = 0 is out of range"),
         ("starts = [[0.1, 0.1]]", "inside an obstacle"),
@@ -143,7 +144,7 @@ fn a_camera_depth_beyond_the_map_sees_the_same_and_runs_quickly() {
     let dir = tempfile::tempdir().unwrap();
     let text = |d_max: &str| {
         format!(
-            "seed = 5\nplanner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[stations]\nstart = [1.3, 1.3]\n[waypoint]\npopulation = 10\ngenerations = 5\nl_init = 40\nl_min = 20\nd_max = {d_max}\n"
+            "seed = 5\nplanner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[stations]\nstart = [1.3, 1.3]\n[waypoint]\npopulation = 10\ngenerations = 5\nl_init = 40\nl_min = 20\n[scorer.camera]\nd_max = {d_max}\n"
         )
     };
     let mut outs = Vec::new();

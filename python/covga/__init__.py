@@ -205,8 +205,8 @@ def score(
     :class:`Score` (a dict with ``plot()``).
 
     ``path`` is an ``(N, 2)`` array of metres, or a list of them (one per agent, all with this
-    robot). ``camera`` holds ``[waypoint]`` camera keys (``scale``, ``d_min``, ``d_max``,
-    ``fov_deg``, ``sections``, ...); by default the experiment file's camera. With ``raster``,
+    robot). ``camera`` holds ``[scorer.camera]`` keys (``scale``, ``d_min``, ``d_max``,
+    ``fov_deg``, ``sections``, ``wall_band``); by default an experiment file's default camera. With ``raster``,
     the result also holds the cell layers the coverage counts (``visits``, ``reachable``).
     """
     if not isinstance(raster, (bool, np.bool_)):

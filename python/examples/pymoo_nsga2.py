@@ -87,7 +87,8 @@ def thesis_ga(evaluations: int, seed: int, selection: str = "elite") -> covga.Re
             "map": {"source": "thesis-1"},
             "robot": {"width": WIDTH, "speed": SPEED},
             "stations": {"start": list(START)},
-            "thesis": {"projection": "f2", "selection": selection, "init_actions": 50, "init_dist_max": DIST_MAX},
+            "scorer": {"projection": "f2"},
+            "thesis": {"selection": selection, "init_actions": 50, "init_dist_max": DIST_MAX},
             "budget": {"evaluations": evaluations, "iterations": 1_000_000},
         }
     )

@@ -112,6 +112,9 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
             .ok_or_else(|| config_error(format!("order = {order:?} is not one of \"longest-first\", \"seeds\"")))?;
         Ok((covga::study::grid::Study::load(Path::new(file)).map_err(config_error)?, order))
     })?;
+    for w in &study.warnings {
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &std::ffi::CString::new(w.as_str())?, 1)?;
+    }
     // Ctrl-C raises the flag: no further run starts, and the runs in progress stop at their
     // next iteration, unrecorded (they run again when the study resumes).
     let stop = Interrupt::new();

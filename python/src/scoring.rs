@@ -7,9 +7,9 @@ use covga::coverage::fitness::Projection;
 use covga::coverage::score::Scorer;
 use covga::geom::Point;
 use covga::patterns::{self, Pattern};
+use covga::planner::sections::CameraSection;
 use covga::thesis::batch::{COLUMNS, evaluate_genomes_until, genome_of};
 use covga::thesis::scenario::{Moves, Scenario};
-use covga::waypoint::config::WaypointSection;
 use numpy::ndarray::{Array2, ArrayView2};
 use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, ToPyArray};
 use pyo3::prelude::*;
@@ -119,11 +119,11 @@ pub fn score<'py>(
             m.check_station(p[0], &format!("path {k} start")).map_err(config_error)?;
             m.check_station(*p.last().expect("checked non-empty"), &format!("path {k} end")).map_err(config_error)?;
         }
-        let section: WaypointSection = match camera_json {
+        let section: CameraSection = match camera_json {
             Some(text) => serde_json::from_str(text).map_err(|e| config_error(format!("camera: {e}")))?,
-            None => WaypointSection::default(),
+            None => CameraSection::default(),
         };
-        let camera = covga::waypoint::config::camera_spec(&section, "camera", m).map_err(config_error)?;
+        let camera = section.spec("camera", m).map_err(config_error)?;
         let stations: Vec<Point> = plan.iter().map(|p| p[0]).collect();
         let widths = vec![width; plan.len()];
         let scorer = Scorer::for_widths(m, robot, &widths, projection, &camera, &stations);

@@ -148,6 +148,16 @@ def test_ignored_keys_warn(short_thesis):
         covga.run(text)
 
 
+def test_a_renamed_key_warns_and_runs_as_its_new_name(tmp_path):
+    old = SHORT_THESIS.replace("pop_min = 30", "pop_min = 30\nprojection = \"f1\"")
+    new = SHORT_THESIS + '[scorer]\nprojection = "f1"\n'
+    with pytest.warns(UserWarning, match="`thesis.projection` is now `scorer.projection`"):
+        a = covga.run(old, out=tmp_path / "old", figures=False)
+    b = covga.run(new, out=tmp_path / "new", figures=False)
+    assert a.config == b.config and "[scorer]" in b.config
+    assert a.summary["score"] == b.summary["score"]
+
+
 def _interrupt_after(seconds):
     timer = threading.Timer(seconds, _thread.interrupt_main)
     timer.start()
@@ -179,7 +189,7 @@ init_actions = 30
 iterations = 60
 [axes]
 "thesis.selection" = ["elite", "tournament"]
-"thesis.projection" = ["f1", "f2"]
+"scorer.projection" = ["f1", "f2"]
 """
 
 
@@ -198,7 +208,7 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     assert str(runs["executable"].dtype) == "boolean" and runs["cov_final_reach"].dtype == np.float64
     assert list(runs.columns).count("planner") == 1
     assert sorted(set(runs["thesis.selection"])) == ["elite", "tournament"]
-    summary = covga.report(tmp_path / "py", by="thesis.selection", where={"thesis.projection": "f2"})
+    summary = covga.report(tmp_path / "py", by="thesis.selection", where={"scorer.projection": "f2"})
     assert summary.name == "summary.md" and "elite" in summary.read_text()
     # A comparison paired by seed, the same file the command line writes.
     covga.report(

@@ -11,7 +11,7 @@ from covga import thesis
     "setting",
     [
         {},
-        {"robot": {"width": 0.6, "speed": 0.2, "rot_speed": 0.5}, "thesis": {"projection": "f1"}},
+        {"robot": {"width": 0.6, "speed": 0.2, "rot_speed": 0.5}, "scorer": {"projection": "f1"}},
         {"map": {"source": "thesis-2"}, "stations": {"start": [1.3, 1.3], "end": [9.7, 1.3]}},
         {"map": {"source": "thesis-2"}, "thesis": {"moves": "routed"}},
     ],
@@ -31,7 +31,7 @@ def test_batch_evaluation_equals_the_gas_fitness_of_its_best_genome(tmp_path, se
         rot_speed=robot.get("rot_speed", 0.0),
         start=stations.get("start", (1.3, 1.3)),
         end=stations.get("end"),
-        projection=setting.get("thesis", {}).get("projection", "f2"),
+        projection=setting.get("scorer", {}).get("projection", "f2"),
         moves=setting.get("thesis", {}).get("moves", "straight"),
     )
     assert scores.shape == (1, 4) and thesis.COLUMNS == ("cov_final", "t_final", "f", "obstacle_cells")

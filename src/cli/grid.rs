@@ -85,6 +85,9 @@ fn show_run_done(bar: &indicatif::ProgressBar, terminal: bool, d: RunDone) {
 /// Runs `covga grid`: a study, its dry run, or its Slurm script.
 pub fn run(a: GridArgs) -> Result<(), CliError> {
     let study = Study::load(&a.file).map_err(CliError::input)?;
+    for w in &study.warnings {
+        eprintln!("warning: {w}");
+    }
     if a.jobs == 0 {
         return Err(CliError::Input("--jobs = 0 is out of range: at least 1".into()));
     }
@@ -276,7 +279,7 @@ pub fn merge(a: MergeArgs) -> Result<(), CliError> {
 pub struct ReportArgs {
     /// Study folder (with runs.csv).
     dir: PathBuf,
-    /// Group (facet) by these columns, e.g. --by thesis.selection --by thesis.projection.
+    /// Group (facet) by these columns, e.g. --by thesis.selection --by scorer.projection.
     #[arg(long)]
     by: Vec<String>,
     /// Only the runs whose column has this value, e.g. --where map.source=thesis-1 --where

@@ -7,12 +7,14 @@ use super::{Footprint, PathMetrics, SweepCounts};
 use serde::{Deserialize, Serialize};
 
 /// The projection `f(x, y)` of the two objectives onto one number (003 eqs. 3.14–3.15).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Hash)]
+/// `f2` is the default (spec §5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Hash, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Projection {
     /// `f1 = 0.5·x + 0.5·y` (eq. 3.14).
     F1,
     /// `f2 = x·y` (eq. 3.15).
+    #[default]
     F2,
 }
 

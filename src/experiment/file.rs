@@ -12,7 +12,7 @@ use crate::coverage::Footprint;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::patterns::planner::PatternSection;
-use crate::planner::sections::{BudgetSection, MapSection, RobotSection, StationsSection};
+use crate::planner::sections::{BudgetSection, MapSection, RobotSection, ScorerSection, StationsSection};
 use crate::planner::{Budget, Checks, Context, Scenario};
 use crate::thesis::config::{RetrainSection, ThesisSection};
 use crate::waypoint::config::WaypointSection;
@@ -35,9 +35,11 @@ pub struct ExperimentFile {
     pub robot: RobotSection,
     /// Start and end stations.
     pub stations: StationsSection,
+    /// How the common scorer measures every plan (projection, camera).
+    pub scorer: ScorerSection,
     /// Thesis GA parameters (random search draws its genomes with these too).
     pub thesis: ThesisSection,
-    /// Waypoint planner parameters; its camera is also the common scorer's camera.
+    /// Waypoint planner parameters.
     pub waypoint: WaypointSection,
     /// Pattern planner settings.
     pub pattern: PatternSection,
@@ -90,6 +92,7 @@ impl Default for ExperimentFile {
             map: MapSection::default(),
             robot: RobotSection::default(),
             stations: StationsSection::default(),
+            scorer: ScorerSection::default(),
             thesis: ThesisSection::default(),
             waypoint: WaypointSection::default(),
             pattern: PatternSection::default(),
@@ -129,8 +132,15 @@ impl ExperimentFile {
     /// A text that sets nothing (empty, or only comments) is refused: it is more often a wrong
     /// or truncated file than a wish for every default, which is said with one key, e.g.
     /// `planner = "thesis"`.
+    /// Keys of their old spelling ([`super::renamed`]) move to their new place first.
     pub fn parse(text: &str, origin: &str) -> Result<Self, ConfigError> {
-        let file = toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))?;
+        let mut table: toml::Table = text.parse().map_err(|e| ConfigError::from_toml(origin, text, &e))?;
+        let file = if super::renamed::rename_in_table(&mut table, origin)?.is_empty() {
+            // Straight from the text, so that a message names the line of a bad value.
+            toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))?
+        } else {
+            toml::Value::Table(table).try_into().map_err(|e| ConfigError::new(origin, "", e.message().trim()))?
+        };
         if text.parse::<toml::Table>().is_ok_and(|t| t.is_empty()) {
             return Err(ConfigError::new(
                 origin,
@@ -183,8 +193,8 @@ impl ExperimentFile {
         self.check_numbers(origin)?;
         let map = self.load_map(origin, base, load)?;
         let (robot, start, end) = self.robot_and_stations(origin, &map)?;
-        let camera = crate::waypoint::config::camera_spec(&self.waypoint, origin, &map)?;
-        let scenario = Scenario { map, robot, start, end, projection: self.thesis.projection, camera };
+        let camera = self.scorer.camera.spec(origin, &map)?;
+        let scenario = Scenario { map, robot, start, end, projection: self.scorer.projection, camera };
         crate::fleet::config::waypoint_team(
             &mut self.waypoint,
             &self.robots,

@@ -22,10 +22,9 @@ fn unread_by_selection(s: SelectionName, key: &str) -> bool {
     }
 }
 
-/// The `[thesis]` keys random search reads (how it draws genomes; the projection is the
-/// scorer's).
-const READ_BY_RANDOM_SEARCH: [&str; 5] =
-    ["thesis.pop_min", "thesis.init_actions", "thesis.init_dist_max", "thesis.max_genome_len", "thesis.projection"];
+/// The `[thesis]` keys random search reads (how it draws genomes).
+const READ_BY_RANDOM_SEARCH: [&str; 4] =
+    ["thesis.pop_min", "thesis.init_actions", "thesis.init_dist_max", "thesis.max_genome_len"];
 
 /// The `[cell_order]` keys the thesis GA's `cell_order` seed plan reads (it runs no GA).
 const READ_BY_CELL_ORDER_SEED: [&str; 3] =
@@ -95,8 +94,10 @@ fn within(key: &str, prefix: &str) -> bool {
 }
 
 /// Why `file`'s planner and selection do not read `key` (a dotted key such as
-/// `thesis.keep`, or a section such as `pattern`), or `None` when they read it.
+/// `thesis.keep`, or a section such as `pattern`; a renamed key by its current name), or
+/// `None` when they read it. Every planner's plan is scored through `[scorer]`.
 pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
+    let key = super::renamed::current_key(key);
     let planner = file.planner;
     let name = planner.name();
     // Which of the planner-specific sections each planner reads besides its own.
@@ -139,12 +140,15 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     if within(key, "waypoint")
         && key != "waypoint"
         && planner != PlannerKind::Waypoint
-        && !crate::waypoint::config::READ_BY_THE_SCORER.contains(&key)
         && !(key == "waypoint.alpha_cov" && reads_alpha_cov(file))
     {
         return Some(format!(
-            "planner = \"{name}\" reads [waypoint] only for the common scorer's camera ({})",
-            crate::waypoint::config::READ_BY_THE_SCORER.map(|k| k.trim_start_matches("waypoint.")).join(", ")
+            "planner = \"{name}\" does not read [waypoint]{} (the common scorer's camera is [scorer.camera])",
+            if file.planner == PlannerKind::Thesis {
+                " (but alpha_cov with thesis.objective = \"camera\")"
+            } else {
+                ""
+            }
         ));
     }
     if key == "output.population_genomes" && (planner != PlannerKind::Thesis || !file.robots.is_empty()) {
@@ -164,7 +168,7 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     if key == "waypoint.near_wall" && file.waypoint.waypoint_set == crate::waypoint::world::WaypointSet::Full {
         return Some("waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into());
     }
-    if within(key, "thesis") && key != "thesis.projection" {
+    if within(key, "thesis") {
         match planner {
             PlannerKind::Thesis => {
                 let selection = file.thesis.selection;
@@ -177,14 +181,11 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
             }
             PlannerKind::RandomSearch => {
                 if !READ_BY_RANDOM_SEARCH.contains(&key) {
-                    return Some(format!(
-                        "random search reads only {} of [thesis]",
-                        READ_BY_RANDOM_SEARCH[..4].join(", ")
-                    ));
+                    return Some(format!("random search reads only {} of [thesis]", READ_BY_RANDOM_SEARCH.join(", ")));
                 }
             }
             PlannerKind::Waypoint | PlannerKind::Boustrophedon | PlannerKind::Spiral | PlannerKind::CellOrder => {
-                return Some(format!("planner = \"{name}\" does not read [thesis] (except projection)"));
+                return Some(format!("planner = \"{name}\" does not read [thesis]"));
             }
         }
     }
@@ -272,6 +273,10 @@ mod tests {
             (&waypoint, "retrain", true),
             (&waypoint, "thesis.c_len", true),
             (&waypoint, "thesis.projection", false),
+            (&waypoint, "scorer.projection", false),
+            (&random, "scorer.camera.d_max", false),
+            (&elite, "waypoint.hallway", true),
+            (&elite, "waypoint.d_max", false),
             (&elite, "pattern", true),
             (&elite, "pattern.angle_deg", true),
             (&random, "thesis.init_actions", false),

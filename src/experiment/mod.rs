@@ -9,6 +9,7 @@ pub mod ignored;
 pub mod memory;
 pub mod output;
 pub mod registry;
+pub mod renamed;
 
 pub use file::{Experiment, ExperimentFile};
 pub use registry::{PlannerConfig, PlannerKind};

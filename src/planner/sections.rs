@@ -1,9 +1,13 @@
 //! The sections of an experiment file that make its [`Scenario`](super::Scenario) and
-//! [`Budget`](super::Budget): `[map]`, `[robot]`, `[stations]` and `[budget]`, as written, with
-//! the thesis's settings as defaults. The experiment file (one layer up) embeds them and
-//! validates them into the scenario every planner plans for.
+//! [`Budget`](super::Budget): `[map]`, `[robot]`, `[stations]`, `[scorer]` and `[budget]`, as
+//! written, with the thesis's settings as defaults. The experiment file (one layer up) embeds
+//! them and validates them into the scenario every planner plans for.
 
+use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
+use crate::coverage::fitness::Projection;
+use crate::coverage::score::CameraSpec;
+use crate::map::GridMap;
 use serde::{Deserialize, Serialize};
 
 /// `[map]`.
@@ -51,6 +55,105 @@ pub struct StationsSection {
     /// `E_pos` in metres (default: the start).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub end: Option<[f64; 2]>,
+}
+
+/// `[scorer]`: how the common scorer measures every plan, whichever planner made it. Planners
+/// that optimise the same quantities read it too: the thesis GA's fitness uses the projection,
+/// the waypoint planner's camera objective (000 eq. 1) this camera.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct ScorerSection {
+    /// Projection of the fitness `f` (`f1`, 003 eq. 3.14, or `f2`, eq. 3.15, the default).
+    pub projection: Projection,
+    /// The camera of the camera coverage (`cov_cam`, 000 eq. 1).
+    pub camera: CameraSection,
+}
+
+/// `[scorer.camera]`: 000's camera and the raster it is measured on (000 Table I's settings by
+/// default).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct CameraSection {
+    /// Pixel scale `s` of the working raster (m/px); the waypoint planner's raster too.
+    pub scale: f64,
+    /// Camera `d_min` (m).
+    pub d_min: f64,
+    /// Camera `d_max` (m).
+    pub d_max: f64,
+    /// Camera field of view `θ_fov` (degrees).
+    pub fov_deg: f64,
+    /// Coverage sections `m` (000 eq. 1).
+    pub sections: usize,
+    /// Width of the wall band `B` (m): the free cells this close to an obstacle count as wall
+    /// in `cov_cam`'s walls and open split. Absent: [`DEFAULT_WALL_BAND_M`], for every
+    /// planner alike (the measure does not follow any planner's settings, so that a study
+    /// sweeping one compares plans on one scale).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall_band: Option<f64>,
+}
+
+/// The scorer's wall band when `scorer.camera.wall_band` is absent (m): 000's safety buffer at
+/// its narrowest hallway of 1.5 m (half of it, 000 §II-B.2 and eq. 2).
+pub const DEFAULT_WALL_BAND_M: f64 = 0.75;
+
+/// The most pixels the camera's working raster may have on one map.
+const MAX_CAMERA_RASTER_PIXELS: f64 = 4.0e8;
+
+impl Default for CameraSection {
+    fn default() -> Self {
+        Self { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, wall_band: None }
+    }
+}
+
+impl CameraSection {
+    /// The checked camera on `map`; `origin` names the file in messages.
+    pub fn spec(&self, origin: &str, map: &GridMap) -> Result<CameraSpec, ConfigError> {
+        let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
+        check_range(origin, "scorer.camera.scale", self.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
+        check_range(origin, "scorer.camera.d_min", self.d_min, 0.0, 1e6, "[0, 1e6] metres")?;
+        if !(self.d_max.is_finite() && self.d_max > self.d_min) {
+            return Err(err(
+                "scorer.camera.d_max",
+                format!("= {} must exceed d_min = {} (camera depth range)", self.d_max, self.d_min),
+            ));
+        }
+        if !(self.fov_deg > 0.0 && self.fov_deg <= 360.0) {
+            return Err(err("scorer.camera.fov_deg", format!("= {} is out of range (0, 360] degrees", self.fov_deg)));
+        }
+        if self.sections == 0 || self.sections > 3600 {
+            return Err(err("scorer.camera.sections", format!("= {} is out of range [1, 3600]", self.sections)));
+        }
+        let pixels = (map.width_m() / self.scale) * (map.height_m() / self.scale);
+        if pixels > MAX_CAMERA_RASTER_PIXELS {
+            return Err(err(
+                "scorer.camera.scale",
+                format!("= {} m gives a working raster of {pixels:.3e} pixels for this map (at most 4e8)", self.scale),
+            ));
+        }
+        let longest = map.width_m().max(map.height_m());
+        let band_m = match self.wall_band {
+            Some(b) => {
+                check_range(
+                    origin,
+                    "scorer.camera.wall_band",
+                    b,
+                    self.scale,
+                    longest,
+                    "[scale, the map's longer side] metres",
+                )?;
+                b
+            }
+            None => DEFAULT_WALL_BAND_M,
+        };
+        Ok(CameraSpec {
+            scale: self.scale,
+            d_min: self.d_min,
+            d_max: self.d_max,
+            fov_deg: self.fov_deg,
+            sections: self.sections,
+            band_m,
+        })
+    }
 }
 
 /// `[budget]`.

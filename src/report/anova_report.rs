@@ -68,7 +68,7 @@ fn table(md: &mut String, a: &Anova, spread: (f64, f64)) {
 }
 
 /// The swept key that picks the fitness function.
-pub const PROJECTION: &str = "thesis.projection";
+pub const PROJECTION: &str = "scorer.projection";
 
 /// The projections of a study that sweeps them, when `metric` is an `f` (which then must be
 /// compared within one projection only); `None` otherwise.
@@ -228,7 +228,11 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
                     md,
                     "### {metric}\n\nf1 (003 eq. 3.14) and f2 (eq. 3.15) are different functions, so {metric} is analysed within each projection, over the other parameters.\n"
                 );
-                let others: Vec<String> = params.iter().filter(|p| *p != PROJECTION).cloned().collect();
+                let others: Vec<String> = params
+                    .iter()
+                    .filter(|p| crate::experiment::renamed::current_key(p) != PROJECTION)
+                    .cloned()
+                    .collect();
                 for level in levels {
                     let sub = subset(t, PROJECTION, &level);
                     let (factors, terms, _) = model(&sub, &others);

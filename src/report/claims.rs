@@ -205,7 +205,7 @@ fn selection_claims(runs: &Runs, out: &mut Vec<Row>) {
         );
     }
     for sel_name in ["tournament", "prws", "rrws"] {
-        let s = |p| sel(&[("thesis.selection", sel_name), ("thesis.projection", p)]);
+        let s = |p| sel(&[("thesis.selection", sel_name), ("scorer.projection", p)]);
         push(
             "f2 moves the population towards the diagonal (non-Elite)",
             format!("distance from the diagonal, abs(cov_final − t_final), {sel_name}: f2 vs f1"),
@@ -232,7 +232,7 @@ fn parameter_claims(runs: &Runs, out: &mut Vec<Row>) {
         false,
     );
     let ts_f2 =
-        |v| sel(&[("thesis.selection", "tournament"), ("thesis.tournament_size", v), ("thesis.projection", "f2")]);
+        |v| sel(&[("thesis.selection", "tournament"), ("thesis.tournament_size", v), ("scorer.projection", "f2")]);
     push(
         "Higher TS with f2 gives more outliers",
         "outlier rate, TS 7 vs TS 3, f2".into(),
@@ -246,7 +246,7 @@ fn parameter_claims(runs: &Runs, out: &mut Vec<Row>) {
         compare(&runs.diversity(&sp("2")), &runs.diversity(&sp("1.4")), Expect::NotLower),
         false,
     );
-    let sp_f2 = |v| sel(&[("thesis.selection", "rrws"), ("thesis.selection_pressure", v), ("thesis.projection", "f2")]);
+    let sp_f2 = |v| sel(&[("thesis.selection", "rrws"), ("thesis.selection_pressure", v), ("scorer.projection", "f2")]);
     push(
         "Higher SP with f2 gives fewer outliers",
         "outlier rate, SP 2 vs SP 1.4, f2".into(),

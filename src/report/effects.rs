@@ -108,7 +108,7 @@ fn parameter_tests(t: &RunsTable, p: usize, label: &str, rows: &[usize]) -> Vec<
         let scoped: Vec<usize> = rows.iter().copied().filter(|&r| !executable_only || executable(r)).collect();
         let scopes: Vec<(String, Vec<usize>)> = match projection_levels(t, metric) {
             None => vec![(metric.to_string(), scoped)],
-            Some(_) if t.header[p] == PROJECTION => continue,
+            Some(_) if t.col(PROJECTION) == Some(p) => continue,
             Some(levels) => {
                 let c = t.col(PROJECTION).expect("projection levels come from its column");
                 levels

@@ -24,7 +24,7 @@ pub(super) fn projection_scopes(t: &RunsTable, rows: &[usize]) -> Vec<(String, V
             (!scoped.is_empty()).then(|| (format!(", {PROJECTION}={l}"), scoped))
         })
         .collect();
-    // Rows of one projection (a group of `--by thesis.projection`) need no split.
+    // Rows of one projection (a group of `--by scorer.projection`) need no split.
     if scopes.len() > 1 { scopes } else { vec![(String::new(), rows.to_vec())] }
 }
 

@@ -97,6 +97,8 @@ pub struct Study {
     pub columns: Vec<String>,
     /// All runs, in expansion order.
     pub runs: Vec<RunSpec>,
+    /// Warnings in words, each naming the grid file (keys spelt as they were before a rename).
+    pub warnings: Vec<String>,
 }
 
 /// The most runs one study may hold (the largest published grid, 003's Table 4.3 with its
@@ -162,8 +164,37 @@ pub fn scalar_text(v: &Value) -> String {
     }
 }
 
+/// A table of dotted keys (axes, `when`) with every old key under its current name
+/// ([`crate::experiment::renamed`]); `renamed` collects the old keys met.
+fn current_spelling(
+    t: &Table,
+    origin: &str,
+    section: &str,
+    renamed: &mut crate::experiment::renamed::Moves,
+) -> Result<Table, ConfigError> {
+    use crate::experiment::renamed::RENAMED_KEYS;
+    for (old, new) in RENAMED_KEYS {
+        if t.contains_key(old) {
+            if t.contains_key(new) {
+                return Err(ConfigError::new(
+                    origin,
+                    &format!("{section}.\"{new}\""),
+                    format!("is also given under its old name `{old}`: keep `{new}` only"),
+                ));
+            }
+            renamed.push((old, new));
+        }
+    }
+    Ok(t.iter().map(|(k, v)| (crate::experiment::renamed::current_key(k).to_string(), v.clone())).collect())
+}
+
+/// The axes of `axes` (dotted key → values), in the order of their keys as first spelt (a
+/// renamed key sorts under its old name), so that a rename keeps a study's columns in place.
 fn values_of(axes: &Table, origin: &str, section: &str) -> Result<Vec<(String, Vec<Value>)>, ConfigError> {
-    axes.iter()
+    let mut keyed: Vec<(&String, &Value)> = axes.iter().collect();
+    keyed.sort_by_key(|(k, _)| crate::experiment::renamed::old_key(k).unwrap_or(k));
+    keyed
+        .into_iter()
         .map(|(k, v)| match v {
             // The grid sets these itself: one seed per replicate, one folder per run.
             _ if k == "seed" => Err(ConfigError::new(
@@ -233,10 +264,15 @@ impl Study {
     /// Expands grid text; `path` names the file and resolves a base path.
     pub fn parse(text: &str, path: &Path) -> Result<Self, ConfigError> {
         let origin = path.display().to_string();
-        let grid: GridFile = toml::from_str(text).map_err(|e| ConfigError::from_toml(&origin, text, &e))?;
-        let base = read_base(&grid, path, &origin)?;
+        let mut grid: GridFile = toml::from_str(text).map_err(|e| ConfigError::from_toml(&origin, text, &e))?;
+        let (base, mut renamed) = read_base(&grid, path, &origin)?;
         if grid.seeds == 0 {
             return Err(ConfigError::new(&origin, "seeds", "= 0 is out of range: at least 1 replicate"));
+        }
+        grid.axes = current_spelling(&grid.axes, &origin, "axes", &mut renamed)?;
+        for (n, c) in grid.conditional.iter_mut().enumerate() {
+            c.axes = current_spelling(&c.axes, &origin, &format!("conditional[{n}].axes"), &mut renamed)?;
+            c.when = current_spelling(&c.when, &origin, &format!("conditional[{n}].when"), &mut renamed)?;
         }
         let axes = values_of(&grid.axes, &origin, "axes")?;
         for (k, vals) in &axes {
@@ -264,7 +300,11 @@ impl Study {
         let runs = expansion.runs(&base)?;
         expand::check_unread_alike(&origin, &columns, &runs)?;
         expand::check_distinct_ids(&origin, &grid, &columns, &runs)?;
-        Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs })
+        renamed.sort_unstable();
+        renamed.dedup();
+        let warnings =
+            renamed.into_iter().map(|(old, new)| crate::experiment::renamed::warning(&origin, old, new)).collect();
+        Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs, warnings })
     }
 
     /// Run counts per branch, in first-seen order.
@@ -294,8 +334,13 @@ fn default_has(key: &str) -> bool {
 }
 
 /// The grid's base experiment (inline, or the file it names beside the grid), without its
-/// `[output]`, checked as an experiment file.
-fn read_base(grid: &GridFile, path: &Path, origin: &str) -> Result<Table, ConfigError> {
+/// `[output]`, its old keys moved to their new names, checked as an experiment file; and the
+/// old keys it used.
+fn read_base(
+    grid: &GridFile,
+    path: &Path,
+    origin: &str,
+) -> Result<(Table, crate::experiment::renamed::Moves), ConfigError> {
     let mut base = match &grid.base {
         BaseRef::Inline(t) => t.clone(),
         BaseRef::Path(p) => {
@@ -307,11 +352,12 @@ fn read_base(grid: &GridFile, path: &Path, origin: &str) -> Result<Table, Config
         }
     };
     base.remove("output");
+    let renamed = crate::experiment::renamed::rename_in_table(&mut base, origin)?;
     // The base itself must be a valid experiment file.
     Value::Table(base.clone())
         .try_into::<ExperimentFile>()
         .map_err(|e| ConfigError::new(origin, "base", e.message().trim().to_string()))?;
-    Ok(base)
+    Ok((base, renamed))
 }
 
 /// The grid's columns (the unconditional axes', then each conditional's new keys) and its

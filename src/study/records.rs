@@ -241,9 +241,15 @@ impl RunsTable {
         Ok(Self { header, rows })
     }
 
-    /// Index of a column.
+    /// Index of a column. A renamed key finds its column under either name
+    /// ([`crate::experiment::renamed`]): a study made before the rename keeps the old one.
     pub fn col(&self, name: &str) -> Option<usize> {
-        self.header.iter().position(|h| h == name)
+        let other = crate::experiment::renamed::old_key(name)
+            .or_else(|| Some(crate::experiment::renamed::current_key(name)).filter(|k| *k != name));
+        self.header
+            .iter()
+            .position(|h| h == name)
+            .or_else(|| other.and_then(|o| self.header.iter().position(|h| h == o)))
     }
 
     /// Rows by run id.

@@ -10,7 +10,6 @@ use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use super::scenario::Moves;
 use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
-use crate::coverage::fitness::Projection;
 use crate::ga::control::AdaptiveConstants;
 use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
 use crate::planner::memory::MemoryEstimate;
@@ -21,8 +20,6 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct ThesisSection {
-    /// `f1` or `f2`.
-    pub projection: Projection,
     /// `elite`, `nsga2`, or a registered parent draw (`tournament`, `prws`, `rrws`, …).
     pub selection: SelectionName,
     /// `Pop_min`.
@@ -200,7 +197,6 @@ impl Default for ThesisSection {
     fn default() -> Self {
         let p = ThesisParams::thesis_elite();
         Self {
-            projection: Projection::F2,
             selection: SelectionName::Elite,
             pop_min: p.pop_min,
             init_individuals: INIT_INDIVIDUALS,
@@ -518,7 +514,10 @@ mod tests {
     /// F2 is the default projection (spec §5) and `C_child` = 2 (both) the default child mode.
     #[test]
     fn the_thesis_defaults() {
-        assert_eq!(ThesisSection::default().projection, crate::coverage::fitness::Projection::F2);
+        assert_eq!(
+            crate::planner::sections::ScorerSection::default().projection,
+            crate::coverage::fitness::Projection::F2
+        );
         assert_eq!(ThesisSection::default().c_child, 2, "C_child = 2 (both) by default");
     }
 }

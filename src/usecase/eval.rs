@@ -273,24 +273,23 @@ fn plan_paths(
     }
 }
 
-/// The camera of the common scorer's `cov_cam`: 000's default. Its narrowest hallway bounds the
-/// map's cell size, and `eval` has no camera settings, so a coarser map is blamed on its
-/// resolution.
+/// The camera of the common scorer's `cov_cam`: 000's default (`[scorer.camera]`'s defaults).
+/// Its wall band is half 000's narrowest hallway, which bounds the map's cell size, and `eval`
+/// has no camera settings, so a coarser map is blamed on its resolution. A map smaller than
+/// that hallway is one hallway: the band is at most half the map's longer side.
 fn eval_camera(map: &GridMap, source: &str) -> Result<CameraSpec, UseCaseError> {
-    let mut defaults = crate::waypoint::config::WaypointSection::default();
-    // A map smaller than 000's narrowest hallway is one hallway: the camera's waypoint step
-    // cannot exceed the map (maps under 1.5 m could not be scored at all).
-    defaults.hallway = defaults.hallway.min(map.width_m().max(map.height_m()));
-    let finest_needed = defaults.hallway;
-    if map.resolution() > finest_needed {
+    let mut camera = crate::planner::sections::CameraSection::default();
+    let hallway = (2.0 * crate::planner::sections::DEFAULT_WALL_BAND_M).min(map.width_m().max(map.height_m()));
+    if map.resolution() > hallway {
         return Err(UseCaseError::Input(format!(
             "map `{source}` has cells of {} m: the camera coverage eval reports (000's default camera, narrowest hallway {} m) needs cells of at most {} m; give a finer map (`--resolution` for a bare image, `resolution:` in a ROS map YAML)",
             crate::io::short_number(map.resolution()),
-            crate::io::short_number(defaults.hallway),
-            crate::io::short_number(finest_needed)
+            crate::io::short_number(hallway),
+            crate::io::short_number(hallway)
         )));
     }
-    crate::waypoint::config::camera_spec(&defaults, "default camera", map).map_err(UseCaseError::input)
+    camera.wall_band = Some(hallway / 2.0);
+    camera.spec("default camera", map).map_err(UseCaseError::input)
 }
 
 /// Plans (or reads) and scores the request's plan.

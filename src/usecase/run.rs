@@ -54,10 +54,21 @@ pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u6
     if let Some(seed) = seed {
         file.seed = seed;
     }
-    let experiment = file.validate(origin, &PathBuf::from("."), &source.stem).map_err(UseCaseError::input)?;
+    let renamed = crate::experiment::renamed::renamed_in_text(&source.text);
+    let experiment = file.validate(origin, &PathBuf::from("."), &source.stem).map_err(|mut e| {
+        // A renamed key is checked under its new name: say how this file spells it.
+        if let Some((old, _)) = renamed.iter().find(|(_, new)| *new == e.key) {
+            e.message.push_str(&format!(" (this file spells it `{old}`, its name before the move)"));
+        }
+        UseCaseError::input(e)
+    })?;
     let limit = crate::experiment::memory::memory_limit(max_memory);
     experiment.check_memory(origin, limit, 1, rayon::current_num_threads()).map_err(UseCaseError::input)?;
-    let warnings = ignored.into_iter().map(|(key, why)| format!("{origin}: `{key}` is ignored: {why}")).collect();
+    let warnings = renamed
+        .into_iter()
+        .map(|(old, new)| crate::experiment::renamed::warning(origin, old, new))
+        .chain(ignored.into_iter().map(|(key, why)| format!("{origin}: `{key}` is ignored: {why}")))
+        .collect();
     Ok(Prepared { experiment, origin: origin.clone(), warnings })
 }
 

@@ -2,18 +2,19 @@
 //! its validation into the waypoint planner's typed parameters.
 
 use crate::config::{ConfigError, check_range, check_unit};
+use crate::coverage::score::CameraSpec;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::planner::Context;
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use serde::{Deserialize, Serialize};
 
-/// `[waypoint]`: 000 Table I as reconciled (spec §18–19); metres, degrees.
+/// `[waypoint]`: 000 Table I as reconciled (spec §18–19); metres, degrees. The camera and its
+/// raster are the common scorer's (`[scorer.camera]`), which the planner's camera objective
+/// measures.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct WaypointSection {
-    /// Pixel scale `s` (m/px).
-    pub scale: f64,
     /// UAV width (m).
     pub uav_width: f64,
     /// Narrowest accessible hallway `h_min` (m): sets the waypoint grid step and, by default,
@@ -40,14 +41,6 @@ pub struct WaypointSection {
     pub near_wall: Option<f64>,
     /// Maximum traverse distance of an edge (m).
     pub max_traverse: f64,
-    /// Camera `d_min` (m).
-    pub d_min: f64,
-    /// Camera `d_max` (m).
-    pub d_max: f64,
-    /// Camera field of view (degrees).
-    pub fov_deg: f64,
-    /// Coverage sections `m`.
-    pub sections: usize,
     /// `sections` (000 eq. 1, default) or `fan` (the authors' code's polygon view).
     pub view_shape: crate::coverage::camera::ViewShape,
     /// `full` or `near_wall`.
@@ -113,7 +106,6 @@ pub struct WaypointSection {
 impl Default for WaypointSection {
     fn default() -> Self {
         Self {
-            scale: 0.15,
             uav_width: 0.5,
             hallway: 1.5,
             grid_step: super::geometry::GridStep::HalfHallway,
@@ -122,10 +114,6 @@ impl Default for WaypointSection {
             wall_band: None,
             near_wall: None,
             max_traverse: 4.0,
-            d_min: 0.2,
-            d_max: 7.0,
-            fov_deg: 69.4,
-            sections: 15,
             view_shape: crate::coverage::camera::ViewShape::Sections,
             waypoint_set: super::world::WaypointSet::Full,
             objective: super::world::ObjectiveKind::Camera,
@@ -174,68 +162,11 @@ pub struct WaypointConfig {
     pub ga: super::run::GaParams,
 }
 
-/// The `[waypoint]` keys that change the common scorer's camera, and so every planner's scores
-/// ([`camera_spec`]: scale, depth range, field of view, sections, and the wall band, which
-/// follows from the hallway or the safety buffer unless set). A planner other than the waypoint
-/// planner reads no other key of the section (the rest are checked, not used).
-pub const READ_BY_THE_SCORER: [&str; 8] = [
-    "waypoint.scale",
-    "waypoint.d_min",
-    "waypoint.d_max",
-    "waypoint.fov_deg",
-    "waypoint.sections",
-    "waypoint.hallway",
-    "waypoint.safety_buffer",
-    "waypoint.wall_band",
-];
-
-/// The camera of `[waypoint]` as the common scorer uses it (checked for every planner, since
-/// every run is scored with it): scale, depth range, field of view, sections, and the wall band
-/// of the planner's geometry (by default the safety buffer, 000 eq. 2).
-pub fn camera_spec(
-    w: &WaypointSection,
-    origin: &str,
-    map: &GridMap,
-) -> Result<crate::coverage::score::CameraSpec, ConfigError> {
-    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-    check_range(origin, "waypoint.scale", w.scale, 1e-4, 10.0, "(0, 10] metres per pixel")?;
-    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "[1e-4, 100] metres")?;
-    check_range(origin, "waypoint.d_min", w.d_min, 0.0, 1e6, "[0, 1e6] metres")?;
-    if !(w.d_max.is_finite() && w.d_max > w.d_min) {
-        return Err(err(
-            "waypoint.d_max",
-            format!("= {} must exceed d_min = {} (camera depth range)", w.d_max, w.d_min),
-        ));
-    }
-    if !(w.fov_deg > 0.0 && w.fov_deg <= 360.0) {
-        return Err(err("waypoint.fov_deg", format!("= {} is out of range (0, 360] degrees", w.fov_deg)));
-    }
-    if w.sections == 0 || w.sections > 3600 {
-        return Err(err("waypoint.sections", format!("= {} is out of range [1, 3600]", w.sections)));
-    }
-    let pixels = (map.width_m() / w.scale) * (map.height_m() / w.scale);
-    if pixels > 4.0e8 {
-        return Err(err(
-            "waypoint.scale",
-            format!("= {} m gives a working raster of {pixels:.3e} pixels for this map (at most 4e8)", w.scale),
-        ));
-    }
-    let geometry = super::geometry::Geometry::resolve(w, origin, map)?;
-    Ok(crate::coverage::score::CameraSpec {
-        scale: w.scale,
-        d_min: w.d_min,
-        d_max: w.d_max,
-        fov_deg: w.fov_deg,
-        sections: w.sections,
-        band_m: geometry.wall_band,
-    })
-}
-
 impl WaypointSection {
     /// Validates this section against the scenario's map and start.
     pub fn validate(&self, ctx: &Context) -> Result<WaypointConfig, ConfigError> {
         let scenario = ctx.scenario;
-        let mut c = validate(self, ctx.origin, &scenario.map, scenario.start)?;
+        let mut c = validate(self, ctx.origin, &scenario.map, scenario.start, &scenario.camera)?;
         if self.objective == super::world::ObjectiveKind::Footprint {
             c.world.objective = super::world::Objective::Footprint { width: scenario.robot.width };
         }
@@ -279,17 +210,24 @@ impl WaypointConfig {
     }
 }
 
-/// Range checks of `[waypoint]` and the conversion into planner parameters.
-fn validate(w: &WaypointSection, origin: &str, map: &GridMap, start: Point) -> Result<WaypointConfig, ConfigError> {
-    // Scale, UAV width and the camera: the same checks as the scorer's camera.
-    camera_spec(w, origin, map)?;
-    let geometry = super::geometry::Geometry::resolve(w, origin, map)?;
+/// Range checks of `[waypoint]` and the conversion into planner parameters, with the common
+/// scorer's camera (`[scorer.camera]`, checked with the scenario): the planner's camera
+/// objective (000 eq. 1) is that camera's coverage, on its raster.
+fn validate(
+    w: &WaypointSection,
+    origin: &str,
+    map: &GridMap,
+    start: Point,
+    camera: &CameraSpec,
+) -> Result<WaypointConfig, ConfigError> {
+    check_range(origin, "waypoint.uav_width", w.uav_width, 1e-4, 100.0, "[1e-4, 100] metres")?;
+    let geometry = super::geometry::Geometry::resolve(w, camera.scale, origin, map)?;
     check_team(w, origin, map)?;
     check_ga(w, origin)?;
-    check_view_and_weights(w, origin, map)?;
+    check_view_and_weights(w, origin, map, camera)?;
     let starts: Vec<(f64, f64)> =
         if w.starts.is_empty() { vec![(start.x, start.y)] } else { w.starts.iter().map(|s| (s[0], s[1])).collect() };
-    Ok(config_of(w, geometry, starts))
+    Ok(config_of(w, geometry, starts, camera))
 }
 
 /// The moves and the team: `max_traverse`, `agents` and their `starts` (free stations).
@@ -352,15 +290,20 @@ fn check_ga(w: &WaypointSection, origin: &str) -> Result<(), ConfigError> {
 }
 
 /// The camera's reach for a fan view, and the objective's weights.
-fn check_view_and_weights(w: &WaypointSection, origin: &str, map: &GridMap) -> Result<(), ConfigError> {
+fn check_view_and_weights(
+    w: &WaypointSection,
+    origin: &str,
+    map: &GridMap,
+    camera: &CameraSpec,
+) -> Result<(), ConfigError> {
     let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     let diagonal = map.width_m().hypot(map.height_m());
-    if w.view_shape == crate::coverage::camera::ViewShape::Fan && w.d_max > diagonal {
+    if w.view_shape == crate::coverage::camera::ViewShape::Fan && camera.d_max > diagonal {
         return Err(err(
-            "waypoint.d_max",
+            "scorer.camera.d_max",
             format!(
                 "= {} m is beyond the map's diagonal of {diagonal:.2} m; a fan view is drawn through its ray ends at d_max, so with view_shape = \"fan\" it must be at most {diagonal:.2} m (with \"sections\" a longer d_max is capped at the map and sees the same)",
-                w.d_max
+                camera.d_max
             ),
         ));
     }
@@ -371,20 +314,25 @@ fn check_view_and_weights(w: &WaypointSection, origin: &str, map: &GridMap) -> R
 }
 
 /// The validated planner of a checked section (000's camera world and GA).
-fn config_of(w: &WaypointSection, geometry: super::geometry::Geometry, starts: Vec<(f64, f64)>) -> WaypointConfig {
+fn config_of(
+    w: &WaypointSection,
+    geometry: super::geometry::Geometry,
+    starts: Vec<(f64, f64)>,
+    camera: &CameraSpec,
+) -> WaypointConfig {
     use super::evaluate::ObjectiveParams;
     use super::operators::OperatorParams;
     WaypointConfig {
         world: super::world::WorldParams {
-            scale: w.scale,
+            scale: camera.scale,
             uav_width: w.uav_width,
             hallway: w.hallway,
             geometry,
             max_traverse: w.max_traverse,
-            d_min: w.d_min,
-            d_max: w.d_max,
-            fov_deg: w.fov_deg,
-            sections: w.sections,
+            d_min: camera.d_min,
+            d_max: camera.d_max,
+            fov_deg: camera.fov_deg,
+            sections: camera.sections,
             view_shape: w.view_shape,
             set: w.waypoint_set,
             starts,

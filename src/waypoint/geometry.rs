@@ -46,8 +46,9 @@ pub fn grid_step_m(rule: GridStep, hallway: f64, scale: f64) -> f64 {
 }
 
 impl Geometry {
-    /// Resolves and checks the geometry keys of `w` on `map`.
-    pub fn resolve(w: &WaypointSection, origin: &str, map: &GridMap) -> Result<Self, ConfigError> {
+    /// Resolves and checks the geometry keys of `w` on `map`, whose raster has pixels of
+    /// `scale` metres (`scorer.camera.scale`).
+    pub fn resolve(w: &WaypointSection, scale: f64, origin: &str, map: &GridMap) -> Result<Self, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let longest = map.width_m().max(map.height_m());
         if !(w.hallway.is_finite() && w.hallway <= longest) {
@@ -59,18 +60,18 @@ impl Geometry {
                 ),
             ));
         }
-        if w.hallway < 2.0 * w.scale || w.hallway < map.resolution() {
+        if w.hallway < 2.0 * scale || w.hallway < map.resolution() {
             return Err(err(
                 "waypoint.hallway",
                 format!(
                     "= {} m is below the cell size: the narrowest hallway must be at least 2 x scale = {} m and the map resolution {} m",
                     crate::io::short_number(w.hallway),
-                    2.0 * w.scale,
+                    2.0 * scale,
                     map.resolution()
                 ),
             ));
         }
-        let grid_step = grid_step_m(w.grid_step, w.hallway, w.scale);
+        let grid_step = grid_step_m(w.grid_step, w.hallway, scale);
         let half_uav = w.uav_width / 2.0;
         let buffer = match w.safety_buffer {
             Some(b) => {
@@ -106,14 +107,7 @@ impl Geometry {
         };
         let wall_band = match w.wall_band {
             Some(v) => {
-                check_range(
-                    origin,
-                    "waypoint.wall_band",
-                    v,
-                    w.scale,
-                    longest,
-                    "[scale, the map's longer side] metres",
-                )?;
+                check_range(origin, "waypoint.wall_band", v, scale, longest, "[scale, the map's longer side] metres")?;
                 v
             }
             None => buffer,
@@ -148,17 +142,17 @@ mod tests {
     fn the_papers_values_resolve_as_000_and_the_driver_define_them() {
         let map = preset("office").unwrap();
         // h_min = 2.5 m at 0.15 m/px: 000's grid is 1.25 m; the driver's 16 px = 2.4 m.
-        let g = Geometry::resolve(&section("hallway = 2.5\nscale = 0.15\n"), "e.toml", &map).unwrap();
+        let g = Geometry::resolve(&section("hallway = 2.5\n"), 0.15, "e.toml", &map).unwrap();
         assert_eq!(g.grid_step, 1.25);
         assert_eq!(g.buffer, 1.25);
         assert_eq!(g.merge, 1.25);
         assert_eq!(g.wall_band, 1.25);
         assert_eq!(g.near_wall, 3.125);
-        let d = Geometry::resolve(&section("hallway = 2.5\ngrid_step = \"hallway\"\n"), "e.toml", &map).unwrap();
+        let d = Geometry::resolve(&section("hallway = 2.5\ngrid_step = \"hallway\"\n"), 0.15, "e.toml", &map).unwrap();
         assert!((d.grid_step - 2.4).abs() < 1e-12, "{}", d.grid_step);
         assert!((d.merge - 2.4).abs() < 1e-12);
         let set = section("hallway = 2.5\nsafety_buffer = 0.4\nwall_band = 1.2\nnear_wall = 3\nmerge_distance = 2\n");
-        let s = Geometry::resolve(&set, "e.toml", &map).unwrap();
+        let s = Geometry::resolve(&set, 0.15, "e.toml", &map).unwrap();
         assert_eq!((s.buffer, s.wall_band, s.near_wall, s.merge), (0.4, 1.2, 3.0, 2.0));
     }
 
@@ -172,7 +166,7 @@ mod tests {
             ("wall_band = 0.01\n", "waypoint.wall_band"),
             ("merge_distance = -1\n", "waypoint.merge_distance"),
         ] {
-            let e = Geometry::resolve(&section(text), "e.toml", &map).unwrap_err().to_string();
+            let e = Geometry::resolve(&section(text), 0.15, "e.toml", &map).unwrap_err().to_string();
             assert!(e.contains(key), "{text}: {e}");
         }
     }

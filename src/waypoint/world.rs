@@ -355,7 +355,7 @@ mod tests {
         let section: crate::waypoint::config::WaypointSection = toml::from_str("hallway = 2.5\n").unwrap();
         for step in [crate::waypoint::geometry::GridStep::HalfHallway, crate::waypoint::geometry::GridStep::Hallway] {
             let w = crate::waypoint::config::WaypointSection { grid_step: step, ..section.clone() };
-            let geometry = crate::waypoint::geometry::Geometry::resolve(&w, "e.toml", &map).unwrap();
+            let geometry = crate::waypoint::geometry::Geometry::resolve(&w, 0.15, "e.toml", &map).unwrap();
             let p = WorldParams { geometry, hallway: 2.5, starts: vec![(8.75, 8.75)], ..params(WaypointSet::Full) };
             let world = World::build(&map, &p, 1).unwrap();
             assert_eq!(world.dropped, 0, "{step:?}");

@@ -227,7 +227,7 @@ fn self_runs(
     let by_key: BTreeMap<&String, &Value> = params.iter().map(|(k, v)| (k, v)).collect();
     let cells: Vec<Option<String>> = columns.iter().map(|c| by_key.get(c).map(|v| scalar_text(v))).collect();
     file.seed = 0;
-    let config_text = toml::to_string(&file).expect("experiment files serialise");
+    let config_text = crate::experiment::renamed::id_text(&file);
     let config_id = format!("{:016x}", fnv1a(config_text.as_bytes()));
     let branch = if branch.is_empty() { "no conditional axes".to_string() } else { branch.join(" & ") };
     // A deterministic planner gives the same plan for every seed: it runs once.
@@ -236,7 +236,7 @@ fn self_runs(
         let mut f = file.clone();
         // TOML integers are signed 64-bit: keep run seeds below 2^63.
         f.seed = derive(grid.seed, &[Purpose::Run as u64, u64::from(replicate)]) >> 1;
-        let text = toml::to_string(&f).expect("experiment files serialise");
+        let text = crate::experiment::renamed::id_text(&f);
         let id = format!("{:016x}", fnv1a(format!("{text}\nreplicate={replicate}").as_bytes()));
         runs.push(RunSpec {
             id,

@@ -1,0 +1,227 @@
+//! Keys that moved to another section, and what keeps their old spelling working for one
+//! release. A file or grid that uses an old key still reads: the value moves to the new key
+//! before anything else sees it (an experiment, a grid's base, axes and `when` tables), the
+//! warning names the new key, and a study's column takes the new name. Run ids hash the
+//! experiment in the layout ids were first defined with ([`id_text`]), so that a move changes
+//! no id and forces no committed study to re-run.
+
+use super::file::ExperimentFile;
+use crate::config::ConfigError;
+use toml::{Table, Value};
+
+/// Old dotted key → new dotted key. The scorer's projection and camera were read from the
+/// thesis GA's and the waypoint planner's sections until they got a section of their own.
+pub const RENAMED_KEYS: [(&str, &str); 6] = [
+    ("thesis.projection", "scorer.projection"),
+    ("waypoint.scale", "scorer.camera.scale"),
+    ("waypoint.d_min", "scorer.camera.d_min"),
+    ("waypoint.d_max", "scorer.camera.d_max"),
+    ("waypoint.fov_deg", "scorer.camera.fov_deg"),
+    ("waypoint.sections", "scorer.camera.sections"),
+];
+
+/// Old keys met, each with its new name.
+pub type Moves = Vec<(&'static str, &'static str)>;
+
+/// The current spelling of a dotted key (`key` itself unless it was renamed).
+pub fn current_key(key: &str) -> &str {
+    RENAMED_KEYS.iter().find(|(old, _)| *old == key).map_or(key, |(_, new)| new)
+}
+
+/// The dotted key's old spelling, where it had one.
+pub fn old_key(key: &str) -> Option<&'static str> {
+    RENAMED_KEYS.iter().find(|(_, new)| *new == key).map(|(old, _)| *old)
+}
+
+/// The value at a dotted key of `t`, removed.
+fn take(t: &mut Table, key: &str) -> Option<Value> {
+    let (head, last) = key.rsplit_once('.').unwrap_or(("", key));
+    let mut table = t;
+    for part in head.split('.').filter(|p| !p.is_empty()) {
+        table = table.get_mut(part)?.as_table_mut()?;
+    }
+    table.remove(last)
+}
+
+/// Sets a dotted key of `t`, making the tables on the way; the value already there, if any.
+fn put(t: &mut Table, key: &str, value: Value) -> Result<Option<Value>, String> {
+    let (head, last) = key.rsplit_once('.').unwrap_or(("", key));
+    let mut table = t;
+    for part in head.split('.').filter(|p| !p.is_empty()) {
+        table = table
+            .entry(part.to_string())
+            .or_insert_with(|| Value::Table(Table::new()))
+            .as_table_mut()
+            .ok_or_else(|| format!("`{part}` is not a table"))?;
+    }
+    Ok(table.insert(last.to_string(), value))
+}
+
+/// Moves every old key of the experiment table `t` to its new place, returning the moves
+/// made. An old and a new key both set to different values are refused, naming both.
+pub fn rename_in_table(t: &mut Table, origin: &str) -> Result<Moves, ConfigError> {
+    let mut moved = Vec::new();
+    for (old, new) in RENAMED_KEYS {
+        let Some(value) = take(t, old) else { continue };
+        match put(t, new, value.clone()).map_err(|m| ConfigError::new(origin, new, m))? {
+            Some(there) if there != value => {
+                return Err(ConfigError::new(
+                    origin,
+                    new,
+                    format!("= {there} and its old spelling `{old}` = {value} disagree: keep `{new}` only"),
+                ));
+            }
+            _ => moved.push((old, new)),
+        }
+    }
+    Ok(moved)
+}
+
+/// The old keys an experiment text sets, with their new names (for warnings).
+pub fn renamed_in_text(text: &str) -> Moves {
+    let Ok(mut table) = text.parse::<Table>() else { return Vec::new() };
+    rename_in_table(&mut table, "").unwrap_or_default()
+}
+
+/// The warning for a file or grid that spells `old` (now `new`), naming `origin`.
+pub fn warning(origin: &str, old: &str, new: &str) -> String {
+    format!("{origin}: `{old}` is now `{new}`; the old name is read for one more release")
+}
+
+/// The keys of `[thesis]` and `[waypoint]`, in the order that section was written in when the
+/// moved keys still lay there, that come before each moved key (the moved key goes after the
+/// last of them present; `None`: at the top of its section).
+const OLD_PLACES: [(&str, &str, Option<&str>); 6] = [
+    ("thesis", "projection", None),
+    ("waypoint", "scale", None),
+    ("waypoint", "d_min", Some("max_traverse")),
+    ("waypoint", "d_max", Some("d_min")),
+    ("waypoint", "fov_deg", Some("d_max")),
+    ("waypoint", "sections", Some("fov_deg")),
+];
+
+/// The text a run id hashes: the experiment as `toml::to_string` writes it, in the layout of
+/// the file before `[scorer]` existed (projection the first key of `[thesis]`, the camera's
+/// scale first in `[waypoint]` and its depth range, field of view and sections after
+/// `max_traverse`). Ids hash a canonical text so that the old and new spelling of a key give
+/// one id, and this layout so that the ids of committed studies stay what they were. Keys of
+/// `[scorer]` that never had another place (`camera.wall_band`) stay in `[scorer.camera]`.
+pub fn id_text(file: &ExperimentFile) -> String {
+    let text = toml::to_string(file).expect("experiment files serialise");
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let mut moved: Vec<(&str, &str, String)> = Vec::new();
+    for (section, key, _) in OLD_PLACES {
+        let new = RENAMED_KEYS.iter().find(|(old, _)| *old == format!("{section}.{key}")).expect("a renamed key").1;
+        let (new_section, new_key) = new.rsplit_once('.').expect("a dotted key");
+        if let Some(line) = take_line(&mut lines, new_section, new_key) {
+            moved.push((section, key, line));
+        }
+    }
+    drop_empty_sections(&mut lines, &["scorer.camera", "scorer"]);
+    for (section, key, line) in moved {
+        let after = OLD_PLACES.iter().find(|(s, k, _)| *s == section && *k == key).and_then(|p| p.2);
+        insert_line(&mut lines, section, after, line);
+    }
+    let mut out = lines.join("\n");
+    out.push('\n');
+    out
+}
+
+/// The line range of `[section]`'s own keys: from after its header to the next header.
+fn section_lines(lines: &[String], section: &str) -> Option<(usize, usize)> {
+    let header = format!("[{section}]");
+    let start = lines.iter().position(|l| *l == header)? + 1;
+    let end = lines[start..].iter().position(|l| l.starts_with('[')).map_or(lines.len(), |n| start + n);
+    Some((start, end))
+}
+
+/// Removes and returns the line `key = …` of `[section]`.
+fn take_line(lines: &mut Vec<String>, section: &str, key: &str) -> Option<String> {
+    let (start, end) = section_lines(lines, section)?;
+    let prefix = format!("{key} = ");
+    let at = (start..end).find(|&i| lines[i].starts_with(&prefix))?;
+    Some(lines.remove(at))
+}
+
+/// Removes the headers of `sections` left without keys, with the blank lines after them (the
+/// blank line before each header then precedes the next section).
+fn drop_empty_sections(lines: &mut Vec<String>, sections: &[&str]) {
+    for section in sections {
+        let Some((start, end)) = section_lines(lines, section) else { continue };
+        if lines[start..end].iter().all(|l| l.trim().is_empty()) {
+            lines.drain(start - 1..end);
+        }
+    }
+}
+
+/// Inserts `line` into `[section]` after the key `after` (at the top when `None`).
+fn insert_line(lines: &mut Vec<String>, section: &str, after: Option<&str>, line: String) {
+    let Some((start, end)) = section_lines(lines, section) else { return };
+    let at = after
+        .and_then(|k| {
+            let prefix = format!("{k} = ");
+            (start..end).find(|&i| lines[i].starts_with(&prefix)).map(|i| i + 1)
+        })
+        .unwrap_or(start);
+    lines.insert(at, line);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(text: &str) -> ExperimentFile {
+        ExperimentFile::parse(text, "t.toml").unwrap()
+    }
+
+    #[test]
+    fn old_and_new_spellings_read_alike_and_hash_alike() {
+        let old =
+            parse("[thesis]\nprojection = \"f1\"\npop_min = 30\n[waypoint]\nscale = 0.1\nd_max = 5.0\nsections = 9\n");
+        let new = parse(
+            "[thesis]\npop_min = 30\n[scorer]\nprojection = \"f1\"\n[scorer.camera]\nscale = 0.1\nd_max = 5.0\nsections = 9\n",
+        );
+        assert_eq!(old, new);
+        assert_eq!(new.scorer.projection, crate::coverage::fitness::Projection::F1);
+        assert_eq!((new.scorer.camera.scale, new.scorer.camera.d_max, new.scorer.camera.sections), (0.1, 5.0, 9));
+        assert_eq!(id_text(&old), id_text(&new));
+    }
+
+    #[test]
+    fn the_id_text_keeps_the_layout_of_the_moved_keys() {
+        let text = id_text(&parse("[scorer]\nprojection = \"f1\"\n"));
+        assert!(!text.contains("[scorer"), "{text}");
+        assert!(text.contains("[thesis]\nprojection = \"f1\"\n"), "{text}");
+        assert!(text.contains("[waypoint]\nscale = 0.15\n"), "{text}");
+        assert!(
+            text.contains("max_traverse = 4.0\nd_min = 0.2\nd_max = 7.0\nfov_deg = 69.4\nsections = 15\n"),
+            "{text}"
+        );
+        // A key with no old place stays where it is, so that it still changes the id.
+        let banded = id_text(&parse("[scorer.camera]\nwall_band = 1.25\n"));
+        assert!(banded.contains("[scorer.camera]\nwall_band = 1.25"), "{banded}");
+        assert_ne!(banded, id_text(&ExperimentFile::default()));
+    }
+
+    #[test]
+    fn disagreeing_spellings_are_refused_by_name() {
+        let e = ExperimentFile::parse("[thesis]\nprojection = \"f1\"\n[scorer]\nprojection = \"f2\"\n", "t.toml")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("scorer.projection") && e.contains("thesis.projection"), "{e}");
+        // The same value twice is one setting.
+        parse("[thesis]\nprojection = \"f1\"\n[scorer]\nprojection = \"f1\"\n");
+    }
+
+    #[test]
+    fn old_keys_are_found_in_text_for_the_warnings() {
+        let text = "[thesis]\nprojection = \"f1\"\n[waypoint]\nfov_deg = 90\nhallway = 2.0\n";
+        assert_eq!(
+            renamed_in_text(text),
+            [("thesis.projection", "scorer.projection"), ("waypoint.fov_deg", "scorer.camera.fov_deg")]
+        );
+        assert_eq!(current_key("waypoint.sections"), "scorer.camera.sections");
+        assert_eq!(current_key("waypoint.hallway"), "waypoint.hallway");
+        assert_eq!(old_key("scorer.projection"), Some("thesis.projection"));
+    }
+}
