@@ -28,6 +28,22 @@ pub struct RandomSearch {
     pub batch: usize,
 }
 
+/// The `[thesis]` keys random search reads: how it draws genomes (003's initialisation) and
+/// how many per batch.
+const READ_FROM_THESIS: [&str; 4] =
+    ["thesis.pop_min", "thesis.init_actions", "thesis.init_dist_max", "thesis.max_genome_len"];
+
+/// Why random search does not read `key` (a dotted key or a section of the planner sections),
+/// or `None` when it reads it.
+pub fn why_unread(key: &str) -> Option<String> {
+    use crate::planner::sections::{unread_section, within};
+    if let Some(why) = unread_section(key, "random_search", &["thesis"]) {
+        return Some(why);
+    }
+    (within(key, "thesis") && key != "thesis" && !READ_FROM_THESIS.contains(&key))
+        .then(|| format!("random search reads only {} of [thesis]", READ_FROM_THESIS.join(", ")))
+}
+
 impl RandomSearch {
     /// Reads the draw from the `[thesis]` section; the evaluation budget is required.
     pub fn validate(thesis: &ThesisSection, ctx: &Context) -> Result<Self, ConfigError> {

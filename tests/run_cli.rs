@@ -667,3 +667,31 @@ fn population_genomes_are_written_when_asked_and_change_nothing_else() {
     assert!(err.contains("output.population_genomes") && err.contains("only the single-robot thesis GA"), "{err}");
     assert!(!dir.path().join("spiral/population_genomes.csv").exists());
 }
+
+/// A waypoint team planned for `[[robots]]` (fleet.mode = "waypoint") leaves `[waypoint]` as
+/// written: its `config.toml` holds no agents or starts the fleet made, and run again it gives
+/// the same plan.
+#[test]
+fn a_waypoint_team_leaves_its_section_as_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = "seed = 2\nplanner = \"waypoint\"\n[map]\nsource = \"office\"\n[waypoint]\ngenerations = 4\n\
+                population = 10\n[fleet]\nmode = \"waypoint\"\n[[robots]]\nname = \"a\"\nstart = [2.0, 2.0]\n\
+                [[robots]]\nname = \"b\"\nstart = [2.0, 3.0]\n";
+    let exp = write(dir.path(), "team.toml", text);
+    let mut summaries = Vec::new();
+    for (k, file) in [exp, dir.path().join("o0").join("config.toml")].into_iter().enumerate() {
+        let out = dir.path().join(format!("o{k}"));
+        let o = covga(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let config: toml::Table = read(&out.join("config.toml")).parse().unwrap();
+        assert_eq!(config["waypoint"]["agents"].as_integer(), Some(1), "as written");
+        assert!(config["waypoint"]["starts"].as_array().unwrap().is_empty(), "as written");
+        let mut s: serde_json::Value = serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+        for timing in ["wall_s", "precompute_s"] {
+            s.as_object_mut().unwrap().remove(timing);
+        }
+        assert_eq!(s["fleet"]["robots"].as_array().map(Vec::len), Some(2), "two agents flew");
+        summaries.push(s);
+    }
+    assert_eq!(summaries[0], summaries[1]);
+}

@@ -18,6 +18,7 @@ pub mod ils;
 pub mod local;
 pub mod operators;
 pub mod rank;
+pub mod reads;
 pub mod search;
 pub mod sweeps;
 pub mod tour;

@@ -195,13 +195,6 @@ impl ExperimentFile {
         let (robot, start, end) = self.robot_and_stations(origin, &map)?;
         let camera = self.scorer.camera.spec(origin, &map)?;
         let scenario = Scenario { map, robot, start, end, projection: self.scorer.projection, camera };
-        crate::fleet::config::waypoint_team(
-            &mut self.waypoint,
-            &self.robots,
-            self.fleet.as_ref(),
-            self.stations.start,
-            origin,
-        )?;
         let b = self.budget;
         let budget = Budget {
             iterations: b.iterations,

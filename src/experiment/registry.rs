@@ -66,6 +66,19 @@ impl PlannerKind {
             PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch | PlannerKind::CellOrder => false,
         }
     }
+
+    /// Why this planner, with `file`'s settings, does not read `key` (a dotted key or a
+    /// section of the planner sections), or `None` when it reads it: each planner's module
+    /// says which of those keys it reads.
+    pub fn why_unread(self, file: &ExperimentFile, key: &str) -> Option<String> {
+        match self {
+            PlannerKind::Thesis => file.thesis.why_unread(key),
+            PlannerKind::Waypoint => file.waypoint.why_unread(key),
+            PlannerKind::Boustrophedon | PlannerKind::Spiral => crate::patterns::planner::why_unread(self.name(), key),
+            PlannerKind::RandomSearch => crate::random_search::why_unread(key),
+            PlannerKind::CellOrder => file.cell_order.clone().unwrap_or_default().why_unread(key),
+        }
+    }
 }
 
 /// The validated parameters of the chosen planner.
@@ -100,7 +113,18 @@ impl PlannerConfig {
                 let population_genomes = file.output.population_genomes.unwrap_or(false);
                 PlannerConfig::Thesis(crate::thesis::config::ThesisConfig { population_genomes, ..thesis })
             }
-            PlannerKind::Waypoint => PlannerConfig::Waypoint(Box::new(file.waypoint.validate(ctx)?)),
+            PlannerKind::Waypoint => {
+                // A fleet's waypoint team plans one agent per robot: the section as validated,
+                // not as written.
+                let team = crate::fleet::config::waypoint_team(
+                    &file.waypoint,
+                    &file.robots,
+                    file.fleet.as_ref(),
+                    file.stations.start,
+                    ctx.origin,
+                )?;
+                PlannerConfig::Waypoint(Box::new(team.validate(ctx)?))
+            }
             PlannerKind::Boustrophedon => {
                 PlannerConfig::Pattern(file.pattern.validate(PatternKind::Boustrophedon, ctx)?)
             }

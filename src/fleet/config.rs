@@ -346,17 +346,18 @@ pub fn wrong_planner(origin: &str, planner: &str, mode: FleetMode) -> ConfigErro
     )
 }
 
-/// For `fleet.mode = "waypoint"`: makes the `[waypoint]` section plan one agent per robot of
-/// `robots`, each from the robot's start (`start` by default), before it is validated.
+/// For `fleet.mode = "waypoint"`: the `[waypoint]` section that plans one agent per robot of
+/// `robots`, each from the robot's start (`start` by default), as the waypoint planner
+/// validates it; the file's own section is left as written. Otherwise the section itself.
 pub fn waypoint_team(
-    waypoint: &mut WaypointSection,
+    waypoint: &WaypointSection,
     robots: &[RobotEntry],
     fleet: Option<&FleetSection>,
     start: [f64; 2],
     origin: &str,
-) -> Result<(), ConfigError> {
+) -> Result<WaypointSection, ConfigError> {
     if robots.is_empty() || fleet.is_none_or(|f| f.mode != FleetMode::Waypoint) {
-        return Ok(());
+        return Ok(waypoint.clone());
     }
     let agents = robots.len().min(MAX_ROBOTS);
     let starts: Vec<[f64; 2]> = robots.iter().take(agents).map(|r| r.start.unwrap_or(start)).collect();
@@ -368,9 +369,7 @@ pub fn waypoint_team(
             "and waypoint.starts come from [[robots]] with fleet.mode = \"waypoint\": leave them out",
         ));
     }
-    waypoint.agents = agents;
-    waypoint.starts = starts;
-    Ok(())
+    Ok(WaypointSection { agents, starts, ..waypoint.clone() })
 }
 
 /// A fleet file for `covga eval --fleet`: `[robot]` defaults, `[stations]` defaults and the

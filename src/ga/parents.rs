@@ -84,6 +84,13 @@ pub fn scheme(name: &str) -> Option<&'static dyn ParentScheme> {
     SCHEMES.iter().copied().find(|s| s.name() == name)
 }
 
+/// Whether `key` sets a selection parameter that the registered scheme `name` does not read,
+/// with `param_key` spelling a GA's key of each parameter (a GA's warnings about unread keys
+/// follow from each scheme's [`ParentScheme::reads`]).
+pub fn unread_by_scheme(name: &str, key: &str, param_key: impl Fn(Param) -> Option<&'static str>) -> bool {
+    scheme(name).is_some_and(|s| Param::ALL.iter().any(|&p| param_key(p) == Some(key) && !s.reads().contains(&p)))
+}
+
 /// The name of a registered scheme, as a GA's section holds it: parsed against [`SCHEMES`]
 /// (an unknown name is refused where the file is read), written back as the name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -25,6 +25,12 @@ impl Default for PatternSection {
     }
 }
 
+/// Why a pattern planner (`planner`: `boustrophedon` or `spiral`) does not read `key` (a
+/// dotted key or a section of the planner sections): it reads `[pattern]` alone.
+pub fn why_unread(planner: &str, key: &str) -> Option<String> {
+    crate::planner::sections::unread_section(key, planner, &["pattern"])
+}
+
 /// A validated pattern planner.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PatternConfig {

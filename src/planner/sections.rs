@@ -57,6 +57,34 @@ pub struct StationsSection {
     pub end: Option<[f64; 2]>,
 }
 
+/// The sections of an experiment file that belong to planners: each planner's module says
+/// which of them, and which of their keys, it reads with its settings (`why_unread`), and the
+/// warnings about keys nothing reads follow from that.
+pub const PLANNER_SECTIONS: [&str; 5] = ["thesis", "retrain", "waypoint", "pattern", "cell_order"];
+
+/// Whether a dotted `key` is the section or key `prefix`, or lies within it.
+pub fn within(key: &str, prefix: &str) -> bool {
+    key == prefix || key.strip_prefix(prefix).is_some_and(|rest| rest.starts_with('.'))
+}
+
+/// Why `planner`, which reads only the planner sections `reads`, does not read `key`: a key
+/// (or the whole) of another planner section. `None` for a key of a section it reads and for
+/// the shared sections (map, robot, stations, scorer, budget, output, fleet).
+pub fn unread_section(key: &str, planner: &str, reads: &[&str]) -> Option<String> {
+    let section = key.split('.').next().unwrap_or(key);
+    if !PLANNER_SECTIONS.contains(&section) || reads.contains(&section) {
+        return None;
+    }
+    let readers = match section {
+        "thesis" => "the thesis GA and random search read",
+        "retrain" => "only the thesis GA reads",
+        "waypoint" => "only the waypoint planner (and the thesis GA's camera objective, alpha_cov) reads",
+        "pattern" => "only the boustrophedon and spiral patterns (and the thesis GA's seed plans) read",
+        _ => "only the cell-order planner (and the thesis GA's cell_order seed plan) reads",
+    };
+    Some(format!("{readers} [{section}]; planner = \"{planner}\""))
+}
+
 /// `[scorer]`: how the common scorer measures every plan, whichever planner made it. Planners
 /// that optimise the same quantities read it too: the thesis GA's fitness uses the projection,
 /// the waypoint planner's camera objective (000 eq. 1) this camera.

@@ -11,7 +11,6 @@
 use super::estimate::BranchTime;
 use super::grid::{RunSpec, Study};
 use super::runner::MapCache;
-use crate::experiment::registry::PlannerKind;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -135,12 +134,8 @@ pub fn budget_work(run: &RunSpec, maps: &MapCache) -> f64 {
     let f = &run.file;
     let cells = maps.load(&f.map.source, &f.map.bare_image()).map_or(1.0, |m| m.free_count() as f64);
     let searched = if f.budget.evaluations > 0 { f.budget.evaluations as f64 } else { f64::from(f.budget.iterations) };
-    match f.planner {
-        PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch | PlannerKind::CellOrder => {
-            searched.max(1.0) * cells
-        }
-        PlannerKind::Boustrophedon | PlannerKind::Spiral => cells,
-    }
+    // A planner that ignores the seed plans once, without a search.
+    if f.planner.is_deterministic() { cells } else { searched.max(1.0) * cells }
 }
 
 /// Sorts `runs` into `order`; `cost` gives each run's estimate (longest first only).

@@ -15,6 +15,7 @@ pub mod mutation;
 pub mod objective;
 pub mod params;
 pub mod planner;
+pub mod reads;
 pub mod run;
 pub mod scenario;
 pub mod seeding;

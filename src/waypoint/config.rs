@@ -163,6 +163,21 @@ pub struct WaypointConfig {
 }
 
 impl WaypointSection {
+    /// Why the waypoint planner with these settings does not read `key` (a dotted key or a
+    /// section of the planner sections), or `None` when it reads it.
+    pub fn why_unread(&self, key: &str) -> Option<String> {
+        if let Some(why) = crate::planner::sections::unread_section(key, "waypoint", &["waypoint"]) {
+            return Some(why);
+        }
+        if key == "waypoint.alpha_cov" && self.objective == super::world::ObjectiveKind::Footprint {
+            return Some(
+                "waypoint.objective = \"footprint\" measures the swept area; only the camera objective blends walls and open floor by alpha_cov".into(),
+            );
+        }
+        (key == "waypoint.near_wall" && self.waypoint_set == super::world::WaypointSet::Full)
+            .then(|| "waypoint.waypoint_set = \"full\" keeps every waypoint; only \"near_wall\" reads it".into())
+    }
+
     /// Validates this section against the scenario's map and start.
     pub fn validate(&self, ctx: &Context) -> Result<WaypointConfig, ConfigError> {
         let scenario = ctx.scenario;

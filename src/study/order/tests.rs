@@ -1,4 +1,5 @@
 use super::*;
+use crate::experiment::registry::PlannerKind;
 use crate::study::estimate::BranchTime;
 
 /// Thesis runs with 10 and 40 iterations, two seeds each, and a boustrophedon (one replicate: it

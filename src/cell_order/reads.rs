@@ -1,0 +1,52 @@
+//! Which keys of the planner sections the cell-order planner reads with its settings: its own
+//! section, less the GA's keys under a solver that runs no GA and what the selection scheme does
+//! not use. The warnings about keys nothing reads follow from this (`experiment::ignored`).
+
+use super::config::{CellOrderSection, Solver};
+use crate::planner::sections::unread_section;
+
+/// The `[cell_order]` keys of its GA, which the other solvers do not read.
+const GA_KEYS: [&str; 11] = [
+    "cell_order.population",
+    "cell_order.selection",
+    "cell_order.tournament_size",
+    "cell_order.sp",
+    "cell_order.select",
+    "cell_order.keep",
+    "cell_order.p_c",
+    "cell_order.p_m",
+    "cell_order.p_choice",
+    "cell_order.memetic",
+    "cell_order.seed_directions",
+];
+
+impl CellOrderSection {
+    /// Why the cell-order planner with these settings does not read `key` (a dotted key or a
+    /// section of the planner sections), or `None` when it reads it.
+    pub fn why_unread(&self, key: &str) -> Option<String> {
+        if let Some(why) = unread_section(key, "cell_order", &["cell_order"]) {
+            return Some(why);
+        }
+        let ga_key = GA_KEYS.contains(&key);
+        match self.solver {
+            Solver::Exact => ga_key.then(|| {
+                "cell_order.solver = \"exact\" runs no GA (Held–Karp reads only the directions and completion)".into()
+            }),
+            Solver::Ils => (ga_key && key != "cell_order.seed_directions").then(|| {
+                "cell_order.solver = \"ils\" runs no GA (iterated local search reads the directions, completion, \
+                 coverage_goal and seed_directions)"
+                    .into()
+            }),
+            Solver::Nearest | Solver::Boustrophedon => ga_key.then(|| {
+                format!(
+                    "cell_order.solver = \"{}\" is a control with no search (it reads the directions, completion and coverage_goal)",
+                    if self.solver == Solver::Nearest { "nearest" } else { "boustrophedon" }
+                )
+            }),
+            Solver::Ga => crate::ga::parents::unread_by_scheme(self.selection.as_str(), key, |p| {
+                Some(super::config::param_key(p))
+            })
+            .then(|| format!("cell_order.selection = \"{}\" does not use it", self.selection.as_str())),
+        }
+    }
+}
