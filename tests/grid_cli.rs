@@ -822,3 +822,46 @@ fn a_grid_with_a_renamed_key_keeps_its_run_ids_and_warns() {
     }
     assert_eq!(plans[0], plans[1], "both spellings give the same runs and ids");
 }
+
+/// `covga migrate` rewrites old key names in experiment and grid files, keeping comments and
+/// the runs a grid makes; `--check` says whether any file still needs it; a file whose two
+/// spellings disagree is refused and nothing is written.
+#[test]
+fn migrate_rewrites_old_keys_and_keeps_the_runs() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("g.toml");
+    let old_grid = "# a study\nseed = 3\n[base]\n[base.thesis]\nprojection = \"f1\"\npop_min = 10\n[base.waypoint]\nscale = 0.15\n\
+                    [base.budget]\niterations = 2\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n\"thesis.projection\" = [\"f1\", \"f2\"]\n";
+    std::fs::write(&grid, old_grid).unwrap();
+    let exp = dir.path().join("e.toml");
+    std::fs::write(&exp, "planner = \"thesis\"\n[thesis]\nprojection = \"f1\"   # the mean\n").unwrap();
+    let before = covga::study::grid::Study::load(&grid).unwrap();
+    let (g, e) = (grid.to_str().unwrap(), exp.to_str().unwrap());
+    let check = covga(&["migrate", g, e, "--check"]);
+    assert_eq!(check.status.code(), Some(1), "{}", String::from_utf8_lossy(&check.stderr));
+    assert_eq!(std::fs::read_to_string(&grid).unwrap(), old_grid, "--check writes nothing");
+    let o = covga(&["migrate", g, e]);
+    ok(&o);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("`thesis.projection` -> `scorer.projection`"));
+    let text = std::fs::read_to_string(&grid).unwrap();
+    assert!(
+        text.starts_with("# a study\n")
+            && text.contains("\"scorer.projection\" = [")
+            && text.contains("[base.scorer.camera]"),
+        "{text}"
+    );
+    let after = covga::study::grid::Study::load(&grid).unwrap();
+    assert!(after.warnings.is_empty(), "{:?}", after.warnings);
+    assert_eq!(covga::study::runner::grid_hash(&after), covga::study::runner::grid_hash(&before));
+    assert_eq!(after.columns, before.columns);
+    assert!(std::fs::read_to_string(&exp).unwrap().contains("[scorer]\nprojection = \"f1\"   # the mean"));
+    ok(&covga(&["migrate", g, e, "--check"]));
+    // Two spellings that disagree: refused (exit 2), and the other file is not written either.
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "[thesis]\nprojection = \"f1\"\n[scorer]\nprojection = \"f2\"\n").unwrap();
+    std::fs::write(&exp, "[thesis]\nprojection = \"f1\"\n").unwrap();
+    let o = covga(&["migrate", e, bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("disagree"));
+    assert_eq!(std::fs::read_to_string(&exp).unwrap(), "[thesis]\nprojection = \"f1\"\n");
+}

@@ -3,6 +3,7 @@
 pub(crate) mod eval;
 mod grid;
 mod maps;
+mod migrate;
 mod run;
 
 use clap::{Parser, Subcommand};
@@ -87,6 +88,8 @@ enum Command {
     Report(grid::ReportArgs),
     /// Write the built-in maps as ROS map_server files (YAML + PGM).
     Maps(maps::MapsArgs),
+    /// Rewrite experiment and grid files to the current key names (keys that moved section).
+    Migrate(migrate::MigrateArgs),
 }
 
 /// Parses `args` and runs the command.
@@ -104,6 +107,7 @@ where
         Command::Merge(a) => grid::merge(a),
         Command::Report(a) => grid::report(a),
         Command::Maps(a) => maps::run(a),
+        Command::Migrate(a) => migrate::run(a),
     }
 }
 

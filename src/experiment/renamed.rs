@@ -88,6 +88,150 @@ pub fn warning(origin: &str, old: &str, new: &str) -> String {
     format!("{origin}: `{old}` is now `{new}`; the old name is read for one more release")
 }
 
+/// The text of an experiment or grid file with every old key under its new name (the file's
+/// comments and layout kept; a section that gains its first key is added at the end), and the
+/// moves made. A grid's base (`[base.…]`), axes and conditionals (`when`, `axes`) are migrated
+/// alike. An old and a new key both set to different values are refused, naming both.
+pub fn migrate_text(text: &str, origin: &str) -> Result<(String, Moves), ConfigError> {
+    let mut doc: toml_edit::DocumentMut =
+        text.parse().map_err(|e: toml_edit::TomlError| ConfigError::new(origin, "", e.message().trim()))?;
+    let mut moved = Moves::new();
+    let is_grid = doc.contains_key("base") && (doc.contains_key("axes") || doc.contains_key("seeds"));
+    let root = doc.as_table_mut() as &mut dyn toml_edit::TableLike;
+    let experiment =
+        if is_grid { root.get_mut("base").and_then(toml_edit::Item::as_table_like_mut) } else { Some(root) };
+    if let Some(t) = experiment {
+        move_keys(t, origin, &mut moved)?;
+    }
+    if is_grid {
+        if let Some(axes) = doc.get_mut("axes").and_then(toml_edit::Item::as_table_like_mut) {
+            rename_dotted(axes, origin, "axes", &mut moved)?;
+        }
+        if let Some(conds) = doc.get_mut("conditional").and_then(toml_edit::Item::as_array_of_tables_mut) {
+            for (n, c) in conds.iter_mut().enumerate() {
+                for part in ["when", "axes"] {
+                    if let Some(t) = c.get_mut(part).and_then(toml_edit::Item::as_table_like_mut) {
+                        rename_dotted(t, origin, &format!("conditional[{n}].{part}"), &mut moved)?;
+                    }
+                }
+            }
+        }
+    }
+    moved.sort_unstable();
+    moved.dedup();
+    Ok((doc.to_string(), moved))
+}
+
+/// Moves the old keys of the experiment table `t` (nested sections) to their new place.
+fn move_keys(t: &mut dyn toml_edit::TableLike, origin: &str, moved: &mut Moves) -> Result<(), ConfigError> {
+    for (old, new) in RENAMED_KEYS {
+        let (old_section, old_key) = old.split_once('.').expect("a dotted key");
+        let Some(value) =
+            t.get_mut(old_section).and_then(toml_edit::Item::as_table_like_mut).and_then(|s| s.remove(old_key))
+        else {
+            continue;
+        };
+        let (new_head, new_key) = new.rsplit_once('.').expect("a dotted key");
+        let table =
+            section_at(t, new_head).ok_or_else(|| ConfigError::new(origin, new, "is not in a table".to_string()))?;
+        match table.get(new_key) {
+            Some(there) if bare(there) != bare(&value) => {
+                return Err(ConfigError::new(
+                    origin,
+                    new,
+                    format!(
+                        "= {} and its old spelling `{old}` = {} disagree: keep `{new}` only",
+                        bare(there),
+                        bare(&value)
+                    ),
+                ));
+            }
+            Some(_) => {}
+            None => {
+                table.insert(new_key, value);
+            }
+        }
+        moved.push((old, new));
+    }
+    Ok(())
+}
+
+/// The table at the dotted `path` below `t`, made where missing (a parent made only to hold
+/// a sub-table is implicit: it writes no header of its own); `None` where a value is in the way.
+fn section_at<'b>(t: &'b mut dyn toml_edit::TableLike, path: &str) -> Option<&'b mut dyn toml_edit::TableLike> {
+    let Some((head, last)) = path.rsplit_once('.') else {
+        return entry_table(t, path, false);
+    };
+    let mut parent = t;
+    for part in head.split('.') {
+        parent = entry_table(parent, part, true)?;
+    }
+    entry_table(parent, last, false)
+}
+
+/// The table `key` of `t`, made (implicit when `implicit`) where missing.
+fn entry_table<'b>(
+    t: &'b mut dyn toml_edit::TableLike,
+    key: &str,
+    implicit: bool,
+) -> Option<&'b mut dyn toml_edit::TableLike> {
+    if t.get(key).is_none() {
+        let mut fresh = toml_edit::Table::new();
+        fresh.set_implicit(implicit);
+        t.insert(key, toml_edit::Item::Table(fresh));
+    }
+    t.get_mut(key)?.as_table_like_mut()
+}
+
+/// Renames the old dotted keys of a grid's axes or `when` table `t`, keeping their order.
+fn rename_dotted(
+    t: &mut dyn toml_edit::TableLike,
+    origin: &str,
+    section: &str,
+    moved: &mut Moves,
+) -> Result<(), ConfigError> {
+    let keys: Vec<String> = t.iter().map(|(k, _)| k.to_string()).collect();
+    if !keys.iter().any(|k| old_key_of(k)) {
+        return Ok(());
+    }
+    for (old, new) in RENAMED_KEYS {
+        if keys.iter().any(|k| k == old) && keys.iter().any(|k| k == new) {
+            return Err(ConfigError::new(
+                origin,
+                &format!("{section}.\"{new}\""),
+                format!("is also given under its old name `{old}`: keep `{new}` only"),
+            ));
+        }
+    }
+    let items: Vec<(String, toml_edit::Item)> =
+        keys.iter().map(|k| (k.clone(), t.remove(k).expect("a key listed"))).collect();
+    for (k, item) in items {
+        let current = current_key(&k);
+        if current != k {
+            moved.push(RENAMED_KEYS.iter().find(|(o, _)| *o == k).map(|(o, n)| (*o, *n)).expect("renamed"));
+        }
+        t.insert(current, item);
+    }
+    Ok(())
+}
+
+/// Whether `key` is an old spelling.
+fn old_key_of(key: &str) -> bool {
+    RENAMED_KEYS.iter().any(|(old, _)| *old == key)
+}
+
+/// A value as TOML text without its comments and spacing.
+fn bare(item: &toml_edit::Item) -> String {
+    item.as_value().map_or_else(
+        || item.to_string(),
+        |v| {
+            let mut v = v.clone();
+            v.decor_mut().clear();
+            v.to_string()
+        },
+    )
+}
+
 /// The keys of `[thesis]` and `[waypoint]`, in the order that section was written in when the
 /// moved keys still lay there, that come before each moved key (the moved key goes after the
 /// last of them present; `None`: at the top of its section).
@@ -211,6 +355,41 @@ mod tests {
         assert!(e.contains("scorer.projection") && e.contains("thesis.projection"), "{e}");
         // The same value twice is one setting.
         parse("[thesis]\nprojection = \"f1\"\n[scorer]\nprojection = \"f1\"\n");
+    }
+
+    #[test]
+    fn migrated_text_keeps_comments_and_means_the_same() {
+        let old = "# a run\nplanner = \"thesis\"\n[thesis]\nprojection = \"f1\"  # f1 for this one\npop_min = 30\n\
+                   [waypoint]\nfov_deg = 90.0\nhallway = 2.0\n";
+        let (new, moves) = migrate_text(old, "t.toml").unwrap();
+        assert_eq!(moves, [("thesis.projection", "scorer.projection"), ("waypoint.fov_deg", "scorer.camera.fov_deg")]);
+        assert!(new.starts_with("# a run\n") && new.contains("# f1 for this one"), "{new}");
+        assert!(
+            new.contains("[scorer]")
+                && new.contains("[scorer.camera]")
+                && !new.contains("\n[scorer]\n\n[scorer.camera]"),
+            "{new}"
+        );
+        assert_eq!(parse(old), parse(&new));
+        assert!(renamed_in_text(&new).is_empty(), "{new}");
+        // A current file is left as it is.
+        assert_eq!(migrate_text(&new, "t.toml").unwrap(), (new.clone(), Moves::new()));
+        // A grid: base, axes and conditionals, in their order.
+        let grid = "seeds = 2\n[base.thesis]\nprojection = \"f2\"\n[axes]\n\"thesis.c_len\" = [0.1]\n\"thesis.projection\" = [\"f1\", \"f2\"]\n\
+                    [[conditional]]\nwhen = { \"thesis.projection\" = \"f1\" }\naxes = { \"waypoint.d_max\" = [5.0] }\n";
+        let (g, moves) = migrate_text(grid, "g.toml").unwrap();
+        assert_eq!(moves, [("thesis.projection", "scorer.projection"), ("waypoint.d_max", "scorer.camera.d_max")]);
+        assert!(
+            g.contains("[base.scorer]\nprojection = \"f2\"")
+                && g.contains("\"thesis.c_len\" = [0.1]\n\"scorer.projection\""),
+            "{g}"
+        );
+        assert!(
+            g.contains("when = { \"scorer.projection\" = \"f1\" }") && g.contains("\"scorer.camera.d_max\" = [5.0]"),
+            "{g}"
+        );
+        let e = migrate_text("[thesis]\nprojection = \"f1\"\n[scorer]\nprojection = \"f2\"\n", "t.toml").unwrap_err();
+        assert!(e.to_string().contains("disagree"), "{e}");
     }
 
     #[test]

@@ -6,12 +6,14 @@
 //! - [`eval`]: score a pattern, a path file or a fleet's area division on a map, and write
 //!   `metrics.json`, `path.csv` and the path figure;
 //! - [`run`]: read, validate and run one experiment into a results folder that holds no other
-//!   run's files, leaving nothing behind when it is refused or interrupted.
+//!   run's files, leaving nothing behind when it is refused or interrupted;
+//! - [`migrate`]: rewrite experiment and grid files to the current key names.
 //!
 //! Grid studies ([`crate::study::runner::run_study`]) and reports
 //! ([`crate::report::write_report`]) are library functions of their own layers already.
 
 pub mod eval;
+pub mod migrate;
 pub mod run;
 
 /// Why a use case did not complete: the user's input (exit code 2, `ValueError` in Python) or
