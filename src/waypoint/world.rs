@@ -96,7 +96,7 @@ pub enum WorldError {
     },
     /// The wall clock ran out while the views of the graph's edges were computed.
     #[error(
-        "the wall clock of {limit_s} s (`budget.wall_clock_s`) ran out while precomputing the views of {done} of {total} waypoints' edges, before any plan; raise it or coarsen `waypoint.scale`"
+        "the wall clock of {limit_s} s (`budget.wall_clock_s`) ran out while precomputing the views of {done} of {total} waypoints' edges, before any plan; raise it or coarsen `scorer.camera.scale`"
     )]
     OutOfTime {
         /// The wall-clock limit (s).
