@@ -158,3 +158,33 @@ fn committed_comparisons_are_remade_byte_for_byte() {
         assert_eq!(compared, 2 * (compare.len() + every.len()), "{folder}");
     }
 }
+
+/// The condensed analysis of variance of `results/thesis-table-4-3` is what `covga report
+/// --anova-condensed` writes from the committed runs, byte for byte, and every table the
+/// study's `summary.md` shows of it is one of that file's, verbatim.
+#[test]
+fn the_condensed_anova_is_remade_and_quoted_verbatim() {
+    let folder = Path::new("results/thesis-table-4-3");
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(folder.join("study.json"), dir.path().join("study.json")).unwrap();
+    std::fs::write(dir.path().join("runs.csv"), committed_runs(folder)).unwrap();
+    let d = dir.path().to_str().unwrap();
+    let o = covga(&["report", d, "--by", "thesis.selection", "--anova-condensed"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let made = std::fs::read_to_string(dir.path().join("report/anova-condensed.md")).unwrap();
+    let committed = std::fs::read_to_string(folder.join("report/anova-condensed.md")).unwrap();
+    assert!(made == committed, "results/thesis-table-4-3/report/anova-condensed.md differs from covga report's");
+    let summary = std::fs::read_to_string(folder.join("summary.md")).unwrap();
+    let quoted = summary.split("\n### ").skip(1).filter(|b| b.contains("| term | df |"));
+    let mut n = 0;
+    for block in quoted {
+        // The heading, the blank line, then the table's rows up to the first line that is not one.
+        let mut lines = block.lines();
+        let head: Vec<&str> = lines.by_ref().take(2).collect();
+        let rows: Vec<&str> = lines.take_while(|l| l.starts_with('|')).collect();
+        let table = format!("### {}\n{}\n{}", head.join("\n"), rows.join("\n"), "");
+        assert!(committed.contains(&table), "summary.md's `{table}` is not the report's");
+        n += 1;
+    }
+    assert_eq!(n, 4, "the four condensed tables of summary.md");
+}

@@ -175,7 +175,7 @@ pub fn write_report(
     crate::released(py, || {
         let dir = Path::new(dir);
         let rendered = covga::report::compare::render_all(dir, &filter, &comparisons).map_err(error)?;
-        let opts = covga::report::ReportOptions { by, filter, name };
+        let opts = covga::report::ReportOptions { by, filter, name, anova_condensed: false };
         let path = covga::report::write_report_with(dir, &opts).map_err(error)?;
         let folder = path.parent().unwrap_or(dir);
         for r in &rendered {

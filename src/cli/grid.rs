@@ -307,6 +307,10 @@ pub struct ReportArgs {
     /// Repeatable.
     #[arg(long, value_name = "KEY=BASELINE")]
     compare_every_plan: Vec<String>,
+    /// Also write `anova-condensed.md`: each analysis of variance's main effects, three largest
+    /// interactions and residual, its rows as in `summary.md`.
+    #[arg(long)]
+    anova_condensed: bool,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
@@ -331,7 +335,7 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     // Comparisons are made before anything is written, so that one that cannot be made leaves
     // no half-written report.
     let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons).map_err(input)?;
-    let opts = crate::report::ReportOptions { by: a.by, filter, name: a.name };
+    let opts = crate::report::ReportOptions { by: a.by, filter, name: a.name, anova_condensed: a.anova_condensed };
     let path = crate::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
         crate::report::ReportError::Input(m) => CliError::Input(m),
         other => CliError::internal(other),

@@ -49,22 +49,54 @@ pub fn model(t: &RunsTable, params: &[String]) -> (Vec<Factor>, Vec<TermSpec>, b
     (factors, terms, with_pairs)
 }
 
-fn table(md: &mut String, a: &Anova, spread: (f64, f64)) {
-    let _ = writeln!(md, "| term | df | η² (share of SS) | F | p | p on ranks |\n|---|---|---|---|---|---|");
+/// The analyses in their two forms: the report's section, and its condensed tables (per
+/// metric the main effects, the three largest two-way interactions, the residual and its part
+/// between replicates; `covga report --anova-condensed`).
+#[derive(Default)]
+struct Written {
+    full: String,
+    condensed: String,
+}
+
+/// How many of the largest interactions the condensed tables keep.
+const CONDENSED_INTERACTIONS: usize = 3;
+
+fn table(out: &mut Written, a: &Anova, spread: (f64, f64)) {
+    let header = "| term | df | η² (share of SS) | F | p | p on ranks |\n|---|---|---|---|---|---|\n";
+    out.full.push_str(header);
+    out.condensed.push_str(header);
     let mut order: Vec<&super::anova::TermTest> = a.terms.iter().collect();
     order.sort_by(|x, y| y.eta2.total_cmp(&x.eta2));
     let p = |p: f64| if p == 0.0 { "< 1e-300".to_string() } else { format!("{p:.2e}") };
-    for t in order {
-        if t.df == 0 {
-            let _ = writeln!(md, "| {} | 0 | aliased: nested in the terms above | | | |", t.name);
-            continue;
-        }
-        let _ = writeln!(md, "| {} | {} | {:.4} | {:.2} | {} | {} |", t.name, t.df, t.eta2, t.f, p(t.p), p(t.rank_p));
+    let rows: Vec<(bool, String)> = order
+        .iter()
+        .map(|t| {
+            let row = if t.df == 0 {
+                format!("| {} | 0 | aliased: nested in the terms above | | | |\n", t.name)
+            } else {
+                format!("| {} | {} | {:.4} | {:.2} | {} | {} |\n", t.name, t.df, t.eta2, t.f, p(t.p), p(t.rank_p))
+            };
+            (t.name.contains('×'), row)
+        })
+        .collect();
+    for (_, row) in &rows {
+        out.full.push_str(row);
+    }
+    let mains = rows.iter().filter(|(pair, _)| !pair);
+    let pairs = rows.iter().filter(|(pair, _)| *pair).take(CONDENSED_INTERACTIONS);
+    for (_, row) in mains.chain(pairs) {
+        out.condensed.push_str(row);
     }
     let (rss, df) = a.residual;
     let share = if a.total_ss > 0.0 { rss / a.total_ss } else { 0.0 };
-    let _ = writeln!(md, "| residual | {df} | {share:.4} | | | |");
-    let _ = writeln!(md, "| of which between replicates of one configuration | | {:.4} | | | |\n", spread.1);
+    let residual = format!(
+        "| residual | {df} | {share:.4} | | | |\n| of which between replicates of one configuration | | {:.4} | | | |\n",
+        spread.1
+    );
+    out.full.push_str(&residual);
+    out.full.push('\n');
+    out.condensed.push_str(&residual);
+    out.condensed.push('\n');
 }
 
 /// The swept key that picks the fitness function.
@@ -89,7 +121,8 @@ pub fn subset(t: &RunsTable, column: &str, value: &str) -> RunsTable {
 }
 
 /// One metric's ANOVA table under `heading`.
-fn analyse(md: &mut String, t: &RunsTable, factors: &[Factor], terms: &[TermSpec], metric: &str, heading: &str) {
+fn analyse(out: &mut Written, t: &RunsTable, factors: &[Factor], terms: &[TermSpec], metric: &str, heading: &str) {
+    let md = &mut out.full;
     let configs: Vec<String> = match t.col("config_id") {
         Some(c) => t.rows.iter().map(|r| r[c].clone()).collect(),
         None => (0..t.rows.len()).map(|i| i.to_string()).collect(),
@@ -112,7 +145,8 @@ fn analyse(md: &mut String, t: &RunsTable, factors: &[Factor], terms: &[TermSpec
                 format!("residuals close to normal (Jarque–Bera p = {:.3})", a.normality_p)
             };
             let _ = writeln!(md, "### {heading}\n\n{} runs; {normal}.\n", a.n);
-            table(md, &a, replicate_spread(&configs, &y));
+            let _ = writeln!(out.condensed, "### {heading}\n");
+            table(out, &a, replicate_spread(&configs, &y));
         }
         Err(e) => {
             let _ = writeln!(md, "### {heading}\n\nNot analysed: {e}.\n");
@@ -181,7 +215,20 @@ pub fn factors_of_design(t: &RunsTable, params: &[String]) -> Result<(Vec<String
 
 /// The markdown section, or a line saying why there is none.
 pub fn section(t: &RunsTable, params: &[String]) -> String {
-    let mut md = String::from("\n## Analysis of variance (003 §5.3)\n\n");
+    written(t, params).full
+}
+
+/// The condensed tables of [`section`]'s analyses (empty where it makes none): per metric, the
+/// main effects, the three largest two-way interactions, the residual and its part between
+/// replicates, each row as the full table has it.
+pub fn condensed(t: &RunsTable, params: &[String]) -> String {
+    written(t, params).condensed
+}
+
+/// The analyses of [`section`], in both forms.
+fn written(t: &RunsTable, params: &[String]) -> Written {
+    let mut out = Written { full: String::from("\n## Analysis of variance (003 §5.3)\n\n"), condensed: String::new() };
+    let md = &mut out.full;
     let (params, left_out) = match factors_of_design(t, params) {
         Ok(design) => design,
         Err(why) => {
@@ -192,14 +239,14 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
                  crossed with the others, and `covga report --compare` compares values paired by seed \
                  within each setting of the others."
             );
-            return md;
+            return out;
         }
     };
     let params = &params[..];
     let (factors, terms, with_pairs) = model(t, params);
     if factors.is_empty() {
         md.push_str("No parameter takes two or more values: nothing to analyse.\n");
-        return md;
+        return out;
     }
     let _ = writeln!(
         md,
@@ -221,11 +268,11 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
     );
     for metric in METRICS {
         match projection_levels(t, metric) {
-            None => analyse(&mut md, t, &factors, &terms, metric, metric),
+            None => analyse(&mut out, t, &factors, &terms, metric, metric),
             Some(levels) => {
                 // f1 and f2 are different functions: f is analysed within each projection.
                 let _ = writeln!(
-                    md,
+                    out.full,
                     "### {metric}\n\nf1 (003 eq. 3.14) and f2 (eq. 3.15) are different functions, so {metric} is analysed within each projection, over the other parameters.\n"
                 );
                 let others: Vec<String> = params
@@ -237,7 +284,7 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
                     let sub = subset(t, PROJECTION, &level);
                     let (factors, terms, _) = model(&sub, &others);
                     analyse(
-                        &mut md,
+                        &mut out,
                         &sub,
                         &factors,
                         &terms,
@@ -248,7 +295,7 @@ pub fn section(t: &RunsTable, params: &[String]) -> String {
             }
         }
     }
-    md
+    out
 }
 
 #[cfg(test)]

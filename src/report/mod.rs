@@ -126,6 +126,9 @@ pub struct ReportOptions {
     pub filter: Vec<(String, String)>,
     /// Report folder `<dir>/report-<name>` (default `<dir>/report`).
     pub name: Option<String>,
+    /// Also write `anova-condensed.md`: the analysis of variance's condensed tables (main
+    /// effects, the three largest interactions, the residual), where the report makes one.
+    pub anova_condensed: bool,
 }
 
 /// Whether a cell of runs.csv equals a `--where` value: as numbers when both parse, else as text.
@@ -248,6 +251,21 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         if section.applies(&study) {
             section.write(&study, &mut md)?;
         }
+    }
+    if opts.anova_condensed {
+        let tables = anova_report::condensed(&study.t, &study.params);
+        let body = if tables.is_empty() {
+            "No analysis of variance is made of these runs (`summary.md` says why).\n"
+        } else {
+            &tables
+        };
+        let text = format!(
+            "# Analysis of variance, condensed\n\nThe main effects, the three largest two-way interactions and the residual \
+             of each table of `summary.md`'s analysis of variance, its rows as there.\n\n{}\n",
+            body.trim_end()
+        );
+        crate::io::write_atomic(&study.out.join("anova-condensed.md"), text.as_bytes())
+            .map_err(|e| ReportError::Io(e.to_string()))?;
     }
     let path = study.out.join("summary.md");
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
