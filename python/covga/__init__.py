@@ -416,6 +416,7 @@ def report(
     name: Optional[str] = None,
     compare: Optional[Mapping[str, Any]] = None,
     compare_every_plan: Optional[Mapping[str, Any]] = None,
+    anova_condensed: bool = False,
 ) -> Path:
     """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
     runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
@@ -424,7 +425,9 @@ def report(
     with :func:`read_table`); a list of baselines (``{"cell_order.solver": ["nearest",
     "boustrophedon"]}``) compares with each, into ``compare-KEY-BASELINE.md``.
     ``compare_every_plan`` does the same over every plan, executable or not
-    (``--compare-every-plan``, ``compare-KEY-every-plan.md``)."""
+    (``--compare-every-plan``, ``compare-KEY-every-plan.md``). ``anova_condensed`` also writes
+    ``anova-condensed.md`` (``--anova-condensed``: each analysis of variance's main effects,
+    three largest interactions and residual)."""
     by = [by] if isinstance(by, str) else list(by)
 
     def text(v: Any) -> str:
@@ -440,4 +443,6 @@ def report(
 
     comparisons = each(compare)
     every = each(compare_every_plan)
-    return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every))
+    if not isinstance(anova_condensed, (bool, np.bool_)):
+        raise ConfigError(f"anova_condensed = {anova_condensed!r}: expected True or False")
+    return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every, bool(anova_condensed)))

@@ -149,9 +149,11 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
 
 /// `covga report`: writes the report of study folder `dir` (with the comparisons `compare` of
 /// executable plans and `compare_every_plan` of every plan, each `KEY=BASELINE`, made first so
-/// that one that cannot be made writes nothing) and returns the path of its `summary.md`.
+/// that one that cannot be made writes nothing; with `anova_condensed`, `anova-condensed.md`
+/// too) and returns the path of its `summary.md`.
 #[pyfunction]
-#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan))]
+#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false))]
+#[allow(clippy::too_many_arguments)]
 pub fn write_report(
     py: Python<'_>,
     dir: &str,
@@ -160,6 +162,7 @@ pub fn write_report(
     name: Option<String>,
     compare: Vec<String>,
     compare_every_plan: Vec<String>,
+    anova_condensed: bool,
 ) -> PyResult<String> {
     use covga::report::ReportError;
     let error = |e: ReportError| match e {
@@ -175,7 +178,7 @@ pub fn write_report(
     crate::released(py, || {
         let dir = Path::new(dir);
         let rendered = covga::report::compare::render_all(dir, &filter, &comparisons).map_err(error)?;
-        let opts = covga::report::ReportOptions { by, filter, name, anova_condensed: false };
+        let opts = covga::report::ReportOptions { by, filter, name, anova_condensed };
         let path = covga::report::write_report_with(dir, &opts).map_err(error)?;
         let folder = path.parent().unwrap_or(dir);
         for r in &rendered {

@@ -222,6 +222,12 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     assert (tmp_path / "py/report/compare-thesis.selection.csv").read_bytes() == (
         tmp_path / "cli/report/compare-thesis.selection.csv"
     ).read_bytes()
+    # The condensed analysis of variance, as the command line writes it.
+    covga.report(tmp_path / "py", name="anova", anova_condensed=True)
+    cli("report", tmp_path / "cli", "--name", "anova", "--anova-condensed")
+    condensed = "report-anova/anova-condensed.md"
+    assert (tmp_path / "py" / condensed).read_bytes() == (tmp_path / "cli" / condensed).read_bytes()
+    assert "| residual |" in (tmp_path / "py" / condensed).read_text()
     # Two baselines of one key: a file each, named by its baseline.
     covga.report(tmp_path / "py", name="both", compare={"thesis.selection": ["elite", "tournament"]})
     for baseline in ("elite", "tournament"):
