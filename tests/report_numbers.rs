@@ -330,3 +330,45 @@ fn f_is_ranked_and_averaged_within_one_projection() {
     let means = md.lines().find(|l| l.starts_with("| all runs | 4 | 4/4 |")).expect("the group's means");
     assert!(means.contains("| 0.4750 ± ") && means.contains("| 0.7200 ± "), "{means}");
 }
+
+/// A row of runs.csv under `header`: `values`, over a thesis run on thesis-1 that is executable
+/// and feasible, 0 in every other column.
+fn runs_row(header: &[String], values: &[(&str, &str)]) -> String {
+    let defaults = [
+        ("seed", "1"),
+        ("planner", "thesis"),
+        ("map", "thesis-1"),
+        ("executable", "true"),
+        ("planner_feasible", "true"),
+        ("wall_s", "1"),
+    ];
+    let cell = |h: &str| values.iter().chain(&defaults).find(|(k, _)| *k == h).map_or("0", |(_, v)| *v).to_string();
+    header.iter().map(|h| cell(h)).collect::<Vec<_>>().join(",") + "\n"
+}
+
+/// A `--by` column a conditional sets for some runs only labels the groups that have a value:
+/// the Elite group is `thesis.selection=elite`, not `…, thesis.tournament_size=`.
+#[test]
+fn an_empty_by_column_does_not_label_its_group() {
+    let dir = tempfile::tempdir().unwrap();
+    let params = vec!["thesis.selection".to_string(), "thesis.tournament_size".to_string()];
+    let header = covga::study::records::header(&params);
+    let mut csv = header.join(",") + "\n";
+    for (id, selection, size) in [("e1", "elite", ""), ("t1", "tournament", "3")] {
+        let cov = [("cov_final_free", "0.5"), ("cov_final_reach", "0.5"), ("t_final", "0.5")];
+        let keys =
+            [("run_id", id), ("config_id", id), ("thesis.selection", selection), ("thesis.tournament_size", size)];
+        csv += &runs_row(&header, &[&keys[..], &cov[..]].concat());
+    }
+    std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
+    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 2}").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+        .args(["report", dir.path().to_str().unwrap(), "--by", "thesis.selection", "--by", "thesis.tournament_size"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
+    assert!(md.contains("| thesis.selection=elite |"), "{md}");
+    assert!(md.contains("| thesis.selection=tournament, thesis.tournament_size=3 |"), "{md}");
+    assert!(!md.contains("tournament_size= "), "{md}");
+}

@@ -247,7 +247,16 @@ impl<'a> Study<'a> {
                 let label = if self.by.is_empty() {
                     "all runs".to_string()
                 } else {
-                    self.by.iter().zip(&values).map(|(b, v)| format!("{b}={v}")).collect::<Vec<_>>().join(", ")
+                    // A column left empty (a key a conditional sets only for some runs) does not
+                    // label the group: `seed_directions=` would read as a value.
+                    let parts: Vec<String> = self
+                        .by
+                        .iter()
+                        .zip(&values)
+                        .filter(|(_, v)| !v.is_empty())
+                        .map(|(b, v)| format!("{b}={v}"))
+                        .collect();
+                    if parts.is_empty() { "all runs".to_string() } else { parts.join(", ") }
                 };
                 Group { label, rows }
             })
