@@ -17,6 +17,14 @@ fn committed_runs(folder: &Path) -> Vec<u8> {
     out
 }
 
+/// A study folder holding a committed study's runs.csv and study.json.
+fn committed_study(folder: &Path) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(folder.join("study.json"), dir.path().join("study.json")).unwrap();
+    std::fs::write(dir.path().join("runs.csv"), committed_runs(folder)).unwrap();
+    dir
+}
+
 fn covga(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
 }
@@ -108,8 +116,9 @@ fn a_comparison_that_cannot_be_made_exits_2_and_writes_nothing() {
 fn committed_comparisons_are_remade_byte_for_byte() {
     // (study, report folder and the arguments that name and filter it, --compare, --compare-every-plan)
     type Study<'a> = (&'a str, (&'a str, &'a [&'a str]), &'a [&'a str], &'a [&'a str]);
-    let studies: [Study; 3] = [
+    let studies: [Study; 4] = [
         ("results/init-dist", ("report", &[]), &["thesis.init_dist_max=3.0"], &["thesis.init_dist_max=3.0"]),
+        ("results/thesis-seed-bound", ("report", &[]), &["thesis.seed_bound=none"], &[]),
         (
             "results/thesis-real-maps",
             ("report", &[]),
@@ -128,9 +137,7 @@ fn committed_comparisons_are_remade_byte_for_byte() {
         ),
     ];
     for (folder, (report, naming), compare, every) in studies {
-        let dir = tempfile::tempdir().unwrap();
-        std::fs::copy(Path::new(folder).join("study.json"), dir.path().join("study.json")).unwrap();
-        std::fs::write(dir.path().join("runs.csv"), committed_runs(Path::new(folder))).unwrap();
+        let dir = committed_study(Path::new(folder));
         let mut args = vec!["report".to_string(), dir.path().to_str().unwrap().to_string()];
         args.extend(naming.iter().map(|a| a.to_string()));
         for c in compare {
@@ -159,15 +166,57 @@ fn committed_comparisons_are_remade_byte_for_byte() {
     }
 }
 
+/// The committed `plans.md` and `plans.csv` of the seeded thesis studies are what `covga report
+/// --plans` writes from the committed runs.csv and the plans.csv it recorded when the run
+/// folders were there (the folders themselves are not committed), byte for byte.
+#[test]
+fn committed_plans_are_remade_byte_for_byte() {
+    for folder in ["results/thesis-real-maps", "results/thesis-seed-bound"] {
+        let folder = Path::new(folder);
+        let dir = committed_study(folder);
+        std::fs::create_dir(dir.path().join("report")).unwrap();
+        std::fs::copy(folder.join("report/plans.csv"), dir.path().join("report/plans.csv")).unwrap();
+        let d = dir.path().to_str().unwrap();
+        let reference = "results/thesis-real-maps/seeds.csv";
+        let o = covga(&["report", d, "--by", "map.source", "--plans", "--reference", reference]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        for file in ["plans.md", "plans.csv"] {
+            assert!(
+                std::fs::read(dir.path().join("report").join(file)).unwrap()
+                    == std::fs::read(folder.join("report").join(file)).unwrap(),
+                "{}/report/{file} differs from covga report's",
+                folder.display()
+            );
+        }
+    }
+}
+
+/// `results/thesis-table-4-3`'s seed-to-seed tables are what `covga report --seed-to-seed`
+/// writes from the committed runs, byte for byte.
+#[test]
+fn the_seed_to_seed_tables_are_remade_byte_for_byte() {
+    let folder = Path::new("results/thesis-table-4-3");
+    let dir = committed_study(folder);
+    let d = dir.path().to_str().unwrap();
+    let args =
+        ["report", d, "--name", "seed-to-seed", "--by", "map.source", "--by", "thesis.c_child", "--seed-to-seed"];
+    let o = covga(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let made = std::fs::read_to_string(dir.path().join("report-seed-to-seed/seed-to-seed.md")).unwrap();
+    let committed = std::fs::read_to_string(folder.join("report-seed-to-seed/seed-to-seed.md")).unwrap();
+    assert!(made == committed, "report-seed-to-seed/seed-to-seed.md differs from covga report's");
+    for part in ["| 0 vs 1 |", "## 003 Tables A.1/A.2 beside this study", "| thesis-2 | 6.28 | f2 | rrws |"] {
+        assert!(made.contains(part), "{part}");
+    }
+}
+
 /// The condensed analysis of variance of `results/thesis-table-4-3` is what `covga report
 /// --anova-condensed` writes from the committed runs, byte for byte, and every table the
 /// study's `summary.md` shows of it is one of that file's, verbatim.
 #[test]
 fn the_condensed_anova_is_remade_and_quoted_verbatim() {
     let folder = Path::new("results/thesis-table-4-3");
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::copy(folder.join("study.json"), dir.path().join("study.json")).unwrap();
-    std::fs::write(dir.path().join("runs.csv"), committed_runs(folder)).unwrap();
+    let dir = committed_study(folder);
     let d = dir.path().to_str().unwrap();
     let o = covga(&["report", d, "--by", "thesis.selection", "--anova-condensed"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));

@@ -417,6 +417,9 @@ def report(
     compare: Optional[Mapping[str, Any]] = None,
     compare_every_plan: Optional[Mapping[str, Any]] = None,
     anova_condensed: bool = False,
+    plans: bool = False,
+    reference: Optional[Union[str, "os.PathLike[str]"]] = None,
+    seed_to_seed: bool = False,
 ) -> Path:
     """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
     runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
@@ -427,7 +430,11 @@ def report(
     ``compare_every_plan`` does the same over every plan, executable or not
     (``--compare-every-plan``, ``compare-KEY-every-plan.md``). ``anova_condensed`` also writes
     ``anova-condensed.md`` (``--anova-condensed``: each analysis of variance's main effects,
-    three largest interactions and residual)."""
+    three largest interactions and residual). ``plans`` also writes ``plans.md`` and ``plans.csv``
+    (``--plans``: every configuration's plans and final populations, with findings in words);
+    ``reference``, a runs.csv of one plan per map, sets every run against its map's plan there
+    (``--reference``). ``seed_to_seed`` also writes ``seed-to-seed.md`` (``--seed-to-seed``: how
+    far one replicate's ranking of the configurations carries to another)."""
     by = [by] if isinstance(by, str) else list(by)
 
     def text(v: Any) -> str:
@@ -445,4 +452,11 @@ def report(
     every = each(compare_every_plan)
     if not isinstance(anova_condensed, (bool, np.bool_)):
         raise ConfigError(f"anova_condensed = {anova_condensed!r}: expected True or False")
-    return Path(_covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every, bool(anova_condensed)))
+    for flag, value in (("plans", plans), ("seed_to_seed", seed_to_seed)):
+        if not isinstance(value, (bool, np.bool_)):
+            raise ConfigError(f"{flag} = {value!r}: expected True or False")
+    ref = None if reference is None else os.fspath(reference)
+    return Path(
+        _covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every, bool(anova_condensed), bool(plans), ref,
+        bool(seed_to_seed))
+    )

@@ -152,7 +152,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
 /// that one that cannot be made writes nothing; with `anova_condensed`, `anova-condensed.md`
 /// too) and returns the path of its `summary.md`.
 #[pyfunction]
-#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false))]
+#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false, plans=false, reference=None, seed_to_seed=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_report(
     py: Python<'_>,
@@ -163,6 +163,9 @@ pub fn write_report(
     compare: Vec<String>,
     compare_every_plan: Vec<String>,
     anova_condensed: bool,
+    plans: bool,
+    reference: Option<String>,
+    seed_to_seed: bool,
 ) -> PyResult<String> {
     use covga::report::ReportError;
     let error = |e: ReportError| match e {
@@ -178,7 +181,15 @@ pub fn write_report(
     crate::released(py, || {
         let dir = Path::new(dir);
         let rendered = covga::report::compare::render_all(dir, &filter, &comparisons).map_err(error)?;
-        let opts = covga::report::ReportOptions { by, filter, name, anova_condensed };
+        let opts = covga::report::ReportOptions {
+            by,
+            filter,
+            name,
+            anova_condensed,
+            plans,
+            reference: reference.map(std::path::PathBuf::from),
+            seed_to_seed,
+        };
         let path = covga::report::write_report_with(dir, &opts).map_err(error)?;
         let folder = path.parent().unwrap_or(dir);
         for r in &rendered {

@@ -228,6 +228,18 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     condensed = "report-anova/anova-condensed.md"
     assert (tmp_path / "py" / condensed).read_bytes() == (tmp_path / "cli" / condensed).read_bytes()
     assert "| residual |" in (tmp_path / "py" / condensed).read_text()
+    # The plans and the seed-to-seed tables, as the command line writes them.
+    covga.report(tmp_path / "py", name="plans", plans=True, seed_to_seed=True)
+    cli("report", tmp_path / "cli", "--name", "plans", "--plans", "--seed-to-seed")
+    for made in ("plans.md", "plans.csv", "seed-to-seed.md"):
+        assert (tmp_path / "py/report-plans" / made).read_bytes() == (tmp_path / "cli/report-plans" / made).read_bytes()
+    assert "| 0 vs 1 |" in (tmp_path / "py/report-plans/seed-to-seed.md").read_text()
+    with pytest.raises(covga.ConfigError, match="two plans for map"):
+        covga.report(tmp_path / "py", name="plans", plans=True, reference=tmp_path / "py" / "runs.csv")
+    with pytest.raises(covga.ConfigError, match="needs --plans"):
+        covga.report(tmp_path / "py", name="plans", reference=tmp_path / "py" / "runs.csv")
+    with pytest.raises(covga.ConfigError, match="expected True or False"):
+        covga.report(tmp_path / "py", name="plans", plans="yes")  # type: ignore[arg-type]
     # Two baselines of one key: a file each, named by its baseline.
     covga.report(tmp_path / "py", name="both", compare={"thesis.selection": ["elite", "tournament"]})
     for baseline in ("elite", "tournament"):

@@ -311,6 +311,24 @@ pub struct ReportArgs {
     /// interactions and residual, its rows as in `summary.md`.
     #[arg(long)]
     anova_condensed: bool,
+    /// Also write `plans.md` and `plans.csv`: every configuration's plans (executable, coverage,
+    /// time) and its runs' final populations (the hypervolume of each run's final population,
+    /// the best coverage of its initial one, whether a seeded run kept within its seed bound),
+    /// with findings in words. Where the run folders are gone, the `plans.csv` of the report
+    /// folder is read back.
+    #[arg(long)]
+    plans: bool,
+    /// With --plans: a runs.csv of one plan per `map.source` (e.g. the boustrophedon plans a
+    /// study's GA was seeded with) to set every run against: `plans.md` gains a table of each
+    /// run against its map's reference plan and findings per factor value.
+    #[arg(long, value_name = "RUNS_CSV", requires = "plans")]
+    reference: Option<PathBuf>,
+    /// Also write `seed-to-seed.md`: the Spearman correlation of the configurations' f,
+    /// coverage and t_final between replicates, where each replicate's best configurations rank
+    /// in the others, infeasible and non-executable runs per replicate and --by group, and, on
+    /// the thesis maps, 003 Tables A.1/A.2 beside the same cells of the study.
+    #[arg(long)]
+    seed_to_seed: bool,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
@@ -335,7 +353,15 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     // Comparisons are made before anything is written, so that one that cannot be made leaves
     // no half-written report.
     let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons).map_err(input)?;
-    let opts = crate::report::ReportOptions { by: a.by, filter, name: a.name, anova_condensed: a.anova_condensed };
+    let opts = crate::report::ReportOptions {
+        by: a.by,
+        filter,
+        name: a.name,
+        anova_condensed: a.anova_condensed,
+        plans: a.plans,
+        reference: a.reference,
+        seed_to_seed: a.seed_to_seed,
+    };
     let path = crate::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
         crate::report::ReportError::Input(m) => CliError::Input(m),
         other => CliError::internal(other),
@@ -350,6 +376,12 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
         println!("wrote {}", file.display());
     }
     let folder = path.parent().unwrap_or(&a.dir);
+    if opts.plans {
+        println!("wrote {}", folder.join("plans.md").display());
+    }
+    if opts.seed_to_seed {
+        println!("wrote {}", folder.join("seed-to-seed.md").display());
+    }
     for r in &rendered {
         println!("wrote {}", r.save(folder).map_err(input)?.display());
     }

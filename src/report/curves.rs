@@ -54,9 +54,10 @@ fn panel_columns(s: &Study) -> Vec<usize> {
 }
 
 /// `labels` for a legend: without the `key=value` parts every one of them shares
-/// (`planner=cell_order` where the report keeps one planner) or that set nothing (`key=`), and
-/// each key by its last name (`solver=ga`), so that the legend names what tells the series
-/// apart.
+/// (`planner=cell_order` where the report keeps one planner), that set nothing (`key=`) or
+/// name the map (each panel is one map, and its title names it), and each key by its last
+/// name (`solver=ga`), so that the legend names what tells the series apart; a label with no
+/// part left is "executable runs".
 fn distinct_parts(labels: &[String]) -> Vec<String> {
     let parts: Vec<Vec<&str>> = labels.iter().map(|l| l.split(", ").collect()).collect();
     let shared = |p: &str| labels.len() > 1 && parts.iter().all(|ps| ps.contains(&p));
@@ -68,8 +69,17 @@ fn distinct_parts(labels: &[String]) -> Vec<String> {
         .iter()
         .zip(labels)
         .map(|(ps, whole)| {
-            let kept: Vec<String> = ps.iter().copied().filter(|p| !shared(p) && !p.ends_with('=')).map(short).collect();
-            if kept.is_empty() { whole.clone() } else { kept.join(", ") }
+            let kept: Vec<String> = ps
+                .iter()
+                .copied()
+                .filter(|p| !shared(p) && !p.ends_with('=') && !p.starts_with("map.source="))
+                .map(short)
+                .collect();
+            match (kept.is_empty(), ps.iter().any(|p| p.starts_with("map.source="))) {
+                (false, _) => kept.join(", "),
+                (true, true) => "executable runs".into(),
+                (true, false) => whole.clone(),
+            }
         })
         .collect()
 }
@@ -257,6 +267,11 @@ mod tests {
         .to_vec();
         assert_eq!(distinct_parts(&labels), ["solver=ga, seed_directions=true", "solver=nearest"]);
         assert_eq!(distinct_parts(&["planner=thesis".to_string()]), ["planner=thesis"]);
+        // The panel names the map: a series told apart by its map alone is the panel's runs.
+        let by_map = ["map.source=office".to_string(), "map.source=thesis-2".to_string()];
+        assert_eq!(distinct_parts(&by_map), ["executable runs", "executable runs"]);
+        let both = ["map.source=office, thesis.moves=routed".to_string()];
+        assert_eq!(distinct_parts(&both), ["moves=routed"]);
     }
 
     #[test]

@@ -23,10 +23,12 @@ mod design;
 mod effects;
 pub mod figures;
 pub mod fleet_report;
+pub mod plans;
 mod report_tables;
 pub mod rescore;
 pub mod search_objective;
 mod sections;
+pub mod seed_to_seed;
 mod study;
 pub mod thesis_report;
 
@@ -129,6 +131,14 @@ pub struct ReportOptions {
     /// Also write `anova-condensed.md`: the analysis of variance's condensed tables (main
     /// effects, the three largest interactions, the residual), where the report makes one.
     pub anova_condensed: bool,
+    /// Also write `plans.md` and `plans.csv` ([`plans`]): the configurations' plans and final
+    /// populations.
+    pub plans: bool,
+    /// With `plans`: a runs.csv of one reference plan per map to set every run against.
+    pub reference: Option<std::path::PathBuf>,
+    /// Also write `seed-to-seed.md` ([`seed_to_seed`]): how far one replicate's ranking of the
+    /// configurations carries to another.
+    pub seed_to_seed: bool,
 }
 
 /// Whether a cell of runs.csv equals a `--where` value: as numbers when both parse, else as text.
@@ -230,6 +240,11 @@ pub fn incomplete_note(dir: &Path, recorded: usize) -> Option<String> {
     })
 }
 
+/// The report folder of `opts`: `<dir>/report`, or `<dir>/report-NAME` for `--name NAME`.
+pub fn report_folder(dir: &Path, opts: &ReportOptions) -> Result<std::path::PathBuf, ReportError> {
+    study::report_folder(dir, opts.name.as_deref())
+}
+
 /// Writes `<dir>/report/` (grouped by `by`) and returns the path of `summary.md`.
 pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, ReportError> {
     write_report_with(dir, &ReportOptions { by: by.to_vec(), ..Default::default() })
@@ -239,12 +254,21 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
 /// read and checked once ([`study::Loaded`]), the groups, fronts and best runs every section
 /// shares computed once ([`study::Study`]), then each section of [`sections::SECTIONS`] in turn.
 pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::PathBuf, ReportError> {
+    if opts.reference.is_some() && !opts.plans {
+        return Err(ReportError::Input("--reference sets the runs against reference plans in plans.md, so it needs --plans (in Python: plans=True)".into()));
+    }
+    // Rendered before anything is written: what cannot be made leaves no half-written report.
+    let plans = match opts.plans {
+        true => Some(plans::render(dir, &opts.filter, opts.reference.as_deref(), &report_folder(dir, opts)?)?),
+        false => None,
+    };
     let loaded = study::Loaded::read(dir, opts)?;
     if self::fleet_report::applies(&loaded.t) {
         self::fleet_report::write(dir, &loaded.t, &loaded.out, loaded.incomplete.as_deref())?;
         return Ok(loaded.out.join("summary.md"));
     }
     let study = study::Study::new(dir, &opts.by, loaded);
+    let seed_to_seed = opts.seed_to_seed.then(|| seed_to_seed::render(&study.t, &opts.by)).transpose()?;
     study.write_configurations()?;
     let mut md = String::new();
     for section in sections::SECTIONS {
@@ -269,6 +293,13 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     }
     let path = study.out.join("summary.md");
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
+    if let Some(p) = plans {
+        p.save(&study.out)?;
+    }
+    if let Some(text) = seed_to_seed {
+        crate::io::write_atomic(&study.out.join("seed-to-seed.md"), text.as_bytes())
+            .map_err(|e| ReportError::Io(e.to_string()))?;
+    }
     Ok(path)
 }
 

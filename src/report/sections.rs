@@ -130,12 +130,21 @@ impl Section for BestPaths {
         let by_planner_varies =
             planner_col.is_some_and(|c| s.t.rows.iter().map(|row| row[c].as_str()).collect::<BTreeSet<_>>().len() > 1);
         let mut loaded = Vec::new();
+        // Groups whose run folder holds a plan that cannot be drawn here: named, not dropped.
+        let mut not_drawn = Vec::new();
         for (group_label, r) in &s.best {
             let r = *r;
             let run_dir = s.dir.join("runs").join(s.get(r, "run_id"));
             let Ok(cfg) = crate::experiment::file::ExperimentFile::read(&run_dir.join("config.toml")) else { continue };
             let Ok(paths) = crate::io::read_path_csv(&run_dir.join("best_path.csv")) else { continue };
-            let Ok(map) = crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()) else { continue };
+            let map = match crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()) {
+                Ok(map) => map,
+                Err(e) => {
+                    not_drawn
+                        .push(format!("{group_label} (its map `{}` cannot be read from here: {e})", cfg.map.source));
+                    continue;
+                }
+            };
             let mut grid = CoverageGrid::new(&map);
             if let Some(rt) = cfg.retrain {
                 let [x0, y0, x1, y1] = rt.region;
@@ -153,6 +162,9 @@ impl Section for BestPaths {
                 s.num(r, "t_final")
             );
             loaded.push((map, grid, paths, cfg.robot.width, title));
+        }
+        if !not_drawn.is_empty() {
+            let _ = writeln!(md, "The best paths of these groups are not drawn: {}.\n", not_drawn.join("; "));
         }
         if loaded.is_empty() {
             return Ok(());

@@ -134,7 +134,7 @@ fn apply_filters(t: &mut RunsTable, filter: &[(String, String)], runs_file: &Pat
 }
 
 /// `<dir>/report`, or `<dir>/report-NAME` for `--name NAME`.
-fn report_folder(dir: &Path, name: Option<&str>) -> Result<PathBuf, ReportError> {
+pub(super) fn report_folder(dir: &Path, name: Option<&str>) -> Result<PathBuf, ReportError> {
     match name {
         Some(name) => {
             if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {

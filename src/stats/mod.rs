@@ -15,7 +15,7 @@ pub mod kruskal;
 pub mod paired;
 pub mod rank_sum;
 
-pub use describe::{mean_ci95, mean_min_max, quartiles, ranks};
+pub use describe::{mean_ci95, mean_min_max, quartiles, ranks, spearman};
 pub use effect::{Contrast, Interval, a12_magnitude, bootstrap_ci, vargha_delaney_a12};
 pub use family::{Family, holm};
 pub use kruskal::{KruskalWallis, kruskal_wallis};
