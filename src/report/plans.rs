@@ -68,7 +68,13 @@ pub struct RunPlans {
     pub seed: Option<(f64, f64)>,
 }
 
-/// The reference plan of each map: its row of the reference runs.csv, by `map.source`.
+/// The column that names a run's map: the swept `map.source`, else the metric column `map`
+/// (the same text; a study on one map does not sweep `map.source`).
+pub fn map_column(t: &RunsTable) -> Option<usize> {
+    t.col("map.source").or_else(|| t.col("map"))
+}
+
+/// The reference plan of each map: its row of the reference runs.csv, by its map.
 pub struct Reference {
     /// The file it was read from, as given.
     pub file: PathBuf,
@@ -84,8 +90,8 @@ impl Reference {
         let input = |m: String| ReportError::Input(format!("--reference {}: {m}", file.display()));
         let text = std::fs::read_to_string(file).map_err(|e| input(e.to_string()))?;
         let table = RunsTable::parse(&text).map_err(input)?;
-        let Some(map) = table.col("map.source") else {
-            return Err(input("no `map.source` column: the reference plans are matched to runs by their map".into()));
+        let Some(map) = map_column(&table) else {
+            return Err(input("no `map.source` or `map` column: the reference plans are matched to runs by their map".into()));
         };
         for need in ["cov_final_reach", "time_s", "cov_final_free", "t_final", "f_free", "executable"] {
             if table.col(need).is_none() {
@@ -249,8 +255,8 @@ pub fn render(
         return Err(ReportError::Input(format!("{}: no runs to report", file.display())));
     }
     let reference = reference.map(Reference::read).transpose()?;
-    let (Some(id), Some(map)) = (t.col("run_id"), t.col("map.source")) else {
-        return Err(ReportError::Input(format!("{}: expected the columns run_id and map.source", file.display())));
+    let (Some(id), Some(map)) = (t.col("run_id"), map_column(&t)) else {
+        return Err(ReportError::Input(format!("{}: expected the columns run_id and map", file.display())));
     };
     if let Some(r) = &reference {
         for row in &t.rows {

@@ -48,7 +48,7 @@ struct View<'a> {
 
 /// The whole of `plans.md`.
 pub(super) fn markdown(t: &RunsTable, runs: &BTreeMap<String, RunPlans>, reference: Option<&Reference>) -> String {
-    let map = t.col("map.source").expect("checked by render");
+    let map = super::map_column(t).expect("checked by render");
     let id = t.col("run_id").expect("checked by render");
     // The map first, so that what is set per map (budget, station) follows it.
     let params = param_columns(t);
@@ -164,7 +164,7 @@ fn percent(x: f64) -> String {
 
 /// A factor's value as the tables print it: a map by its file's stem.
 fn shown(name: &str, value: &str) -> String {
-    if name == "map.source" {
+    if name == "map.source" || name == "map" {
         std::path::Path::new(value).file_stem().map_or(value, |s| s.to_str().unwrap_or(value)).to_string()
     } else {
         value.to_string()
