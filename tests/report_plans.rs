@@ -118,3 +118,17 @@ fn plans_are_read_from_the_run_folders_and_remade_without_them() {
     let o = covga(&["report", study.to_str().unwrap(), "--reference", reference.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(2), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+#[test]
+fn a_fleet_study_is_not_read_as_plans_of_one_robot() {
+    let tmp = tempfile::tempdir().unwrap();
+    for f in ["runs.csv", "study.json"] {
+        std::fs::copy(Path::new("results/fleets").join(f), tmp.path().join(f)).unwrap();
+    }
+    for flag in ["--plans", "--seed-to-seed"] {
+        let o = covga(&["report", tmp.path().to_str().unwrap(), flag]);
+        assert_eq!(o.status.code(), Some(2), "{flag}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains("this is a fleet study"), "{flag}: {err}");
+    }
+}

@@ -240,6 +240,10 @@ pub fn incomplete_note(dir: &Path, recorded: usize) -> Option<String> {
     })
 }
 
+/// Why `--plans` and `--seed-to-seed` refuse a fleet study.
+const FLEET_NOT_PLANS: &str = "--plans and --seed-to-seed read studies of one robot's plans; this is a fleet study (its \
+                               report compares the fleets' union coverage and makespan)";
+
 /// The report folder of `opts`: `<dir>/report`, or `<dir>/report-NAME` for `--name NAME`.
 pub fn report_folder(dir: &Path, opts: &ReportOptions) -> Result<std::path::PathBuf, ReportError> {
     study::report_folder(dir, opts.name.as_deref())
@@ -264,6 +268,9 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     };
     let loaded = study::Loaded::read(dir, opts)?;
     if self::fleet_report::applies(&loaded.t) {
+        if opts.plans || opts.seed_to_seed {
+            return Err(ReportError::Input(FLEET_NOT_PLANS.into()));
+        }
         self::fleet_report::write(dir, &loaded.t, &loaded.out, loaded.incomplete.as_deref())?;
         return Ok(loaded.out.join("summary.md"));
     }

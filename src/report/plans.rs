@@ -91,7 +91,9 @@ impl Reference {
         let text = std::fs::read_to_string(file).map_err(|e| input(e.to_string()))?;
         let table = RunsTable::parse(&text).map_err(input)?;
         let Some(map) = map_column(&table) else {
-            return Err(input("no `map.source` or `map` column: the reference plans are matched to runs by their map".into()));
+            return Err(input(
+                "no `map.source` or `map` column: the reference plans are matched to runs by their map".into(),
+            ));
         };
         for need in ["cov_final_reach", "time_s", "cov_final_free", "t_final", "f_free", "executable"] {
             if table.col(need).is_none() {
@@ -253,6 +255,9 @@ pub fn render(
     }
     if t.rows.is_empty() {
         return Err(ReportError::Input(format!("{}: no runs to report", file.display())));
+    }
+    if super::fleet_report::applies(&t) {
+        return Err(ReportError::Input(super::FLEET_NOT_PLANS.into()));
     }
     let reference = reference.map(Reference::read).transpose()?;
     let (Some(id), Some(map)) = (t.col("run_id"), map_column(&t)) else {
