@@ -256,22 +256,14 @@ pub fn render_all(
     if comparisons.is_empty() {
         return Ok(Vec::new());
     }
-    let file = dir.join("runs.csv");
-    let text = std::fs::read_to_string(&file).map_err(|e| ReportError::Input(format!("{}: {e}", file.display())))?;
-    let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", file.display())))?;
+    let (t, recorded) = super::read_filtered_runs(dir, filter)?;
     // A configuration recorded once pairs with every seed only in a finished study: in one
     // stopped part-way it may be a seeded configuration whose other seeds have not run.
     let expected = std::fs::read_to_string(dir.join("study.json"))
         .ok()
         .and_then(|j| serde_json::from_str::<serde_json::Value>(&j).ok())
         .and_then(|v| v["runs"].as_u64());
-    let complete = expected.is_none_or(|n| t.rows.len() as u64 >= n);
-    super::take_failed(&mut t);
-    for (key, want) in filter {
-        if let Some(c) = t.col(key) {
-            t.rows.retain(|r| super::cell_matches(&r[c], want));
-        }
-    }
+    let complete = expected.is_none_or(|n| recorded as u64 >= n);
     let mut rendered: Vec<Rendered> =
         comparisons.iter().map(|c| render_with(&t, c, complete)).collect::<Result<_, _>>()?;
     // Several baselines of one key (and kind of plans) would share a file: each then names its

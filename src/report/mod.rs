@@ -141,6 +141,23 @@ pub struct ReportOptions {
     pub seed_to_seed: bool,
 }
 
+/// `dir`'s runs.csv as the parts of a report that read it apart from the summary do: the runs
+/// that failed while running left out and the `--where` pairs of `filter` applied; with the
+/// number of runs recorded (failed and filtered ones included).
+pub(super) fn read_filtered_runs(dir: &Path, filter: &[(String, String)]) -> Result<(RunsTable, usize), ReportError> {
+    let file = dir.join("runs.csv");
+    let text = std::fs::read_to_string(&file).map_err(|e| ReportError::Input(format!("{}: {e}", file.display())))?;
+    let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", file.display())))?;
+    let recorded = t.rows.len();
+    take_failed(&mut t);
+    for (key, want) in filter {
+        if let Some(c) = t.col(key) {
+            t.rows.retain(|r| cell_matches(&r[c], want));
+        }
+    }
+    Ok((t, recorded))
+}
+
 /// Whether a cell of runs.csv equals a `--where` value: as numbers when both parse, else as text.
 pub(super) fn cell_matches(cell: &str, want: &str) -> bool {
     match (cell.parse::<f64>(), want.parse::<f64>()) {

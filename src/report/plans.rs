@@ -245,14 +245,7 @@ pub fn render(
     previous: &Path,
 ) -> Result<Rendered, ReportError> {
     let file = dir.join("runs.csv");
-    let text = std::fs::read_to_string(&file).map_err(|e| ReportError::Input(format!("{}: {e}", file.display())))?;
-    let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", file.display())))?;
-    super::take_failed(&mut t);
-    for (key, want) in filter {
-        if let Some(c) = t.col(key) {
-            t.rows.retain(|r| super::cell_matches(&r[c], want));
-        }
-    }
+    let (t, _) = super::read_filtered_runs(dir, filter)?;
     if t.rows.is_empty() {
         return Err(ReportError::Input(format!("{}: no runs to report", file.display())));
     }
@@ -275,7 +268,7 @@ pub fn render(
             }
         }
     }
-    let ids: Vec<String> = t.rows.iter().map(|r| r[id].clone()).collect();
+    let mut ids: Vec<String> = t.rows.iter().map(|r| r[id].clone()).collect();
     let runs = if dir.join("runs").is_dir() {
         let mut runs = BTreeMap::new();
         for row in &t.rows {
@@ -307,10 +300,9 @@ pub fn render(
         }
         recorded
     };
-    let mut sorted = ids.clone();
-    sorted.sort();
+    ids.sort();
     let markdown = text::markdown(&t, &runs, reference.as_ref());
-    Ok(Rendered { stem: "plans".into(), markdown, csv: to_csv(&sorted, &runs) })
+    Ok(Rendered { stem: "plans".into(), markdown, csv: to_csv(&ids, &runs) })
 }
 
 #[cfg(test)]
