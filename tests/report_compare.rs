@@ -237,3 +237,39 @@ fn the_condensed_anova_is_remade_and_quoted_verbatim() {
     }
     assert_eq!(n, 4, "the four condensed tables of summary.md");
 }
+
+/// `results/olson-ring`'s table of the waypoint planner's own figures is what `covga report
+/// --measure` writes from the committed runs.csv and the measures.csv it recorded when the run
+/// folders were there, byte for byte; without that file, a figure read from the run folders is
+/// refused with exit 2 and the file named.
+#[test]
+fn the_waypoint_measures_are_remade_byte_for_byte() {
+    let folder = Path::new("results/olson-ring");
+    let dir = committed_study(folder);
+    let d = dir.path().to_str().unwrap();
+    let text = std::fs::read_to_string(folder.join("README.md")).unwrap();
+    // The command the README gives, from `covga report` on.
+    let command = text.lines().skip_while(|l| !l.starts_with("covga report")).take_while(|l| !l.starts_with("```"));
+    let args: Vec<String> = command
+        .flat_map(|l| l.trim_end_matches('\\').split_whitespace().map(str::to_string).collect::<Vec<_>>())
+        .skip(2)
+        .collect();
+    assert!(args.iter().any(|a| a == "--measure"), "the README's report command: {args:?}");
+    let mut full = vec!["report".to_string(), d.to_string()];
+    full.extend(args);
+    let full: Vec<&str> = full.iter().map(String::as_str).collect();
+    let refused = covga(&full);
+    assert_eq!(refused.status.code(), Some(2), "{}", String::from_utf8_lossy(&refused.stderr));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("measures.csv"));
+    std::fs::create_dir(dir.path().join("report")).unwrap();
+    std::fs::copy(folder.join("report/measures.csv"), dir.path().join("report/measures.csv")).unwrap();
+    let o = covga(&full);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for file in ["measures.md", "measures.csv"] {
+        assert!(
+            std::fs::read(dir.path().join("report").join(file)).unwrap()
+                == std::fs::read(folder.join("report").join(file)).unwrap(),
+            "results/olson-ring/report/{file} differs from covga report's"
+        );
+    }
+}

@@ -420,6 +420,7 @@ def report(
     plans: bool = False,
     reference: Optional[Union[str, "os.PathLike[str]"]] = None,
     seed_to_seed: bool = False,
+    measures: Sequence[str] = (),
 ) -> Path:
     """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
     runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
@@ -434,7 +435,10 @@ def report(
     (``--plans``: every configuration's plans and final populations, with findings in words);
     ``reference``, a runs.csv of one plan per map, sets every run against its map's plan there
     (``--reference``). ``seed_to_seed`` also writes ``seed-to-seed.md`` (``--seed-to-seed``: how
-    far one replicate's ranking of the configurations carries to another)."""
+    far one replicate's ranking of the configurations carries to another). ``measures`` names
+    figures the runs record (a runs.csv column, ``history.COLUMN@ITERATION`` or a dotted path
+    into ``summary.json``) and writes ``measures.md`` and ``measures.csv`` (``--measure``: each
+    group's median [min, max], or the count of runs where a yes/no figure holds)."""
     by = [by] if isinstance(by, str) else list(by)
 
     def text(v: Any) -> str:
@@ -456,7 +460,9 @@ def report(
         if not isinstance(value, (bool, np.bool_)):
             raise ConfigError(f"{flag} = {value!r}: expected True or False")
     ref = None if reference is None else os.fspath(reference)
+    if isinstance(measures, str) or not all(isinstance(m, str) for m in measures):
+        raise ConfigError(f"measures = {measures!r}: expected a list of keys, e.g. ['objectives.wall_coverage']")
     return Path(
         _covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every, bool(anova_condensed), bool(plans), ref,
-        bool(seed_to_seed))
+        bool(seed_to_seed), list(measures))
     )

@@ -152,7 +152,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
 /// that one that cannot be made writes nothing; with `anova_condensed`, `anova-condensed.md`
 /// too) and returns the path of its `summary.md`.
 #[pyfunction]
-#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false, plans=false, reference=None, seed_to_seed=false))]
+#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false, plans=false, reference=None, seed_to_seed=false, measures=Vec::new()))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_report(
     py: Python<'_>,
@@ -166,6 +166,7 @@ pub fn write_report(
     plans: bool,
     reference: Option<String>,
     seed_to_seed: bool,
+    measures: Vec<String>,
 ) -> PyResult<String> {
     use covga::report::ReportError;
     let error = |e: ReportError| match e {
@@ -189,6 +190,7 @@ pub fn write_report(
             plans,
             reference: reference.map(std::path::PathBuf::from),
             seed_to_seed,
+            measures,
         };
         let path = covga::report::write_report_with(dir, &opts).map_err(error)?;
         let folder = path.parent().unwrap_or(dir);

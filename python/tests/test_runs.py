@@ -234,6 +234,18 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     for made in ("plans.md", "plans.csv", "seed-to-seed.md"):
         assert (tmp_path / "py/report-plans" / made).read_bytes() == (tmp_path / "cli/report-plans" / made).read_bytes()
     assert "| 0 vs 1 |" in (tmp_path / "py/report-plans/seed-to-seed.md").read_text()
+    # Figures the runs record, per group, as the command line tabulates them.
+    measures = ["time_s", "executable", "history.best_coverage@0", "objectives.cov_final"]
+    covga.report(tmp_path / "py", name="measures", by="thesis.selection", measures=measures)
+    cli("report", tmp_path / "cli", "--name", "measures", "--by", "thesis.selection",
+        *[a for m in measures for a in ("--measure", m)])
+    assert (tmp_path / "py/report-measures/measures.md").read_bytes() == (
+        tmp_path / "cli/report-measures/measures.md").read_bytes()
+    assert "| thesis.selection=elite | 4 |" in (tmp_path / "py/report-measures/measures.md").read_text()
+    with pytest.raises(covga.ConfigError, match="no `objectives.nothing`"):
+        covga.report(tmp_path / "py", name="measures", measures=["objectives.nothing"])
+    with pytest.raises(covga.ConfigError, match="a list of keys"):
+        covga.report(tmp_path / "py", name="measures", measures="time_s")
     with pytest.raises(covga.ConfigError, match="two plans for map"):
         covga.report(tmp_path / "py", name="plans", plans=True, reference=tmp_path / "py" / "runs.csv")
     with pytest.raises(covga.ConfigError, match="needs --plans"):

@@ -329,6 +329,13 @@ pub struct ReportArgs {
     /// the thesis maps, 003 Tables A.1/A.2 beside the same cells of the study.
     #[arg(long)]
     seed_to_seed: bool,
+    /// Also write `measures.md` and `measures.csv`: this figure per --by group (numbers as
+    /// median [min, max], yes/no figures as counts), read from the runs.csv column of that name,
+    /// else `history.COLUMN@ITERATION` (the run's history.csv at that iteration), else a dotted
+    /// path into each run's summary.json (e.g. objectives.wall_coverage). Where the run folders
+    /// are gone, the `measures.csv` of the report folder is read back. Repeatable.
+    #[arg(long, value_name = "KEY")]
+    measure: Vec<String>,
 }
 
 pub fn report(a: ReportArgs) -> Result<(), CliError> {
@@ -361,6 +368,7 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
         plans: a.plans,
         reference: a.reference,
         seed_to_seed: a.seed_to_seed,
+        measures: a.measure,
     };
     let path = crate::report::write_report_with(&a.dir, &opts).map_err(|e| match e {
         crate::report::ReportError::Input(m) => CliError::Input(m),
@@ -381,6 +389,9 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     }
     if opts.seed_to_seed {
         println!("wrote {}", folder.join("seed-to-seed.md").display());
+    }
+    if !opts.measures.is_empty() {
+        println!("wrote {}", folder.join("measures.md").display());
     }
     for r in &rendered {
         println!("wrote {}", r.save(folder).map_err(input)?.display());

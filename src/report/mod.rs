@@ -23,6 +23,7 @@ mod design;
 mod effects;
 pub mod figures;
 pub mod fleet_report;
+pub mod measures;
 pub mod plans;
 mod report_tables;
 pub mod rescore;
@@ -139,6 +140,9 @@ pub struct ReportOptions {
     /// Also write `seed-to-seed.md` ([`seed_to_seed`]): how far one replicate's ranking of the
     /// configurations carries to another.
     pub seed_to_seed: bool,
+    /// Also write `measures.md` and `measures.csv` ([`measures`]): these figures per group,
+    /// read from runs.csv, each run's `summary.json` or its `history.csv`.
+    pub measures: Vec<String>,
 }
 
 /// `dir`'s runs.csv as the parts of a report that read it apart from the summary do: the runs
@@ -261,6 +265,10 @@ pub fn incomplete_note(dir: &Path, recorded: usize) -> Option<String> {
 const FLEET_NOT_PLANS: &str = "--plans and --seed-to-seed read studies of one robot's plans; this is a fleet study (its \
                                report compares the fleets' union coverage and makespan)";
 
+/// Why `--measure` refuses a fleet study.
+const FLEET_NOT_MEASURES: &str = "--measure tabulates figures per group of one robot's runs; this is a fleet study (its \
+                                  report groups by fleet and method on its own)";
+
 /// The report folder of `opts`: `<dir>/report`, or `<dir>/report-NAME` for `--name NAME`.
 pub fn report_folder(dir: &Path, opts: &ReportOptions) -> Result<std::path::PathBuf, ReportError> {
     study::report_folder(dir, opts.name.as_deref())
@@ -288,11 +296,17 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         if opts.plans || opts.seed_to_seed {
             return Err(ReportError::Input(FLEET_NOT_PLANS.into()));
         }
+        if !opts.measures.is_empty() {
+            return Err(ReportError::Input(FLEET_NOT_MEASURES.into()));
+        }
         self::fleet_report::write(dir, &loaded.t, &loaded.out, loaded.incomplete.as_deref())?;
         return Ok(loaded.out.join("summary.md"));
     }
     let study = study::Study::new(dir, &opts.by, loaded);
     let seed_to_seed = opts.seed_to_seed.then(|| seed_to_seed::render(&study.t, &opts.by)).transpose()?;
+    let measures = (!opts.measures.is_empty())
+        .then(|| measures::render(dir, &study.t, &study.groups, &opts.measures, &study.out))
+        .transpose()?;
     study.write_configurations()?;
     let mut md = String::new();
     for section in sections::SECTIONS {
@@ -319,6 +333,9 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
     if let Some(p) = plans {
         p.save(&study.out)?;
+    }
+    if let Some(m) = measures {
+        m.save(&study.out)?;
     }
     if let Some(text) = seed_to_seed {
         crate::io::write_atomic(&study.out.join("seed-to-seed.md"), text.as_bytes())

@@ -1,0 +1,385 @@
+//! `covga report DIR --measure KEY …`: any figure the runs record, per group of `--by`.
+//!
+//! The standard report summarises the common scorer's columns. A planner records more: the
+//! waypoint planner its waypoints, set-up time, its own wall coverage and whether a team's
+//! graph stays connected (`summary.json`), every GA its best values per iteration
+//! (`history.csv`). `--measure` names such figures; `measures.md` gives each group's median
+//! with its range (numbers) or the count of runs where it holds (yes/no figures), and
+//! `measures.csv` records the per-run values read from the run folders. A study whose run
+//! folders are gone (a committed results folder) is reported from that `measures.csv`, so the
+//! committed `measures.md` re-makes byte for byte from committed files.
+//!
+//! A key is read from, in order: a column of runs.csv of that name; `history.COLUMN@ITERATION`,
+//! the column of `history.csv` in the row of that iteration; else a dotted path into
+//! `summary.json` (`objectives.wall_coverage`).
+
+use super::ReportError;
+use super::compare::Rendered;
+use crate::study::records::RunsTable;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The file stem of what `--measure` writes (`measures.md`, `measures.csv`).
+pub const STEM: &str = "measures";
+
+/// Where a measure's value is read.
+#[derive(Clone, Debug, PartialEq)]
+enum Source {
+    /// A column of runs.csv.
+    Column(usize),
+    /// A column of the run's `history.csv` at an iteration.
+    History { column: String, iteration: u64 },
+    /// A dotted path into the run's `summary.json`.
+    Summary(Vec<String>),
+}
+
+/// One run's value of a measure.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    /// A number.
+    Num(f64),
+    /// A yes/no figure.
+    Bool(bool),
+}
+
+impl Value {
+    /// The value as a cell of runs.csv or `measures.csv` writes it.
+    fn cell(self) -> String {
+        match self {
+            Value::Num(x) => x.to_string(),
+            Value::Bool(b) => b.to_string(),
+        }
+    }
+
+    /// Reads a cell: `true`/`false`, else a finite number.
+    fn parse(cell: &str) -> Option<Self> {
+        match cell {
+            "true" => Some(Value::Bool(true)),
+            "false" => Some(Value::Bool(false)),
+            _ => cell.parse::<f64>().ok().filter(|x| x.is_finite()).map(Value::Num),
+        }
+    }
+}
+
+/// Where `key` is read, or why it cannot be.
+fn source(t: &RunsTable, key: &str) -> Result<Source, String> {
+    if let Some(c) = t.col(key) {
+        return Ok(Source::Column(c));
+    }
+    if let Some(rest) = key.strip_prefix("history.") {
+        let Some((column, at)) = rest.split_once('@') else {
+            return Err(format!(
+                "--measure {key}: a history measure is history.COLUMN@ITERATION, e.g. history.best_walls@50"
+            ));
+        };
+        let iteration = at.parse::<u64>().map_err(|_| {
+            format!("--measure {key}: the iteration `{at}` is not a whole number of iterations (0 or more)")
+        })?;
+        if column.is_empty() {
+            return Err(format!("--measure {key}: no history column named before `@`"));
+        }
+        return Ok(Source::History { column: column.to_string(), iteration });
+    }
+    let path: Vec<String> = key.split('.').map(str::to_string).collect();
+    if path.iter().any(String::is_empty) {
+        return Err(format!("--measure {key}: not a runs.csv column, and an empty step in a summary.json path"));
+    }
+    Ok(Source::Summary(path))
+}
+
+/// Reads the measures whose source is a run's folder from `folder`.
+fn read_folder(folder: &Path, keys: &[(String, Source)]) -> Result<BTreeMap<String, Value>, ReportError> {
+    let bad = |p: &Path, m: String| ReportError::Input(format!("{}: {m}", p.display()));
+    let mut out = BTreeMap::new();
+    let mut summary: Option<serde_json::Value> = None;
+    let mut history: Option<RunsTable> = None;
+    for (key, src) in keys {
+        let value = match src {
+            Source::Column(_) => continue,
+            Source::Summary(path) => {
+                let file = folder.join("summary.json");
+                if summary.is_none() {
+                    let text = std::fs::read_to_string(&file).map_err(|e| bad(&file, e.to_string()))?;
+                    summary = Some(serde_json::from_str(&text).map_err(|e| bad(&file, e.to_string()))?);
+                }
+                let mut v = summary.as_ref().expect("read above");
+                for step in path {
+                    v = v.get(step).ok_or_else(|| bad(&file, format!("no `{key}` (no `{step}` along it)")))?;
+                }
+                match v {
+                    serde_json::Value::Bool(b) => Value::Bool(*b),
+                    serde_json::Value::Number(n) => Value::Num(n.as_f64().unwrap_or(f64::NAN)),
+                    other => {
+                        return Err(bad(&file, format!("`{key}` is {other}, not a number or true/false")));
+                    }
+                }
+            }
+            Source::History { column, iteration } => {
+                let file = folder.join("history.csv");
+                if history.is_none() {
+                    let text = std::fs::read_to_string(&file).map_err(|e| bad(&file, e.to_string()))?;
+                    history = Some(RunsTable::parse(&text).map_err(|m| bad(&file, m))?);
+                }
+                let h = history.as_ref().expect("read above");
+                let (Some(it), Some(c)) = (h.col("iteration"), h.col(column)) else {
+                    return Err(bad(&file, format!("no column `{column}` (its columns: {})", h.header.join(", "))));
+                };
+                let row = h.rows.iter().find(|r| r[it].parse::<u64>().ok() == Some(*iteration)).ok_or_else(|| {
+                    bad(&file, format!("no row of iteration {iteration} (the run recorded {} rows)", h.rows.len()))
+                })?;
+                Value::parse(&row[c]).ok_or_else(|| {
+                    bad(&file, format!("`{column}` at iteration {iteration} is `{}`, not a number", row[c]))
+                })?
+            }
+        };
+        if matches!(value, Value::Num(x) if !x.is_finite()) {
+            return Err(bad(folder, format!("`{key}` is not a finite number")));
+        }
+        out.insert(key.clone(), value);
+    }
+    Ok(out)
+}
+
+/// Reads a `measures.csv` back: what the run folders said when the report was made.
+fn from_csv(file: &Path, keys: &[(String, Source)]) -> Result<BTreeMap<String, BTreeMap<String, Value>>, ReportError> {
+    let bad = |m: String| {
+        ReportError::Input(format!(
+            "{}: {m} (the study holds no run folders, so the report reads what it recorded)",
+            file.display()
+        ))
+    };
+    let text = std::fs::read_to_string(file).map_err(|e| bad(e.to_string()))?;
+    let t = RunsTable::parse(&text).map_err(bad)?;
+    let id = t.col("run_id").ok_or_else(|| bad("no column run_id".into()))?;
+    let mut out = BTreeMap::new();
+    for row in &t.rows {
+        let mut values = BTreeMap::new();
+        for (key, src) in keys {
+            if matches!(src, Source::Column(_)) {
+                continue;
+            }
+            let c = t.col(key).ok_or_else(|| bad(format!("`{key}` is not recorded")))?;
+            let v =
+                Value::parse(&row[c]).ok_or_else(|| bad(format!("run {}: `{}` cannot be read", row[id], row[c])))?;
+            values.insert(key.clone(), v);
+        }
+        out.insert(row[id].clone(), values);
+    }
+    Ok(out)
+}
+
+/// Four significant digits, the way the table prints a number.
+fn significant(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    if x.fract() == 0.0 && x.abs() < 1e15 {
+        return format!("{x:.0}");
+    }
+    let decimals = (3 - x.abs().log10().floor() as i32).clamp(0, 8) as usize;
+    format!("{x:.decimals$}")
+}
+
+/// One group's cell of a measure: `median [min, max]` of numbers, `k/n` of yes/no figures.
+fn summarise(values: &[Value]) -> String {
+    let mut nums = Vec::new();
+    let mut yes = 0;
+    for v in values {
+        match v {
+            Value::Num(x) => nums.push(*x),
+            Value::Bool(b) => yes += usize::from(*b),
+        }
+    }
+    if nums.is_empty() {
+        return format!("{yes}/{}", values.len());
+    }
+    if nums.len() < values.len() {
+        return "numbers and yes/no mixed".into();
+    }
+    let (lo, hi) = nums.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
+    format!("{} [{}, {}]", significant(super::median(&mut nums)), significant(lo), significant(hi))
+}
+
+/// Makes `measures.md` and `measures.csv` of `keys` over `groups` of `t`, reading the run
+/// folders of `dir` or, where the study holds none, `previous/measures.csv`; writes nothing.
+pub(super) fn render(
+    dir: &Path,
+    t: &RunsTable,
+    groups: &[super::Group],
+    keys: &[String],
+    previous: &Path,
+) -> Result<Rendered, ReportError> {
+    let file = dir.join("runs.csv");
+    let id = t.col("run_id").ok_or_else(|| ReportError::Input(format!("{}: no column run_id", file.display())))?;
+    let sources: Vec<(String, Source)> = keys
+        .iter()
+        .map(|k| source(t, k).map(|s| (k.clone(), s)))
+        .collect::<Result<_, _>>()
+        .map_err(ReportError::Input)?;
+    let from_folders = sources.iter().any(|(_, s)| !matches!(s, Source::Column(_)));
+    let folders = if !from_folders {
+        BTreeMap::new()
+    } else if dir.join("runs").is_dir() {
+        let mut all = BTreeMap::new();
+        for row in &t.rows {
+            let folder = dir.join("runs").join(&row[id]);
+            if !folder.is_dir() {
+                return Err(ReportError::Input(format!(
+                    "{}: no folder for run {}: --measure reads it there",
+                    dir.join("runs").display(),
+                    row[id]
+                )));
+            }
+            all.insert(row[id].clone(), read_folder(&folder, &sources)?);
+        }
+        all
+    } else {
+        from_csv(&previous.join(format!("{STEM}.csv")), &sources)?
+    };
+    // Every run's values, in the order of `keys`.
+    let mut values: BTreeMap<&str, Vec<Value>> = BTreeMap::new();
+    for row in &t.rows {
+        let mut v = Vec::with_capacity(sources.len());
+        for (key, src) in &sources {
+            let value = match src {
+                Source::Column(c) => Value::parse(&row[*c]).ok_or_else(|| {
+                    ReportError::Input(format!(
+                        "{}: run {}: `{key}` is `{}`, not a number or true/false",
+                        file.display(),
+                        row[id],
+                        row[*c]
+                    ))
+                })?,
+                _ => *folders.get(&row[id]).and_then(|m| m.get(key)).ok_or_else(|| {
+                    ReportError::Input(format!(
+                        "{}: run {} is not recorded, and the study holds no run folders",
+                        previous.join(format!("{STEM}.csv")).display(),
+                        row[id]
+                    ))
+                })?,
+            };
+            v.push(value);
+        }
+        values.insert(row[id].as_str(), v);
+    }
+    Ok(Rendered { stem: STEM.into(), markdown: markdown(t, id, groups, &sources, &values), csv: csv(keys, &values) })
+}
+
+/// `measures.md`: one row per group, one column per measure.
+fn markdown(
+    t: &RunsTable,
+    id: usize,
+    groups: &[super::Group],
+    sources: &[(String, Source)],
+    values: &BTreeMap<&str, Vec<Value>>,
+) -> String {
+    let mut md = String::from("# Measures per group\n\n");
+    let from = |want: fn(&Source) -> bool| {
+        sources.iter().filter(|(_, s)| want(s)).map(|(k, _)| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+    };
+    let mut read = Vec::new();
+    for (what, keys) in [
+        ("runs.csv", from(|s| matches!(s, Source::Column(_)))),
+        ("each run's `summary.json`", from(|s| matches!(s, Source::Summary(_)))),
+        ("each run's `history.csv` at the iteration after `@`", from(|s| matches!(s, Source::History { .. }))),
+    ] {
+        if !keys.is_empty() {
+            read.push(format!("{what} ({keys})"));
+        }
+    }
+    let _ = writeln!(
+        md,
+        "What each run recorded, read from {}. Numbers: the median of the group's runs with the least and the \
+         greatest [min, max]; yes/no figures: the runs where it holds, of the group's runs.\n",
+        read.join("; ")
+    );
+    let _ =
+        writeln!(md, "| group | runs | {} |", sources.iter().map(|(k, _)| k.as_str()).collect::<Vec<_>>().join(" | "));
+    let _ = writeln!(md, "|---|---|{}", "---|".repeat(sources.len()));
+    for g in groups {
+        let cells: Vec<String> = (0..sources.len())
+            .map(|k| summarise(&g.rows.iter().map(|&r| values[t.rows[r][id].as_str()][k]).collect::<Vec<_>>()))
+            .collect();
+        let _ = writeln!(md, "| {} | {} | {} |", g.label, g.rows.len(), cells.join(" | "));
+    }
+    md
+}
+
+/// `measures.csv`: one row per run, by run id.
+fn csv(keys: &[String], values: &BTreeMap<&str, Vec<Value>>) -> String {
+    let mut s = format!("run_id,{}\n", keys.join(","));
+    for (id, v) in values {
+        let _ = writeln!(s, "{id},{}", v.iter().map(|x| x.cell()).collect::<Vec<_>>().join(","));
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> RunsTable {
+        RunsTable::parse("run_id,wall_s,executable\na,1.5,true\nb,2.5,false\n").unwrap()
+    }
+
+    #[test]
+    fn keys_are_read_from_runs_csv_history_or_summary_in_that_order() {
+        let t = table();
+        let cases = [
+            ("wall_s", Ok(Source::Column(1))),
+            ("history.best_walls@50", Ok(Source::History { column: "best_walls".into(), iteration: 50 })),
+            ("objectives.wall_coverage", Ok(Source::Summary(vec!["objectives".into(), "wall_coverage".into()]))),
+        ];
+        for (key, want) in cases {
+            assert_eq!(source(&t, key), want, "{key}");
+        }
+        for bad in ["history.best_walls", "history.best_walls@-1", "history.@5", "objectives..x"] {
+            assert!(source(&t, bad).is_err(), "{bad} must be refused");
+        }
+    }
+
+    #[test]
+    fn groups_summarise_numbers_as_median_and_range_and_yes_no_as_counts() {
+        let cases: [(&[Value], &str); 6] = [
+            (&[Value::Num(1.0), Value::Num(3.0), Value::Num(2.0)], "2 [1, 3]"),
+            (&[Value::Num(0.877), Value::Num(0.9634), Value::Num(0.7731)], "0.8770 [0.7731, 0.9634]"),
+            (&[Value::Num(382.0), Value::Num(180.0)], "281 [180, 382]"),
+            (&[Value::Num(382.0), Value::Num(179.0)], "280.5 [179, 382]"),
+            (&[Value::Bool(true), Value::Bool(false), Value::Bool(true)], "2/3"),
+            (&[Value::Num(0.0055)], "0.005500 [0.005500, 0.005500]"),
+        ];
+        for (values, want) in cases {
+            assert_eq!(summarise(values), want);
+        }
+    }
+
+    #[test]
+    fn folder_values_are_read_and_a_missing_one_is_named() {
+        let dir = std::env::temp_dir().join(format!("covga-measures-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(
+            dir.join("summary.json"),
+            r#"{"waypoints": 382, "connected": true, "objectives": {"wall_coverage": 0.9}}"#,
+        )
+        .unwrap();
+        std::fs::write(dir.join("history.csv"), "iteration,best_walls\n0,0.5\n50,0.75\n").unwrap();
+        let t = table();
+        let keys: Vec<(String, Source)> =
+            ["waypoints", "connected", "objectives.wall_coverage", "history.best_walls@50"]
+                .iter()
+                .map(|k| (k.to_string(), source(&t, k).unwrap()))
+                .collect();
+        let got = read_folder(&dir, &keys).unwrap();
+        assert_eq!(got["waypoints"], Value::Num(382.0));
+        assert_eq!(got["connected"], Value::Bool(true));
+        assert_eq!(got["objectives.wall_coverage"], Value::Num(0.9));
+        assert_eq!(got["history.best_walls@50"], Value::Num(0.75));
+        for missing in ["objectives.open_coverage", "history.best_walls@100", "history.mean_walls@0"] {
+            let k = [(missing.to_string(), source(&t, missing).unwrap())];
+            let e = read_folder(&dir, &k).unwrap_err().to_string();
+            assert!(e.contains("summary.json") || e.contains("history.csv"), "{missing}: {e}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
