@@ -248,11 +248,11 @@ fn the_waypoint_measures_are_remade_byte_for_byte() {
     let dir = committed_study(folder);
     let d = dir.path().to_str().unwrap();
     let text = std::fs::read_to_string(folder.join("README.md")).unwrap();
-    // The command the README gives, from `covga report` on.
+    // The command the README gives, from `covga report` on, its study folder left out.
     let command = text.lines().skip_while(|l| !l.starts_with("covga report")).take_while(|l| !l.starts_with("```"));
     let args: Vec<String> = command
         .flat_map(|l| l.trim_end_matches('\\').split_whitespace().map(str::to_string).collect::<Vec<_>>())
-        .skip(2)
+        .skip(3)
         .collect();
     assert!(args.iter().any(|a| a == "--measure"), "the README's report command: {args:?}");
     let mut full = vec!["report".to_string(), d.to_string()];
@@ -261,6 +261,7 @@ fn the_waypoint_measures_are_remade_byte_for_byte() {
     let refused = covga(&full);
     assert_eq!(refused.status.code(), Some(2), "{}", String::from_utf8_lossy(&refused.stderr));
     assert!(String::from_utf8_lossy(&refused.stderr).contains("measures.csv"));
+    assert!(!dir.path().join("report").exists(), "a refused report leaves no report folder");
     std::fs::create_dir(dir.path().join("report")).unwrap();
     std::fs::copy(folder.join("report/measures.csv"), dir.path().join("report/measures.csv")).unwrap();
     let o = covga(&full);

@@ -299,14 +299,18 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
         if !opts.measures.is_empty() {
             return Err(ReportError::Input(FLEET_NOT_MEASURES.into()));
         }
+        loaded.create_folder()?;
         self::fleet_report::write(dir, &loaded.t, &loaded.out, loaded.incomplete.as_deref())?;
         return Ok(loaded.out.join("summary.md"));
     }
-    let study = study::Study::new(dir, &opts.by, loaded);
-    let seed_to_seed = opts.seed_to_seed.then(|| seed_to_seed::render(&study.t, &opts.by)).transpose()?;
+    // Made from the study before anything is written: one that cannot be made leaves no
+    // report folder behind.
+    let seed_to_seed = opts.seed_to_seed.then(|| seed_to_seed::render(&loaded.t, &opts.by)).transpose()?;
     let measures = (!opts.measures.is_empty())
-        .then(|| measures::render(dir, &study.t, &study.groups, &opts.measures, &study.out))
+        .then(|| measures::render(dir, &loaded.t, &loaded.groups(&opts.by), &opts.measures, &loaded.out))
         .transpose()?;
+    loaded.create_folder()?;
+    let study = study::Study::new(dir, &opts.by, loaded);
     study.write_configurations()?;
     let mut md = String::new();
     for section in sections::SECTIONS {

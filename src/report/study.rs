@@ -25,7 +25,8 @@ pub(super) struct Loaded {
 
 impl Loaded {
     /// Reads `dir`'s `study.json` and `runs.csv`, sets failed runs apart, applies the filters
-    /// of `opts`, checks its `--by` columns and creates the report folder.
+    /// of `opts` and checks its `--by` columns; creates nothing ([`Loaded::create_folder`] does,
+    /// once every part of the report has been made).
     pub fn read(dir: &Path, opts: &ReportOptions) -> Result<Self, ReportError> {
         check_study_json(dir)?;
         let runs_file = dir.join("runs.csv");
@@ -55,7 +56,6 @@ impl Loaded {
             )));
         }
         let out = report_folder(dir, opts.name.as_deref())?;
-        std::fs::create_dir_all(&out).map_err(|e| ReportError::Io(format!("{}: {e}", out.display())))?;
         // Without the runs' own files the report has tables only: say so rather than leave the
         // path and history figures out without a word.
         let no_run_files = (!dir.join("runs").is_dir()).then(|| {
@@ -70,6 +70,40 @@ impl Loaded {
         let incomplete = (!notes.is_empty()).then(|| notes.join("\n\n"));
         Ok(Self { t, selected, out, incomplete })
     }
+}
+
+impl Loaded {
+    /// The rows grouped by the `--by` columns `by`, as the report groups them.
+    pub fn groups(&self, by: &[String]) -> Vec<Group> {
+        groups_of(&self.t, by)
+    }
+
+    /// Creates the report folder.
+    pub fn create_folder(&self) -> Result<(), ReportError> {
+        std::fs::create_dir_all(&self.out).map_err(|e| ReportError::Io(format!("{}: {e}", self.out.display())))
+    }
+}
+
+/// The rows of `t` grouped by the `--by` columns `by`, groups ordered by their values.
+fn groups_of(t: &RunsTable, by: &[String]) -> Vec<Group> {
+    let get = |r: usize, c: &str| t.col(c).map(|i| t.rows[r][i].clone()).unwrap_or_default();
+    let mut by_values: BTreeMap<Vec<String>, Vec<usize>> = BTreeMap::new();
+    for r in 0..t.rows.len() {
+        by_values.entry(by.iter().map(|b| get(r, b)).collect()).or_default().push(r);
+    }
+    let mut by_values: Vec<(Vec<String>, Vec<usize>)> = by_values.into_iter().collect();
+    by_values.sort_by(|(a, _), (b, _)| cmp_group_values(a, b));
+    by_values
+        .into_iter()
+        .map(|(values, rows)| {
+            // A column left empty (a key a conditional sets only for some runs) does not label
+            // the group: `seed_directions=` would read as a value.
+            let parts: Vec<String> =
+                by.iter().zip(&values).filter(|(_, v)| !v.is_empty()).map(|(b, v)| format!("{b}={v}")).collect();
+            let label = if parts.is_empty() { "all runs".to_string() } else { parts.join(", ") };
+            Group { label, rows }
+        })
+        .collect()
 }
 
 /// Refuses a folder without a readable `study.json` holding the grid's run count.
@@ -194,7 +228,7 @@ impl<'a> Study<'a> {
             params: Vec::new(),
             configs: Vec::new(),
         };
-        study.groups = study.group_rows();
+        study.groups = groups_of(&study.t, by);
         study.shape = match by {
             [a, b] => Some((study.distinct(a), study.distinct(b))),
             _ => None,
@@ -231,36 +265,6 @@ impl<'a> Study<'a> {
     /// Distinct values of column `c`.
     fn distinct(&self, c: &str) -> usize {
         (0..self.t.rows.len()).map(|r| self.get(r, c)).collect::<BTreeSet<_>>().len()
-    }
-
-    /// The rows grouped by the `--by` columns, groups ordered by their values.
-    fn group_rows(&self) -> Vec<Group> {
-        let mut by_values: BTreeMap<Vec<String>, Vec<usize>> = BTreeMap::new();
-        for r in 0..self.t.rows.len() {
-            by_values.entry(self.by.iter().map(|b| self.get(r, b)).collect()).or_default().push(r);
-        }
-        let mut by_values: Vec<(Vec<String>, Vec<usize>)> = by_values.into_iter().collect();
-        by_values.sort_by(|(a, _), (b, _)| cmp_group_values(a, b));
-        by_values
-            .into_iter()
-            .map(|(values, rows)| {
-                let label = if self.by.is_empty() {
-                    "all runs".to_string()
-                } else {
-                    // A column left empty (a key a conditional sets only for some runs) does not
-                    // label the group: `seed_directions=` would read as a value.
-                    let parts: Vec<String> = self
-                        .by
-                        .iter()
-                        .zip(&values)
-                        .filter(|(_, v)| !v.is_empty())
-                        .map(|(b, v)| format!("{b}={v}"))
-                        .collect();
-                    if parts.is_empty() { "all runs".to_string() } else { parts.join(", ") }
-                };
-                Group { label, rows }
-            })
-            .collect()
     }
 
     /// `(t_final, cov_final_free)` of row `r`.
