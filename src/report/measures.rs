@@ -207,6 +207,7 @@ pub(super) fn render(
     dir: &Path,
     t: &RunsTable,
     groups: &[super::Group],
+    selected: &[String],
     keys: &[String],
     previous: &Path,
 ) -> Result<Rendered, ReportError> {
@@ -263,10 +264,15 @@ pub(super) fn render(
         }
         values.insert(row[id].as_str(), v);
     }
-    Ok(Rendered { stem: STEM.into(), markdown: markdown(t, id, groups, &sources, &values), csv: csv(keys, &values) })
+    let mut md = String::from("# Measures per group\n\n");
+    if !selected.is_empty() {
+        let _ = writeln!(md, "Runs with {} only.\n", selected.join(", "));
+    }
+    md.push_str(&markdown(t, id, groups, &sources, &values));
+    Ok(Rendered { stem: STEM.into(), markdown: md, csv: csv(keys, &values) })
 }
 
-/// `measures.md`: one row per group, one column per measure.
+/// The body of `measures.md`: one row per group, one column per measure.
 fn markdown(
     t: &RunsTable,
     id: usize,
@@ -274,7 +280,7 @@ fn markdown(
     sources: &[(String, Source)],
     values: &BTreeMap<&str, Vec<Value>>,
 ) -> String {
-    let mut md = String::from("# Measures per group\n\n");
+    let mut md = String::new();
     let from = |want: fn(&Source) -> bool| {
         sources.iter().filter(|(_, s)| want(s)).map(|(k, _)| format!("`{k}`")).collect::<Vec<_>>().join(", ")
     };

@@ -307,7 +307,9 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     // report folder behind.
     let seed_to_seed = opts.seed_to_seed.then(|| seed_to_seed::render(&loaded.t, &opts.by)).transpose()?;
     let measures = (!opts.measures.is_empty())
-        .then(|| measures::render(dir, &loaded.t, &loaded.groups(&opts.by), &opts.measures, &loaded.out))
+        .then(|| {
+            measures::render(dir, &loaded.t, &loaded.groups(&opts.by), &loaded.selected, &opts.measures, &loaded.out)
+        })
         .transpose()?;
     loaded.create_folder()?;
     let study = study::Study::new(dir, &opts.by, loaded);
