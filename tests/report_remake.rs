@@ -1,0 +1,244 @@
+//! Every committed `summary.md` under `results/` is what `covga report` writes from the
+//! committed `runs.csv` and `study.json`, with the study's own arguments: a summary edited by
+//! hand, or one the report no longer writes, fails here.
+//!
+//! A committed study keeps no run folders (histories and paths, up to 30 GB). What the report
+//! reads from them is left out of the comparison, and only that: the figure lines, the note
+//! that the folders are missing, the time-to-coverage section (each plan's curve) and the rows
+//! of 003 §5.1's claims on the final diversity (each run's history). Everything else — every
+//! table of the runs, the tests and their corrections, the analysis of variance, the findings —
+//! must be byte for byte the committed text.
+
+use std::path::Path;
+use std::process::Command;
+
+/// Study, the committed summary's path in it, and the `covga report` arguments that made it
+/// (the README's commands; `scripts/thesis-figures.sh` for Table 4.3's figure reports).
+const REPORTS: &[(&str, &str, &[&str])] = &[
+    ("ablation", "report/summary.md", &["--by", "map.source"]),
+    ("smoke", "report/summary.md", &[]),
+    ("init-dist", "report/summary.md", &["--by", "thesis.init_dist_max"]),
+    ("fleets", "summary.md", &[]),
+    ("thesis-real-maps", "report/summary.md", &["--by", "map.source"]),
+    (
+        "cell-order",
+        "report-basement/summary.md",
+        &[
+            "--name",
+            "basement",
+            "--where",
+            "map.source=experiments/maps/basement.yaml",
+            "--where",
+            "robot.rot_speed=0.52",
+            "--where",
+            "planner=cell_order",
+            "--by",
+            "cell_order.solver",
+            "--by",
+            "cell_order.seed_directions",
+        ],
+    ),
+    ("thesis-table-4-3", "report/summary.md", &["--by", "thesis.selection"]),
+    (
+        "thesis-table-4-3",
+        "report-fig-4-2/summary.md",
+        &[
+            "--name",
+            "fig-4-2",
+            "--where",
+            "map.source=thesis-1",
+            "--where",
+            "robot.rot_speed=0",
+            "--by",
+            "thesis.selection",
+            "--by",
+            "scorer.projection",
+        ],
+    ),
+    (
+        "thesis-table-4-3",
+        "report-fig-4-3-ts/summary.md",
+        &[
+            "--name",
+            "fig-4-3-ts",
+            "--where",
+            "map.source=thesis-1",
+            "--where",
+            "robot.rot_speed=0",
+            "--where",
+            "thesis.selection=tournament",
+            "--by",
+            "thesis.tournament_size",
+            "--by",
+            "scorer.projection",
+        ],
+    ),
+    (
+        "thesis-table-4-3",
+        "report-fig-4-3-sp/summary.md",
+        &[
+            "--name",
+            "fig-4-3-sp",
+            "--where",
+            "map.source=thesis-1",
+            "--where",
+            "robot.rot_speed=0",
+            "--where",
+            "thesis.selection=rrws",
+            "--by",
+            "thesis.selection_pressure",
+            "--by",
+            "scorer.projection",
+        ],
+    ),
+    (
+        "thesis-table-4-3",
+        "report-fig-4-4/summary.md",
+        &[
+            "--name",
+            "fig-4-4",
+            "--where",
+            "map.source=thesis-1",
+            "--where",
+            "robot.rot_speed=0",
+            "--by",
+            "thesis.c_len",
+            "--by",
+            "thesis.c_child",
+        ],
+    ),
+    (
+        "thesis-table-4-3",
+        "report-fig-4-5/summary.md",
+        &[
+            "--name",
+            "fig-4-5",
+            "--where",
+            "map.source=thesis-1",
+            "--where",
+            "robot.rot_speed=0",
+            "--by",
+            "thesis.p_mi",
+            "--by",
+            "thesis.p_ma",
+        ],
+    ),
+    (
+        "thesis-table-4-3",
+        "report-tables-a1-a2/summary.md",
+        &[
+            "--name",
+            "tables-a1-a2",
+            "--by",
+            "map.source",
+            "--by",
+            "robot.rot_speed",
+            "--by",
+            "thesis.selection",
+            "--by",
+            "scorer.projection",
+        ],
+    ),
+];
+
+/// A study folder holding a committed study's runs.csv (decompressed) and study.json.
+fn committed_study(folder: &Path) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(folder.join("study.json"), dir.path().join("study.json")).unwrap();
+    let plain = folder.join("runs.csv");
+    let text = if plain.exists() {
+        std::fs::read(&plain).unwrap()
+    } else {
+        let bytes = std::fs::read(folder.join("runs.csv.xz")).unwrap();
+        let mut out = Vec::new();
+        lzma_rs::xz_decompress(&mut std::io::Cursor::new(bytes), &mut out).unwrap();
+        out
+    };
+    std::fs::write(dir.path().join("runs.csv"), text).unwrap();
+    dir
+}
+
+/// `text` without what the report reads from run folders (module docs), the study folder's
+/// path written as `folder`.
+fn without_run_folders(text: &str, tmp: &str, folder: &str) -> String {
+    let text = text.replace(tmp, folder);
+    let mut out = Vec::new();
+    let mut skipping_paragraph = false;
+    let mut in_curves = false;
+    for line in text.lines() {
+        if line.starts_with("## ") {
+            in_curves = line == "## Time to coverage";
+        }
+        if in_curves {
+            continue;
+        }
+        if line.starts_with("**No `runs/` folder") || line.starts_with("![") {
+            skipping_paragraph = true;
+            continue;
+        }
+        if skipping_paragraph && line.is_empty() {
+            skipping_paragraph = false;
+            continue;
+        }
+        if line.contains("with a history for the diversity") || line.contains("| final diversity,") {
+            continue;
+        }
+        out.push(line);
+    }
+    out.join("\n")
+}
+
+#[test]
+fn every_committed_summary_is_what_covga_report_writes() {
+    let mut studies: Vec<&str> = REPORTS.iter().map(|r| r.0).collect();
+    studies.dedup();
+    let mut failures = Vec::new();
+    for study in studies {
+        let folder = Path::new("results").join(study);
+        let dir = committed_study(&folder);
+        let tmp = dir.path().to_str().unwrap();
+        for (_, file, args) in REPORTS.iter().filter(|r| r.0 == study) {
+            let o = Command::new(env!("CARGO_BIN_EXE_covga")).arg("report").arg(tmp).args(*args).output().unwrap();
+            assert!(o.status.success(), "{study} {args:?}: {}", String::from_utf8_lossy(&o.stderr));
+            // The fleet report writes report/summary.md; the study commits it at its top.
+            let made_file = if file.starts_with("report") { file.to_string() } else { format!("report/{file}") };
+            let made = std::fs::read_to_string(dir.path().join(made_file)).unwrap();
+            let committed = std::fs::read_to_string(folder.join(file)).unwrap();
+            let out_folder = format!("out/{study}");
+            let (a, b) =
+                (without_run_folders(&made, tmp, &out_folder), without_run_folders(&committed, tmp, &out_folder));
+            assert!(b.lines().count() > 10, "{study}/{file}: nothing left to compare");
+            if a != b {
+                let first = a.lines().zip(b.lines()).position(|(x, y)| x != y).unwrap_or(0);
+                failures.push(format!(
+                    "results/{study}/{file} differs from covga report's at line {first} of the compared text:\n  made:      {}\n  committed: {}",
+                    a.lines().nth(first).unwrap_or(""),
+                    b.lines().nth(first).unwrap_or("")
+                ));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Every `summary.md` under `results/` is one of [`REPORTS`]: a summary added without a way
+/// to re-make it fails.
+#[test]
+fn every_summary_under_results_is_listed() {
+    fn walk(dir: &Path, found: &mut Vec<String>) {
+        for e in std::fs::read_dir(dir).unwrap().flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                walk(&p, found);
+            } else if p.file_name().is_some_and(|n| n == "summary.md") {
+                found.push(p.strip_prefix("results").unwrap().to_string_lossy().replace('\\', "/"));
+            }
+        }
+    }
+    let mut found = Vec::new();
+    walk(Path::new("results"), &mut found);
+    found.sort();
+    let mut listed: Vec<String> = REPORTS.iter().map(|(s, f, _)| format!("{s}/{f}")).collect();
+    listed.sort();
+    assert_eq!(found, listed, "summaries under results/ (left) and those this test re-makes (right)");
+}
