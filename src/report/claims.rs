@@ -297,8 +297,9 @@ fn parameter_claims(runs: &Runs, out: &mut Vec<Row>) {
     );
 }
 
-/// The claims section of the thesis report, for the runs of `t` recorded in `dir`.
-pub fn section(dir: &Path, t: &RunsTable) -> String {
+/// The claims section of the thesis report, for the runs of `t`, their final diversity read
+/// through `folders`.
+pub fn section(t: &RunsTable, folders: &super::folder_record::FolderRecords) -> String {
     let mut md = String::from("\n## The claims of 003 §5.1, checked\n\n");
     let rows: Vec<usize> = (0..t.rows.len())
         .filter(|&r| {
@@ -308,10 +309,7 @@ pub fn section(dir: &Path, t: &RunsTable) -> String {
         })
         .collect();
     let run_id = t.col("run_id");
-    let diversity = rows
-        .iter()
-        .map(|&r| run_id.and_then(|c| final_diversity(&dir.join("runs").join(&t.rows[r][c]).join("history.csv"))))
-        .collect();
+    let diversity = rows.iter().map(|&r| run_id.and_then(|c| folders.final_diversity(&t.rows[r][c]))).collect();
     let runs = Runs { t, rows, diversity };
     let _ = writeln!(
         md,

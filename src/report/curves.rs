@@ -6,7 +6,7 @@
 
 use super::ReportError;
 use super::study::Study;
-use crate::coverage::curve::CoverageCurve;
+use crate::coverage::curve::{CoverageCurve, LEVELS};
 use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -16,16 +16,18 @@ use std::fmt::Write as _;
 /// Sample times per panel.
 const SAMPLES: usize = 240;
 
-/// One series of a panel: its label, the runs' curves.
+/// One series of a panel: its label, each run's times to the levels and, where the run
+/// folders are there, the runs' curves.
 struct Series {
     label: String,
+    times: Vec<[Option<f64>; 3]>,
     curves: Vec<CoverageCurve>,
 }
 
-/// A run's curve from its `coverage_curve.csv` (`None` when the run has none or it does not
-/// parse).
-fn read_curve(path: &std::path::Path) -> Option<CoverageCurve> {
-    CoverageCurve::parse_csv(&std::fs::read_to_string(path).ok()?)
+/// A run's curve, or what a report recorded of it.
+struct Run {
+    times: [Option<f64>; 3],
+    curve: Option<CoverageCurve>,
 }
 
 /// Median, first and third quartile of `v`.
@@ -87,17 +89,21 @@ fn distinct_parts(labels: &[String]) -> Vec<String> {
 /// The panels: per map (and value of each [`panel_columns`] column), its series in the order
 /// the study lists them.
 fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
-    let runs = s.dir.join("runs");
     let one_planner = s.kinds.len() <= 1;
     let splits = panel_columns(s);
-    let mut by_panel: BTreeMap<String, BTreeMap<String, Vec<CoverageCurve>>> = BTreeMap::new();
+    let mut by_panel: BTreeMap<String, BTreeMap<String, Vec<Run>>> = BTreeMap::new();
     let mut order: Vec<String> = Vec::new();
     for g in &s.groups {
         for &r in &g.rows {
             if !s.executable(r) {
                 continue;
             }
-            let Some(curve) = read_curve(&runs.join(s.get(r, "run_id")).join("coverage_curve.csv")) else { continue };
+            let id = s.get(r, "run_id");
+            let run = match s.folders.from_folders() {
+                true => s.folders.curve(&id).map(|c| Run { times: LEVELS.map(|l| c.time_to(l)), curve: Some(c) }),
+                false => s.folders.times(&id).map(|times| Run { times, curve: None }),
+            };
+            let Some(run) = run else { continue };
             let series = if one_planner { g.label.clone() } else { s.get(r, "planner") };
             if !order.contains(&series) {
                 order.push(series.clone());
@@ -106,7 +112,7 @@ fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
             for &c in &splits {
                 panel.push_str(&format!(", {}={}", s.t.header[c], s.t.rows[r][c]));
             }
-            by_panel.entry(panel).or_default().entry(series).or_default().push(curve);
+            by_panel.entry(panel).or_default().entry(series).or_default().push(run);
         }
     }
     let names: BTreeMap<String, String> = order.iter().cloned().zip(distinct_parts(&order)).collect();
@@ -115,7 +121,13 @@ fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
         .map(|(panel, mut series)| {
             let list = order
                 .iter()
-                .filter_map(|label| series.remove(label).map(|curves| Series { label: names[label].clone(), curves }))
+                .filter_map(|label| {
+                    series.remove(label).map(|runs| Series {
+                        label: names[label].clone(),
+                        times: runs.iter().map(|r| r.times).collect(),
+                        curves: runs.into_iter().filter_map(|r| r.curve).collect(),
+                    })
+                })
                 .collect();
             (panel, list)
         })
@@ -131,8 +143,13 @@ impl super::sections::Section for CoverageCurves {
         if panels.is_empty() {
             return Ok(());
         }
-        let figure = CurvesFigure { panels: panels.iter().map(|(m, series)| (m.clone(), summarise(series))).collect() };
-        crate::plot::save(&figure, &s.out.join("coverage_curves"))?;
+        // Without the run folders the curves are not there to draw: the figure made with them
+        // stays, and the table comes from what that report recorded.
+        if s.folders.from_folders() {
+            let figure =
+                CurvesFigure { panels: panels.iter().map(|(m, series)| (m.clone(), summarise(series))).collect() };
+            crate::plot::save(&figure, &s.out.join("coverage_curves"))?;
+        }
         let _ = writeln!(md, "## Time to coverage\n");
         let _ = writeln!(
             md,
@@ -148,12 +165,12 @@ impl super::sections::Section for CoverageCurves {
         for (map, series) in &panels {
             for se in series {
                 let mut cells = Vec::new();
-                for level in crate::coverage::curve::LEVELS {
-                    let times: Vec<f64> = se.curves.iter().filter_map(|c| c.time_to(level)).collect();
-                    cells.push(format!("{} of {}", times.len(), se.curves.len()));
+                for k in 0..LEVELS.len() {
+                    let times: Vec<f64> = se.times.iter().filter_map(|t| t[k]).collect();
+                    cells.push(format!("{} of {}", times.len(), se.times.len()));
                     cells.push(if times.is_empty() { "–".into() } else { format!("{:.0}", quartiles(&times).0) });
                 }
-                let _ = writeln!(md, "| {map} | {} | {} | {} |", se.label, se.curves.len(), cells.join(" | "));
+                let _ = writeln!(md, "| {map} | {} | {} | {} |", se.label, se.times.len(), cells.join(" | "));
             }
         }
         let _ = writeln!(md);

@@ -23,6 +23,7 @@ mod design;
 mod effects;
 pub mod figures;
 pub mod fleet_report;
+pub mod folder_record;
 pub mod measures;
 pub mod plans;
 mod report_tables;
@@ -311,8 +312,9 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
             measures::render(dir, &loaded.t, &loaded.groups(&opts.by), &loaded.selected, &opts.measures, &loaded.out)
         })
         .transpose()?;
+    let folders = folder_record::FolderRecords::open(dir, &loaded.out)?;
     loaded.create_folder()?;
-    let study = study::Study::new(dir, &opts.by, loaded);
+    let study = study::Study::new(dir, &opts.by, loaded, folders);
     study.write_configurations()?;
     let mut md = String::new();
     for section in sections::SECTIONS {
@@ -337,6 +339,7 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     }
     let path = study.out.join("summary.md");
     crate::io::write_atomic(&path, md.as_bytes()).map_err(|e| ReportError::Io(e.to_string()))?;
+    study.folders.save(&study.out)?;
     if let Some(p) = plans {
         p.save(&study.out)?;
     }

@@ -225,7 +225,7 @@ impl Section for ThesisTables {
         super::thesis_report::applies(&s.t)
     }
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        md.push_str(&super::thesis_report::sections(s.dir, &s.t));
+        md.push_str(&super::thesis_report::sections(&s.t, &s.folders));
         Ok(())
     }
 }

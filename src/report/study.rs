@@ -207,11 +207,13 @@ pub(super) struct Study<'a> {
     pub params: Vec<String>,
     /// Configurations over their replicates, best mean f first.
     pub configs: Vec<ConfigRow>,
+    /// The runs' folders, or what an earlier report recorded of them.
+    pub folders: super::folder_record::FolderRecords,
 }
 
 impl<'a> Study<'a> {
     /// Groups, facets, best runs and configurations of `loaded`.
-    pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded) -> Self {
+    pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded, folders: super::folder_record::FolderRecords) -> Self {
         let Loaded { t, selected, out, incomplete } = loaded;
         let mut study = Self {
             dir,
@@ -227,6 +229,7 @@ impl<'a> Study<'a> {
             best: Vec::new(),
             params: Vec::new(),
             configs: Vec::new(),
+            folders,
         };
         study.groups = groups_of(&study.t, by);
         study.shape = match by {
