@@ -132,6 +132,7 @@ fn committed_comparisons_are_remade_byte_for_byte() {
                 "cell_order.solver=nearest|boustrophedon",
                 "cell_order.solver=nearest",
                 "cell_order.solver=boustrophedon",
+                "cell_order.solver=ils",
             ],
             &[],
         ),
