@@ -293,6 +293,7 @@ mod tests {
 
     #[test]
     fn curves_are_read_and_sampled_as_steps() {
+        let read_curve = |f: &std::path::Path| CoverageCurve::parse_csv(&std::fs::read_to_string(f).ok()?);
         let dir = std::env::temp_dir().join(format!("covga-curves-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let file = dir.join("coverage_curve.csv");
@@ -307,7 +308,7 @@ mod tests {
             assert!(read_curve(&file).is_none(), "{bad:?} is not a curve");
         }
         let slower = CoverageCurve::parse_csv("time_s,coverage_reach\n0,0\n20,0.5\n40,0.9\n60,0.95\n").unwrap();
-        let series = [Series { label: "a".into(), curves: vec![c, slower] }];
+        let series = [Series { label: "a".into(), times: Vec::new(), curves: vec![c, slower] }];
         let drawn = summarise(&series);
         assert_eq!(drawn[0].curve.len(), SAMPLES + 1);
         // At the end of the longer plan both runs have reached 0.95.
