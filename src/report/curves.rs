@@ -26,8 +26,17 @@ struct Series {
 
 /// A run's curve, or what a report recorded of it.
 struct Run {
+    id: String,
     times: [Option<f64>; 3],
     curve: Option<CoverageCurve>,
+}
+
+/// The panels, or, where some executable plans have a curve and others not (a study re-run in
+/// part, its other run folders gone), how many lack one: a table over whichever runs happen to
+/// have folders would not be the study's.
+enum Panels {
+    Made(Vec<(String, Vec<Series>)>),
+    Partial { missing: usize, of: usize },
 }
 
 /// Median, first and third quartile of `v`.
@@ -88,22 +97,27 @@ fn distinct_parts(labels: &[String]) -> Vec<String> {
 
 /// The panels: per map (and value of each [`panel_columns`] column), its series in the order
 /// the study lists them.
-fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
+fn panels(s: &Study) -> Panels {
     let one_planner = s.kinds.len() <= 1;
     let splits = panel_columns(s);
     let mut by_panel: BTreeMap<String, BTreeMap<String, Vec<Run>>> = BTreeMap::new();
     let mut order: Vec<String> = Vec::new();
+    let (mut missing, mut of) = (0, 0);
     for g in &s.groups {
         for &r in &g.rows {
             if !s.executable(r) {
                 continue;
             }
+            of += 1;
             let id = s.get(r, "run_id");
             let run = match s.folders.from_folders() {
-                true => s.folders.curve(&id).map(|c| Run { times: LEVELS.map(|l| c.time_to(l)), curve: Some(c) }),
-                false => s.folders.times(&id).map(|times| Run { times, curve: None }),
+                true => s.folders.curve(&id).map(|c| Run { times: LEVELS.map(|l| c.time_to(l)), curve: Some(c), id }),
+                false => s.folders.times(&id).map(|times| Run { times, curve: None, id }),
             };
-            let Some(run) = run else { continue };
+            let Some(run) = run else {
+                missing += 1;
+                continue;
+            };
             let series = if one_planner { g.label.clone() } else { s.get(r, "planner") };
             if !order.contains(&series) {
                 order.push(series.clone());
@@ -115,8 +129,14 @@ fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
             by_panel.entry(panel).or_default().entry(series).or_default().push(run);
         }
     }
+    if missing > 0 && missing < of {
+        return Panels::Partial { missing, of };
+    }
+    for run in by_panel.values().flat_map(|series| series.values().flatten()) {
+        s.folders.record_times(&run.id, run.times);
+    }
     let names: BTreeMap<String, String> = order.iter().cloned().zip(distinct_parts(&order)).collect();
-    by_panel
+    let made = by_panel
         .into_iter()
         .map(|(panel, mut series)| {
             let list = order
@@ -131,7 +151,8 @@ fn panels(s: &Study) -> Vec<(String, Vec<Series>)> {
                 .collect();
             (panel, list)
         })
-        .collect()
+        .collect();
+    Panels::Made(made)
 }
 
 /// The section: the figure and the table, where runs have curves.
@@ -139,7 +160,17 @@ pub(super) struct CoverageCurves;
 
 impl super::sections::Section for CoverageCurves {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        let panels = panels(s);
+        let panels = match panels(s) {
+            Panels::Made(panels) => panels,
+            Panels::Partial { missing, of } => {
+                let _ = writeln!(
+                    md,
+                    "## Time to coverage\n\nNot made: {missing} of the {of} executable plans have no coverage curve \
+                     (`coverage_curve.csv`) in their run folder, and a table of the others would not be the study's.\n"
+                );
+                return Ok(());
+            }
+        };
         if panels.is_empty() {
             return Ok(());
         }

@@ -77,9 +77,15 @@ impl FolderRecords {
     /// Run `id`'s coverage curve, read from its folder (`None` without folders).
     pub fn curve(&self, id: &str) -> Option<CoverageCurve> {
         let runs = self.runs.as_ref()?;
-        let curve = CoverageCurve::parse_csv(&std::fs::read_to_string(runs.join(id).join("coverage_curve.csv")).ok()?)?;
-        self.read.borrow_mut().entry(id.to_string()).or_default().times = Some(LEVELS.map(|l| curve.time_to(l)));
-        Some(curve)
+        CoverageCurve::parse_csv(&std::fs::read_to_string(runs.join(id).join("coverage_curve.csv")).ok()?)
+    }
+
+    /// Records run `id`'s times to [`LEVELS`], read from its curve, for the table that shows
+    /// them (the time-to-coverage section records only what it tabulates).
+    pub fn record_times(&self, id: &str, times: [Option<f64>; 3]) {
+        if self.runs.is_some() {
+            self.read.borrow_mut().entry(id.to_string()).or_default().times = Some(times);
+        }
     }
 
     /// Run `id`'s times to [`LEVELS`]: from its curve where the folders are there, else as
@@ -163,6 +169,7 @@ mod tests {
         assert!(folders.from_folders());
         let d = folders.final_diversity("a");
         let t = folders.times("a");
+        folders.record_times("a", t.unwrap());
         assert!(d.is_some() && t.is_some());
         assert_eq!(folders.final_diversity("missing"), None);
         folders.save(&out).unwrap();
