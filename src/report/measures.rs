@@ -224,14 +224,7 @@ pub(super) fn render(
     } else if dir.join("runs").is_dir() {
         let mut all = BTreeMap::new();
         for row in &t.rows {
-            let folder = dir.join("runs").join(&row[id]);
-            if !folder.is_dir() {
-                return Err(ReportError::Input(format!(
-                    "{}: no folder for run {}: --measure reads it there",
-                    dir.join("runs").display(),
-                    row[id]
-                )));
-            }
+            let folder = super::run_folder(dir, &row[id], "--measure reads it there")?;
             all.insert(row[id].clone(), read_folder(&folder, &sources)?);
         }
         all

@@ -163,6 +163,17 @@ pub(super) fn read_filtered_runs(dir: &Path, filter: &[(String, String)]) -> Res
     Ok((t, recorded))
 }
 
+/// The folder of run `id` in study `dir`, or the error that names it missing and says what
+/// the report reads there (`reads`).
+pub(super) fn run_folder(dir: &Path, id: &str, reads: &str) -> Result<std::path::PathBuf, ReportError> {
+    let folder = dir.join("runs").join(id);
+    if folder.is_dir() {
+        Ok(folder)
+    } else {
+        Err(ReportError::Input(format!("{}: no folder for run {id}: {reads}", dir.join("runs").display())))
+    }
+}
+
 /// Whether a cell of runs.csv equals a `--where` value: as numbers when both parse, else as text.
 pub(super) fn cell_matches(cell: &str, want: &str) -> bool {
     match (cell.parse::<f64>(), want.parse::<f64>()) {

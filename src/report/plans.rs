@@ -275,14 +275,7 @@ pub fn render(
             let target = reference
                 .as_ref()
                 .and_then(|r| Some((r.num(&row[map], "cov_final_free")?, r.num(&row[map], "t_final")?)));
-            let folder = dir.join("runs").join(&row[id]);
-            if !folder.is_dir() {
-                return Err(ReportError::Input(format!(
-                    "{}: no folder for run {}: the report reads each run's population from its folder",
-                    dir.join("runs").display(),
-                    row[id]
-                )));
-            }
+            let folder = super::run_folder(dir, &row[id], "the report reads each run's population from its folder")?;
             runs.insert(row[id].clone(), read_run(&folder, target)?);
         }
         runs
