@@ -1,12 +1,20 @@
 //! Small file helpers: atomic writes (write to a temporary sibling, fsync, rename), so a killed
 //! process never leaves a half-written result file.
 
+pub mod memory;
+
 use std::io::Write;
 use std::path::Path;
 
 /// Writes `bytes` to `path` atomically: a temporary file in the same folder is written, synced
 /// and renamed over the target.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, bytes, None)
+}
+
+/// [`write_atomic`], the new file given `permissions` (those of the file it replaces, say)
+/// before it takes the target's place.
+pub fn write_atomic_with(path: &Path, bytes: &[u8], permissions: Option<std::fs::Permissions>) -> std::io::Result<()> {
     let dir = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir)?;
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_else(|| "out".into());
@@ -14,6 +22,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
+        if let Some(p) = permissions {
+            f.set_permissions(p)?;
+        }
         f.sync_all()?;
     }
     std::fs::rename(&tmp, path)
@@ -254,15 +265,6 @@ fn plain_path_csv(paths: &[Vec<Point>]) -> Vec<u8> {
     out.into_bytes()
 }
 
-/// Memory the operating system can still give this process, in bytes (`MemAvailable` of
-/// `/proc/meminfo`); `None` where that is not known.
-pub fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
-}
-
 /// A number for messages: as typed when ordinary, in scientific notation when huge or tiny
 /// (`1e300`, not three hundred digits).
 pub fn short_number(v: f64) -> String {
@@ -331,7 +333,7 @@ mod tests {
         assert_eq!(human_bytes(2048.0), "2 kB");
         assert_eq!(human_bytes(1.0), "1 byte");
         assert_eq!(human_bytes(512.0), "512 bytes");
-        assert!(available_memory().is_none_or(|b| b > 0));
+        assert!(memory::available_memory().is_none_or(|b| b > 0));
     }
 
     #[test]

@@ -6,6 +6,9 @@
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
+#[path = "reliability/third_pass.rs"]
+mod third_pass;
+
 fn covga(dir: &Path, args: &[String]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir).args(args).output().expect("covga runs")
 }

@@ -39,6 +39,7 @@ fn a_stopped_study_keeps_its_finished_runs_and_resumes_to_the_same_rows() {
         stop: None,
         order: covga::study::order::RunOrder::Seeds,
         abort_after_runs: None,
+        retry_failed: false,
     };
     let stopping = RunnerOptions { on_done: &stop_after_first, stop: Some(&stop), ..opts(&folder) };
     match run_study(&study, &stopping) {
@@ -74,6 +75,7 @@ fn a_stop_ends_the_runs_in_progress_unrecorded_and_leaves_no_run_folder() {
         stop: Some(&stop),
         order: covga::study::order::RunOrder::Seeds,
         abort_after_runs: None,
+        retry_failed: false,
     };
     let started = std::time::Instant::now();
     let outcome = std::thread::scope(|scope| {

@@ -194,21 +194,36 @@ class Score(dict[str, Any]):
 def score(
     map: Map,
     path: Any,
-    width: float = 0.6,
-    speed: float = 0.2,
-    rot_speed: float = 0.0,
+    width: Optional[float] = None,
+    speed: Optional[float] = None,
+    rot_speed: Optional[float] = None,
     camera: Optional[Mapping[str, Any]] = None,
-    projection: str = "f1",
+    projection: str = "f2",
     raster: bool = False,
 ) -> Score:
     """The common scorer's metrics of a plan, as ``covga eval`` reports them (``common``), as a
     :class:`Score` (a dict with ``plot()``).
 
     ``path`` is an ``(N, 2)`` array of metres, or a list of them (one per agent, all with this
-    robot). ``camera`` holds ``[scorer.camera]`` keys (``scale``, ``d_min``, ``d_max``,
+    robot). The robot is ``width`` (m), ``speed`` (m/s) and ``rot_speed`` (rad/s): give all three
+    for your robot; any left out takes the thesis robot's value (0.6 m, 0.2 m/s, 0 rad/s: turning
+    free) with a ``UserWarning`` naming it. ``projection`` is ``f2`` by default, as in experiment
+    files. ``camera`` holds ``[scorer.camera]`` keys (``scale``, ``d_min``, ``d_max``,
     ``fov_deg``, ``sections``, ``wall_band``); by default an experiment file's default camera. With ``raster``,
     the result also holds the cell layers the coverage counts (``visits``, ``reachable``).
     """
+    defaults = {"width": (width, 0.6, "m"), "speed": (speed, 0.2, "m/s"), "rot_speed": (rot_speed, 0.0, "rad/s")}
+    unset = [f"{k} = {d} {unit}" for k, (v, d, unit) in defaults.items() if v is None]
+    if unset:
+        warnings.warn(
+            "covga.score: the robot's " + ", ".join(unset) + " (the thesis robot's; rot_speed = 0 makes turning "
+            "free): pass width, speed and rot_speed for your robot",
+            UserWarning,
+            stacklevel=2,
+        )
+    width = 0.6 if width is None else width
+    speed = 0.2 if speed is None else speed
+    rot_speed = 0.0 if rot_speed is None else rot_speed
     if not isinstance(raster, (bool, np.bool_)):
         raise ConfigError(f"raster = {raster!r}: expected True or False")
     camera_json = None if camera is None else json.dumps(dict(camera))

@@ -128,6 +128,7 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
         stop: Some(&stop),
         order,
         abort_after_runs: None,
+        retry_failed: false,
     };
     match interruptible(py, &|| stop.raise(), || run_study(&study, &opts))? {
         Ok(o) => match o.first_failure {

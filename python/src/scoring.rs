@@ -187,11 +187,12 @@ const BYTES_PER_ACTION: f64 = 32.0;
 fn check_batch_memory(genomes: usize, actions: usize) -> PyResult<()> {
     let need = BYTES_PER_ACTION * actions as f64 + 256.0 * genomes as f64;
     match covga::experiment::memory::memory_limit(None) {
-        Some(limit) if need > limit as f64 => Err(config_error(format!(
+        Some(limit) if need > limit.bytes as f64 => Err(config_error(format!(
             "genomes: {genomes} genomes of {actions} actions in all would need about {} once built, more than the \
-             {} of memory available; evaluate them in smaller batches",
+             {} of memory this process may still allocate ({}); evaluate them in smaller batches",
             covga::io::human_bytes(need),
-            covga::io::human_bytes(limit as f64)
+            covga::io::human_bytes(limit.bytes as f64),
+            limit.bound
         ))),
         _ => Ok(()),
     }

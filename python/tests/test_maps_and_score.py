@@ -1,6 +1,7 @@
 """Maps, patterns and the common scorer against `covga eval` and `covga maps`."""
 
 import json
+import warnings
 
 import numpy as np
 import pytest
@@ -75,7 +76,7 @@ def test_occupancy_percent_thresholds(value, state):
         (np.ones((3, 3), dtype=bool), {"resolution": 0.1}, "no free cell"),
         (np.zeros((3, 3)), {"resolution": -0.1}, "resolution"),
         ("no-such-map", {}, "unknown map `no-such-map`"),
-        ("room.png", {}, "a bare image needs --resolution"),
+        ("room.png", {}, "the bare image `room.png` needs its metres per pixel"),
     ],
 )
 def test_bad_maps_raise_config_error(source, kwargs, message):
@@ -245,3 +246,39 @@ def test_pictures_of_maps_plans_and_runs(tmp_path):
     assert ax.get_title().startswith("boustrophedon, seed 1: coverage ")
     ax.figure.savefig(tmp_path / "run.png")
     assert (tmp_path / "run.png").stat().st_size > 1000
+
+
+def test_score_names_the_robot_it_assumes_and_projects_as_files_do(tmp_path, cli):
+    m = covga.load_map("thesis-1")
+    path = covga.pattern(m, "boustrophedon", start=(1.3, 1.3))
+    with pytest.warns(UserWarning, match=r"rot_speed = 0.0 rad/s .*turning .*free"):
+        assumed = covga.score(m, path)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        explicit = covga.score(m, path, width=0.6, speed=0.2, rot_speed=0.0)
+    assert assumed == explicit
+    # f2, as experiment files and covga eval project by default.
+    done = cli("eval", "--map", "thesis-1", "--pattern", "boustrophedon", "--json", "--out", tmp_path / "e")
+    assert json.loads(done.stdout)["projection"] == "f2"
+    assert explicit["f_free"] == pytest.approx(explicit["cov_final_free"] * explicit["t_final"])
+
+
+def test_a_batch_beyond_the_address_space_limit_is_refused_not_aborted(tmp_path):
+    import subprocess
+    import sys
+    import textwrap
+
+    code = textwrap.dedent(
+        """
+        import resource, numpy as np, covga
+        resource.setrlimit(resource.RLIMIT_AS, (6_000_000_000, resource.RLIM_INFINITY))
+        genomes = np.broadcast_to(np.array([0.0, 0.5]), (100_000, 5_000, 2))
+        try:
+            covga.thesis.evaluate("thesis-1", genomes)
+        except ValueError as e:
+            print("refused:", e)
+        """
+    )
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr
+    assert "refused:" in done.stdout and "RLIMIT_AS" in done.stdout, done.stdout + done.stderr

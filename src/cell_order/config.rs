@@ -251,7 +251,8 @@ impl CellOrderSection {
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             // The cells are known only after the decomposition: counted here so that a grid
             // refuses the configuration before it writes anything.
-            let (_, _, sweeps) = super::decompose(ctx.scenario, &directions).map_err(|m| {
+            let planning = ctx.scenario.for_planning();
+            let (_, _, sweeps) = super::decompose(&planning, &directions).map_err(|m| {
                 ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name()))
             })?;
             if sweeps.len() > super::exact::MAX_EXACT_CELLS {

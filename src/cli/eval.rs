@@ -85,8 +85,8 @@ pub struct EvalArgs {
     /// are known beforehand and left out of `A_pix`, as in the thesis's experiments.
     #[arg(long)]
     obstacle_in_area: bool,
-    /// Projection f of the fitness (003 eqs. 3.14–3.15).
-    #[arg(long, value_enum, default_value = "f1")]
+    /// Projection f of the fitness (003 eqs. 3.14–3.15); f2 by default, as in experiment files.
+    #[arg(long, value_enum, default_value = "f2")]
     projection: ProjectionName,
     /// Print JSON instead of a table.
     #[arg(long)]
@@ -205,9 +205,10 @@ fn print_table(r: &EvalReport) {
     let m = &r.metrics;
     let c = &r.common;
     let executable = if c.executable { "yes".to_string() } else { format!("NO ({})", c.not_executable_why()) };
-    let rows: [(&str, String); 23] = [
+    let rows: [(&str, String); 24] = [
         ("map", r.map.to_string()),
         ("path", r.source.clone()),
+        ("robot", crate::coverage::motion::time_model(&r.robot)),
         ("agents", r.agents.to_string()),
         ("executable", executable),
         ("cells swept (cov_pix)", m.cells_swept.to_string()),

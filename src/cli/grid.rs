@@ -36,6 +36,10 @@ pub struct GridArgs {
     /// seeds runs replicate by replicate. Results are the same in either order.
     #[arg(long, value_enum, default_value_t = RunOrder::LongestFirst)]
     order: RunOrder,
+    /// Run again the runs recorded as failed (after fixing what made them fail); without it a
+    /// resume keeps their rows and runs them no more.
+    #[arg(long)]
+    retry_failed: bool,
     /// Crash tests only: abort like a killed process after N runs are recorded.
     #[arg(long, hide = true, value_name = "N")]
     abort_after_runs: Option<usize>,
@@ -97,7 +101,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
     let all: Vec<&crate::study::grid::RunSpec> = study.runs.iter().collect();
     // A Slurm script runs on other machines: their memory is checked there, by each shard.
     let (limit, parallel) = if a.slurm {
-        (a.max_memory, a.cpus_per_task)
+        (a.max_memory.and_then(|given| crate::experiment::memory::memory_limit(Some(given))), a.cpus_per_task)
     } else {
         (crate::experiment::memory::memory_limit(a.max_memory), a.jobs.min(all.len().max(1)))
     };
@@ -108,7 +112,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
         &study,
         &all,
         &crate::study::runner::MapCache::default(),
-        limit,
+        limit.as_ref(),
         parallel,
         checks,
     )
@@ -131,6 +135,7 @@ pub fn run(a: GridArgs) -> Result<(), CliError> {
         stop: None,
         order: a.order,
         abort_after_runs: a.abort_after_runs,
+        retry_failed: a.retry_failed,
     };
     let outcome = run_study(&study, &opts).map_err(|e| match e {
         crate::study::runner::StudyError::Config(c) => CliError::input(c),
@@ -248,7 +253,9 @@ fn write_slurm(
         cpus_per_task: a.cpus_per_task,
         mem_bytes: a.max_memory.unwrap_or_else(|| task_memory(largest_run_bytes, a.cpus_per_task)),
     };
-    let script = sbatch_script(&exe, &grid, &out_abs, stem, &opts);
+    let dir = std::env::current_dir().map_err(CliError::internal)?;
+    let paths = crate::study::slurm::TaskPaths { exe: &exe, grid: &grid, out: &out_abs, dir: &dir };
+    let script = sbatch_script(paths, stem, &opts);
     let path = out_abs.join("study.sbatch");
     crate::io::write_atomic(&path, script.as_bytes()).map_err(CliError::internal)?;
     println!("wrote {}", path.display());
@@ -283,7 +290,8 @@ pub struct ReportArgs {
     #[arg(long)]
     by: Vec<String>,
     /// Only the runs whose column has this value, e.g. --where map.source=thesis-1 --where
-    /// robot.rot_speed=0 (numbers compare as numbers). Repeatable.
+    /// robot.rot_speed=0 (numbers compare as numbers). Repeatable: different keys must all
+    /// hold, one key given twice keeps the runs with either value.
     #[arg(long = "where", value_name = "KEY=VALUE")]
     filter: Vec<String>,
     /// Write into `<DIR>/report-NAME` instead of `<DIR>/report`, so that several reports of one

@@ -18,12 +18,15 @@ pub struct MigrateArgs {
 /// Runs `covga migrate`: every file is read and migrated first, and written only when all of
 /// them migrate.
 pub fn run(a: MigrateArgs) -> Result<(), CliError> {
-    let migrations = a
-        .files
-        .iter()
-        .map(|f| crate::usecase::migrate::migrate_file(f))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(CliError::from)?;
+    let mut migrations: Vec<crate::usecase::migrate::Migration> = Vec::new();
+    for f in &a.files {
+        for m in crate::usecase::migrate::migrate_file(f).map_err(CliError::from)? {
+            // A base file shared by several grids (or a link and its target) is migrated once.
+            if !migrations.iter().any(|seen| seen.path == m.path) {
+                migrations.push(m);
+            }
+        }
+    }
     for m in &migrations {
         if m.moves.is_empty() {
             println!("{}: current", m.path.display());

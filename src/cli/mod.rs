@@ -5,6 +5,7 @@ mod grid;
 mod maps;
 mod migrate;
 mod run;
+mod signals;
 
 use clap::{Parser, Subcommand};
 use std::ffi::OsString;
@@ -18,6 +19,9 @@ pub enum CliError {
     /// Something failed that is not the user's input (a file could not be written, …).
     #[error("{0}")]
     Internal(String),
+    /// A signal (SIGINT, SIGTERM) stopped the command; what it wrote was removed.
+    #[error("{0}")]
+    Interrupted(String),
     /// The command line did not parse, or asked for help or the version: clap's own text,
     /// which the caller prints with [`CliError::print`] (help and version on stdout).
     #[error("{0}")]
@@ -26,11 +30,13 @@ pub enum CliError {
 
 impl CliError {
     /// Process exit code: 2 for bad input (a usage error included), 1 for an internal
-    /// failure, 0 for help and the version.
+    /// failure, 130 for a run a signal stopped, 0 for help and the version.
     pub fn exit_code(&self) -> u8 {
         match self {
             CliError::Input(_) => 2,
             CliError::Internal(_) => 1,
+            // As a shell reports a process ended by SIGINT.
+            CliError::Interrupted(_) => 130,
             CliError::Usage(e) if e.use_stderr() => 2,
             CliError::Usage(_) => 0,
         }
@@ -43,7 +49,7 @@ impl CliError {
             CliError::Usage(e) => {
                 let _ = e.print();
             }
-            CliError::Input(_) | CliError::Internal(_) => eprintln!("error: {self}"),
+            CliError::Input(_) | CliError::Internal(_) | CliError::Interrupted(_) => eprintln!("error: {self}"),
         }
     }
     /// Wraps any displayable error as bad input.
@@ -60,9 +66,8 @@ impl From<crate::usecase::UseCaseError> for CliError {
     fn from(e: crate::usecase::UseCaseError) -> Self {
         match e {
             crate::usecase::UseCaseError::Input(m) => CliError::Input(m),
-            crate::usecase::UseCaseError::Internal(m) | crate::usecase::UseCaseError::Interrupted(m) => {
-                CliError::Internal(m)
-            }
+            crate::usecase::UseCaseError::Internal(m) => CliError::Internal(m),
+            crate::usecase::UseCaseError::Interrupted(m) => CliError::Interrupted(m),
         }
     }
 }

@@ -54,7 +54,10 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
             stem: "thesis-map1-elite".into(),
         },
     };
-    let prepared = prepare(&source, a.seed, a.max_memory)?;
+    let mut prepared = prepare(&source, a.seed, a.max_memory)?;
+    let interrupt = crate::planner::executor::Interrupt::new();
+    prepared.experiment.budget.interrupt = Some(interrupt.clone());
+    let watch = super::signals::SignalWatch::start(interrupt);
     for w in &prepared.warnings {
         eprintln!("warning: {w}");
     }
@@ -63,8 +66,10 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     let show = !a.quiet && std::io::stderr().is_terminal();
     let length = exp.planner.progress_length(&exp.budget);
     let mut progress = Progress(super::progress_bar(length, "it", show));
-    let (summary, dir) = run_in_folder(&prepared, a.out.as_deref(), true, &mut [&mut progress])?;
+    let ran = run_in_folder(&prepared, a.out.as_deref(), true, &mut [&mut progress]);
+    drop(watch);
     progress.0.finish_and_clear();
+    let (summary, dir) = ran?;
     for w in &summary.warnings {
         eprintln!("warning: {origin}: {w}");
     }
@@ -108,6 +113,7 @@ fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) 
                 s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
             );
         }
+        println!("robot: {}", crate::coverage::motion::time_model(&exp.scenario.robot));
         if s.executable {
             println!("executable: yes");
         } else {

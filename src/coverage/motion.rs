@@ -45,6 +45,18 @@ pub fn rotation_time(total_turn_rad: f64, r_rot: f64) -> f64 {
     if r_rot > 0.0 { total_turn_rad / r_rot } else { 0.0 }
 }
 
+/// The robot and the time model a plan's `time_s` follows, in words for a summary:
+/// `time_s = length / speed + turning / rot_speed`, and whether turning is free (`rot_speed` =
+/// 0, the default of 003's experiments: a plan's turns then cost nothing).
+pub fn time_model(robot: &crate::coverage::Footprint) -> String {
+    let turning = if robot.rot_speed > 0.0 {
+        format!("+ turning / {} rad/s", robot.rot_speed)
+    } else {
+        "(rot_speed = 0: turning is free; set it for a real robot)".to_string()
+    };
+    format!("{} m wide; time_s = length / {} m/s {turning}", robot.width, robot.speed)
+}
+
 /// Length (m), total absolute turn (rad) and non-zero turns of a plan, summed over its paths.
 pub fn plan_totals(paths: &[Vec<Point>]) -> (f64, f64, usize) {
     let (mut length, mut turn, mut turns) = (0.0, 0.0, 0);
@@ -60,6 +72,17 @@ pub fn plan_totals(paths: &[Vec<Point>]) -> (f64, f64, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_time_model_says_when_turning_is_free() {
+        let free = crate::coverage::Footprint::default();
+        assert_eq!(
+            time_model(&free),
+            "0.6 m wide; time_s = length / 0.2 m/s (rot_speed = 0: turning is free; set it for a real robot)"
+        );
+        let turning = crate::coverage::Footprint { rot_speed: 0.52, ..free };
+        assert_eq!(time_model(&turning), "0.6 m wide; time_s = length / 0.2 m/s + turning / 0.52 rad/s");
+    }
 
     #[test]
     fn square_loop_turns_and_time() {

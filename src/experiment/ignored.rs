@@ -27,6 +27,22 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     planner.why_unread(file, key)
 }
 
+/// Why `file`'s planner reads no `[budget]` key, if it reads none: it plans once, in full.
+/// Said of an experiment file's keys only: a grid may give a budget to every planner of a
+/// `planner` axis, and its run ids count the budget whether the planner reads it or not.
+fn why_budget_unread(file: &ExperimentFile) -> Option<String> {
+    let divide = !file.robots.is_empty()
+        && file.fleet.as_ref().is_some_and(|f| f.mode == crate::fleet::config::FleetMode::Divide);
+    let what = match file.planner {
+        PlannerKind::Boustrophedon | PlannerKind::Spiral => format!("planner = \"{}\"", file.planner.name()),
+        _ if divide => "fleet.mode = \"divide\"".to_string(),
+        PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch | PlannerKind::CellOrder => {
+            return None;
+        }
+    };
+    Some(format!("{what} plans once, in full, and reads no budget (no limit of time or evaluations)"))
+}
+
 /// The dotted keys and sections set in the TOML `text` (tables and their keys, depth two),
 /// with their why-ignored reason where `file` does not read them.
 pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String)> {
@@ -37,7 +53,8 @@ pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String
             toml::Value::Table(t) if ["thesis", "waypoint", "output", "budget"].contains(&section.as_str()) => {
                 for key in t.keys() {
                     let dotted = format!("{section}.{key}");
-                    if let Some(why) = why_ignored(file, &dotted) {
+                    let budget = (section == "budget").then(|| why_budget_unread(file)).flatten();
+                    if let Some(why) = budget.or_else(|| why_ignored(file, &dotted)) {
                         out.push((dotted, why));
                     }
                 }

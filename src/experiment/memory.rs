@@ -1,7 +1,8 @@
 //! Memory guards: an upper estimate of what a run will allocate, checked against a limit
-//! before anything large is allocated. The limit is `--max-memory` when given, else the memory
-//! the operating system can still give (`MemAvailable`); a grid multiplies the largest run's
-//! estimate by the runs it executes at once.
+//! before anything large is allocated. The limit is `--max-memory` when given, else the least
+//! of the memory available, the control group's limit and the resource limits
+//! ([`crate::io::memory`]); a grid multiplies the largest run's estimate by the runs it
+//! executes at once.
 
 use super::file::Experiment;
 use crate::config::ConfigError;
@@ -17,11 +18,7 @@ const COMMON_BYTES_PER_CELL: f64 = 24.0;
 /// the small shipped experiments is 14–17 MB.
 const BASELINE_BYTES: f64 = 32e6;
 
-/// The limit runs are checked against: `max_memory` when given, else the memory available now;
-/// `None` where neither is known (no check).
-pub fn memory_limit(max_memory: Option<u64>) -> Option<u64> {
-    max_memory.or_else(crate::io::available_memory)
-}
+pub use crate::io::memory::{MemoryLimit, memory_limit};
 
 impl Experiment {
     /// An upper estimate of the run's memory when it runs on `threads` threads.
@@ -40,7 +37,7 @@ impl Experiment {
     pub fn check_memory(
         &self,
         origin: &str,
-        limit: Option<u64>,
+        limit: Option<&MemoryLimit>,
         parallel: usize,
         threads: usize,
     ) -> Result<MemoryEstimate, ConfigError> {
@@ -48,7 +45,7 @@ impl Experiment {
         let Some(limit) = limit else { return Ok(e) };
         let parallel = parallel.max(1);
         let total = e.bytes * parallel as f64;
-        if total <= limit as f64 {
+        if total <= limit.bytes as f64 {
             return Ok(e);
         }
         let times =
@@ -58,12 +55,13 @@ impl Experiment {
             e.key,
             format!(
                 "would need up to about {} per run ({} on a {} × {} map){times}, more than the memory limit of {} \
-                 (the memory available unless --max-memory sets it)",
+                 ({}; --max-memory sets another)",
                 human_bytes(e.bytes),
                 e.what,
                 self.scenario.map.cols(),
                 self.scenario.map.rows(),
-                human_bytes(limit as f64)
+                human_bytes(limit.bytes as f64),
+                limit.bound
             ),
         ))
     }

@@ -87,6 +87,17 @@ impl Observer for HistoryCsv {
     }
 }
 
+/// `budget.evaluations` and what the run made of it (`summary.json`'s `evaluation_budget`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct EvaluationBudget {
+    /// `budget.evaluations`.
+    pub limit: u64,
+    /// Evaluations spent past the limit (0 when within it).
+    pub past_limit: u64,
+    /// How far past the limit the planner can go, in words.
+    pub rule: &'static str,
+}
+
 /// What a finished run reports (`summary.json`).
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct Summary {
@@ -98,6 +109,9 @@ pub struct Summary {
     pub seed: u64,
     /// Fitness evaluations spent.
     pub evaluations: u64,
+    /// Where `budget.evaluations` limits the run: the limit and how far past it the planner can go.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub evaluation_budget: Option<EvaluationBudget>,
     /// Iterations (generations) completed.
     pub iterations: u32,
     /// Why the run stopped.
@@ -114,6 +128,9 @@ pub struct Summary {
     pub objectives: std::collections::BTreeMap<String, f64>,
     /// The common scorer's metrics of the plan.
     pub score: Score,
+    /// The robot and the time model `score.time_s` follows, in words
+    /// ([`crate::coverage::motion::time_model`]).
+    pub time_model: String,
     /// The plan's time-to-coverage curve in figures: times to 80, 90 and 95 % of the reachable
     /// cells and the area over the curve (the curve itself is `coverage_curve.csv`).
     pub coverage_curve: crate::coverage::curve::CurveSummary,
@@ -268,6 +285,11 @@ pub fn run_experiment(
         map: exp.scenario.map.name().to_string(),
         seed: exp.seed,
         evaluations: outcome.evaluations,
+        evaluation_budget: exp.budget.evaluations.map(|limit| EvaluationBudget {
+            limit,
+            past_limit: outcome.evaluations.saturating_sub(limit),
+            rule: exp.planner.evaluation_rule(),
+        }),
         iterations: outcome.iterations,
         stop: outcome.stop,
         planner_feasible: outcome.feasible,
@@ -275,6 +297,7 @@ pub fn run_experiment(
         warnings: outcome.warnings.clone(),
         objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         score,
+        time_model: crate::coverage::motion::time_model(&exp.scenario.robot),
         coverage_curve: curve.summary(),
         fleet,
         details: outcome.details.clone(),

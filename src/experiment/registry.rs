@@ -185,6 +185,53 @@ impl PlannerConfig {
         }
     }
 
+    /// How far past `budget.evaluations` the planner can go, in words (README, `summary.json`'s
+    /// `evaluation_budget`): every search stops at the first iteration boundary at or past the
+    /// limit, so it overshoots by less than one iteration's evaluations.
+    pub fn evaluation_rule(&self) -> &'static str {
+        use crate::cell_order::config::Solver;
+        use crate::fleet::config::FleetMode;
+        match self {
+            PlannerConfig::Thesis(_) => {
+                "stops after the first generation that reaches the limit: fewer than one generation's evaluations \
+                 past it (its children; every member again after an environment change); the initial population is \
+                 evaluated whole"
+            }
+            PlannerConfig::Waypoint(_) => {
+                "stops after the first generation that reaches the limit: fewer than one generation's children past \
+                 it; the initial population is evaluated whole"
+            }
+            PlannerConfig::Pattern(_) => "plans once: one evaluation, whatever the limit",
+            PlannerConfig::RandomSearch(_) => {
+                "stops after the first batch that reaches the limit: fewer than random_search.batch evaluations past it"
+            }
+            PlannerConfig::CellOrder(c) => match c.solver {
+                Solver::Ga | Solver::Ils => {
+                    "stops after the first generation (or kick) that reaches the limit: fewer than one generation's \
+                     evaluations past it, the initial population evaluated whole; the common scorer then reads each \
+                     finalist once (with a coverage goal), counted on top"
+                }
+                Solver::Exact | Solver::Nearest | Solver::Boustrophedon => {
+                    "searches nothing: the tours it builds and the plans the common scorer reads, whatever the limit"
+                }
+            },
+            PlannerConfig::Fleet(f) => match f.method.mode() {
+                FleetMode::Negotiate => {
+                    "each robot's GA has an equal share of the limit and stops after the first generation that reaches \
+                     its share: fewer than one generation per robot past it"
+                }
+                FleetMode::Central => {
+                    "stops after the first generation that reaches the limit: fewer than one generation's evaluations \
+                     past it"
+                }
+                FleetMode::Waypoint => {
+                    "stops after the first generation that reaches the limit: fewer than one generation's children past it"
+                }
+                FleetMode::Divide => "plans once: no evaluation, whatever the limit",
+            },
+        }
+    }
+
     /// An upper estimate of the planner's own memory on `map` with `threads` evaluation
     /// threads (what every run holds besides is added by the experiment).
     pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {

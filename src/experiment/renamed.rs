@@ -106,12 +106,16 @@ pub fn migrate_text(text: &str, origin: &str) -> Result<(String, Moves), ConfigE
     if is_grid {
         if let Some(axes) = doc.get_mut("axes").and_then(toml_edit::Item::as_table_like_mut) {
             rename_dotted(axes, origin, "axes", &mut moved)?;
+            refuse_moved_table_axes(axes, origin, "axes")?;
         }
         if let Some(conds) = doc.get_mut("conditional").and_then(toml_edit::Item::as_array_of_tables_mut) {
             for (n, c) in conds.iter_mut().enumerate() {
                 for part in ["when", "axes"] {
                     if let Some(t) = c.get_mut(part).and_then(toml_edit::Item::as_table_like_mut) {
                         rename_dotted(t, origin, &format!("conditional[{n}].{part}"), &mut moved)?;
+                        if part == "axes" {
+                            refuse_moved_table_axes(t, origin, &format!("conditional[{n}].axes"))?;
+                        }
                     }
                 }
             }
@@ -119,13 +123,22 @@ pub fn migrate_text(text: &str, origin: &str) -> Result<(String, Moves), ConfigE
     }
     moved.sort_unstable();
     moved.dedup();
-    Ok((doc.to_string(), moved))
+    let out = doc.to_string();
+    // A file written with Windows line ends keeps them.
+    let out = if text.contains("\r\n") { out.replace("\r\n", "\n").replace('\n', "\r\n") } else { out };
+    Ok((out, moved))
 }
 
 /// Moves the old keys of the experiment table `t` (nested sections) to their new place.
 fn move_keys(t: &mut dyn toml_edit::TableLike, origin: &str, moved: &mut Moves) -> Result<(), ConfigError> {
     for (old, new) in RENAMED_KEYS {
         let (old_section, old_key) = old.split_once('.').expect("a dotted key");
+        // The comment lines above the key belong to it: they move with it.
+        let above = t
+            .get(old_section)
+            .and_then(toml_edit::Item::as_table_like)
+            .and_then(|s| s.key(old_key))
+            .and_then(|k| k.leaf_decor().prefix().cloned());
         let Some(value) =
             t.get_mut(old_section).and_then(toml_edit::Item::as_table_like_mut).and_then(|s| s.remove(old_key))
         else {
@@ -149,6 +162,7 @@ fn move_keys(t: &mut dyn toml_edit::TableLike, origin: &str, moved: &mut Moves) 
             Some(_) => {}
             None => {
                 table.insert(new_key, value);
+                keep_above(table, new_key, above);
             }
         }
         moved.push((old, new));
@@ -203,14 +217,59 @@ fn rename_dotted(
             ));
         }
     }
-    let items: Vec<(String, toml_edit::Item)> =
-        keys.iter().map(|k| (k.clone(), t.remove(k).expect("a key listed"))).collect();
-    for (k, item) in items {
+    let items: Vec<(String, Option<toml_edit::RawString>, toml_edit::Item)> = keys
+        .iter()
+        .map(|k| {
+            let above = t.key(k).and_then(|key| key.leaf_decor().prefix().cloned());
+            (k.clone(), above, t.remove(k).expect("a key listed"))
+        })
+        .collect();
+    for (k, above, item) in items {
         let current = current_key(&k);
         if current != k {
             moved.push(RENAMED_KEYS.iter().find(|(o, _)| *o == k).map(|(o, n)| (*o, *n)).expect("renamed"));
         }
         t.insert(current, item);
+        keep_above(t, current, above);
+    }
+    Ok(())
+}
+
+/// Gives `key` of `t` the text that stood above its old spelling (comment lines, blank lines).
+fn keep_above(t: &mut dyn toml_edit::TableLike, key: &str, above: Option<toml_edit::RawString>) {
+    if let (Some(above), Some(mut k)) = (above, t.key_mut(key)) {
+        k.leaf_decor_mut().set_prefix(above);
+    }
+}
+
+/// Refuses a grid axis whose values are tables of one section (`"thesis" = [{ projection =
+/// "f1" }]`) holding a key that moved: such an axis was never read (the grid refuses the
+/// unknown field), so no migration can be checked to keep its meaning; the message says how
+/// to write it.
+fn refuse_moved_table_axes(axes: &dyn toml_edit::TableLike, origin: &str, section: &str) -> Result<(), ConfigError> {
+    for (name, item) in axes.iter() {
+        let Some(values) = item.as_array() else { continue };
+        let keys = values.iter().filter_map(toml_edit::Value::as_inline_table).flat_map(|t| t.iter().map(|(k, _)| k));
+        let mut moves: Vec<String> = keys
+            .filter_map(|k| {
+                let dotted = format!("{name}.{k}");
+                RENAMED_KEYS.iter().find(|(old, _)| *old == dotted).map(|(o, n)| format!("`{o}` is now `{n}`"))
+            })
+            .collect();
+        moves.sort();
+        moves.dedup();
+        if let Some(first) = moves.first() {
+            let new = first.rsplit('`').nth(1).unwrap_or_default();
+            return Err(ConfigError::new(
+                origin,
+                &format!("{section}.\"{name}\""),
+                format!(
+                    "holds tables with keys that moved section ({}): covga cannot read this axis, so it cannot be \
+                     migrated; write each moved key as an axis of its own (e.g. \"{new}\" = [...])",
+                    moves.join(", ")
+                ),
+            ));
+        }
     }
     Ok(())
 }

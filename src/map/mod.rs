@@ -13,6 +13,7 @@ pub mod orientation;
 pub mod picture;
 pub mod presets;
 pub mod reach;
+pub mod refine;
 pub mod ros;
 pub mod wall_rows;
 
@@ -57,6 +58,15 @@ pub enum MapError {
         value: String,
         /// The allowed range.
         allowed: &'static str,
+    },
+    /// A bare image was given without its metres per pixel.
+    #[error(
+        "the resolution is missing: the bare image `{source_name}` needs its metres per pixel, e.g. --resolution 0.05 \
+         (`resolution = 0.05` under [map] in an experiment file), or give a ROS map YAML"
+    )]
+    MissingResolution {
+        /// The image as given.
+        source_name: String,
     },
     /// The map has no free cell to cover.
     #[error("{source_name}: the map has no free cell")]

@@ -300,12 +300,7 @@ pub fn load_map(spec: &str, image: &BareImage) -> Result<GridMap, MapError> {
         "yaml" | "yml" => load_ros_yaml(&path),
         "pgm" | "png" => match image.resolution {
             Some(r) => load_image(&path, r, image.free_threshold),
-            None => Err(MapError::OutOfRange {
-                source_name: spec.to_string(),
-                field: "resolution",
-                value: "missing".into(),
-                allowed: "a bare image needs --resolution (metres per pixel, > 0)",
-            }),
+            None => Err(MapError::MissingResolution { source_name: spec.to_string() }),
         },
         _ => Err(MapError::UnknownMap { name: spec.to_string(), presets: PRESET_NAMES.join(", ") }),
     }

@@ -11,6 +11,8 @@ pub mod spiral;
 use crate::geom::Point;
 use crate::map::GridMap;
 pub use crate::map::clearance::{self, Clearance};
+use crate::map::refine::planning_map;
+use std::borrow::Cow;
 
 /// Why a pattern could not be planned.
 #[derive(Debug, thiserror::Error, PartialEq)]
@@ -95,6 +97,15 @@ pub fn plan_region(
     end: Point,
 ) -> Result<PatternPlan, PatternError> {
     check_lane_count(map, width)?;
+    // Planned on the refined raster where the map is coarse (`map::refine`).
+    let k = crate::map::refine::refinement(map.resolution(), width);
+    let (map, region, targets) = if k > 1 {
+        use crate::map::refine::{refined, refined_flags};
+        (Cow::Owned(refined(map, k)), Cow::Owned(refined(region, k)), Cow::Owned(refined_flags(map, targets, k)))
+    } else {
+        (Cow::Borrowed(map), Cow::Borrowed(region), Cow::Borrowed(targets))
+    };
+    let (map, region, targets) = (&*map, &*region, &*targets);
     let mut lanes = Clearance::new(region, width);
     let region_reach = crate::map::reach::Reach::new(&lanes, &[start]);
     let mut whole = Clearance::new(map, width);
@@ -220,7 +231,8 @@ pub fn check_plan_inputs(map: &GridMap, width: f64, start: Point, end: Point, na
     map.check_station(start, start_name)?;
     map.check_station(end, end_name)?;
     check_lane_count(map, width).map_err(|e| format!("{width_name}: {e}"))?;
-    let clear = Clearance::new(map, width);
+    let planning = planning_map(map, width);
+    let clear = Clearance::new(&planning, width);
     for (p, name) in [(start, start_name), (end, end_name)] {
         if let Some(why) = station_misfit(&clear, p, name) {
             return Err(why);
@@ -246,6 +258,8 @@ pub fn plan(
     complete: bool,
 ) -> Result<PatternPlan, PatternError> {
     check_lane_count(map, width)?;
+    // Planned on the refined raster where the map is coarse (`map::refine`).
+    let map = &*planning_map(map, width);
     let mut clear = Clearance::new(map, width);
     let reach = crate::map::reach::Reach::new(&clear, &[start]);
     if reach.centres().iter().all(|c| !c) {

@@ -1,8 +1,8 @@
 //! The ANOVA section of `covga report` (003 §5.3): which swept parameters explain how much of
 //! each metric's spread, and how much is left to the seed.
 
-use super::anova::{Anova, Factor, TermSpec, anova, replicate_spread};
 use super::design::{Crossing, crossing, split_followers};
+use crate::stats::anova::{Anova, Factor, TermSpec, anova, replicate_spread};
 use crate::study::records::RunsTable;
 use std::fmt::Write as _;
 
@@ -65,7 +65,7 @@ fn table(out: &mut Written, a: &Anova, spread: (f64, f64)) {
     let header = "| term | df | η² (share of SS) | F | p | p on ranks |\n|---|---|---|---|---|---|\n";
     out.full.push_str(header);
     out.condensed.push_str(header);
-    let mut order: Vec<&super::anova::TermTest> = a.terms.iter().collect();
+    let mut order: Vec<&crate::stats::anova::TermTest> = a.terms.iter().collect();
     order.sort_by(|x, y| y.eta2.total_cmp(&x.eta2));
     let p = |p: f64| if p == 0.0 { "< 1e-300".to_string() } else { format!("{p:.2e}") };
     let rows: Vec<(bool, String)> = order

@@ -41,6 +41,8 @@ pub enum Value {
     Num(f64),
     /// A yes/no figure.
     Bool(bool),
+    /// No value: a figure the run records as `null` (a coverage it never reached, say).
+    Null,
 }
 
 impl Value {
@@ -49,14 +51,16 @@ impl Value {
         match self {
             Value::Num(x) => x.to_string(),
             Value::Bool(b) => b.to_string(),
+            Value::Null => "null".into(),
         }
     }
 
-    /// Reads a cell: `true`/`false`, else a finite number.
+    /// Reads a cell: `true`/`false`, `null` or empty for no value, else a finite number.
     fn parse(cell: &str) -> Option<Self> {
         match cell {
             "true" => Some(Value::Bool(true)),
             "false" => Some(Value::Bool(false)),
+            "null" | "" => Some(Value::Null),
             _ => cell.parse::<f64>().ok().filter(|x| x.is_finite()).map(Value::Num),
         }
     }
@@ -110,8 +114,9 @@ fn read_folder(folder: &Path, keys: &[(String, Source)]) -> Result<BTreeMap<Stri
                 match v {
                     serde_json::Value::Bool(b) => Value::Bool(*b),
                     serde_json::Value::Number(n) => Value::Num(n.as_f64().unwrap_or(f64::NAN)),
+                    serde_json::Value::Null => Value::Null,
                     other => {
-                        return Err(bad(&file, format!("`{key}` is {other}, not a number or true/false")));
+                        return Err(bad(&file, format!("`{key}` is {other}, not a number, true/false or null")));
                     }
                 }
             }
@@ -181,24 +186,34 @@ fn significant(x: f64) -> String {
     format!("{x:.decimals$}")
 }
 
-/// One group's cell of a measure: `median [min, max]` of numbers, `k/n` of yes/no figures.
+/// One group's cell of a measure: `median [min, max]` of numbers, `k/n` of yes/no figures;
+/// runs that record no value (`null`) are counted beside them, never taken as a number.
 fn summarise(values: &[Value]) -> String {
     let mut nums = Vec::new();
-    let mut yes = 0;
+    let (mut yes, mut bools, mut nulls) = (0, 0, 0);
     for v in values {
         match v {
             Value::Num(x) => nums.push(*x),
-            Value::Bool(b) => yes += usize::from(*b),
+            Value::Bool(b) => {
+                yes += usize::from(*b);
+                bools += 1;
+            }
+            Value::Null => nulls += 1,
         }
     }
-    if nums.is_empty() {
-        return format!("{yes}/{}", values.len());
-    }
-    if nums.len() < values.len() {
+    let without = match nulls {
+        0 => String::new(),
+        n if n == values.len() => return format!("no value ({n} null)"),
+        n => format!("; {n} null"),
+    };
+    if !nums.is_empty() && bools > 0 {
         return "numbers and yes/no mixed".into();
     }
+    if nums.is_empty() {
+        return format!("{yes}/{bools}{without}");
+    }
     let (lo, hi) = nums.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-    format!("{} [{}, {}]", significant(super::median(&mut nums)), significant(lo), significant(hi))
+    format!("{} [{}, {}]{without}", significant(super::median(&mut nums)), significant(lo), significant(hi))
 }
 
 /// Makes `measures.md` and `measures.csv` of `keys` over `groups` of `t`, reading the run
@@ -290,8 +305,13 @@ fn markdown(
     let _ = writeln!(
         md,
         "What each run recorded, read from {}. Numbers: the median of the group's runs with the least and the \
-         greatest [min, max]; yes/no figures: the runs where it holds, of the group's runs.\n",
-        read.join("; ")
+         greatest [min, max]; yes/no figures: the runs where it holds, of the group's runs.{}\n",
+        read.join("; "),
+        if values.values().flatten().any(|v| *v == Value::Null) {
+            " Runs that record no value (`null`: a coverage never reached, say) are counted apart."
+        } else {
+            ""
+        }
     );
     let _ =
         writeln!(md, "| group | runs | {} |", sources.iter().map(|(k, _)| k.as_str()).collect::<Vec<_>>().join(" | "));
@@ -340,13 +360,16 @@ mod tests {
 
     #[test]
     fn groups_summarise_numbers_as_median_and_range_and_yes_no_as_counts() {
-        let cases: [(&[Value], &str); 6] = [
+        let cases: [(&[Value], &str); 9] = [
             (&[Value::Num(1.0), Value::Num(3.0), Value::Num(2.0)], "2 [1, 3]"),
             (&[Value::Num(0.877), Value::Num(0.9634), Value::Num(0.7731)], "0.8770 [0.7731, 0.9634]"),
             (&[Value::Num(382.0), Value::Num(180.0)], "281 [180, 382]"),
             (&[Value::Num(382.0), Value::Num(179.0)], "280.5 [179, 382]"),
             (&[Value::Bool(true), Value::Bool(false), Value::Bool(true)], "2/3"),
             (&[Value::Num(0.0055)], "0.005500 [0.005500, 0.005500]"),
+            (&[Value::Num(1.0), Value::Null, Value::Num(3.0)], "2 [1, 3]; 1 null"),
+            (&[Value::Null, Value::Null], "no value (2 null)"),
+            (&[Value::Bool(true), Value::Null], "1/1; 1 null"),
         ];
         for (values, want) in cases {
             assert_eq!(summarise(values), want);

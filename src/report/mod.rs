@@ -14,7 +14,6 @@
 pub mod ablation;
 pub mod ablation_figures;
 mod ablation_plots;
-pub mod anova;
 pub mod anova_report;
 pub mod claims;
 pub mod compare;
@@ -35,6 +34,7 @@ mod study;
 pub mod thesis_report;
 
 use crate::ga::pareto::non_dominated;
+use crate::stats::median;
 use crate::study::records::RunsTable;
 use std::path::Path;
 
@@ -114,12 +114,6 @@ fn coverage_front(points: &[(f64, f64)]) -> Vec<usize> {
     non_dominated(points).into_iter().filter(|&k| points[k].1 >= FRONT_MIN_COVERAGE).collect()
 }
 
-fn median(v: &mut [f64]) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
-}
-
 /// What `covga report` reads and where it writes: groups, a filter on the runs and the name of
 /// the report folder.
 #[derive(Clone, Debug, Default)]
@@ -149,18 +143,46 @@ pub struct ReportOptions {
 /// `dir`'s runs.csv as the parts of a report that read it apart from the summary do: the runs
 /// that failed while running left out and the `--where` pairs of `filter` applied; with the
 /// number of runs recorded (failed and filtered ones included).
-pub(super) fn read_filtered_runs(dir: &Path, filter: &[(String, String)]) -> Result<(RunsTable, usize), ReportError> {
+pub(super) fn read_filtered_runs(
+    dir: &Path,
+    filter: &[(String, String)],
+) -> Result<(RunsTable, usize, Vec<String>), ReportError> {
     let file = dir.join("runs.csv");
     let text = std::fs::read_to_string(&file).map_err(|e| ReportError::Input(format!("{}: {e}", file.display())))?;
-    let mut t = RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", file.display())))?;
+    let input = |m: String| ReportError::Input(format!("{}: {m}", file.display()));
+    let mut t = RunsTable::parse(&text).map_err(input)?;
+    check_finite(&t).map_err(input)?;
     let recorded = t.rows.len();
-    take_failed(&mut t);
-    for (key, want) in filter {
+    let failed = take_failed(&mut t);
+    for (key, wants) in where_keys(filter) {
         if let Some(c) = t.col(key) {
-            t.rows.retain(|r| cell_matches(&r[c], want));
+            t.rows.retain(|r| wants.iter().any(|want| cell_matches(&r[c], want)));
         }
     }
-    Ok((t, recorded))
+    Ok((t, recorded, failed))
+}
+
+/// `md` (a report file's markdown, its title first) with the failed-runs note of `failed`
+/// after the title, so that no file of a report leaves failed runs out without a word.
+pub(super) fn with_failed_note(md: String, failed: &[String]) -> String {
+    let Some(note) = failed_note(failed) else { return md };
+    match md.find("\n\n") {
+        Some(i) => format!("{}{note}\n\n{}", &md[..i + 2], &md[i + 2..]),
+        None => format!("{md}\n\n{note}\n"),
+    }
+}
+
+/// The `--where` pairs by key, in the order the keys first appear: a key given more than once
+/// keeps the runs with any of its values (an OR); different keys must all hold (an AND).
+pub(super) fn where_keys(filter: &[(String, String)]) -> Vec<(&str, Vec<&str>)> {
+    let mut keys: Vec<(&str, Vec<&str>)> = Vec::new();
+    for (key, want) in filter {
+        match keys.iter_mut().find(|(k, _)| k == key) {
+            Some((_, wants)) => wants.push(want),
+            None => keys.push((key, vec![want])),
+        }
+    }
+    keys
 }
 
 /// The folder of run `id` in study `dir`, or the error that names it missing and says what
@@ -184,7 +206,7 @@ pub(super) fn cell_matches(cell: &str, want: &str) -> bool {
 
 /// A metric of runs.csv that is not a finite number (a hand-edited or damaged file): the
 /// report would print `NaN ± NaN` or an infinite hypervolume as if they were results.
-fn check_finite(t: &RunsTable) -> Result<(), String> {
+pub(super) fn check_finite(t: &RunsTable) -> Result<(), String> {
     let id = t.col("run_id");
     if let Some(i) = id {
         let mut seen = std::collections::BTreeSet::new();
@@ -207,6 +229,20 @@ fn check_finite(t: &RunsTable) -> Result<(), String> {
             if row[c].parse::<f64>().is_ok_and(|v| v.is_finite() && !(lo..=hi).contains(&v)) {
                 return Err(format!(
                     "run {} has `{name}` = {}: allowed [{lo}, {hi}] (was the file edited by hand?)",
+                    id.map_or("?", |i| row[i].as_str()),
+                    row[c]
+                ));
+            }
+        }
+    }
+    // Yes/no columns hold `true` or `false`: read as anything else they would count as "no".
+    let failed = t.col("stop");
+    for name in ["executable", "planner_feasible"] {
+        let Some(c) = t.col(name) else { continue };
+        for row in t.rows.iter().filter(|r| failed.is_none_or(|f| r[f] != crate::study::records::FAILED_STOP)) {
+            if row[c] != "true" && row[c] != "false" {
+                return Err(format!(
+                    "run {} has `{name}` = `{}`: allowed `true` or `false` (was the file edited by hand?)",
                     id.map_or("?", |i| row[i].as_str()),
                     row[c]
                 ));
@@ -317,10 +353,14 @@ pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::
     }
     // Made from the study before anything is written: one that cannot be made leaves no
     // report folder behind.
-    let seed_to_seed = opts.seed_to_seed.then(|| seed_to_seed::render(&loaded.t, &opts.by)).transpose()?;
+    let seed_to_seed = opts
+        .seed_to_seed
+        .then(|| seed_to_seed::render(&loaded.t, &opts.by).map(|md| with_failed_note(md, &loaded.failed)))
+        .transpose()?;
     let measures = (!opts.measures.is_empty())
         .then(|| {
             measures::render(dir, &loaded.t, &loaded.groups(&opts.by), &loaded.selected, &opts.measures, &loaded.out)
+                .map(|r| compare::Rendered { markdown: with_failed_note(r.markdown, &loaded.failed), ..r })
         })
         .transpose()?;
     let folders = folder_record::FolderRecords::open(dir, &loaded.out)?;

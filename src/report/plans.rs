@@ -90,6 +90,8 @@ impl Reference {
         let input = |m: String| ReportError::Input(format!("--reference {}: {m}", file.display()));
         let text = std::fs::read_to_string(file).map_err(|e| input(e.to_string()))?;
         let table = RunsTable::parse(&text).map_err(input)?;
+        // The reference rows are the yardstick of every run: checked as a study's own rows are.
+        super::check_finite(&table).map_err(input)?;
         let Some(map) = map_column(&table) else {
             return Err(input(
                 "no `map.source` or `map` column: the reference plans are matched to runs by their map".into(),
@@ -245,7 +247,7 @@ pub fn render(
     previous: &Path,
 ) -> Result<Rendered, ReportError> {
     let file = dir.join("runs.csv");
-    let (t, _) = super::read_filtered_runs(dir, filter)?;
+    let (t, _, failed) = super::read_filtered_runs(dir, filter)?;
     if t.rows.is_empty() {
         return Err(ReportError::Input(format!("{}: no runs to report", file.display())));
     }
@@ -295,7 +297,11 @@ pub fn render(
     };
     ids.sort();
     let markdown = text::markdown(&t, &runs, reference.as_ref());
-    Ok(Rendered { stem: "plans".into(), markdown, csv: to_csv(&ids, &runs) })
+    Ok(Rendered {
+        stem: "plans".into(),
+        markdown: super::with_failed_note(markdown, &failed),
+        csv: to_csv(&ids, &runs),
+    })
 }
 
 #[cfg(test)]

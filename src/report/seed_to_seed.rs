@@ -82,6 +82,12 @@ pub fn render(t: &RunsTable, by: &[String]) -> Result<String, ReportError> {
         by_config.entry(&r[config]).or_default().insert(k, r);
     }
     let reps: Vec<u64> = reps.into_iter().collect();
+    if reps.len() < 2 {
+        return Err(ReportError::Input(format!(
+            "--seed-to-seed compares replicates, and the runs hold {} (seeds = 2 or more in the grid makes more)",
+            if reps.is_empty() { "none".to_string() } else { format!("only replicate {}", reps[0]) }
+        )));
+    }
     let complete: Vec<&BTreeMap<u64, &Vec<String>>> =
         by_config.values().filter(|v| reps.iter().all(|k| v.contains_key(k))).collect();
     let n = complete.len();

@@ -21,6 +21,8 @@ pub(super) struct Loaded {
     pub out: PathBuf,
     /// The notes the report begins with (an incomplete study, failed runs, no `runs/` folder).
     pub incomplete: Option<String>,
+    /// The runs that failed while running, as `run <id>: <reason>` (left out of `t`).
+    pub failed: Vec<String>,
 }
 
 impl Loaded {
@@ -68,7 +70,7 @@ impl Loaded {
         let notes: Vec<String> =
             incomplete_note(dir, recorded).into_iter().chain(failed_note(&failed)).chain(no_run_files).collect();
         let incomplete = (!notes.is_empty()).then(|| notes.join("\n\n"));
-        Ok(Self { t, selected, out, incomplete })
+        Ok(Self { t, selected, out, incomplete, failed })
     }
 }
 
@@ -143,10 +145,11 @@ fn missing_runs(dir: &Path, runs_file: &Path, e: std::io::Error) -> ReportError 
     }
 }
 
-/// Keeps the rows of `t` that every `--where` filter accepts; the filters in words.
+/// Keeps the rows of `t` that every `--where` key accepts (a key given more than once accepts
+/// any of its values); the filters in words.
 fn apply_filters(t: &mut RunsTable, filter: &[(String, String)], runs_file: &Path) -> Result<Vec<String>, ReportError> {
     let mut selected = Vec::new();
-    for (key, want) in filter {
+    for (key, wants) in super::where_keys(filter) {
         let Some(c) = t.col(key) else {
             return Err(ReportError::Input(format!(
                 "--where `{key}` is not a column of {}; columns: {}",
@@ -155,14 +158,16 @@ fn apply_filters(t: &mut RunsTable, filter: &[(String, String)], runs_file: &Pat
             )));
         };
         let before = t.rows.len();
-        t.rows.retain(|r| cell_matches(&r[c], want));
+        t.rows.retain(|r| wants.iter().any(|want| cell_matches(&r[c], want)));
+        let words = wants.join(" or ");
         if t.rows.is_empty() && before > 0 {
+            let which = if wants.len() > 1 { "any of those values" } else { "that value" };
             return Err(ReportError::Input(format!(
-                "--where {key}={want}: no recorded run of {} has that value",
+                "--where {key}={words}: no recorded run of {} has {which}",
                 runs_file.display()
             )));
         }
-        selected.push(format!("{key} = {want}"));
+        selected.push(format!("{key} = {words}"));
     }
     Ok(selected)
 }
@@ -214,7 +219,7 @@ pub(super) struct Study<'a> {
 impl<'a> Study<'a> {
     /// Groups, facets, best runs and configurations of `loaded`.
     pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded, folders: super::folder_record::FolderRecords) -> Self {
-        let Loaded { t, selected, out, incomplete } = loaded;
+        let Loaded { t, selected, out, incomplete, failed: _ } = loaded;
         let mut study = Self {
             dir,
             by,

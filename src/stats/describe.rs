@@ -68,6 +68,13 @@ pub fn mean_min_max(values: &[f64]) -> (f64, f64, f64) {
     (mean, lo, hi)
 }
 
+/// The median of `v` (sorted in place): the middle value, or the mean of the two middle ones.
+pub fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+}
+
 /// Quartiles `(q1, median, q3)` by linear interpolation between order statistics (the
 /// usual "type 7" definition); `NaN` for no values.
 pub fn quartiles(values: &[f64]) -> (f64, f64, f64) {

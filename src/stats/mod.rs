@@ -1,12 +1,14 @@
 //! Statistics across runs, in one place for every report and for Python: descriptive
 //! statistics, rank tests of independent samples ([`rank_sum`], [`kruskal`]) and of samples
 //! paired by seed ([`paired`]), effect sizes with bootstrap intervals ([`effect`]), and the
-//! correction of a family of tests ([`family`]). Each test says how its p-value was found
+//! correction of a family of tests ([`family`]), and the analysis of variance of a grid's
+//! factors ([`anova`]). Each test says how its p-value was found
 //! ([`Method`]); each effect names its direction.
 //!
 //! Two-sided tests throughout. Rank tests use mid-ranks for ties; their exact distributions
 //! ([`exact`]) are conditional on the ties, so small samples with ties get exact p-values too.
 
+pub mod anova;
 pub mod describe;
 pub mod effect;
 pub mod exact;
@@ -15,7 +17,7 @@ pub mod kruskal;
 pub mod paired;
 pub mod rank_sum;
 
-pub use describe::{mean_ci95, mean_min_max, quartiles, ranks, spearman};
+pub use describe::{mean_ci95, mean_min_max, median, quartiles, ranks, spearman};
 pub use effect::{Contrast, Interval, a12_magnitude, bootstrap_ci, vargha_delaney_a12};
 pub use family::{Family, holm};
 pub use kruskal::{KruskalWallis, kruskal_wallis};

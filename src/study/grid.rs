@@ -333,8 +333,8 @@ fn default_has(key: &str) -> bool {
     get(&t, key).is_some()
 }
 
-/// The grid's base experiment (inline, or the file it names beside the grid), without its
-/// `[output]`, its old keys moved to their new names, checked as an experiment file; and the
+/// The grid's base experiment (inline, or the file it names beside the grid), its `[output]`
+/// checked and without a folder, its old keys moved to their new names, checked as an experiment file; and the
 /// old keys it used.
 fn read_base(
     grid: &GridFile,
@@ -351,7 +351,22 @@ fn read_base(
             toml::from_str(&body).map_err(|e| ConfigError::from_toml(&full.display().to_string(), &body, &e))?
         }
     };
-    base.remove("output");
+    // A grid names each run's folder itself; what else `[output]` asks (the diversity's
+    // interval, the population's genomes) applies to every run, checked as a file's is.
+    if let Some(output) = base.get_mut("output") {
+        let Some(section) = output.as_table_mut() else {
+            return Err(ConfigError::new(origin, "base.output", "is not a table".to_string()));
+        };
+        // A base file that is an experiment of its own names its folder: each run's is below
+        // --out instead.
+        section.remove("dir");
+        Value::Table(section.clone())
+            .try_into::<crate::experiment::file::OutputSection>()
+            .map_err(|e| ConfigError::new(origin, "base.output", e.message().trim().to_string()))?;
+        if section.is_empty() {
+            base.remove("output");
+        }
+    }
     let renamed = crate::experiment::renamed::rename_in_table(&mut base, origin)?;
     // The base itself must be a valid experiment file.
     Value::Table(base.clone())

@@ -131,6 +131,9 @@ pub struct RunnerOptions<'a> {
     /// after this many runs were recorded by this invocation (`covga grid --abort-after-runs`,
     /// hidden). `None` in every real use.
     pub abort_after_runs: Option<usize>,
+    /// Run again the runs recorded as failed (`stop` = failed): their rows are taken out of
+    /// the runs file first (`covga grid --retry-failed`), after a fix to what made them fail.
+    pub retry_failed: bool,
 }
 
 /// What a study invocation did.
@@ -200,7 +203,7 @@ pub fn validate_runs(
     study: &Study,
     runs: &[&RunSpec],
     maps: &MapCache,
-    limit: Option<u64>,
+    limit: Option<&crate::experiment::memory::MemoryLimit>,
     parallel: usize,
     checks: Checks,
 ) -> Result<f64, ConfigError> {
@@ -312,18 +315,27 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
         study,
         &selected,
         &maps,
-        crate::experiment::memory::memory_limit(opts.max_memory),
+        crate::experiment::memory::memory_limit(opts.max_memory).as_ref(),
         jobs,
         Checks::Full,
     )?;
     check_identity(study, &opts.out)?;
     std::fs::create_dir_all(&opts.out).map_err(|source| StudyError::Folder { path: opts.out.clone(), source })?;
     let file = opts.out.join(opts.shard.map_or("runs.csv".to_string(), |s| s.file_name()));
-    let _folder = crate::io::FolderLock::take(&opts.out, opts.shard.is_none())
-        .map_err(|message| StudyError::Mismatch { path: opts.out.clone(), message })?;
+    let _folder = crate::io::FolderLock::take(&opts.out, opts.shard.is_none()).map_err(|message| {
+        // The lock's message names the folder, as the error does: once is enough.
+        let message = message.strip_prefix(&format!("{}: ", opts.out.display())).unwrap_or(&message).to_string();
+        StudyError::Mismatch { path: opts.out.clone(), message }
+    })?;
+    if let Some(shard) = opts.shard {
+        check_shard_count(&opts.out, shard)?;
+    }
     let _lock = StudyLock::take(&file)?;
     write_study_files(study, &opts.out)?;
     let head = header(&study.columns);
+    if opts.retry_failed {
+        drop_failed_rows(&file, &head)?;
+    }
     let done_ids = recorded_ids(&file, &head)?;
     let mut pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
     // Handed out one at a time in the order asked for (results never depend on it).
@@ -465,6 +477,51 @@ fn complete(file: &Path, selected: usize, skipped: usize, completed: usize) -> R
 }
 
 /// Ids recorded in an existing runs file; drops a half-written last line in place.
+/// Refuses shard `shard` in a folder that holds shard files of another shard count: shards of
+/// two counts split the runs differently, so some runs would be computed twice and others by
+/// neither split's merge.
+fn check_shard_count(out: &Path, shard: Shard) -> Result<(), StudyError> {
+    let Ok(entries) = std::fs::read_dir(out) else { return Ok(()) };
+    for name in entries.flatten().map(|e| e.file_name().to_string_lossy().into_owned()) {
+        let count = name
+            .strip_prefix("runs-shard-")
+            .and_then(|n| n.strip_suffix(".csv"))
+            .and_then(|n| n.split_once("-of-"))
+            .and_then(|(_, c)| c.parse::<usize>().ok());
+        if let Some(count) = count.filter(|&c| c != shard.count) {
+            return Err(StudyError::Mismatch {
+                path: out.join(&name),
+                message: format!(
+                    "holds shards of {count}, and this is shard {}/{}: every shard of a study uses one count (the \
+                     runs are split by it); use --shard I/{count}, or another --out folder",
+                    shard.index, shard.count
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Takes the rows of failed runs out of the runs file `file` (whose columns are `head`), so
+/// that they run again; the file is replaced atomically, the other rows kept as they were.
+fn drop_failed_rows(file: &Path, head: &[String]) -> Result<(), StudyError> {
+    recorded_ids(file, head)?;
+    let Ok(text) = std::fs::read_to_string(file) else { return Ok(()) };
+    let mut table =
+        RunsTable::parse(&text).map_err(|m| StudyError::Mismatch { path: file.to_path_buf(), message: m })?;
+    let Some(stop) = table.col("stop") else { return Ok(()) };
+    let before = table.rows.len();
+    table.rows.retain(|r| r[stop] != super::records::FAILED_STOP);
+    if table.rows.len() == before {
+        return Ok(());
+    }
+    let mut bytes = csv_line(&table.header);
+    for row in &table.rows {
+        bytes.extend(csv_line(row));
+    }
+    crate::io::write_atomic(file, &bytes).map_err(io(file))
+}
+
 fn recorded_ids(file: &Path, head: &[String]) -> Result<std::collections::HashSet<String>, StudyError> {
     let Ok(bytes) = std::fs::read(file) else { return Ok(Default::default()) };
     let text = String::from_utf8_lossy(&bytes).into_owned();

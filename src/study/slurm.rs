@@ -32,8 +32,25 @@ fn quote(p: &Path) -> String {
     format!("'{}'", p.display().to_string().replace('\'', "'\\''"))
 }
 
-/// The batch script for `grid` (absolute paths) writing into `out`, run by `exe`.
-pub fn sbatch_script(exe: &Path, grid: &Path, out: &Path, name: &str, o: &SlurmOptions) -> String {
+/// Where a task runs and what it runs: the binary, the grid file and the study folder (all
+/// absolute), and the folder the grid was written from (`covga grid --slurm`'s working
+/// directory), which a task changes to so that the grid's relative map paths resolve as they
+/// did there, wherever `sbatch` is called.
+#[derive(Clone, Copy, Debug)]
+pub struct TaskPaths<'a> {
+    /// The covga binary.
+    pub exe: &'a Path,
+    /// The grid file.
+    pub grid: &'a Path,
+    /// The study folder.
+    pub out: &'a Path,
+    /// The working directory of the tasks.
+    pub dir: &'a Path,
+}
+
+/// The batch script of the study `name` at `paths`.
+pub fn sbatch_script(paths: TaskPaths, name: &str, o: &SlurmOptions) -> String {
+    let TaskPaths { exe, grid, out, dir } = paths;
     format!(
         "#!/bin/bash\n\
          # covga study as a Slurm job array: one task per shard; rerunning a task resumes it.\n\
@@ -47,6 +64,8 @@ pub fn sbatch_script(exe: &Path, grid: &Path, out: &Path, name: &str, o: &SlurmO
          #SBATCH --ntasks=1\n\
          #SBATCH --output={log}/%A_%a.out\n\
          set -euo pipefail\n\
+         # Relative map paths in the grid are read from the folder it was written from.\n\
+         cd {dirq}\n\
          exec {exe} grid {grid} --out {outq} --jobs \"${{SLURM_CPUS_PER_TASK:-{cpus}}}\" --shard \"$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT\" --max-memory {mem_bytes}\n",
         script = quote(&out.join("study.sbatch")),
         outq = quote(out),
@@ -59,6 +78,7 @@ pub fn sbatch_script(exe: &Path, grid: &Path, out: &Path, name: &str, o: &SlurmO
         log = out.join("slurm").display(),
         exe = quote(exe),
         grid = quote(grid),
+        dirq = quote(dir),
     )
 }
 
@@ -77,7 +97,14 @@ mod tests {
     #[test]
     fn script_has_array_and_shard() {
         let o = SlurmOptions { array_size: 4, time: "00:10:00".into(), cpus_per_task: 2, mem_bytes: 3 << 29 };
-        let s = sbatch_script(Path::new("/bin/covga"), Path::new("/g/smoke.toml"), Path::new("/o/s"), "smoke", &o);
+        let paths = TaskPaths {
+            exe: Path::new("/bin/covga"),
+            grid: Path::new("/g/smoke.toml"),
+            out: Path::new("/o/s"),
+            dir: Path::new("/home/it's"),
+        };
+        let s = sbatch_script(paths, "smoke", &o);
+        assert!(s.contains("\ncd '/home/it'\\''s'\nexec '/bin/covga' grid"), "{s}");
         assert!(s.contains("#SBATCH --array=0-3"));
         assert!(s.contains("--shard \"$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT\""));
         assert!(s.contains("#SBATCH --cpus-per-task=2"));

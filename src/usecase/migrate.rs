@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 /// One file's migration.
 #[derive(Clone, Debug)]
 pub struct Migration {
-    /// The file.
+    /// The file (a link's target).
     pub path: PathBuf,
     /// Its text with every old key under its new name.
     pub text: String,
@@ -20,16 +20,25 @@ pub struct Migration {
 }
 
 /// The migration of the experiment or grid file at `path` (a grid has `base` and `axes` or
-/// `seeds`), checked to mean what the file meant.
-pub fn migrate_file(path: &Path) -> Result<Migration, UseCaseError> {
+/// `seeds`), checked to mean what the file meant; for a grid whose `base` names a file, that
+/// file's migration after it. A symbolic link is followed: its target is what is migrated.
+pub fn migrate_file(path: &Path) -> Result<Vec<Migration>, UseCaseError> {
     let origin = path.display().to_string();
-    let text = crate::io::read_text_bounded(path, crate::io::MAX_TEXT_FILE_BYTES)
+    let target = std::fs::canonicalize(path).map_err(|e| UseCaseError::Input(format!("{origin}: cannot read: {e}")))?;
+    let text = crate::io::read_text_bounded(&target, crate::io::MAX_TEXT_FILE_BYTES)
         .map_err(|e| UseCaseError::Input(format!("{origin}: cannot read: {e}")))?;
     let (migrated, moves) = migrate_text(&text, &origin).map_err(UseCaseError::input)?;
     if !moves.is_empty() {
         same_meaning(&text, &migrated, path)?;
     }
-    Ok(Migration { path: path.to_path_buf(), text: migrated, moves })
+    let mut out = vec![Migration { path: target, text: migrated, moves }];
+    // A grid may take its base from another file: the grid is current only when that file is.
+    let table: Option<toml::Table> = text.parse().ok();
+    if let Some(base) = table.as_ref().and_then(|t| t.get("base")).and_then(toml::Value::as_str) {
+        let base_path = path.parent().unwrap_or(Path::new(".")).join(base);
+        out.extend(migrate_file(&base_path)?);
+    }
+    Ok(out)
 }
 
 /// Refuses a migration whose text would not mean what the file meant.
@@ -54,11 +63,25 @@ fn same_meaning(old: &str, new: &str, path: &Path) -> Result<(), UseCaseError> {
     }
 }
 
-/// Writes every migration that moved a key, each file replaced at once.
+/// Writes every migration that moved a key, each file replaced at once with the permissions
+/// it had; a file that may not be written (read-only) is refused before any is written.
 pub fn write(migrations: &[Migration]) -> Result<(), UseCaseError> {
-    for m in migrations.iter().filter(|m| !m.moves.is_empty()) {
-        crate::io::write_atomic(&m.path, m.text.as_bytes())
-            .map_err(|e| UseCaseError::Internal(format!("{}: cannot write: {e}", m.path.display())))?;
+    let stale: Vec<&Migration> = migrations.iter().filter(|m| !m.moves.is_empty()).collect();
+    let mut modes = Vec::with_capacity(stale.len());
+    for m in &stale {
+        let meta = std::fs::metadata(&m.path)
+            .map_err(|e| UseCaseError::Input(format!("{}: cannot read: {e}", m.path.display())))?;
+        if meta.permissions().readonly() {
+            return Err(UseCaseError::Input(format!(
+                "{}: the file is read-only; make it writable to migrate it (nothing was written)",
+                m.path.display()
+            )));
+        }
+        modes.push(meta.permissions());
+    }
+    for (m, mode) in stale.into_iter().zip(modes) {
+        crate::io::write_atomic_with(&m.path, m.text.as_bytes(), Some(mode))
+            .map_err(|e| UseCaseError::Input(format!("{}: cannot write: {e}", m.path.display())))?;
     }
     Ok(())
 }

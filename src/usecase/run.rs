@@ -63,7 +63,7 @@ pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u6
         UseCaseError::input(e)
     })?;
     let limit = crate::experiment::memory::memory_limit(max_memory);
-    experiment.check_memory(origin, limit, 1, rayon::current_num_threads()).map_err(UseCaseError::input)?;
+    experiment.check_memory(origin, limit.as_ref(), 1, rayon::current_num_threads()).map_err(UseCaseError::input)?;
     let warnings = renamed
         .into_iter()
         .map(|(old, new)| crate::experiment::renamed::warning(origin, old, new))
@@ -77,12 +77,22 @@ pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u6
 /// same experiment run again). Another run's `best_genome.csv` or `history.png` would
 /// otherwise stay beside this run's results.
 fn check_results_folder(dir: &Path, file: &ExperimentFile) -> Result<(), String> {
-    let entries: Vec<String> = std::fs::read_dir(dir)
+    let mut entries: Vec<String> = std::fs::read_dir(dir)
         .map_err(|e| format!("{}: {e}", dir.display()))?
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .filter(|n| n != ".covga.lock")
         .collect();
+    // A run killed where it could not clean up (SIGKILL, a power cut) leaves its temporary
+    // files: they are covga's own, never results, and the folder is locked now, so no other
+    // process is writing them. Removed, they do not make the folder another run's.
+    entries.retain(|n| {
+        let leftover = is_leftover_temporary(n);
+        if leftover {
+            let _ = std::fs::remove_file(dir.join(n));
+        }
+        !leftover
+    });
     if entries.is_empty() {
         return Ok(());
     }
@@ -99,6 +109,16 @@ fn check_results_folder(dir: &Path, file: &ExperimentFile) -> Result<(), String>
         shown.join(", "),
         if entries.len() > shown.len() { ", …" } else { "" }
     ))
+}
+
+/// Whether `name` is a temporary file a covga run writes before renaming it into place: the
+/// history while the run goes on, or an atomic write's sibling (`.NAME.tmpPID`).
+fn is_leftover_temporary(name: &str) -> bool {
+    name == ".history.csv.partial"
+        || name
+            .strip_prefix('.')
+            .and_then(|n| n.rsplit_once(".tmp"))
+            .is_some_and(|(stem, pid)| !stem.is_empty() && !pid.is_empty() && pid.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// Runs `prepared` into `dir` (default: the experiment's own folder), with figures when

@@ -17,9 +17,14 @@ trap cleanup EXIT
 SLURM_CONF=$(scripts/slurm-local.sh start "$cluster" | tail -n 1)
 export SLURM_CONF
 
+# The smoke grid with its map as a path relative to the repository (where the script is
+# written), submitted from another folder: the tasks must read the map where it was meant.
+grid="$work/smoke-relative.toml"
+sed 's|^source = "thesis-1"$|source = "experiments/maps/thesis-1.yaml"|' grids/smoke.toml > "$grid"
+grep -q 'experiments/maps/thesis-1.yaml' "$grid"
 study="$work/slurm-study"
-"$covga" grid grids/smoke.toml --slurm --array-size 4 --time 00:10:00 --cpus-per-task 1 --out "$study"
-job=$(sbatch --parsable "$study/study.sbatch")
+"$covga" grid "$grid" --slurm --array-size 4 --time 00:10:00 --cpus-per-task 1 --out "$study"
+job=$(cd "$work" && sbatch --parsable "$study/study.sbatch")
 job=${job%%;*}
 echo "submitted array job $job"
 end=$((SECONDS + 600))
@@ -39,7 +44,7 @@ shards=$(ls "$study"/runs-shard-*-of-4.csv | wc -l)
 "$covga" merge "$study"
 
 local_study="$work/local-study"
-"$covga" grid grids/smoke.toml --jobs 2 --out "$local_study" >/dev/null 2>&1
+"$covga" grid "$grid" --jobs 2 --out "$local_study" >/dev/null 2>&1
 
 strip() { # drop the wall_s column
   python3 - "$1" <<'PY'

@@ -1,0 +1,399 @@
+//! The cell-order planner behind the common [`Planner`] interface: a run prepares the map,
+//! solves the tour with the configured solver (or builds a control's plans), chooses the plan
+//! the common scorer finds fastest to the coverage goal, and reports it.
+
+use super::*;
+
+/// The history record of a search's generation (or kick): its best tour's time and lane
+/// coverage (`(over all free cells, over the reachable ones)`), with `members` feasible.
+fn generation_record(g: &search::Generation, (best_coverage, reach): (f64, f64), members: u32) -> GenerationRecord {
+    GenerationRecord {
+        iteration: g.iteration,
+        evaluations: g.evaluations,
+        best_fitness: g.fitness.0,
+        mean_fitness: g.fitness.1,
+        best_coverage,
+        best_coverage_reach: Some(reach),
+        feasible: Some(members),
+        diversity: None,
+        extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
+        robots: Vec::new(),
+    }
+}
+
+/// A solved tour and what it cost to find.
+struct Solved {
+    tour: Tour,
+    /// The tours the common scorer chooses among when the plan has a coverage goal, the
+    /// solver's best first.
+    finalists: Vec<Tour>,
+    cost: f64,
+    evaluations: u64,
+    iterations: u32,
+    stop: StopReason,
+    nearest: f64,
+    exact: Option<f64>,
+    /// The boustrophedon control's plans, one per lane direction (a tour solver has none: its
+    /// plans are its finalists driven).
+    lanes: Vec<controls::Lanes>,
+}
+
+/// The lane coverage of a search's best tour (its sweeps without transit, over all free and
+/// over the reachable cells) for the history, swept again only when the best tour changes.
+struct LaneCoverage<'g> {
+    grid: &'g crate::coverage::CoverageGrid,
+    scratch: crate::coverage::SweepScratch,
+    last: Option<(Tour, (f64, f64))>,
+}
+
+impl<'g> LaneCoverage<'g> {
+    fn new(grid: &'g crate::coverage::CoverageGrid) -> Self {
+        Self { grid, scratch: crate::coverage::SweepScratch::new(grid), last: None }
+    }
+
+    fn of(&mut self, prepared: &Prepared, scenario: &Scenario, tour: &Tour) -> (f64, f64) {
+        if let Some((t, c)) = &self.last
+            && t == tour
+        {
+            return *c;
+        }
+        let paths: Vec<Vec<Point>> = prepared.sweeps_of(tour).map(|w| w.points.clone()).collect();
+        let swept = self.scratch.sweep_all(self.grid, &paths, scenario.robot.width).unique();
+        let c = (
+            swept as f64 / self.grid.area_cells().max(1) as f64,
+            crate::coverage::score::reach_coverage(&prepared.reach, &self.scratch),
+        );
+        self.last = Some((tour.clone(), c));
+        c
+    }
+}
+
+impl CellOrderConfig {
+    /// Orders the cells with the configured solver, handing the GA's generations to
+    /// `observers` (with the lane coverage of each generation's best tour, swept on `grid`).
+    fn solve(
+        &self,
+        prepared: &Prepared,
+        scenario: &Scenario,
+        grid: &crate::coverage::CoverageGrid,
+        (seed, started): (u64, Instant),
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<Solved, PlannerError> {
+        let inst = &prepared.instance;
+        match self.solver {
+            Solver::Ga | Solver::Ils => {
+                let mut lanes = LaneCoverage::new(grid);
+                // Every tour is driven on wall-free routes: all members are feasible.
+                let members = match self.solver {
+                    Solver::Ils => 1,
+                    Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => self.ga.population as u32,
+                };
+                let report = |g: &search::Generation| {
+                    let record = generation_record(g, lanes.of(prepared, scenario, g.best.0), members);
+                    observers.iter_mut().try_for_each(|o| o.generation(&record))
+                };
+                let seeds = if self.seed_directions {
+                    controls::direction_tours(prepared, &self.directions)
+                } else {
+                    Vec::new()
+                };
+                let out = match self.solver {
+                    Solver::Ils => {
+                        ils::iterated_local_search(inst, self.ga.goal, &seeds, (seed, started), budget, report)?
+                    }
+                    Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => {
+                        search::search_from(inst, &self.ga, &seeds, (seed, started), budget, report)?
+                    }
+                };
+                let (tour, cost) = out.best;
+                Ok(Solved {
+                    tour,
+                    finalists: out.finalists,
+                    cost,
+                    evaluations: out.evaluations,
+                    iterations: out.iterations,
+                    stop: out.stop,
+                    nearest: out.nearest_time_s,
+                    exact: None,
+                    lanes: Vec::new(),
+                })
+            }
+            Solver::Nearest => {
+                Ok(self.control(prepared, controls::direction_tours(prepared, &self.directions), Vec::new()))
+            }
+            Solver::Boustrophedon => {
+                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
+                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+                Ok(self.control(prepared, Vec::new(), lanes))
+            }
+            Solver::Exact => {
+                let (tour, cost) = exact::held_karp(inst).ok_or_else(|| {
+                    PlannerError::Input(format!(
+                        "cell_order on map `{}`: cell_order.solver = \"exact\" takes at most {} cells; this map has {} \
+                         (use \"ga\")",
+                        scenario.map.name(),
+                        exact::MAX_EXACT_CELLS,
+                        inst.cells()
+                    ))
+                })?;
+                // The states the dynamic programme fills stand in for evaluations.
+                let states = (1u64 << inst.cells()) * (0..inst.cells()).map(|k| inst.choices(k) as u64).sum::<u64>();
+                Ok(Solved {
+                    finalists: vec![tour.clone()],
+                    tour,
+                    cost,
+                    evaluations: states,
+                    iterations: 0,
+                    stop: StopReason::Completed,
+                    nearest: inst.time(&search::nearest_neighbour(inst)),
+                    exact: Some(cost),
+                    lanes: Vec::new(),
+                })
+            }
+        }
+    }
+
+    /// A control's result, before the common scorer chooses: the no-search control's `tours`
+    /// (one per direction, the first standing for the solver's best), or the classical
+    /// control's `lanes` and no tour.
+    fn control(&self, prepared: &Prepared, tours: Vec<Tour>, lanes: Vec<controls::Lanes>) -> Solved {
+        let inst = &prepared.instance;
+        Solved {
+            tour: tours.first().cloned().unwrap_or(Tour { order: Vec::new(), choice: Vec::new() }),
+            cost: tours.first().map_or(0.0, |t| inst.cost(t, self.coverage_goal)),
+            finalists: tours,
+            evaluations: 0,
+            iterations: 0,
+            stop: StopReason::Completed,
+            nearest: inst.time(&search::nearest_neighbour(inst)),
+            exact: None,
+            lanes,
+        }
+    }
+}
+
+/// The plan a run returns, and how it was chosen.
+struct Chosen {
+    /// Which finalist.
+    index: usize,
+    /// Its path, ended at the coverage goal where there is one.
+    path: Vec<Point>,
+    /// Targets its completion had to skip.
+    skipped: usize,
+    /// With a coverage goal: the goal, the chosen plan's time to it on the common scorer's
+    /// curve, and every finalist's.
+    goal: Option<(f64, f64, Vec<f64>)>,
+}
+
+impl CellOrderConfig {
+    /// Every lane direction offered, where some came from the map's walls (for the summary).
+    fn wall_directions_used(&self) -> Option<&[f64]> {
+        (self.wall_directions > 0).then_some(self.directions.as_slice())
+    }
+
+    /// The plan a run returns among `candidates` (the solver's finalists driven, its best
+    /// first, or a control's plans): with a coverage goal, the one whose common-scorer coverage
+    /// curve reaches it first (not the tour cost's estimate), ended where it does and driven to
+    /// the end station; without one, a searching solver's best, or for a control the fastest of
+    /// the plans within [`controls::COVERAGE_TIE`] of the best coverage.
+    fn chosen_plan(
+        &self,
+        prepared: &Prepared,
+        candidates: Vec<(Vec<Point>, usize)>,
+        s: &Scenario,
+        grid: &CoverageGrid,
+    ) -> Chosen {
+        let curve =
+            |path: &Vec<Point>| CoverageCurve::of_plan(grid, &prepared.reach, std::slice::from_ref(path), &[s.robot]);
+        let Some(goal) = self.coverage_goal else {
+            let index = match self.solver {
+                Solver::Ga | Solver::Ils | Solver::Exact => 0,
+                Solver::Nearest | Solver::Boustrophedon => {
+                    controls::fastest_at_best_coverage(&candidates.iter().map(|(p, _)| curve(p)).collect::<Vec<_>>())
+                }
+            };
+            let (path, skipped) = candidates.into_iter().nth(index).expect("a solver hands over one plan at least");
+            return Chosen { index, path, skipped, goal: None };
+        };
+        let times: Vec<f64> = candidates.iter().map(|(p, _)| time_to_goal(&curve(p), goal)).collect();
+        // The first of the fastest: a searching solver's best wins a tie.
+        let index = (0..times.len()).fold(0, |best, i| if times[i] < times[best] { i } else { best });
+        let (path, skipped) = candidates.into_iter().nth(index).expect("a solver hands over one plan at least");
+        let path = end_at_goal(&prepared.clear, &prepared.reach, grid, &s.robot, path, goal, s.end);
+        Chosen { index, path, skipped, goal: Some((goal, times[index], times)) }
+    }
+}
+
+/// The common scorer's time to the coverage `goal` on a plan's `curve`; a plan that never
+/// reaches it costs [`UNREACHED_S`] per unit of shortfall plus [`UNREACHED_S`] plus its whole
+/// time, behind every plan that does (as [`Instance::time_to_goal`] ranks tours).
+pub fn time_to_goal(curve: &CoverageCurve, goal: f64) -> f64 {
+    let end = curve.points().last().map_or(0.0, |p| p.0);
+    curve.time_to(goal).unwrap_or(UNREACHED_S * (1.0 + goal - curve.coverage_at(end)) + end)
+}
+
+/// `path` cut after the segment whose sweep brings the coverage of `reach`'s cells to `goal`
+/// (the whole path when none does), then driven to `end` on a wall-free route.
+fn end_at_goal(
+    clear: &Clearance,
+    reach: &Reach,
+    grid: &CoverageGrid,
+    robot: &crate::coverage::Footprint,
+    mut path: Vec<Point>,
+    goal: f64,
+    end: Point,
+) -> Vec<Point> {
+    let needed = (goal * reach.coverable_count() as f64 - 1e-9).ceil().max(0.0) as usize;
+    let mut covered = vec![false; grid.len()];
+    let mut count = 0usize;
+    let mut cut = None;
+    for (j, w) in path.windows(2).enumerate() {
+        crate::coverage::raster::for_each_swept_cell(grid.raster(), w[0], w[1], robot.width, |i| {
+            if !covered[i] && reach.is_coverable(i) {
+                covered[i] = true;
+                count += 1;
+            }
+        });
+        if count >= needed {
+            cut = Some(j + 2);
+            break;
+        }
+    }
+    let Some(keep) = cut else { return path };
+    path.truncate(keep);
+    let mut route = Route::new(*path.last().expect("kept two points"));
+    route.finish(clear, end);
+    path.extend_from_slice(&route.points()[1..]);
+    path
+}
+
+/// The planner's own fields of `summary.json`.
+fn details_of(
+    prepared: &Prepared,
+    solved: &Solved,
+    skipped: usize,
+    goal: Option<(f64, f64, Vec<f64>)>,
+    directions: Option<&[f64]>,
+    control_direction: Option<f64>,
+) -> serde_json::Map<String, serde_json::Value> {
+    let inst = &prepared.instance;
+    let tour: Vec<serde_json::Value> = prepared
+        .sweeps_of(&solved.tour)
+        .zip(&solved.tour.order)
+        .map(|(w, k)| serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry}))
+        .collect();
+    let mut details = crate::planner::details(serde_json::json!({
+        "cells": inst.cells(),
+        "candidates": (0..inst.cells()).map(|k| inst.choices(k)).sum::<usize>(),
+        "base_direction_deg": prepared.sweeps.base_direction_deg,
+        "tour_cost_s": solved.cost,
+        "nearest_neighbour_cost_s": solved.nearest,
+        "skipped_targets": skipped,
+        "pockets": prepared.reach.pocket_count(),
+        "tour": tour,
+    }));
+    if let Some(t) = solved.exact {
+        details.insert("exact_cost_s".into(), t.into());
+    }
+    if let Some(d) = directions {
+        details.insert("directions_deg".into(), d.into());
+    }
+    if let Some(d) = control_direction {
+        details.insert("control_direction_deg".into(), d.into());
+    }
+    if let Some((goal, time_s, finalists)) = goal {
+        details.insert("coverage_goal".into(), goal.into());
+        // A goal not reached has no time: `null`, not the ranking's penalty.
+        let reached = |t: f64| (t < UNREACHED_S).then_some(t);
+        details.insert("time_to_goal_s".into(), reached(time_s).into());
+        let finalists: Vec<Option<f64>> = finalists.into_iter().map(reached).collect();
+        details.insert("finalists_time_to_goal_s".into(), finalists.into());
+    }
+    details
+}
+
+impl Planner for CellOrderConfig {
+    fn name(&self) -> &'static str {
+        "cell_order"
+    }
+
+    fn run(
+        &self,
+        scenario: &Scenario,
+        seed: u64,
+        budget: &Budget,
+        observers: &mut [&mut dyn Observer],
+    ) -> Result<RunOutcome, PlannerError> {
+        let started = Instant::now();
+        // Planned on the refined raster where the map is coarse; scored on the map as given.
+        let planning = scenario.for_planning();
+        let s = &*planning;
+        let deadline = budget.wall_clock.map(|d| (started + d, d));
+        let how = Preparation {
+            directions: &self.directions,
+            completion_m_per_m2: self.completion_m_per_m2,
+            completion: self.completion,
+        };
+        let prepared = prepare_within(s, how, deadline)
+            .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
+        let grid = crate::coverage::CoverageGrid::new(&s.map);
+        let mut solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
+        let candidates: Vec<(Vec<Point>, usize)> = match self.solver {
+            Solver::Boustrophedon => solved.lanes.iter().map(|l| (l.path.clone(), l.skipped)).collect(),
+            Solver::Ga | Solver::Ils | Solver::Exact | Solver::Nearest => {
+                // Without a goal a searching solver returns its best: only that one is driven.
+                let all = self.coverage_goal.is_some() || self.solver == Solver::Nearest;
+                let tours = if all { &solved.finalists[..] } else { &solved.finalists[..1] };
+                tours.iter().map(|t| prepared.path(t, &s.robot, (s.start, s.end), self.completion)).collect()
+            }
+        };
+        // The common scorer reads every candidate where it chooses among them.
+        if self.coverage_goal.is_some() || self.solver.is_control() {
+            solved.evaluations += candidates.len() as u64;
+        }
+        let chosen = self.chosen_plan(&prepared, candidates, s, &grid);
+        let control_direction = match self.solver {
+            Solver::Nearest | Solver::Boustrophedon => Some(self.directions[chosen.index]),
+            Solver::Ga | Solver::Ils | Solver::Exact => None,
+        };
+        if let Some(tour) = solved.finalists.get(chosen.index) {
+            solved.tour = tour.clone();
+            solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
+        }
+        let (path, skipped) = (chosen.path, chosen.skipped);
+        if self.solver == Solver::Boustrophedon {
+            // No tour: the cost is the plan's own mission time.
+            solved.cost = crate::coverage::curve::segment_end_times(&path, &s.robot).last().copied().unwrap_or(0.0);
+        }
+        let grid = crate::coverage::CoverageGrid::new(&scenario.map);
+        let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
+        let sc = crate::coverage::fitness::score(&metrics, &s.robot, scenario.map.resolution(), s.projection);
+        Ok(RunOutcome {
+            plan: vec![path],
+            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("tour_cost_s", solved.cost)],
+            feasible: true,
+            warnings: Vec::new(),
+            violations: Vec::new(),
+            evaluations: solved.evaluations,
+            iterations: solved.iterations,
+            stop: solved.stop,
+            wall_s: started.elapsed().as_secs_f64(),
+            details: details_of(
+                &prepared,
+                &solved,
+                skipped,
+                chosen.goal,
+                self.wall_directions_used(),
+                control_direction,
+            ),
+            files: Vec::new(),
+            history: match self.solver {
+                Solver::Ga | Solver::Ils => crate::planner::History::Generations,
+                Solver::Exact | Solver::Nearest | Solver::Boustrophedon => crate::planner::History::None,
+            },
+            agents: Vec::new(),
+            artifacts: Box::new(()),
+        })
+    }
+}

@@ -1,0 +1,111 @@
+//! The raster the routing planners plan on: the map itself, or, where its cells are coarse
+//! against the robot, the same map with every cell split into `k × k` cells of its state.
+//!
+//! Why: the patterns and the cell-order planner place the robot's centre at cell centres
+//! (connecting moves are A* over them) and test its clearance at samples a fraction of a cell
+//! apart. On cells coarser than half the robot's width, a gap the body fits through can hold no
+//! cell centre with the clearance (a 1 m gap between pillars on 0.5 m cells: the centres lie
+//! 0.25 m from the pillars, a 0.6 m robot needs 0.3 m), so the start's component shrinks to a few
+//! cells and a plan "covers" nothing of a reachable map; and the samples lie so far apart that a
+//! move can pass a pillar's corner deeper than the body rule allows. Splitting the cells changes
+//! no geometry (each new cell lies inside one old cell of the same state), so a plan made on the
+//! refined raster is a plan on the map, scored on the map as given.
+//!
+//! Maps with cells at most half the robot's width are planned as they are: every committed
+//! study's map is such a map, and its plans stay what they were.
+
+use super::GridMap;
+use std::borrow::Cow;
+
+/// The coarsest cell, as a fraction of the robot's width, that is planned on as it is.
+pub const MAX_CELL_PER_WIDTH: f64 = 0.5;
+
+/// The cell size, as a fraction of the robot's width, that a coarser map is refined to (at most).
+pub const REFINED_CELL_PER_WIDTH: f64 = 0.25;
+
+/// How many cells each cell of a map of `resolution` metres per cell is split into along each
+/// axis for a robot `width` metres wide: 1 where `resolution ≤ width/2`, else the least `k`
+/// with `resolution / k ≤ width/4`.
+pub fn refinement(resolution: f64, width: f64) -> usize {
+    if !(width > 0.0 && resolution.is_finite()) || resolution <= MAX_CELL_PER_WIDTH * width {
+        return 1;
+    }
+    (resolution / (REFINED_CELL_PER_WIDTH * width) - 1e-9).ceil().max(1.0) as usize
+}
+
+/// `map` with every cell split into `k × k` cells of the same state (the same frame, name and
+/// extent; `k = 1` is a copy).
+pub fn refined(map: &GridMap, k: usize) -> GridMap {
+    let (cols, rows) = (map.cols() * k, map.rows() * k);
+    let mut cells = Vec::with_capacity(cols * rows);
+    for r in 0..rows {
+        for c in 0..cols {
+            cells.push(map.state(r / k, c / k));
+        }
+    }
+    GridMap::new(map.name(), cols, rows, map.resolution() / k as f64, map.origin(), cells)
+        .expect("a refined map has the free cells of its map and a positive resolution")
+}
+
+/// Per cell of `map` refined by `k` ([`refined`]), the flag of the cell of `map` it lies in.
+pub fn refined_flags(map: &GridMap, flags: &[bool], k: usize) -> Vec<bool> {
+    let cols = map.cols() * k;
+    (0..map.rows() * k * cols).map(|i| flags[map.index(i / cols / k, i % cols / k)]).collect()
+}
+
+/// The raster a routing planner plans on for a robot `width` metres wide: `map` itself where
+/// its cells are fine enough, else `map` refined by [`refinement`].
+pub fn planning_map(map: &GridMap, width: f64) -> Cow<'_, GridMap> {
+    match refinement(map.resolution(), width) {
+        1 => Cow::Borrowed(map),
+        k => Cow::Owned(refined(map, k)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Point;
+    use crate::map::CellState;
+
+    #[test]
+    fn refinement_only_where_cells_are_coarser_than_half_the_width() {
+        // (resolution, width, k)
+        let table = [
+            (0.05, 0.6, 1),
+            (0.2, 0.4, 1),
+            (0.3, 0.6, 1),
+            (0.31, 0.6, 3),
+            (0.4, 0.6, 3),
+            (0.45, 0.6, 3),
+            (0.5, 0.6, 4),
+            (0.5, 0.3, 7),
+            (0.5, f64::NAN, 1),
+        ];
+        for (res, width, k) in table {
+            assert_eq!(refinement(res, width), k, "resolution {res}, width {width}");
+        }
+    }
+
+    #[test]
+    fn a_refined_map_has_the_same_geometry() {
+        use CellState::{Free as F, Occupied as O, Unknown as U};
+        let m = GridMap::new("m", 3, 2, 0.5, Point::new(1.0, -2.0), vec![F, O, U, F, F, O]).unwrap();
+        let r = refined(&m, 3);
+        assert_eq!((r.cols(), r.rows(), r.resolution(), r.origin()), (9, 6, 0.5 / 3.0, m.origin()));
+        assert_eq!((r.width_m(), r.height_m()), (m.width_m(), m.height_m()));
+        for row in 0..r.rows() {
+            for col in 0..r.cols() {
+                let p = r.cell_centre(row, col);
+                let (mr, mc) = m.cell_at(p).unwrap();
+                assert_eq!(r.state(row, col), m.state(mr, mc), "cell ({row}, {col})");
+            }
+        }
+        assert_eq!(r.free_count(), 9 * m.free_count());
+        let flags = refined_flags(&m, &[true, false, false, false, true, true], 3);
+        assert_eq!(flags.iter().filter(|f| **f).count(), 27);
+        assert!(flags[r.index(0, 0)] && !flags[r.index(0, 3)] && flags[r.index(5, 8)]);
+        assert!(matches!(planning_map(&m, 2.0), Cow::Borrowed(_)));
+        assert_eq!(planning_map(&m, 0.6).resolution(), 0.125);
+    }
+}
