@@ -6,6 +6,8 @@
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
+#[path = "reliability/interrupts.rs"]
+mod interrupts;
 #[path = "reliability/third_pass.rs"]
 mod third_pass;
 

@@ -33,6 +33,7 @@ use crate::geom::{Point, Vector};
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 use crate::patterns::Route;
+use crate::planner::executor::SetupCutoff;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use config::{CellOrderConfig, Completion, Solver};
 use std::time::Instant;
@@ -87,49 +88,61 @@ impl<'a> Preparation<'a> {
 /// A sweep's cost is its own time plus the completion it leaves: `how.completion_m_per_m2`
 /// metres of driving per square metre of its region it does not sweep.
 pub fn prepare<'m>(scenario: &'m Scenario, how: Preparation) -> Result<Prepared<'m>, String> {
-    prepare_within(scenario, how, None)
+    prepare_within(scenario, how, &SetupCutoff::default()).map_err(|e| e.to_string())
 }
 
-/// [`prepare`], refused once `deadline` has passed (checked after the decomposition and
-/// while the transit lengths are computed, the phases that grow with the map): a run's wall
-/// clock covers its preparation.
+/// Why a preparation did not finish.
+#[derive(Debug, thiserror::Error)]
+pub enum PrepareError {
+    /// The map and settings cannot be prepared (no room, too many candidate sweeps), or the
+    /// wall clock ran out: the message says which.
+    #[error("{0}")]
+    Input(String),
+    /// The run's interrupt was raised.
+    #[error("interrupted while preparing the map")]
+    Interrupted,
+}
+
+/// [`prepare`], given up at `cutoff` (checked after the decomposition and while the transit
+/// routes are found, the phases that grow with the map): a run's wall clock and its interrupt
+/// cover its preparation.
 pub fn prepare_within<'m>(
     scenario: &'m Scenario,
     how: Preparation,
-    deadline: Option<(Instant, std::time::Duration)>,
-) -> Result<Prepared<'m>, String> {
+    cutoff: &SetupCutoff,
+) -> Result<Prepared<'m>, PrepareError> {
     let s = scenario;
     let (directions, completion_m_per_m2) = (how.directions, how.completion_m_per_m2);
     let begun = Instant::now();
-    let out_of_time = |phase: &str| {
-        let limit = deadline.map_or(0.0, |(_, d)| d.as_secs_f64());
-        format!(
-            "the wall clock (budget.wall_clock_s = {limit} s) ran out while {phase}, after {:.1} s of preparation: \
+    let stopped = |phase: &str| match cutoff.reached() {
+        Some(StopReason::Interrupted) => PrepareError::Interrupted,
+        _ => PrepareError::Input(format!(
+            "the wall clock (budget.wall_clock_s = {} s) ran out while {phase}, after {:.1} s of preparation: \
              raise budget.wall_clock_s, or offer fewer cell_order.directions",
+            cutoff.limit_s(),
             begun.elapsed().as_secs_f64()
-        )
+        )),
     };
-    let past = || deadline.is_some_and(|(d, _)| Instant::now() >= d);
-    let (clear, reach, mut sweeps) = decompose(scenario, directions)?;
+    let (clear, reach, mut sweeps) = decompose(scenario, directions).map_err(PrepareError::Input)?;
     if how.completion == Completion::Cells {
         sweeps.complete_in_cells(&clear, s.robot.width, reach.coverable(), s.robot.speed);
     }
-    if past() {
-        return Err(out_of_time("decomposing the map into cells"));
+    if cutoff.reached().is_some() {
+        return Err(stopped("decomposing the map into cells"));
     }
     let count: usize = sweeps.cells.iter().map(Vec::len).sum();
     if count > MAX_CANDIDATES {
-        return Err(format!(
+        return Err(PrepareError::Input(format!(
             "{} cells with {count} candidate sweeps exceed the limit of {MAX_CANDIDATES}; use fewer \
              cell_order.directions",
             sweeps.len()
-        ));
+        )));
     }
     let flat: Vec<&sweeps::Sweep> = sweeps.cells.iter().flatten().collect();
     let (exits, exit_id) = distinct(&flat.iter().map(|w| w.end()).chain([s.start]).collect::<Vec<_>>());
     let (entries, entry_id) = distinct(&flat.iter().map(|w| w.start()).chain([s.end]).collect::<Vec<_>>());
-    let transit = Transit::new_within(&clear, &exits, &entries, deadline.map(|(d, _)| d)).ok_or_else(|| {
-        out_of_time(&format!(
+    let transit = Transit::new_within(&clear, &exits, &entries, &|| cutoff.reached().is_some()).ok_or_else(|| {
+        stopped(&format!(
             "finding the wall-free routes between {} sweep ends and {} starts",
             exits.len(),
             entries.len()
@@ -269,7 +282,8 @@ pub fn local_optimum_plan_within(
     deadline: Option<(Instant, std::time::Duration)>,
 ) -> Result<Vec<Point>, String> {
     let planning = scenario.for_planning();
-    let prepared = prepare_within(&planning, Preparation::of(section), deadline)?;
+    let cutoff = SetupCutoff { wall_clock: deadline, interrupt: None };
+    let prepared = prepare_within(&planning, Preparation::of(section), &cutoff).map_err(|e| e.to_string())?;
     let mut tour = search::nearest_neighbour(&prepared.instance);
     local::improve(&prepared.instance, &mut tour, search::ROUNDS);
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)

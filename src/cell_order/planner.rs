@@ -329,14 +329,16 @@ impl Planner for CellOrderConfig {
         // Planned on the refined raster where the map is coarse; scored on the map as given.
         let planning = scenario.for_planning();
         let s = &*planning;
-        let deadline = budget.wall_clock.map(|d| (started + d, d));
+        let cutoff = SetupCutoff::of_budget(budget, started);
         let how = Preparation {
             directions: &self.directions,
             completion_m_per_m2: self.completion_m_per_m2,
             completion: self.completion,
         };
-        let prepared = prepare_within(s, how, deadline)
-            .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
+        let prepared = prepare_within(s, how, &cutoff).map_err(|e| match e {
+            PrepareError::Interrupted => PlannerError::Interrupted,
+            PrepareError::Input(m) => PlannerError::Input(format!("cell_order on map `{}`: {m}", s.map.name())),
+        })?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
         let mut solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
         let candidates: Vec<(Vec<Point>, usize)> = match self.solver {

@@ -38,20 +38,20 @@ pub fn distinct(points: &[Point]) -> (Vec<Point>, Vec<u32>) {
 impl Transit {
     /// The lengths from every point of `exits` to every point of `entries` (each distinct).
     pub fn new(clear: &Clearance, exits: &[Point], entries: &[Point]) -> Self {
-        Self::new_within(clear, exits, entries, None).expect("no deadline")
+        Self::new_within(clear, exits, entries, &|| false).expect("never given up")
     }
 
-    /// [`Self::new`], given up (`None`) once `deadline` has passed: a run's wall clock covers
-    /// its preparation too.
+    /// [`Self::new`], given up (`None`) once `give_up` says so (asked before each exit's
+    /// routes): a run's wall clock and its interrupt cover its preparation too.
     pub fn new_within(
         clear: &Clearance,
         exits: &[Point],
         entries: &[Point],
-        deadline: Option<std::time::Instant>,
+        give_up: &(dyn Fn() -> bool + Sync),
     ) -> Option<Self> {
         let expired = std::sync::atomic::AtomicBool::new(false);
         let past = || {
-            deadline.is_some_and(|d| std::time::Instant::now() >= d) && {
+            give_up() && {
                 expired.store(true, std::sync::atomic::Ordering::Relaxed);
                 true
             }

@@ -251,6 +251,7 @@ pub fn run_experiment(
             history.discard();
             return Err(match e {
                 PlannerError::Input(m) => OutputError::Planner(m),
+                PlannerError::Interrupted => OutputError::Interrupted { iterations: 0 },
                 PlannerError::Io(e) => OutputError::Io { path: dir.join("history.csv"), source: e },
             });
         }

@@ -70,6 +70,8 @@ pub struct NegotiationOutcome {
     pub evaluations: u64,
     /// Per round and robot.
     pub history: Vec<RoundRecord>,
+    /// Whether the run's interrupt ended it.
+    pub interrupted: bool,
 }
 
 /// The seed of robot `k`'s GA under the run's `seed`: the run's own seed for the first robot
@@ -107,6 +109,7 @@ pub fn negotiate(
     projection: Projection,
     seed: u64,
     np: &NegotiationParams,
+    interrupt: Option<&crate::planner::executor::Interrupt>,
 ) -> NegotiationOutcome {
     let robots = fleet.robots();
     let mut gas: Vec<ThesisGa> = robots
@@ -128,7 +131,11 @@ pub fn negotiate(
     let round_iterations = np.round_iterations.max(1);
     let n = robots.len() as u64;
     let share = |k: usize| np.evaluations.map(|e| e / n + u64::from((k as u64) < e % n));
-    let active = |k: usize, s: &GaState| s.iteration < np.iterations && share(k).is_none_or(|e| s.evaluations < e);
+    // A raised interrupt ends every robot's GA at its next generation, inside a round.
+    let interrupted = || interrupt.is_some_and(|i| i.is_raised());
+    let active = |k: usize, s: &GaState| {
+        s.iteration < np.iterations && share(k).is_none_or(|e| s.evaluations < e) && !interrupted()
+    };
     while states.iter().enumerate().any(|(k, s)| active(k, s)) {
         gas.par_iter().zip(states.par_iter_mut()).enumerate().for_each(|(k, (ga, state))| {
             let mut scratches = ga.new_scratches();
@@ -182,7 +189,7 @@ pub fn negotiate(
     }
     let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
     let evaluations = states.iter().map(|s| s.evaluations).sum();
-    NegotiationOutcome { paths, rounds, converged, evaluations, history }
+    NegotiationOutcome { paths, rounds, converged, evaluations, history, interrupted: interrupted() }
 }
 
 #[cfg(test)]
@@ -208,7 +215,7 @@ mod tests {
         .unwrap();
         let p = params(20);
         let np = NegotiationParams { round_iterations: 30, iterations: 150, evaluations: None, tolerance: 0.0 };
-        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np);
+        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np, None);
         let r = &fleet.robots()[0];
         let mut single = ThesisGa {
             scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F1),
@@ -249,7 +256,7 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| negotiate(&map, &fleet, &p, Projection::F1, 7, &np))
+                .install(|| negotiate(&map, &fleet, &p, Projection::F1, 7, &np, None))
         };
         let (one, two) = (run(1), run(2));
         assert_eq!(one, two, "same plans, history and evaluations with 1 and 2 threads");
@@ -258,7 +265,8 @@ mod tests {
         assert!(one.history.iter().all(|r| r.iteration % 40 == 0));
         // Against the same robots planning alone (one round, no exchange), the negotiated plans
         // overlap less.
-        let alone = negotiate(&map, &fleet, &p, Projection::F1, 7, &NegotiationParams { round_iterations: 200, ..np });
+        let alone =
+            negotiate(&map, &fleet, &p, Projection::F1, 7, &NegotiationParams { round_iterations: 200, ..np }, None);
         assert_eq!(alone.rounds, 1);
         let scorer = FleetScorer::new(&map, &fleet);
         let (together, apart) = (scorer.score(&one.paths).unwrap(), scorer.score(&alone.paths).unwrap());

@@ -114,14 +114,18 @@ impl FleetPlanner {
         params: &crate::thesis::params::ThesisParams,
         negotiation: &super::negotiation::NegotiationParams,
         seed: u64,
+        interrupt: Option<&crate::planner::executor::Interrupt>,
     ) -> FleetPlan {
-        let out = super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation);
+        let out =
+            super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation, interrupt);
         let mut history = csv::Writer::from_writer(Vec::new());
         for record in &out.history {
             history.serialize(record).expect("records serialise");
         }
         let iterations = out.history.iter().map(|r| r.iteration).max().unwrap_or(0);
-        let stop = if out.converged {
+        let stop = if out.interrupted {
+            StopReason::Interrupted
+        } else if out.converged {
             StopReason::Settled
         } else if negotiation.evaluations.is_some() && iterations < negotiation.iterations {
             StopReason::Evaluations
@@ -197,7 +201,9 @@ impl Planner for FleetPlanner {
         let map = &scenario.map;
         let plan = match &self.method {
             FleetMethod::Central(params) => self.central(scenario, params, seed, budget, observers)?,
-            FleetMethod::Negotiate(params, negotiation) => self.negotiate(scenario, params, negotiation, seed),
+            FleetMethod::Negotiate(params, negotiation) => {
+                self.negotiate(scenario, params, negotiation, seed, budget.interrupt.as_ref())
+            }
             FleetMethod::Waypoint(waypoint) => {
                 let out = waypoint.run(scenario, seed, budget, observers)?;
                 FleetPlan {

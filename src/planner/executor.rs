@@ -41,6 +41,39 @@ impl PartialEq for Interrupt {
     }
 }
 
+/// When a planner's set-up (what it does before its first iteration: a cell decomposition and
+/// its transit routes, the waypoint planner's views) gives up: at the run's wall clock, or as
+/// soon as its interrupt is raised. The rules of [`StopRules`] are read between iterations;
+/// set-up reads these two between its own pieces of work, so that Ctrl-C or a stopping study
+/// does not wait for a preparation of minutes.
+#[derive(Clone, Debug, Default)]
+pub struct SetupCutoff {
+    /// The wall-clock limit and when it ends.
+    pub wall_clock: Option<(Instant, Duration)>,
+    /// The run's interrupt.
+    pub interrupt: Option<Interrupt>,
+}
+
+impl SetupCutoff {
+    /// The cutoff of `budget` for a run started at `started`.
+    pub fn of_budget(budget: &Budget, started: Instant) -> Self {
+        Self { wall_clock: budget.wall_clock.map(|d| (started + d, d)), interrupt: budget.interrupt.clone() }
+    }
+
+    /// Why set-up ends now, if it does: the interrupt first, then the wall clock.
+    pub fn reached(&self) -> Option<StopReason> {
+        if self.interrupt.as_ref().is_some_and(Interrupt::is_raised) {
+            return Some(StopReason::Interrupted);
+        }
+        self.wall_clock.filter(|(end, _)| Instant::now() >= *end).map(|_| StopReason::WallClock)
+    }
+
+    /// The wall-clock limit in seconds (0 without one), for messages.
+    pub fn limit_s(&self) -> f64 {
+        self.wall_clock.map_or(0.0, |(_, d)| d.as_secs_f64())
+    }
+}
+
 /// Where a run stands between two iterations: what the stop rules read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Progress {

@@ -228,6 +228,9 @@ pub enum PlannerError {
     /// An observer failed to write.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// The run's interrupt was raised before the planner had a plan (during its set-up).
+    #[error("interrupted before the first plan")]
+    Interrupted,
 }
 
 /// A coverage planner.

@@ -197,9 +197,11 @@ impl Planner for WaypointConfig {
         observers: &mut [&mut dyn Observer],
     ) -> Result<RunOutcome, PlannerError> {
         let started = Instant::now();
-        let limit = budget.wall_clock.map(|d| (started, d));
-        let world = World::build_within(&scenario.map, &self.world, self.ga.agents, limit)
-            .map_err(|e| PlannerError::Input(format!("waypoint planner on map `{}`: {e}", scenario.map.name())))?;
+        let cutoff = crate::planner::executor::SetupCutoff::of_budget(budget, started);
+        let world = World::build_within(&scenario.map, &self.world, self.ga.agents, &cutoff).map_err(|e| match e {
+            crate::waypoint::world::WorldError::Interrupted => PlannerError::Interrupted,
+            e => PlannerError::Input(format!("waypoint planner on map `{}`: {e}", scenario.map.name())),
+        })?;
         let precompute_s = started.elapsed().as_secs_f64();
         // The wall clock counts the precompute too: the GA gets what is left of it.
         let budget =

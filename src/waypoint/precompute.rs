@@ -76,13 +76,13 @@ impl Traversals {
         all
     }
 
-    /// Computes every traversal's data, or, once `deadline` has passed, stops and returns how
-    /// many waypoints' edges were done.
+    /// Computes every traversal's data, or, once `give_up` says so (asked before each
+    /// waypoint's edges), stops and returns how many waypoints' edges were done.
     pub fn compute(
         map: &WorkMap,
         graph: &Graph,
         sensing: &Sensing,
-        deadline: Option<std::time::Instant>,
+        give_up: &(dyn Fn() -> bool + Sync),
     ) -> Result<Self, usize> {
         use crate::coverage::raster::{RasterGrid, for_each_swept_cell};
         use crate::geom::Point;
@@ -114,7 +114,7 @@ impl Traversals {
         let edges: Vec<Vec<Traversal>> = (0..graph.points.len())
             .into_par_iter()
             .map(|i| {
-                if late.load(Ordering::Relaxed) || deadline.is_some_and(|d| std::time::Instant::now() >= d) {
+                if late.load(Ordering::Relaxed) || give_up() {
                     late.store(true, Ordering::Relaxed);
                     return Vec::new();
                 }

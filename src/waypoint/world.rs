@@ -106,6 +106,9 @@ pub enum WorldError {
         /// Waypoints of the graph.
         total: usize,
     },
+    /// The run's interrupt was raised while the views were computed.
+    #[error("interrupted while precomputing the views of the graph's edges")]
+    Interrupted,
 }
 
 /// Everything precomputed.
@@ -142,16 +145,16 @@ pub struct World {
 impl World {
     /// Builds the world for `agents` agents.
     pub fn build(map: &GridMap, p: &WorldParams, agents: usize) -> Result<Self, WorldError> {
-        Self::build_within(map, p, agents, None)
+        Self::build_within(map, p, agents, &Default::default())
     }
 
-    /// [`World::build`] that gives up with [`WorldError::OutOfTime`] once `limit` (a wall-clock
-    /// limit and when it started) has passed.
+    /// [`World::build`] that gives up at `cutoff`: with [`WorldError::OutOfTime`] once its wall
+    /// clock has passed, [`WorldError::Interrupted`] once its interrupt is raised.
     pub fn build_within(
         map: &GridMap,
         p: &WorldParams,
         agents: usize,
-        limit: Option<(std::time::Instant, std::time::Duration)>,
+        cutoff: &crate::planner::executor::SetupCutoff,
     ) -> Result<Self, WorldError> {
         let wm = WorkMap::new(map, p.scale);
         let geo = &p.geometry;
@@ -203,9 +206,12 @@ impl World {
             Objective::Camera => Sensing::Camera(camera),
             Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
         };
-        let traversals = Traversals::compute(&wm, &graph, &sensing, limit.map(|(t, d)| t + d)).map_err(|done| {
-            WorldError::OutOfTime { limit_s: limit.map_or(0.0, |l| l.1.as_secs_f64()), done, total: graph.points.len() }
-        })?;
+        let give_up = || cutoff.reached().is_some();
+        let traversals =
+            Traversals::compute(&wm, &graph, &sensing, &give_up).map_err(|done| match cutoff.reached() {
+                Some(crate::planner::StopReason::Interrupted) => WorldError::Interrupted,
+                _ => WorldError::OutOfTime { limit_s: cutoff.limit_s(), done, total: graph.points.len() },
+            })?;
         let band_px = geo.wall_band / p.scale;
         let band_flags = wm.band(band_px);
         let band_count = band_flags.iter().filter(|x| **x).count() as u64;
