@@ -18,17 +18,18 @@
 //! 2. [`map`]: grids, ROS files, presets, clearance and reachability;
 //! 3. [`coverage`]: the swept footprint, the camera, the thesis fitness equations and the
 //!    common scorer;
-//! 4. [`plot`]: figure primitives (maps, paths, charts, legends);
-//! 5. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
-//! 6. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`] and
+//! 4. [`routing`]: wall-free routes and transit lengths for every planner that routes;
+//! 5. [`plot`]: figure primitives (maps, paths, charts, legends);
+//! 6. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
+//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`] and
 //!    [`fleet`]: the planners (the cell-order GA orders the patterns' cells, random search
 //!    draws the thesis genome at random, a fleet is planned by the others), each validating its
 //!    own section and drawing its own figures;
-//! 7. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
-//! 8. [`study`]: grids, the runner, records, merge, estimates, Slurm;
-//! 9. [`report`]: the sections of `covga report`;
-//! 10. [`usecase`]: run and eval as library functions, under the command line and Python;
-//! 11. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
+//! 8. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
+//! 9. [`study`]: grids, the runner, records, merge, estimates, Slurm;
+//! 10. [`report`]: the sections of `covga report`;
+//! 11. [`usecase`]: run and eval as library functions, under the command line and Python;
+//! 12. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
 
 pub mod cell_order;
 pub mod cli;
@@ -46,6 +47,7 @@ pub mod planner;
 pub mod plot;
 pub mod random_search;
 pub mod report;
+pub mod routing;
 pub mod stats;
 pub mod study;
 pub mod thesis;

@@ -16,6 +16,7 @@ const LAYERS: &[&[&str]] = &[
     &["ga"],
     &["map"],
     &["coverage"],
+    &["routing"],
     &["plot"],
     &["planner"],
     &["thesis", "waypoint", "patterns", "cell_order"],

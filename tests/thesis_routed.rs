@@ -32,8 +32,8 @@ fn open_room(res: f64) -> covga::map::GridMap {
 
 #[test]
 fn on_a_map_without_obstacles_routed_moves_are_the_straight_moves_wherever_those_are_executable() {
-    use covga::coverage::routes::{RouteScratch, Router};
     use covga::geom::Point;
+    use covga::routing::routes::{RouteScratch, Router};
     use rand::{Rng, SeedableRng};
     let width = 0.6;
     for res in [0.2, 0.1, 0.05] {
@@ -121,11 +121,11 @@ fn routed_moves_are_refused_for_fleets() {
 
 /// The routes `p → q` and `q → p` of a 0.6 m robot touch no non-free cell and stay on the map.
 fn assert_routes_clear(
-    router: &covga::coverage::routes::Router,
+    router: &covga::routing::routes::Router,
     map: &covga::map::GridMap,
     p: covga::geom::Point,
     q: covga::geom::Point,
-    scratch: &mut covga::coverage::routes::RouteScratch,
+    scratch: &mut covga::routing::routes::RouteScratch,
 ) {
     for (a, b) in [(p, q), (q, p)] {
         let route = router.route(a, b, scratch);
@@ -142,8 +142,8 @@ fn assert_routes_clear(
 /// the grid at the nearest centre whose leg keeps clear.
 #[test]
 fn a_route_from_beside_a_wall_joins_the_grid_where_the_body_keeps_clear() {
-    use covga::coverage::routes::{RouteScratch, Router};
     use covga::geom::Point;
+    use covga::routing::routes::{RouteScratch, Router};
     let map = covga::map::ros::load_ros_yaml(Path::new("experiments/maps/basement.yaml")).unwrap();
     let router = Router::new(&map, 0.6, &[Point::new(0.0, 0.0)]);
     let mut scratch = RouteScratch::default();
@@ -163,8 +163,8 @@ fn a_route_from_a_pocket_no_grid_centre_joins_starts_where_the_body_keeps_clear(
     // The basement corridor near (−9.85, −1.7) m is too narrow for any cell centre of the
     // stations' grid, yet the body fits at points on its axis: from there no clear leg joins
     // the grid, so such a point is no place to stand and the route starts at a centre.
-    use covga::coverage::routes::{RouteScratch, Router};
     use covga::geom::Point;
+    use covga::routing::routes::{RouteScratch, Router};
     let map = covga::map::ros::load_ros_yaml(Path::new("experiments/maps/basement.yaml")).unwrap();
     let router = Router::new(&map, 0.6, &[Point::new(0.0, 0.0)]);
     let mut scratch = RouteScratch::default();

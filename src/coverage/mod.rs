@@ -7,7 +7,6 @@
 //! thesis GA's routed moves). Planners build on this layer; it depends on none of them.
 
 pub mod bits;
-pub mod bucket_queue;
 pub mod camera;
 pub mod curve;
 #[cfg(test)]
@@ -17,12 +16,10 @@ pub mod lanes;
 pub mod motion;
 pub mod planes;
 pub mod raster;
-pub mod routes;
 pub mod rows;
 pub mod score;
 pub mod segments;
 pub mod sweep;
-pub mod transit;
 pub mod views;
 pub mod work_map;
 

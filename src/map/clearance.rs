@@ -159,7 +159,7 @@ impl<'m> Clearance<'m> {
 
     /// [`Clearance::clear_of_cells`] with `slack` metres more tolerance than the planners'
     /// own, for points that a planner put at the clearance limit and a later computation moved
-    /// by a rounding error (see `coverage::routes::STAND_SLACK_M`).
+    /// by a rounding error (see `routing::routes::STAND_SLACK_M`).
     pub fn clear_of_cells_within(&self, p: Point, slack: f64) -> bool {
         let m = &*self.map;
         if slack >= 0.0

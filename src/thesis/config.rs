@@ -399,7 +399,7 @@ impl ThesisConfig {
         let p = &self.params;
         let routes = match self.moves {
             Moves::Straight => 0.0,
-            Moves::Routed => crate::coverage::routes::Router::memory_estimate(map.rows() * map.cols(), threads),
+            Moves::Routed => crate::routing::routes::Router::memory_estimate(map.rows() * map.cols(), threads),
         };
         let views = match self.objective.0 {
             Objective::Footprint => 0.0,

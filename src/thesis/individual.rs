@@ -7,11 +7,11 @@ use super::scenario::Scenario;
 use crate::coverage::bits::{BitLayers, Tally};
 use crate::coverage::fitness::{ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
-use crate::coverage::routes::{RouteScratch, Router};
 use crate::coverage::segments::{Home, SegmentCache};
 use crate::coverage::views::SegmentViews;
 use crate::coverage::{PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
+use crate::routing::routes::{RouteScratch, Router};
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 

@@ -5,10 +5,10 @@ use super::genome::Frame;
 use super::objective::CameraObjective;
 use crate::coverage::bits::BitLayers;
 use crate::coverage::fitness::Projection;
-use crate::coverage::routes::{RouteScratch, Router};
 use crate::coverage::{CoverageGrid, Footprint};
 use crate::geom::Point;
 use crate::map::GridMap;
+use crate::routing::routes::{RouteScratch, Router};
 use serde::{Deserialize, Serialize};
 use std::sync::Arc;
 
@@ -113,7 +113,7 @@ pub enum Moves {
     /// Straight segments, as 003: a move into a wall sweeps it and is penalised (eq. 3.16).
     #[default]
     Straight,
-    /// Around obstacles (003 §5.3's future work): see [`crate::coverage::routes`].
+    /// Around obstacles (003 §5.3's future work): see [`crate::routing::routes`].
     Routed,
 }
 

@@ -223,7 +223,7 @@ mod tests {
     /// viewpoints to cell centres centimetres away.
     #[test]
     fn a_pattern_genome_under_routed_moves_drives_the_pattern() {
-        use crate::coverage::routes::Router;
+        use crate::routing::routes::Router;
         use crate::thesis::scenario::Moves;
         for (name, start) in [("thesis-2", Point::new(1.3, 1.3)), ("office", Point::new(2.0, 2.0))] {
             let map = preset(name).unwrap();

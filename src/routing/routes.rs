@@ -25,7 +25,7 @@
 //! On a map with no obstacle cells every viewpoint is a place to stand and every segment is
 //! clear, so routed moves are the straight moves bit for bit.
 
-use super::bits::BitLayers;
+use crate::coverage::bits::BitLayers;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::map::body;
@@ -176,7 +176,7 @@ impl Router {
         clear.restrict(reach.centres().to_vec());
         let landmarks = landmark_distances(&clear, stations);
         let nearest = nearest_centres(&clear);
-        let bits = BitLayers::new(&super::CoverageGrid::new(map));
+        let bits = BitLayers::new(&crate::coverage::CoverageGrid::new(map));
         Self { clear, coverable: reach.coverable().to_vec(), width, nearest, landmarks, bits }
     }
 
