@@ -223,6 +223,37 @@ fn path_title(planner: &str, map: &str, summary: &Summary, outcome: &RunOutcome)
     }
 }
 
+/// The planner's run of `exp`, its generations streamed to `history` and to `extra`; a run
+/// refused, failed or interrupted leaves nothing behind, not even its partial history.
+fn plan(
+    exp: &Experiment,
+    dir: &Path,
+    mut history: HistoryCsv,
+    extra: &mut [&mut dyn Observer],
+) -> Result<(RunOutcome, HistoryCsv), OutputError> {
+    let outcome = {
+        let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
+        observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
+        exp.planner.planner().run(&exp.scenario, exp.seed, &exp.budget, &mut observers)
+    };
+    match outcome {
+        Ok(o) if o.stop == crate::planner::StopReason::Interrupted => {
+            // A run cut short by its caller is not the run the file asks for: nothing of it stays.
+            history.discard();
+            Err(OutputError::Interrupted { iterations: o.iterations })
+        }
+        Ok(o) => Ok((o, history)),
+        Err(e) => {
+            history.discard();
+            Err(match e {
+                PlannerError::Input(m) => OutputError::Planner(m),
+                PlannerError::Interrupted => OutputError::Interrupted { iterations: 0 },
+                PlannerError::Io(e) => OutputError::Io { path: dir.join("history.csv"), source: e },
+            })
+        }
+    }
+}
+
 /// Runs the experiment, streaming history to `dir`, and writes every result file; `figures`
 /// adds the PNG/SVG pictures (studies leave them out: one picture costs more than a run).
 pub fn run_experiment(
@@ -232,30 +263,9 @@ pub fn run_experiment(
     extra: &mut [&mut dyn Observer],
 ) -> Result<Summary, OutputError> {
     std::fs::create_dir_all(dir).map_err(io_err(dir))?;
-    let mut history = HistoryCsv::create(dir, exp.diversity_every).map_err(io_err(dir))?;
+    let history = HistoryCsv::create(dir, exp.diversity_every).map_err(io_err(dir))?;
     let planner = exp.planner.planner();
-    let outcome = {
-        let mut observers: Vec<&mut dyn Observer> = vec![&mut history];
-        observers.extend(extra.iter_mut().map(|o| &mut **o as &mut dyn Observer));
-        planner.run(&exp.scenario, exp.seed, &exp.budget, &mut observers)
-    };
-    let outcome = match outcome {
-        Ok(o) if o.stop == crate::planner::StopReason::Interrupted => {
-            // A run cut short by its caller is not the run the file asks for: nothing of it stays.
-            history.discard();
-            return Err(OutputError::Interrupted { iterations: o.iterations });
-        }
-        Ok(o) => o,
-        Err(e) => {
-            // A refused run leaves nothing behind: not even its partial history.
-            history.discard();
-            return Err(match e {
-                PlannerError::Input(m) => OutputError::Planner(m),
-                PlannerError::Interrupted => OutputError::Interrupted { iterations: 0 },
-                PlannerError::Io(e) => OutputError::Io { path: dir.join("history.csv"), source: e },
-            });
-        }
-    };
+    let (outcome, history) = plan(exp, dir, history, extra)?;
     match &outcome.history {
         History::Generations => history.finish().map_err(io_err(dir))?,
         History::Own(bytes) => {

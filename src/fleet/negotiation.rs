@@ -176,20 +176,25 @@ pub fn negotiate(
         if !states.iter().enumerate().any(|(k, s)| active(k, s)) {
             break;
         }
-        // The exchange: every robot pre-marks what the others' plans sweep (and re-evaluates
-        // its population only when that changed).
-        for (k, (ga, state)) in gas.iter_mut().zip(states.iter_mut()).enumerate() {
-            let others: Vec<bool> =
-                (0..grid.len()).map(|i| previous.iter().enumerate().any(|(j, cells)| j != k && cells[i])).collect();
-            if others != premarked[k] {
-                ga.set_premarks(state, &others);
-                premarked[k] = others;
-            }
-        }
+        exchange(&mut gas, &mut states, &previous, &mut premarked);
     }
     let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
     let evaluations = states.iter().map(|s| s.evaluations).sum();
     NegotiationOutcome { paths, rounds, converged, evaluations, history, interrupted: interrupted() }
+}
+
+/// The exchange: every robot pre-marks what the others' plans (`swept`, one flag per cell
+/// each) sweep, and re-evaluates its population only when that changed from `premarked`.
+fn exchange(gas: &mut [ThesisGa], states: &mut [GaState], swept: &[Vec<bool>], premarked: &mut [Vec<bool>]) {
+    let cells = swept.first().map_or(0, Vec::len);
+    for (k, (ga, state)) in gas.iter_mut().zip(states.iter_mut()).enumerate() {
+        let others: Vec<bool> =
+            (0..cells).map(|i| swept.iter().enumerate().any(|(j, cells)| j != k && cells[i])).collect();
+        if others != premarked[k] {
+            ga.set_premarks(state, &others);
+            premarked[k] = others;
+        }
+    }
 }
 
 #[cfg(test)]

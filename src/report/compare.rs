@@ -356,11 +356,23 @@ pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> 
     render_with(t, cmp, true)
 }
 
+/// Why no stratum of `d` holds both the baseline and another value of `cmp`'s key (column
+/// `key`): the key follows another parameter, or the grid never crosses it with the others.
+fn no_stratum(t: &RunsTable, key: usize, d: &Design, cmp: &Comparison) -> ReportError {
+    let why = match followed_by(t, key, &d.kept) {
+        Some(of) => format!("`{}` follows {of} (confounded with it)", cmp.key),
+        None => "the grid never crosses it with the other parameters".to_string(),
+    };
+    ReportError::Input(format!(
+        "--compare {}={}: no stratum of the other parameters holds both the baseline and another value: {why}",
+        cmp.key, cmp.baseline
+    ))
+}
+
 /// [`render`]; `complete` says whether the study is finished (else a configuration recorded
 /// once is paired by seed like any other).
 fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Rendered, ReportError> {
     let cmp = &numeric_baseline(t, cmp);
-    let input = |m: String| ReportError::Input(m);
     let (key, _) = compared_values(t, cmp)?;
     let mut d = design(t, cmp, key);
     d.once_run_pairs = complete;
@@ -382,14 +394,7 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
         }
     }
     if rows.is_empty() {
-        let why = match followed_by(t, key, &d.kept) {
-            Some(of) => format!("`{}` follows {of} (confounded with it)", cmp.key),
-            None => "the grid never crosses it with the other parameters".to_string(),
-        };
-        return Err(input(format!(
-            "--compare {}={}: no stratum of the other parameters holds both the baseline and another value: {why}",
-            cmp.key, cmp.baseline
-        )));
+        return Err(no_stratum(t, key, &d, cmp));
     }
     let num = |r: usize, c: &str| t.col(c).and_then(|i| t.rows[r][i].parse::<f64>().ok()).unwrap_or(f64::NAN);
     let mut md = String::new();

@@ -74,20 +74,7 @@ pub fn render(t: &RunsTable, by: &[String]) -> Result<String, ReportError> {
         .map(|b| t.col(b).ok_or_else(|| ReportError::Input(format!("--by {b}: no such column in runs.csv"))))
         .collect::<Result<_, _>>()?;
     let num = |r: &Vec<String>, c: usize| r[c].parse::<f64>().unwrap_or(f64::NAN);
-    let mut by_config: BTreeMap<&str, BTreeMap<u64, &Vec<String>>> = BTreeMap::new();
-    let mut reps = std::collections::BTreeSet::new();
-    for r in &t.rows {
-        let k: u64 = r[replicate].parse().map_err(|_| ReportError::Input(format!("replicate `{}`", r[replicate])))?;
-        reps.insert(k);
-        by_config.entry(&r[config]).or_default().insert(k, r);
-    }
-    let reps: Vec<u64> = reps.into_iter().collect();
-    if reps.len() < 2 {
-        return Err(ReportError::Input(format!(
-            "--seed-to-seed compares replicates, and the runs hold {} (seeds = 2 or more in the grid makes more)",
-            if reps.is_empty() { "none".to_string() } else { format!("only replicate {}", reps[0]) }
-        )));
-    }
+    let (by_config, reps) = replicates_of(t, config, replicate)?;
     let complete: Vec<&BTreeMap<u64, &Vec<String>>> =
         by_config.values().filter(|v| reps.iter().all(|k| v.contains_key(k))).collect();
     let n = complete.len();
@@ -154,6 +141,31 @@ pub fn render(t: &RunsTable, by: &[String]) -> Result<String, ReportError> {
     md.push_str(&thesis_cells(t));
     md.push_str(&infeasible(t, &by_cols, replicate, sweeps, executable));
     Ok(md)
+}
+
+/// The rows of `t` by configuration (column `config`) and replicate (column `replicate`), and
+/// the replicates; refused with fewer than two replicates, which leave nothing to compare.
+#[allow(clippy::type_complexity)]
+fn replicates_of(
+    t: &RunsTable,
+    config: usize,
+    replicate: usize,
+) -> Result<(BTreeMap<&str, BTreeMap<u64, &Vec<String>>>, Vec<u64>), ReportError> {
+    let mut by_config: BTreeMap<&str, BTreeMap<u64, &Vec<String>>> = BTreeMap::new();
+    let mut reps = std::collections::BTreeSet::new();
+    for r in &t.rows {
+        let k: u64 = r[replicate].parse().map_err(|_| ReportError::Input(format!("replicate `{}`", r[replicate])))?;
+        reps.insert(k);
+        by_config.entry(&r[config]).or_default().insert(k, r);
+    }
+    let reps: Vec<u64> = reps.into_iter().collect();
+    if reps.len() < 2 {
+        return Err(ReportError::Input(format!(
+            "--seed-to-seed compares replicates, and the runs hold {} (seeds = 2 or more in the grid makes more)",
+            if reps.is_empty() { "none".to_string() } else { format!("only replicate {}", reps[0]) }
+        )));
+    }
+    Ok((by_config, reps))
 }
 
 /// 003 Tables A.1/A.2 beside the same cells of the study, where the study has them.

@@ -142,6 +142,32 @@ pub struct World {
     pub reachable_walls: f64,
 }
 
+/// What the robot sees or sweeps along every edge of `graph` (the camera or the footprint of
+/// `p`), given up at `cutoff`.
+fn views_within(
+    wm: &WorkMap,
+    graph: &Graph,
+    p: &WorldParams,
+    cutoff: &crate::planner::executor::SetupCutoff,
+) -> Result<Traversals, WorldError> {
+    let camera = Camera {
+        d_min: p.d_min / p.scale,
+        d_max: p.d_max / p.scale,
+        fov: p.fov_deg.to_radians(),
+        sections: p.sections,
+        shape: p.view_shape,
+    };
+    let sensing = match p.objective {
+        Objective::Camera => Sensing::Camera(camera),
+        Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
+    };
+    let give_up = || cutoff.reached().is_some();
+    Traversals::compute(wm, graph, &sensing, &give_up).map_err(|done| match cutoff.reached() {
+        Some(crate::planner::StopReason::Interrupted) => WorldError::Interrupted,
+        _ => WorldError::OutOfTime { limit_s: cutoff.limit_s(), done, total: graph.points.len() },
+    })
+}
+
 impl World {
     /// Builds the world for `agents` agents.
     pub fn build(map: &GridMap, p: &WorldParams, agents: usize) -> Result<Self, WorldError> {
@@ -195,23 +221,7 @@ impl World {
         }
         let starts: Vec<u32> =
             (0..agents).map(|a| graph.nearest(starts_px[a.min(starts_px.len() - 1)]) as u32).collect();
-        let camera = Camera {
-            d_min: p.d_min / p.scale,
-            d_max: p.d_max / p.scale,
-            fov: p.fov_deg.to_radians(),
-            sections: p.sections,
-            shape: p.view_shape,
-        };
-        let sensing = match p.objective {
-            Objective::Camera => Sensing::Camera(camera),
-            Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
-        };
-        let give_up = || cutoff.reached().is_some();
-        let traversals =
-            Traversals::compute(&wm, &graph, &sensing, &give_up).map_err(|done| match cutoff.reached() {
-                Some(crate::planner::StopReason::Interrupted) => WorldError::Interrupted,
-                _ => WorldError::OutOfTime { limit_s: cutoff.limit_s(), done, total: graph.points.len() },
-            })?;
+        let traversals = views_within(&wm, &graph, p, cutoff)?;
         let band_px = geo.wall_band / p.scale;
         let band_flags = wm.band(band_px);
         let band_count = band_flags.iter().filter(|x| **x).count() as u64;
