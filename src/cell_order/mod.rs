@@ -2,7 +2,7 @@
 //! (which cell next, at which lane direction, entered from which corner), the view of
 //! Bähnemann et al. (2019) that boustrophedon coverage is a generalised travelling-salesman
 //! problem. Cells and their candidate sweeps come from [`sweeps`], wall-free transit costs
-//! between sweep ends from [`transit`], the tour problem from [`tour`]; the GA ([`search`],
+//! between sweep ends from [`crate::routing::transit`], the tour problem from [`tour`]; the GA ([`search`],
 //! operators in [`operators`], the memetic step in [`local`]), the exact Held–Karp solver
 //! ([`exact`]) or the iterated local search of the GTSP reference ([`ils`]) orders them; the
 //! controls with no search ([`controls`]) give the plans a search has to beat. The plan drives the chosen sweeps joined by

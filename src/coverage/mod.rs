@@ -2,9 +2,9 @@
 //! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`]; the
 //! thesis fitness equations that turn them into `cov_final`, `t_final` and `f` ([`fitness`],
 //! 003 §3.2.1); the camera model of 000 on its working raster ([`camera`], [`work_map`]); and
-//! the common scorer every planner is compared by ([`score`]); and wall-free transit between
-//! points for a robot of a given width ([`transit`]: the cell-order GA's cost matrix and the
-//! thesis GA's routed moves). Planners build on this layer; it depends on none of them.
+//! the common scorer every planner is compared by ([`score`]). Wall-free routes and transit
+//! lengths live one layer up, in [`crate::routing`]. Planners build on this layer; it depends
+//! on none of them.
 
 pub mod bits;
 pub mod camera;

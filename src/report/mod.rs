@@ -4,38 +4,34 @@
 //! seeds, Kruskal–Wallis tests per swept parameter and the ANOVA of 003 §5.3.
 //!
 //! The reports layer reads a study's records (`crate::study::records`) and nothing runs here.
-//! One module per report section: the planner comparison ([`ablation`]), the fleet study
-//! ([`fleet_report`]), the thesis's tables and claims ([`thesis_report`], [`claims`]), the
-//! ANOVA ([`anova`], [`anova_report`]) and the group tables; [`crate::stats`] holds the tests they
+//! One module per report section: the group tables and figures, the comparisons
+//! ([`compare`]), the measures ([`measures`]), the ANOVA tables ([`anova_report`], on
+//! [`crate::stats::anova`]); what replicates the papers and the committed studies lives in
+//! [`replication`]: the planner comparison ([`ablation`]), the fleet study ([`fleet_report`]),
+//! the thesis's tables and claims ([`thesis_report`], [`claims`]), seed to seed and the plans; [`crate::stats`] holds the tests they
 //! share, [`figures`] and [`ablation_figures`] the figures drawn with `crate::plot`'s
 //! primitives. A study report is its sections in order (`sections::SECTIONS`), each reading
 //! what `study::Study` computes once.
 
-pub mod ablation;
-pub mod ablation_figures;
-mod ablation_plots;
 pub mod anova_report;
-pub mod claims;
 pub mod compare;
 mod curves;
 mod design;
 mod effects;
 pub mod figures;
-pub mod fleet_report;
 pub mod folder_record;
 pub mod measures;
-pub mod plans;
+pub mod replication;
 mod report_tables;
 pub mod rescore;
 pub mod search_objective;
 mod sections;
-pub mod seed_to_seed;
 mod study;
-pub mod thesis_report;
 
 use crate::ga::pareto::non_dominated;
 use crate::stats::median;
 use crate::study::records::RunsTable;
+pub use replication::{ablation, ablation_figures, claims, fleet_report, plans, seed_to_seed, thesis_report};
 use std::path::Path;
 
 /// Report failures.

@@ -299,7 +299,7 @@ fn parameter_claims(runs: &Runs, out: &mut Vec<Row>) {
 
 /// The claims section of the thesis report, for the runs of `t`, their final diversity read
 /// through `folders`.
-pub fn section(t: &RunsTable, folders: &super::folder_record::FolderRecords) -> String {
+pub fn section(t: &RunsTable, folders: &crate::report::folder_record::FolderRecords) -> String {
     let mut md = String::from("\n## The claims of 003 §5.1, checked\n\n");
     let rows: Vec<usize> = (0..t.rows.len())
         .filter(|&r| {

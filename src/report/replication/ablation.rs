@@ -4,8 +4,8 @@
 //! the best path of each planner on each map, and findings in plain words derived from those
 //! numbers. Planners are compared only through the common scorer's columns.
 
-use super::search_objective::{self, MapRuns};
-use super::{ReportError, param_columns};
+use crate::report::search_objective::{self, MapRuns};
+use crate::report::{ReportError, param_columns};
 use crate::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
 use crate::study::records::RunsTable;
 use std::collections::{BTreeMap, BTreeSet};

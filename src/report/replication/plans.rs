@@ -14,9 +14,9 @@
 //! folder) is read back from the `plans.csv` the report wrote when they were there, so that the
 //! committed `plans.md` re-makes byte for byte from committed files.
 
-use super::ReportError;
-use super::compare::Rendered;
 use crate::ga::pareto::{hypervolume_2d, non_dominated};
+use crate::report::ReportError;
+use crate::report::compare::Rendered;
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -91,7 +91,7 @@ impl Reference {
         let text = std::fs::read_to_string(file).map_err(|e| input(e.to_string()))?;
         let table = RunsTable::parse(&text).map_err(input)?;
         // The reference rows are the yardstick of every run: checked as a study's own rows are.
-        super::check_finite(&table).map_err(input)?;
+        crate::report::check_finite(&table).map_err(input)?;
         let Some(map) = map_column(&table) else {
             return Err(input(
                 "no `map.source` or `map` column: the reference plans are matched to runs by their map".into(),
@@ -247,12 +247,12 @@ pub fn render(
     previous: &Path,
 ) -> Result<Rendered, ReportError> {
     let file = dir.join("runs.csv");
-    let (t, _, failed) = super::read_filtered_runs(dir, filter)?;
+    let (t, _, failed) = crate::report::read_filtered_runs(dir, filter)?;
     if t.rows.is_empty() {
         return Err(ReportError::Input(format!("{}: no runs to report", file.display())));
     }
     if super::fleet_report::applies(&t) {
-        return Err(ReportError::Input(super::FLEET_NOT_PLANS.into()));
+        return Err(ReportError::Input(crate::report::FLEET_NOT_PLANS.into()));
     }
     let reference = reference.map(Reference::read).transpose()?;
     let (Some(id), Some(map)) = (t.col("run_id"), map_column(&t)) else {
@@ -277,7 +277,8 @@ pub fn render(
             let target = reference
                 .as_ref()
                 .and_then(|r| Some((r.num(&row[map], "cov_final_free")?, r.num(&row[map], "t_final")?)));
-            let folder = super::run_folder(dir, &row[id], "the report reads each run's population from its folder")?;
+            let folder =
+                crate::report::run_folder(dir, &row[id], "the report reads each run's population from its folder")?;
             runs.insert(row[id].clone(), read_run(&folder, target)?);
         }
         runs
@@ -299,7 +300,7 @@ pub fn render(
     let markdown = text::markdown(&t, &runs, reference.as_ref());
     Ok(Rendered {
         stem: "plans".into(),
-        markdown: super::with_failed_note(markdown, &failed),
+        markdown: crate::report::with_failed_note(markdown, &failed),
         csv: to_csv(&ids, &runs),
     })
 }

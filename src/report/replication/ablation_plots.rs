@@ -2,11 +2,11 @@
 //! time per map, the GAs' convergence curves (median and quartiles over seeds) and the best
 //! executable path of each planner on each map.
 
-use super::ReportError;
 use super::ablation::{Comparing, short_map};
 use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
 use crate::coverage::CoverageGrid;
 use crate::plot::path::PathFigure;
+use crate::report::ReportError;
 use crate::stats::quartiles;
 use crate::study::records::RunsTable;
 use std::path::Path;
