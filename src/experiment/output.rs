@@ -55,7 +55,7 @@ impl HistoryCsv {
     /// Opens `<dir>/history.csv` (as a temporary file until finished).
     pub fn create(dir: &Path, diversity_every: u32) -> std::io::Result<Self> {
         let path = dir.join("history.csv");
-        let tmp = dir.join(".history.csv.partial");
+        let tmp = dir.join(PARTIAL_HISTORY);
         let out = std::io::BufWriter::new(std::fs::File::create(&tmp)?);
         Ok(Self { tmp, path, out, header_written: false, diversity_every })
     }
@@ -86,6 +86,9 @@ impl Observer for HistoryCsv {
         Some(self.diversity_every)
     }
 }
+
+/// The history's file name while the run goes on (renamed to `history.csv` when it ends).
+pub const PARTIAL_HISTORY: &str = ".history.csv.partial";
 
 /// `budget.evaluations` and what the run made of it (`summary.json`'s `evaluation_budget`).
 #[derive(Clone, Debug, serde::Serialize)]

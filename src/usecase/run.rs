@@ -77,7 +77,7 @@ pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u6
 /// same experiment run again). Another run's `best_genome.csv` or `history.png` would
 /// otherwise stay beside this run's results.
 fn check_results_folder(dir: &Path, file: &ExperimentFile) -> Result<(), String> {
-    let mut entries: Vec<String> = std::fs::read_dir(dir)
+    let entries: Vec<String> = std::fs::read_dir(dir)
         .map_err(|e| format!("{}: {e}", dir.display()))?
         .flatten()
         .map(|e| e.file_name().to_string_lossy().into_owned())
@@ -86,13 +86,10 @@ fn check_results_folder(dir: &Path, file: &ExperimentFile) -> Result<(), String>
     // A run killed where it could not clean up (SIGKILL, a power cut) leaves its temporary
     // files: they are covga's own, never results, and the folder is locked now, so no other
     // process is writing them. Removed, they do not make the folder another run's.
-    entries.retain(|n| {
-        let leftover = is_leftover_temporary(n);
-        if leftover {
-            let _ = std::fs::remove_file(dir.join(n));
-        }
-        !leftover
-    });
+    let (leftovers, entries): (Vec<String>, Vec<String>) = entries.into_iter().partition(|n| is_leftover_temporary(n));
+    for n in &leftovers {
+        let _ = std::fs::remove_file(dir.join(n));
+    }
     if entries.is_empty() {
         return Ok(());
     }
@@ -114,7 +111,7 @@ fn check_results_folder(dir: &Path, file: &ExperimentFile) -> Result<(), String>
 /// Whether `name` is a temporary file a covga run writes before renaming it into place: the
 /// history while the run goes on, or an atomic write's sibling (`.NAME.tmpPID`).
 fn is_leftover_temporary(name: &str) -> bool {
-    name == ".history.csv.partial"
+    name == crate::experiment::output::PARTIAL_HISTORY
         || name
             .strip_prefix('.')
             .and_then(|n| n.rsplit_once(".tmp"))
