@@ -5,7 +5,7 @@ grids/cell-order.toml (edit this script, not the grid). Computes nothing about r
 
     python3 scripts/cell-order-grid.py target/release/covga
 
-The generated maps are committed; tests/generated_maps.rs checks that the command re-makes
+The generated maps are committed; tests/it/generated_maps.rs checks that the command re-makes
 them byte for byte.
 """
 

@@ -1,5 +1,5 @@
 //! The loaders as functions of raw bytes, for the fuzz targets in `fuzz/` and for the test that
-//! replays their corpus (`tests/fuzz_corpus.rs`). Each function runs a loader the way the
+//! replays their corpus (`tests/replays/fuzz_corpus.rs`). Each function runs a loader the way the
 //! command line does and discards the result: a fuzz input may make a loader return an error,
 //! never panic, hang or allocate without bound.
 

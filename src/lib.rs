@@ -9,7 +9,7 @@
 //! references (`003 eq. 3.13`) point into `shared/seeds` of the project's design documents.
 //!
 //! The modules form layers, bottom to top; each imports only from its own layer and those
-//! below (`tests/architecture.rs` holds the order):
+//! below (`tests/it/architecture.rs` holds the order):
 //!
 //! 1. [`geom`], [`stats`], [`io`], [`config`], [`ga`]: points and angles, the statistics
 //!    every report and Python share, files and numbers, configuration errors and range

@@ -1,5 +1,5 @@
 """Writes tests/fixtures/stats-reference.json: reference values of covga's statistics
-(`covga::stats`) computed by scipy, for the Rust test `tests/stats_reference.rs`, which has no
+(`covga::stats`) computed by scipy, for the Rust test `tests/it/stats_reference.rs`, which has no
 Python at hand. Run from the repository root when a case is added:
 
     target/python-venv/bin/python python/tests/make_stats_fixtures.py

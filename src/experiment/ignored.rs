@@ -44,35 +44,31 @@ fn why_budget_unread(file: &ExperimentFile) -> Option<String> {
 }
 
 /// The dotted keys and sections set in the TOML `text` (tables and their keys, depth two),
-/// with their why-ignored reason where `file` does not read them.
+/// with their why-ignored reason where `file` does not read them. A section none of whose keys
+/// is read, by a planner that does not read the section, is named once; otherwise each key it
+/// does not read is (a section may be unread as a whole and still hold a key that moved
+/// elsewhere, such as `thesis.projection`).
 pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String)> {
     let Ok(table) = text.parse::<toml::Table>() else { return Vec::new() };
+    let budget = why_budget_unread(file);
     let mut out = Vec::new();
     for (section, value) in &table {
-        match value {
-            toml::Value::Table(t) if ["thesis", "waypoint", "output", "budget"].contains(&section.as_str()) => {
-                for key in t.keys() {
-                    let dotted = format!("{section}.{key}");
-                    let budget = (section == "budget").then(|| why_budget_unread(file)).flatten();
-                    if let Some(why) = budget.or_else(|| why_ignored(file, &dotted)) {
-                        out.push((dotted, why));
-                    }
-                }
-            }
-            // A section read as a whole may still hold keys its settings do not read.
-            toml::Value::Table(t) if section == "cell_order" && why_ignored(file, section).is_none() => {
-                for key in t.keys() {
-                    let dotted = format!("{section}.{key}");
-                    if let Some(why) = why_ignored(file, &dotted) {
-                        out.push((dotted, why));
-                    }
-                }
-            }
-            _ => {
-                if let Some(why) = why_ignored(file, section) {
-                    out.push((section.clone(), why));
-                }
-            }
+        let whole = why_ignored(file, section);
+        let toml::Value::Table(keys) = value else {
+            out.extend(whole.map(|why| (section.clone(), why)));
+            continue;
+        };
+        let unread: Vec<(String, String)> = keys
+            .keys()
+            .filter_map(|key| {
+                let dotted = format!("{section}.{key}");
+                let why = if section == "budget" { budget.clone() } else { None };
+                why.or_else(|| why_ignored(file, &dotted)).map(|why| (dotted, why))
+            })
+            .collect();
+        match whole {
+            Some(why) if unread.len() == keys.len() => out.push((section.clone(), why)),
+            Some(_) | None => out.extend(unread),
         }
     }
     out
@@ -178,5 +174,32 @@ mod tests {
         let text = "planner = \"cell_order\"\n[cell_order]\nsolver = \"exact\"\npopulation = 10\ndirections = [0.0]\n";
         let found: Vec<String> = ignored_in_text(text, &file(text)).into_iter().map(|(k, _)| k).collect();
         assert_eq!(found, ["cell_order.population"]);
+        // A section its planner does not read is named once, unless a key in it is read (a key
+        // that moved: thesis.projection is scorer.projection).
+        for (text, wanted) in [
+            ("planner = \"waypoint\"\n[thesis]\nc_len = 0.1\npop_min = 20\n", vec!["thesis"]),
+            ("planner = \"waypoint\"\n[thesis]\nc_len = 0.1\nprojection = \"f1\"\n", vec!["thesis.c_len"]),
+            ("planner = \"spiral\"\n[cell_order]\n[budget]\niterations = 3\n", vec!["budget.iterations", "cell_order"]),
+        ] {
+            let found: Vec<String> = ignored_in_text(text, &file(text)).into_iter().map(|(k, _)| k).collect();
+            assert_eq!(found, wanted, "{text}");
+        }
+    }
+
+    #[test]
+    fn every_planner_section_is_a_section_of_the_file() {
+        let full = ExperimentFile {
+            cell_order: Some(Default::default()),
+            retrain: Some(crate::thesis::config::RetrainSection { at_iteration: 1, region: [0.0, 0.0, 1.0, 1.0] }),
+            ..ExperimentFile::default()
+        };
+        let table = toml::Table::try_from(full).unwrap();
+        for section in crate::planner::sections::PLANNER_SECTIONS {
+            assert!(
+                table.get(section.name).is_some_and(toml::Value::is_table),
+                "[{}] is not in the file",
+                section.name
+            );
+        }
     }
 }

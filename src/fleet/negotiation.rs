@@ -101,7 +101,9 @@ pub fn plan_change(a: &[bool], b: &[bool]) -> f64 {
 }
 
 /// Runs the negotiation of `fleet` on `map` with the thesis GA `params` (each robot with its
-/// own width, speed and stations).
+/// own width, speed and stations). `None` when `interrupt` was raised while the robots' initial
+/// populations were made (there is no plan yet); raised later, the robots' GAs end at their
+/// next generation and the outcome says so.
 pub fn negotiate(
     map: &GridMap,
     fleet: &Fleet,
@@ -110,7 +112,7 @@ pub fn negotiate(
     seed: u64,
     np: &NegotiationParams,
     interrupt: Option<&crate::planner::executor::Interrupt>,
-) -> NegotiationOutcome {
+) -> Option<NegotiationOutcome> {
     let robots = fleet.robots();
     let mut gas: Vec<ThesisGa> = robots
         .iter()
@@ -122,7 +124,8 @@ pub fn negotiate(
             seeds: (Vec::new(), 0),
         })
         .collect();
-    let mut states: Vec<GaState> = gas.par_iter().map(|ga| ga.init(false)).collect();
+    let raised = || interrupt.is_some_and(|i| i.is_raised());
+    let mut states: Vec<GaState> = gas.par_iter().map(|ga| ga.init_until(false, &raised)).collect::<Option<_>>()?;
     let grid = CoverageGrid::new(map);
     let mut scratch = SweepScratch::new(&grid);
     let mut previous: Vec<Vec<bool>> = vec![vec![false; grid.len()]; robots.len()];
@@ -132,10 +135,8 @@ pub fn negotiate(
     let n = robots.len() as u64;
     let share = |k: usize| np.evaluations.map(|e| e / n + u64::from((k as u64) < e % n));
     // A raised interrupt ends every robot's GA at its next generation, inside a round.
-    let interrupted = || interrupt.is_some_and(|i| i.is_raised());
-    let active = |k: usize, s: &GaState| {
-        s.iteration < np.iterations && share(k).is_none_or(|e| s.evaluations < e) && !interrupted()
-    };
+    let active =
+        |k: usize, s: &GaState| s.iteration < np.iterations && share(k).is_none_or(|e| s.evaluations < e) && !raised();
     while states.iter().enumerate().any(|(k, s)| active(k, s)) {
         gas.par_iter().zip(states.par_iter_mut()).enumerate().for_each(|(k, (ga, state))| {
             let mut scratches = ga.new_scratches();
@@ -180,7 +181,7 @@ pub fn negotiate(
     }
     let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
     let evaluations = states.iter().map(|s| s.evaluations).sum();
-    NegotiationOutcome { paths, rounds, converged, evaluations, history, interrupted: interrupted() }
+    Some(NegotiationOutcome { paths, rounds, converged, evaluations, history, interrupted: raised() })
 }
 
 /// The exchange: every robot pre-marks what the others' plans (`swept`, one flag per cell
@@ -220,7 +221,7 @@ mod tests {
         .unwrap();
         let p = params(20);
         let np = NegotiationParams { round_iterations: 30, iterations: 150, evaluations: None, tolerance: 0.0 };
-        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np, None);
+        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np, None).unwrap();
         let r = &fleet.robots()[0];
         let mut single = ThesisGa {
             scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F1),
@@ -261,7 +262,7 @@ mod tests {
                 .num_threads(threads)
                 .build()
                 .unwrap()
-                .install(|| negotiate(&map, &fleet, &p, Projection::F1, 7, &np, None))
+                .install(|| negotiate(&map, &fleet, &p, Projection::F1, 7, &np, None).unwrap())
         };
         let (one, two) = (run(1), run(2));
         assert_eq!(one, two, "same plans, history and evaluations with 1 and 2 threads");
@@ -271,7 +272,8 @@ mod tests {
         // Against the same robots planning alone (one round, no exchange), the negotiated plans
         // overlap less.
         let alone =
-            negotiate(&map, &fleet, &p, Projection::F1, 7, &NegotiationParams { round_iterations: 200, ..np }, None);
+            negotiate(&map, &fleet, &p, Projection::F1, 7, &NegotiationParams { round_iterations: 200, ..np }, None)
+                .unwrap();
         assert_eq!(alone.rounds, 1);
         let scorer = FleetScorer::new(&map, &fleet);
         let (together, apart) = (scorer.score(&one.paths).unwrap(), scorer.score(&alone.paths).unwrap());

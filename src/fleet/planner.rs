@@ -115,9 +115,10 @@ impl FleetPlanner {
         negotiation: &super::negotiation::NegotiationParams,
         seed: u64,
         interrupt: Option<&crate::planner::executor::Interrupt>,
-    ) -> FleetPlan {
+    ) -> Result<FleetPlan, PlannerError> {
         let out =
-            super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation, interrupt);
+            super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation, interrupt)
+                .ok_or(PlannerError::Interrupted)?;
         let mut history = csv::Writer::from_writer(Vec::new());
         for record in &out.history {
             history.serialize(record).expect("records serialise");
@@ -133,7 +134,7 @@ impl FleetPlanner {
             StopReason::Iterations
         };
         let changes: Vec<f64> = out.history.iter().map(|r| r.change).collect();
-        FleetPlan {
+        Ok(FleetPlan {
             paths: out.paths,
             evaluations: out.evaluations,
             iterations,
@@ -150,7 +151,7 @@ impl FleetPlanner {
             violations: Vec::new(),
             history: History::Own(history.into_inner().expect("in memory")),
             files: Vec::new(),
-        }
+        })
     }
 }
 
@@ -202,7 +203,7 @@ impl Planner for FleetPlanner {
         let plan = match &self.method {
             FleetMethod::Central(params) => self.central(scenario, params, seed, budget, observers)?,
             FleetMethod::Negotiate(params, negotiation) => {
-                self.negotiate(scenario, params, negotiation, seed, budget.interrupt.as_ref())
+                self.negotiate(scenario, params, negotiation, seed, budget.interrupt.as_ref())?
             }
             FleetMethod::Waypoint(waypoint) => {
                 let out = waypoint.run(scenario, seed, budget, observers)?;

@@ -142,6 +142,10 @@ impl<T: Member> Job<T> {
     }
 }
 
+/// Members of the initial population evaluated per thread between two looks at the set-up's
+/// stop (a few milliseconds each on the thesis maps).
+const INITIAL_BLOCK_PER_THREAD: usize = 8;
+
 /// Runs jobs in parallel, one scratch per chunk; `pop` holds the parents the jobs' children
 /// were made from. Returns the evaluations spent.
 pub(crate) fn run_jobs<T: Member>(
@@ -223,16 +227,33 @@ impl<T: Member> Generation<'_, T> {
     }
 
     /// Initial population of `size` genomes, evaluated (spec §6): the first `seeded` are
-    /// `seeds` in turn, as they are; the others random.
-    pub fn initial(&self, size: usize, seeds: &[T], seeded: usize, scratches: &mut [EvalScratch]) -> (Vec<T>, u64) {
+    /// `seeds` in turn, as they are; the others random. Asks `stop` between blocks of members
+    /// and gives up (`None`) when it says so: a large initial population on a large map is
+    /// seconds of work that an interrupt must not wait for. Each member draws from its own
+    /// stream, so the blocks change nothing.
+    pub fn initial(
+        &self,
+        size: usize,
+        seeds: &[T],
+        seeded: usize,
+        scratches: &mut [EvalScratch],
+        stop: &dyn Fn() -> bool,
+    ) -> Option<(Vec<T>, u64)> {
         let mut jobs: Vec<Job<T>> = (0..size)
             .map(|s| match seeds.get(s % seeds.len().max(1)) {
                 Some(seed) if s < seeded => Job::seed(seed.clone(), self.stream(s)),
                 _ => Job::fresh(&mut Vec::new(), self.stream(s), Op::Reinit),
             })
             .collect();
-        let evaluations = run_jobs(&mut jobs, &[], self.scenario, &self.context(), scratches);
-        (jobs.into_iter().map(|j| j.ind).collect(), evaluations)
+        let block = INITIAL_BLOCK_PER_THREAD * scratches.len().max(1);
+        let mut evaluations = 0;
+        for jobs in jobs.chunks_mut(block) {
+            if stop() {
+                return None;
+            }
+            evaluations += run_jobs(jobs, &[], self.scenario, &self.context(), scratches);
+        }
+        Some((jobs.into_iter().map(|j| j.ind).collect(), evaluations))
     }
 
     /// Architecture (a) (spec §11.1): `keep` elite copies, `select` pairs by the scheme,

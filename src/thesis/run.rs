@@ -14,9 +14,8 @@ use crate::ga::control;
 use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
 use crate::ga::parents::Param;
 use crate::ga::rng::{Purpose, Rng, stream};
-use crate::planner::Budget;
-use crate::planner::StopReason;
-use crate::planner::executor::{Search, StopRules, execute};
+use crate::planner::executor::{Interrupt, Search, StopRules, execute};
+use crate::planner::{Budget, PlannerError, StopReason};
 use std::time::Instant;
 
 /// The algorithm: what stays fixed during a run. `T` is what the population holds: one
@@ -169,11 +168,16 @@ impl<T: Member> Ga<T> {
     /// Creates and evaluates the initial population (spec §6) — iteration 0. Measures the
     /// diversity when `measure_diversity` or the parameter control needs it.
     pub fn init(&self, measure_diversity: bool) -> GaState<T> {
+        self.init_until(measure_diversity, &|| false).expect("a set-up that never stops")
+    }
+
+    /// [`Self::init`], giving up (`None`) when `stop` says so between blocks of members.
+    pub fn init_until(&self, measure_diversity: bool, stop: &dyn Fn() -> bool) -> Option<GaState<T>> {
         let mut scratches = self.scratches();
         let size = self.params.initial_size();
         let (seeds, seeded) = (&self.seeds.0, self.seeds.1.min(size));
         let (population, evaluations) =
-            self.generation(0, self.fixed_effective(), &[]).initial(size, &seeds[..], seeded, &mut scratches);
+            self.generation(0, self.fixed_effective(), &[]).initial(size, &seeds[..], seeded, &mut scratches, stop)?;
         let seed_points = match self.params.seed_bound {
             SeedBound::None => Vec::new(),
             SeedBound::Dominate => {
@@ -200,7 +204,7 @@ impl<T: Member> Ga<T> {
             diversity_scratch: DiversityScratch::default(),
         };
         self.measure_diversity(&mut state, measure_diversity);
-        state
+        Some(state)
     }
 
     fn measure_diversity(&self, state: &mut GaState<T>, wanted: bool) {
@@ -253,19 +257,22 @@ impl<T: Member> Ga<T> {
     }
 
     /// Runs to the end of the budget ([`execute`]: the stop rules of `budget`), handing
-    /// statistics to `observers`.
+    /// statistics to `observers`. The run's interrupt also ends the initial population's
+    /// evaluation ([`PlannerError::Interrupted`]: there is no plan yet); the other stop rules
+    /// let it finish, as the evaluation budget's rule says.
     pub fn run(
         &mut self,
         budget: &Budget,
         retrain: Option<&Retrain>,
         observers: &mut [&mut dyn Observer],
-    ) -> std::io::Result<ThesisOutcome<T>>
+    ) -> Result<ThesisOutcome<T>, PlannerError>
     where
         T::World: Premark,
     {
         let started = Instant::now();
         let diversity_every: Vec<u32> = observers.iter().filter_map(|o| o.diversity_every()).collect();
-        let state = self.init(!diversity_every.is_empty());
+        let interrupted = || budget.interrupt.as_ref().is_some_and(Interrupt::is_raised);
+        let state = self.init_until(!diversity_every.is_empty(), &interrupted).ok_or(PlannerError::Interrupted)?;
         // Reachability is measured only for someone who reads the records.
         let reach = if observers.is_empty() { ReachMask::default() } else { T::reach_mask(&self.scenario) };
         let best_seen = bounded_fitness(

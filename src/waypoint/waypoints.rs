@@ -23,6 +23,12 @@ pub struct Spacing {
 /// Places waypoints (px coordinates); also returns how many were added to fill gaps left by
 /// nudging and merging (see [`fill_gaps`]).
 pub fn place(map: &WorkMap, s: &Spacing) -> (Vec<(f64, f64)>, usize) {
+    place_until(map, s, &|| false).expect("a placement that never gives up")
+}
+
+/// [`place`], giving up (`None`) when `give_up` says so: between its passes and within the
+/// geodesic spreads of [`fill_gaps`], which take most of a second on a fine raster of a large map.
+pub fn place_until(map: &WorkMap, s: &Spacing, give_up: &dyn Fn() -> bool) -> Option<(Vec<(f64, f64)>, usize)> {
     let (g, b, min_clearance) = (s.step, s.buffer, s.min_clearance);
     let mut pts = Vec::new();
     let mut j = 0;
@@ -37,10 +43,16 @@ pub fn place(map: &WorkMap, s: &Spacing) -> (Vec<(f64, f64)>, usize) {
         }
         j += 1;
     }
+    if give_up() {
+        return None;
+    }
     let pts: Vec<(f64, f64)> = pts.into_iter().filter_map(|p| nudge(map, p, g, b, min_clearance)).collect();
+    if give_up() {
+        return None;
+    }
     let mut pts = merge_crowded(map, pts, s.merge, b);
-    let added = fill_gaps(map, &mut pts, s);
-    (pts, added)
+    let added = fill_gaps(map, &mut pts, s, give_up)?;
+    Some((pts, added))
 }
 
 /// Chamfer costs of a straight and a diagonal pixel step (5-7 chamfer: the geodesic distance in
@@ -67,10 +79,27 @@ pub fn geodesic(
     map: &WorkMap,
     fits: &[bool],
     dist: &mut [u32],
-    mut parent: Option<&mut [u32]>,
+    parent: Option<&mut [u32]>,
     sources: &[usize],
     centred: bool,
 ) {
+    geodesic_until(map, fits, dist, parent, sources, centred, &|| false);
+}
+
+/// Pixels settled between two looks at a geodesic spread's `give_up` (a few milliseconds).
+const PIXELS_PER_LOOK: u32 = 1 << 16;
+
+/// [`geodesic`], asking `give_up` every [`PIXELS_PER_LOOK`] pixels; `false` when it gave up
+/// (`dist` then holds a partial spread).
+fn geodesic_until(
+    map: &WorkMap,
+    fits: &[bool],
+    dist: &mut [u32],
+    mut parent: Option<&mut [u32]>,
+    sources: &[usize],
+    centred: bool,
+    give_up: &dyn Fn() -> bool,
+) -> bool {
     let mut heap = BinaryHeap::new();
     for &s in sources {
         dist[s] = 0;
@@ -80,9 +109,14 @@ pub fn geodesic(
         heap.push(Reverse((0u32, s)));
     }
     let (w, h) = (map.width as i64, map.height as i64);
+    let mut settled = 0u32;
     while let Some(Reverse((d, i))) = heap.pop() {
         if d > dist[i] {
             continue;
+        }
+        settled = settled.wrapping_add(1);
+        if settled.is_multiple_of(PIXELS_PER_LOOK) && give_up() {
+            return false;
         }
         let (c, r) = ((i % map.width) as i64, (i / map.width) as i64);
         for (dc, dr) in [(-1, 0), (1, 0), (0, -1), (0, 1), (-1, -1), (1, -1), (-1, 1), (1, 1)] {
@@ -104,6 +138,7 @@ pub fn geodesic(
             }
         }
     }
+    true
 }
 
 /// The pixel index of a px-coordinate point, if it lies on the raster.
@@ -117,13 +152,15 @@ pub fn pixel_index(map: &WorkMap, p: (f64, f64)) -> Option<usize> {
 /// that space) from every waypoint: a corridor or room whose waypoints were all nudged or
 /// merged away gets one back, as does a region with none. The farthest pixel is served
 /// first, by a waypoint nudged from it like a grid point (or the pixel itself when the nudge
-/// would leave it unserved). Returns how many were added.
-pub fn fill_gaps(map: &WorkMap, pts: &mut Vec<(f64, f64)>, s: &Spacing) -> usize {
+/// would leave it unserved). Returns how many were added; `None` when `give_up` said so.
+pub fn fill_gaps(map: &WorkMap, pts: &mut Vec<(f64, f64)>, s: &Spacing, give_up: &dyn Fn() -> bool) -> Option<usize> {
     let fits = fits_mask(map, s.min_clearance);
     let mut dist = vec![u32::MAX; fits.len()];
     let index = |p: (f64, f64)| pixel_index(map, p);
     let sources: Vec<usize> = pts.iter().filter_map(|&p| index(p)).filter(|&i| fits[i]).collect();
-    geodesic(map, &fits, &mut dist, None, &sources, false);
+    if !geodesic_until(map, &fits, &mut dist, None, &sources, false, give_up) {
+        return None;
+    }
     let reach = ((s.step + s.buffer) * f64::from(STEP_COST[0])).ceil() as u32;
     let mut added = 0;
     loop {
@@ -131,10 +168,13 @@ pub fn fill_gaps(map: &WorkMap, pts: &mut Vec<(f64, f64)>, s: &Spacing) -> usize
         let Some((far, &d)) =
             dist.iter().enumerate().filter(|&(i, _)| fits[i]).max_by(|a, b| a.1.cmp(b.1).then(b.0.cmp(&a.0)))
         else {
-            return added;
+            return Some(added);
         };
         if d <= reach {
-            return added;
+            return Some(added);
+        }
+        if give_up() {
+            return None;
         }
         let pixel = ((far % map.width) as f64 + 0.5, (far / map.width) as f64 + 0.5);
         let nudged = nudge(map, pixel, s.step, s.buffer, s.min_clearance)
@@ -142,7 +182,9 @@ pub fn fill_gaps(map: &WorkMap, pts: &mut Vec<(f64, f64)>, s: &Spacing) -> usize
         let mut trial = dist.clone();
         let chosen = match nudged {
             Some((p, i)) => {
-                geodesic(map, &fits, &mut trial, None, &[i], false);
+                if !geodesic_until(map, &fits, &mut trial, None, &[i], false, give_up) {
+                    return None;
+                }
                 (trial[far] <= reach).then_some(p)
             }
             None => None,
@@ -153,7 +195,9 @@ pub fn fill_gaps(map: &WorkMap, pts: &mut Vec<(f64, f64)>, s: &Spacing) -> usize
                 pts.push(p);
             }
             None => {
-                geodesic(map, &fits, &mut dist, None, &[far], false);
+                if !geodesic_until(map, &fits, &mut dist, None, &[far], false, give_up) {
+                    return None;
+                }
                 pts.push(pixel);
             }
         }
@@ -309,12 +353,12 @@ mod tests {
         assert!(placed.iter().any(in_corridor));
         let mut pts: Vec<(f64, f64)> = placed.into_iter().filter(|p| !in_corridor(p)).collect();
         let before = pts.len();
-        let added = fill_gaps(&map, &mut pts, &s);
+        let added = fill_gaps(&map, &mut pts, &s, &|| false).unwrap();
         assert!(added >= 1);
         assert_eq!(pts.len(), before + added);
         let back: Vec<_> = pts[before..].iter().filter(|p| in_corridor(p)).collect();
         assert!(!back.is_empty(), "no waypoint returned to the corridor: {:?}", &pts[before..]);
         // Every point where the UAV fits is again within g + b (geodesic) of a waypoint.
-        assert_eq!(fill_gaps(&map, &mut pts, &s), 0);
+        assert_eq!(fill_gaps(&map, &mut pts, &s, &|| false), Some(0));
     }
 }

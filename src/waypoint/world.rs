@@ -106,8 +106,16 @@ pub enum WorldError {
         /// Waypoints of the graph.
         total: usize,
     },
-    /// The run's interrupt was raised while the views were computed.
-    #[error("interrupted while precomputing the views of the graph's edges")]
+    /// The wall clock ran out while the waypoints were placed.
+    #[error(
+        "the wall clock of {limit_s} s (`budget.wall_clock_s`) ran out while placing the waypoints, before any plan; raise it or coarsen `scorer.camera.scale`"
+    )]
+    PlacingOutOfTime {
+        /// The wall-clock limit (s).
+        limit_s: f64,
+    },
+    /// The run's interrupt was raised while the world was built (waypoints or views).
+    #[error("interrupted while building the waypoint graph and its views")]
     Interrupted,
 }
 
@@ -183,6 +191,13 @@ impl World {
         cutoff: &crate::planner::executor::SetupCutoff,
     ) -> Result<Self, WorldError> {
         let wm = WorkMap::new(map, p.scale);
+        let placing_stopped = || match cutoff.reached() {
+            Some(crate::planner::StopReason::Interrupted) => WorldError::Interrupted,
+            _ => WorldError::PlacingOutOfTime { limit_s: cutoff.limit_s() },
+        };
+        if cutoff.reached().is_some() {
+            return Err(placing_stopped());
+        }
         let geo = &p.geometry;
         let spacing = waypoints::Spacing {
             step: geo.grid_step / p.scale,
@@ -191,7 +206,8 @@ impl World {
             min_clearance: p.uav_width / (2.0 * p.scale),
         };
         let b = spacing.buffer;
-        let (pts, gap_fills) = waypoints::place(&wm, &spacing);
+        let give_up = || cutoff.reached().is_some();
+        let (pts, gap_fills) = waypoints::place_until(&wm, &spacing, &give_up).ok_or_else(placing_stopped)?;
         if pts.is_empty() {
             return Err(WorldError::NoWaypoints(p.hallway));
         }

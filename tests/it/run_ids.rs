@@ -5,13 +5,10 @@
 //! means to alter runs (a new default, say) re-records the fixture with
 //! `COVGA_RECORD_IDS=1 cargo test --test run_ids` and re-runs the affected studies.
 
+use crate::common::repo;
 use covga::study::grid::Study;
 use covga::study::runner::grid_hash;
 use std::path::{Path, PathBuf};
-
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 /// `name hash runs` per shipped grid, sorted by name.
 fn shipped_grid_ids() -> String {

@@ -10,6 +10,7 @@ use covga::experiment::file::ExperimentFile;
 use covga::experiment::ignored::why_ignored;
 use covga::experiment::output::run_experiment;
 use covga::experiment::registry::PlannerKind;
+use covga::planner::sections::PLANNER_SECTIONS;
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -34,9 +35,6 @@ const VARIANTS: [&str; 10] = [
 
 /// The small budget every variant runs with.
 const SMALL: &str = "seed = 3\n[map]\nsource = \"thesis-1\"\n[budget]\nevaluations = 300\niterations = 4\n";
-
-/// The sections whose keys a planner may not read.
-const PLANNER_SECTIONS: [&str; 5] = ["thesis", "waypoint", "pattern", "cell_order", "retrain"];
 
 /// The variant's file as a table, with every planner section written out in full.
 fn full_table(variant: &str) -> Table {
@@ -100,7 +98,7 @@ fn a_key_reported_unread_changes_nothing_in_the_run() {
         let table = full_table(variant);
         let file: ExperimentFile = Value::Table(table.clone()).try_into().unwrap();
         let reference = outcome(&table).unwrap_or_else(|| panic!("{variant}: the reference run fails"));
-        for section in PLANNER_SECTIONS {
+        for section in PLANNER_SECTIONS.map(|s| s.name) {
             let Some(Value::Table(keys)) = table.get(section) else { continue };
             for (key, value) in keys {
                 let dotted = format!("{section}.{key}");

@@ -3,12 +3,8 @@
 //! the run folders (checked against the folders here), the report re-made byte for byte once
 //! the folders are gone, and the input that cannot be reported refused before anything is written.
 
+use crate::common::covga;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn covga(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
-}
 
 const STUDY: &str = r#"
 seed = 11

@@ -2,8 +2,8 @@
 //! (`results/init-dist`, 384 runs): the comparison files, their reproducibility, and a
 //! comparison that cannot be made refused before anything is written.
 
+use crate::common::covga;
 use std::path::Path;
-use std::process::{Command, Output};
 
 /// A committed study's `runs.csv` (or its `runs.csv.xz`, decompressed).
 fn committed_runs(folder: &Path) -> Vec<u8> {
@@ -23,10 +23,6 @@ fn committed_study(folder: &Path) -> tempfile::TempDir {
     std::fs::copy(folder.join("study.json"), dir.path().join("study.json")).unwrap();
     std::fs::write(dir.path().join("runs.csv"), committed_runs(folder)).unwrap();
     dir
-}
-
-fn covga(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
 }
 
 /// A study folder holding the committed runs.csv and study.json of `results/init-dist`.

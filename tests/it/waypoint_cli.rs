@@ -1,12 +1,8 @@
 //! End-to-end tests of the waypoint planner through `covga run`: improvement, determinism
 //! across thread counts, outputs, and bad input.
 
+use crate::common::covga_threads;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn covga(args: &[&str], threads: &str) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).env("RAYON_NUM_THREADS", threads).output().expect("covga runs")
-}
 
 /// A small single-agent run on the office preset.
 fn small(extra: &str) -> String {
@@ -36,7 +32,7 @@ fn single_agent_run_improves_and_is_deterministic() {
     let exp = write(dir.path(), &small("l_init = 120"));
     let (a, b) = (dir.path().join("a"), dir.path().join("b"));
     for (out, threads) in [(&a, "1"), (&b, "2")] {
-        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], threads);
+        let o = covga_threads(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], threads);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     }
     for f in ["config.toml", "history.csv", "best_path.csv"] {
@@ -71,7 +67,7 @@ fn three_agents_share_loop_closures() {
     let dir = tempfile::tempdir().unwrap();
     let exp = write(dir.path(), &small("agents = 3\nl_init = 80\nlc_separation = 15"));
     let out = dir.path().join("o");
-    let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+    let o = covga_threads(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let s = summary_without_time(&out);
     assert_eq!(s["agents"], 3);
@@ -122,7 +118,7 @@ fn bad_waypoint_settings_are_rejected() {
     ] {
         let dir = tempfile::tempdir().unwrap();
         let exp = write(dir.path(), &small(extra));
-        let o = covga(&["run", exp.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], "1");
+        let o = covga_threads(&["run", exp.to_str().unwrap(), "--out", dir.path().join("o").to_str().unwrap()], "1");
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{extra}: {err}");
         assert!(err.contains(needle) && err.contains("w.toml"), "{extra}: expected `{needle}` in {err}");
@@ -131,7 +127,7 @@ fn bad_waypoint_settings_are_rejected() {
     // A start inside an obstacle through [stations].
     let dir = tempfile::tempdir().unwrap();
     let exp = write(dir.path(), &small("l_init = 120").replace("start = [2.0, 2.0]", "start = [15.0, 9.7]"));
-    let o = covga(&["run", exp.to_str().unwrap()], "1");
+    let o = covga_threads(&["run", exp.to_str().unwrap()], "1");
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("inside an obstacle"));
 }
@@ -154,7 +150,7 @@ fn a_camera_depth_beyond_the_map_sees_the_same_and_runs_quickly() {
         let exp = write(&sub, &text(d_max));
         let out = sub.join("out");
         let started = std::time::Instant::now();
-        let o = covga(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
+        let o = covga_threads(&["run", exp.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "2");
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
         assert!(started.elapsed().as_secs() < 30, "d_max = {d_max} took {:?}", started.elapsed());
         outs.push(out);
@@ -177,7 +173,7 @@ fn the_plan_ends_at_the_end_station_without_a_warning() {
     let text = "seed = 3\nplanner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[stations]\nstart = [2.0, 2.0]\nend = [8.0, 8.0]\n[waypoint]\npopulation = 10\ngenerations = 3\n";
     let file = write(dir.path(), text);
     let out = dir.path().join("out");
-    let o = covga(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
+    let o = covga_threads(&["run", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"], "1");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     assert!(!err.contains("stations.end"), "{err}");

@@ -3,19 +3,17 @@
 //! architecture (a) (whose own `"elite"` is its families, which shadow the registry's draw).
 //! A scheme added to the registry is covered here without an edit.
 
+use crate::common::{run_text, summary};
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::ignored::why_ignored;
-use covga::experiment::output::run_experiment;
 use covga::ga::parents::{Param, SCHEMES};
 use std::path::Path;
 
 /// Runs `text` into a fresh folder and returns its `summary.json` and `config.toml`.
 fn run(text: &str) -> (serde_json::Value, String) {
     let tmp = tempfile::tempdir().unwrap();
-    let exp = ExperimentFile::parse(text, "t.toml").unwrap().validate("t.toml", Path::new("."), "t").unwrap();
-    run_experiment(&exp, tmp.path(), false, &mut []).unwrap();
-    let summary = std::fs::read_to_string(tmp.path().join("summary.json")).unwrap();
-    (serde_json::from_str(&summary).unwrap(), std::fs::read_to_string(tmp.path().join("config.toml")).unwrap())
+    run_text(text, Path::new("."), tmp.path());
+    (summary(tmp.path()), std::fs::read_to_string(tmp.path().join("config.toml")).unwrap())
 }
 
 fn cell_order(scheme: &str) -> String {

@@ -3,9 +3,7 @@
 use std::path::Path;
 use std::process::{Command, Output, Stdio};
 
-fn run(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir).args(args).output().expect("covga runs")
-}
+use crate::common::covga_in as run;
 
 fn ok(o: &Output) -> String {
     assert!(o.status.success(), "{}\n{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
@@ -108,7 +106,7 @@ fn a_signal_leaves_a_run_that_can_be_run_again() {
     let long = "seed = 3\n[map]\nsource = \"thesis-1\"\n[thesis]\npop_min = 20\ninit_actions = 20\n[budget]\niterations = 1000000\nwall_clock_s = 30\n";
     write(dir.path(), "long.toml", long);
     let start = |out: &str| {
-        let child = Command::new(env!("CARGO_BIN_EXE_covga"))
+        let child = crate::common::command()
             .current_dir(dir.path())
             .args(["run", "long.toml", "--quiet", "--out", out])
             .stdout(Stdio::null())
@@ -343,7 +341,7 @@ fn messages_name_the_missing_resolution_and_a_busy_folder_once() {
     assert!(!err.contains("= missing"), "{err}");
     let grid = "[base]\n[base.thesis]\npop_min = 40\ninit_actions = 30\n[base.budget]\niterations = 1000000\nwall_clock_s = 3\n[axes]\n\"thesis.c_len\" = [0.1, 0.4]\n";
     write(dir.path(), "g.toml", grid);
-    let whole = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let whole = crate::common::command()
         .current_dir(dir.path())
         .args(["grid", "g.toml", "--jobs", "1", "--out", "sh"])
         .stdout(Stdio::null())

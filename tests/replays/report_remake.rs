@@ -11,7 +11,6 @@
 //! tables the record would give (the time-to-coverage section, the claims' diversity rows).
 
 use std::path::Path;
-use std::process::Command;
 
 /// Study, the committed summary's path in it, and the `covga report` arguments that made it
 /// (the README's commands; `scripts/thesis-figures.sh` for Table 4.3's figure reports).
@@ -214,7 +213,7 @@ fn every_committed_summary_is_what_covga_report_writes() {
                 std::fs::create_dir_all(&made_folder).unwrap();
                 std::fs::copy(&own, made_folder.join("run-folders.csv")).unwrap();
             }
-            let o = Command::new(env!("CARGO_BIN_EXE_covga")).arg("report").arg(tmp).args(*args).output().unwrap();
+            let o = crate::common::command().arg("report").arg(tmp).args(*args).output().unwrap();
             assert!(o.status.success(), "{study} {args:?}: {}", String::from_utf8_lossy(&o.stderr));
             // The fleet report writes report/summary.md; the study commits it at its top.
             let made_file = if file.starts_with("report") { file.to_string() } else { format!("report/{file}") };

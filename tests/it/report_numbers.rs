@@ -4,7 +4,6 @@
 //! worked in a short script outside the project and written down here).
 
 use std::collections::HashMap;
-use std::process::Command;
 
 /// (run id, config id, replicate, C_len, cov_final, t_final, wall s).
 const RUNS: [(&str, &str, u32, &str, f64, f64, f64); 6] = [
@@ -53,7 +52,7 @@ fn fixture(dir: &std::path::Path) {
 fn report_numbers_match_hand_and_independent_computations() {
     let dir = tempfile::tempdir().unwrap();
     fixture(dir.path());
-    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let o = crate::common::command()
         .args(["report", dir.path().to_str().unwrap(), "--by", "thesis.c_len"])
         .output()
         .unwrap();
@@ -115,7 +114,7 @@ fn where_filters_the_runs_and_name_keeps_reports_apart() {
     let report = |extra: &[&str]| {
         let mut args = vec!["report", dir.path().to_str().unwrap()];
         args.extend(extra);
-        Command::new(env!("CARGO_BIN_EXE_covga")).args(&args).output().unwrap()
+        crate::common::command().args(&args).output().unwrap()
     };
     // `0.40` equals `0.4` as a number.
     let o = report(&["--where", "thesis.c_len=0.40", "--name", "c-len-04"]);
@@ -198,7 +197,7 @@ fn the_claims_of_section_5_1_get_their_verdicts() {
     add("m2".into(), "thesis-2", "elite", "", 1000.0);
     std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
     std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 81}").unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_covga")).args(["report", dir.path().to_str().unwrap()]).output().unwrap();
+    let o = crate::common::command().args(["report", dir.path().to_str().unwrap()]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
     for line in [
@@ -227,7 +226,7 @@ fn the_library_call_writes_the_report_the_command_writes() {
     fixture(cli.path());
     let path = covga::report::write_report(lib.path(), &["thesis.c_len".to_string()]).unwrap();
     assert_eq!(path, lib.path().join("report/summary.md"));
-    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let o = crate::common::command()
         .args(["report", cli.path().to_str().unwrap(), "--by", "thesis.c_len"])
         .output()
         .unwrap();
@@ -249,7 +248,7 @@ fn an_empty_study_says_no_runs_are_recorded_yet() {
     std::fs::write(dir.path().join("runs.csv"), header.join(",") + "\n").unwrap();
     std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 0}").unwrap();
     for filter in [&[][..], &["--where", "thesis.c_len=0.1"][..]] {
-        let o = Command::new(env!("CARGO_BIN_EXE_covga")).arg("report").arg(dir.path()).args(filter).output().unwrap();
+        let o = crate::common::command().arg("report").arg(dir.path()).args(filter).output().unwrap();
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(o.status.code(), Some(2), "{err}");
         assert!(err.contains("no runs recorded yet"), "{filter:?}: {err}");
@@ -263,7 +262,7 @@ fn an_empty_study_says_no_runs_are_recorded_yet() {
 fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
     let dir = tempfile::tempdir().unwrap();
     fixture(dir.path());
-    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let o = crate::common::command()
         .args(["report", dir.path().to_str().unwrap(), "--by", "thesis.c_len", "--by", "map"])
         .output()
         .unwrap();
@@ -312,7 +311,7 @@ fn f_is_ranked_and_averaged_within_one_projection() {
     }
     std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
     std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 4}").unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_covga")).args(["report", dir.path().to_str().unwrap()]).output().unwrap();
+    let o = crate::common::command().args(["report", dir.path().to_str().unwrap()]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
     for line in [
@@ -362,7 +361,7 @@ fn an_empty_by_column_does_not_label_its_group() {
     }
     std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
     std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 2}").unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let o = crate::common::command()
         .args(["report", dir.path().to_str().unwrap(), "--by", "thesis.selection", "--by", "thesis.tournament_size"])
         .output()
         .unwrap();

@@ -228,12 +228,7 @@ fn the_shipped_basement_experiment_beats_every_boustrophedon_direction() {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let file = root.join("experiments/cell-order-basement.toml");
     let dir = tempfile::tempdir().unwrap();
-    let out = std::process::Command::new(env!("CARGO_BIN_EXE_covga"))
-        .args(["run", "--quiet", "--out"])
-        .arg(dir.path())
-        .arg(&file)
-        .output()
-        .unwrap();
+    let out = crate::common::command().args(["run", "--quiet", "--out"]).arg(dir.path()).arg(&file).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("summary.json")).unwrap()).unwrap();

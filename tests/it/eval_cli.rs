@@ -1,11 +1,8 @@
 //! End-to-end tests of `covga eval` and `covga maps`: metrics, pictures and bad input.
 
+use crate::common::covga;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn covga(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
-}
+use std::process::Output;
 
 fn json_of(out: &Output) -> serde_json::Value {
     assert!(out.status.success(), "stderr: {}", String::from_utf8_lossy(&out.stderr));
@@ -384,7 +381,7 @@ fn the_fleet_headline_scores_each_robot_at_its_own_width() {
 /// `covga eval --help` names every preset map.
 #[test]
 fn eval_help_lists_every_preset() {
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga")).args(["eval", "--help"]).output().unwrap();
+    let o = crate::common::command().args(["eval", "--help"]).output().unwrap();
     let help = String::from_utf8_lossy(&o.stdout);
     for name in covga::map::presets::PRESET_NAMES {
         assert!(help.contains(name), "{name} missing from:\n{help}");
@@ -396,10 +393,7 @@ fn eval_help_lists_every_preset() {
 #[test]
 fn a_robot_too_narrow_for_lanes_is_refused_at_once() {
     let started = std::time::Instant::now();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga"))
-        .args(["eval", "--map", "thesis-1", "--width", "1e-12"])
-        .output()
-        .unwrap();
+    let o = crate::common::command().args(["eval", "--map", "thesis-1", "--width", "1e-12"]).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{o:?}");
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("--width") && err.contains("at least 1.556e-4 m"), "{err}");
@@ -407,7 +401,7 @@ fn a_robot_too_narrow_for_lanes_is_refused_at_once() {
     let file = dir.path().join("narrow.toml");
     std::fs::write(&file, "planner = \"boustrophedon\"\n[robot]\nwidth = 1e-6\n[stations]\nstart = [1.3, 1.3]\n")
         .unwrap();
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga"))
+    let o = crate::common::command()
         .args(["run", file.to_str().unwrap(), "--out", dir.path().join("out").to_str().unwrap()])
         .output()
         .unwrap();
@@ -422,8 +416,7 @@ fn a_robot_too_narrow_for_lanes_is_refused_at_once() {
 #[test]
 fn maps_needs_an_out_folder() {
     let dir = tempfile::tempdir().unwrap();
-    let o =
-        std::process::Command::new(env!("CARGO_BIN_EXE_covga")).arg("maps").current_dir(dir.path()).output().unwrap();
+    let o = crate::common::command().arg("maps").current_dir(dir.path()).output().unwrap();
     assert_eq!(o.status.code(), Some(2), "{o:?}");
     assert!(String::from_utf8_lossy(&o.stderr).contains("--out"), "{o:?}");
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "nothing written");
@@ -467,9 +460,7 @@ fn a_map_smaller_than_the_default_hallway_is_scored() {
 #[test]
 fn maps_generate_writes_a_plan_that_eval_scores_from_the_printed_start() {
     let dir = tempfile::tempdir().unwrap();
-    let covga = |args: &[&str]| {
-        std::process::Command::new(env!("CARGO_BIN_EXE_covga")).args(args).current_dir(dir.path()).output().unwrap()
-    };
+    let covga = |args: &[&str]| crate::common::command().args(args).current_dir(dir.path()).output().unwrap();
     let o = covga(&["maps", "generate", "--kind", "house", "--seed", "5", "--noisy", "--out", "a"]);
     assert!(o.status.success(), "{o:?}");
     let out = String::from_utf8_lossy(&o.stdout).into_owned();

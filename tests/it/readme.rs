@@ -5,14 +5,14 @@
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
 
 fn covga(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(root()).args(args).output().expect("covga runs")
+    crate::common::covga_in(root(), args)
 }
 
 fn readme() -> String {
@@ -246,7 +246,31 @@ fn eval_help_names_every_preset_and_maps_needs_a_folder() {
         assert!(help.contains(name), "eval --help does not name the preset {name}");
     }
     let dir = tempfile::tempdir().unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir.path()).arg("maps").output().unwrap();
+    let o = crate::common::command().current_dir(dir.path()).arg("maps").output().unwrap();
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "covga maps without --out wrote files");
+}
+
+/// Every test command of the README's quickstart (`cargo test …`, `bash scripts/…tests.sh`) is a
+/// line of `.ci/run`, and every `cargo test` line of `.ci/run` is in the quickstart: what a
+/// newcomer runs is what CI runs.
+#[test]
+fn the_quickstart_test_commands_are_what_ci_runs() {
+    let text = readme();
+    let quickstart = text.split("## Quickstart").nth(1).expect("a Quickstart section");
+    let block = quickstart.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("its sh block");
+    let wanted: Vec<&str> = block
+        .lines()
+        .map(|l| l.split('#').next().unwrap_or("").trim())
+        .filter(|c| c.starts_with("cargo test") || (c.starts_with("bash scripts/") && c.ends_with("tests.sh")))
+        .collect();
+    assert!(wanted.iter().filter(|c| c.starts_with("cargo test")).count() >= 1, "no cargo test in {block}");
+    let ci = std::fs::read_to_string(root().join(".ci/run")).expect(".ci/run");
+    let ci_lines: Vec<&str> = ci.lines().map(str::trim).collect();
+    for command in &wanted {
+        assert!(ci_lines.contains(command), "the README's `{command}` is not a line of .ci/run");
+    }
+    for line in ci_lines.iter().filter(|l| l.starts_with("cargo test")) {
+        assert!(wanted.contains(line), ".ci/run's `{line}` is not in the README's quickstart");
+    }
 }

@@ -3,17 +3,13 @@
 //! one error line naming the file or key, no panic, and nothing written. Plus warnings for
 //! ignored keys, and a study killed at several moments that resumes to the same results.
 
+use crate::common::covga_in;
 use std::path::Path;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Stdio};
 
-#[path = "reliability/interrupts.rs"]
 mod interrupts;
-#[path = "reliability/third_pass.rs"]
-mod third_pass;
 
-fn covga(dir: &Path, args: &[String]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).current_dir(dir).args(args).output().expect("covga runs")
-}
+mod third_pass;
 
 /// A small valid experiment (map 1, Elite, 20 individuals, 3 iterations).
 const SMALL: &str =
@@ -170,7 +166,7 @@ const CASES: &[Case] = &[
         name: "a wall clock spent in the waypoint precompute",
         files: &[("e.toml", "planner = \"waypoint\"\n[map]\nsource = \"thesis-1\"\n[budget]\nwall_clock_s = 1e-6\n")],
         args: &["run", "e.toml", "--out", "OUT"],
-        needle: "the wall clock of 0.000001 s (`budget.wall_clock_s`) ran out while precomputing",
+        needle: "the wall clock of 0.000001 s (`budget.wall_clock_s`) ran out while placing the waypoints",
     },
     Case {
         name: "path point outside the map",
@@ -528,7 +524,7 @@ fn every_bad_input_exits_2_with_one_line_and_writes_nothing() {
         }
         let before = listing(dir.path());
         let started = std::time::Instant::now();
-        let o = covga(dir.path(), &case.args.iter().map(|a| a.to_string()).collect::<Vec<_>>());
+        let o = covga_in(dir.path(), &case.args.iter().map(|a| a.to_string()).collect::<Vec<_>>());
         let err = String::from_utf8_lossy(&o.stderr).into_owned();
         let problems = [
             (o.status.code() != Some(2)).then(|| format!("exit {:?}", o.status.code())),
@@ -573,14 +569,14 @@ fn a_path_of_a_million_points_is_refused_and_a_dense_log_is_scored() {
     std::fs::write(dir.path().join("million.csv"), lanes(1_000_000)).unwrap();
     let started = std::time::Instant::now();
     let args = |f: &str, out: &str| ["eval", "--path", f, "--out", out].map(String::from).to_vec();
-    let o = covga(dir.path(), &args("million.csv", "OUT"));
+    let o = covga_in(dir.path(), &args("million.csv", "OUT"));
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("would pose the camera") && err.contains("at most 200000 poses are scored"), "{err}");
     assert!(started.elapsed().as_secs() < 5, "refused after {:?}", started.elapsed());
     assert!(!dir.path().join("OUT").exists());
     std::fs::write(dir.path().join("log.csv"), lanes(60_000)).unwrap();
-    let o = covga(dir.path(), &args("log.csv", "scored"));
+    let o = covga_in(dir.path(), &args("log.csv", "scored"));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let svg = std::fs::metadata(dir.path().join("scored/path.svg")).unwrap().len();
     assert!(svg < 4 << 20, "path.svg of {svg} bytes for a path one figure pixel wide");
@@ -618,7 +614,7 @@ fn keys_the_selection_ignores_are_warned_about() {
     let dir = tempfile::tempdir().unwrap();
     let text = SMALL.replace("[thesis]\n", "[thesis]\ninit_individuals = 500\nkeep = 4\n");
     std::fs::write(dir.path().join("e.toml"), text).unwrap();
-    let o = covga(dir.path(), &["run".into(), "e.toml".into(), "--out".into(), "o".into(), "--quiet".into()]);
+    let o = covga_in(dir.path(), &["run", "e.toml", "--out", "o", "--quiet"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(o.status.success(), "{err}");
     for key in ["thesis.init_individuals", "thesis.keep"] {
@@ -655,7 +651,7 @@ fn budget_and_output_keys_a_planner_does_not_read_are_warned_about() {
     for (text, ignored, read) in cases {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("e.toml"), text).unwrap();
-        let o = covga(dir.path(), &["run", "e.toml", "--out", "o", "--quiet"].map(String::from));
+        let o = covga_in(dir.path(), &["run", "e.toml", "--out", "o", "--quiet"].map(String::from));
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(o.status.success(), "{text}: {err}");
         for key in *ignored {
@@ -683,7 +679,7 @@ fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
     let args = |out: &str, jobs: &str| -> Vec<String> {
         ["grid", "g.toml", "--out", out, "--jobs", jobs].iter().map(|s| s.to_string()).collect()
     };
-    let reference = covga(dir.path(), &args("reference", "2"));
+    let reference = covga_in(dir.path(), &args("reference", "2"));
     assert!(reference.status.success(), "{}", String::from_utf8_lossy(&reference.stderr));
     let mut state: u64 = 0x5EED;
     let mut next = || {
@@ -692,7 +688,7 @@ fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
         z ^ (z >> 27)
     };
-    let aborted = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let aborted = crate::common::command()
         .current_dir(dir.path())
         .args(args("killed", "1"))
         .args(["--abort-after-runs", "2"])
@@ -706,7 +702,7 @@ fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
     for _ in 0..4 {
         let delay_ms = 10 + next() % 150;
         let jobs = if next() % 2 == 0 { "1" } else { "2" };
-        let mut child = Command::new(env!("CARGO_BIN_EXE_covga"))
+        let mut child = crate::common::command()
             .current_dir(dir.path())
             .args(args("killed", jobs))
             .stdout(Stdio::null())
@@ -718,7 +714,7 @@ fn a_study_killed_at_several_moments_resumes_to_the_same_results() {
         let _ = child.wait();
     }
     assert!(recorded() >= 2, "no recorded run was lost by a kill");
-    let resumed = covga(dir.path(), &args("killed", "2"));
+    let resumed = covga_in(dir.path(), &args("killed", "2"));
     assert!(resumed.status.success(), "{}", String::from_utf8_lossy(&resumed.stderr));
     let rows = |study: &str| {
         let text = std::fs::read_to_string(dir.path().join(study).join("runs.csv")).unwrap();
@@ -744,7 +740,7 @@ fn a_folder_in_use_by_another_covga_is_refused() {
     std::fs::write(dir.path().join("long.toml"), long).unwrap();
     std::fs::write(dir.path().join("short.toml"), SMALL).unwrap();
     let spawn = |args: &[&str]| {
-        Command::new(env!("CARGO_BIN_EXE_covga"))
+        crate::common::command()
             .current_dir(dir.path())
             .args(args)
             .stdout(Stdio::null())
@@ -762,7 +758,7 @@ fn a_folder_in_use_by_another_covga_is_refused() {
     };
     let first = spawn(&["run", "long.toml", "--quiet", "--out", "D"]);
     wait_for_lock("D");
-    let second = covga(dir.path(), &["run", "long.toml", "--quiet", "--out", "D"].map(String::from));
+    let second = covga_in(dir.path(), &["run", "long.toml", "--quiet", "--out", "D"].map(String::from));
     let err = String::from_utf8_lossy(&second.stderr);
     assert_eq!(second.status.code(), Some(2), "{err}");
     assert!(err.contains(&format!("D: in use by process {}", first.id())), "{err}");
@@ -774,7 +770,7 @@ fn a_folder_in_use_by_another_covga_is_refused() {
     std::fs::write(dir.path().join("g.toml"), grid).unwrap();
     let whole = spawn(&["grid", "g.toml", "--jobs", "1", "--out", "S"]);
     wait_for_lock("S");
-    let shard = covga(dir.path(), &["grid", "g.toml", "--shard", "0/2", "--out", "S"].map(String::from));
+    let shard = covga_in(dir.path(), &["grid", "g.toml", "--shard", "0/2", "--out", "S"].map(String::from));
     let err = String::from_utf8_lossy(&shard.stderr);
     assert_eq!(shard.status.code(), Some(2), "{err}");
     assert!(err.contains("in use by process"), "{err}");
@@ -783,7 +779,7 @@ fn a_folder_in_use_by_another_covga_is_refused() {
     // Two shards of one study, at once, into one folder.
     let a = spawn(&["grid", "g.toml", "--jobs", "1", "--shard", "0/2", "--out", "T"]);
     wait_for_lock("T");
-    let b = covga(dir.path(), &["grid", "g.toml", "--jobs", "1", "--shard", "1/2", "--out", "T"].map(String::from));
+    let b = covga_in(dir.path(), &["grid", "g.toml", "--jobs", "1", "--shard", "1/2", "--out", "T"].map(String::from));
     assert!(b.status.success(), "{}", String::from_utf8_lossy(&b.stderr));
     assert!(a.wait_with_output().unwrap().status.success());
 }
@@ -796,7 +792,7 @@ fn a_fifo_as_path_file_is_refused_at_once() {
     let fifo = dir.path().join("p.csv");
     assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
     let started = std::time::Instant::now();
-    let o = covga(dir.path(), &["eval", "--map", "thesis-1", "--path", "p.csv", "--out", "OUT"].map(String::from));
+    let o = covga_in(dir.path(), &["eval", "--map", "thesis-1", "--path", "p.csv", "--out", "OUT"].map(String::from));
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("p.csv: is not a regular file"), "{err}");
@@ -833,7 +829,7 @@ fn cell_order_preparation_stops_at_the_wall_clock() {
     let e = format!("planner = \"cell_order\"\n{HALL}[budget]\nevaluations = 1\nwall_clock_s = 0.001\n");
     std::fs::write(dir.path().join("e.toml"), e).unwrap();
     let started = std::time::Instant::now();
-    let o = covga(dir.path(), &["run".into(), "e.toml".into(), "--out".into(), "OUT".into()]);
+    let o = covga_in(dir.path(), &["run", "e.toml", "--out", "OUT"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("the wall clock (budget.wall_clock_s = 0.001 s) ran out while"), "{err}");
@@ -855,10 +851,10 @@ fn a_dry_run_plans_no_seed_and_the_run_checks_it() {
     let args = |more: &[&str]| {
         ["grid", "g.toml", "--out", "OUT"].iter().chain(more).map(|s| s.to_string()).collect::<Vec<_>>()
     };
-    let dry = covga(dir.path(), &args(&["--dry-run"]));
+    let dry = covga_in(dir.path(), &args(&["--dry-run"]));
     assert!(dry.status.success(), "{dry:?}");
     assert!(String::from_utf8_lossy(&dry.stdout).contains("seed plans and cell counts are checked when it runs"));
-    let run = covga(dir.path(), &args(&[]));
+    let run = covga_in(dir.path(), &args(&[]));
     let err = String::from_utf8_lossy(&run.stderr);
     assert_eq!(run.status.code(), Some(2), "{err}");
     assert!(err.contains("`thesis.seed_population` the cell_order seed is a genome of"), "{err}");

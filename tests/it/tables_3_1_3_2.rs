@@ -9,8 +9,6 @@
 //! = 25 cells + 19 crossings). The spiral reproduces the two rows of Table 3.2 without the
 //! obstacle and without a rotation cost; the other six rows are explained below with numbers.
 
-use std::process::Command;
-
 /// What `covga eval` reports for one scenario.
 #[derive(Debug)]
 struct Eval {
@@ -33,7 +31,7 @@ fn eval(pattern: &str, obstacle: bool, projection: &str, rot: &str) -> Eval {
         args.extend(["--obstacle", "5.0,5.0,6.0,6.0", "--obstacle-in-area"]);
     }
     args.extend(["--out", dir.path().to_str().unwrap()]);
-    let out = Command::new(env!("CARGO_BIN_EXE_covga")).args(&args).output().unwrap();
+    let out = crate::common::command().args(&args).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let n = |k: &str| v[k].as_f64().unwrap_or_else(|| panic!("{k} in {v}"));

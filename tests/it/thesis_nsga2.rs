@@ -1,14 +1,13 @@
 //! `thesis.selection = "nsga2"`: Pareto selection over 003's two objectives, end to end.
 
+use crate::common::{run_text, summary};
 use covga::experiment::file::ExperimentFile;
-use covga::experiment::output::run_experiment;
 use covga::ga::pareto::dominates;
 use std::path::Path;
 
 fn run(text: &str, dir: &Path) -> serde_json::Value {
-    let exp = ExperimentFile::parse(text, "test").unwrap().validate("test", Path::new("."), "t").unwrap();
-    run_experiment(&exp, dir, false, &mut []).unwrap();
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    run_text(text, Path::new("."), dir);
+    summary(dir)
 }
 
 /// A numeric column of a CSV file by name.

@@ -1,19 +1,14 @@
 //! `thesis.moves = "routed"`: moves that would sweep an obstacle drive around it.
 
+use crate::common::{run_text, summary};
 use covga::experiment::file::ExperimentFile;
-use covga::experiment::output::run_experiment;
 use std::path::Path;
 
 /// Runs `text` (map paths relative to `base`) into a fresh folder; returns the folder.
 fn run(text: &str, base: &Path) -> tempfile::TempDir {
     let tmp = tempfile::tempdir().unwrap();
-    let exp = ExperimentFile::parse(text, "test").unwrap().validate("test", base, "t").unwrap();
-    run_experiment(&exp, tmp.path(), false, &mut []).unwrap();
+    run_text(text, base, tmp.path());
     tmp
-}
-
-fn summary(dir: &Path) -> serde_json::Value {
-    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
 }
 
 fn read(dir: &Path, file: &str) -> String {

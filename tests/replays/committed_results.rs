@@ -8,6 +8,7 @@
 //! alters a result, this test fails until the affected study is re-run and
 //! re-committed in the same change.
 
+use crate::common::repo;
 use covga::study::grid::Study;
 use covga::study::records::{RunsTable, TIMING_COLUMNS, row};
 use covga::study::runner::{MapCache, experiment_of, grid_hash};
@@ -19,10 +20,6 @@ const MAX_ROW_SECONDS: f64 = 25.0;
 
 /// The same for the rows picked to cover each value of a swept key (seconds).
 const MAX_VALUE_ROW_SECONDS: f64 = 6.0;
-
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
 
 /// The committed `runs.csv` of a study folder (or its `runs.csv.xz`, decompressed here).
 fn committed_runs(dir: &Path) -> RunsTable {

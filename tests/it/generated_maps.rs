@@ -27,7 +27,7 @@ fn every_committed_generated_map_is_remade_byte_for_byte() {
         if noisy {
             args.push("--noisy");
         }
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_covga")).args(&args).output().unwrap();
+        let o = crate::common::command().args(&args).output().unwrap();
         assert!(o.status.success(), "{name}: {o:?}");
         for ext in ["yaml", "pgm"] {
             let file = format!("{name}.{ext}");

@@ -1,12 +1,9 @@
 //! End-to-end tests of grid studies: expansion counts, resume after kill -9, shards + merge,
 //! --jobs independence, the report, and bad grid files.
 
+use crate::common::covga;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-
-fn covga(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_covga")).args(args).output().expect("covga runs")
-}
+use std::process::{Output, Stdio};
 
 fn ok(o: &Output) {
     assert!(
@@ -209,7 +206,7 @@ fn killed_study_resumes_to_the_same_results() {
     ok(&covga(&["grid", g.to_str().unwrap(), "--jobs", "2", "--out", reference.to_str().unwrap()]));
     // Killed deterministically after 4 recorded runs (the runner's fault-injection switch aborts
     // the process like SIGKILL would: no clean-up, the lock released by the OS).
-    let killed_run = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let killed_run = crate::common::command()
         .args(["grid", g.to_str().unwrap(), "--jobs", "1", "--order", "seeds", "--out", killed.to_str().unwrap()])
         .args(["--abort-after-runs", "4"])
         .stdout(Stdio::null())
@@ -229,7 +226,7 @@ fn killed_study_resumes_to_the_same_results() {
     std::io::Write::write_all(&mut f, b"deadbeef00000000,half").unwrap();
     drop(f);
     // Killed again after 3 more runs (with two jobs), then resumed to the end.
-    let again = Command::new(env!("CARGO_BIN_EXE_covga"))
+    let again = crate::common::command()
         .args(["grid", g.to_str().unwrap(), "--jobs", "2", "--out", killed.to_str().unwrap()])
         .args(["--abort-after-runs", "3"])
         .stdout(Stdio::null())
@@ -746,7 +743,7 @@ fn every_shipped_grid_dry_runs_and_every_shipped_experiment_validates() {
     for g in &grids {
         let text = std::fs::read_to_string(g).unwrap();
         assert!(!reads_outside_the_repository(root, g, &text), "{}: names a file outside the repository", g.display());
-        let o = Command::new(env!("CARGO_BIN_EXE_covga"))
+        let o = crate::common::command()
             .current_dir(root)
             .args([
                 "grid",

@@ -6,12 +6,11 @@
 //! common scorer says of it (`covga eval` of its `best_path.csv`); and a key of a section the
 //! planner does not read is named in a warning.
 
+use crate::common::run_text;
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::ignored::why_ignored;
-use covga::experiment::output::run_experiment;
 use covga::experiment::registry::PlannerKind;
 use std::path::Path;
-use std::process::Command;
 
 /// The evaluation budget of every contract run.
 const BUDGET: u64 = 900;
@@ -31,14 +30,13 @@ fn experiment(kind: PlannerKind) -> String {
 /// Runs `text` into a fresh folder; returns the folder.
 fn run(text: &str) -> tempfile::TempDir {
     let tmp = tempfile::tempdir().unwrap();
-    let exp = ExperimentFile::parse(text, "c.toml").unwrap().validate("c.toml", Path::new("."), "c").unwrap();
-    run_experiment(&exp, tmp.path(), false, &mut []).unwrap();
+    run_text(text, Path::new("."), tmp.path());
     tmp
 }
 
+/// The run's summary without its timings.
 fn summary(dir: &Path) -> serde_json::Value {
-    let mut s: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let mut s = crate::common::summary(dir);
     for timing in ["wall_s", "precompute_s"] {
         s.as_object_mut().unwrap().remove(timing);
     }
@@ -86,7 +84,7 @@ fn every_planner_keeps_the_contract() {
             "{name}: {evaluations} evaluations of a budget of {BUDGET} (step {step})"
         );
         // The returned plan is what the common scorer says of it.
-        let eval = Command::new(env!("CARGO_BIN_EXE_covga"))
+        let eval = crate::common::command()
             .args(["eval", "--map", "thesis-2", "--start", "1.3,1.3", "--json", "--path"])
             .arg(a.path().join("best_path.csv"))
             .output()

@@ -205,13 +205,13 @@ fn layer_order_problems(what: &str, described: &[Vec<String>]) -> Vec<String> {
     let flat: Vec<&str> = described.iter().flatten().map(String::as_str).collect();
     let ordered: Vec<&str> = LAYERS.iter().flat_map(|l| l.iter().copied()).collect();
     if flat != ordered {
-        return vec![format!("{what} lists the modules as {flat:?}; tests/architecture.rs as {ordered:?}")];
+        return vec![format!("{what} lists the modules as {flat:?}; tests/it/architecture.rs as {ordered:?}")];
     }
     // With the order equal, groups are runs of whole layers when each starts a layer.
     described
         .iter()
         .filter(|g| g.first().is_some_and(|m| layer(m).is_some_and(|l| LAYERS[l][0] != m.as_str())))
-        .map(|g| format!("{what}: the group {g:?} splits a layer of tests/architecture.rs"))
+        .map(|g| format!("{what}: the group {g:?} splits a layer of tests/it/architecture.rs"))
         .collect()
 }
 

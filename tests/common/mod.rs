@@ -1,0 +1,58 @@
+//! Helpers every integration test shares: the `covga` binary run with arguments (in a folder,
+//! with a thread count), the repository root, an experiment run in-process from TOML text and
+//! its `summary.json`. Included by both test binaries (`tests/it`, `tests/replays`); a binary
+//! that uses only some of them allows the rest to go unused.
+#![allow(dead_code)]
+
+use covga::experiment::file::ExperimentFile;
+use covga::experiment::output::run_experiment;
+use std::ffi::OsStr;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The repository root (where `results/`, `grids/` and `experiments/` lie).
+pub fn repo() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The `covga` binary under test, not yet started.
+pub fn command() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_covga"))
+}
+
+/// `covga ARGS` in the test's working directory (the repository root), run to the end.
+pub fn covga<S: AsRef<OsStr>>(args: &[S]) -> Output {
+    command().args(args).output().expect("covga runs")
+}
+
+/// `covga ARGS` run in `dir`.
+pub fn covga_in<S: AsRef<OsStr>>(dir: &Path, args: &[S]) -> Output {
+    command().current_dir(dir).args(args).output().expect("covga runs")
+}
+
+/// `covga ARGS` with `RAYON_NUM_THREADS = threads`.
+pub fn covga_threads<S: AsRef<OsStr>>(args: &[S], threads: &str) -> Output {
+    command().args(args).env("RAYON_NUM_THREADS", threads).output().expect("covga runs")
+}
+
+/// Fails the test with both streams unless the command succeeded.
+pub fn assert_success(o: &Output) {
+    assert!(
+        o.status.success(),
+        "stdout: {}\nstderr: {}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// Runs the experiment written as TOML `text` (relative paths read from `base`) in-process,
+/// writing its files into `out`.
+pub fn run_text(text: &str, base: &Path, out: &Path) {
+    let exp = ExperimentFile::parse(text, "test.toml").unwrap().validate("test.toml", base, "t").unwrap();
+    run_experiment(&exp, out, false, &mut []).unwrap();
+}
+
+/// The `summary.json` of the run folder `dir`.
+pub fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}

@@ -1,0 +1,13 @@
+//! The heavy replays, a test binary of their own so that CI runs and times them as a step of
+//! their own: every committed study's cheapest rows re-run (`committed_results`), every
+//! committed summary re-made (`report_remake`), the fuzzing corpus replayed (`fuzz_corpus`)
+//! and every key a planner does not read varied (`unread_keys`). The fast tests are
+//! `tests/it`.
+
+#[path = "../common/mod.rs"]
+mod common;
+
+mod committed_results;
+mod fuzz_corpus;
+mod report_remake;
+mod unread_keys;
