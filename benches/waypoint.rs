@@ -32,7 +32,9 @@ fn bench(c: &mut Criterion) {
     let world = World::build(&map, &plan.world, 1).expect("world");
     group.measurement_time(Duration::from_secs(60));
     group.bench_function("ga_1000_generations_100_organisms", |b| {
-        b.iter(|| run(&world, &plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {}).best)
+        b.iter(|| {
+            run(&world, &plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {}).expect("no interrupt").best
+        })
     });
     let ring = ExperimentFile::read(Path::new("experiments/olson-ring.toml")).expect("olson-ring.toml");
     let ring = ring.validate("olson-ring", Path::new("experiments"), "olson-ring").expect("valid");
@@ -41,7 +43,11 @@ fn bench(c: &mut Criterion) {
     let ring_world = World::build(&ring.scenario.map, &ring_plan.world, 1).expect("world");
     group.measurement_time(Duration::from_secs(30));
     group.bench_function("ring_floor_100_generations", |b| {
-        b.iter(|| run(&ring_world, &ring_plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {}).best)
+        b.iter(|| {
+            run(&ring_world, &ring_plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {})
+                .expect("no interrupt")
+                .best
+        })
     });
     group.finish();
 }

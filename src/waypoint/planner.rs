@@ -231,7 +231,8 @@ impl Planner for WaypointConfig {
                         failed.get_or_insert(e);
                     }
                 }
-            });
+            })
+            .ok_or(PlannerError::Interrupted)?;
         if let Some(e) = failed {
             return Err(e.into());
         }

@@ -174,15 +174,17 @@ pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
 
 /// Runs the GA on a built world for `p.generations` (or `limits.iterations`, if fewer), within
 /// the evaluation, wall-clock and stall limits and the interrupt of `limits` (a stall: no plan
-/// better than the best so far, more coverage or as much in less time); `on_generation` receives each generation's statistics,
-/// the population, the index of the reported organism and the evaluations so far.
+/// better than the best so far, more coverage or as much in less time); `on_generation`
+/// receives each generation's statistics, the population, the index of the reported organism
+/// and the evaluations so far. `None` when the interrupt is raised before the initial
+/// population is complete (there is no plan yet).
 pub fn run(
     world: &World,
     p: &GaParams,
     seed: u64,
     limits: &Budget,
     on_generation: &mut GenerationCallback<'_>,
-) -> WaypointOutcome {
+) -> Option<WaypointOutcome> {
     let started = std::time::Instant::now();
     let turns = TurnCosts::new(&world.graph, &world.traversals, p.objectives.rho);
     let ev = Evaluator {
@@ -202,13 +204,68 @@ pub fn run(
             .map_init(|| Union::new(words), |u, rows| Organism { eval: ev.evaluate(&rows, u), rows })
             .collect()
     };
-    // Initial population (spec §10, W16): feasible at generation-0 constraints, in attempt order.
+    let interrupted = || limits.interrupt.as_ref().is_some_and(crate::planner::executor::Interrupt::is_raised);
+    let (pop, attempt, initial_feasible) = initial_population(world, p, seed, &evaluate_all, &interrupted)?;
+    let first = &pop[reported(&pop, p, 0)].eval;
+    let best_seen = (first.coverage, first.flight_time);
+    let mut run = Generations {
+        p,
+        seed,
+        graph: g,
+        evaluate_all: &evaluate_all,
+        rng: stream(seed, Purpose::Main, &[]),
+        snap_at: [0, p.generations / 3, 2 * p.generations / 3, p.generations],
+        snapshots: Vec::new(),
+        pop,
+        evaluations: attempt,
+        generation: 0,
+        best_seen,
+    };
+    run.snapshots.push(snapshot(p, 0, &run.pop));
+    // 000's generations, or fewer where the budget's iteration limit says so.
+    let rules = StopRules::of_budget(limits, Some(p.generations.min(limits.iterations)), started);
+    let finish = match execute(&mut run, &rules, on_generation) {
+        Ok(finish) => finish,
+        Err(never) => match never {},
+    };
+    let Generations { pop, mut snapshots, .. } = run;
+    let generations = finish.iterations;
+    if generations > 0 && snapshots.last().is_none_or(|s| s.0 != generations) {
+        snapshots.push(snapshot(p, generations, &pop));
+    }
+    let best = reported(&pop, p, generations);
+    Some(WaypointOutcome {
+        population: pop,
+        best,
+        generations,
+        evaluations: finish.evaluations,
+        stop: finish.stop,
+        snapshots,
+        initial_feasible,
+    })
+}
+
+/// The initial population (spec §10, W16): organisms feasible at generation 0's constraints, in
+/// attempt order, topped up with the least-violating rejects; with the attempts made and how
+/// many were feasible. Draws batches of `population` until it has them all or has made 200 ×
+/// `population` attempts; `None` when `interrupted` says so between batches.
+fn initial_population(
+    world: &World,
+    p: &GaParams,
+    seed: u64,
+    evaluate_all: &dyn Fn(Vec<Vec<Vec<u32>>>) -> Vec<Organism>,
+    interrupted: &dyn Fn() -> bool,
+) -> Option<(Vec<Organism>, u64, usize)> {
+    let g = &world.graph;
     let c0 = required_coverage(&p.objectives, 0);
     let mut accepted: Vec<Organism> = Vec::new();
     let mut rejected: Vec<Organism> = Vec::new();
     let mut attempt = 0u64;
     let cap = 200 * p.population as u64;
     while accepted.len() < p.population && attempt < cap {
+        if interrupted() {
+            return None;
+        }
         let batch = (p.population as u64).min(cap - attempt);
         let cands: Vec<Vec<Vec<u32>>> = (attempt..attempt + batch)
             .map(|k| {
@@ -245,43 +302,7 @@ pub fn run(
     let initial_feasible = accepted.len();
     let mut pop = accepted;
     pop.extend(rejected.into_iter().take(p.population - pop.len()));
-    let first = &pop[reported(&pop, p, 0)].eval;
-    let best_seen = (first.coverage, first.flight_time);
-    let mut run = Generations {
-        p,
-        seed,
-        graph: g,
-        evaluate_all: &evaluate_all,
-        rng: stream(seed, Purpose::Main, &[]),
-        snap_at: [0, p.generations / 3, 2 * p.generations / 3, p.generations],
-        snapshots: Vec::new(),
-        pop,
-        evaluations: attempt,
-        generation: 0,
-        best_seen,
-    };
-    run.snapshots.push(snapshot(p, 0, &run.pop));
-    // 000's generations, or fewer where the budget's iteration limit says so.
-    let rules = StopRules::of_budget(limits, Some(p.generations.min(limits.iterations)), started);
-    let finish = match execute(&mut run, &rules, on_generation) {
-        Ok(finish) => finish,
-        Err(never) => match never {},
-    };
-    let Generations { pop, mut snapshots, .. } = run;
-    let generations = finish.iterations;
-    if generations > 0 && snapshots.last().is_none_or(|s| s.0 != generations) {
-        snapshots.push(snapshot(p, generations, &pop));
-    }
-    let best = reported(&pop, p, generations);
-    WaypointOutcome {
-        population: pop,
-        best,
-        generations,
-        evaluations: finish.evaluations,
-        stop: finish.stop,
-        snapshots,
-        initial_feasible,
-    }
+    Some((pop, attempt, initial_feasible))
 }
 
 /// Each organism's (coverage, flight time, feasible at generation `g`'s constraints).
