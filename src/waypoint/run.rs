@@ -245,10 +245,11 @@ pub fn run(
     })
 }
 
-/// The initial population (spec §10, W16): organisms feasible at generation 0's constraints, in
-/// attempt order, topped up with the least-violating rejects; with the attempts made and how
-/// many were feasible. Draws batches of `population` until it has them all or has made 200 ×
-/// `population` attempts; `None` when `interrupted` says so between batches.
+/// The initial population (000 §III-A.1, with the constraints of §III-A.4 at their generation-0
+/// values): organisms feasible then, in attempt order, topped up with the least-violating
+/// rejects; with the attempts made and how many were feasible. Draws batches of `population`
+/// until it has them all or has made 200 × `population` attempts (the paper sets no cap; the
+/// cap keeps a run finite); `None` when `interrupted` says so between batches.
 fn initial_population(
     world: &World,
     p: &GaParams,

@@ -1,18 +1,9 @@
 //! End-to-end tests of grid studies: expansion counts, resume after kill -9, shards + merge,
 //! --jobs independence, the report, and bad grid files.
 
-use crate::common::covga;
+use crate::common::{assert_success as ok, covga};
 use std::path::{Path, PathBuf};
-use std::process::{Output, Stdio};
-
-fn ok(o: &Output) {
-    assert!(
-        o.status.success(),
-        "stdout: {}\nstderr: {}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    );
-}
+use std::process::Stdio;
 
 /// A 12-run grid: elite, and tournament with 2 sizes, x 2 C_len x 2 seeds, 60 iterations.
 const GRID: &str = r#"
