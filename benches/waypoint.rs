@@ -7,6 +7,7 @@
 
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::registry::{PlannerConfig, PlannerKind};
+use covga::ga::observer::{GenerationRecord, Observers};
 use covga::map::presets::preset;
 use covga::planner::Budget;
 use covga::waypoint::run::run;
@@ -33,7 +34,11 @@ fn bench(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(60));
     group.bench_function("ga_1000_generations_100_organisms", |b| {
         b.iter(|| {
-            run(&world, &plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {}).expect("no interrupt").best
+            run(&world, &plan.ga, 1, &Budget::iterations(u32::MAX), &mut Observers::none(), &mut |_, _, _| {
+                GenerationRecord::default()
+            })
+            .expect("no interrupt")
+            .best
         })
     });
     let ring = ExperimentFile::read(Path::new("experiments/olson-ring.toml")).expect("olson-ring.toml");
@@ -44,9 +49,11 @@ fn bench(c: &mut Criterion) {
     group.measurement_time(Duration::from_secs(30));
     group.bench_function("ring_floor_100_generations", |b| {
         b.iter(|| {
-            run(&ring_world, &ring_plan.ga, 1, &Budget::iterations(u32::MAX), &mut |_, _, _, _| {})
-                .expect("no interrupt")
-                .best
+            run(&ring_world, &ring_plan.ga, 1, &Budget::iterations(u32::MAX), &mut Observers::none(), &mut |_, _, _| {
+                GenerationRecord::default()
+            })
+            .expect("no interrupt")
+            .best
         })
     });
     group.finish();

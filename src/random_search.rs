@@ -6,7 +6,7 @@
 
 use crate::config::ConfigError;
 use crate::coverage::score::obstacle_violations;
-use crate::ga::observer::{GenerationRecord, Observer};
+use crate::ga::observer::{GenerationRecord, Observer, Observers};
 use crate::ga::rng::{Purpose, stream};
 use crate::planner::executor::{Search, StopRules, execute};
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
@@ -92,7 +92,8 @@ impl Planner for RandomSearch {
         batches.draw(0);
         // Without an evaluation budget (a library caller's), one batch.
         let budget = Budget { evaluations: Some(budget.evaluations.unwrap_or(self.batch as u64)), ..budget.clone() };
-        let finish = execute(&mut batches, &StopRules::of_budget(&budget, None, started), observers)?;
+        let finish =
+            execute(&mut batches, &StopRules::of_budget(&budget, None, started), &mut Observers::new(observers))?;
         let (iteration, evaluations, stop, best) = (finish.iterations, finish.evaluations, finish.stop, batches.best);
         let best = best.ok_or_else(|| PlannerError::Input("random search: the evaluation budget is 0".into()))?;
         let sc = best.score;
@@ -163,18 +164,21 @@ impl Batches<'_> {
     }
 }
 
-impl<'o> Search<[&'o mut dyn Observer]> for Batches<'_> {
+impl Search for Batches<'_> {
     type Error = std::io::Error;
 
     fn progress(&self) -> (u32, u64) {
         (self.iteration, self.evaluations)
     }
 
-    fn step(&mut self, _: &mut [&'o mut dyn Observer]) -> std::io::Result<bool> {
+    fn step(&mut self, _: &mut Observers) -> std::io::Result<bool> {
         Ok(self.draw(self.iteration + 1))
     }
 
-    fn report(&mut self, observers: &mut [&'o mut dyn Observer]) -> std::io::Result<()> {
+    fn report(&mut self, observers: &mut Observers) -> std::io::Result<()> {
+        if !observers.wants(self.iteration) {
+            return Ok(());
+        }
         let b = self.best.as_ref().expect("a batch was drawn");
         let record = GenerationRecord {
             iteration: self.iteration,
@@ -188,9 +192,6 @@ impl<'o> Search<[&'o mut dyn Observer]> for Batches<'_> {
             robots: Vec::new(),
             extras: vec![("best_t_final", b.score.t_final), ("best_genome_len", b.len() as f64)],
         };
-        for o in observers.iter_mut() {
-            o.generation(&record)?;
-        }
-        Ok(())
+        observers.generation(&record)
     }
 }

@@ -249,23 +249,7 @@ impl CellOrderSection {
             ));
         }
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
-            // The cells are known only after the decomposition: counted here so that a grid
-            // refuses the configuration before it writes anything.
-            let planning = ctx.scenario.for_planning();
-            let (_, _, sweeps) = super::decompose(&planning, &directions).map_err(|m| {
-                ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name()))
-            })?;
-            if sweeps.len() > super::exact::MAX_EXACT_CELLS {
-                return Err(ctx.error(
-                    "cell_order.solver",
-                    format!(
-                        "= \"exact\" takes at most {} cells; map `{}` has {} for this robot and start (use \"ga\")",
-                        super::exact::MAX_EXACT_CELLS,
-                        ctx.scenario.map.name(),
-                        sweeps.len()
-                    ),
-                ));
-            }
+            check_exact_cells(ctx, &directions)?;
         }
         let params = DrawParams { tournament_size: self.tournament_size, pressure: self.sp, select: self.select };
         let selection = ParentDraw { scheme, params };
@@ -290,6 +274,27 @@ impl CellOrderSection {
             width: ctx.scenario.robot.width,
         })
     }
+}
+
+/// The exact solver's cell limit ([`super::exact::MAX_EXACT_CELLS`]), counted on the
+/// decomposition before a run: the cells are known only after it, and a grid must refuse the
+/// configuration before it writes anything.
+fn check_exact_cells(ctx: &Context, directions: &[f64]) -> Result<(), ConfigError> {
+    let planning = ctx.scenario.for_planning();
+    let (_, _, sweeps) = super::decompose(&planning, directions)
+        .map_err(|m| ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name())))?;
+    if sweeps.len() > super::exact::MAX_EXACT_CELLS {
+        return Err(ctx.error(
+            "cell_order.solver",
+            format!(
+                "= \"exact\" takes at most {} cells; map `{}` has {} for this robot and start (use \"ga\")",
+                super::exact::MAX_EXACT_CELLS,
+                ctx.scenario.map.name(),
+                sweeps.len()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 impl CellOrderConfig {

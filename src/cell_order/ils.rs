@@ -9,8 +9,9 @@
 //! search that owes nothing to evolution, against which the GA has to earn its place.
 
 use super::local::improve_within;
-use super::search::{FINALISTS, Generation, ROUNDS, Searched, finalists, nearest_neighbour, reads_left};
+use super::search::{FINALISTS, Generation, ROUNDS, Searched, ToRecord, finalists, nearest_neighbour, reads_left};
 use super::tour::{Instance, Tour};
+use crate::ga::observer::Observers;
 use crate::ga::rng::{Purpose, stream};
 use crate::planner::Budget;
 use crate::planner::executor::{Search, StopRules, execute};
@@ -36,17 +37,19 @@ fn bridge_cuts(n: usize, rng: &mut impl Rng) -> (usize, usize, usize) {
 /// Runs iterated local search on `inst` from `seed` within `budget` (an iteration is one kick
 /// and its descent; evaluations count each kicked tour once and the descents by the legs they
 /// read, as the GA's memetic step is charged), ranking tours by [`Instance::cost`] with
-/// `goal`; every iteration goes to `report` as a generation of one. The search starts from the
+/// `goal`; every iteration's record (made by `to_record`, a generation of one) goes to
+/// `observers`. The search starts from the
 /// best of the nearest-neighbour tour and `seeds`, each brought to a local optimum, and hands
 /// over the best tour and the fastest other distinct local optima it met, then the seeds.
-pub fn iterated_local_search<E>(
+pub fn iterated_local_search(
     inst: &Instance,
     goal: Option<f64>,
     seeds: &[Tour],
     (seed, started): (u64, Instant),
     budget: &Budget,
-    mut report: impl FnMut(&Generation) -> Result<(), E>,
-) -> Result<Searched, E> {
+    observers: &mut Observers,
+    to_record: &mut ToRecord<'_>,
+) -> std::io::Result<Searched> {
     let legs_per_tour = (inst.cells() + 1) as f64;
     let nearest = nearest_neighbour(inst);
     let nearest_time_s = inst.cost(&nearest, goal);
@@ -63,6 +66,7 @@ pub fn iterated_local_search<E>(
         budget_evaluations: budget.evaluations,
         iteration: 0,
         stuck: 0,
+        to_record,
     };
     let mut start: Option<(Tour, f64)> = None;
     for tour in std::iter::once(nearest).chain(seeds.iter().cloned()) {
@@ -73,14 +77,13 @@ pub fn iterated_local_search<E>(
     }
     let start = start.expect("the nearest-neighbour tour at least");
     (kicks.current, kicks.best) = (start.clone(), start);
-    let mut report = |g: &Generation| report(g);
-    let finish = execute(&mut kicks, &StopRules::of_budget(budget, None, started), &mut report)?;
+    let finish = execute(&mut kicks, &StopRules::of_budget(budget, None, started), observers)?;
     let finalists = finalists(&kicks.best.0, &kicks.optima);
     Ok(Searched::ended(kicks.best, finalists, seeds, finish, nearest_time_s))
 }
 
 /// Iterated local search between iterations, as [`execute`] drives it.
-struct Kicks<'a> {
+struct Kicks<'a, 'r> {
     inst: &'a Instance,
     goal: Option<f64>,
     rng: crate::ga::rng::Rng,
@@ -99,12 +102,13 @@ struct Kicks<'a> {
     iteration: u32,
     /// Kicks in a row that found nothing faster than the incumbent.
     stuck: usize,
+    to_record: &'r mut ToRecord<'r>,
 }
 
 /// Kicks without a faster tour after which each kick adds one more double bridge.
 pub const KICK_GROWTH: usize = 8;
 
-impl Kicks<'_> {
+impl Kicks<'_, '_> {
     /// `tour` brought to a local optimum within what is left of the evaluation budget, charged
     /// and remembered among the optima; with its cost.
     fn descend(&mut self, mut tour: Tour) -> (Tour, f64) {
@@ -125,14 +129,14 @@ impl Kicks<'_> {
     }
 }
 
-impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Kicks<'_> {
-    type Error = E;
+impl Search for Kicks<'_, '_> {
+    type Error = std::io::Error;
 
     fn progress(&self) -> (u32, u64) {
         (self.iteration, self.charged.ceil() as u64)
     }
 
-    fn step(&mut self, _: &mut F) -> Result<bool, E> {
+    fn step(&mut self, _: &mut Observers) -> std::io::Result<bool> {
         self.iteration += 1;
         let n = self.inst.cells();
         let mut kicked = self.current.0.clone();
@@ -156,14 +160,18 @@ impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Kicks<'_> {
         Ok(improved)
     }
 
-    fn report(&mut self, report: &mut F) -> Result<(), E> {
-        report(&Generation {
+    fn report(&mut self, observers: &mut Observers) -> std::io::Result<()> {
+        if !observers.wants(self.iteration) {
+            return Ok(());
+        }
+        let record = (self.to_record)(&Generation {
             iteration: self.iteration,
             evaluations: self.charged.ceil() as u64,
             best: (&self.best.0, self.best.1),
             mean_time_s: self.current.1,
             fitness: (self.scale / self.best.1, self.scale / self.current.1),
-        })
+        });
+        observers.generation(&record)
     }
 }
 
@@ -224,7 +232,11 @@ mod tests {
 
     fn run(inst: &Instance, seed: u64, evaluations: u64) -> Searched {
         let budget = Budget { evaluations: Some(evaluations), ..Budget::iterations(1_000_000) };
-        iterated_local_search(inst, None, &[], (seed, Instant::now()), &budget, |_| Ok::<(), ()>(())).unwrap()
+        let mut none = Observers::none();
+        iterated_local_search(inst, None, &[], (seed, Instant::now()), &budget, &mut none, &mut |g| {
+            g.record((0.0, 0.0), 1)
+        })
+        .unwrap()
     }
 
     #[test]
@@ -251,11 +263,12 @@ mod tests {
         assert_eq!((&a.best, a.evaluations, a.iterations), (&b.best, b.evaluations, b.iterations));
         let mut records = Vec::new();
         let budget = Budget { evaluations: Some(20_000), ..Budget::iterations(1_000_000) };
-        let out = iterated_local_search(&inst, None, &[], (5, Instant::now()), &budget, |g| {
-            records.push((g.iteration, g.best.1));
-            Ok::<(), ()>(())
-        })
-        .unwrap();
+        let out = super::super::search::tests::watching(|observers, to_record| {
+            iterated_local_search(&inst, None, &[], (5, Instant::now()), &budget, observers, &mut |g| {
+                records.push((g.iteration, g.best.1));
+                to_record(g)
+            })
+        });
         assert_eq!(records.len() as u32, out.iterations + 1, "one record per kick and one for the start");
         assert!(records.windows(2).all(|w| w[1].1 <= w[0].1), "the best never gets worse");
         assert!(out.best.1 < records[0].1 - 1e-9, "the kicks find a better tour than the first local optimum");

@@ -27,7 +27,7 @@ pub mod tour;
 use crate::coverage::CoverageGrid;
 use crate::coverage::curve::CoverageCurve;
 use crate::coverage::motion::rotation_time;
-use crate::ga::observer::{GenerationRecord, Observer};
+use crate::ga::observer::{Observer, Observers};
 use crate::geom::{Point, Vector};
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;

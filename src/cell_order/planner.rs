@@ -4,23 +4,6 @@
 
 use super::*;
 
-/// The history record of a search's generation (or kick): its best tour's time and lane
-/// coverage (`(over all free cells, over the reachable ones)`), with `members` feasible.
-fn generation_record(g: &search::Generation, (best_coverage, reach): (f64, f64), members: u32) -> GenerationRecord {
-    GenerationRecord {
-        iteration: g.iteration,
-        evaluations: g.evaluations,
-        best_fitness: g.fitness.0,
-        mean_fitness: g.fitness.1,
-        best_coverage,
-        best_coverage_reach: Some(reach),
-        feasible: Some(members),
-        diversity: None,
-        extras: vec![("best_time_s", g.best.1), ("mean_time_s", g.mean_time_s)],
-        robots: Vec::new(),
-    }
-}
-
 /// A solved tour and what it cost to find.
 struct Solved {
     tour: Tour,
@@ -89,21 +72,25 @@ impl CellOrderConfig {
                     Solver::Ils => 1,
                     Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => self.ga.population as u32,
                 };
-                let report = |g: &search::Generation| {
-                    let record = generation_record(g, lanes.of(prepared, scenario, g.best.0), members);
-                    observers.iter_mut().try_for_each(|o| o.generation(&record))
-                };
+                let mut to_record = |g: &search::Generation| g.record(lanes.of(prepared, scenario, g.best.0), members);
+                let observers = &mut Observers::new(observers);
                 let seeds = if self.seed_directions {
                     controls::direction_tours(prepared, &self.directions)
                 } else {
                     Vec::new()
                 };
                 let out = match self.solver {
-                    Solver::Ils => {
-                        ils::iterated_local_search(inst, self.ga.goal, &seeds, (seed, started), budget, report)?
-                    }
+                    Solver::Ils => ils::iterated_local_search(
+                        inst,
+                        self.ga.goal,
+                        &seeds,
+                        (seed, started),
+                        budget,
+                        observers,
+                        &mut to_record,
+                    )?,
                     Solver::Ga | Solver::Exact | Solver::Nearest | Solver::Boustrophedon => {
-                        search::search_from(inst, &self.ga, &seeds, (seed, started), budget, report)?
+                        search::search_from(inst, &self.ga, &seeds, (seed, started), budget, observers, &mut to_record)?
                     }
                 };
                 let (tour, cost) = out.best;
@@ -127,30 +114,7 @@ impl CellOrderConfig {
                     .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
                 Ok(self.control(prepared, Vec::new(), lanes))
             }
-            Solver::Exact => {
-                let (tour, cost) = exact::held_karp(inst).ok_or_else(|| {
-                    PlannerError::Input(format!(
-                        "cell_order on map `{}`: cell_order.solver = \"exact\" takes at most {} cells; this map has {} \
-                         (use \"ga\")",
-                        scenario.map.name(),
-                        exact::MAX_EXACT_CELLS,
-                        inst.cells()
-                    ))
-                })?;
-                // The states the dynamic programme fills stand in for evaluations.
-                let states = (1u64 << inst.cells()) * (0..inst.cells()).map(|k| inst.choices(k) as u64).sum::<u64>();
-                Ok(Solved {
-                    finalists: vec![tour.clone()],
-                    tour,
-                    cost,
-                    evaluations: states,
-                    iterations: 0,
-                    stop: StopReason::Completed,
-                    nearest: inst.time(&search::nearest_neighbour(inst)),
-                    exact: Some(cost),
-                    lanes: Vec::new(),
-                })
-            }
+            Solver::Exact => exact_tour(prepared, scenario),
         }
     }
 
@@ -398,4 +362,32 @@ impl Planner for CellOrderConfig {
             artifacts: Box::new(()),
         })
     }
+}
+
+/// The exact solver's tour (Held–Karp over the cells and their choices), its cost the
+/// lower bound of the tour model.
+fn exact_tour(prepared: &Prepared, scenario: &Scenario) -> Result<Solved, PlannerError> {
+    let inst = &prepared.instance;
+    let (tour, cost) = exact::held_karp(inst).ok_or_else(|| {
+        PlannerError::Input(format!(
+            "cell_order on map `{}`: cell_order.solver = \"exact\" takes at most {} cells; this map has {} \
+                 (use \"ga\")",
+            scenario.map.name(),
+            exact::MAX_EXACT_CELLS,
+            inst.cells()
+        ))
+    })?;
+    // The states the dynamic programme fills stand in for evaluations.
+    let states = (1u64 << inst.cells()) * (0..inst.cells()).map(|k| inst.choices(k) as u64).sum::<u64>();
+    Ok(Solved {
+        finalists: vec![tour.clone()],
+        tour,
+        cost,
+        evaluations: states,
+        iterations: 0,
+        stop: StopReason::Completed,
+        nearest: inst.time(&search::nearest_neighbour(inst)),
+        exact: Some(cost),
+        lanes: Vec::new(),
+    })
 }

@@ -9,6 +9,7 @@
 use super::local::improve_within;
 use super::operators::{choice_mutation, cuts, mutate_order, order_crossover, uniform_choices};
 use super::tour::{Instance, Tour};
+use crate::ga::observer::{GenerationRecord, Observers};
 use crate::ga::parents::ParentDraw;
 use crate::ga::rng::{Purpose, stream};
 use crate::ga::selection::best_k;
@@ -53,6 +54,29 @@ pub struct Generation<'a> {
     /// Fitness `T_NN / T` of the best and the population mean.
     pub fitness: (f64, f64),
 }
+
+impl Generation<'_> {
+    /// The record observers receive: with the lane coverage of the best tour (of the free and
+    /// of the reachable cells, which the planner sweeps) and the number of members.
+    pub fn record(&self, (best_coverage, reach): (f64, f64), members: u32) -> GenerationRecord {
+        GenerationRecord {
+            iteration: self.iteration,
+            evaluations: self.evaluations,
+            best_fitness: self.fitness.0,
+            mean_fitness: self.fitness.1,
+            best_coverage,
+            best_coverage_reach: Some(reach),
+            feasible: Some(members),
+            diversity: None,
+            extras: vec![("best_time_s", self.best.1), ("mean_time_s", self.mean_time_s)],
+            robots: Vec::new(),
+        }
+    }
+}
+
+/// Makes the record observers receive from a generation (the planner sweeps the best tour's
+/// lanes for its coverage). Called only for a generation some observer takes.
+pub type ToRecord<'r> = dyn FnMut(&Generation<'_>) -> GenerationRecord + 'r;
 
 /// How a search ended.
 #[derive(Clone, Debug, PartialEq)]
@@ -110,29 +134,32 @@ pub fn nearest_neighbour_among(inst: &Instance, allowed: impl Fn(usize, usize) -
     tour
 }
 
-/// Runs the GA on `inst` from `seed` within `budget`, handing every generation to `report`;
-/// the wall clock counts from `started` (the run's start, so the preparation counts too).
-pub fn search<E>(
+/// Runs the GA on `inst` from `seed` within `budget`, handing every generation's record
+/// (made by `to_record`) to `observers`; the wall clock counts from `started` (the run's start,
+/// so the preparation counts too).
+pub fn search(
     inst: &Instance,
     params: &GaParams,
     run: (u64, Instant),
     budget: &Budget,
-    report: impl FnMut(&Generation) -> Result<(), E>,
-) -> Result<Searched, E> {
-    search_from(inst, params, &[], run, budget, report)
+    observers: &mut Observers,
+    to_record: &mut ToRecord<'_>,
+) -> std::io::Result<Searched> {
+    search_from(inst, params, &[], run, budget, observers, to_record)
 }
 
 /// [`search`] whose first population holds `seeds` after the nearest-neighbour tour (as many as
 /// fit), and whose finalists end with them: a plan the seeds give is among those the common
 /// scorer chooses from, so the search returns nothing worse than its seeds on the scorer.
-pub fn search_from<E>(
+pub fn search_from(
     inst: &Instance,
     params: &GaParams,
     seeds: &[Tour],
     (seed, started): (u64, Instant),
     budget: &Budget,
-    mut report: impl FnMut(&Generation) -> Result<(), E>,
-) -> Result<Searched, E> {
+    observers: &mut Observers,
+    to_record: &mut ToRecord<'_>,
+) -> std::io::Result<Searched> {
     let n = inst.cells();
     let counts: Vec<usize> = (0..n).map(|k| inst.choices(k)).collect();
     let p_choice = params.p_choice.unwrap_or(1.0 / n.max(1) as f64);
@@ -177,9 +204,9 @@ pub fn search_from<E>(
         charged,
         budget_evaluations,
         iteration: 0,
+        to_record,
     };
-    let mut report = |g: &Generation| report(g);
-    let finish = execute(&mut ga, &StopRules::of_budget(budget, None, started), &mut report)?;
+    let finish = execute(&mut ga, &StopRules::of_budget(budget, None, started), observers)?;
     let finalists = finalists(&ga.best.0, &ga.pop);
     Ok(Searched::ended(ga.best, finalists, seeds, finish, nearest_time_s))
 }
@@ -211,7 +238,7 @@ impl Searched {
 }
 
 /// The cell-order GA between generations, as [`execute`] drives it.
-struct Generations<'a> {
+struct Generations<'a, 'r> {
     inst: &'a Instance,
     params: &'a GaParams,
     /// Choices per cell.
@@ -229,6 +256,7 @@ struct Generations<'a> {
     /// The evaluation budget, which the memetic step keeps to.
     budget_evaluations: Option<u64>,
     iteration: u32,
+    to_record: &'r mut ToRecord<'r>,
 }
 
 /// Leg reads a memetic step may still spend: what is left of an evaluation `budget` after
@@ -237,14 +265,14 @@ pub(super) fn reads_left(budget: Option<u64>, charged: f64, legs_per_tour: f64) 
     budget.map_or(u64::MAX, |e| ((e as f64 - charged).max(0.0) * legs_per_tour).ceil() as u64)
 }
 
-impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Generations<'_> {
-    type Error = E;
+impl Search for Generations<'_, '_> {
+    type Error = std::io::Error;
 
     fn progress(&self) -> (u32, u64) {
         (self.iteration, self.charged.ceil() as u64)
     }
 
-    fn step(&mut self, _: &mut F) -> Result<bool, E> {
+    fn step(&mut self, _: &mut Observers) -> std::io::Result<bool> {
         let (inst, params, n) = (self.inst, self.params, self.inst.cells());
         self.iteration += 1;
         let fitness: Vec<f64> = self.pop.iter().map(|(_, t)| self.scale / t).collect();
@@ -296,16 +324,20 @@ impl<E, F: FnMut(&Generation) -> Result<(), E>> Search<F> for Generations<'_> {
         Ok(improved)
     }
 
-    fn report(&mut self, report: &mut F) -> Result<(), E> {
+    fn report(&mut self, observers: &mut Observers) -> std::io::Result<()> {
+        if !observers.wants(self.iteration) {
+            return Ok(());
+        }
         let fitness: Vec<f64> = self.pop.iter().map(|(_, t)| self.scale / t).collect();
         let mean_time_s = self.pop.iter().map(|(_, t)| t).sum::<f64>() / self.pop.len() as f64;
-        report(&Generation {
+        let record = (self.to_record)(&Generation {
             iteration: self.iteration,
             evaluations: self.charged.ceil() as u64,
             best: (&self.best.0, self.best.1),
             mean_time_s,
             fitness: (self.scale / self.best.1, fitness.iter().sum::<f64>() / fitness.len() as f64),
-        })
+        });
+        observers.generation(&record)
     }
 }
 
@@ -338,7 +370,7 @@ fn best_of(pop: &[(Tour, f64)]) -> (Tour, f64) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::tour::tests::line;
     use super::*;
 
@@ -349,6 +381,18 @@ mod tests {
 
     fn params(selection: ParentDraw, memetic: bool) -> GaParams {
         GaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic, goal: None }
+    }
+
+    /// Runs `search` with an observer that takes every record, so that the record maker it is
+    /// handed (which the search wraps to look at each generation) runs once per generation.
+    pub(in crate::cell_order) fn watching(
+        search: impl FnOnce(&mut Observers, &mut dyn FnMut(&Generation) -> GenerationRecord) -> std::io::Result<Searched>,
+    ) -> Searched {
+        let mut recorder = crate::ga::observer::Recorder::default();
+        let mut list: [&mut dyn crate::ga::observer::Observer; 1] = [&mut recorder];
+        let out = search(&mut Observers::new(&mut list), &mut |g| g.record((0.0, 0.0), 1)).unwrap();
+        assert_eq!(recorder.history.len() as u32, out.iterations + 1, "a record per generation");
+        out
     }
 
     #[test]
@@ -362,12 +406,20 @@ mod tests {
             draw("rrws", 3, 1.8, 20),
         ] {
             let mut last = f64::INFINITY;
-            let out = search(&inst, &params(selection, false), (7, Instant::now()), &Budget::iterations(300), |g| {
-                assert!(g.best.1 <= last + 1e-12, "the best never gets worse");
-                last = g.best.1;
-                Ok::<(), ()>(())
-            })
-            .unwrap();
+            let out = watching(|observers, to_record| {
+                search(
+                    &inst,
+                    &params(selection, false),
+                    (7, Instant::now()),
+                    &Budget::iterations(300),
+                    observers,
+                    &mut |g| {
+                        assert!(g.best.1 <= last + 1e-12, "the best never gets worse");
+                        last = g.best.1;
+                        to_record(g)
+                    },
+                )
+            });
             assert!((out.best.1 - optimum).abs() < 1e-9, "{selection:?}: {} vs {optimum}", out.best.1);
             assert!(out.best.1 <= out.nearest_time_s);
         }
@@ -382,19 +434,21 @@ mod tests {
                 &params(draw("tournament", 2, 1.7, 20), true),
                 (seed, Instant::now()),
                 &Budget::iterations(20),
-                |_| Ok::<(), ()>(()),
+                &mut Observers::none(),
+                &mut |_| unreachable!("no observer takes a record"),
             )
             .unwrap()
         };
         assert_eq!(run(3), run(3));
         let mut evals = 0;
         let budget = Budget { evaluations: Some(500), ..Budget::iterations(1_000_000) };
-        let out = search(&inst, &params(draw("prws", 3, 1.7, 20), true), (4, Instant::now()), &budget, |g| {
-            assert!(g.evaluations >= evals);
-            evals = g.evaluations;
-            Ok::<(), ()>(())
-        })
-        .unwrap();
+        let out = watching(|observers, to_record| {
+            search(&inst, &params(draw("prws", 3, 1.7, 20), true), (4, Instant::now()), &budget, observers, &mut |g| {
+                assert!(g.evaluations >= evals);
+                evals = g.evaluations;
+                to_record(g)
+            })
+        });
         assert_eq!(out.stop, StopReason::Evaluations);
         assert!(out.evaluations >= 500 && out.evaluations < 500 + 40 + 200, "{}", out.evaluations);
     }
@@ -407,11 +461,11 @@ mod tests {
         assert!(seed.choice.iter().all(|&c| c == 1), "{seed:?}");
         assert_eq!(nearest_neighbour_among(&inst, |_, _| true), nearest_neighbour(&inst));
         let p = params(draw("tournament", 3, 1.7, 20), false);
-        let out =
-            search_from(&inst, &p, std::slice::from_ref(&seed), (3, Instant::now()), &Budget::iterations(2), |_| {
-                Ok::<(), ()>(())
-            })
-            .unwrap();
+        let (seeds, budget) = (std::slice::from_ref(&seed), Budget::iterations(2));
+        let out = search_from(&inst, &p, seeds, (3, Instant::now()), &budget, &mut Observers::none(), &mut |g| {
+            g.record((0.0, 0.0), 1)
+        })
+        .unwrap();
         assert!(out.finalists.contains(&seed), "{:?}", out.finalists);
         assert!(out.best.1 <= inst.time(&seed) + 1e-9, "the best is no worse than a seed");
         assert_eq!(out.finalists[0], out.best.0);

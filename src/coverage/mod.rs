@@ -1,7 +1,8 @@
 //! Coverage of a path on a grid map: the swept footprint of 003 §3.1 ([`raster`], [`sweep`])
 //! and the motion metrics ([`motion`]), combined into [`PathMetrics`] by [`Footprint`]; the
 //! thesis fitness equations that turn them into `cov_final`, `t_final` and `f` ([`fitness`],
-//! 003 §3.2.1); the camera model of 000 on its working raster ([`camera`], [`work_map`]); and
+//! 003 §3.2.1); visit maps as bit planes that GAs edit segment by segment ([`bits`],
+//! [`planes`]); the camera model of 000 on its working raster ([`camera`], [`work_map`]); and
 //! the common scorer every planner is compared by ([`score`]). Wall-free routes and transit
 //! lengths live one layer up, in [`crate::routing`]. Planners build on this layer; it depends
 //! on none of them.
@@ -12,13 +13,11 @@ pub mod curve;
 #[cfg(test)]
 pub(crate) mod exact;
 pub mod fitness;
-pub mod lanes;
 pub mod motion;
 pub mod planes;
 pub mod raster;
 pub mod rows;
 pub mod score;
-pub mod segments;
 pub mod sweep;
 pub mod views;
 pub mod work_map;

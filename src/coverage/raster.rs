@@ -147,65 +147,25 @@ fn scan<const STEEP: bool>(
     width: f64,
     mut run: impl FnMut(usize, usize, usize),
 ) {
-    let v = b - a;
-    let len = v.norm();
-    if len < ZERO_LENGTH || grid.cols == 0 || grid.rows == 0 {
+    let Some(ScanLines {
+        lines: (line_lo, line_hi),
+        t_ends: (t_a, t_b),
+        s_ends: (s_a, s_b),
+        s_flat,
+        s_tiny,
+        dl0,
+        res,
+        along: (a_org, a_start, ua, sigma),
+        unit: (ux, uy),
+        bounds: (t_hi, s_lo, s_hi),
+        last,
+        margin,
+    }) = scan_lines::<STEEP>(grid, a, b, width)
+    else {
         return;
-    }
-    let (ux, uy) = (v.x / len, v.y / len);
-    let hw = 0.5 * width;
-    let res = grid.resolution;
-    let inv_res = 1.0 / res;
-    // Axis along the scan line (a) and across lines (l), in world terms.
-    let (a_org, l_org, a_start, l_start, l_end, a_n, l_n) = if STEEP {
-        (grid.origin_y, grid.origin_x, a.y, a.x, b.x, grid.rows as i64, grid.cols as i64)
-    } else {
-        (grid.origin_x, grid.origin_y, a.x, a.y, b.y, grid.cols as i64, grid.rows as i64)
     };
-    let (ua, ul) = if STEEP { (uy, ux) } else { (ux, uy) };
-    // t = d_a·ua + d_l·ul;  s = −dx·uy + dy·ux = σ·(d_l·ua − d_a·ul), σ = −1 when steep.
-    let sigma = if STEEP { -1.0 } else { 1.0 };
-    // Lines whose centre may lie within the rectangle's extent across lines (one of margin).
-    let ext = hw * ua.abs();
-    let (lo_l, hi_l) = (l_start.min(l_end) - ext, l_start.max(l_end) + ext);
-    let line_lo = floor_i((lo_l - l_org) * inv_res - 0.5).max(0);
-    let line_hi = (floor_i((hi_l - l_org) * inv_res - 0.5) + 1).min(l_n - 1);
-    if line_hi < line_lo {
-        return;
-    }
-    let t_hi = len - RASTER_EPS;
-    let (s_lo, s_hi) = (-hw - RASTER_EPS, hw - RASTER_EPS);
-    let last = a_n - 1;
-    let margin = SETTLE_MARGIN * inv_res;
-    let pos_of_a = (a_start - a_org) * inv_res - 0.5;
-    // dl(line) = dl0 + line·res.
-    let dl0 = l_org + 0.5 * res - l_start;
-    // Interval ends in fractional cell positions along the line, affine in the line index:
-    // end(line) = c0 + c1·line. From t: d_a = (bound − dl·ul)/ua.
-    let t_scale = inv_res / ua;
-    let affine = |bound: f64, slope_num: f64, scale: f64| {
-        (pos_of_a + (bound - dl0 * slope_num) * scale, -res * slope_num * scale)
-    };
-    let (mut t_a, mut t_b) = (affine(-RASTER_EPS, ul, t_scale), affine(t_hi, ul, t_scale));
-    if ua < 0.0 {
-        std::mem::swap(&mut t_a, &mut t_b);
-    }
-    // From s: d_a = (σ·dl·ua − bound)/ul·… ; written as bound' = −σ·bound, slope −σ·ua... :
-    // s = σ·dl·ua − σ·d_a·ul  ⇒  d_a = (σ·dl·ua − s)/(σ·ul).
-    let s_flat = ul == 0.0;
-    let s_tiny = !s_flat && ul.abs() < 1e-9;
-    let (mut s_a, mut s_b) = ((0.0, 0.0), (0.0, 0.0));
-    if !s_flat && !s_tiny {
-        let scale = inv_res / (sigma * ul);
-        // d_a·inv_res = (σ·ua·dl − s)·scale = (−s − dl·(−σ·ua))·scale.
-        s_a = affine(-s_hi, -sigma * ua, scale);
-        s_b = affine(-s_lo, -sigma * ua, scale);
-        if scale < 0.0 {
-            std::mem::swap(&mut s_a, &mut s_b);
-        }
-    }
     let cols = grid.cols;
-    for line in line_lo as usize..=line_hi as usize {
+    for line in line_lo..=line_hi {
         let lf = line as f64;
         let dl = dl0 + lf * res;
         // The exact membership test of spec §3.3, written on world dx, dy.
@@ -239,6 +199,103 @@ fn scan<const STEEP: bool>(
             run(line * cols + lo as usize, count, 1);
         }
     }
+}
+
+/// An interval end along a scan line, affine in the line index: `(c0, c1)` for `c0 + c1·line`.
+type Affine = (f64, f64);
+
+/// What the scan of one segment needs, worked out once: the lines it may touch, the affine
+/// interval ends along a line (from `t`: `t_a`, `t_b`; from `s`: `s_a`, `s_b`), and the terms
+/// of the exact test. See [`scan`].
+struct ScanLines {
+    lines: (usize, usize),
+    t_ends: (Affine, Affine),
+    s_ends: (Affine, Affine),
+    s_flat: bool,
+    s_tiny: bool,
+    dl0: f64,
+    res: f64,
+    along: (f64, f64, f64, f64),
+    unit: (f64, f64),
+    bounds: (f64, f64, f64),
+    last: i64,
+    margin: f64,
+}
+
+/// The set-up of [`scan`]; `None` when the segment touches no line of the grid.
+#[inline(always)]
+fn scan_lines<const STEEP: bool>(grid: &RasterGrid, a: Point, b: Point, width: f64) -> Option<ScanLines> {
+    let v = b - a;
+    let len = v.norm();
+    if len < ZERO_LENGTH || grid.cols == 0 || grid.rows == 0 {
+        return None;
+    }
+    let (ux, uy) = (v.x / len, v.y / len);
+    let hw = 0.5 * width;
+    let res = grid.resolution;
+    let inv_res = 1.0 / res;
+    // Axis along the scan line (a) and across lines (l), in world terms.
+    let (a_org, l_org, a_start, l_start, l_end, a_n, l_n) = if STEEP {
+        (grid.origin_y, grid.origin_x, a.y, a.x, b.x, grid.rows as i64, grid.cols as i64)
+    } else {
+        (grid.origin_x, grid.origin_y, a.x, a.y, b.y, grid.cols as i64, grid.rows as i64)
+    };
+    let (ua, ul) = if STEEP { (uy, ux) } else { (ux, uy) };
+    // t = d_a·ua + d_l·ul;  s = −dx·uy + dy·ux = σ·(d_l·ua − d_a·ul), σ = −1 when steep.
+    let sigma = if STEEP { -1.0 } else { 1.0 };
+    // Lines whose centre may lie within the rectangle's extent across lines (one of margin).
+    let ext = hw * ua.abs();
+    let (lo_l, hi_l) = (l_start.min(l_end) - ext, l_start.max(l_end) + ext);
+    let line_lo = floor_i((lo_l - l_org) * inv_res - 0.5).max(0);
+    let line_hi = (floor_i((hi_l - l_org) * inv_res - 0.5) + 1).min(l_n - 1);
+    if line_hi < line_lo {
+        return None;
+    }
+    let t_hi = len - RASTER_EPS;
+    let (s_lo, s_hi) = (-hw - RASTER_EPS, hw - RASTER_EPS);
+    let last = a_n - 1;
+    let margin = SETTLE_MARGIN * inv_res;
+    let pos_of_a = (a_start - a_org) * inv_res - 0.5;
+    // dl(line) = dl0 + line·res.
+    let dl0 = l_org + 0.5 * res - l_start;
+    // Interval ends in fractional cell positions along the line, affine in the line index:
+    // end(line) = c0 + c1·line. From t: d_a = (bound − dl·ul)/ua.
+    let t_scale = inv_res / ua;
+    let affine = |bound: f64, slope_num: f64, scale: f64| {
+        (pos_of_a + (bound - dl0 * slope_num) * scale, -res * slope_num * scale)
+    };
+    let (mut t_a, mut t_b) = (affine(-RASTER_EPS, ul, t_scale), affine(t_hi, ul, t_scale));
+    if ua < 0.0 {
+        std::mem::swap(&mut t_a, &mut t_b);
+    }
+    // From s: d_a = (σ·dl·ua − bound)/ul·… ; written as bound' = −σ·bound, slope −σ·ua... :
+    // s = σ·dl·ua − σ·d_a·ul  ⇒  d_a = (σ·dl·ua − s)/(σ·ul).
+    let s_flat = ul == 0.0;
+    let s_tiny = !s_flat && ul.abs() < 1e-9;
+    let (mut s_a, mut s_b) = ((0.0, 0.0), (0.0, 0.0));
+    if !s_flat && !s_tiny {
+        let scale = inv_res / (sigma * ul);
+        // d_a·inv_res = (σ·ua·dl − s)·scale = (−s − dl·(−σ·ua))·scale.
+        s_a = affine(-s_hi, -sigma * ua, scale);
+        s_b = affine(-s_lo, -sigma * ua, scale);
+        if scale < 0.0 {
+            std::mem::swap(&mut s_a, &mut s_b);
+        }
+    }
+    Some(ScanLines {
+        lines: (line_lo as usize, line_hi as usize),
+        t_ends: (t_a, t_b),
+        s_ends: (s_a, s_b),
+        s_flat,
+        s_tiny,
+        dl0,
+        res,
+        along: (a_org, a_start, ua, sigma),
+        unit: (ux, uy),
+        bounds: (t_hi, s_lo, s_hi),
+        last,
+        margin,
+    })
 }
 
 /// Reference implementation: tests every cell of the grid. Used to check the scan.

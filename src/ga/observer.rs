@@ -180,10 +180,41 @@ impl GenerationStats {
     }
 }
 
+/// Which records an observer is handed (argmin's observer modes). Events
+/// ([`Observer::event`]) reach every observer whatever its mode.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ObserverMode {
+    /// Every record: the initial population's and each iteration's.
+    #[default]
+    Always,
+    /// The records of iterations that are multiples of `n` (0, `n`, `2n`, …; `n` ≥ 1).
+    Every(u32),
+    /// The initial population's record and those of iterations that made the best better (as
+    /// the planner's search says, the same judgement the stall limit reads).
+    NewBest,
+}
+
+impl ObserverMode {
+    /// Whether an observer in this mode takes the record of `iteration`, which made the best
+    /// better or not (`improved`; the initial population's counts as better).
+    pub fn takes(self, iteration: u32, improved: bool) -> bool {
+        match self {
+            Self::Always => true,
+            Self::Every(n) => iteration.is_multiple_of(n.max(1)),
+            Self::NewBest => iteration == 0 || improved,
+        }
+    }
+}
+
 /// Receives records during a run.
 pub trait Observer {
-    /// Called after the initial population (iteration 0) and after every iteration.
+    /// Called after the initial population (iteration 0) and after every iteration, as
+    /// [`Self::mode`] says.
     fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()>;
+    /// Which records this observer takes ([`ObserverMode::Always`] unless it says otherwise).
+    fn mode(&self) -> ObserverMode {
+        ObserverMode::Always
+    }
     /// Called on other run events.
     fn event(&mut self, _event: RunEvent) -> std::io::Result<()> {
         Ok(())
@@ -197,19 +228,24 @@ pub trait Observer {
     }
 }
 
-/// Keeps every generation's record in memory (for figures and tests).
+/// Keeps the records of its mode in memory (every one by default; for figures and tests).
 #[derive(Default, Debug)]
 pub struct Recorder {
     /// The records, in order.
     pub history: Vec<GenerationRecord>,
     /// Iterations at which the environment changed.
     pub changes: Vec<u32>,
+    /// Which records it keeps.
+    pub mode: ObserverMode,
 }
 
 impl Observer for Recorder {
     fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()> {
         self.history.push(record.clone());
         Ok(())
+    }
+    fn mode(&self) -> ObserverMode {
+        self.mode
     }
     fn diversity_every(&self) -> Option<u32> {
         Some(1)
@@ -218,5 +254,104 @@ impl Observer for Recorder {
         let RunEvent::EnvironmentChanged { iteration } = event;
         self.changes.push(iteration);
         Ok(())
+    }
+}
+
+/// The observers of one run, as a search and the executor hand them records: each record to
+/// the observers whose mode takes it, each event to all. The executor tells it whether the
+/// last iteration made the best better ([`Self::set_improved`]); a search asks
+/// [`Self::wants`] before it builds a record that costs something to make.
+pub struct Observers<'a, 'o> {
+    list: &'a mut [&'o mut dyn Observer],
+    improved: bool,
+}
+
+impl<'a, 'o> Observers<'a, 'o> {
+    /// The observers of `list`.
+    pub fn new(list: &'a mut [&'o mut dyn Observer]) -> Self {
+        Self { list, improved: true }
+    }
+    /// No observer: records are never built.
+    pub fn none() -> Observers<'static, 'static> {
+        Observers { list: &mut [], improved: true }
+    }
+    /// Whether there is no observer at all.
+    pub fn is_empty(&self) -> bool {
+        self.list.is_empty()
+    }
+    /// Whether the iteration about to be reported made the best better (the executor's call).
+    pub fn set_improved(&mut self, improved: bool) {
+        self.improved = improved;
+    }
+    /// Whether some observer takes the record of `iteration`.
+    pub fn wants(&self, iteration: u32) -> bool {
+        self.list.iter().any(|o| o.mode().takes(iteration, self.improved))
+    }
+    /// Whether some observer that may take the record of `iteration` reads its diversity then.
+    /// Asked before the iteration runs, so whether it makes the best better is not known yet:
+    /// a [`ObserverMode::NewBest`] observer may take it.
+    pub fn wants_diversity(&self, iteration: u32) -> bool {
+        self.list.iter().any(|o| {
+            o.mode().takes(iteration, true) && o.diversity_every().is_some_and(|e| iteration.is_multiple_of(e.max(1)))
+        })
+    }
+    /// Whether some observer ever reads the diversity.
+    pub fn read_diversity(&self) -> bool {
+        self.list.iter().any(|o| o.diversity_every().is_some())
+    }
+    /// Hands `record` to each observer whose mode takes it.
+    pub fn generation(&mut self, record: &GenerationRecord) -> std::io::Result<()> {
+        let improved = self.improved;
+        for o in self.list.iter_mut().filter(|o| o.mode().takes(record.iteration, improved)) {
+            o.generation(record)?;
+        }
+        Ok(())
+    }
+    /// Hands `event` to every observer.
+    pub fn event(&mut self, event: RunEvent) -> std::io::Result<()> {
+        self.list.iter_mut().try_for_each(|o| o.event(event))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_mode_takes_the_records_it_says() {
+        // (mode, (iteration, improved) of the records offered, iterations taken)
+        let offered = [(0, true), (1, false), (2, true), (3, false), (4, false), (5, true), (6, false)];
+        let cases: [(ObserverMode, &[u32]); 4] = [
+            (ObserverMode::Always, &[0, 1, 2, 3, 4, 5, 6]),
+            (ObserverMode::Every(3), &[0, 3, 6]),
+            (ObserverMode::Every(1), &[0, 1, 2, 3, 4, 5, 6]),
+            (ObserverMode::NewBest, &[0, 2, 5]),
+        ];
+        for (mode, taken) in cases {
+            let mut recorder = Recorder { mode, ..Recorder::default() };
+            let mut always = Recorder::default();
+            let mut list: [&mut dyn Observer; 2] = [&mut recorder, &mut always];
+            let mut observers = Observers::new(&mut list);
+            for (iteration, improved) in offered {
+                observers.set_improved(improved);
+                assert!(observers.wants(iteration), "the always-observer takes every record");
+                observers.generation(&GenerationRecord { iteration, ..GenerationRecord::default() }).unwrap();
+            }
+            observers.event(RunEvent::EnvironmentChanged { iteration: 4 }).unwrap();
+            let got: Vec<u32> = recorder.history.iter().map(|r| r.iteration).collect();
+            assert_eq!(got, taken, "{mode:?}");
+            assert_eq!(always.history.len(), offered.len());
+            assert_eq!(recorder.changes, [4], "events reach every observer: {mode:?}");
+        }
+    }
+
+    #[test]
+    fn diversity_is_wanted_only_where_a_taking_observer_reads_it() {
+        let mut every_two = Recorder { mode: ObserverMode::Every(2), ..Recorder::default() };
+        let mut list: [&mut dyn Observer; 1] = [&mut every_two];
+        let observers = Observers::new(&mut list);
+        assert!(observers.read_diversity());
+        assert!(observers.wants_diversity(4) && !observers.wants_diversity(3));
+        assert!(!Observers::none().wants(0) && !Observers::none().read_diversity());
     }
 }

@@ -8,6 +8,7 @@
 //! [`StopRules::of_budget`]; a library caller adds its own with `|`.
 
 use super::{Budget, StopReason};
+use crate::ga::observer::Observers;
 use std::ops::BitOr;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -163,18 +164,19 @@ impl BitOr<StopRule> for StopRules {
 }
 
 /// A planner's search as the executor drives it: its state between iterations, one step, and
-/// the record of where it stands. `O` is what records go to (observers, a callback).
-pub trait Search<O: ?Sized> {
+/// the record of where it stands, which goes to the run's [`Observers`] (each as its mode says).
+pub trait Search {
     /// What a step or a report can fail with (an observer's write, the caller's own error).
     type Error;
     /// Iterations completed and evaluations spent so far.
     fn progress(&self) -> (u32, u64);
     /// One iteration (a generation, a batch); whether it made the best better (the planner
-    /// says what better means). Run events (an environment change) go to `out`.
-    fn step(&mut self, out: &mut O) -> Result<bool, Self::Error>;
-    /// Hands the record of where the search stands to `out` (after the initial population and
-    /// after every step).
-    fn report(&mut self, out: &mut O) -> Result<(), Self::Error>;
+    /// says what better means). Run events (an environment change) go to `observers`.
+    fn step(&mut self, observers: &mut Observers) -> Result<bool, Self::Error>;
+    /// Hands the record of where the search stands to `observers` (after the initial
+    /// population and after every step); a record that costs something to build is built
+    /// only when [`Observers::wants`] it.
+    fn report(&mut self, observers: &mut Observers) -> Result<(), Self::Error>;
 }
 
 /// How an executed search ended.
@@ -190,24 +192,29 @@ pub struct Finish {
 
 /// Runs `search` from its initial state until a rule of `rules` is met: reports the initial
 /// state, then, while no rule is met, steps and reports. The stall count is the executor's:
-/// iterations since the last step that said it improved the best.
-pub fn execute<O: ?Sized, S: Search<O>>(search: &mut S, rules: &StopRules, out: &mut O) -> Result<Finish, S::Error> {
-    search.report(out)?;
+/// iterations since the last step that said it improved the best; the same judgement tells
+/// [`ObserverMode::NewBest`](crate::ga::observer::ObserverMode::NewBest) observers which
+/// records to take.
+pub fn execute<S: Search>(search: &mut S, rules: &StopRules, observers: &mut Observers) -> Result<Finish, S::Error> {
+    observers.set_improved(true);
+    search.report(observers)?;
     let mut since_better = 0u32;
     loop {
         let (iteration, evaluations) = search.progress();
         if let Some(stop) = rules.first_met(&Progress { iteration, evaluations, since_better }) {
             return Ok(Finish { stop, iterations: iteration, evaluations });
         }
-        let improved = search.step(out)?;
+        let improved = search.step(observers)?;
         since_better = if improved { 0 } else { since_better + 1 };
-        search.report(out)?;
+        observers.set_improved(improved);
+        search.report(observers)?;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ga::observer::{GenerationRecord, Observer, ObserverMode, Recorder};
     use crate::planner::PlannerError;
 
     /// Counts up by `per_step` evaluations, better every `better_every` steps; keeps reports.
@@ -218,20 +225,33 @@ mod tests {
         better_every: u32,
     }
 
-    impl Search<Vec<(u32, u64)>> for Counter {
+    impl Search for Counter {
         type Error = PlannerError;
         fn progress(&self) -> (u32, u64) {
             (self.iteration, self.evaluations)
         }
-        fn step(&mut self, _: &mut Vec<(u32, u64)>) -> Result<bool, PlannerError> {
+        fn step(&mut self, _: &mut Observers) -> Result<bool, PlannerError> {
             self.iteration += 1;
             self.evaluations += self.per_step;
             Ok(self.iteration.is_multiple_of(self.better_every))
         }
-        fn report(&mut self, out: &mut Vec<(u32, u64)>) -> Result<(), PlannerError> {
-            out.push((self.iteration, self.evaluations));
-            Ok(())
+        fn report(&mut self, observers: &mut Observers) -> Result<(), PlannerError> {
+            let record = GenerationRecord {
+                iteration: self.iteration,
+                evaluations: self.evaluations,
+                ..GenerationRecord::default()
+            };
+            Ok(observers.generation(&record)?)
         }
+    }
+
+    /// Runs `counter` under `rules` with a recorder of `mode`: how it ended, and the
+    /// (iteration, evaluations) of the records the recorder took.
+    fn run(counter: &mut Counter, rules: &StopRules, mode: ObserverMode) -> (Finish, Vec<(u32, u64)>) {
+        let mut recorder = Recorder { mode, ..Recorder::default() };
+        let mut list: [&mut dyn Observer; 1] = [&mut recorder];
+        let finish = execute(counter, rules, &mut Observers::new(&mut list)).unwrap();
+        (finish, recorder.history.iter().map(|r| (r.iteration, r.evaluations)).collect())
     }
 
     fn budget(iterations: u32, evaluations: Option<u64>, stall: Option<u32>) -> Budget {
@@ -255,8 +275,8 @@ mod tests {
         ];
         for (b, better_every, iterations, stop) in cases {
             let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 10, better_every };
-            let mut reports = Vec::new();
-            let finish = execute(&mut counter, &StopRules::of_budget(&b, None, Instant::now()), &mut reports).unwrap();
+            let rules = StopRules::of_budget(&b, None, Instant::now());
+            let (finish, reports) = run(&mut counter, &rules, ObserverMode::Always);
             assert_eq!((finish.iterations, finish.stop), (iterations, stop), "{b:?}");
             assert_eq!(finish.evaluations, u64::from(iterations) * 10);
             let want: Vec<(u32, u64)> = (0..=iterations).map(|k| (k, u64::from(k) * 10)).collect();
@@ -270,11 +290,31 @@ mod tests {
         let b = Budget { interrupt: Some(flag.clone()), ..budget(100, None, None) };
         let rules = StopRules::of_budget(&b, Some(5), Instant::now());
         let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 1, better_every: 1 };
-        assert_eq!(execute(&mut counter, &rules, &mut Vec::new()).unwrap().iterations, 5);
+        assert_eq!(execute(&mut counter, &rules, &mut Observers::none()).unwrap().iterations, 5);
         flag.raise();
         let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 1, better_every: 1 };
-        let finish = execute(&mut counter, &rules, &mut Vec::new()).unwrap();
+        let finish = execute(&mut counter, &rules, &mut Observers::none()).unwrap();
         assert_eq!((finish.iterations, finish.stop), (0, StopReason::Interrupted));
+    }
+
+    /// The executor's judgement of "better" (the one the stall count reads) is what a
+    /// new-best observer takes records by; an every-n observer takes iteration 0, n, 2n, ….
+    #[test]
+    fn observers_take_records_by_their_mode() {
+        let rules = StopRules::of_budget(&budget(9, None, None), None, Instant::now());
+        // (better every, mode, iterations recorded)
+        let cases: [(u32, ObserverMode, &[u32]); 4] = [
+            (3, ObserverMode::NewBest, &[0, 3, 6, 9]),
+            (100, ObserverMode::NewBest, &[0]),
+            (1, ObserverMode::Every(4), &[0, 4, 8]),
+            (1, ObserverMode::Always, &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9]),
+        ];
+        for (better_every, mode, want) in cases {
+            let mut counter = Counter { iteration: 0, evaluations: 0, per_step: 1, better_every };
+            let (finish, reports) = run(&mut counter, &rules, mode);
+            assert_eq!(finish.iterations, 9);
+            assert_eq!(reports.iter().map(|r| r.0).collect::<Vec<_>>(), want, "{mode:?}, better every {better_every}");
+        }
     }
 
     #[test]

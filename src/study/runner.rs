@@ -420,7 +420,7 @@ impl Execution<'_> {
     ///
     /// The workers take the runs in order, each run on one thread: the runs are what a study
     /// runs in parallel. A run given a pool of several threads keeps an evaluation scratch (with
-    /// its segment cache, `coverage::segments::CACHE_BYTES`) per thread of the pool, `jobs²` in
+    /// its segment cache, `thesis::segments::CACHE_BYTES`) per thread of the pool, `jobs²` in
     /// all. Each worker is a plain thread with a one-thread pool of its own, which the run's
     /// parallel loops see; results do not depend on the threads.
     fn run_all(&self, pending: &[&RunSpec], skipped: usize, jobs: usize) -> Result<usize, StudyError> {

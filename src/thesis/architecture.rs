@@ -347,10 +347,6 @@ impl<T: Member> Generation<'_, T> {
         scratches: &mut [EvalScratch],
         spare: &mut Vec<T>,
     ) -> (Vec<T>, u64) {
-        enum Family {
-            Cross { parents: [usize; 2], kids: std::ops::Range<usize> },
-            Apart([Result<usize, usize>; 2]),
-        }
         let e = self.effective;
         let n = pop.len();
         let mut order: Vec<usize> = (0..n).collect();
@@ -398,6 +394,22 @@ impl<T: Member> Generation<'_, T> {
         if n % 2 == 1 {
             next.push(old[order[n - 1]].take().expect("odd one"));
         }
+        self.families_pass_on(families, (&mut old, &mut new), &mut next, spare);
+        // Members re-initialised in place of a parent leave the parent behind.
+        recycle(spare, old.into_iter().flatten(), next.len().max(made));
+        (next, evaluations)
+    }
+
+    /// Architecture (b)'s survivors, family by family, onto `next`: the best two of each
+    /// crossing family (children first, so that they win ties), and each member of the others
+    /// or its re-initialised replacement. What does not pass on goes to `spare`.
+    fn families_pass_on(
+        &self,
+        families: Vec<Family>,
+        (old, new): (&mut [Option<T>], &mut [Option<T>]),
+        next: &mut Vec<T>,
+        spare: &mut Vec<T>,
+    ) {
         let (mut cands, mut fitness): (Vec<Option<T>>, Vec<f64>) = (Vec::with_capacity(6), Vec::with_capacity(6));
         for family in families {
             match family {
@@ -424,10 +436,15 @@ impl<T: Member> Generation<'_, T> {
                 }
             }
         }
-        // Members re-initialised in place of a parent leave the parent behind.
-        recycle(spare, old.into_iter().flatten(), next.len().max(made));
-        (next, evaluations)
     }
+}
+
+/// A pair of architecture (b) (003 §3.5.1, Fig. 3.9b): crossing, with the indices of its parents in the
+/// population and of its children among the generation's jobs; or apart, each member kept
+/// (`Ok`, its index in the population) or re-initialised (`Err`, its job).
+enum Family {
+    Cross { parents: [usize; 2], kids: std::ops::Range<usize> },
+    Apart([Result<usize, usize>; 2]),
 }
 
 /// Puts the members that did not pass on into `spare`, kept to at most `limit` (a population,

@@ -388,7 +388,7 @@ pub fn memory_estimate(params: &ThesisParams, rows: usize, cols: usize, threads:
     let planes = f64::from(usize::BITS - params.max_genome_len.leading_zeros());
     let plane_bytes = 8.0 * rows as f64 * cols.div_ceil(64) as f64;
     let per = 32.0 * len + plane_bytes * planes;
-    let caches = (crate::coverage::segments::CACHE_BYTES * threads.max(1)) as f64;
+    let caches = (super::segments::CACHE_BYTES * threads.max(1)) as f64;
     2.0 * params.initial_size().max(params.pop_min) as f64 * per + caches
 }
 
@@ -415,77 +415,25 @@ impl ThesisConfig {
 
 /// Validates a `[thesis]` section into [`ThesisParams`].
 pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, ConfigError> {
-    let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
     let t = *t;
     for (key, v) in [("thesis.p_c", t.p_c), ("thesis.c_len", t.c_len), ("thesis.p_ma", t.p_ma), ("thesis.p_mi", t.p_mi)]
     {
         check_unit(origin, key, v)?;
     }
-    let count = |key: &str, v: usize, lo: usize, hi: usize| {
-        if v < lo || v > hi { Err(err(key, format!("= {v} is out of range [{lo}, {hi}]"))) } else { Ok(()) }
-    };
-    count("thesis.pop_min", t.pop_min, 1, 1_000_000)?;
-    count("thesis.init_actions", t.init_actions, 1, 100_000)?;
-    count("thesis.max_genome_len", t.max_genome_len, t.init_actions + 2, 1_000_000)?;
+    check_count(origin, "thesis.pop_min", t.pop_min, 1, 1_000_000)?;
+    check_count(origin, "thesis.init_actions", t.init_actions, 1, 100_000)?;
+    check_count(origin, "thesis.max_genome_len", t.max_genome_len, t.init_actions + 2, 1_000_000)?;
     check_range(origin, "thesis.init_dist_max", t.init_dist_max, 1e-9, 1e6, "[1e-9, 1e6] metres")?;
-    let child = ChildMode::from_index(t.c_child)
-        .ok_or_else(|| err("thesis.c_child", format!("= {} is out of range {{0, 1, 2}}", t.c_child)))?;
-    let selection = match t.selection {
-        SelectionName::Elite => Selection::Elite,
-        SelectionName::Nsga2 => Selection::Nsga2,
-        SelectionName::Draw(name) => {
-            let scheme = name.scheme();
-            for &param in scheme.reads() {
-                match (param, param_key(param)) {
-                    (Param::TournamentSize, Some(key)) => count(key, t.tournament_size, 1, t.pop_min)?,
-                    (Param::Pressure, Some(key)) => check_range(origin, key, t.selection_pressure, 1.0, 2.0, "[1, 2]")?,
-                    (_, _) => {
-                        return Err(err(
-                            "thesis.selection",
-                            format!("= \"{}\" reads {param:?}, which [thesis] does not set", name.as_str()),
-                        ));
-                    }
-                }
-            }
-            let params = DrawParams { tournament_size: t.tournament_size, pressure: t.selection_pressure, select: 0 };
-            Selection::Draw(ParentDraw { scheme, params })
-        }
-    };
+    let child = ChildMode::from_index(t.c_child).ok_or_else(|| {
+        ConfigError::new(origin, "thesis.c_child", format!("= {} is out of range {{0, 1, 2}}", t.c_child))
+    })?;
+    let selection = validate_selection(&t, origin)?;
     if selection.draw().is_some() {
-        count("thesis.init_individuals", t.init_individuals, t.pop_min, 10_000_000)?;
-        count("thesis.keep", t.keep, 0, t.pop_min)?;
-        count("thesis.select", t.select, 1, t.pop_min)?;
+        check_count(origin, "thesis.init_individuals", t.init_individuals, t.pop_min, 10_000_000)?;
+        check_count(origin, "thesis.keep", t.keep, 0, t.pop_min)?;
+        check_count(origin, "thesis.select", t.select, 1, t.pop_min)?;
     }
-    let control = match t.control {
-        ControlSection::None => Control::None,
-        ControlSection::Ramp { min, max } => {
-            let (lo, hi, what) = match selection.draw().and_then(|d| d.scheme.ramped()) {
-                Some(Param::Pressure) => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
-                Some(Param::TournamentSize) => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
-                Some(Param::Select) | None => {
-                    let ramped: Vec<String> = crate::ga::parents::SCHEMES
-                        .iter()
-                        .filter(|s| s.ramped().is_some_and(|p| param_key(p).is_some()))
-                        .map(|s| format!("\"{}\"", s.name()))
-                        .collect();
-                    return Err(err(
-                        "thesis.control.kind",
-                        format!("= \"ramp\" needs selection {}", ramped.join(" or ")),
-                    ));
-                }
-            };
-            check_range(origin, "thesis.control.min", min, lo, hi, what)?;
-            check_range(origin, "thesis.control.max", max, lo, hi, what)?;
-            Control::Ramp { min, max }
-        }
-        ControlSection::Adaptive { k1, k2, k } => {
-            for (key, v) in [("thesis.control.k1", k1), ("thesis.control.k2", k2), ("thesis.control.k", k)] {
-                check_unit(origin, key, v)?;
-            }
-            Control::Adaptive(AdaptiveConstants { k1, k2, k })
-        }
-        ControlSection::Muhlenbein => Control::Muhlenbein,
-    };
+    let control = validate_control(&t, &selection, origin)?;
     let params = ThesisParams {
         selection,
         pop_min: t.pop_min,
@@ -505,6 +453,76 @@ pub fn validate_params(t: &ThesisSection, origin: &str) -> Result<ThesisParams, 
         seed_bound: t.seed_bound,
     };
     Ok(params)
+}
+
+/// A count `v` of `key` within `[lo, hi]`.
+fn check_count(origin: &str, key: &str, v: usize, lo: usize, hi: usize) -> Result<(), ConfigError> {
+    if v < lo || v > hi {
+        return Err(ConfigError::new(origin, key, format!("= {v} is out of range [{lo}, {hi}]")));
+    }
+    Ok(())
+}
+
+/// The selection of a `[thesis]` section, each parameter its scheme reads checked.
+fn validate_selection(t: &ThesisSection, origin: &str) -> Result<Selection, ConfigError> {
+    Ok(match t.selection {
+        SelectionName::Elite => Selection::Elite,
+        SelectionName::Nsga2 => Selection::Nsga2,
+        SelectionName::Draw(name) => {
+            let scheme = name.scheme();
+            for &param in scheme.reads() {
+                match (param, param_key(param)) {
+                    (Param::TournamentSize, Some(key)) => check_count(origin, key, t.tournament_size, 1, t.pop_min)?,
+                    (Param::Pressure, Some(key)) => check_range(origin, key, t.selection_pressure, 1.0, 2.0, "[1, 2]")?,
+                    (_, _) => {
+                        return Err(ConfigError::new(
+                            origin,
+                            "thesis.selection",
+                            format!("= \"{}\" reads {param:?}, which [thesis] does not set", name.as_str()),
+                        ));
+                    }
+                }
+            }
+            let params = DrawParams { tournament_size: t.tournament_size, pressure: t.selection_pressure, select: 0 };
+            Selection::Draw(ParentDraw { scheme, params })
+        }
+    })
+}
+
+/// The parameter control of a `[thesis]` section (003 §3.5.2), its range that of the
+/// parameter it moves.
+fn validate_control(t: &ThesisSection, selection: &Selection, origin: &str) -> Result<Control, ConfigError> {
+    Ok(match t.control {
+        ControlSection::None => Control::None,
+        ControlSection::Ramp { min, max } => {
+            let (lo, hi, what) = match selection.draw().and_then(|d| d.scheme.ramped()) {
+                Some(Param::Pressure) => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
+                Some(Param::TournamentSize) => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
+                Some(Param::Select) | None => {
+                    let ramped: Vec<String> = crate::ga::parents::SCHEMES
+                        .iter()
+                        .filter(|s| s.ramped().is_some_and(|p| param_key(p).is_some()))
+                        .map(|s| format!("\"{}\"", s.name()))
+                        .collect();
+                    return Err(ConfigError::new(
+                        origin,
+                        "thesis.control.kind",
+                        format!("= \"ramp\" needs selection {}", ramped.join(" or ")),
+                    ));
+                }
+            };
+            check_range(origin, "thesis.control.min", min, lo, hi, what)?;
+            check_range(origin, "thesis.control.max", max, lo, hi, what)?;
+            Control::Ramp { min, max }
+        }
+        ControlSection::Adaptive { k1, k2, k } => {
+            for (key, v) in [("thesis.control.k1", k1), ("thesis.control.k2", k2), ("thesis.control.k", k)] {
+                check_unit(origin, key, v)?;
+            }
+            Control::Adaptive(AdaptiveConstants { k1, k2, k })
+        }
+        ControlSection::Muhlenbein => Control::Muhlenbein,
+    })
 }
 
 #[cfg(test)]

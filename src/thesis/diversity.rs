@@ -7,7 +7,7 @@
 //! visited cells.
 
 use super::individual::Individual;
-use crate::coverage::lanes::lane_count_sums;
+use super::lanes::lane_count_sums;
 use crate::coverage::planes::VisitPlanes;
 use rayon::prelude::*;
 
@@ -219,15 +219,24 @@ fn pair_distance_sum_kernel<'a>(
                 }
             }
         }
-        // Fewer individuals reach each next threshold: the lists shrink with `t`.
-        for (t, &len) in lens.iter().enumerate().take_while(|(_, len)| **len > 0) {
-            let (s1, s2) = lane_count_sums(&low[t * n..t * n + len]);
-            sum += n as u64 * s1 - s2;
-        }
-        for list in &high[..high_max] {
-            let (s1, s2) = lane_count_sums(list);
-            sum += n as u64 * s1 - s2;
-        }
+        sum += word_pair_sum(n, low, &lens, &high[..high_max]);
+    }
+    sum
+}
+
+/// One word's share of the pair distances: for each visit threshold, the masks of the
+/// individuals that reach it (`low`, `lens` per threshold up to `LOW`; `high` above it).
+#[inline(always)]
+fn word_pair_sum(n: usize, low: &[u64], lens: &[usize; LOW], high: &[Vec<u64>]) -> u64 {
+    let mut sum = 0u64;
+    // Fewer individuals reach each next threshold: the lists shrink with `t`.
+    for (t, &len) in lens.iter().enumerate().take_while(|(_, len)| **len > 0) {
+        let (s1, s2) = lane_count_sums(&low[t * n..t * n + len]);
+        sum += n as u64 * s1 - s2;
+    }
+    for list in high {
+        let (s1, s2) = lane_count_sums(list);
+        sum += n as u64 * s1 - s2;
     }
     sum
 }

@@ -4,10 +4,10 @@
 use super::genome::{Action, decode, decode_from, live, random_genome, same_bits};
 use super::objective::with_coverage;
 use super::scenario::Scenario;
+use super::segments::{Home, SegmentCache};
 use crate::coverage::bits::{BitLayers, Tally};
 use crate::coverage::fitness::{ThesisScore, score_counts};
 use crate::coverage::planes::VisitPlanes;
-use crate::coverage::segments::{Home, SegmentCache};
 use crate::coverage::views::SegmentViews;
 use crate::coverage::{PathMetrics, SweepCounts, SweepScratch, motion};
 use crate::geom::Point;
@@ -269,6 +269,15 @@ pub fn evaluate(
         ind.points = points;
     }
     ind.sweep = tally.counts();
+    score_path(ind, scenario, scratch);
+    shared
+}
+
+/// Scores an individual whose path and sweep counts are current: its rotation time (over the
+/// driven routes when moves are routed), 003 eq. 3.13's objectives, and the camera's coverage
+/// in place of the footprint's when the scenario has a camera.
+#[inline]
+fn score_path(ind: &mut IndividualFields, scenario: &Scenario, scratch: &mut EvalScratch) {
     let rot = scenario.robot.rot_speed;
     ind.t_rot_s = match (rot > 0.0, scenario.routes.as_deref()) {
         (false, _) => 0.0,
@@ -299,7 +308,6 @@ pub fn evaluate(
         let coverage = camera.coverage(path, views);
         ind.score = with_coverage(ind.score, coverage, ind.sweep.obj_pix, scenario.projection);
     }
-    shared
 }
 
 /// Adds (`ADD`) or removes the route of move `a → b`.

@@ -11,7 +11,7 @@ use super::member::{Member, Premark, ReachMask};
 use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::control;
-use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, RunEvent};
+use crate::ga::observer::{GenerationRecord, GenerationStats, Observer, Observers, RunEvent};
 use crate::ga::parents::Param;
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::planner::executor::{Interrupt, Search, StopRules, execute};
@@ -270,9 +270,9 @@ impl<T: Member> Ga<T> {
         T::World: Premark,
     {
         let started = Instant::now();
-        let diversity_every: Vec<u32> = observers.iter().filter_map(|o| o.diversity_every()).collect();
+        let mut observers = Observers::new(observers);
         let interrupted = || budget.interrupt.as_ref().is_some_and(Interrupt::is_raised);
-        let state = self.init_until(!diversity_every.is_empty(), &interrupted).ok_or(PlannerError::Interrupted)?;
+        let state = self.init_until(observers.wants_diversity(0), &interrupted).ok_or(PlannerError::Interrupted)?;
         // Reachability is measured only for someone who reads the records.
         let reach = if observers.is_empty() { ReachMask::default() } else { T::reach_mask(&self.scenario) };
         let best_seen = bounded_fitness(
@@ -290,10 +290,9 @@ impl<T: Member> Ga<T> {
             best_seen,
             best_before_retrain: None,
             retrain,
-            diversity_every,
             iter_max: budget.iterations,
         };
-        let finish = execute(&mut running, &StopRules::of_budget(budget, None, started), observers)?;
+        let finish = execute(&mut running, &StopRules::of_budget(budget, None, started), &mut observers)?;
         let Running { ga, state, history, changes, best_before_retrain, .. } = running;
         let reported = if ga.pareto() {
             knee_index(&state.population, &state.seed_points)
@@ -334,12 +333,11 @@ struct Running<'a, T: Member> {
     best_seen: f64,
     best_before_retrain: Option<T>,
     retrain: Option<&'a Retrain>,
-    diversity_every: Vec<u32>,
     /// `Iter_max`, which ramped parameters read.
     iter_max: u32,
 }
 
-impl<'o, T: Member> Search<[&'o mut dyn Observer]> for Running<'_, T>
+impl<T: Member> Search for Running<'_, T>
 where
     T::World: Premark,
 {
@@ -349,21 +347,19 @@ where
         (self.state.iteration, self.state.evaluations)
     }
 
-    fn step(&mut self, observers: &mut [&'o mut dyn Observer]) -> std::io::Result<bool> {
+    fn step(&mut self, observers: &mut Observers) -> std::io::Result<bool> {
         let (ga, state) = (&mut *self.ga, &mut self.state);
         if let Some(r) = self.retrain.filter(|r| r.at_iteration == state.iteration) {
             self.best_before_retrain =
                 Some(state.population[best_index_within(&state.population, &state.seed_points)].clone());
             ga.change_environment(state, r.region);
             self.scratches = ga.scratches();
-            for o in observers.iter_mut() {
-                o.event(RunEvent::EnvironmentChanged { iteration: state.iteration + 1 })?;
-            }
+            observers.event(RunEvent::EnvironmentChanged { iteration: state.iteration + 1 })?;
             self.changes.push(state.iteration + 1);
             self.best_seen = f64::NEG_INFINITY;
         }
         let effective = ga.effective(state, state.iteration + 1, self.iter_max);
-        let wanted = self.diversity_every.iter().any(|&e| (state.iteration + 1).is_multiple_of(e.max(1)));
+        let wanted = observers.wants_diversity(state.iteration + 1);
         ga.step(state, effective, &mut self.scratches, wanted);
         self.effective = effective;
         let best = bounded_fitness(
@@ -377,13 +373,10 @@ where
         Ok(improved)
     }
 
-    fn report(&mut self, observers: &mut [&'o mut dyn Observer]) -> std::io::Result<()> {
+    fn report(&mut self, observers: &mut Observers) -> std::io::Result<()> {
         let now = stats(&self.state, &self.effective, self.ga.pareto());
-        if !observers.is_empty() {
-            let r = record(&now, &self.state, &self.ga.scenario, &self.reach);
-            for o in observers.iter_mut() {
-                o.generation(&r)?;
-            }
+        if observers.wants(now.iteration) {
+            observers.generation(&record(&now, &self.state, &self.ga.scenario, &self.reach))?;
         }
         self.history.push(now);
         Ok(())

@@ -11,7 +11,7 @@ use super::precompute::Union;
 use super::run::{Organism, WaypointOutcome, WaypointStats, run};
 use super::world::World;
 use crate::coverage::{CoverageGrid, SweepScratch};
-use crate::ga::observer::{GenerationRecord, Observer};
+use crate::ga::observer::{GenerationRecord, Observer, Observers};
 use crate::geom::Point;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario};
 use std::path::Path;
@@ -21,7 +21,6 @@ use std::time::Instant;
 struct Artifacts {
     world: World,
     outcome: WaypointOutcome,
-    history: Vec<WaypointStats>,
 }
 
 /// An organism's paths in metres.
@@ -209,33 +208,17 @@ impl Planner for WaypointConfig {
         let grid = CoverageGrid::new(&scenario.map);
         let mut scratch = SweepScratch::new(&grid);
         let reach = scenario.reach();
-        let mut history = Vec::new();
-        let mut failed: Option<std::io::Error> = None;
-        let outcome =
-            run(&world, &self.ga, seed, budget, &mut |s: &WaypointStats, pop: &[Organism], best, evaluations| {
-                history.push(*s);
-                if failed.is_some() || observers.is_empty() {
-                    return;
-                }
-                let b = &pop[best];
-                let counts = scratch.sweep_all(&grid, &paths_m(&world, b), scenario.robot.width);
-                let record = generation_record(
-                    s,
-                    b,
-                    evaluations,
-                    counts.unique() as f64 / grid.area_cells().max(1) as f64,
-                    crate::coverage::score::reach_coverage(&reach, &scratch),
-                );
-                for o in observers.iter_mut() {
-                    if let Err(e) = o.generation(&record) {
-                        failed.get_or_insert(e);
-                    }
-                }
-            })
-            .ok_or(PlannerError::Interrupted)?;
-        if let Some(e) = failed {
-            return Err(e.into());
-        }
+        let mut to_record = |s: &WaypointStats, b: &Organism, evaluations| {
+            let counts = scratch.sweep_all(&grid, &paths_m(&world, b), scenario.robot.width);
+            generation_record(
+                s,
+                b,
+                evaluations,
+                counts.unique() as f64 / grid.area_cells().max(1) as f64,
+                crate::coverage::score::reach_coverage(&reach, &scratch),
+            )
+        };
+        let outcome = run(&world, &self.ga, seed, budget, &mut Observers::new(observers), &mut to_record)?;
         let best = &outcome.population[outcome.best];
         let e = &best.eval;
         let viol = violations(self, best, outcome.generations);
@@ -264,7 +247,7 @@ impl Planner for WaypointConfig {
             files: Vec::new(),
             history: crate::planner::History::Generations,
             agents: Vec::new(),
-            artifacts: Box::new(Artifacts { world, outcome, history }),
+            artifacts: Box::new(Artifacts { world, outcome }),
         })
     }
 
@@ -337,7 +320,7 @@ impl Planner for WaypointConfig {
             &SnapshotsFigure { snapshots: &out.snapshots, seconds_per_px },
             &dir.join("pareto_snapshots"),
         )?;
-        crate::plot::save(&ObjectivesFigure { history: &a.history, seconds_per_px }, &dir.join("objectives"))
+        crate::plot::save(&ObjectivesFigure { history: &a.outcome.history, seconds_per_px }, &dir.join("objectives"))
     }
 }
 

@@ -8,10 +8,11 @@ use super::operators::{OperatorParams, crossover, extend_random, mutation_a, mut
 use super::precompute::Union;
 use super::world::World;
 use crate::ga::maximin::maximin;
+use crate::ga::observer::{GenerationRecord, Observers};
 use crate::ga::rng::{Purpose, Rng, stream};
 use crate::ga::selection::low_variance_sample;
-use crate::planner::Budget;
 use crate::planner::executor::{Search, StopRules, execute};
+use crate::planner::{Budget, PlannerError};
 use rand::Rng as _;
 use rand::seq::SliceRandom;
 use rayon::prelude::*;
@@ -102,11 +103,14 @@ pub struct WaypointOutcome {
     pub snapshots: Vec<Snapshot>,
     /// Organisms accepted at generation 0 without violating a constraint.
     pub initial_feasible: usize,
+    /// Every generation's statistics, the initial population's first.
+    pub history: Vec<WaypointStats>,
 }
 
-/// Receives each generation's statistics, the population, the reported organism's index and
-/// the evaluations so far.
-pub type GenerationCallback<'a> = dyn FnMut(&WaypointStats, &[Organism], usize, u64) + 'a;
+/// Makes the record observers receive from a generation's statistics, its reported organism
+/// and the evaluations so far (the planner sweeps the organism's plan on the scenario's grid).
+/// Called only for a generation some observer takes.
+pub type ToRecord<'a> = dyn FnMut(&WaypointStats, &Organism, u64) -> GenerationRecord + 'a;
 
 /// The organism a run reports at generation `g`: the feasible one with the highest coverage
 /// `C` (ties: shorter flight time, then lower index); when none is feasible, the one with the
@@ -174,17 +178,17 @@ pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
 
 /// Runs the GA on a built world for `p.generations` (or `limits.iterations`, if fewer), within
 /// the evaluation, wall-clock and stall limits and the interrupt of `limits` (a stall: no plan
-/// better than the best so far, more coverage or as much in less time); `on_generation`
-/// receives each generation's statistics, the population, the index of the reported organism
-/// and the evaluations so far. `None` when the interrupt is raised before the initial
-/// population is complete (there is no plan yet).
+/// better than the best so far, more coverage or as much in less time); each generation's
+/// record, made by `to_record`, goes to `observers`. [`PlannerError::Interrupted`] when the
+/// interrupt is raised before the initial population is complete (there is no plan yet).
 pub fn run(
     world: &World,
     p: &GaParams,
     seed: u64,
     limits: &Budget,
-    on_generation: &mut GenerationCallback<'_>,
-) -> Option<WaypointOutcome> {
+    observers: &mut Observers,
+    to_record: &mut ToRecord<'_>,
+) -> Result<WaypointOutcome, PlannerError> {
     let started = std::time::Instant::now();
     let turns = TurnCosts::new(&world.graph, &world.traversals, p.objectives.rho);
     let ev = Evaluator {
@@ -205,7 +209,8 @@ pub fn run(
             .collect()
     };
     let interrupted = || limits.interrupt.as_ref().is_some_and(crate::planner::executor::Interrupt::is_raised);
-    let (pop, attempt, initial_feasible) = initial_population(world, p, seed, &evaluate_all, &interrupted)?;
+    let (pop, attempt, initial_feasible) =
+        initial_population(world, p, seed, &evaluate_all, &interrupted).ok_or(PlannerError::Interrupted)?;
     let first = &pop[reported(&pop, p, 0)].eval;
     let best_seen = (first.coverage, first.flight_time);
     let mut run = Generations {
@@ -220,21 +225,20 @@ pub fn run(
         evaluations: attempt,
         generation: 0,
         best_seen,
+        history: Vec::new(),
+        to_record,
     };
     run.snapshots.push(snapshot(p, 0, &run.pop));
     // 000's generations, or fewer where the budget's iteration limit says so.
     let rules = StopRules::of_budget(limits, Some(p.generations.min(limits.iterations)), started);
-    let finish = match execute(&mut run, &rules, on_generation) {
-        Ok(finish) => finish,
-        Err(never) => match never {},
-    };
-    let Generations { pop, mut snapshots, .. } = run;
+    let finish = execute(&mut run, &rules, observers)?;
+    let Generations { pop, mut snapshots, history, .. } = run;
     let generations = finish.iterations;
     if generations > 0 && snapshots.last().is_none_or(|s| s.0 != generations) {
         snapshots.push(snapshot(p, generations, &pop));
     }
     let best = reported(&pop, p, generations);
-    Some(WaypointOutcome {
+    Ok(WaypointOutcome {
         population: pop,
         best,
         generations,
@@ -242,6 +246,7 @@ pub fn run(
         stop: finish.stop,
         snapshots,
         initial_feasible,
+        history,
     })
 }
 
@@ -314,7 +319,7 @@ fn snapshot(p: &GaParams, g: u32, pop: &[Organism]) -> Snapshot {
 }
 
 /// The waypoint GA between generations, as [`execute`] drives it.
-struct Generations<'a> {
+struct Generations<'a, 'r> {
     p: &'a GaParams,
     seed: u64,
     graph: &'a super::graph::Graph,
@@ -329,16 +334,18 @@ struct Generations<'a> {
     /// The reported plan's best (coverage, flight time) so far: better is more coverage, then
     /// less time.
     best_seen: (f64, f64),
+    history: Vec<WaypointStats>,
+    to_record: &'r mut ToRecord<'r>,
 }
 
-impl Search<GenerationCallback<'_>> for Generations<'_> {
-    type Error = std::convert::Infallible;
+impl Search for Generations<'_, '_> {
+    type Error = PlannerError;
 
     fn progress(&self) -> (u32, u64) {
         (self.generation, self.evaluations)
     }
 
-    fn step(&mut self, _: &mut GenerationCallback<'_>) -> Result<bool, Self::Error> {
+    fn step(&mut self, _: &mut Observers) -> Result<bool, Self::Error> {
         let (p, seed, g) = (self.p, self.seed, self.graph);
         let gen_ = self.generation + 1;
         let rng = &mut self.rng;
@@ -404,10 +411,14 @@ impl Search<GenerationCallback<'_>> for Generations<'_> {
         Ok(improved)
     }
 
-    fn report(&mut self, on_generation: &mut GenerationCallback<'_>) -> Result<(), Self::Error> {
+    fn report(&mut self, observers: &mut Observers) -> Result<(), Self::Error> {
         let (p, g) = (self.p, self.generation);
-        let best = reported(&self.pop, p, g);
-        on_generation(&stats(g, &self.pop, p), &self.pop, best, self.evaluations);
+        let now = stats(g, &self.pop, p);
+        if observers.wants(g) {
+            let best = &self.pop[reported(&self.pop, p, g)];
+            observers.generation(&(self.to_record)(&now, best, self.evaluations))?;
+        }
+        self.history.push(now);
         Ok(())
     }
 }

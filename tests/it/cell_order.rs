@@ -10,6 +10,7 @@ use covga::cell_order::search::search;
 use covga::coverage::Footprint;
 use covga::coverage::fitness::Projection;
 use covga::coverage::score::{CameraSpec, Scorer};
+use covga::ga::observer::Observers;
 use covga::geom::Point;
 use covga::map::{CellState, GridMap};
 use covga::planner::{Budget, Context, Planner, Scenario};
@@ -78,7 +79,8 @@ fn the_ga_reaches_the_exact_optimum_on_small_maps() {
     let (instances, mut hits) = (small_instances(40), 0);
     for (seed, inst, optimum) in &instances {
         let run = (*seed, std::time::Instant::now());
-        let found = search(inst, &config.ga, run, &budget, |_| Ok::<(), ()>(())).unwrap();
+        let found =
+            search(inst, &config.ga, run, &budget, &mut Observers::none(), &mut |g| g.record((0.0, 0.0), 1)).unwrap();
         assert!(found.best.1 >= optimum - 1e-6, "seed {seed}: the GA cannot beat the optimum");
         if found.best.1 <= optimum + 1e-6 {
             hits += 1;
@@ -101,7 +103,10 @@ fn iterated_local_search_reaches_the_exact_optimum_on_small_maps() {
     for (seed, inst, optimum) in &instances {
         let budget = Budget { evaluations: Some(50_000), ..Budget::iterations(1_000_000) };
         let run = (*seed, std::time::Instant::now());
-        let found = iterated_local_search(inst, None, &[], run, &budget, |_| Ok::<(), ()>(())).unwrap();
+        let found = iterated_local_search(inst, None, &[], run, &budget, &mut Observers::none(), &mut |g| {
+            g.record((0.0, 0.0), 1)
+        })
+        .unwrap();
         assert!(found.best.1 >= optimum - 1e-6, "seed {seed}: nothing beats the optimum");
         assert!(found.best.1 <= optimum * 1.01, "seed {seed}: {} cells, {} vs {optimum}", inst.cells(), found.best.1);
         hits += usize::from(found.best.1 <= optimum + 1e-6);

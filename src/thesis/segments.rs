@@ -1,7 +1,7 @@
 //! A cache of swept segments as bit-row masks, for the incremental evaluator.
 //!
 //! A child of the thesis GA is its parent's visit map minus the parent's segments it does not
-//! share plus its own ([`super::bits`]). The parent's segments were swept when the parent was
+//! share plus its own ([`crate::coverage::bits`]). The parent's segments were swept when the parent was
 //! evaluated, and most of a crossover child's new segments are copied from the other parent
 //! (only the segments at the cut points are new): the same segments are swept over and over.
 //! Scanning a segment's rows costs about as much as applying them, so a segment's masks are
@@ -11,8 +11,8 @@
 //! and the grid's geometry, and a replay applies exactly the masks a scan would produce (tested
 //! below against [`BitLayers::apply`]).
 
-use super::bits::{BitLayers, Tally};
-use super::planes::VisitPlanes;
+use crate::coverage::bits::{BitLayers, Tally};
+use crate::coverage::planes::VisitPlanes;
 use crate::geom::Point;
 
 /// Masks kept in one generation of the cache (16 bytes each: 4 MiB per generation).
