@@ -10,7 +10,7 @@ use covga::geom::Point;
 use covga::map::presets::preset;
 use covga::patterns::{self, Pattern};
 use covga::thesis::batch::evaluate_batch;
-use covga::thesis::scenario::Scenario;
+use covga::thesis::scenario::ThesisScenario;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rand::{Rng, SeedableRng};
 use std::hint::black_box;
@@ -55,7 +55,7 @@ fn bindings(c: &mut Criterion) {
     group.throughput(Throughput::Elements(genomes.len() as u64));
     group.bench_function("thesis_evaluate_1000x50", |b| {
         b.iter(|| {
-            let scenario = Scenario::new(map.clone(), robot, start, start, Projection::F2);
+            let scenario = ThesisScenario::new(map.clone(), robot, start, start, Projection::F2);
             evaluate_batch(&scenario, black_box(&genomes)).expect("valid genomes")
         })
     });

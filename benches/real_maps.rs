@@ -17,7 +17,7 @@ use covga::planner::Budget;
 use covga::thesis::individual::InitParams;
 use covga::thesis::params::{Selection, ThesisParams};
 use covga::thesis::run::ThesisGa;
-use covga::thesis::scenario::{Moves, Scenario};
+use covga::thesis::scenario::{Moves, ThesisScenario};
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::path::Path;
@@ -28,7 +28,7 @@ const EVALUATIONS: u64 = 4_000;
 
 fn run(map: &GridMap, start: Point, moves: Moves) -> f64 {
     let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
-    let scenario = Scenario::new(map.clone(), robot, start, start, Projection::F2).with_moves(moves);
+    let scenario = ThesisScenario::new(map.clone(), robot, start, start, Projection::F2).with_moves(moves);
     let params = ThesisParams {
         selection: Selection::Elite,
         pop_min: 100,

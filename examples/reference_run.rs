@@ -9,15 +9,15 @@ use covga::map::presets::preset;
 use covga::planner::Budget;
 use covga::thesis::params::ThesisParams;
 use covga::thesis::run::ThesisGa;
-use covga::thesis::scenario::Scenario;
+use covga::thesis::scenario::ThesisScenario;
 
 fn main() {
     let iterations: u32 = std::env::args().nth(1).and_then(|s| s.parse().ok()).unwrap_or(2000);
     let s = Point::new(1.3, 1.3);
-    let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
+    let scenario = ThesisScenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
     let seed: u64 = std::env::args().nth(2).and_then(|s| s.parse().ok()).unwrap_or(1);
     let projection = if std::env::args().nth(3).as_deref() == Some("f1") { Projection::F1 } else { Projection::F2 };
-    let scenario = Scenario { projection, ..scenario };
+    let scenario = ThesisScenario { projection, ..scenario };
     let mut params = ThesisParams::thesis_elite();
     let env = |k: &str| std::env::var(k).ok().and_then(|v| v.parse::<f64>().ok());
     if let Some(v) = env("C_LEN") {

@@ -15,7 +15,7 @@ use crate::thesis::config::ThesisSection;
 use crate::thesis::genome::random_genome;
 use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
 use crate::thesis::member::{Member, ReachMask};
-use crate::thesis::scenario::Scenario as ThesisScenario;
+use crate::thesis::scenario::ThesisScenario;
 use rayon::prelude::*;
 use std::time::Instant;
 

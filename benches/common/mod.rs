@@ -9,12 +9,12 @@ use covga::map::presets::preset;
 use covga::thesis::crossover::ChildMode;
 use covga::thesis::params::{Selection, ThesisParams};
 use covga::thesis::run::ThesisGa;
-use covga::thesis::scenario::Scenario;
+use covga::thesis::scenario::ThesisScenario;
 
 /// The thesis GA on thesis map 1, start and end at (1.3, 1.3), f2, seed 1.
 pub fn thesis1_ga(params: ThesisParams) -> ThesisGa {
     let s = Point::new(1.3, 1.3);
-    let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
+    let scenario = ThesisScenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
     ThesisGa { scenario, params, seed: 1, seeds: (Vec::new(), 0) }
 }
 

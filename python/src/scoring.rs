@@ -9,7 +9,7 @@ use covga::geom::Point;
 use covga::patterns::{self, Pattern};
 use covga::planner::sections::CameraSection;
 use covga::thesis::batch::{COLUMNS, evaluate_genomes_until, genome_of};
-use covga::thesis::scenario::{Moves, Scenario};
+use covga::thesis::scenario::{Moves, ThesisScenario};
 use numpy::ndarray::{Array2, ArrayView2};
 use numpy::{PyArray2, PyReadonlyArray2, PyReadonlyArray3, ToPyArray};
 use pyo3::prelude::*;
@@ -207,7 +207,7 @@ fn thesis_scenario(
     end: Option<(f64, f64)>,
     projection_name: &str,
     moves_name: &str,
-) -> PyResult<Scenario> {
+) -> PyResult<ThesisScenario> {
     let m = &map.inner;
     let robot = robot(map, width, speed, rot_speed)?;
     let projection = projection(projection_name)?;
@@ -219,7 +219,7 @@ fn thesis_scenario(
     };
     m.check_station(start, "start").map_err(config_error)?;
     m.check_station(end, "end").map_err(config_error)?;
-    Ok(Scenario::new(m.clone(), robot, start, end, projection).with_moves(moves))
+    Ok(ThesisScenario::new(m.clone(), robot, start, end, projection).with_moves(moves))
 }
 
 /// The path a genome (an `(L, 2)` array of live moves: heading in degrees, distance in metres)

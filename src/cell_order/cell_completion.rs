@@ -13,7 +13,7 @@
 use super::boundary::{chains_within, order};
 use super::sweeps::Sweep;
 use crate::map::clearance::Clearance;
-use crate::patterns::Route;
+use crate::patterns::GrowingRoute;
 use rayon::prelude::*;
 use std::ops::Range;
 
@@ -32,7 +32,7 @@ pub fn extend(clear: &Clearance, width: f64, labels: &[u32], coverable: &[bool],
             if chains.is_empty() {
                 continue;
             }
-            let mut route = Route::new(sweep.end());
+            let mut route = GrowingRoute::new(sweep.end());
             for chain in order(&chains, sweep.end(), None, speed) {
                 for p in chain {
                     route.go(clear, p);

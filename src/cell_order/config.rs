@@ -1,7 +1,7 @@
 //! `[cell_order]`: the cell-order planner's settings as written, validated once into
 //! [`CellOrderConfig`].
 
-use super::search::GaParams;
+use super::search::TourGaParams;
 use crate::config::{ConfigError, check_range};
 use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
 use crate::planner::Context;
@@ -79,10 +79,10 @@ pub struct CellOrderSection {
     pub selection: SchemeName,
     /// Tournament size `TS`.
     pub tournament_size: usize,
-    /// Selection pressure `SP` of the rank-based wheel.
-    pub sp: f64,
-    /// Elite families: how many of the best may be parents.
-    pub select: usize,
+    /// Selection pressure `SP` of the rank-based wheel (`sp` before).
+    pub selection_pressure: f64,
+    /// Under `"elite"`: how many of the best may be parents (`select` before).
+    pub best_parents: usize,
     /// The best carried over unchanged each generation.
     pub keep: usize,
     /// Crossover probability.
@@ -127,8 +127,8 @@ impl Default for CellOrderSection {
             population: 100,
             selection: SchemeName::parse("tournament").expect("registered"),
             tournament_size: 3,
-            sp: 1.7,
-            select: 20,
+            selection_pressure: 1.7,
+            best_parents: 20,
             keep: 2,
             p_c: 0.9,
             p_m: 0.5,
@@ -151,7 +151,7 @@ pub struct CellOrderConfig {
     /// Lane directions in degrees.
     pub directions: Vec<f64>,
     /// The GA's parameters.
-    pub ga: GaParams,
+    pub ga: TourGaParams,
     /// Coverage completion after the tour.
     pub completion: Completion,
     /// The coverage goal, a share of the reachable coverable cells.
@@ -194,8 +194,8 @@ pub fn with_wall_directions(directions: &[f64], map: &crate::map::GridMap, count
 pub fn param_key(param: Param) -> &'static str {
     match param {
         Param::TournamentSize => "cell_order.tournament_size",
-        Param::Pressure => "cell_order.sp",
-        Param::Select => "cell_order.select",
+        Param::Pressure => "cell_order.selection_pressure",
+        Param::BestParents => "cell_order.best_parents",
     }
 }
 
@@ -224,13 +224,13 @@ impl CellOrderSection {
         };
         count("cell_order.population", self.population, 2, 100_000)?;
         // Each scheme's own key is checked under that scheme only: a default the scheme never
-        // reads (`select` = 20 under tournament selection) must not refuse a small population.
+        // reads (`best_parents` = 20 under tournament selection) must not refuse a small population.
         let scheme = self.selection.scheme();
         for &param in scheme.reads() {
             match param {
                 Param::TournamentSize => count(param_key(param), self.tournament_size, 1, self.population)?,
-                Param::Select => count(param_key(param), self.select, 1, self.population)?,
-                Param::Pressure => check_range(o, param_key(param), self.sp, 1.0, 2.0, "[1, 2]")?,
+                Param::BestParents => count(param_key(param), self.best_parents, 1, self.population)?,
+                Param::Pressure => check_range(o, param_key(param), self.selection_pressure, 1.0, 2.0, "[1, 2]")?,
             }
         }
         count("cell_order.keep", self.keep, 0, self.population - 1)?;
@@ -251,12 +251,16 @@ impl CellOrderSection {
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             check_exact_cells(ctx, &directions)?;
         }
-        let params = DrawParams { tournament_size: self.tournament_size, pressure: self.sp, select: self.select };
+        let params = DrawParams {
+            tournament_size: self.tournament_size,
+            pressure: self.selection_pressure,
+            best_parents: self.best_parents,
+        };
         let selection = ParentDraw { scheme, params };
         Ok(CellOrderConfig {
             solver: self.solver,
             directions,
-            ga: GaParams {
+            ga: TourGaParams {
                 population: self.population,
                 selection,
                 keep: self.keep,

@@ -31,7 +31,7 @@ use crate::ga::observer::{Observer, Observers};
 use crate::geom::{Point, Vector};
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
-use crate::patterns::Route;
+use crate::patterns::GrowingRoute;
 use crate::planner::executor::SetupCutoff;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use crate::routing::transit::{Transit, distinct};
@@ -218,7 +218,7 @@ impl Prepared<'_> {
         completion: Completion,
     ) -> (Vec<Point>, usize) {
         let (start, end) = stations;
-        let mut route = Route::new(start);
+        let mut route = GrowingRoute::new(start);
         for w in self.sweeps_of(tour) {
             route.drive(&self.clear, &w.points);
         }
@@ -229,7 +229,7 @@ impl Prepared<'_> {
     /// visited as `completion` says, then driven to `end`; with the targets it had to skip.
     pub fn complete(
         &self,
-        mut route: Route,
+        mut route: GrowingRoute,
         robot: &crate::coverage::Footprint,
         end: Point,
         completion: Completion,

@@ -226,7 +226,7 @@ fn end_at_goal(
     }
     let Some(keep) = cut else { return path };
     path.truncate(keep);
-    let mut route = Route::new(*path.last().expect("kept two points"));
+    let mut route = GrowingRoute::new(*path.last().expect("kept two points"));
     route.finish(clear, end);
     path.extend_from_slice(&route.points()[1..]);
     path

@@ -21,7 +21,7 @@ use std::time::Instant;
 
 /// The GA's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GaParams {
+pub struct TourGaParams {
     /// Individuals per generation.
     pub population: usize,
     /// Parent selection: a scheme of the registry ([`crate::ga::parents`]) and its parameters.
@@ -139,7 +139,7 @@ pub fn nearest_neighbour_among(inst: &Instance, allowed: impl Fn(usize, usize) -
 /// so the preparation counts too).
 pub fn search(
     inst: &Instance,
-    params: &GaParams,
+    params: &TourGaParams,
     run: (u64, Instant),
     budget: &Budget,
     observers: &mut Observers,
@@ -153,7 +153,7 @@ pub fn search(
 /// scorer chooses from, so the search returns nothing worse than its seeds on the scorer.
 pub fn search_from(
     inst: &Instance,
-    params: &GaParams,
+    params: &TourGaParams,
     seeds: &[Tour],
     (seed, started): (u64, Instant),
     budget: &Budget,
@@ -240,7 +240,7 @@ impl Searched {
 /// The cell-order GA between generations, as [`execute`] drives it.
 struct Generations<'a, 'r> {
     inst: &'a Instance,
-    params: &'a GaParams,
+    params: &'a TourGaParams,
     /// Choices per cell.
     counts: Vec<usize>,
     p_choice: f64,
@@ -376,11 +376,15 @@ pub(super) mod tests {
 
     /// The scheme `name` with `TS` = `size`, `SP` = `pressure`, `select` = `select`.
     fn draw(name: &str, size: usize, pressure: f64, select: usize) -> ParentDraw {
-        ParentDraw::named(name, crate::ga::parents::DrawParams { tournament_size: size, pressure, select }).unwrap()
+        ParentDraw::named(
+            name,
+            crate::ga::parents::DrawParams { tournament_size: size, pressure, best_parents: select },
+        )
+        .unwrap()
     }
 
-    fn params(selection: ParentDraw, memetic: bool) -> GaParams {
-        GaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic, goal: None }
+    fn params(selection: ParentDraw, memetic: bool) -> TourGaParams {
+        TourGaParams { population: 40, selection, keep: 2, p_c: 0.9, p_m: 0.5, p_choice: None, memetic, goal: None }
     }
 
     /// Runs `search` with an observer that takes every record, so that the record maker it is

@@ -1,5 +1,5 @@
-//! Keys that moved to another section, and what keeps their old spelling working for one
-//! release. A file or grid that uses an old key still reads: the value moves to the new key
+//! Keys that moved to another section or took a new name in theirs, and what keeps their old
+//! spelling working for one release. A file or grid that uses an old key still reads: the value moves to the new key
 //! before anything else sees it (an experiment, a grid's base, axes and `when` tables), the
 //! warning names the new key, and a study's column takes the new name. Run ids hash the
 //! experiment in the layout ids were first defined with ([`id_text`]), so that a move changes
@@ -10,15 +10,24 @@ use crate::config::ConfigError;
 use toml::{Table, Value};
 
 /// Old dotted key → new dotted key. The scorer's projection and camera were read from the
-/// thesis GA's and the waypoint planner's sections until they got a section of their own.
-pub const RENAMED_KEYS: [(&str, &str); 6] = [
+/// thesis GA's and the waypoint planner's sections until they got a section of their own; the
+/// cell-order GA's `sp` and `select` took the names that say what they are (`select` is the
+/// thesis GA's count of pairs drawn, a different thing).
+pub const RENAMED_KEYS: [(&str, &str); 8] = [
     ("thesis.projection", "scorer.projection"),
     ("waypoint.scale", "scorer.camera.scale"),
     ("waypoint.d_min", "scorer.camera.d_min"),
     ("waypoint.d_max", "scorer.camera.d_max"),
     ("waypoint.fov_deg", "scorer.camera.fov_deg"),
     ("waypoint.sections", "scorer.camera.sections"),
+    ("cell_order.sp", "cell_order.selection_pressure"),
+    ("cell_order.select", "cell_order.best_parents"),
 ];
+
+/// Whether a renamed key stays in its section (renamed in place, not moved).
+fn in_place(old: &str, new: &str) -> bool {
+    old.rsplit_once('.').map(|p| p.0) == new.rsplit_once('.').map(|p| p.0)
+}
 
 /// Old keys met, each with its new name.
 pub type Moves = Vec<(&'static str, &'static str)>;
@@ -133,6 +142,15 @@ pub fn migrate_text(text: &str, origin: &str) -> Result<(String, Moves), ConfigE
 fn move_keys(t: &mut dyn toml_edit::TableLike, origin: &str, moved: &mut Moves) -> Result<(), ConfigError> {
     for (old, new) in RENAMED_KEYS {
         let (old_section, old_key) = old.split_once('.').expect("a dotted key");
+        if in_place(old, new) {
+            let Some(section) = t.get_mut(old_section).and_then(toml_edit::Item::as_table_like_mut) else { continue };
+            if section.contains_key(old_key) {
+                let new_key = new.rsplit_once('.').expect("a dotted key").1;
+                rename_in_section(section, (old, old_key), (new, new_key), origin)?;
+                moved.push((old, new));
+            }
+            continue;
+        }
         // The comment lines above the key belong to it: they move with it.
         let above = t
             .get(old_section)
@@ -166,6 +184,41 @@ fn move_keys(t: &mut dyn toml_edit::TableLike, origin: &str, moved: &mut Moves) 
             }
         }
         moved.push((old, new));
+    }
+    Ok(())
+}
+
+/// Renames `old_key` of the section `t` to `new_key` where it stands, the keys' order and the
+/// text above each kept. Both spellings set to different values are refused, naming both.
+fn rename_in_section(
+    t: &mut dyn toml_edit::TableLike,
+    (old, old_key): (&str, &str),
+    (new, new_key): (&str, &str),
+    origin: &str,
+) -> Result<(), ConfigError> {
+    if let (Some(there), Some(value)) = (t.get(new_key), t.get(old_key)) {
+        if bare(there) != bare(value) {
+            return Err(ConfigError::new(
+                origin,
+                new,
+                format!("= {} and its old spelling `{old}` = {} disagree: keep `{new}` only", bare(there), bare(value)),
+            ));
+        }
+        t.remove(old_key);
+        return Ok(());
+    }
+    let keys: Vec<String> = t.iter().map(|(k, _)| k.to_string()).collect();
+    let items: Vec<(String, Option<toml_edit::RawString>, toml_edit::Item)> = keys
+        .iter()
+        .map(|k| {
+            let above = t.key(k).and_then(|key| key.leaf_decor().prefix().cloned());
+            (k.clone(), above, t.remove(k).expect("a key listed"))
+        })
+        .collect();
+    for (k, above, item) in items {
+        let k = if k == old_key { new_key.to_string() } else { k };
+        t.insert(&k, item);
+        keep_above(t, &k, above);
     }
     Ok(())
 }
@@ -308,7 +361,8 @@ const OLD_PLACES: [(&str, &str, Option<&str>); 6] = [
 /// scale first in `[waypoint]` and its depth range, field of view and sections after
 /// `max_traverse`). Ids hash a canonical text so that the old and new spelling of a key give
 /// one id, and this layout so that the ids of committed studies stay what they were. Keys of
-/// `[scorer]` that never had another place (`camera.wall_band`) stay in `[scorer.camera]`.
+/// `[scorer]` that never had another place (`camera.wall_band`) stay in `[scorer.camera]`;
+/// keys renamed in place (`cell_order.selection_pressure`) hash under their old name.
 pub fn id_text(file: &ExperimentFile) -> String {
     let text = toml::to_string(file).expect("experiment files serialise");
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
@@ -319,6 +373,11 @@ pub fn id_text(file: &ExperimentFile) -> String {
         if let Some(line) = take_line(&mut lines, new_section, new_key) {
             moved.push((section, key, line));
         }
+    }
+    for (old, new) in RENAMED_KEYS.iter().filter(|(old, new)| in_place(old, new)) {
+        let (section, old_key) = old.rsplit_once('.').expect("a dotted key");
+        let new_key = new.rsplit_once('.').expect("a dotted key").1;
+        rename_line(&mut lines, section, new_key, old_key);
     }
     drop_empty_sections(&mut lines, &["scorer.camera", "scorer"]);
     for (section, key, line) in moved {
@@ -344,6 +403,15 @@ fn take_line(lines: &mut Vec<String>, section: &str, key: &str) -> Option<String
     let prefix = format!("{key} = ");
     let at = (start..end).find(|&i| lines[i].starts_with(&prefix))?;
     Some(lines.remove(at))
+}
+
+/// Gives the line of `key` in `[section]` the name `to`, its value kept.
+fn rename_line(lines: &mut [String], section: &str, key: &str, to: &str) {
+    let Some((start, end)) = section_lines(lines, section) else { return };
+    let prefix = format!("{key} = ");
+    if let Some(at) = (start..end).find(|&i| lines[i].starts_with(&prefix)) {
+        lines[at] = format!("{to} = {}", &lines[at][prefix.len()..]);
+    }
 }
 
 /// Removes the headers of `sections` left without keys, with the blank lines after them (the
@@ -461,5 +529,38 @@ mod tests {
         assert_eq!(current_key("waypoint.sections"), "scorer.camera.sections");
         assert_eq!(current_key("waypoint.hallway"), "waypoint.hallway");
         assert_eq!(old_key("scorer.projection"), Some("thesis.projection"));
+    }
+
+    /// The cell-order GA's `sp` and `select` took their new names in place: old files read and
+    /// hash as before (the id text keeps the old names, so committed ids stay), `covga migrate`
+    /// renames them where they stand, and both spellings with different values are refused.
+    #[test]
+    fn keys_renamed_in_place_read_hash_and_migrate_alike() {
+        let old =
+            "planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"\nsp = 1.4  # gentle\nselect = 6\nkeep = 1\n";
+        let new = "planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"\nselection_pressure = 1.4\nbest_parents = 6\nkeep = 1\n";
+        assert_eq!(parse(old), parse(new));
+        let section = parse(new).cell_order.unwrap();
+        assert_eq!((section.selection_pressure, section.best_parents), (1.4, 6));
+        let text = id_text(&parse(new));
+        let cell_order = &text[text.find("[cell_order]").unwrap()..];
+        assert!(cell_order.contains("\ntournament_size = 3\nsp = 1.4\nselect = 6\nkeep = 1\n"), "{text}");
+        let (migrated, moves) = migrate_text(old, "t.toml").unwrap();
+        assert_eq!(
+            moves,
+            [("cell_order.select", "cell_order.best_parents"), ("cell_order.sp", "cell_order.selection_pressure")]
+        );
+        assert!(
+            migrated
+                .contains("selection = \"elite\"\nselection_pressure = 1.4  # gentle\nbest_parents = 6\nkeep = 1\n"),
+            "{migrated}"
+        );
+        assert_eq!(parse(&migrated), parse(old));
+        let e = ExperimentFile::parse("[cell_order]\nsp = 1.4\nselection_pressure = 1.5\n", "t.toml").unwrap_err();
+        assert!(
+            e.to_string().contains("cell_order.selection_pressure") && e.to_string().contains("cell_order.sp"),
+            "{e}"
+        );
+        parse("[cell_order]\nsp = 1.5\nselection_pressure = 1.5\n");
     }
 }

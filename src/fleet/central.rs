@@ -20,14 +20,14 @@ use crate::thesis::diversity::{DiversityScratch, kept_pair_distance_sum, max_dis
 use crate::thesis::individual::{EvalScratch, EvaluationMode, Individual};
 use crate::thesis::member::{Member, Op, Origin, Premark, ReachMask, Variation};
 use crate::thesis::params::ThesisParams;
-use crate::thesis::scenario::Scenario;
+use crate::thesis::scenario::ThesisScenario;
 
 /// What a crew's evaluation reads: one scenario per robot (its footprint and stations on the
 /// shared map) and the fleet's combined sweep rate.
 #[derive(Clone, Debug)]
 pub struct FleetWorld {
     /// One scenario per robot, in the fleet's order.
-    pub robots: Vec<Scenario>,
+    pub robots: Vec<ThesisScenario>,
     /// `Σ R_width,i · R_speed,i` in m²/s.
     pub sweep_rate: f64,
 }
@@ -38,7 +38,7 @@ impl FleetWorld {
         let robots = fleet
             .robots()
             .iter()
-            .map(|r| Scenario::new(map.clone(), r.footprint, r.start, r.end, projection))
+            .map(|r| ThesisScenario::new(map.clone(), r.footprint, r.start, r.end, projection))
             .collect();
         Self { robots, sweep_rate: fleet.sweep_rate() }
     }
@@ -93,7 +93,7 @@ fn visited(v: &VisitPlanes, idx: usize, planes: usize) -> u64 {
 
 /// A robot's time as the fitness reads it: 003 eq. 3.12 over the area it sweeps, plus its
 /// rotation time.
-fn robot_time_s(ind: &Individual, scenario: &Scenario) -> f64 {
+fn robot_time_s(ind: &Individual, scenario: &ThesisScenario) -> f64 {
     let res = scenario.map.resolution();
     t_actual(area_m2(ind.sweep.cov_pix, res), scenario.robot.speed, scenario.robot.width) + ind.t_rot_s
 }
@@ -298,7 +298,7 @@ mod tests {
             let p = params(20, selection);
             let crew = central(&map, &fleet, p, 5, 120);
             let r = &fleet.robots()[0];
-            let scenario = Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2);
+            let scenario = ThesisScenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2);
             let alone = ThesisGa { scenario, params: p, seed: 5, seeds: (Vec::new(), 0) }
                 .run(&budget(120), None, &mut [])
                 .unwrap();
@@ -438,11 +438,12 @@ mod tests {
         let t = scorer.score(&team.best.paths()).unwrap();
         // Each robot alone, same settings and iterations, planning the whole map.
         for r in fleet.robots() {
-            let scenario = Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2);
+            let scenario = ThesisScenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2);
             let alone = ThesisGa { scenario, params: p, seed: 2, seeds: (Vec::new(), 0) }
                 .run(&budget(300), None, &mut [])
                 .unwrap();
-            let m = alone.best.path_metrics(&Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2));
+            let m =
+                alone.best.path_metrics(&ThesisScenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F2));
             let time = m.length_m / r.footprint.speed;
             let cov = alone.best.score.cov_final;
             assert!(t.union_free >= cov - 0.05, "{}: team union {} vs alone {cov}", r.name, t.union_free);

@@ -223,7 +223,7 @@ impl FleetSection {
     ) -> Result<super::planner::FleetPlanner, ConfigError> {
         let (origin, scenario, budget) = (ctx.origin, ctx.scenario, ctx.budget);
         let method = self.method(team, budget, origin)?;
-        self.check_keys(retrain, budget, origin)?;
+        self.check_keys(retrain, origin)?;
         let fleet = validate(robots, scenario.robot, start, origin, &scenario.map)?;
         self.check_fleet(&fleet, scenario, origin)?;
         Ok(super::planner::FleetPlanner { fleet, name: self.name.clone(), method })
@@ -251,22 +251,8 @@ impl FleetSection {
         })
     }
 
-    /// The section's own keys, and the budget keys and `[retrain]` a negotiation cannot honour.
-    fn check_keys(&self, retrain: bool, budget: &crate::planner::Budget, origin: &str) -> Result<(), ConfigError> {
-        if self.mode == FleetMode::Negotiate {
-            for (set, key) in [
-                (budget.wall_clock.is_some(), "budget.wall_clock_s"),
-                (budget.stall_iterations.is_some(), "budget.stall_iterations"),
-            ] {
-                if set {
-                    return Err(ConfigError::new(
-                        origin,
-                        key,
-                        "is not available for a negotiation: it stops at budget.iterations, budget.evaluations or when the plans settle",
-                    ));
-                }
-            }
-        }
+    /// The section's own keys, and `[retrain]`, which no fleet honours.
+    fn check_keys(&self, retrain: bool, origin: &str) -> Result<(), ConfigError> {
         if retrain {
             return Err(ConfigError::new(
                 origin,

@@ -11,14 +11,18 @@
 use super::Fleet;
 use crate::coverage::fitness::Projection;
 use crate::coverage::{CoverageGrid, SweepScratch};
+use crate::ga::observer::Observers;
 use crate::ga::rng::{Purpose, stream};
 use crate::geom::Point;
 use crate::map::GridMap;
+use crate::planner::executor::{Interrupt, Search, SetupCutoff, StopRule, StopRules, execute};
+use crate::planner::{Budget, StopReason};
 use crate::thesis::params::ThesisParams;
 use crate::thesis::run::{GaState, ThesisGa, best_index};
-use crate::thesis::scenario::Scenario;
+use crate::thesis::scenario::ThesisScenario;
 use rand::RngCore;
 use rayon::prelude::*;
+use std::time::Instant;
 
 /// How the robots negotiate.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,8 +74,8 @@ pub struct NegotiationOutcome {
     pub evaluations: u64,
     /// Per round and robot.
     pub history: Vec<RoundRecord>,
-    /// Whether the run's interrupt ended it.
-    pub interrupted: bool,
+    /// Why it ended.
+    pub stop: StopReason,
 }
 
 /// The seed of robot `k`'s GA under the run's `seed`: the run's own seed for the first robot
@@ -101,9 +105,12 @@ pub fn plan_change(a: &[bool], b: &[bool]) -> f64 {
 }
 
 /// Runs the negotiation of `fleet` on `map` with the thesis GA `params` (each robot with its
-/// own width, speed and stations). `None` when `interrupt` was raised while the robots' initial
-/// populations were made (there is no plan yet); raised later, the robots' GAs end at their
-/// next generation and the outcome says so.
+/// own width, speed and stations), one round per step of [`execute`]. Besides its own ends (the
+/// plans settle; every robot's share of the iterations or evaluations is spent) it stops on
+/// the interrupt, the wall clock and the stall limit of `limits` (rounds in a row in which the
+/// fleet's plans together sweep no more cells than before); the interrupt and the wall clock
+/// also end the robots' GAs inside a round, at their next generation. `None` when the interrupt
+/// was raised while the robots' initial populations were made (there is no plan yet).
 pub fn negotiate(
     map: &GridMap,
     fleet: &Fleet,
@@ -111,77 +118,189 @@ pub fn negotiate(
     projection: Projection,
     seed: u64,
     np: &NegotiationParams,
-    interrupt: Option<&crate::planner::executor::Interrupt>,
+    limits: &Budget,
 ) -> Option<NegotiationOutcome> {
+    let started = Instant::now();
     let robots = fleet.robots();
-    let mut gas: Vec<ThesisGa> = robots
+    let gas: Vec<ThesisGa> = robots
         .iter()
         .enumerate()
         .map(|(k, r)| ThesisGa {
-            scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, projection),
+            scenario: ThesisScenario::new(map.clone(), r.footprint, r.start, r.end, projection),
             params: *params,
             seed: robot_seed(seed, k),
             seeds: (Vec::new(), 0),
         })
         .collect();
-    let raised = || interrupt.is_some_and(|i| i.is_raised());
-    let mut states: Vec<GaState> = gas.par_iter().map(|ga| ga.init_until(false, &raised)).collect::<Option<_>>()?;
+    let cutoff = SetupCutoff::of_budget(limits, started);
+    let raised = || cutoff.interrupt.as_ref().is_some_and(Interrupt::is_raised);
+    let states: Vec<GaState> = gas.par_iter().map(|ga| ga.init_until(false, &raised)).collect::<Option<_>>()?;
     let grid = CoverageGrid::new(map);
-    let mut scratch = SweepScratch::new(&grid);
-    let mut previous: Vec<Vec<bool>> = vec![vec![false; grid.len()]; robots.len()];
-    let mut premarked = previous.clone();
-    let (mut history, mut rounds, mut converged) = (Vec::new(), 0u32, false);
-    let round_iterations = np.round_iterations.max(1);
-    let n = robots.len() as u64;
-    let share = |k: usize| np.evaluations.map(|e| e / n + u64::from((k as u64) < e % n));
-    // A raised interrupt ends every robot's GA at its next generation, inside a round.
-    let active =
-        |k: usize, s: &GaState| s.iteration < np.iterations && share(k).is_none_or(|e| s.evaluations < e) && !raised();
-    while states.iter().enumerate().any(|(k, s)| active(k, s)) {
-        gas.par_iter().zip(states.par_iter_mut()).enumerate().for_each(|(k, (ga, state))| {
+    let scratch = SweepScratch::new(&grid);
+    let cells = vec![vec![false; grid.len()]; robots.len()];
+    let mut rounds = Rounds {
+        fleet,
+        np,
+        cutoff: &cutoff,
+        gas,
+        states,
+        grid,
+        scratch,
+        premarked: cells.clone(),
+        previous: cells,
+        history: Vec::new(),
+        rounds: 0,
+        converged: false,
+        fleet_cells: 0,
+    };
+    // The robots' iterations and evaluations are shares of the budget that the rounds keep
+    // to themselves ([`Search::finished`]); the run's other rules end the rounds here.
+    let mut rules = StopRules::default();
+    if let Some(flag) = &limits.interrupt {
+        rules = rules | StopRule::Interrupted(flag.clone());
+    }
+    if let Some(stall) = limits.stall_iterations {
+        rules = rules | StopRule::Stall(stall);
+    }
+    if let Some(limit) = limits.wall_clock {
+        rules = rules | StopRule::WallClock { limit, since: started };
+    }
+    let finish = match execute(&mut rounds, &rules, &mut Observers::none()) {
+        Ok(finish) => finish,
+        Err(never) => match never {},
+    };
+    let Rounds { states, rounds, converged, history, .. } = rounds;
+    let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
+    let evaluations = states.iter().map(|s| s.evaluations).sum();
+    Some(NegotiationOutcome { paths, rounds, converged, evaluations, history, stop: finish.stop })
+}
+
+/// A negotiation between rounds, as [`execute`] drives it.
+struct Rounds<'a> {
+    fleet: &'a Fleet,
+    np: &'a NegotiationParams,
+    /// The interrupt and the wall clock, read by the robots' GAs inside a round.
+    cutoff: &'a SetupCutoff,
+    gas: Vec<ThesisGa>,
+    states: Vec<GaState>,
+    grid: CoverageGrid,
+    scratch: SweepScratch,
+    /// The cells each robot's best plan swept at the end of the last round.
+    previous: Vec<Vec<bool>>,
+    /// The cells each robot has pre-marked (what the others' plans swept).
+    premarked: Vec<Vec<bool>>,
+    history: Vec<RoundRecord>,
+    rounds: u32,
+    converged: bool,
+    /// The most cells the fleet's plans together have swept at the end of a round.
+    fleet_cells: usize,
+}
+
+impl Rounds<'_> {
+    /// Evaluations robot `k` may spend: its share of the budget's.
+    fn share(&self, k: usize) -> Option<u64> {
+        let n = self.fleet.len() as u64;
+        self.np.evaluations.map(|e| e / n + u64::from((k as u64) < e % n))
+    }
+    /// Whether robot `k`'s GA has iterations and evaluations left.
+    fn budget_left(&self, k: usize) -> bool {
+        let s = &self.states[k];
+        s.iteration < self.np.iterations && self.share(k).is_none_or(|e| s.evaluations < e)
+    }
+}
+
+impl Search for Rounds<'_> {
+    type Error = std::convert::Infallible;
+
+    fn progress(&self) -> (u32, u64) {
+        (self.rounds, self.states.iter().map(|s| s.evaluations).sum())
+    }
+
+    fn finished(&self) -> Option<StopReason> {
+        if self.converged {
+            return Some(StopReason::Settled);
+        }
+        if (0..self.fleet.len()).any(|k| self.budget_left(k)) {
+            return None;
+        }
+        let iterations = self.states.iter().map(|s| s.iteration).max().unwrap_or(0);
+        Some(if self.np.evaluations.is_some() && iterations < self.np.iterations {
+            StopReason::Evaluations
+        } else {
+            StopReason::Iterations
+        })
+    }
+
+    /// One round: after the first, each robot pre-marks what the others' plans swept; then
+    /// every robot's GA runs `round_iterations` generations (fewer where its share ends or the
+    /// cutoff is reached), and the round's plans are compared with the last round's.
+    fn step(&mut self, _: &mut Observers) -> Result<bool, Self::Error> {
+        if self.rounds > 0 {
+            exchange(&mut self.gas, &mut self.states, &self.previous, &mut self.premarked);
+        }
+        let left: Vec<bool> = (0..self.fleet.len()).map(|k| self.budget_left(k)).collect();
+        let (np, cutoff) = (self.np, self.cutoff);
+        let share: Vec<Option<u64>> = (0..self.fleet.len()).map(|k| self.share(k)).collect();
+        self.gas.par_iter().zip(self.states.par_iter_mut()).enumerate().for_each(|(k, (ga, state))| {
             let mut scratches = ga.new_scratches();
-            for _ in 0..round_iterations {
-                if !active(k, state) {
+            for _ in 0..np.round_iterations.max(1) {
+                let active = left[k]
+                    && state.iteration < np.iterations
+                    && share[k].is_none_or(|e| state.evaluations < e)
+                    && cutoff.reached().is_none();
+                if !active {
                     break;
                 }
                 let effective = ga.effective(state, state.iteration + 1, np.iterations);
                 ga.step(state, effective, &mut scratches, false);
             }
         });
-        rounds += 1;
-        let bests: Vec<usize> = states.iter().map(|s| best_index(&s.population)).collect();
+        self.rounds += 1;
+        let now = self.record_round();
+        let fleet_cells = (0..self.grid.len()).filter(|&i| now.iter().any(|cells| cells[i])).count();
+        let improved = fleet_cells > self.fleet_cells;
+        self.fleet_cells = self.fleet_cells.max(fleet_cells);
+        self.previous = now;
+        Ok(improved)
+    }
+
+    fn report(&mut self, _: &mut Observers) -> Result<(), Self::Error> {
+        Ok(())
+    }
+}
+
+impl Rounds<'_> {
+    /// Records every robot's best plan at the end of a round, with how much it changed since
+    /// the last; whether all settled within the tolerance (from the second round). The cells
+    /// each plan sweeps.
+    fn record_round(&mut self) -> Vec<Vec<bool>> {
+        let robots = self.fleet.robots();
+        let bests: Vec<usize> = self.states.iter().map(|s| best_index(&s.population)).collect();
         let now: Vec<Vec<bool>> = (0..robots.len())
-            .map(|k| swept(&grid, &mut scratch, &states[k].population[bests[k]].points, robots[k].footprint.width))
+            .map(|k| {
+                let points = &self.states[k].population[bests[k]].points;
+                swept(&self.grid, &mut self.scratch, points, robots[k].footprint.width)
+            })
             .collect();
-        let mut settled = rounds >= 2;
+        let mut settled = self.rounds >= 2;
         for (k, r) in robots.iter().enumerate() {
-            let best = &states[k].population[bests[k]];
-            let change = if rounds == 1 { 1.0 } else { plan_change(&now[k], &previous[k]) };
-            settled &= change <= np.tolerance;
-            history.push(RoundRecord {
-                round: rounds,
+            let best = &self.states[k].population[bests[k]];
+            let change = if self.rounds == 1 { 1.0 } else { plan_change(&now[k], &self.previous[k]) };
+            settled &= change <= self.np.tolerance;
+            self.history.push(RoundRecord {
+                round: self.rounds,
                 robot: r.name.clone(),
-                iteration: states[k].iteration,
-                evaluations: states[k].evaluations,
+                iteration: self.states[k].iteration,
+                evaluations: self.states[k].evaluations,
                 best_fitness: best.fitness(),
                 cov_final: best.score.cov_final,
                 t_final: best.score.t_final,
                 change,
             });
         }
-        previous = now;
-        if settled {
-            converged = true;
-            break;
-        }
-        if !states.iter().enumerate().any(|(k, s)| active(k, s)) {
-            break;
-        }
-        exchange(&mut gas, &mut states, &previous, &mut premarked);
+        self.converged = settled;
+        now
     }
-    let paths = states.iter().map(|s| s.population[best_index(&s.population)].points.clone()).collect();
-    let evaluations = states.iter().map(|s| s.evaluations).sum();
-    Some(NegotiationOutcome { paths, rounds, converged, evaluations, history, interrupted: raised() })
 }
 
 /// The exchange: every robot pre-marks what the others' plans (`swept`, one flag per cell
@@ -221,10 +340,10 @@ mod tests {
         .unwrap();
         let p = params(20);
         let np = NegotiationParams { round_iterations: 30, iterations: 150, evaluations: None, tolerance: 0.0 };
-        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np, None).unwrap();
+        let negotiated = negotiate(&map, &fleet, &p, Projection::F1, 11, &np, &Budget::iterations(u32::MAX)).unwrap();
         let r = &fleet.robots()[0];
         let mut single = ThesisGa {
-            scenario: Scenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F1),
+            scenario: ThesisScenario::new(map.clone(), r.footprint, r.start, r.end, Projection::F1),
             params: p,
             seed: 11,
             seeds: (Vec::new(), 0),
@@ -257,13 +376,12 @@ mod tests {
         .unwrap();
         let np = NegotiationParams { round_iterations: 40, iterations: 200, evaluations: None, tolerance: 0.0 };
         let p = params(20);
-        let run = |threads: usize| {
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap()
-                .install(|| negotiate(&map, &fleet, &p, Projection::F1, 7, &np, None).unwrap())
-        };
+        let run =
+            |threads: usize| {
+                rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| {
+                    negotiate(&map, &fleet, &p, Projection::F1, 7, &np, &Budget::iterations(u32::MAX)).unwrap()
+                })
+            };
         let (one, two) = (run(1), run(2));
         assert_eq!(one, two, "same plans, history and evaluations with 1 and 2 threads");
         assert_eq!(one.rounds, 5);
@@ -271,9 +389,16 @@ mod tests {
         assert!(one.history.iter().all(|r| r.iteration % 40 == 0));
         // Against the same robots planning alone (one round, no exchange), the negotiated plans
         // overlap less.
-        let alone =
-            negotiate(&map, &fleet, &p, Projection::F1, 7, &NegotiationParams { round_iterations: 200, ..np }, None)
-                .unwrap();
+        let alone = negotiate(
+            &map,
+            &fleet,
+            &p,
+            Projection::F1,
+            7,
+            &NegotiationParams { round_iterations: 200, ..np },
+            &Budget::iterations(u32::MAX),
+        )
+        .unwrap();
         assert_eq!(alone.rounds, 1);
         let scorer = FleetScorer::new(&map, &fleet);
         let (together, apart) = (scorer.score(&one.paths).unwrap(), scorer.score(&alone.paths).unwrap());
@@ -283,5 +408,36 @@ mod tests {
             together.overlap_fraction,
             apart.overlap_fraction
         );
+    }
+
+    /// The run's stall limit counts rounds in which the fleet's plans together sweep no more
+    /// cells; its wall clock ends the robots' GAs inside a round; the rounds' own ends
+    /// (settled, budget spent) name the stop when they come first.
+    #[test]
+    fn a_negotiation_stops_on_the_runs_stall_limit_and_wall_clock() {
+        let map = preset("thesis-2").unwrap();
+        let fleet = FleetFile::parse(
+            "[[robots]]\nname = \"a\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
+             [[robots]]\nname = \"b\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.55, 9.55]\n",
+            "f.toml",
+            &map,
+        )
+        .unwrap();
+        // A tolerance below 0 (no file can set one): the plans never settle.
+        let np = NegotiationParams { round_iterations: 1, iterations: 400, evaluations: None, tolerance: -1.0 };
+        let p = params(20);
+        let run = |limits: Budget| negotiate(&map, &fleet, &p, Projection::F1, 7, &np, &limits).unwrap();
+        let free = run(Budget::iterations(u32::MAX));
+        let stalled = run(Budget { stall_iterations: Some(2), ..Budget::iterations(u32::MAX) });
+        assert_eq!(stalled.stop, StopReason::Stall);
+        assert!(stalled.rounds < free.rounds, "{} rounds stalled, {} without a limit", stalled.rounds, free.rounds);
+        assert_eq!(stalled.history[..], free.history[..stalled.history.len()], "the same rounds until the stall");
+        let clocked = run(Budget { wall_clock: Some(std::time::Duration::ZERO), ..Budget::iterations(u32::MAX) });
+        assert_eq!((clocked.stop, clocked.rounds), (StopReason::WallClock, 0));
+        assert_eq!(clocked.paths.len(), 2, "the initial populations' best plans");
+        assert_eq!((free.stop, free.rounds), (StopReason::Iterations, 400));
+        let settling = NegotiationParams { tolerance: 0.0, ..np };
+        let settled = negotiate(&map, &fleet, &p, Projection::F1, 7, &settling, &Budget::iterations(u32::MAX)).unwrap();
+        assert_eq!(settled.stop, StopReason::Settled);
     }
 }

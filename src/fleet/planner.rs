@@ -114,31 +114,21 @@ impl FleetPlanner {
         params: &crate::thesis::params::ThesisParams,
         negotiation: &super::negotiation::NegotiationParams,
         seed: u64,
-        interrupt: Option<&crate::planner::executor::Interrupt>,
+        budget: &Budget,
     ) -> Result<FleetPlan, PlannerError> {
-        let out =
-            super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation, interrupt)
-                .ok_or(PlannerError::Interrupted)?;
+        let out = super::negotiation::negotiate(&s.map, &self.fleet, params, s.projection, seed, negotiation, budget)
+            .ok_or(PlannerError::Interrupted)?;
         let mut history = csv::Writer::from_writer(Vec::new());
         for record in &out.history {
             history.serialize(record).expect("records serialise");
         }
         let iterations = out.history.iter().map(|r| r.iteration).max().unwrap_or(0);
-        let stop = if out.interrupted {
-            StopReason::Interrupted
-        } else if out.converged {
-            StopReason::Settled
-        } else if negotiation.evaluations.is_some() && iterations < negotiation.iterations {
-            StopReason::Evaluations
-        } else {
-            StopReason::Iterations
-        };
         let changes: Vec<f64> = out.history.iter().map(|r| r.change).collect();
         Ok(FleetPlan {
             paths: out.paths,
             evaluations: out.evaluations,
             iterations,
-            stop,
+            stop: out.stop,
             details: serde_json::to_value(Negotiation {
                 rounds: out.rounds,
                 converged: out.converged,
@@ -203,7 +193,7 @@ impl Planner for FleetPlanner {
         let plan = match &self.method {
             FleetMethod::Central(params) => self.central(scenario, params, seed, budget, observers)?,
             FleetMethod::Negotiate(params, negotiation) => {
-                self.negotiate(scenario, params, negotiation, seed, budget.interrupt.as_ref())?
+                self.negotiate(scenario, params, negotiation, seed, budget)?
             }
             FleetMethod::Waypoint(waypoint) => {
                 let out = waypoint.run(scenario, seed, budget, observers)?;

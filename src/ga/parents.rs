@@ -28,12 +28,12 @@ pub enum Param {
     /// The selection pressure `SP` of a rank wheel (003 §2.2.1.3), in `[1, 2]`.
     Pressure,
     /// How many of the best may be parents, in `[1, population]`.
-    Select,
+    BestParents,
 }
 
 impl Param {
     /// Every parameter, in the order messages list them.
-    pub const ALL: [Param; 3] = [Param::TournamentSize, Param::Pressure, Param::Select];
+    pub const ALL: [Param; 3] = [Param::TournamentSize, Param::Pressure, Param::BestParents];
 }
 
 /// The values of the parameters a draw reads (the others are ignored).
@@ -44,7 +44,7 @@ pub struct DrawParams {
     /// `SP`.
     pub pressure: f64,
     /// How many of the best may be parents.
-    pub select: usize,
+    pub best_parents: usize,
 }
 
 impl DrawParams {
@@ -53,7 +53,7 @@ impl DrawParams {
         match param {
             Param::TournamentSize => self.tournament_size as f64,
             Param::Pressure => self.pressure,
-            Param::Select => self.select as f64,
+            Param::BestParents => self.best_parents as f64,
         }
     }
 }

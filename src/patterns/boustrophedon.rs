@@ -6,7 +6,7 @@
 //! fits and can get to from the start (the clearance is restricted to the reachable part).
 
 use super::clearance::Clearance;
-use super::{PatternError, Route};
+use super::{GrowingRoute, PatternError};
 use crate::geom::{Point, Vector};
 
 /// One fitting piece of a lane: its two ends.
@@ -107,7 +107,7 @@ pub fn decompose(lanes: &[Vec<Piece>]) -> Vec<Vec<Piece>> {
 }
 
 /// Plans a boustrophedon route from `start` over all cells (the caller returns it to the end).
-pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Result<Route, PatternError> {
+pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Result<GrowingRoute, PatternError> {
     let cells = decompose(&lane_pieces(clear, width, angle_deg));
     if cells.is_empty() {
         return Err(PatternError::NoRoom { width });
@@ -118,8 +118,8 @@ pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Resu
 /// Mows `cells` back and forth from `start`: next the unvisited cell with the entry corner
 /// nearest to where the robot is (nearest neighbour), each cell lane by lane from that corner,
 /// joined by collision-free connecting moves.
-pub fn sweep_cells(clear: &Clearance, cells: &[Vec<Piece>], start: Point) -> Route {
-    let mut route = Route::new(start);
+pub fn sweep_cells(clear: &Clearance, cells: &[Vec<Piece>], start: Point) -> GrowingRoute {
+    let mut route = GrowingRoute::new(start);
     let mut visited = vec![false; cells.len()];
     for _ in 0..cells.len() {
         // Nearest entry corner among the unvisited cells: (distance, cell, from_first_lane, flip).

@@ -7,7 +7,7 @@
 //! square (`width²`) are visited: slivers in corners cost a detour each for a few cells.
 //! `[pattern] complete = false` turns the pass off.
 
-use super::Route;
+use super::GrowingRoute;
 use crate::coverage::CoverageGrid;
 use crate::coverage::raster::for_each_swept_cell;
 use crate::geom::Point;
@@ -15,12 +15,12 @@ use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 
 /// Visits the uncovered coverable cells after `route`'s pattern.
-pub fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route) {
+pub fn complete(clear: &Clearance, reach: &Reach, width: f64, route: &mut GrowingRoute) {
     complete_patches(clear, reach, width, route, min_patch(clear.map(), width));
 }
 
 /// [`complete`], visiting uncovered patches of at least `min_patch` cells.
-pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mut Route, min_patch: usize) {
+pub fn complete_patches(clear: &Clearance, reach: &Reach, width: f64, route: &mut GrowingRoute, min_patch: usize) {
     let map = clear.map();
     let grid = CoverageGrid::new(map);
     let raster = *grid.raster();

@@ -122,7 +122,7 @@ pub fn plan_region(
             let cols = region.cols();
             region.cell_centre(i / cols, i % cols)
         });
-        let mut route = Route::new(start);
+        let mut route = GrowingRoute::new(start);
         let from = entry.unwrap_or(start);
         route.go(&whole, from);
         lanes.restrict(region_reach.centres().to_vec());
@@ -135,7 +135,7 @@ pub fn plan_region(
         route.skipped += lanes_route.skipped;
         route
     } else {
-        Route::new(start)
+        GrowingRoute::new(start)
     };
     reach.keep_only(targets);
     self::complete::complete(&whole, &reach, width, &mut route);
@@ -150,12 +150,12 @@ pub fn plan_region(
 
 /// A growing polyline that starts at a station; targets it cannot reach are skipped.
 #[derive(Clone, Debug)]
-pub struct Route {
+pub struct GrowingRoute {
     points: Vec<Point>,
     skipped: usize,
 }
 
-impl Route {
+impl GrowingRoute {
     /// A route standing at `start`.
     pub fn new(start: Point) -> Self {
         Self { points: vec![start], skipped: 0 }
@@ -201,7 +201,7 @@ impl Route {
             None => false,
         }
     }
-    /// [`Route::connect`], counting a target that cannot be reached as skipped.
+    /// [`GrowingRoute::connect`], counting a target that cannot be reached as skipped.
     pub fn go(&mut self, clear: &Clearance, p: Point) -> bool {
         let reached = self.connect(clear, p);
         self.skipped += usize::from(!reached);

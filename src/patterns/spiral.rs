@@ -7,7 +7,7 @@
 //! Cells are visited nearest entry first; every move is collision-free (or skipped).
 
 use super::boustrophedon::{Piece, decompose, lane_pieces};
-use super::{PatternError, Route};
+use super::{GrowingRoute, PatternError};
 use crate::geom::Point;
 
 /// The point of `piece` at lane coordinate `t`, clamped to the piece.
@@ -54,7 +54,7 @@ fn mirrored(cell: &[Piece]) -> Vec<Piece> {
 }
 
 /// Plans the spiral from `start` through every cell (the caller returns it to the end).
-pub fn plan(clear: &super::Clearance, width: f64, start: Point) -> Result<Route, PatternError> {
+pub fn plan(clear: &super::Clearance, width: f64, start: Point) -> Result<GrowingRoute, PatternError> {
     let cells = decompose(&lane_pieces(clear, width, 0.0));
     if cells.is_empty() {
         return Err(PatternError::NoRoom { width });
@@ -68,7 +68,7 @@ pub fn plan(clear: &super::Clearance, width: f64, start: Point) -> Result<Route,
             [rings(c, width), rings(&mirrored(c), width), rings(&rev, width), rings(&mirrored(&rev), width)]
         })
         .collect();
-    let mut route = Route::new(start);
+    let mut route = GrowingRoute::new(start);
     let mut visited = vec![false; cells.len()];
     for _ in 0..cells.len() {
         let here = route.last();

@@ -170,6 +170,12 @@ pub trait Search {
     type Error;
     /// Iterations completed and evaluations spent so far.
     fn progress(&self) -> (u32, u64);
+    /// Why the search has ended by its own rule, if it has (a fleet's plans settled, every
+    /// robot's share of the budget spent); read before the stop rules. Most searches run until
+    /// a rule stops them.
+    fn finished(&self) -> Option<StopReason> {
+        None
+    }
     /// One iteration (a generation, a batch); whether it made the best better (the planner
     /// says what better means). Run events (an environment change) go to `observers`.
     fn step(&mut self, observers: &mut Observers) -> Result<bool, Self::Error>;
@@ -190,8 +196,8 @@ pub struct Finish {
     pub evaluations: u64,
 }
 
-/// Runs `search` from its initial state until a rule of `rules` is met: reports the initial
-/// state, then, while no rule is met, steps and reports. The stall count is the executor's:
+/// Runs `search` from its initial state until it has finished by its own rule or a rule of
+/// `rules` is met: reports the initial state, then, while neither holds, steps and reports. The stall count is the executor's:
 /// iterations since the last step that said it improved the best; the same judgement tells
 /// [`ObserverMode::NewBest`](crate::ga::observer::ObserverMode::NewBest) observers which
 /// records to take.
@@ -201,7 +207,8 @@ pub fn execute<S: Search>(search: &mut S, rules: &StopRules, observers: &mut Obs
     let mut since_better = 0u32;
     loop {
         let (iteration, evaluations) = search.progress();
-        if let Some(stop) = rules.first_met(&Progress { iteration, evaluations, since_better }) {
+        let progress = Progress { iteration, evaluations, since_better };
+        if let Some(stop) = search.finished().or_else(|| rules.first_met(&progress)) {
             return Ok(Finish { stop, iterations: iteration, evaluations });
         }
         let improved = search.step(observers)?;

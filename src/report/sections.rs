@@ -27,7 +27,7 @@ pub(super) const SECTIONS: &[&dyn Section] = &[
     &Diversity,
     &BestPaths,
     &super::curves::CoverageCurves,
-    &Comparison,
+    &PlannerComparison,
     &GroupTables,
     &ThesisTables,
     &Anova,
@@ -187,9 +187,9 @@ impl Section for BestPaths {
 }
 
 /// The planner comparison of a study that runs several planners ([`super::ablation`]).
-struct Comparison;
+struct PlannerComparison;
 
-impl Section for Comparison {
+impl Section for PlannerComparison {
     fn applies(&self, s: &Study) -> bool {
         super::ablation::applies(&s.t)
     }

@@ -112,7 +112,7 @@ pub struct Router {
 /// A move's route: where it starts (where the robot stands at its first viewpoint) and the
 /// points it drives through, the last one where the robot stands at its second viewpoint.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Route<'s> {
+pub struct MoveRoute<'s> {
     /// The robot's position at the move's first viewpoint.
     pub start: Point,
     /// The points after `start`, ending at the robot's position at the second viewpoint.
@@ -289,7 +289,7 @@ impl Router {
 
     /// The route of the move `a → b` (cached in `scratch`). `layers` are the map's bit rows,
     /// which tell whether a segment's swept rectangle holds obstacle cells.
-    pub fn route<'s>(&self, a: Point, b: Point, scratch: &'s mut RouteScratch) -> Route<'s> {
+    pub fn route<'s>(&self, a: Point, b: Point, scratch: &'s mut RouteScratch) -> MoveRoute<'s> {
         let key = [a.x.to_bits(), a.y.to_bits(), b.x.to_bits(), b.y.to_bits()];
         let (start, from, len) = match scratch.cache.get(&key) {
             Some(&hit) => hit,
@@ -306,7 +306,7 @@ impl Router {
                 entry
             }
         };
-        Route { start, points: &scratch.points[from as usize..(from + len) as usize] }
+        MoveRoute { start, points: &scratch.points[from as usize..(from + len) as usize] }
     }
 
     /// The driven path of the viewpoints `points`: the robot's position at the first, then each

@@ -5,7 +5,7 @@
 
 use super::genome::{Action, MIN_GENOME_LEN};
 use super::individual::{Base, EvalScratch, EvaluationMode, Individual, evaluate};
-use super::scenario::Scenario;
+use super::scenario::ThesisScenario;
 use rayon::prelude::*;
 
 /// The columns of a batch result, in order.
@@ -77,7 +77,7 @@ pub fn genome_of(index: usize, moves: &[(f64, f64)]) -> Result<Vec<Action>, Geno
 /// viewpoints decoded as the GA decodes its own (the out-of-bounds correction of 003
 /// eqs. 3.7–3.8, the connector aimed at E), joined by straight or routed moves as the
 /// scenario's `thesis.moves` says: the plan the GA reports for such a genome.
-pub fn decode(scenario: &Scenario, moves: &[(f64, f64)]) -> Result<Vec<crate::geom::Point>, GenomeError> {
+pub fn decode(scenario: &ThesisScenario, moves: &[(f64, f64)]) -> Result<Vec<crate::geom::Point>, GenomeError> {
     let mut ind = Individual::with_genome(genome_of(0, moves)?);
     evaluate(&mut ind, scenario, Base::None, EvaluationMode::Full, &mut EvalScratch::default());
     Ok(scenario.driven(&ind.points))
@@ -85,14 +85,14 @@ pub fn decode(scenario: &Scenario, moves: &[(f64, f64)]) -> Result<Vec<crate::ge
 
 /// Scores every genome (live moves, see [`genome_of`]) in parallel on the current rayon pool.
 /// The result of each genome does not depend on the others or on the threads.
-pub fn evaluate_batch(scenario: &Scenario, genomes: &[Vec<(f64, f64)>]) -> Result<Vec<BatchScore>, GenomeError> {
+pub fn evaluate_batch(scenario: &ThesisScenario, genomes: &[Vec<(f64, f64)>]) -> Result<Vec<BatchScore>, GenomeError> {
     let genomes: Vec<Vec<Action>> =
         genomes.iter().enumerate().map(|(i, g)| genome_of(i, g)).collect::<Result<_, _>>()?;
     Ok(evaluate_genomes(scenario, genomes))
 }
 
 /// [`evaluate_batch`] of genomes already built by [`genome_of`].
-pub fn evaluate_genomes(scenario: &Scenario, genomes: Vec<Vec<Action>>) -> Vec<BatchScore> {
+pub fn evaluate_genomes(scenario: &ThesisScenario, genomes: Vec<Vec<Action>>) -> Vec<BatchScore> {
     evaluate_genomes_until(scenario, genomes, &std::sync::atomic::AtomicBool::new(false))
         .expect("nothing sets the flag")
 }
@@ -101,7 +101,7 @@ pub fn evaluate_genomes(scenario: &Scenario, genomes: Vec<Vec<Action>>) -> Vec<B
 /// caller's Ctrl-C): each genome not yet evaluated is skipped, so the batch ends within about
 /// one evaluation per thread.
 pub fn evaluate_genomes_until(
-    scenario: &Scenario,
+    scenario: &ThesisScenario,
     genomes: Vec<Vec<Action>>,
     stop: &std::sync::atomic::AtomicBool,
 ) -> Option<Vec<BatchScore>> {
@@ -142,10 +142,10 @@ mod tests {
     use crate::thesis::individual::EvalScratch;
     use rand::SeedableRng;
 
-    fn scenario() -> Scenario {
+    fn scenario() -> ThesisScenario {
         let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
         let s = Point::new(1.3, 1.3);
-        Scenario::new(preset("thesis-1").unwrap(), robot, s, s, Projection::F2)
+        ThesisScenario::new(preset("thesis-1").unwrap(), robot, s, s, Projection::F2)
     }
 
     #[test]
@@ -176,7 +176,7 @@ mod tests {
     fn a_decoded_genome_runs_from_s_through_its_corrected_viewpoints_to_e() {
         let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
         let (start, end) = (Point::new(1.3, 1.3), Point::new(9.0, 9.0));
-        let sc = Scenario::new(preset("thesis-1").unwrap(), robot, start, end, Projection::F2);
+        let sc = ThesisScenario::new(preset("thesis-1").unwrap(), robot, start, end, Projection::F2);
         // East 2 m, then north 20 m (past the map's top edge: clamped inside the map).
         let path = decode(&sc, &[(0.0, 2.0), (90.0, 20.0)]).unwrap();
         assert_eq!(path.first(), Some(&Point::new(1.3, 1.3)));

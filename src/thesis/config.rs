@@ -135,7 +135,7 @@ pub fn param_key(param: Param) -> Option<&'static str> {
     match param {
         Param::TournamentSize => Some("thesis.tournament_size"),
         Param::Pressure => Some("thesis.selection_pressure"),
-        Param::Select => None,
+        Param::BestParents => None,
     }
 }
 
@@ -483,7 +483,8 @@ fn validate_selection(t: &ThesisSection, origin: &str) -> Result<Selection, Conf
                     }
                 }
             }
-            let params = DrawParams { tournament_size: t.tournament_size, pressure: t.selection_pressure, select: 0 };
+            let params =
+                DrawParams { tournament_size: t.tournament_size, pressure: t.selection_pressure, best_parents: 0 };
             Selection::Draw(ParentDraw { scheme, params })
         }
     })
@@ -498,7 +499,7 @@ fn validate_control(t: &ThesisSection, selection: &Selection, origin: &str) -> R
             let (lo, hi, what) = match selection.draw().and_then(|d| d.scheme.ramped()) {
                 Some(Param::Pressure) => (1.0, 2.0, "[1, 2] (SP of RRWS)"),
                 Some(Param::TournamentSize) => (1.0, t.pop_min as f64, "[1, pop_min] (TS of the tournament)"),
-                Some(Param::Select) | None => {
+                Some(Param::BestParents) | None => {
                     let ramped: Vec<String> = crate::ga::parents::SCHEMES
                         .iter()
                         .filter(|s| s.ramped().is_some_and(|p| param_key(p).is_some()))

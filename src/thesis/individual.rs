@@ -1,9 +1,9 @@
 //! Evaluated individuals and the correction procedures that follow every creation or change
-//! of a genome (003 §3.3.4, spec §9, order of R17), scored in a [`Scenario`].
+//! of a genome (003 §3.3.4, spec §9, order of R17), scored in a [`ThesisScenario`].
 
 use super::genome::{Action, decode, decode_from, live, random_genome, same_bits};
 use super::objective::with_coverage;
-use super::scenario::Scenario;
+use super::scenario::ThesisScenario;
 use super::segments::{Home, SegmentCache};
 use crate::coverage::bits::{BitLayers, Tally};
 use crate::coverage::fitness::{ThesisScore, score_counts};
@@ -137,7 +137,7 @@ impl IndividualFields {
 
     /// The complete footprint metrics of the path (length and turning included), measured
     /// anew; the evaluation itself keeps only what the fitness reads.
-    pub fn path_metrics(&self, scenario: &Scenario) -> PathMetrics {
+    pub fn path_metrics(&self, scenario: &ThesisScenario) -> PathMetrics {
         let grid = &scenario.grid;
         let metrics = scenario.robot.measure(grid, &mut SweepScratch::new(grid), &scenario.driven(&self.points));
         debug_assert_eq!(metrics.counts(), self.sweep, "the evaluator and the cell sweep agree");
@@ -210,7 +210,7 @@ pub struct EvalScratch {
 /// correction (0 without a parent base).
 pub fn evaluate(
     ind: &mut Individual,
-    scenario: &Scenario,
+    scenario: &ThesisScenario,
     base: Base,
     mode: EvaluationMode,
     scratch: &mut EvalScratch,
@@ -277,7 +277,7 @@ pub fn evaluate(
 /// driven routes when moves are routed), 003 eq. 3.13's objectives, and the camera's coverage
 /// in place of the footprint's when the scenario has a camera.
 #[inline]
-fn score_path(ind: &mut IndividualFields, scenario: &Scenario, scratch: &mut EvalScratch) {
+fn score_path(ind: &mut IndividualFields, scenario: &ThesisScenario, scratch: &mut EvalScratch) {
     let rot = scenario.robot.rot_speed;
     ind.t_rot_s = match (rot > 0.0, scenario.routes.as_deref()) {
         (false, _) => 0.0,
@@ -459,7 +459,7 @@ pub fn is_dead(genome: &[Action]) -> bool {
 /// base must have been through this correction itself (every member of a population has).
 pub fn correct_and_evaluate<R: Rng + ?Sized>(
     ind: &mut Individual,
-    scenario: &Scenario,
+    scenario: &ThesisScenario,
     mut base: Base,
     mode: EvaluationMode,
     scratch: &mut EvalScratch,

@@ -9,7 +9,7 @@ use super::genome::{Action, random_genome};
 use super::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
 use super::mutation::{Mutation, mutate, mutate_action};
 use super::params::ThesisParams;
-use super::scenario::Scenario;
+use super::scenario::ThesisScenario;
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::rng::Rng;
 use crate::geom::Point;
@@ -68,7 +68,7 @@ pub struct ReachMask {
 
 impl ReachMask {
     /// The reachable cells of a robot of `width` starting at `stations` on `world`'s map.
-    pub fn new(world: &Scenario, width: f64, stations: &[Point]) -> Self {
+    pub fn new(world: &ThesisScenario, width: f64, stations: &[Point]) -> Self {
         let reach = crate::map::reach::Reach::new(&crate::map::clearance::Clearance::new(&world.map, width), stations);
         Self { words: world.layers.mask_of(reach.coverable()), cells: reach.coverable_count() as u64 }
     }
@@ -81,7 +81,7 @@ impl ReachMask {
 
 /// A member of the thesis GA's population.
 pub trait Member: Clone + Default + Send + Sync {
-    /// What an evaluation reads (a [`Scenario`], or one per robot).
+    /// What an evaluation reads (a [`ThesisScenario`], or one per robot).
     type World: Sync;
     /// `f_obstacle` (maximised).
     fn fitness(&self) -> f64;
@@ -138,9 +138,9 @@ pub trait Premark {
     fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64);
 }
 
-impl Premark for Scenario {
+impl Premark for ThesisScenario {
     fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
-        Scenario::premark_rect(self, x0, y0, x1, y1);
+        ThesisScenario::premark_rect(self, x0, y0, x1, y1);
     }
 }
 
@@ -165,8 +165,8 @@ pub fn vary(genome: &mut Vec<Action>, op: Op, init: &InitParams, rng: &mut Rng) 
 }
 
 impl Member for Individual {
-    type World = Scenario;
-    fn reach_mask(world: &Scenario) -> ReachMask {
+    type World = ThesisScenario;
+    fn reach_mask(world: &ThesisScenario) -> ReachMask {
         ReachMask::new(world, world.robot.width, &[world.frame.start])
     }
     fn reached(&self, mask: &ReachMask) -> u64 {
@@ -184,7 +184,14 @@ impl Member for Individual {
     fn obstacle_cells(&self) -> u64 {
         self.sweep.obj_pix
     }
-    fn cross(a: &Self, b: &Self, p: &ThesisParams, world: &Scenario, rng: &mut Rng, kids: &mut Vec<Self>) -> bool {
+    fn cross(
+        a: &Self,
+        b: &Self,
+        p: &ThesisParams,
+        world: &ThesisScenario,
+        rng: &mut Rng,
+        kids: &mut Vec<Self>,
+    ) -> bool {
         fn parent(x: &Individual) -> Parent<'_> {
             Parent { genome: &x.genome, points: &x.points, stable: x.stable_genes }
         }
@@ -201,7 +208,7 @@ impl Member for Individual {
         &mut self,
         op: Op,
         origin: Origin<'_, Self>,
-        world: &Scenario,
+        world: &ThesisScenario,
         how: &Variation,
         scratch: &mut EvalScratch,
         rng: &mut Rng,
@@ -216,7 +223,7 @@ impl Member for Individual {
         correct_and_evaluate(self, world, base, how.mode, scratch, &how.init, rng)
     }
 
-    fn reevaluate(&mut self, world: &Scenario, mode: EvaluationMode, scratch: &mut EvalScratch) -> u64 {
+    fn reevaluate(&mut self, world: &ThesisScenario, mode: EvaluationMode, scratch: &mut EvalScratch) -> u64 {
         super::individual::evaluate(self, world, Base::None, mode, scratch);
         1
     }

@@ -78,7 +78,7 @@ mod tests {
     use crate::map::presets::preset;
     use crate::thesis::genome::random_genome;
     use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, evaluate};
-    use crate::thesis::scenario::Scenario;
+    use crate::thesis::scenario::ThesisScenario;
 
     fn spec() -> CameraSpec {
         CameraSpec { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 }
@@ -95,10 +95,10 @@ mod tests {
         let robot = Footprint::default();
         let mut rng = crate::ga::rng::stream(7, crate::ga::rng::Purpose::Main, &[]);
         for alpha in [0.1, 1.0] {
-            let plain = Scenario::new(map.clone(), robot, s, s, Projection::F2);
+            let plain = ThesisScenario::new(map.clone(), robot, s, s, Projection::F2);
             let camera = CameraObjective::new(&map, &spec(), alpha, &[s]);
             let layer = CameraLayer::new(&map, &spec(), &[s]);
-            let with = Scenario::new(map.clone(), robot, s, s, Projection::F2).with_camera(Some(camera));
+            let with = ThesisScenario::new(map.clone(), robot, s, s, Projection::F2).with_camera(Some(camera));
             for _ in 0..5 {
                 let mut ind = Individual::default();
                 random_genome(&mut rng, 20, 4.0, &mut ind.genome);

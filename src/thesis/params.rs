@@ -29,17 +29,17 @@ impl Selection {
 
     /// Architecture (a) with the tournament of size `TS` = `size` (003 §2.2.1.1).
     pub fn tournament(size: usize) -> Self {
-        Self::registered("tournament", DrawParams { tournament_size: size, pressure: 0.0, select: 0 })
+        Self::registered("tournament", DrawParams { tournament_size: size, pressure: 0.0, best_parents: 0 })
     }
 
     /// Architecture (a) with the proportionate wheel (003 §2.2.1.2).
     pub fn prws() -> Self {
-        Self::registered("prws", DrawParams { tournament_size: 0, pressure: 0.0, select: 0 })
+        Self::registered("prws", DrawParams { tournament_size: 0, pressure: 0.0, best_parents: 0 })
     }
 
     /// Architecture (a) with the rank wheel at pressure `SP` = `pressure` (003 §2.2.1.3).
     pub fn rrws(pressure: f64) -> Self {
-        Self::registered("rrws", DrawParams { tournament_size: 0, pressure, select: 0 })
+        Self::registered("rrws", DrawParams { tournament_size: 0, pressure, best_parents: 0 })
     }
 
     fn registered(name: &str, params: DrawParams) -> Self {

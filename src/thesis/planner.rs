@@ -7,7 +7,7 @@ use super::config::ThesisConfig;
 use super::individual::Individual;
 use super::objective::{CameraObjective, Objective};
 use super::run::{ThesisGa, ThesisOutcome};
-use super::scenario::Scenario as ThesisScenario;
+use super::scenario::ThesisScenario;
 use crate::coverage::CoverageGrid;
 use crate::coverage::fitness::ThesisScore;
 use crate::ga::observer::Observer;

@@ -146,7 +146,7 @@ impl<T: Member> Ga<T> {
                     e.tournament_size = ts.min(state.population.len());
                 }
                 Some(Param::Pressure) => e.pressure = control::linear_ramp(iteration, iter_max, min, max),
-                Some(Param::Select) | None => {}
+                Some(Param::BestParents) | None => {}
             },
             Control::Adaptive(c) => {
                 let fit = state.population.iter().map(T::fitness);

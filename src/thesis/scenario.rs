@@ -14,7 +14,7 @@ use std::sync::Arc;
 
 /// Everything an evaluation reads: the map layers, the robot, the stations and the projection.
 #[derive(Clone, Debug)]
-pub struct Scenario {
+pub struct ThesisScenario {
     /// The map.
     pub map: GridMap,
     /// Obstacles and pre-marks as scored.
@@ -35,7 +35,7 @@ pub struct Scenario {
     pub camera: Option<Arc<CameraObjective>>,
 }
 
-impl Scenario {
+impl ThesisScenario {
     /// The thesis scenario (visit grid, clamping frame) of the common scenario every planner
     /// plans for.
     pub fn from_common(s: &crate::planner::Scenario) -> Self {

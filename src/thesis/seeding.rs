@@ -170,7 +170,7 @@ mod tests {
     use crate::map::presets::preset;
     use crate::thesis::genome::decode;
     use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual};
-    use crate::thesis::scenario::Scenario as ThesisScenario;
+    use crate::thesis::scenario::ThesisScenario;
 
     /// The genome evaluated by the thesis GA on `scenario`, and the plan `points` scored by the
     /// common scorer with the scenario's robot.

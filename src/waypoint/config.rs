@@ -159,7 +159,7 @@ pub struct WaypointConfig {
     /// Geometry.
     pub world: super::world::WorldParams,
     /// GA.
-    pub ga: super::run::GaParams,
+    pub ga: super::run::WaypointGaParams,
 }
 
 impl WaypointSection {
@@ -183,7 +183,7 @@ impl WaypointSection {
         let scenario = ctx.scenario;
         let mut c = validate(self, ctx.origin, &scenario.map, scenario.start, &scenario.camera)?;
         if self.objective == super::world::ObjectiveKind::Footprint {
-            c.world.objective = super::world::Objective::Footprint { width: scenario.robot.width };
+            c.world.objective = super::world::WaypointObjective::Footprint { width: scenario.robot.width };
         }
         Ok(c)
     }
@@ -197,7 +197,7 @@ impl WaypointConfig {
     /// and last pixel (a view spans at most `2·d_max` rows, a swept edge `max_traverse + width`
     /// rows); and the population's paths.
     pub fn memory_estimate(&self, map: &GridMap) -> MemoryEstimate {
-        use super::world::Objective;
+        use super::world::WaypointObjective;
         let w = self;
         let p = &w.world;
         let px = map.resolution() / p.scale; // work-raster pixels per map cell (per axis)
@@ -207,8 +207,8 @@ impl WaypointConfig {
         let waypoints = (free_px / (step_px * step_px)).ceil().max(1.0);
         let degree = 16f64.min(waypoints - 1.0).max(1.0);
         let span_rows = match p.objective {
-            Objective::Camera => 2.0 * p.d_max / p.scale + 1.0,
-            Objective::Footprint { width } => (p.max_traverse + width) / p.scale + 1.0,
+            WaypointObjective::Camera => 2.0 * p.d_max / p.scale + 1.0,
+            WaypointObjective::Footprint { width } => (p.max_traverse + width) / p.scale + 1.0,
         }
         .min(rows);
         let view_bytes = bitset_bytes(span_rows * cols) + 16.0;
@@ -351,9 +351,9 @@ fn config_of(
             view_shape: w.view_shape,
             set: w.waypoint_set,
             starts,
-            objective: super::world::Objective::Camera,
+            objective: super::world::WaypointObjective::Camera,
         },
-        ga: super::run::GaParams {
+        ga: super::run::WaypointGaParams {
             population: w.population,
             generations: w.generations,
             p_c: w.p_c,

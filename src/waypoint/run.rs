@@ -19,7 +19,7 @@ use rayon::prelude::*;
 
 /// GA parameters (Table I, spec §18–19).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GaParams {
+pub struct WaypointGaParams {
     /// `N`.
     pub population: usize,
     /// Generations `G`.
@@ -116,7 +116,7 @@ pub type ToRecord<'a> = dyn FnMut(&WaypointStats, &Organism, u64) -> GenerationR
 /// `C` (ties: shorter flight time, then lower index); when none is feasible, the one with the
 /// fewest violated constraint types, then the highest coverage. History and summary use this
 /// same choice.
-pub fn reported(pop: &[Organism], p: &GaParams, g: u32) -> usize {
+pub fn reported(pop: &[Organism], p: &WaypointGaParams, g: u32) -> usize {
     let c_req = required_coverage(&p.objectives, g);
     let key = |o: &Organism| o.eval.violations(&p.objectives, c_req);
     let mut best = 0;
@@ -134,7 +134,7 @@ pub fn reported(pop: &[Organism], p: &GaParams, g: u32) -> usize {
     best
 }
 
-fn stats(g: u32, pop: &[Organism], p: &GaParams) -> WaypointStats {
+fn stats(g: u32, pop: &[Organism], p: &WaypointGaParams) -> WaypointStats {
     let c_req = required_coverage(&p.objectives, g);
     let n = pop.len() as f64;
     let objs: Vec<[f64; 2]> = pop.iter().map(|o| o.eval.objectives(&p.objectives, c_req)).collect();
@@ -183,7 +183,7 @@ pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
 /// interrupt is raised before the initial population is complete (there is no plan yet).
 pub fn run(
     world: &World,
-    p: &GaParams,
+    p: &WaypointGaParams,
     seed: u64,
     limits: &Budget,
     observers: &mut Observers,
@@ -257,7 +257,7 @@ pub fn run(
 /// cap keeps a run finite); `None` when `interrupted` says so between batches.
 fn initial_population(
     world: &World,
-    p: &GaParams,
+    p: &WaypointGaParams,
     seed: u64,
     evaluate_all: &dyn Fn(Vec<Vec<Vec<u32>>>) -> Vec<Organism>,
     interrupted: &dyn Fn() -> bool,
@@ -312,7 +312,7 @@ fn initial_population(
 }
 
 /// Each organism's (coverage, flight time, feasible at generation `g`'s constraints).
-fn snapshot(p: &GaParams, g: u32, pop: &[Organism]) -> Snapshot {
+fn snapshot(p: &WaypointGaParams, g: u32, pop: &[Organism]) -> Snapshot {
     let c_req = required_coverage(&p.objectives, g);
     let of = |o: &Organism| (o.eval.coverage, o.eval.flight_time, o.eval.violations(&p.objectives, c_req) == 0);
     (g, pop.iter().map(of).collect())
@@ -320,7 +320,7 @@ fn snapshot(p: &GaParams, g: u32, pop: &[Organism]) -> Snapshot {
 
 /// The waypoint GA between generations, as [`execute`] drives it.
 struct Generations<'a, 'r> {
-    p: &'a GaParams,
+    p: &'a WaypointGaParams,
     seed: u64,
     graph: &'a super::graph::Graph,
     evaluate_all: &'a dyn Fn(Vec<Vec<Vec<u32>>>) -> Vec<Organism>,

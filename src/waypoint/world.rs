@@ -47,7 +47,7 @@ pub struct WorldParams {
     /// Entry positions (m), one shared or one per agent.
     pub starts: Vec<(f64, f64)>,
     /// What the planner optimises coverage of.
-    pub objective: Objective,
+    pub objective: WaypointObjective,
 }
 
 /// What the waypoint planner's coverage objective measures (000 optimises the camera; the
@@ -64,7 +64,7 @@ pub enum ObjectiveKind {
 
 /// The objective with its parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Objective {
+pub enum WaypointObjective {
     /// Camera views.
     Camera,
     /// Swept footprint of this width in metres.
@@ -166,8 +166,8 @@ fn views_within(
         shape: p.view_shape,
     };
     let sensing = match p.objective {
-        Objective::Camera => Sensing::Camera(camera),
-        Objective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
+        WaypointObjective::Camera => Sensing::Camera(camera),
+        WaypointObjective::Footprint { width } => Sensing::Footprint { width_px: width / p.scale },
     };
     let give_up = || cutoff.reached().is_some();
     Traversals::compute(wm, graph, &sensing, &give_up).map_err(|done| match cutoff.reached() {
@@ -330,14 +330,14 @@ mod tests {
             view_shape: ViewShape::Sections,
             set,
             starts: vec![(2.0, 2.0)],
-            objective: Objective::Camera,
+            objective: WaypointObjective::Camera,
         }
     }
 
     #[test]
     fn footprint_objective_sweeps_free_pixels_along_each_edge() {
         let map = preset("office").unwrap();
-        let p = WorldParams { objective: Objective::Footprint { width: 0.6 }, ..params(WaypointSet::Full) };
+        let p = WorldParams { objective: WaypointObjective::Footprint { width: 0.6 }, ..params(WaypointSet::Full) };
         let w = World::build(&map, &p, 1).unwrap();
         let (i, k) = (0, 0);
         let t = &w.traversals.edges[i][k];

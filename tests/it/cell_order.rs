@@ -280,7 +280,7 @@ fn a_small_population_is_refused_only_by_the_key_its_selection_reads() {
     assert_eq!(check(&file("")), Ok(()));
     assert_eq!(check(&file("selection = \"rrws\"\n")), Ok(()));
     let elite = check(&file("selection = \"elite\"\n")).unwrap_err();
-    assert!(elite.contains("cell_order.select"), "{elite}");
+    assert!(elite.contains("cell_order.best_parents"), "{elite}");
     let tournament = check(&file("tournament_size = 11\n")).unwrap_err();
     assert!(tournament.contains("cell_order.tournament_size"), "{tournament}");
 }

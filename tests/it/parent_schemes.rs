@@ -49,7 +49,7 @@ fn every_registered_scheme_runs_in_both_genetic_algorithms() {
 
 #[test]
 fn keys_a_scheme_does_not_read_are_named_as_ignored() {
-    let keys = [(Param::TournamentSize, "tournament_size"), (Param::Pressure, "sp"), (Param::Select, "select")];
+    let keys = [(Param::TournamentSize, "tournament_size"), (Param::Pressure, "sp"), (Param::BestParents, "select")];
     for s in SCHEMES {
         let file = ExperimentFile::parse(&cell_order(s.name()), "t.toml").unwrap();
         for (param, key) in keys {

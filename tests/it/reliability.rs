@@ -202,10 +202,13 @@ const CASES: &[Case] = &[
         needle: "`thesis.tournament_size` is swept but ignored",
     },
     Case {
-        name: "swept sp under the cell-order GA's tournament",
-        files: &[("g.toml", "[base]\nplanner = \"cell_order\"\n[axes]\n\"cell_order.sp\" = [1.2, 1.8]\n")],
+        name: "swept selection pressure under the cell-order GA's tournament",
+        files: &[(
+            "g.toml",
+            "[base]\nplanner = \"cell_order\"\n[axes]\n\"cell_order.selection_pressure\" = [1.2, 1.8]\n",
+        )],
         args: &["grid", "g.toml", "--out", "OUT"],
-        needle: "`cell_order.sp` is swept but ignored in run",
+        needle: "`cell_order.selection_pressure` is swept but ignored in run",
     },
     Case {
         name: "swept GA key under the exact solver",

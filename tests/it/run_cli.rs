@@ -440,10 +440,6 @@ fn bad_fleets_are_rejected_with_exit_2() {
     expect_error(&fleet("[[robots]]\nname = \"x\"\nstart = [0.5, 5.0]\n"), "robots[2].start (robot \"x\")");
     expect_error(&fleet("").replace("round_iterations = 50", "round_iterations = 0"), "fleet.round_iterations");
     expect_error(&format!("planner = \"spiral\"\n{}", fleet("")), "cannot plan for [[robots]]");
-    expect_error(
-        &fleet("").replace("iterations = 200", "iterations = 200\nstall_iterations = 5"),
-        "budget.stall_iterations",
-    );
     expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nmode = \"waypoint\"\n"), "cannot plan for [[robots]]");
     expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nname = \"a,b\"\n"), "fleet.name");
     expect_error(&fleet("").replace("[fleet]\n", "[fleet]\nmode = \"teleport\"\n"), "teleport");

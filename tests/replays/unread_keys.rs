@@ -50,7 +50,7 @@ fn full_table(variant: &str) -> Table {
     file.waypoint.l_min = 10;
     let mut cell_order = file.cell_order.clone().unwrap_or_default();
     cell_order.population = 10;
-    cell_order.select = 4;
+    cell_order.best_parents = 4;
     cell_order.keep = 2;
     file.cell_order = Some(cell_order);
     Table::try_from(file).unwrap()

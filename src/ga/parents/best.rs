@@ -1,4 +1,4 @@
-//! Parents drawn uniformly from the `select` best: the draw of 003's Elite families (§3.4,
+//! Parents drawn uniformly from the `best_parents` best: the draw of 003's Elite families (§3.4,
 //! architecture (b)) for a GA that mates pairs one at a time (the cell-order GA's `"elite"`).
 //! The thesis GA's own `"elite"` is its architecture (b), which makes families, not draws.
 
@@ -23,10 +23,10 @@ impl ParentScheme for Best {
     }
 
     fn reads(&self) -> &'static [Param] {
-        &[Param::Select]
+        &[Param::BestParents]
     }
 
     fn prepare<'f>(&self, fitness: &'f [f64], params: &DrawParams) -> Box<dyn Draw + 'f> {
-        Box::new(Draws(best_k(fitness, params.select.clamp(1, fitness.len()))))
+        Box::new(Draws(best_k(fitness, params.best_parents.clamp(1, fitness.len()))))
     }
 }

@@ -53,7 +53,7 @@ mod tests {
         let fitness = [0.05, 0.3, 0.15, 0.4, 0.1, 0.0, 0.2];
         let probs = proportionate_probabilities(&fitness);
         let n = fitness.len();
-        let mut draw = Sus.prepare(&fitness, &DrawParams { tournament_size: 0, pressure: 0.0, select: 0 });
+        let mut draw = Sus.prepare(&fitness, &DrawParams { tournament_size: 0, pressure: 0.0, best_parents: 0 });
         let mut rng = stream(12, Purpose::Main, &[]);
         for batch in 0..300 {
             let mut counts = vec![0usize; n];

@@ -5,7 +5,7 @@ use crate::ga::rng::{Purpose, stream};
 use crate::ga::selection::{best_k, cumulative, proportionate_probabilities, rank_probabilities, spin, tournament};
 
 const FITNESS: [f64; 7] = [0.3, 0.9, 0.1, 0.5, 0.7, 0.5, 0.0];
-const PARAMS: DrawParams = DrawParams { tournament_size: 3, pressure: 1.7, select: 3 };
+const PARAMS: DrawParams = DrawParams { tournament_size: 3, pressure: 1.7, best_parents: 3 };
 
 #[test]
 fn names_are_unique_and_found() {
@@ -27,7 +27,7 @@ fn each_scheme_draws_as_its_operator() {
         ("rrws", |f, rng| spin(&cumulative(&rank_probabilities(f, PARAMS.pressure)), rng)),
         ("elite", |f, rng| {
             use rand::Rng;
-            let best = best_k(f, PARAMS.select);
+            let best = best_k(f, PARAMS.best_parents);
             best[rng.random_range(0..best.len())]
         }),
     ];

@@ -30,7 +30,7 @@ const TABLE: [(&str, &str, usize); 10] = [
 const TESTED: [&str; 4] = ["cov_final_reach", "t_final", "f_reach", "cam_walls_free"];
 
 /// Where the comparison's figures and tables go, and what it found.
-pub struct Comparison {
+pub struct PlannersCompared {
     /// The markdown section.
     pub markdown: String,
 }
@@ -384,7 +384,7 @@ impl<'a> Comparing<'a> {
 }
 
 /// Writes the comparison's files into `out` and returns its markdown section.
-pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, ReportError> {
+pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<PlannersCompared, ReportError> {
     let c = Comparing::new(t)?;
     let mut w = Written {
         csv: String::from("map,planner,metric,n,median,q1,q3,mean\n"),
@@ -424,7 +424,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<Comparison, Repo
         let _ = writeln!(md, "- {f}");
     }
     let _ = writeln!(md);
-    Ok(Comparison { markdown: md })
+    Ok(PlannersCompared { markdown: md })
 }
 
 #[cfg(test)]

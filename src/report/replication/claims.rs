@@ -50,7 +50,7 @@ pub enum Expect {
 
 /// The outcome of one two-group comparison.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Comparison {
+pub struct ClaimTest {
     /// Runs in A and B.
     pub n: (usize, usize),
     /// `P(a > b) + ½P(a = b)` (A₁₂), or for rates the difference `rate_a − rate_b`.
@@ -89,22 +89,22 @@ fn judge(expect: Expect, a_higher: bool, p: f64, n: (usize, usize)) -> Verdict {
 }
 
 /// Mann–Whitney comparison of `a` against `b` for `expect`.
-pub fn compare(a: &[f64], b: &[f64], expect: Expect) -> Comparison {
+pub fn compare(a: &[f64], b: &[f64], expect: Expect) -> ClaimTest {
     let n = (a.len(), b.len());
     match mann_whitney_u(a, b) {
         Some(mw) => {
             let a12 = mw.u / (a.len() * b.len()) as f64;
-            Comparison { n, effect: a12, p: mw.p_value, verdict: judge(expect, a12 > 0.5, mw.p_value, n) }
+            ClaimTest { n, effect: a12, p: mw.p_value, verdict: judge(expect, a12 > 0.5, mw.p_value, n) }
         }
-        None => Comparison { n, effect: f64::NAN, p: f64::NAN, verdict: Verdict::CannotSay },
+        None => ClaimTest { n, effect: f64::NAN, p: f64::NAN, verdict: Verdict::CannotSay },
     }
 }
 
 /// Two-proportion z-test of `k_a/n_a` against `k_b/n_b` (pooled variance) for `expect`.
-pub fn compare_rates((ka, na): (usize, usize), (kb, nb): (usize, usize), expect: Expect) -> Comparison {
+pub fn compare_rates((ka, na): (usize, usize), (kb, nb): (usize, usize), expect: Expect) -> ClaimTest {
     let n = (na, nb);
     if na == 0 || nb == 0 {
-        return Comparison { n, effect: f64::NAN, p: f64::NAN, verdict: Verdict::CannotSay };
+        return ClaimTest { n, effect: f64::NAN, p: f64::NAN, verdict: Verdict::CannotSay };
     }
     let (pa, pb) = (ka as f64 / na as f64, kb as f64 / nb as f64);
     let pool = (ka + kb) as f64 / (na + nb) as f64;
@@ -115,7 +115,7 @@ pub fn compare_rates((ka, na): (usize, usize), (kb, nb): (usize, usize), expect:
     } else {
         1.0
     };
-    Comparison { n, effect: pa - pb, p, verdict: judge(expect, pa > pb, p, n) }
+    ClaimTest { n, effect: pa - pb, p, verdict: judge(expect, pa > pb, p, n) }
 }
 
 /// Mean diversity over the last tenth of the rows of a run's `history.csv`.
@@ -180,7 +180,7 @@ impl Runs<'_> {
 struct Row {
     claim: &'static str,
     test: String,
-    result: Comparison,
+    result: ClaimTest,
     rate: bool,
 }
 

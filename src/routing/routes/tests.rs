@@ -95,7 +95,7 @@ fn a_clear_move_is_the_straight_segment() {
     let router = Router::new(&map, 0.6, &[Point::new(1.3, 1.3)]);
     let (a, b) = (Point::new(1.5, 1.5), Point::new(8.5, 1.5));
     let mut scratch = RouteScratch::default();
-    assert_eq!(router.route(a, b, &mut scratch), Route { start: a, points: &[b] });
+    assert_eq!(router.route(a, b, &mut scratch), MoveRoute { start: a, points: &[b] });
 }
 
 #[test]
@@ -132,12 +132,12 @@ fn on_a_map_without_obstacles_every_move_is_straight_between_places_the_body_fit
     // Where the body fits at both ends: the straight move itself.
     for (a, b) in [((0.3, 0.3), (7.7, 5.7)), ((0.35, 5.6), (7.65, 0.4)), ((4.0, 3.0), (4.0, 3.0))] {
         let (a, b) = (Point::new(a.0, a.1), Point::new(b.0, b.1));
-        assert_eq!(router.route(a, b, &mut scratch), Route { start: a, points: &[b] });
+        assert_eq!(router.route(a, b, &mut scratch), MoveRoute { start: a, points: &[b] });
     }
     // A viewpoint past the reach of the body (on the map's edge) is driven to the nearest
     // place it fits, then straight.
     let (a, b) = (Point::new(0.0, 0.0), Point::new(8.0, 6.0));
     let (pa, pb) = (router.position(a), router.position(b));
     assert!(pa != a && pb != b && router.can_stand(pa) && router.can_stand(pb));
-    assert_eq!(router.route(a, b, &mut scratch), Route { start: pa, points: &[pb] });
+    assert_eq!(router.route(a, b, &mut scratch), MoveRoute { start: pa, points: &[pb] });
 }

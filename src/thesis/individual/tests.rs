@@ -9,8 +9,8 @@ fn a(dist_m: f64) -> Action {
 }
 
 /// Thesis map 1 with this robot, S and E, projection f2.
-fn thesis1(robot: Footprint, s: Point, e: Point) -> Scenario {
-    Scenario::new(preset("thesis-1").unwrap(), robot, s, e, Projection::F2)
+fn thesis1(robot: Footprint, s: Point, e: Point) -> ThesisScenario {
+    ThesisScenario::new(preset("thesis-1").unwrap(), robot, s, e, Projection::F2)
 }
 
 /// One move 3 m east, then two zero genes (the connector's slot and E's).
@@ -36,7 +36,7 @@ fn a_premarked_rectangle_makes_its_cells_revisits_in_both_evaluations() {
     // at (1, 1) pre-marked, its 12 lane cells are revisits (as the sweep's own case says).
     let (s, e) = (Point::new(1.3, 1.3), Point::new(4.3, 1.3));
     let mut scenario = thesis1(Footprint::default(), s, e);
-    let eval = |scenario: &Scenario, mode| {
+    let eval = |scenario: &ThesisScenario, mode| {
         let mut ind = three_metres_east();
         evaluate(&mut ind, scenario, Base::None, mode, &mut EvalScratch::default());
         ind
@@ -204,7 +204,7 @@ proptest::proptest! {
         let s = Point::new(1.3, 1.3);
         let spec = crate::coverage::score::CameraSpec { scale: 0.15, d_min: 0.2, d_max: 7.0, fov_deg: 69.4, sections: 15, band_m: 0.45 };
         let objective = camera.then(|| CameraObjective::new(&m, &spec, 0.1, &[s]));
-        let sc = Scenario::new(m, Footprint { rot_speed: 0.7, ..Footprint::default() }, s, Point::new(9.7, 1.3), Projection::F2)
+        let sc = ThesisScenario::new(m, Footprint { rot_speed: 0.7, ..Footprint::default() }, s, Point::new(9.7, 1.3), Projection::F2)
             .with_camera(objective);
         let mut rng = crate::ga::rng::stream(seed, crate::ga::rng::Purpose::Main, &[]);
         let mut scratch = EvalScratch::default();
@@ -255,7 +255,7 @@ proptest::proptest! {
 fn dead_genomes_are_reinitialised() {
     let map = preset("thesis-1").unwrap();
     let s = Point::new(1.3, 1.3);
-    let sc = Scenario::new(map, Footprint::default(), s, s, Projection::F1);
+    let sc = ThesisScenario::new(map, Footprint::default(), s, s, Projection::F1);
     let mut scratch = EvalScratch::default();
     let mut ind = Individual::with_genome(vec![a(0.0), a(0.0), a(0.0), a(0.0)]);
     assert!(is_dead(&ind.genome));

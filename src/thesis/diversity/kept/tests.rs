@@ -133,7 +133,7 @@ fn a_run_keeps_the_full_pass_diversity() {
     use crate::map::presets::preset;
     use crate::thesis::params::{Selection, ThesisParams};
     use crate::thesis::run::ThesisGa;
-    use crate::thesis::scenario::Scenario;
+    use crate::thesis::scenario::ThesisScenario;
     let s = Point::new(1.3, 1.3);
     let tournament = ThesisParams {
         selection: Selection::tournament(3),
@@ -143,7 +143,8 @@ fn a_run_keeps_the_full_pass_diversity() {
         ..ThesisParams::thesis_elite()
     };
     for params in [ThesisParams::thesis_elite(), tournament] {
-        let scenario = Scenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
+        let scenario =
+            ThesisScenario::new(preset("thesis-1").expect("preset"), Footprint::default(), s, s, Projection::F2);
         let ga = ThesisGa { scenario, params, seed: 7, seeds: (Vec::new(), 0) };
         let mut state = ga.init(true);
         let mut scratches = ga.new_scratches();
