@@ -61,6 +61,10 @@ pub struct ExperimentFile {
     /// How a fleet is planned.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fleet: Option<crate::fleet::config::FleetSection>,
+    /// The settings of planners added from outside covga, one table per planner
+    /// (`[plugins.<name>]`, [`super::plugins`]); each checks its own.
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub plugins: std::collections::BTreeMap<String, toml::Table>,
 }
 
 /// `[output]`.
@@ -102,6 +106,7 @@ impl Default for ExperimentFile {
             output: OutputSection::default(),
             robots: Vec::new(),
             fleet: None,
+            plugins: std::collections::BTreeMap::new(),
         }
     }
 }
@@ -191,6 +196,7 @@ impl ExperimentFile {
             self.cell_order = Some(CellOrderSection::default());
         }
         self.check_numbers(origin)?;
+        super::plugins::check_sections(&self.plugins, origin)?;
         let map = self.load_map(origin, base, load)?;
         let (robot, start, end) = self.robot_and_stations(origin, &map)?;
         let camera = self.scorer.camera.spec(origin, &map)?;

@@ -36,7 +36,11 @@ fn why_budget_unread(file: &ExperimentFile) -> Option<String> {
     let what = match file.planner {
         PlannerKind::Boustrophedon | PlannerKind::Spiral => format!("planner = \"{}\"", file.planner.name()),
         _ if divide => "fleet.mode = \"divide\"".to_string(),
-        PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch | PlannerKind::CellOrder => {
+        PlannerKind::Thesis
+        | PlannerKind::Waypoint
+        | PlannerKind::RandomSearch
+        | PlannerKind::CellOrder
+        | PlannerKind::Plugin(_) => {
             return None;
         }
     };
@@ -58,8 +62,21 @@ pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String
             out.extend(whole.map(|why| (section.clone(), why)));
             continue;
         };
-        let unread: Vec<(String, String)> = keys
-            .keys()
+        // `[plugins.<name>]` is a section of its own: its keys are one level further down.
+        let dotted_keys: Vec<String> = if section == "plugins" {
+            keys.iter()
+                .flat_map(|(name, inner)| match inner {
+                    toml::Value::Table(t) if why_ignored(file, &format!("plugins.{name}")).is_none() => {
+                        t.keys().map(|k| format!("{name}.{k}")).collect()
+                    }
+                    _ => vec![name.clone()],
+                })
+                .collect()
+        } else {
+            keys.keys().cloned().collect()
+        };
+        let unread: Vec<(String, String)> = dotted_keys
+            .iter()
             .filter_map(|key| {
                 let dotted = format!("{section}.{key}");
                 let why = if section == "budget" { budget.clone() } else { None };
@@ -67,7 +84,7 @@ pub fn ignored_in_text(text: &str, file: &ExperimentFile) -> Vec<(String, String
             })
             .collect();
         match whole {
-            Some(why) if unread.len() == keys.len() => out.push((section.clone(), why)),
+            Some(why) if unread.len() == dotted_keys.len() => out.push((section.clone(), why)),
             Some(_) | None => out.extend(unread),
         }
     }

@@ -8,6 +8,7 @@ pub mod file;
 pub mod ignored;
 pub mod memory;
 pub mod output;
+pub mod plugins;
 pub mod registry;
 pub mod renamed;
 

@@ -1,11 +1,13 @@
 //! The one registry of planners: the names an experiment file may give `planner = "…"`, and
 //! for each its validated parameters, whether it ignores the seed, which sections it reads
 //! ([`super::ignored`]) and its memory estimate. Every `match` on [`PlannerKind`] and
-//! [`PlannerConfig`] is exhaustive, so adding a planner is: its own module, a variant here
-//! (the compiler then lists every arm to fill) and, if it has parameters of its own, one
-//! section field of the experiment file.
+//! [`PlannerConfig`] is exhaustive, so adding a planner to covga is: its own module, a variant
+//! here (the compiler then lists every arm to fill) and, if it has parameters of its own, one
+//! section field of the experiment file. A planner from outside the crate needs none of that:
+//! it registers itself ([`super::plugins::register`]) and is the [`PlannerKind::Plugin`] variant.
 
 use super::file::ExperimentFile;
+use super::plugins::{PlannerPlugin, PluginPlanner};
 use crate::cell_order::config::CellOrderConfig;
 use crate::config::ConfigError;
 use crate::fleet::config::Team;
@@ -16,10 +18,10 @@ use crate::planner::{Context, Planner};
 use crate::random_search::RandomSearch;
 use crate::thesis::config::ThesisConfig;
 use crate::waypoint::config::WaypointConfig;
+use std::sync::Arc;
 
 /// Planner names as written in experiment files (`planner = "…"`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize, serde::Deserialize, Default)]
-#[serde(rename_all = "snake_case")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum PlannerKind {
     /// The action-encoded GA of 003 (`[thesis]`).
     #[default]
@@ -34,6 +36,41 @@ pub enum PlannerKind {
     RandomSearch,
     /// The GA over boustrophedon cells' order, direction and entry (`[cell_order]`).
     CellOrder,
+    /// A planner added from outside the crate ([`super::plugins`], `[plugins.<name>]`).
+    Plugin(&'static PlannerPlugin),
+}
+
+impl PartialEq for PlannerPlugin {
+    /// The same registration (names are unique among them).
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+    }
+}
+
+impl Eq for PlannerPlugin {}
+
+impl std::hash::Hash for PlannerPlugin {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.name.hash(state);
+    }
+}
+
+impl serde::Serialize for PlannerKind {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for PlannerKind {
+    /// A built-in planner's name or a registered plugin's; the message of an unknown name
+    /// lists them all.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        PlannerKind::named(&name).ok_or_else(|| {
+            let known: Vec<String> = PlannerKind::all().iter().map(|k| format!("`{}`", k.name())).collect();
+            serde::de::Error::custom(format!("unknown variant `{name}`, expected one of {}", known.join(", ")))
+        })
+    }
 }
 
 impl PlannerKind {
@@ -47,9 +84,24 @@ impl PlannerKind {
         PlannerKind::CellOrder,
     ];
 
+    /// The built-in planners, then the registered plugins.
+    pub fn all() -> Vec<PlannerKind> {
+        let plugins = super::plugins::registered().into_iter().map(PlannerKind::Plugin);
+        PlannerKind::ALL.into_iter().chain(plugins).collect()
+    }
+
+    /// The planner of this name, built in or registered.
+    pub fn named(name: &str) -> Option<PlannerKind> {
+        PlannerKind::ALL
+            .into_iter()
+            .find(|k| k.name() == name)
+            .or_else(|| super::plugins::find(name).map(PlannerKind::Plugin))
+    }
+
     /// The name as written in experiment files.
     pub fn name(self) -> &'static str {
         match self {
+            PlannerKind::Plugin(p) => p.name,
             PlannerKind::Thesis => "thesis",
             PlannerKind::Waypoint => "waypoint",
             PlannerKind::Boustrophedon => "boustrophedon",
@@ -64,6 +116,7 @@ impl PlannerKind {
         match self {
             PlannerKind::Boustrophedon | PlannerKind::Spiral => true,
             PlannerKind::Thesis | PlannerKind::Waypoint | PlannerKind::RandomSearch | PlannerKind::CellOrder => false,
+            PlannerKind::Plugin(p) => p.deterministic,
         }
     }
 
@@ -71,7 +124,15 @@ impl PlannerKind {
     /// section of the planner sections), or `None` when it reads it: each planner's module
     /// says which of those keys it reads.
     pub fn why_unread(self, file: &ExperimentFile, key: &str) -> Option<String> {
+        let plugin = match self {
+            PlannerKind::Plugin(p) => Some(p),
+            _ => None,
+        };
+        if key == "plugins" || key.starts_with("plugins.") {
+            return super::plugins::why_unread(plugin, key);
+        }
         match self {
+            PlannerKind::Plugin(p) => crate::planner::sections::unread_section(key, p.name, &[]),
             PlannerKind::Thesis => file.thesis.why_unread(key),
             PlannerKind::Waypoint => file.waypoint.why_unread(key),
             PlannerKind::Boustrophedon | PlannerKind::Spiral => crate::patterns::planner::why_unread(self.name(), key),
@@ -96,6 +157,8 @@ pub enum PlannerConfig {
     CellOrder(CellOrderConfig),
     /// A fleet of `[[robots]]`, planned as `[fleet] mode` says by the file's planner.
     Fleet(Box<FleetPlanner>),
+    /// A planner added from outside the crate.
+    Plugin(Arc<dyn PluginPlanner>),
 }
 
 impl PlannerConfig {
@@ -133,6 +196,9 @@ impl PlannerConfig {
             PlannerKind::CellOrder => {
                 PlannerConfig::CellOrder(file.cell_order.clone().unwrap_or_default().validate(ctx)?)
             }
+            PlannerKind::Plugin(p) => {
+                PlannerConfig::Plugin((p.validate)(file.plugins.get(p.name).unwrap_or(&toml::Table::new()), ctx)?)
+            }
         };
         if file.robots.is_empty() {
             if file.fleet.is_some() {
@@ -165,7 +231,8 @@ impl PlannerConfig {
             PlannerConfig::Pattern(_)
             | PlannerConfig::RandomSearch(_)
             | PlannerConfig::CellOrder(_)
-            | PlannerConfig::Fleet(_) => {
+            | PlannerConfig::Fleet(_)
+            | PlannerConfig::Plugin(_) => {
                 return Err(crate::fleet::config::wrong_planner(ctx.origin, file.planner.name(), section.mode));
             }
         };
@@ -182,6 +249,7 @@ impl PlannerConfig {
             PlannerConfig::RandomSearch(p) => p,
             PlannerConfig::CellOrder(p) => p,
             PlannerConfig::Fleet(p) => p.as_ref(),
+            PlannerConfig::Plugin(p) => p.as_ref(),
         }
     }
 
@@ -229,6 +297,7 @@ impl PlannerConfig {
                 }
                 FleetMode::Divide => "plans once: no evaluation, whatever the limit",
             },
+            PlannerConfig::Plugin(p) => p.evaluation_rule(),
         }
     }
 
@@ -242,6 +311,7 @@ impl PlannerConfig {
             PlannerConfig::RandomSearch(r) => r.memory_estimate(map),
             PlannerConfig::CellOrder(c) => c.memory_estimate(map, threads),
             PlannerConfig::Fleet(f) => f.memory_estimate(map, threads),
+            PlannerConfig::Plugin(p) => p.memory_estimate(map, threads),
         }
     }
 
@@ -261,6 +331,7 @@ impl PlannerConfig {
                 FleetMethod::Waypoint(w) => w.ga.generations as u64,
                 FleetMethod::Negotiate(..) | FleetMethod::Divide { .. } => 0,
             },
+            PlannerConfig::Plugin(p) => p.progress_length(budget),
         }
     }
 }

@@ -17,6 +17,7 @@ mod generated_maps;
 mod grid_cli;
 mod parent_schemes;
 mod planner_contract;
+mod plugins;
 mod reachable;
 mod readme;
 mod reliability;
