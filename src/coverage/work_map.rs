@@ -27,11 +27,21 @@ impl WorkMap {
     /// Resamples `map` to `scale` metres per pixel; a working pixel is occluded if any map cell
     /// under it is not free or it reaches outside the map (W1).
     pub fn new(map: &GridMap, scale: f64) -> Self {
+        Self::new_until(map, scale, &|| false).expect("never stopped")
+    }
+
+    /// [`Self::new`] that gives up (`None`) as soon as `stop` says so, asked every
+    /// [`STOP_EVERY`] rows of the resampling and lines of the distance transform: a large map at
+    /// a fine scale takes a noticeable time, and an interrupted run should not wait for it.
+    pub fn new_until(map: &GridMap, scale: f64, stop: &dyn Fn() -> bool) -> Option<Self> {
         let res = map.resolution();
         let width = (map.width_m() / scale - 1e-9).ceil().max(1.0) as usize;
         let height = (map.height_m() / scale - 1e-9).ceil().max(1.0) as usize;
         let mut occluded = vec![false; width * height];
         for row in 0..height {
+            if row % STOP_EVERY == 0 && stop() {
+                return None;
+            }
             for col in 0..width {
                 let (x0, x1) = (col as f64 * scale, (col + 1) as f64 * scale);
                 let (y0, y1) = (row as f64 * scale, (row + 1) as f64 * scale);
@@ -43,8 +53,8 @@ impl WorkMap {
                 occluded[row * width + col] = blocked;
             }
         }
-        let dist = distance_transform(width, height, &occluded);
-        Self { width, height, scale, origin: (map.origin().x, map.origin().y), occluded, dist }
+        let dist = distance_transform_until(width, height, &occluded, stop)?;
+        Some(Self { width, height, scale, origin: (map.origin().x, map.origin().y), occluded, dist })
     }
 
     /// Row-major index of a pixel.
@@ -176,9 +186,23 @@ fn dt_1d(f: &[f64], out: &mut [f64]) {
     }
 }
 
+/// Rows or lines of work between two questions to a `stop` of [`WorkMap::new_until`].
+pub const STOP_EVERY: usize = 64;
+
 /// Exact Euclidean distance transform to the nearest occluded pixel centre, with a ring of
 /// occluded pixels around the raster (the outside is occluded).
 pub fn distance_transform(width: usize, height: usize, occluded: &[bool]) -> Vec<f64> {
+    distance_transform_until(width, height, occluded, &|| false).expect("never stopped")
+}
+
+/// [`distance_transform`] that gives up (`None`) as soon as `stop` says so, asked every
+/// [`STOP_EVERY`] lines of each pass.
+fn distance_transform_until(
+    width: usize,
+    height: usize,
+    occluded: &[bool],
+    stop: &dyn Fn() -> bool,
+) -> Option<Vec<f64>> {
     let (w, h) = (width + 2, height + 2);
     let mut grid = vec![0f64; w * h];
     for r in 0..h {
@@ -191,6 +215,9 @@ pub fn distance_transform(width: usize, height: usize, occluded: &[bool]) -> Vec
     let mut col = vec![0f64; h];
     let mut out_col = vec![0f64; h];
     for c in 0..w {
+        if c % STOP_EVERY == 0 && stop() {
+            return None;
+        }
         for r in 0..h {
             col[r] = grid[r * w + c];
         }
@@ -201,6 +228,9 @@ pub fn distance_transform(width: usize, height: usize, occluded: &[bool]) -> Vec
     }
     let mut row_out = vec![0f64; w];
     for r in 0..h {
+        if r % STOP_EVERY == 0 && stop() {
+            return None;
+        }
         dt_1d(&grid[r * w..(r + 1) * w], &mut row_out);
         grid[r * w..(r + 1) * w].copy_from_slice(&row_out);
     }
@@ -210,7 +240,7 @@ pub fn distance_transform(width: usize, height: usize, occluded: &[bool]) -> Vec
             d[r * width + c] = grid[(r + 1) * w + (c + 1)].sqrt();
         }
     }
-    d
+    Some(d)
 }
 
 #[cfg(test)]

@@ -190,11 +190,11 @@ impl World {
         agents: usize,
         cutoff: &crate::planner::executor::SetupCutoff,
     ) -> Result<Self, WorldError> {
-        let wm = WorkMap::new(map, p.scale);
         let placing_stopped = || match cutoff.reached() {
             Some(crate::planner::StopReason::Interrupted) => WorldError::Interrupted,
             _ => WorldError::PlacingOutOfTime { limit_s: cutoff.limit_s() },
         };
+        let wm = WorkMap::new_until(map, p.scale, &|| cutoff.reached().is_some()).ok_or_else(placing_stopped)?;
         if cutoff.reached().is_some() {
             return Err(placing_stopped());
         }
