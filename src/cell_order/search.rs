@@ -404,7 +404,7 @@ pub(super) mod tests {
         let inst = line(8);
         let optimum = super::super::exact::held_karp(&inst).unwrap().1;
         for selection in [
-            draw("elite", 3, 1.7, 10),
+            draw("best", 3, 1.7, 10),
             draw("tournament", 3, 1.7, 20),
             draw("prws", 3, 1.7, 20),
             draw("rrws", 3, 1.8, 20),

@@ -24,6 +24,79 @@ pub const RENAMED_KEYS: [(&str, &str); 8] = [
     ("cell_order.select", "cell_order.best_parents"),
 ];
 
+/// A value of a key that took a new spelling, and the words that say so.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RenamedValue {
+    /// The dotted key.
+    pub key: &'static str,
+    /// The old value.
+    pub old: &'static str,
+    /// The new value.
+    pub new: &'static str,
+    /// `key = "old"`, as warnings and `covga migrate` say it.
+    pub said_old: &'static str,
+    /// `key = "new"`.
+    pub said_new: &'static str,
+}
+
+/// Values that took a new spelling: the cell-order GA's draw from the best was `"elite"`, the
+/// thesis GA's name for its families (a different thing; see
+/// [`crate::ga::parents::RENAMED_SCHEMES`], which keeps the old value read).
+pub const RENAMED_VALUES: [RenamedValue; 1] = [RenamedValue {
+    key: "cell_order.selection",
+    old: "elite",
+    new: "best",
+    said_old: "cell_order.selection = \"elite\"",
+    said_new: "cell_order.selection = \"best\"",
+}];
+
+/// The old values an experiment text sets, each with its new spelling (for warnings).
+pub fn renamed_values_in_text(text: &str) -> Moves {
+    let Ok(table) = text.parse::<Table>() else { return Vec::new() };
+    RENAMED_VALUES
+        .iter()
+        .filter(|r| {
+            let (section, key) = r.key.split_once('.').expect("a dotted key");
+            table.get(section).and_then(|s| s.get(key)).and_then(Value::as_str) == Some(r.old)
+        })
+        .map(|r| (r.said_old, r.said_new))
+        .collect()
+}
+
+/// Gives the old values of the experiment table `t` (nested sections) their new spelling,
+/// with the decor of each value kept.
+fn rename_values(t: &mut dyn toml_edit::TableLike, moved: &mut Moves) {
+    for r in RENAMED_VALUES {
+        let (section, key) = r.key.split_once('.').expect("a dotted key");
+        let Some(item) = t.get_mut(section).and_then(toml_edit::Item::as_table_like_mut).and_then(|s| s.get_mut(key))
+        else {
+            continue;
+        };
+        if item.as_str() == Some(r.old)
+            && let Some(value) = item.as_value_mut()
+        {
+            let decor = value.decor().clone();
+            *value = toml_edit::Value::from(r.new);
+            *value.decor_mut() = decor;
+            moved.push((r.said_old, r.said_new));
+        }
+    }
+}
+
+/// Gives the old values in a grid's axes `t` (`"cell_order.selection" = ["elite", …]`) their
+/// new spelling.
+fn rename_axis_values(t: &mut dyn toml_edit::TableLike, moved: &mut Moves) {
+    for r in RENAMED_VALUES {
+        let Some(values) = t.get_mut(r.key).and_then(toml_edit::Item::as_array_mut) else { continue };
+        for value in values.iter_mut().filter(|v| v.as_str() == Some(r.old)) {
+            let decor = value.decor().clone();
+            *value = toml_edit::Value::from(r.new);
+            *value.decor_mut() = decor;
+            moved.push((r.said_old, r.said_new));
+        }
+    }
+}
+
 /// Whether a renamed key stays in its section (renamed in place, not moved).
 fn in_place(old: &str, new: &str) -> bool {
     old.rsplit_once('.').map(|p| p.0) == new.rsplit_once('.').map(|p| p.0)
@@ -111,10 +184,12 @@ pub fn migrate_text(text: &str, origin: &str) -> Result<(String, Moves), ConfigE
         if is_grid { root.get_mut("base").and_then(toml_edit::Item::as_table_like_mut) } else { Some(root) };
     if let Some(t) = experiment {
         move_keys(t, origin, &mut moved)?;
+        rename_values(t, &mut moved);
     }
     if is_grid {
         if let Some(axes) = doc.get_mut("axes").and_then(toml_edit::Item::as_table_like_mut) {
             rename_dotted(axes, origin, "axes", &mut moved)?;
+            rename_axis_values(axes, &mut moved);
             refuse_moved_table_axes(axes, origin, "axes")?;
         }
         if let Some(conds) = doc.get_mut("conditional").and_then(toml_edit::Item::as_array_of_tables_mut) {
@@ -362,7 +437,8 @@ const OLD_PLACES: [(&str, &str, Option<&str>); 6] = [
 /// `max_traverse`). Ids hash a canonical text so that the old and new spelling of a key give
 /// one id, and this layout so that the ids of committed studies stay what they were. Keys of
 /// `[scorer]` that never had another place (`camera.wall_band`) stay in `[scorer.camera]`;
-/// keys renamed in place (`cell_order.selection_pressure`) hash under their old name.
+/// keys renamed in place (`cell_order.selection_pressure`) hash under their old name, and
+/// values that took a new spelling (`cell_order.selection = "best"`) under their old one.
 pub fn id_text(file: &ExperimentFile) -> String {
     let text = toml::to_string(file).expect("experiment files serialise");
     let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
@@ -378,6 +454,15 @@ pub fn id_text(file: &ExperimentFile) -> String {
         let (section, old_key) = old.rsplit_once('.').expect("a dotted key");
         let new_key = new.rsplit_once('.').expect("a dotted key").1;
         rename_line(&mut lines, section, new_key, old_key);
+    }
+    for r in RENAMED_VALUES {
+        let (section, key) = r.key.rsplit_once('.').expect("a dotted key");
+        let (new, old) = (format!("{key} = \"{}\"", r.new), format!("{key} = \"{}\"", r.old));
+        if let Some((start, end)) = section_lines(&lines, section)
+            && let Some(at) = (start..end).find(|&i| lines[i] == new)
+        {
+            lines[at] = old;
+        }
     }
     drop_empty_sections(&mut lines, &["scorer.camera", "scorer"]);
     for (section, key, line) in moved {
@@ -537,8 +622,8 @@ mod tests {
     #[test]
     fn keys_renamed_in_place_read_hash_and_migrate_alike() {
         let old =
-            "planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"\nsp = 1.4  # gentle\nselect = 6\nkeep = 1\n";
-        let new = "planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"\nselection_pressure = 1.4\nbest_parents = 6\nkeep = 1\n";
+            "planner = \"cell_order\"\n[cell_order]\nselection = \"best\"\nsp = 1.4  # gentle\nselect = 6\nkeep = 1\n";
+        let new = "planner = \"cell_order\"\n[cell_order]\nselection = \"best\"\nselection_pressure = 1.4\nbest_parents = 6\nkeep = 1\n";
         assert_eq!(parse(old), parse(new));
         let section = parse(new).cell_order.unwrap();
         assert_eq!((section.selection_pressure, section.best_parents), (1.4, 6));
@@ -552,7 +637,7 @@ mod tests {
         );
         assert!(
             migrated
-                .contains("selection = \"elite\"\nselection_pressure = 1.4  # gentle\nbest_parents = 6\nkeep = 1\n"),
+                .contains("selection = \"best\"\nselection_pressure = 1.4  # gentle\nbest_parents = 6\nkeep = 1\n"),
             "{migrated}"
         );
         assert_eq!(parse(&migrated), parse(old));
@@ -562,5 +647,25 @@ mod tests {
             "{e}"
         );
         parse("[cell_order]\nsp = 1.5\nselection_pressure = 1.5\n");
+    }
+
+    /// The cell-order GA's draw from the best is `"best"` now; `"elite"` still reads there (the
+    /// thesis GA's `"elite"` is its families), hashes as before, warns and migrates.
+    #[test]
+    fn a_value_renamed_reads_hashes_warns_and_migrates() {
+        let old = "planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"  # from the best\n";
+        let new = "planner = \"cell_order\"\n[cell_order]\nselection = \"best\"\n";
+        assert_eq!(parse(old), parse(new));
+        assert_eq!(parse(new).cell_order.unwrap().selection.as_str(), "best");
+        assert!(id_text(&parse(new)).contains("[cell_order]\nsolver = \"ga\"\ndirections = [0.0, 45.0, 90.0, 135.0]\npopulation = 100\nselection = \"elite\"\n"));
+        assert_eq!(renamed_values_in_text(old), [(RENAMED_VALUES[0].said_old, RENAMED_VALUES[0].said_new)]);
+        assert!(renamed_values_in_text(new).is_empty());
+        assert!(renamed_values_in_text("[thesis]\nselection = \"elite\"\n").is_empty(), "the thesis GA's own elite");
+        let (migrated, moves) = migrate_text(old, "t.toml").unwrap();
+        assert!(migrated.contains("selection = \"best\"  # from the best"), "{migrated}");
+        assert_eq!(moves.len(), 1);
+        let grid = "[base]\nplanner = \"cell_order\"\n[axes]\n\"cell_order.selection\" = [\"elite\", \"rrws\"]\n";
+        let (g, _) = migrate_text(grid, "g.toml").unwrap();
+        assert!(g.contains("\"cell_order.selection\" = [\"best\", \"rrws\"]"), "{g}");
     }
 }

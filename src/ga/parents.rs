@@ -84,6 +84,11 @@ pub fn scheme(name: &str) -> Option<&'static dyn ParentScheme> {
     SCHEMES.iter().copied().find(|s| s.name() == name)
 }
 
+/// Old scheme name → its registered name; the old name is read for one more release (the
+/// experiment file's warnings say so and `covga migrate` rewrites it). `"elite"` meant the
+/// thesis GA's families in `[thesis]` and the draw from the best in `[cell_order]`.
+pub const RENAMED_SCHEMES: [(&str, &str); 1] = [("elite", "best")];
+
 /// Whether `key` sets a selection parameter that the registered scheme `name` does not read,
 /// with `param_key` spelling a GA's key of each parameter (a GA's warnings about unread keys
 /// follow from each scheme's [`ParentScheme::reads`]).
@@ -99,6 +104,7 @@ pub struct SchemeName(&'static str);
 impl SchemeName {
     /// The registered scheme called `name`.
     pub fn parse(name: &str) -> Option<Self> {
+        let name = RENAMED_SCHEMES.iter().find(|(old, _)| *old == name).map_or(name, |(_, new)| new);
         scheme(name).map(|s| SchemeName(s.name()))
     }
 

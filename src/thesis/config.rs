@@ -85,7 +85,7 @@ pub struct ThesisSection {
 /// of the registry ([`crate::ga::parents`]) for architecture (a).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum SelectionName {
-    /// Elite families (architecture (b)); shadows the registry's `"elite"` draw.
+    /// Elite families (architecture (b)); the registry's draw from the best is `"best"`.
     Elite,
     /// NSGA-II (Pareto fronts and crowding over `cov_final` and `t_final`).
     Nsga2,

@@ -64,8 +64,10 @@ pub fn prepare(source: &ExperimentText, seed: Option<u64>, max_memory: Option<u6
     })?;
     let limit = crate::experiment::memory::memory_limit(max_memory);
     experiment.check_memory(origin, limit.as_ref(), 1, rayon::current_num_threads()).map_err(UseCaseError::input)?;
+    let values = crate::experiment::renamed::renamed_values_in_text(&source.text);
     let warnings = renamed
         .into_iter()
+        .chain(values)
         .map(|(old, new)| crate::experiment::renamed::warning(origin, old, new))
         .chain(ignored.into_iter().map(|(key, why)| format!("{origin}: `{key}` is ignored: {why}")))
         .collect();

@@ -1,12 +1,13 @@
 //! Parents drawn uniformly from the `best_parents` best: the draw of 003's Elite families (§3.4,
-//! architecture (b)) for a GA that mates pairs one at a time (the cell-order GA's `"elite"`).
-//! The thesis GA's own `"elite"` is its architecture (b), which makes families, not draws.
+//! architecture (b)) for a GA that mates pairs one at a time (the cell-order GA's `"best"`,
+//! called `"elite"` before). The thesis GA's own `"elite"` is its architecture (b), which makes
+//! families, not draws: the two names now say two things.
 
 use super::{Draw, DrawParams, Param, ParentScheme};
 use crate::ga::selection::best_k;
 use rand::{Rng, RngCore};
 
-/// `selection = "elite"` of a GA that draws its parents.
+/// `selection = "best"` of a GA that draws its parents.
 pub struct Best;
 
 struct Draws(Vec<usize>);
@@ -19,7 +20,7 @@ impl Draw for Draws {
 
 impl ParentScheme for Best {
     fn name(&self) -> &'static str {
-        "elite"
+        "best"
     }
 
     fn reads(&self) -> &'static [Param] {

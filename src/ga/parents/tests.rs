@@ -25,7 +25,7 @@ fn each_scheme_draws_as_its_operator() {
         ("tournament", |f, rng| tournament(f, PARAMS.tournament_size, rng)),
         ("prws", |f, rng| spin(&cumulative(&proportionate_probabilities(f)), rng)),
         ("rrws", |f, rng| spin(&cumulative(&rank_probabilities(f, PARAMS.pressure)), rng)),
-        ("elite", |f, rng| {
+        ("best", |f, rng| {
             use rand::Rng;
             let best = best_k(f, PARAMS.best_parents);
             best[rng.random_range(0..best.len())]
