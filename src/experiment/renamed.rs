@@ -636,8 +636,7 @@ mod tests {
             [("cell_order.select", "cell_order.best_parents"), ("cell_order.sp", "cell_order.selection_pressure")]
         );
         assert!(
-            migrated
-                .contains("selection = \"best\"\nselection_pressure = 1.4  # gentle\nbest_parents = 6\nkeep = 1\n"),
+            migrated.contains("selection = \"best\"\nselection_pressure = 1.4  # gentle\nbest_parents = 6\nkeep = 1\n"),
             "{migrated}"
         );
         assert_eq!(parse(&migrated), parse(old));

@@ -1,8 +1,9 @@
 //! Statistics across runs, in one place for every report and for Python: descriptive
 //! statistics, rank tests of independent samples ([`rank_sum`], [`kruskal`]) and of samples
 //! paired by seed ([`paired`]), effect sizes with bootstrap intervals ([`effect`]), and the
-//! correction of a family of tests ([`family`]), and the analysis of variance of a grid's
-//! factors ([`anova`]). Each test says how its p-value was found
+//! correction of a family of tests ([`family`]), what a design can show before it is run and
+//! its units of analysis ([`design`]), and the analysis of variance of a grid's factors
+//! ([`anova`]). Each test says how its p-value was found
 //! ([`Method`]); each effect names its direction.
 //!
 //! Two-sided tests throughout. Rank tests use mid-ranks for ties; their exact distributions
@@ -10,6 +11,7 @@
 
 pub mod anova;
 pub mod describe;
+pub mod design;
 pub mod effect;
 pub mod exact;
 pub mod family;
