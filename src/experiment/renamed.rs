@@ -282,6 +282,13 @@ fn rename_in_section(
         t.remove(old_key);
         return Ok(());
     }
+    rename_keeping_order(t, |k| if k == old_key { new_key } else { k }.to_string());
+    Ok(())
+}
+
+/// Renames every key of `t` by `name` where it stands: the keys' order and the text above
+/// each kept (toml_edit renames a key only by removing it and inserting it again at the end).
+fn rename_keeping_order(t: &mut dyn toml_edit::TableLike, name: impl Fn(&str) -> String) {
     let keys: Vec<String> = t.iter().map(|(k, _)| k.to_string()).collect();
     let items: Vec<(String, Option<toml_edit::RawString>, toml_edit::Item)> = keys
         .iter()
@@ -291,11 +298,10 @@ fn rename_in_section(
         })
         .collect();
     for (k, above, item) in items {
-        let k = if k == old_key { new_key.to_string() } else { k };
+        let k = name(&k);
         t.insert(&k, item);
         keep_above(t, &k, above);
     }
-    Ok(())
 }
 
 /// The table at the dotted `path` below `t`, made where missing (a parent made only to hold
@@ -345,21 +351,8 @@ fn rename_dotted(
             ));
         }
     }
-    let items: Vec<(String, Option<toml_edit::RawString>, toml_edit::Item)> = keys
-        .iter()
-        .map(|k| {
-            let above = t.key(k).and_then(|key| key.leaf_decor().prefix().cloned());
-            (k.clone(), above, t.remove(k).expect("a key listed"))
-        })
-        .collect();
-    for (k, above, item) in items {
-        let current = current_key(&k);
-        if current != k {
-            moved.push(RENAMED_KEYS.iter().find(|(o, _)| *o == k).map(|(o, n)| (*o, *n)).expect("renamed"));
-        }
-        t.insert(current, item);
-        keep_above(t, current, above);
-    }
+    moved.extend(RENAMED_KEYS.iter().filter(|(old, _)| keys.iter().any(|k| k == old)).copied());
+    rename_keeping_order(t, |k| current_key(k).to_string());
     Ok(())
 }
 

@@ -364,16 +364,21 @@ mod tests {
         assert_eq!(plan_change(&[false], &[false]), 0.0);
     }
 
-    #[test]
-    fn negotiation_is_deterministic_on_any_thread_count_and_shares_the_map() {
-        let map = preset("thesis-1").unwrap();
-        let fleet = FleetFile::parse(
+    /// A narrow slow robot and a wide fast one, in opposite corners.
+    fn two_robots(map: &crate::map::GridMap) -> Fleet {
+        FleetFile::parse(
             "[[robots]]\nname = \"a\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
              [[robots]]\nname = \"b\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.55, 9.55]\n",
             "f.toml",
-            &map,
+            map,
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    #[test]
+    fn negotiation_is_deterministic_on_any_thread_count_and_shares_the_map() {
+        let map = preset("thesis-1").unwrap();
+        let fleet = two_robots(&map);
         let np = NegotiationParams { round_iterations: 40, iterations: 200, evaluations: None, tolerance: 0.0 };
         let p = params(20);
         let run =
@@ -416,13 +421,7 @@ mod tests {
     #[test]
     fn a_negotiation_stops_on_the_runs_stall_limit_and_wall_clock() {
         let map = preset("thesis-2").unwrap();
-        let fleet = FleetFile::parse(
-            "[[robots]]\nname = \"a\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
-             [[robots]]\nname = \"b\"\nwidth = 0.9\nspeed = 0.5\nstart = [9.55, 9.55]\n",
-            "f.toml",
-            &map,
-        )
-        .unwrap();
+        let fleet = two_robots(&map);
         // A tolerance below 0 (no file can set one): the plans never settle.
         let np = NegotiationParams { round_iterations: 1, iterations: 400, evaluations: None, tolerance: -1.0 };
         let p = params(20);

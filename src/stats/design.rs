@@ -102,11 +102,7 @@ pub fn cluster_bootstrap_ci(
         stats.push(statistic(&mut drawn));
     }
     stats.sort_by(f64::total_cmp);
-    let q = |p: f64| {
-        let h = (stats.len() - 1) as f64 * p;
-        let (lo, hi) = (h.floor() as usize, h.ceil() as usize);
-        stats[lo] + (h - lo as f64) * (stats[hi] - stats[lo])
-    };
+    let q = |p: f64| super::describe::quantile_sorted(&stats, p);
     let tail = (1.0 - level) / 2.0;
     Some(Interval { estimate, low: q(tail), high: q(1.0 - tail) })
 }

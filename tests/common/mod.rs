@@ -56,3 +56,23 @@ pub fn run_text(text: &str, base: &Path, out: &Path) {
 pub fn summary(dir: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
 }
+
+/// The options of an in-process study run into `out`: `jobs` at a time, each finished run handed
+/// to `on_done`, started in seed order, no shard, stop or memory limit.
+pub fn runner_options<'a>(
+    out: &Path,
+    jobs: usize,
+    on_done: &'a (dyn Fn(covga::study::runner::RunDone) + Sync),
+) -> covga::study::runner::RunnerOptions<'a> {
+    covga::study::runner::RunnerOptions {
+        jobs,
+        shard: None,
+        out: out.to_path_buf(),
+        max_memory: None,
+        on_done,
+        stop: None,
+        order: covga::study::order::RunOrder::Seeds,
+        abort_after_runs: None,
+        retry_failed: false,
+    }
+}

@@ -12,7 +12,7 @@ use covga::ga::observer::Observer;
 use covga::geom::Point;
 use covga::planner::{Budget, Context, History, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use covga::study::grid::Study;
-use covga::study::runner::{RunDone, RunnerOptions, run_study};
+use covga::study::runner::{RunDone, run_study};
 use covga::usecase::run::{ExperimentText, prepare, run_in_folder};
 use std::sync::{Arc, Once};
 
@@ -150,17 +150,7 @@ fn a_planner_from_outside_runs_like_a_built_in_one_alone_and_in_a_grid() {
     let study = Study::load(&grid).unwrap();
     assert_eq!(study.runs.len(), 3, "one boustrophedon run and two of the toy");
     let quiet = |_: RunDone| {};
-    let opts = RunnerOptions {
-        jobs: 2,
-        shard: None,
-        out: tmp.path().join("study"),
-        max_memory: None,
-        on_done: &quiet,
-        stop: None,
-        order: covga::study::order::RunOrder::Seeds,
-        abort_after_runs: None,
-        retry_failed: false,
-    };
+    let opts = crate::common::runner_options(&tmp.path().join("study"), 2, &quiet);
     assert_eq!(run_study(&study, &opts).unwrap().completed, 3);
     let runs = std::fs::read_to_string(tmp.path().join("study/runs.csv")).unwrap();
     assert!(runs.lines().next().unwrap().contains("plugins.rays.rays"), "{runs}");

@@ -2,6 +2,7 @@
 //! package does on Ctrl-C) starts no further run, keeps the rows of the runs it finished, and
 //! resumes to the same rows a study run at once records.
 
+use crate::common::runner_options;
 use covga::planner::executor::Interrupt;
 use covga::study::grid::Study;
 use covga::study::runner::{RunDone, RunnerOptions, StudyError, run_study};
@@ -30,17 +31,7 @@ fn a_stopped_study_keeps_its_finished_runs_and_resumes_to_the_same_rows() {
     let stop_after_first = |_: RunDone| stop.raise();
     let quiet = |_: RunDone| {};
     let folder = tmp.path().join("stopped");
-    let opts = |out: &Path| RunnerOptions {
-        jobs: 1,
-        shard: None,
-        out: out.to_path_buf(),
-        max_memory: None,
-        on_done: &quiet,
-        stop: None,
-        order: covga::study::order::RunOrder::Seeds,
-        abort_after_runs: None,
-        retry_failed: false,
-    };
+    let opts = |out: &Path| runner_options(out, 1, &quiet);
     let stopping = RunnerOptions { on_done: &stop_after_first, stop: Some(&stop), ..opts(&folder) };
     match run_study(&study, &stopping) {
         Err(StudyError::Stopped { recorded }) => assert_eq!(recorded, 1),
@@ -66,17 +57,7 @@ fn a_stop_ends_the_runs_in_progress_unrecorded_and_leaves_no_run_folder() {
     let stop = Interrupt::new();
     let quiet = |_: RunDone| {};
     let folder = tmp.path().join("study");
-    let opts = RunnerOptions {
-        jobs: 2,
-        shard: None,
-        out: folder.clone(),
-        max_memory: None,
-        on_done: &quiet,
-        stop: Some(&stop),
-        order: covga::study::order::RunOrder::Seeds,
-        abort_after_runs: None,
-        retry_failed: false,
-    };
+    let opts = RunnerOptions { stop: Some(&stop), ..runner_options(&folder, 2, &quiet) };
     let started = std::time::Instant::now();
     let outcome = std::thread::scope(|scope| {
         // Raised once both runs are under way (their folders exist), so that the stop meets
