@@ -168,7 +168,7 @@ fn scan<const STEEP: bool>(
     for line in line_lo..=line_hi {
         let lf = line as f64;
         let dl = dl0 + lf * res;
-        // The exact membership test of spec §3.3, written on world dx, dy.
+        // The exact membership test of the swept rectangle (003 §3.1), written on world dx, dy.
         let inside = |k: i64| {
             let da = a_org + (k as f64 + 0.5) * res - a_start;
             let (dx, dy) = if STEEP { (dl, da) } else { (da, dl) };

@@ -1,5 +1,6 @@
 //! Evaluated individuals and the correction procedures that follow every creation or change
-//! of a genome (003 §3.3.4, spec §9, order of R17), scored in a [`ThesisScenario`].
+//! of a genome (003 §3.3.4, in the order [`correct_and_evaluate`] gives), scored in a
+//! [`ThesisScenario`].
 
 use super::genome::{Action, decode, decode_from, live, random_genome, same_bits};
 use super::objective::with_coverage;
