@@ -238,14 +238,12 @@ impl Search for Rounds<'_> {
         if self.rounds > 0 {
             exchange(&mut self.gas, &mut self.states, &self.previous, &mut self.premarked);
         }
-        let left: Vec<bool> = (0..self.fleet.len()).map(|k| self.budget_left(k)).collect();
         let (np, cutoff) = (self.np, self.cutoff);
         let share: Vec<Option<u64>> = (0..self.fleet.len()).map(|k| self.share(k)).collect();
         self.gas.par_iter().zip(self.states.par_iter_mut()).enumerate().for_each(|(k, (ga, state))| {
             let mut scratches = ga.new_scratches();
             for _ in 0..np.round_iterations.max(1) {
-                let active = left[k]
-                    && state.iteration < np.iterations
+                let active = state.iteration < np.iterations
                     && share[k].is_none_or(|e| state.evaluations < e)
                     && cutoff.reached().is_none();
                 if !active {
