@@ -4,7 +4,7 @@
 //!
 //! The planes are stored word-major: the planes of cell word `idx` lie next to each other,
 //! usually in one cache line. An edit of a word then checks one index and touches one line,
-//! and for the usual numbers of planes its ripple is unrolled ([`VisitPlanes::edit`]).
+//! and for the usual numbers of planes its ripple is unrolled (`VisitPlanes::edit`).
 
 /// Plane counts up to which an edit's ripple is unrolled (a map of more planes, counts of 256
 /// and above, takes a loop).

@@ -144,7 +144,7 @@ fn anchor(map: &GridMap, r: &super::Robot) -> Option<usize> {
     Clearance::new(map, r.footprint.width).snap(r.start)
 }
 
-/// The first two robots `(j, i)`, `j < i`, that start from the same cell (see [`anchor`]), which
+/// The first two robots `(j, i)`, `j < i`, that start from the same cell (see `anchor`), which
 /// a geodesic split cannot separate; checked when a fleet's configuration is validated.
 pub fn shared_start(map: &GridMap, fleet: &Fleet) -> Option<(usize, usize)> {
     let anchors: Vec<Option<usize>> = fleet.robots().iter().map(|r| anchor(map, r)).collect();

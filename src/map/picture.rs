@@ -16,7 +16,7 @@ pub fn grey(state: CellState) -> u8 {
     }
 }
 
-/// Pixels per cell edge for `map`: as many as keep its longer side at most [`ENLARGE_TO_PX`]
+/// Pixels per cell edge for `map`: as many as keep its longer side at most `ENLARGE_TO_PX`
 /// (at least one).
 pub fn pixels_per_cell(map: &GridMap) -> usize {
     (ENLARGE_TO_PX / map.rows().max(map.cols()).max(1)).max(1)

@@ -201,7 +201,7 @@ impl GrowingRoute {
             None => false,
         }
     }
-    /// [`GrowingRoute::connect`], counting a target that cannot be reached as skipped.
+    /// `GrowingRoute::connect`, counting a target that cannot be reached as skipped.
     pub fn go(&mut self, clear: &Clearance, p: Point) -> bool {
         let reached = self.connect(clear, p);
         self.skipped += usize::from(!reached);

@@ -324,8 +324,8 @@ pub fn write_report(dir: &Path, by: &[String]) -> Result<std::path::PathBuf, Rep
 }
 
 /// Writes the report folder of `opts` and returns the path of `summary.md`: the study folder
-/// read and checked once ([`study::Loaded`]), the groups, fronts and best runs every section
-/// shares computed once ([`study::Study`]), then each section of [`sections::SECTIONS`] in turn.
+/// read and checked once (`study::Loaded`), the groups, fronts and best runs every section
+/// shares computed once (`study::Study`), then each section of `sections::SECTIONS` in turn.
 pub fn write_report_with(dir: &Path, opts: &ReportOptions) -> Result<std::path::PathBuf, ReportError> {
     if opts.reference.is_some() && !opts.plans {
         return Err(ReportError::Input("--reference sets the runs against reference plans in plans.md, so it needs --plans (in Python: plans=True)".into()));

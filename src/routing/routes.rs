@@ -8,7 +8,7 @@
 //! it stands near `b` (a viewpoint inside a wall or an unreachable pocket is replaced by the
 //! nearest reachable cell centre the robot fits on) along a path of robot centres with
 //! clearance ≥ width/2: it joins the grid of reachable centres at the nearest one its body
-//! reaches along a clear leg ([`Router::entry_centre`]), follows weighted A* over that grid,
+//! reaches along a clear leg (`Router::entry_centre`), follows weighted A* over that grid,
 //! 8-connected without corner cutting (the moves of [`Clearance::steps`], as the cell-order
 //! GA's transit matrix in [`super::transit`]), and is shortened by line of sight where the
 //! body keeps clear. The heuristic is the larger of the octile distance and a landmark bound,
@@ -275,7 +275,7 @@ impl Router {
     }
 
     /// Where the robot stands when aimed at `p`: `p` itself where it can stand there and a
-    /// clear leg joins it to the grid of reachable centres ([`Router::entry_centre`]), else the
+    /// clear leg joins it to the grid of reachable centres (`Router::entry_centre`), else the
     /// nearest reachable cell centre it fits on (`p` if there is none). A place where the body
     /// fits but no such leg exists (a lane at the clearance limit in a corridor too narrow for
     /// any cell centre) is no place to stand: every route from or to it would touch a wall.

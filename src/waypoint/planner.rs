@@ -1,6 +1,6 @@
 //! The waypoint-graph maximin planner of 000 behind the common [`Planner`] interface: builds
 //! the world (raster, waypoints, graph, traversal views), runs the maximin GA within the
-//! budget, reports the organism chosen by [`reported`] with its constraint violations, and
+//! budget, reports the organism chosen by [`reported`](super::run::reported) with its constraint violations, and
 //! draws its own figures (paths with loop closures, camera coverage, Pareto snapshots,
 //! population objectives).
 

@@ -74,7 +74,7 @@ fn step_cost(map: &WorkMap, j: usize, diagonal: bool, centred: bool) -> u32 {
 /// Spreads geodesic (chamfer) distances from `sources` (pixel indices) through the pixels
 /// where the UAV fits, lowering `dist` wherever a source is nearer; `parent` (if given)
 /// records each lowered pixel's predecessor (a source is its own). `centred` prices steps
-/// near walls higher (see [`step_cost`]).
+/// near walls higher (see `step_cost`).
 pub fn geodesic(
     map: &WorkMap,
     fits: &[bool],

@@ -1,5 +1,5 @@
 //! The planner comparison of a study with several planners (the ablation): per map, the
-//! median [IQR] of every common metric per planner, pairwise Mann–Whitney U tests with Holm's
+//! median \[IQR\] of every common metric per planner, pairwise Mann–Whitney U tests with Holm's
 //! correction and Vargha–Delaney `A₁₂` effect sizes, box plots, convergence curves of the GAs,
 //! the best path of each planner on each map, and findings in plain words derived from those
 //! numbers. Planners are compared only through the common scorer's columns.

@@ -1,5 +1,5 @@
 //! The report of a fleet study (every run a fleet's plan): per map and fleet, union coverage and
-//! makespan of each method as median [IQR] over seeds; pairwise Mann–Whitney U tests with Holm's
+//! makespan of each method as median \[IQR\] over seeds; pairwise Mann–Whitney U tests with Holm's
 //! correction and Vargha–Delaney `A₁₂` (an exact sign test against a deterministic method's one
 //! plan); the makespan speed-up with fleet size; the negotiation's convergence. Methods are
 //! compared only through the fleet metrics of the common scorer ([`crate::fleet::metrics`]).
