@@ -436,6 +436,7 @@ def report(
     reference: Optional[Union[str, "os.PathLike[str]"]] = None,
     seed_to_seed: bool = False,
     measures: Sequence[str] = (),
+    design: bool = False,
 ) -> Path:
     """Writes ``covga report`` of a study folder, grouped ``by`` these columns, keeping the
     runs ``where`` each column equals its value; returns the path of ``summary.md``. ``compare``
@@ -453,7 +454,10 @@ def report(
     far one replicate's ranking of the configurations carries to another). ``measures`` names
     figures the runs record (a runs.csv column, ``history.COLUMN@ITERATION`` or a dotted path
     into ``summary.json``) and writes ``measures.md`` and ``measures.csv`` (``--measure``: each
-    group's median [min, max], or the count of runs where a yes/no figure holds)."""
+    group's median [min, max], or the count of runs where a yes/no figure holds). ``design`` also
+    writes each comparison's ``design-KEY.md`` (``--design``: what the design can show, each
+    family's smallest p after its correction, and the seeds or units needed to show an effect
+    of a given size)."""
     by = [by] if isinstance(by, str) else list(by)
 
     def text(v: Any) -> str:
@@ -471,13 +475,15 @@ def report(
     every = each(compare_every_plan)
     if not isinstance(anova_condensed, (bool, np.bool_)):
         raise ConfigError(f"anova_condensed = {anova_condensed!r}: expected True or False")
-    for flag, value in (("plans", plans), ("seed_to_seed", seed_to_seed)):
+    for flag, value in (("plans", plans), ("seed_to_seed", seed_to_seed), ("design", design)):
         if not isinstance(value, (bool, np.bool_)):
             raise ConfigError(f"{flag} = {value!r}: expected True or False")
+    if design and not comparisons and not every:
+        raise ConfigError("design: tells what a comparison can show; name one with compare")
     ref = None if reference is None else os.fspath(reference)
     if isinstance(measures, str) or not all(isinstance(m, str) for m in measures):
         raise ConfigError(f"measures = {measures!r}: expected a list of keys, e.g. ['objectives.wall_coverage']")
     return Path(
         _covga.write_report(os.fspath(dir), by, pairs, name, comparisons, every, bool(anova_condensed), bool(plans), ref,
-        bool(seed_to_seed), list(measures))
+        bool(seed_to_seed), list(measures), bool(design))
     )

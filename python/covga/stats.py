@@ -24,7 +24,18 @@ from . import _covga
 from ._arrays import real_numbers
 from ._covga import ConfigError
 
-__all__ = ["a12", "bootstrap_ci", "holm", "kruskal_wallis", "mann_whitney", "sign_test", "wilcoxon"]
+__all__ = [
+    "a12",
+    "bootstrap_ci",
+    "cluster_bootstrap_ci",
+    "holm",
+    "kruskal_wallis",
+    "mann_whitney",
+    "sign_test",
+    "smallest_p",
+    "units_for_effect",
+    "wilcoxon",
+]
 
 
 def _sample(value: Any, what: str) -> list[float]:
@@ -127,3 +138,53 @@ def bootstrap_ci(
             raise ConfigError(f"{name} = {value!r}: expected a whole number in [{low}, {high}]")
     out = _covga.stats_bootstrap_ci(a, b, contrast, bool(paired), float(level), int(resamples), int(seed))
     return None if out is None else dict(zip(("estimate", "low", "high"), out))
+
+
+def _count(value: Any, name: str, low: int, high: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not (low <= value <= high):
+        raise ConfigError(f"{name} = {value!r}: expected a whole number in [{low}, {high}]")
+    return int(value)
+
+
+def _probability(value: Any, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or math.isnan(value) or not (0.0 < value < 1.0):
+        raise ConfigError(f"{name} = {value!r}: expected a number in (0, 1)")
+    return float(value)
+
+
+def cluster_bootstrap_ci(
+    clusters: Sequence[Sequence[float]], *, level: float = 0.95, resamples: int = 10_000, seed: int = 0
+) -> Optional[dict[str, Any]]:
+    """Percentile bootstrap interval of the median of clustered values, each resample drawing
+    whole clusters with replacement (``covga report --compare`` resamples its units so: the pairs
+    of one stratum or floor plan never count as independent): ``{"estimate", "low", "high"}``.
+    Seeded. ``None`` for an empty cluster."""
+    if isinstance(clusters, (str, bytes)) or len(clusters) == 0:
+        raise ConfigError("clusters: expected a non-empty list of lists of numbers")
+    values = [_sample(c, f"clusters[{i}]") for i, c in enumerate(clusters)]
+    level = _probability(level, "level")
+    resamples = _count(resamples, "resamples", 1, 10**8)
+    seed = _count(seed, "seed", 0, 2**64 - 1)
+    out = _covga.stats_cluster_bootstrap_ci(values, level, resamples, seed)
+    return None if out is None else dict(zip(("estimate", "low", "high"), out))
+
+
+def smallest_p(units: int, tests: int = 1) -> float:
+    """The smallest p a family of ``tests`` paired comparisons of ``units`` units each can reach
+    after Holm's correction: every unit pointing one way gives the exact signed-rank p
+    ``2 · 2⁻ⁿ``, and Holm multiplies the smallest by the family's size. Above 0.05, the design
+    cannot show anything at that level."""
+    return _covga.stats_smallest_p(_count(units, "units", 0, 10**9), _count(tests, "tests", 1, 10**9))
+
+
+def units_for_effect(d: float, *, alpha: float = 0.05, power: float = 0.8, tests: int = 1) -> Optional[int]:
+    """Units a paired comparison needs to show a standardised effect ``d`` (mean over standard
+    deviation of the unit effects) with probability ``power``, in a family of ``tests`` tests
+    corrected by Holm (planned for Bonferroni's worst case): the normal approximation divided
+    by the signed-rank test's efficiency 3/π, and never fewer than the design needs to reach
+    ``alpha`` at all. ``None`` for ``d`` ≤ 0."""
+    if isinstance(d, bool) or not isinstance(d, (int, float)) or math.isnan(d):
+        raise ConfigError(f"d = {d!r}: expected a number")
+    return _covga.stats_units_for_effect(
+        float(d), _probability(alpha, "alpha"), _probability(power, "power"), _count(tests, "tests", 1, 10**9)
+    )

@@ -107,5 +107,8 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(stats::stats_holm, m)?)?;
     m.add_function(wrap_pyfunction!(stats::stats_kruskal_wallis, m)?)?;
     m.add_function(wrap_pyfunction!(stats::stats_bootstrap_ci, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_cluster_bootstrap_ci, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_smallest_p, m)?)?;
+    m.add_function(wrap_pyfunction!(stats::stats_units_for_effect, m)?)?;
     Ok(())
 }

@@ -151,9 +151,9 @@ pub fn run_grid(py: Python<'_>, file: &str, jobs: usize, out: &str, order: &str)
 /// `covga report`: writes the report of study folder `dir` (with the comparisons `compare` of
 /// executable plans and `compare_every_plan` of every plan, each `KEY=BASELINE`, made first so
 /// that one that cannot be made writes nothing; with `anova_condensed`, `anova-condensed.md`
-/// too) and returns the path of its `summary.md`.
+/// too; with `design`, each comparison's `design-KEY.md`) and returns the path of its `summary.md`.
 #[pyfunction]
-#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false, plans=false, reference=None, seed_to_seed=false, measures=Vec::new()))]
+#[pyo3(signature = (dir, by, filter, name, compare, compare_every_plan, anova_condensed=false, plans=false, reference=None, seed_to_seed=false, measures=Vec::new(), design=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn write_report(
     py: Python<'_>,
@@ -168,6 +168,7 @@ pub fn write_report(
     reference: Option<String>,
     seed_to_seed: bool,
     measures: Vec<String>,
+    design: bool,
 ) -> PyResult<String> {
     use covga::report::ReportError;
     let error = |e: ReportError| match e {
@@ -197,6 +198,9 @@ pub fn write_report(
         let folder = path.parent().unwrap_or(dir);
         for r in &rendered {
             r.save(folder).map_err(error)?;
+            if design {
+                r.save_design(folder).map_err(error)?;
+            }
         }
         Ok(path.display().to_string())
     })

@@ -65,3 +65,28 @@ pub fn stats_bootstrap_ci(
     };
     Ok(stats::bootstrap_ci(&a, &b, contrast, paired, level, resamples, seed).map(|i| (i.estimate, i.low, i.high)))
 }
+
+/// `(estimate, low, high)` of the median over clustered values, whole clusters resampled, or
+/// `None` (an empty cluster, no cluster, a NaN).
+#[pyfunction]
+pub fn stats_cluster_bootstrap_ci(
+    clusters: Vec<Vec<f64>>,
+    level: f64,
+    resamples: usize,
+    seed: u64,
+) -> Option<(f64, f64, f64)> {
+    stats::design::cluster_bootstrap_ci(&clusters, stats::median, level, resamples, seed)
+        .map(|i| (i.estimate, i.low, i.high))
+}
+
+/// The smallest Holm-adjusted p of a family of `tests` paired comparisons of `units` units each.
+#[pyfunction]
+pub fn stats_smallest_p(units: usize, tests: usize) -> f64 {
+    stats::design::holm_min_p(stats::design::signed_rank_min_p(units), tests)
+}
+
+/// Units a paired comparison needs to show the standardised effect `d` (`None` where out of range).
+#[pyfunction]
+pub fn stats_units_for_effect(d: f64, alpha: f64, power: f64, tests: usize) -> Option<usize> {
+    stats::design::units_for_effect(d, alpha, power, tests)
+}

@@ -1,6 +1,8 @@
 """covga.stats against scipy (and statsmodels for Holm), live: the statistics every covga report
 prints, checked against an established package on seeded samples."""
 
+import math
+
 import numpy as np
 import pytest
 from scipy import stats as sp
@@ -149,3 +151,89 @@ def test_constant_samples_are_not_tested():
     assert stats.mann_whitney([2, 2, 2], [2, 2]) is None
     assert stats.wilcoxon([1, 2, 3], [1, 2, 3]) is None
     assert stats.sign_test([4, 4], against=4) is None
+
+
+def test_smallest_p_is_scipys_exact_extreme_times_the_family():
+    for n in (4, 8, 10, 16):
+        extreme = sp.wilcoxon(np.arange(1, n + 1) + 0.5, method="exact").pvalue
+        for tests in (1, 3, 126):
+            assert stats.smallest_p(n, tests) == pytest.approx(min(1.0, extreme * tests), rel=1e-12)
+
+
+@pytest.mark.parametrize("d,tests", [(0.5, 1), (0.8, 3), (0.2, 10), (3.0, 126)])
+def test_units_for_an_effect_follow_the_normal_approximation(d, tests):
+    z = sp.norm.ppf(1 - 0.05 / tests / 2) + sp.norm.ppf(0.8)
+    normal = math.ceil((z / d) ** 2 / (3 / math.pi))
+    reach = next(n for n in range(1, 65) if min(1.0, tests * 2 * 0.5**n) <= 0.05)
+    assert stats.units_for_effect(d, tests=tests) == max(normal, reach)
+    assert stats.units_for_effect(-d, tests=tests) is None
+
+
+def test_cluster_bootstrap_resamples_whole_clusters_as_numpy_does():
+    rng = np.random.default_rng(11)
+    clusters = [rng.normal(k, 0.3, size=int(rng.integers(3, 8))) for k in range(12)]
+    got = stats.cluster_bootstrap_ci([list(c) for c in clusters], resamples=20000, seed=2)
+    draws = np.random.default_rng(5).integers(0, len(clusters), size=(20000, len(clusters)))
+    medians = [np.median(np.concatenate([clusters[i] for i in row])) for row in draws]
+    low, high = np.percentile(medians, [2.5, 97.5])
+    assert got["estimate"] == pytest.approx(np.median(np.concatenate(clusters)), rel=1e-12)
+    # Two generators, one distribution: the ends agree to a few percent of the width.
+    assert abs(got["low"] - low) < 0.08 * (high - low) and abs(got["high"] - high) < 0.08 * (high - low)
+    with pytest.raises(covga.ConfigError, match="clusters"):
+        stats.cluster_bootstrap_ci([])
+
+
+def _runs(study):
+    import csv
+    import lzma
+
+    from conftest import REPO
+
+    folder = REPO / "results" / study
+    plain = folder / "runs.csv"
+    text = plain.read_text() if plain.exists() else lzma.open(folder / "runs.csv.xz", "rt").read()
+    return list(csv.DictReader(text.splitlines())), folder
+
+
+def _pooled_p(folder, report, stem, value, metric="time_s"):
+    import csv
+
+    rows = csv.DictReader((folder / report / f"{stem}.csv").read_text().splitlines())
+    row = next(r for r in rows if r["stratum"] == "pooled" and r["value"] == value and r["metric"] == metric)
+    return float(row["p"]), int(row["units"])
+
+
+def test_committed_pooled_tests_are_scipys_over_the_units():
+    """The committed comparisons' pooled p, recomputed with scipy from runs.csv: the unit effects
+    (median log-ratio of time per unit) and the exact signed-rank test over them."""
+    # The seed bound: both sides seeded, the strata (map, moves, selection) are the units.
+    runs, folder = _runs("thesis-seed-bound")
+    by = {}
+    for r in runs:
+        key = (r["map.source"], r["thesis.moves"], r["thesis.selection"], r["seed"])
+        by.setdefault(key, {})[r["thesis.seed_bound"]] = r
+    effects = {}
+    for (m, mv, sel, _), sides in by.items():
+        b, v = sides.get("none"), sides.get("dominate")
+        if b and v and b["executable"] == "true" and v["executable"] == "true":
+            effects.setdefault((m, mv, sel), []).append(math.log(float(v["time_s"]) / float(b["time_s"])))
+    units = [np.median(e) for e in effects.values()]
+    want = sp.wilcoxon(units, method="exact").pvalue
+    p, n = _pooled_p(folder, "report", "compare-thesis.seed_bound", "dominate")
+    assert (p, n) == (pytest.approx(want, rel=1e-12), len(units))
+    # The cell-order search against a control that runs once per map and robot: the floor plan
+    # (robots and a generated plan's clean and noisy twins together) is the unit.
+    runs, folder = _runs("cell-order")
+    runs = [r for r in runs if r["planner"] == "cell_order" and r["executable"] == "true"]
+    control = {(r["map.source"], r["robot.rot_speed"]): float(r["time_s"]) for r in runs
+               if r["cell_order.solver"] == "nearest"}
+    effects = {}
+    for r in runs:
+        if r["cell_order.solver"] == "ils":
+            plan = r["map.source"].replace("-noisy.yaml", ".yaml")
+            base = control[(r["map.source"], r["robot.rot_speed"])]
+            effects.setdefault(plan, []).append(math.log(float(r["time_s"]) / base))
+    units = [np.median(e) for e in effects.values()]
+    want = sp.wilcoxon(units, method="exact").pvalue
+    p, n = _pooled_p(folder, "report-controls", "compare-cell_order.solver-nearest", "ils (cell_order.seed_directions=true)")
+    assert (p, n) == (pytest.approx(want, rel=1e-12), len(units))

@@ -315,6 +315,11 @@ pub struct ReportArgs {
     /// Repeatable.
     #[arg(long, value_name = "KEY=BASELINE")]
     compare_every_plan: Vec<String>,
+    /// With --compare: also write `design-KEY.md`, what each comparison's design can show (each
+    /// family's smallest p after its correction) and how many seeds, strata or floor plans it
+    /// needs to show an effect of a given size, from the runs the study has (a pilot's will do).
+    #[arg(long)]
+    design: bool,
     /// Also write `anova-condensed.md`: each analysis of variance's main effects, three largest
     /// interactions and residual, its rows as in `summary.md`.
     #[arg(long)]
@@ -367,6 +372,9 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     };
     // Comparisons are made before anything is written, so that one that cannot be made leaves
     // no half-written report.
+    if a.design && comparisons.is_empty() {
+        return Err(CliError::Input("--design: tells what a comparison can show; name one with --compare".into()));
+    }
     let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons).map_err(input)?;
     let opts = crate::report::ReportOptions {
         by: a.by,
@@ -403,6 +411,11 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     }
     for r in &rendered {
         println!("wrote {}", r.save(folder).map_err(input)?.display());
+        if a.design
+            && let Some(path) = r.save_design(folder).map_err(input)?
+        {
+            println!("wrote {}", path.display());
+        }
     }
     Ok(())
 }

@@ -149,6 +149,20 @@ impl Canvas {
     }
 }
 
+/// The clean twin of a generated map's source: the generator names a noisy plan
+/// `<kind>-<seed>-noisy` and draws its walls and doors as those of `<kind>-<seed>`, so the two are
+/// one floor plan. Any other source is its own.
+pub fn clean_twin(source: &str) -> std::borrow::Cow<'_, str> {
+    let (stem, extension) = match source.strip_suffix(".yaml") {
+        Some(stem) => (stem, ".yaml"),
+        None => (source, ""),
+    };
+    match stem.strip_suffix("-noisy") {
+        Some(clean) => format!("{clean}{extension}").into(),
+        None => source.into(),
+    }
+}
+
 /// Draws the plan `spec` asks for; a spec out of range is refused with the reason.
 pub fn generate(spec: &PlanSpec) -> Result<Generated, String> {
     spec.check()?;

@@ -13,9 +13,12 @@
 //! from the others (a budget set per map) are not strata of their own and are named.
 
 mod findings;
+mod like;
 mod pooled;
+mod power;
 mod strongest;
 mod text;
+mod units;
 
 use text::{executability, intro, p_text, section};
 
@@ -114,10 +117,11 @@ impl Row {
         )
     }
 
-    /// The CSV fields every section starts a row with, `metric` among them.
-    fn lead_csv(&self, metric: &str) -> String {
+    /// The CSV fields every section starts a row with, `metric` among them, and the `unit` its
+    /// test counts with their number.
+    fn lead_csv(&self, metric: &str, unit: &str, units: usize) -> String {
         format!(
-            "{},{},{metric},{},{},{},{},{}",
+            "{},{},{metric},{},{},{},{},{},{unit},{units}",
             quoted(&self.stratum),
             quoted(&self.value),
             self.runs.0,
@@ -152,6 +156,8 @@ struct Design {
     once_run_pairs: bool,
     /// `(stratum, value) → seed → row`.
     cells: BTreeMap<(String, String), BTreeMap<String, usize>>,
+    /// Each stratum's label → its parameters, `(column, value)`.
+    params: BTreeMap<String, Vec<(String, String)>>,
 }
 
 impl Design {
@@ -183,8 +189,12 @@ fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
     let followers: Vec<(String, String)> = followers.into_iter().map(|(c, of)| (t.header[c].clone(), of)).collect();
     let seed = t.col("seed").unwrap_or(0);
     let mut cells: BTreeMap<(String, String), BTreeMap<String, usize>> = BTreeMap::new();
+    let mut params = BTreeMap::new();
     for (i, r) in t.rows.iter().enumerate() {
         let label = kept.iter().map(|&c| format!("{}={}", t.header[c], r[c])).collect::<Vec<_>>().join(", ");
+        params
+            .entry(label.clone())
+            .or_insert_with(|| kept.iter().map(|&c| (t.header[c].clone(), r[c].clone())).collect::<Vec<_>>());
         let mut value = r[key].clone();
         for &c in nested.iter().filter(|&&c| !r[c].is_empty()) {
             let _ = write!(value, " ({}={})", t.header[c], r[c]);
@@ -203,7 +213,7 @@ fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
         }
         cells.retain(|(_, v), _| !controls.contains(&v.as_str()));
     }
-    Design { strata, kept, followers, nested, strongest, once_run_pairs: true, cells }
+    Design { strata, kept, followers, nested, strongest, once_run_pairs: true, cells, params }
 }
 
 /// The pairs of a baseline's runs and a value's, by seed; where one side ran once and the other
@@ -233,6 +243,8 @@ pub struct Rendered {
     pub markdown: String,
     /// One row per stratum, value and metric.
     pub csv: String,
+    /// For a comparison, what its design can show ([`power`]), written by `--design`.
+    pub design: Option<String>,
 }
 
 impl Rendered {
@@ -245,6 +257,16 @@ impl Rendered {
                 .map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
         }
         Ok(md)
+    }
+
+    /// Writes the design file of a comparison, `design-KEY.md` beside `compare-KEY.md`, into
+    /// `out`; returns its path (none for files that are not a comparison).
+    pub fn save_design(&self, out: &Path) -> Result<Option<PathBuf>, ReportError> {
+        let Some(design) = &self.design else { return Ok(None) };
+        let path = out.join(format!("design-{}.md", self.stem.trim_start_matches("compare-")));
+        crate::io::write_atomic(&path, design.as_bytes())
+            .map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
+        Ok(Some(path))
     }
 }
 
@@ -351,6 +373,13 @@ fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String
     Ok((key, values))
 }
 
+/// The columns of `compare-KEY.csv`: `unit` is what its test counts (`seed` within a stratum,
+/// `stratum` or `floor plan` pooled), `units` how many; `p_floor_holm` the smallest p its family
+/// can reach after Holm.
+const CSV_HEADER: &str = "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,\
+                          unit,units,median_baseline,median_value,contrast,estimate,ci_low,ci_high,value_better,\
+                          value_worse,a12_value_greater,test,p,p_holm,p_floor_holm,note\n";
+
 /// Makes the comparison `cmp` of the runs `t` of a finished study.
 pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
     render_with(t, cmp, true)
@@ -398,17 +427,15 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
     }
     let num = |r: usize, c: &str| t.col(c).and_then(|i| t.rows[r][i].parse::<f64>().ok()).unwrap_or(f64::NAN);
     let mut md = String::new();
-    let mut csv = String::from(
-        "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,median_baseline,\
-         median_value,contrast,estimate,ci_low,ci_high,value_better,value_worse,a12_value_greater,test,p,\
-         p_holm,note\n",
-    );
+    let mut csv = String::from(CSV_HEADER);
     let every = match cmp.plans {
         Plans::Executable => "",
         Plans::Every => ", every plan",
     };
     let _ = writeln!(md, "# `{}`: each value against `{}`{every}\n", cmp.key, cmp.baseline);
-    let _ = writeln!(md, "{}\n", intro(&d, cmp));
+    let compared: Vec<String> = values.iter().filter(|v| **v != cmp.baseline).cloned().collect();
+    let units = d.pooled().then(|| units::choose(&d.params, d.once_run()));
+    let _ = writeln!(md, "{}\n", intro(&d, cmp, units.as_ref(), &compared));
     md.push_str(&strongest_table(&d));
     let findings_at = md.len();
     let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
@@ -428,13 +455,15 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
     };
     let both_executable = cmp.plans == Plans::Executable;
     let executable_rows = as_rows(&|r| f64::from(u8::from(executable(r))), false);
-    if d.pooled() {
-        pooled::executability(&mut md, &mut csv, &pooled::pool(&executable_rows), cmp);
+    let built = |value: &str| like::executable_by_construction(&cmp.key, value);
+    if let Some(units) = &units {
+        pooled::executability(&mut md, &mut csv, &pooled::pool(&executable_rows, units), (cmp, units), &built);
         for m in &METRICS {
-            pooled::section(&mut md, &mut csv, m, &pooled::pool(&as_rows(&|r| num(r, m.column), both_executable)), cmp);
+            let rows = as_rows(&|r| num(r, m.column), both_executable);
+            pooled::section(&mut md, &mut csv, m, &pooled::pool(&rows, units), (cmp, units));
         }
     }
-    executability(&mut md, &mut csv, &executable_rows, cmp);
+    executability(&mut md, &mut csv, &executable_rows, cmp, &built);
     for m in &METRICS {
         let metric_rows = as_rows(&|r| num(r, m.column), both_executable);
         section(&mut md, &mut csv, m, &metric_rows, cmp);
@@ -445,7 +474,9 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
         Plans::Every => "-every-plan",
     };
     md.insert_str(findings_at, &findings::findings(&csv, &cmp.baseline, &effort(t, &d, &values)));
-    Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv })
+    let title = format!("`{}` against `{}`{every}", cmp.key, cmp.baseline);
+    let design = power::text(&title, &|column| as_rows(&|r| num(r, column), both_executable), units.as_ref());
+    Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv, design: Some(design) })
 }
 
 /// Per value (the baseline's own values first where it stands for several controls), its runs

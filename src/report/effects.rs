@@ -191,7 +191,26 @@ fn write_table(md: &mut String, tests: &[Test]) {
             medians.join(" · ")
         );
     }
-    let _ = writeln!(md, "\n{}", family.statement());
+    let _ = writeln!(md, "\n{}{}", family.statement(), floor_sentence(&family, tests, &results));
+}
+
+/// The smallest p the section's family can reach: each tested row's test on its groups' sizes
+/// with every group apart ([`crate::stats::design::groups_apart`]), the smallest of them, and
+/// Holm's multiple.
+fn floor_sentence(family: &Family, tests: &[Test], results: &[Option<crate::stats::KruskalWallis>]) -> String {
+    let extreme = tests
+        .iter()
+        .zip(results)
+        .filter(|(_, r)| r.is_some())
+        .filter_map(|(t, _)| {
+            let sizes: Vec<usize> = t.values.iter().map(|(_, v)| v.len()).collect();
+            let p = kruskal_wallis(&crate::stats::design::groups_apart(&sizes))?.p_value;
+            Some((p, t.runs, sizes.len()))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    let Some((raw, runs, groups)) = extreme else { return String::new() };
+    let best = format!("the test of {runs} runs in {groups} groups, every group apart");
+    family.floor(raw, 0.05, &best).map_or(String::new(), |f| format!(" {}", f.sentence))
 }
 
 #[cfg(test)]

@@ -54,6 +54,24 @@ pub fn units_for_effect(d: f64, alpha: f64, power: f64, tests: usize) -> Option<
     Some((n.ceil() as usize).max(units_to_reach(alpha, tests)))
 }
 
+/// Samples of these sizes lying wholly apart, each group above the one before: the most extreme
+/// data a rank test of groups of these sizes can see, so that the test's p on them is the
+/// smallest it can give (exact or approximate, as the test computes it).
+pub fn groups_apart(sizes: &[usize]) -> Vec<Vec<f64>> {
+    let mut next = 0.0;
+    sizes
+        .iter()
+        .map(|&n| {
+            (0..n)
+                .map(|_| {
+                    next += 1.0;
+                    next
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// One effect per unit: the median of `contrast` over the pairs of each unit, units in the
 /// order they first appear. `pairs` holds `(unit, a, b)`.
 pub fn unit_effects<U: PartialEq + Clone>(pairs: &[(U, f64, f64)], contrast: fn(f64, f64) -> f64) -> Vec<(U, f64)> {
@@ -112,6 +130,14 @@ mod tests {
     use super::*;
     use crate::stats::paired::wilcoxon_signed_rank;
     use crate::stats::rank_sum::mann_whitney;
+
+    #[test]
+    fn groups_apart_give_the_rank_tests_their_extremes() {
+        assert_eq!(groups_apart(&[2, 1]), vec![vec![1.0, 2.0], vec![3.0]]);
+        let g = groups_apart(&[3, 3]);
+        let exact = mann_whitney(&g[0], &g[1]).unwrap().p_value;
+        assert!((exact - rank_sum_min_p(3, 3)).abs() < 1e-12);
+    }
 
     /// The floors are what the exact tests give when every unit points one way.
     #[test]

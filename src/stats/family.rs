@@ -43,10 +43,55 @@ impl Family {
     /// The sentence a report prints under the family's table.
     pub fn statement(&self) -> String {
         match self.tests.len() {
+            0 => format!("No test of {}: nothing to correct.", self.name),
             1 => format!("One test of {}: nothing to correct (Holm's p is its own).", self.name),
             n => format!("Holm–Bonferroni over the {n} tests of {}.", self.name),
         }
     }
+}
+
+/// The smallest p a family can reach after its correction.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Floor {
+    /// The smallest Holm-adjusted p of the family.
+    pub p: f64,
+    /// Whether it is below the level: whether the family can show anything at all.
+    pub reachable: bool,
+    /// The sentence a report states it in.
+    pub sentence: String,
+}
+
+impl Family {
+    /// The family's floor when its most extreme possible data give the raw p `smallest_raw`
+    /// (`best` says what that is, e.g. "its largest comparison, 8 strata, all pointing one
+    /// way"): Holm multiplies the smallest raw p by the family's size. `None` without a test.
+    pub fn floor(&self, smallest_raw: f64, alpha: f64, best: &str) -> Option<Floor> {
+        floor(self.tests.len(), smallest_raw, alpha, best)
+    }
+}
+
+/// [`Family::floor`] of a family of `tests` tests.
+pub fn floor(tests: usize, smallest_raw: f64, alpha: f64, best: &str) -> Option<Floor> {
+    if tests == 0 {
+        return None;
+    }
+    let p = (smallest_raw * tests as f64).min(1.0);
+    let text = |x: f64| match x {
+        x if x < 1e-300 => "below 1e-300".to_string(),
+        x if x < 1e-4 => format!("{x:.1e}"),
+        x => format!("{x:.4}"),
+    };
+    let after = if tests == 1 { String::new() } else { format!(", {} after Holm over its {tests} tests", text(p)) };
+    let sentence = if p < alpha {
+        format!("The smallest p this family can reach is {}{after} ({best}).", text(smallest_raw))
+    } else {
+        format!(
+            "**By design this family cannot show anything at the {alpha:.2} level**: at best ({best}) its p is {}{after}; \
+             a test here that is not shown is no evidence either way.",
+            text(smallest_raw)
+        )
+    };
+    Some(Floor { p, reachable: p < alpha, sentence })
 }
 
 #[cfg(test)]
@@ -68,5 +113,24 @@ mod tests {
             one.statement(),
             "One test of one setting against the control: nothing to correct (Holm's p is its own)."
         );
+        assert_eq!(Family::new("none").statement(), "No test of none: nothing to correct.");
+    }
+
+    #[test]
+    fn a_family_states_the_smallest_p_it_can_reach() {
+        let mut f = Family::new("x");
+        assert_eq!(f.floor(0.01, 0.05, "b"), None);
+        f.push("a", 0.3);
+        let one = f.floor(0.0078125, 0.05, "8 units one way").unwrap();
+        assert!(one.reachable && one.p == 0.0078125);
+        assert_eq!(one.sentence, "The smallest p this family can reach is 0.0078 (8 units one way).");
+        for _ in 0..9 {
+            f.push("a", 0.3);
+        }
+        let ten = f.floor(0.0078125, 0.05, "8 units one way").unwrap();
+        assert!(!ten.reachable && ten.p == 0.078125);
+        assert!(ten.sentence.starts_with(
+            "**By design this family cannot show anything at the 0.05 level**: at best (8 units one way) its p is 0.0078, 0.0781 after Holm over its 10 tests;"
+        ), "{}", ten.sentence);
     }
 }

@@ -106,6 +106,16 @@ impl SelectionName {
         }
     }
 
+    /// Which member of the final population a run returns as its plan under this selection:
+    /// the knee of the first front under NSGA-II ([`crate::thesis::run::knee_index`]), the
+    /// fittest member otherwise (the highest `f`, 003 eq. 3.13).
+    pub fn returned_plan(self) -> &'static str {
+        match self {
+            SelectionName::Nsga2 => "the knee of its final first front",
+            SelectionName::Elite | SelectionName::Draw(_) => "its fittest member (highest `f`)",
+        }
+    }
+
     /// The name `name` means for the thesis GA, if any.
     pub fn parse(name: &str) -> Option<Self> {
         match name {

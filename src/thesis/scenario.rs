@@ -118,6 +118,15 @@ pub enum Moves {
 }
 
 impl Moves {
+    /// Why every plan of these moves is executable, where that holds by construction: a routed
+    /// move follows a route the robot's body fits along ([`crate::routing::routes`]).
+    pub fn executable_by_construction(&self) -> Option<&'static str> {
+        match self {
+            Moves::Straight => None,
+            Moves::Routed => Some("every routed move follows a route the robot's body fits along"),
+        }
+    }
+
     /// Whether these are 003's straight moves.
     pub fn is_straight(&self) -> bool {
         matches!(self, Moves::Straight)

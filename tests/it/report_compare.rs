@@ -53,6 +53,7 @@ fn a_comparison_is_written_beside_the_report_and_remade_byte_for_byte() {
     assert!(rows >= 3 * 64, "{rows}");
     // 192 strata of five seeds: pooled first, then stratum by stratum.
     assert!(md.contains("## `cov_final_reach`, pooled over the strata\n"), "the pooled section");
+    assert!(md.contains("The pooled unit is the stratum (192 units)"), "the unit and why");
     assert!(md.find("pooled over the strata").unwrap() < md.find("## `cov_final_reach`\n").unwrap());
     let again = covga(&["report", d, "--compare", "thesis.init_dist_max=3.0"]);
     assert!(again.status.success());
@@ -88,6 +89,28 @@ fn every_plan_is_compared_beside_the_executable_plans() {
     };
     assert_eq!(pooled_pairs(&every), 960);
     assert!(pooled_pairs(&executable) < 100, "{}", pooled_pairs(&executable));
+}
+
+/// `--design` writes what each comparison can show beside it: the seed-bound study's five seeds
+/// per setting cannot show anything setting by setting, its eight settings with pairs can pooled.
+#[test]
+fn the_design_file_says_what_a_comparison_can_show() {
+    let dir = committed_study(Path::new("results/thesis-seed-bound"));
+    let d = dir.path().to_str().unwrap();
+    let o = covga(&["report", d, "--compare", "thesis.seed_bound=none", "--design"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("design-thesis.seed_bound.md"));
+    let md = std::fs::read_to_string(dir.path().join("report/design-thesis.seed_bound.md")).unwrap();
+    for row in [
+        "| `time_s`, stratum by stratum | 8 | 5 | 0.0625 | 0.5000 | **no** | 9 |",
+        "| `time_s`, pooled | 1 | 8 | 0.0078 | 0.0078 | yes | 6 |",
+        "| `time_s` | dominate | 8 |",
+    ] {
+        assert!(md.contains(row), "{row}\n{md}");
+    }
+    let o = covga(&["report", d, "--design"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--design"), "{}", String::from_utf8_lossy(&o.stderr));
 }
 
 #[test]

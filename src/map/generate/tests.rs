@@ -80,3 +80,17 @@ fn a_large_hall_has_about_six_hundred_pillars() {
         assert!(Clearance::new(&g.map, 0.6).fits(g.start), "seed {seed}");
     }
 }
+
+#[test]
+fn a_noisy_plan_has_the_clean_plan_of_its_seed_as_twin() {
+    for (source, twin) in [
+        ("maps/house-1-noisy.yaml", "maps/house-1.yaml"),
+        ("maps/house-1.yaml", "maps/house-1.yaml"),
+        ("office-3-noisy", "office-3"),
+        ("office", "office"),
+    ] {
+        assert_eq!(clean_twin(source), twin);
+    }
+    let g = generate(&spec(PlanKind::House, 4, true)).unwrap();
+    assert_eq!(clean_twin(g.map.name()), generate(&spec(PlanKind::House, 4, false)).unwrap().map.name());
+}

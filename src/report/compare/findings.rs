@@ -11,64 +11,34 @@ use std::fmt::Write as _;
 /// compared value (and the baseline), its runs and the most evaluations one of them made.
 pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> String {
     let Ok(t) = RunsTable::parse(csv) else { return String::new() };
-    let col = |name: &str| t.col(name).expect("the comparison table's columns");
-    let (stratum, value, metric, estimate, note, pairs) =
-        (col("stratum"), col("value"), col("metric"), col("estimate"), col("note"), col("pairs"));
-    let (low, high) = (col("ci_low"), col("ci_high"));
+    let c = Columns::of(&t);
     let mut values: Vec<&str> = Vec::new();
     for r in &t.rows {
-        if !values.contains(&r[value].as_str()) {
-            values.push(&r[value]);
+        if !values.contains(&r[c.value].as_str()) {
+            values.push(&r[c.value]);
         }
     }
     let mut out = String::from("## Findings\n\n");
     for v in values {
         let _ = writeln!(out, "- **`{v}`**");
-        for (m, what, as_ratio) in [("time_s", "time", true), ("cov_final_reach", "reachable coverage", false)] {
-            let rows: Vec<&Vec<String>> = t.rows.iter().filter(|r| r[value] == v && r[metric] == m).collect();
-            let number = |r: &Vec<String>, c: usize| r[c].parse::<f64>().ok();
-            let effect = |x: f64| if as_ratio { format!("{x:.3}×") } else { format!("{x:+.4}") };
-            if let Some(p) = rows.iter().find(|r| r[stratum] == "pooled")
-                && let (Some(e), Some(lo), Some(hi)) = (number(p, estimate), number(p, low), number(p, high))
-            {
-                let kind = if as_ratio { "ratio" } else { "difference" };
-                let _ = writeln!(
-                    out,
-                    "  - {what}, pooled over the strata: median pair {kind} {} [{}, {}] over {} pairs; {}.",
-                    effect(e),
-                    effect(lo),
-                    effect(hi),
-                    p[pairs],
-                    p[note]
-                );
-            }
-            let strata: Vec<&&Vec<String>> = rows.iter().filter(|r| r[stratum] != "pooled").collect();
-            if strata.is_empty() {
-                continue;
-            }
-            let count = |word: &str| strata.iter().filter(|r| r[note].starts_with(word)).count();
-            let (better, worse) = (count("better than"), count("worse than"));
-            let with_effect: Vec<(f64, &str)> =
-                strata.iter().filter_map(|r| Some((number(r, estimate)?, r[stratum].as_str()))).collect();
-            let lowest = with_effect.iter().copied().min_by(|a, b| a.0.total_cmp(&b.0));
-            let highest = with_effect.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0));
-            let _ = write!(
+        let pooled_executable =
+            t.rows.iter().find(|r| r[c.value] == v && r[c.metric] == "executable" && r[c.stratum] == "pooled");
+        if let Some(p) = pooled_executable {
+            let _ = writeln!(
                 out,
-                "  - {what}, stratum by stratum: shown better than `{baseline}` in {better} of {}, shown worse in {worse}",
-                strata.len()
+                "  - executable plans, pooled over the {} {}: `{baseline}` {}/{}, the value {}/{}; {}.",
+                p[c.units],
+                plural(&p[c.unit]),
+                p[c.exec.0],
+                p[c.runs.0],
+                p[c.exec.1],
+                p[c.runs.1],
+                p[c.note]
             );
-            if as_ratio {
-                let below = with_effect.iter().filter(|e| e.0 < 1.0).count();
-                let above = with_effect.iter().filter(|e| e.0 > 1.0).count();
-                let _ = write!(out, "; its median time is below the baseline's in {below}, above in {above}");
-            }
-            if let (Some(lo), Some(hi)) = (lowest, highest) {
-                let name = |s: &str| if s.is_empty() { "all".to_string() } else { s.to_string() };
-                let kind = if as_ratio { "ratio of medians" } else { "difference of medians" };
-                let _ =
-                    write!(out, "; {kind} from {} ({}) to {} ({})", effect(lo.0), name(lo.1), effect(hi.0), name(hi.1));
-            }
-            out.push_str(".\n");
+        }
+        for (m, what, as_ratio) in [("time_s", "time", true), ("cov_final_reach", "reachable coverage", false)] {
+            let rows: Vec<&Vec<String>> = t.rows.iter().filter(|r| r[c.value] == v && r[c.metric] == m).collect();
+            metric_lines(&mut out, &c, &rows, baseline, (what, as_ratio));
         }
     }
     if !effort.is_empty() {
@@ -83,20 +53,131 @@ pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> S
     out
 }
 
+/// The columns of the comparison table the findings read.
+struct Columns {
+    stratum: usize,
+    value: usize,
+    metric: usize,
+    estimate: usize,
+    note: usize,
+    pairs: usize,
+    low: usize,
+    high: usize,
+    unit: usize,
+    units: usize,
+    better: usize,
+    worse: usize,
+    runs: (usize, usize),
+    exec: (usize, usize),
+}
+
+impl Columns {
+    fn of(t: &RunsTable) -> Self {
+        let col = |name: &str| t.col(name).expect("the comparison table's columns");
+        Columns {
+            stratum: col("stratum"),
+            value: col("value"),
+            metric: col("metric"),
+            estimate: col("estimate"),
+            note: col("note"),
+            pairs: col("pairs"),
+            low: col("ci_low"),
+            high: col("ci_high"),
+            unit: col("unit"),
+            units: col("units"),
+            better: col("value_better"),
+            worse: col("value_worse"),
+            runs: (col("runs_baseline"), col("runs_value")),
+            exec: (col("executable_baseline"), col("executable_value")),
+        }
+    }
+}
+
+/// The lines of one value and metric (`rows`: its table rows): pooled, then stratum by stratum.
+fn metric_lines(out: &mut String, c: &Columns, rows: &[&Vec<String>], baseline: &str, (what, as_ratio): (&str, bool)) {
+    let number = |r: &Vec<String>, col: usize| r[col].parse::<f64>().ok();
+    let effect = |x: f64| if as_ratio { format!("{x:.3}×") } else { format!("{x:+.4}") };
+    if let Some(p) = rows.iter().find(|r| r[c.stratum] == "pooled")
+        && let (Some(e), Some(lo), Some(hi)) = (number(p, c.estimate), number(p, c.low), number(p, c.high))
+    {
+        let kind = if as_ratio { "ratio" } else { "difference" };
+        let _ = writeln!(
+            out,
+            "  - {what}, pooled over the {} {}: median pair {kind} {} [{}, {}] over {} pairs; better in {} and \
+             worse in {} of the {}; {}.",
+            p[c.units],
+            plural(&p[c.unit]),
+            effect(e),
+            effect(lo),
+            effect(hi),
+            p[c.pairs],
+            p[c.better],
+            p[c.worse],
+            plural(&p[c.unit]),
+            p[c.note]
+        );
+    }
+    let strata: Vec<&&Vec<String>> = rows.iter().filter(|r| r[c.stratum] != "pooled").collect();
+    if strata.is_empty() {
+        return;
+    }
+    let count = |word: &str| strata.iter().filter(|r| r[c.note].starts_with(word)).count();
+    let (better, worse) = (count("better than"), count("worse than"));
+    let with_effect: Vec<(f64, &str)> =
+        strata.iter().filter_map(|r| Some((number(r, c.estimate)?, r[c.stratum].as_str()))).collect();
+    let lowest = with_effect.iter().copied().min_by(|a, b| a.0.total_cmp(&b.0));
+    let highest = with_effect.iter().copied().max_by(|a, b| a.0.total_cmp(&b.0));
+    let _ = write!(
+        out,
+        "  - {what}, stratum by stratum: shown better than `{baseline}` in {better} of {}, shown worse in {worse}",
+        strata.len()
+    );
+    if as_ratio {
+        let below = with_effect.iter().filter(|e| e.0 < 1.0).count();
+        let above = with_effect.iter().filter(|e| e.0 > 1.0).count();
+        let _ = write!(out, "; its median time is below the baseline's in {below}, above in {above}");
+    }
+    if let (Some(lo), Some(hi)) = (lowest, highest) {
+        let name = |s: &str| if s.is_empty() { "all".to_string() } else { s.to_string() };
+        let kind = if as_ratio { "ratio of medians" } else { "difference of medians" };
+        let _ = write!(out, "; {kind} from {} ({}) to {} ({})", effect(lo.0), name(lo.1), effect(hi.0), name(hi.1));
+    }
+    out.push_str(".\n");
+}
+
+/// The plural of a unit's name as the comparison table writes it.
+fn plural(unit: &str) -> String {
+    match unit {
+        "stratum" => "strata".into(),
+        other => format!("{other}s"),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn findings_count_the_strata_and_quote_the_pooled_effect_from_the_table() {
-        let csv = "stratum,value,metric,pairs,estimate,ci_low,ci_high,note\n\
-                   pooled,ga,time_s,20,0.9,0.85,0.95,better than c (shown)\n\
-                   m=1,ga,time_s,10,0.8,0.7,0.9,better than c (shown)\n\
-                   m=2,ga,time_s,10,1.1,0.9,1.2,not shown\n\
-                   m=1,ga,cov_final_reach,10,0.001,0,0.002,not shown\n";
+        let csv = "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,unit,\
+                   units,estimate,ci_low,ci_high,value_better,value_worse,note\n\
+                   pooled,ga,executable,20,20,18,20,20,stratum,2,,,,1,0,cannot show by design\n\
+                   pooled,ga,time_s,20,20,18,20,20,stratum,2,0.9,0.85,0.95,2,0,cannot show by design\n\
+                   m=1,ga,time_s,10,10,9,10,10,seed,10,0.8,0.7,0.9,10,0,better than c (shown)\n\
+                   m=2,ga,time_s,10,10,9,10,10,seed,10,1.1,0.9,1.2,2,8,not shown\n\
+                   m=1,ga,cov_final_reach,10,10,9,10,10,seed,10,0.001,0,0.002,2,1,not shown\n";
         let text = findings(csv, "c", &[("ga".into(), 20, 50_009)]);
         assert!(
-            text.contains("time, pooled over the strata: median pair ratio 0.900× [0.850×, 0.950×] over 20 pairs"),
+            text.contains(
+                "time, pooled over the 2 strata: median pair ratio 0.900× [0.850×, 0.950×] over 20 pairs; better in 2 \
+                 and worse in 0 of the strata; cannot show by design."
+            ),
+            "{text}"
+        );
+        assert!(
+            text.contains(
+                "executable plans, pooled over the 2 strata: `c` 18/20, the value 20/20; cannot show by design."
+            ),
             "{text}"
         );
         assert!(text.contains("shown better than `c` in 1 of 2, shown worse in 0"), "{text}");

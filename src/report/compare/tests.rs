@@ -116,8 +116,14 @@ fn pairs_by_seed_within_strata_corrects_the_family_and_names_the_confounded_colu
     let same = table(0.0);
     write(&same, &Comparison::parse("a=a").unwrap(), dir.path()).unwrap();
     let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
-    let cov = csv.rows.iter().find(|r| get(r, "metric") == "cov_final_reach").unwrap();
-    assert_eq!((get(cov, "p"), get(cov, "note")), (String::new(), "equal in every pair: not tested".into()));
+    let cov = |stratum: &str| {
+        csv.rows.iter().find(|r| get(r, "metric") == "cov_final_reach" && get(r, "stratum") == stratum).unwrap()
+    };
+    assert_eq!(
+        (get(cov("map=m1"), "p"), get(cov("map=m1"), "note")),
+        (String::new(), "equal in every pair: not tested".into())
+    );
+    assert_eq!(get(cov("pooled"), "note"), "equal in every unit: not tested");
 }
 
 #[test]
@@ -133,18 +139,30 @@ fn pooled_over_the_strata_pairs_every_strata_pair_in_one_test() {
         csv.rows.iter().find(|r| get(r, "metric") == metric && get(r, "stratum") == "pooled").unwrap().clone()
     };
     // Six pairs on m1 and five on m2 (one plan of b there is not executable), b covers 0.1
-    // more in each: exact p = 2/2¹¹, one test, nothing to correct.
+    // more in each. The units are the two maps: both better gives the exact p = 2/2², which no
+    // design of two units can beat, and the family says so.
     let cov = pooled("cov_final_reach");
-    assert_eq!((get(&cov, "pairs"), get(&cov, "value_better")), ("11".into(), "11".into()));
+    assert_eq!(
+        (get(&cov, "pairs"), get(&cov, "unit"), get(&cov, "units")),
+        ("11".into(), "stratum".into(), "2".into())
+    );
+    assert_eq!(get(&cov, "value_better"), "2");
     assert_eq!(get(&cov, "contrast"), "pair difference");
     assert!((get(&cov, "estimate").parse::<f64>().unwrap() - 0.1).abs() < 1e-12);
-    assert_eq!(get(&cov, "p").parse::<f64>().unwrap(), 2.0 / 2048.0);
+    assert_eq!(get(&cov, "p").parse::<f64>().unwrap(), 0.5);
     assert_eq!(get(&cov, "p_holm"), get(&cov, "p"));
+    assert_eq!((get(&cov, "p_floor_holm"), get(&cov, "note")), ("0.5".into(), "cannot show by design".into()));
+    assert!(
+        text.contains("By design this family cannot show anything at the 0.05 level**: at best (its largest comparison, 2 strata, all pointing one way) its p is 0.5000"),
+        "{text}"
+    );
+    assert!(text.contains("| b | 2 | 11 | +0.1000 ["), "the pairs are described: {text}");
     // Time: the ratio within each pair, (120 + 3s)/(100 + 3s); the median of the eleven is
     // seed 3's.
     let time = pooled("time_s");
-    assert_eq!((get(&time, "contrast"), get(&time, "value_worse")), ("pair ratio".into(), "11".into()));
+    assert_eq!((get(&time, "contrast"), get(&time, "value_worse")), ("pair ratio".into(), "2".into()));
     assert_eq!(get(&time, "estimate").parse::<f64>().unwrap(), 129.0 / 109.0);
+    // Executability: m1 ties (effect 0), m2 one plan in six fewer: one unit differs.
     let exec = pooled("executable");
     assert_eq!(
         (get(&exec, "pairs"), get(&exec, "value_worse"), get(&exec, "p")),
@@ -181,4 +199,56 @@ fn comparisons_that_cannot_be_made_are_refused_with_the_reason() {
     assert!(err("time_s=1").contains("not a swept parameter; swept: a, map, budget"), "{}", err("time_s=1"));
     assert!(Comparison::parse("a").is_err() && Comparison::parse("=x").is_err());
     assert!(Comparison::parse_every_plan("a").unwrap_err().starts_with("--compare-every-plan a:"));
+}
+
+/// The issue a reviewer raised: a control run once per stratum, paired with each of a search's
+/// seeds, turns four settings into forty "units". Pooling the pairs would give p ≈ 2 · 2⁻⁴⁰; with
+/// the strata as units the best four can give is 2 · 2⁻⁴ = 0.125, and the report says the design
+/// cannot show anything instead of "shown".
+#[test]
+fn a_once_run_control_is_tested_over_its_strata_not_over_the_pairs() {
+    let metrics = metric_columns();
+    let mut text = format!("run_id,config_id,replicate,seed,solver,map,{}\n", metrics.join(","));
+    let mut line = |id: String, rep: usize, solver: &str, map: usize, time: f64| {
+        let fields: Vec<String> = metrics
+            .iter()
+            .map(|m| match m.as_str() {
+                "planner" => "cell_order".into(),
+                "executable" => "true".into(),
+                "cov_final_reach" => "0.9".into(),
+                "time_s" => time.to_string(),
+                _ => "0".into(),
+            })
+            .collect();
+        let _ = writeln!(text, "{id},c{solver}{map},{rep},{},{solver},m{map},{}", 100 + rep, fields.join(","));
+    };
+    for map in 0..4 {
+        line(format!("n{map}"), 0, "nearest", map, 100.0);
+        for s in 0..10 {
+            line(format!("g{map}{s}"), s, "ga", map, 90.0 - s as f64);
+        }
+    }
+    let t = RunsTable::parse(&text).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let md = write(&t, &Comparison::parse("solver=nearest").unwrap(), dir.path()).unwrap();
+    let text = std::fs::read_to_string(&md).unwrap();
+    // The pairs pooled as units: every one of the forty faster.
+    let pairs: Vec<f64> = (0..40).map(|i| 90.0 - (i % 10) as f64).collect();
+    let pooled_pairs = crate::stats::wilcoxon_signed_rank(&pairs, &[100.0; 40]).unwrap().p_value;
+    assert!(pooled_pairs < 1e-6, "{pooled_pairs}");
+    let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-solver.csv")).unwrap()).unwrap();
+    let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
+    let time = csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "stratum") == "pooled").unwrap();
+    assert_eq!(
+        (get(time, "pairs"), get(time, "units"), get(time, "value_better")),
+        ("40".into(), "4".into(), "4".into())
+    );
+    assert_eq!(get(time, "p").parse::<f64>().unwrap(), 0.125);
+    assert_eq!(get(time, "note"), "cannot show by design");
+    assert!(text.contains("The pooled unit is the stratum (4 units), because a side ran once per stratum"), "{text}");
+    assert!(
+        text.contains("**By design this family cannot show anything at the 0.05 level**: at best (its largest comparison, 4 strata, all pointing one way) its p is 0.1250"),
+        "{text}"
+    );
+    assert!(text.contains("time, pooled over the 4 strata: median pair ratio 0.855× [0.855×, 0.855×] over 40 pairs; better in 4 and worse in 0 of the strata; cannot show by design."), "{text}");
 }

@@ -2,9 +2,10 @@
 //! table and one section per metric, in markdown and CSV.
 
 use super::*;
+pub(super) use crate::stats::family::Floor;
 
 /// The paragraph saying how the comparison is made.
-pub(super) fn intro(d: &Design, cmp: &Comparison) -> String {
+pub(super) fn intro(d: &Design, cmp: &Comparison, units: Option<&super::units::Units>, values: &[String]) -> String {
     let strata = if d.strata.is_empty() {
         "one stratum (no other parameter varies)".to_string()
     } else {
@@ -59,32 +60,48 @@ pub(super) fn intro(d: &Design, cmp: &Comparison) -> String {
              runs once in a grid) its one run pairs with every seed of the other.",
         );
     }
-    if d.pooled() {
-        s.push_str(
-            " The comparisons are made twice: first pooled over the strata (every stratum's pairs \
-             together; the pair effect is the difference, or for time the ratio, within each pair; \
-             its median with a paired bootstrap interval; the signed-rank test of the differences, \
-             of the log-ratios for time; Holm over the values of each metric), then stratum by stratum.",
+    if let Some(rules) = super::like::return_rules(&cmp.key, &cmp.baseline, values) {
+        let _ = write!(s, " {rules}");
+    }
+    s.push_str(
+        " Within a stratum the unit is the seed: each seed is a run of its own, and a control that reads \
+         no seed is one fixed value its seeds are compared with.",
+    );
+    if let (true, Some(units)) = (d.pooled(), units) {
+        let _ = write!(
+            s,
+            " The comparisons are made twice: first pooled over the {} (the pair effect is the difference, or \
+             for time the ratio, within each pair; its median over every pair with a bootstrap interval that \
+             resamples whole units; the signed-rank test of the unit effects, of their log-ratios for time; Holm \
+             over the values of each metric; the pairs are described, not tested), then stratum by stratum. {}",
+            units.kind.names().1,
+            units.reason
         );
     }
     s
 }
 
-/// The executable plans of each value against the baseline's, pair by pair: the exact
-/// McNemar test, i.e. the sign test over the pairs where one plan is executable and the other
-/// not, Holm-corrected over the file's comparisons. `pairs` hold 1 (executable) or 0.
-pub(super) fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp: &Comparison) {
+/// Pairs where only the value's plan is executable, and where only the baseline's is.
+fn discordant(r: &Row) -> (usize, usize) {
+    (r.pairs.iter().filter(|(b, v)| v > b).count(), r.pairs.iter().filter(|(b, v)| v < b).count())
+}
+
+/// The family of executability tests of `rows` and each row's exact McNemar p (none where the
+/// pairs agree, or where a side is executable by construction).
+fn executability_tests(
+    rows: &[Row],
+    cmp: &Comparison,
+    built: &dyn Fn(&str) -> Option<&'static str>,
+) -> (Family, Vec<Option<f64>>) {
     let mut family =
         Family::new(format!("executability ({} comparisons of `{}` against `{}`)", rows.len(), cmp.key, cmp.baseline));
-    let split = |r: &Row| {
-        let gained = r.pairs.iter().filter(|(b, v)| v > b).count();
-        let lost = r.pairs.iter().filter(|(b, v)| v < b).count();
-        (gained, lost)
-    };
     let tests: Vec<Option<f64>> = rows
         .iter()
         .map(|r| {
-            let (gained, lost) = split(r);
+            if built(&r.value).is_some() || built(&cmp.baseline).is_some() {
+                return None;
+            }
+            let (gained, lost) = discordant(r);
             let signs: Vec<f64> = std::iter::repeat_n(1.0, gained).chain(std::iter::repeat_n(-1.0, lost)).collect();
             crate::stats::sign_test(&signs, 0.0)
         })
@@ -94,12 +111,24 @@ pub(super) fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp
             family.push(format!("{} {}", r.stratum, r.value), *p);
         }
     }
+    (family, tests)
+}
+
+/// The executable plans of each value against the baseline's, pair by pair: the exact
+/// McNemar test, i.e. the sign test over the pairs where one plan is executable and the other
+/// not, Holm-corrected over the file's comparisons. `pairs` hold 1 (executable) or 0.
+pub(super) fn executability(
+    md: &mut String,
+    csv: &mut String,
+    rows: &[Row],
+    cmp: &Comparison,
+    built: &dyn Fn(&str) -> Option<&'static str>,
+) {
+    let (family, tests) = executability_tests(rows, cmp, built);
+    let best = rows.iter().zip(&tests).filter(|(_, t)| t.is_some()).map(|(r, _)| r.pairs.len()).max();
+    let floor = best.and_then(|n| floor(&family, n, "seeds"));
     let mut adjusted = family.adjusted().into_iter();
-    let _ = writeln!(
-        md,
-        "## Executable plans
-"
-    );
+    let _ = writeln!(md, "## Executable plans\n");
     let _ = writeln!(
         md,
         "| stratum | value | executable (baseline, value) | pairs | only the value's executable | only the baseline's executable | p (exact McNemar) | p (Holm) | finding |"
@@ -107,11 +136,14 @@ pub(super) fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp
     let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     let mut shown = (0, 0);
     for (r, p) in rows.iter().zip(&tests) {
-        let (gained, lost) = split(r);
+        let (gained, lost) = discordant(r);
         let holm = p.map(|_| adjusted.next().expect("one adjusted p per test"));
         let finding = match holm {
             _ if r.pairs.is_empty() => "no pair: not compared".to_string(),
-            None => "the same in every pair: not tested".to_string(),
+            None => match built(&r.value).or(built(&cmp.baseline)) {
+                Some(why) => format!("executable by construction ({why}): stated, not tested"),
+                None => "the same in every pair: not tested".to_string(),
+            },
             Some(h) if h < 1.0 - LEVEL => {
                 let more = gained > lost;
                 if more {
@@ -121,6 +153,7 @@ pub(super) fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp
                 }
                 format!("{} often executable than {} (shown)", if more { "more" } else { "less" }, cmp.baseline)
             }
+            Some(_) if floor.as_ref().is_some_and(|f| !f.reachable) => "cannot show by design".to_string(),
             Some(_) => "not shown".to_string(),
         };
         let _ = writeln!(
@@ -133,23 +166,33 @@ pub(super) fn executability(md: &mut String, csv: &mut String, rows: &[Row], cmp
         let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
         let _ = writeln!(
             csv,
-            "{},,,,,,,{gained},{lost},,{},{},{},{}",
-            r.lead_csv("executable"),
+            "{},,,,,,,{gained},{lost},,{},{},{},{},{}",
+            r.lead_csv("executable", "seed", r.pairs.len()),
             if p.is_some() { "mcnemar exact" } else { "" },
             field(*p),
             field(holm),
+            field(floor.as_ref().map(|f| f.p)),
             quoted(&finding),
         );
     }
     let _ = writeln!(
         md,
-        "\n{} Of {} comparisons, {} show the value's plans more often executable than `{}`'s and {} less often.\n",
+        "\n{}{} Of {} comparisons, {} show the value's plans more often executable than `{}`'s and {} less often.\n",
         family.statement(),
+        floor.map_or(String::new(), |f| format!(" {}", f.sentence)),
         rows.len(),
         shown.0,
         cmp.baseline,
         shown.1
     );
+}
+
+/// The floor of `family` whose largest comparison has `units` units (`unit_plural` names
+/// them): every unit pointing one way gives an exact signed-rank (or sign) p of `2 · 2⁻ⁿ`, and
+/// Holm multiplies the smallest by the family's size. `None` for a family without a test.
+pub(super) fn floor(family: &Family, units: usize, unit_plural: &str) -> Option<Floor> {
+    let raw = crate::stats::design::signed_rank_min_p(units);
+    family.floor(raw, 1.0 - LEVEL, &format!("its largest comparison, {units} {unit_plural}, all pointing one way"))
 }
 
 pub(super) fn p_text(p: f64) -> String {
@@ -176,7 +219,7 @@ fn row_stats(
     r: &Row,
     cmp: &Comparison,
     (test, holm): (Option<crate::stats::SignedRank>, Option<f64>),
-    shown: &mut (usize, usize),
+    (shown, floor): (&mut (usize, usize), Option<&Floor>),
 ) -> RowStats {
     let (b, v): (Vec<f64>, Vec<f64>) = r.pairs.iter().copied().unzip();
     let better = r.pairs.iter().filter(|(b, v)| if m.higher_is_better { v > b } else { v < b }).count();
@@ -200,6 +243,7 @@ fn row_stats(
         (Some(_), _) if min_p >= 1.0 - LEVEL => {
             format!("not shown: {} pairs cannot reach p < {:.2}", r.pairs.len(), 1.0 - LEVEL)
         }
+        (Some(_), _) if floor.is_some_and(|f| !f.reachable) => "cannot show by design".to_string(),
         (Some(_), _) => "not shown".to_string(),
     };
     RowStats { medians: (median(&b), median(&v)), better, worse, ci, a12, test, holm, finding }
@@ -230,11 +274,11 @@ fn md_row(m: &Metric, r: &Row, st: &RowStats) -> String {
 }
 
 /// Row `r`'s line of the comparisons CSV.
-fn csv_row(m: &Metric, r: &Row, st: &RowStats) -> String {
+fn csv_row(m: &Metric, r: &Row, st: &RowStats, floor: Option<&Floor>) -> String {
     let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
     format!(
-        "{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
-        r.lead_csv(m.column),
+        "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+        r.lead_csv(m.column, "seed", r.pairs.len()),
         field(st.medians.0),
         field(st.medians.1),
         match m.contrast {
@@ -250,6 +294,7 @@ fn csv_row(m: &Metric, r: &Row, st: &RowStats) -> String {
         st.test.map_or(String::new(), |t| format!("wilcoxon {}", t.method.name())),
         field(st.test.map(|t| t.p_value)),
         field(st.holm),
+        field(floor.map(|f| f.p)),
         quoted(&st.finding)
     )
 }
@@ -270,6 +315,8 @@ pub(super) fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row
             family.push(format!("{} {}", r.stratum, r.value), t.p_value);
         }
     }
+    let best = rows.iter().zip(&tests).filter(|(_, t)| t.is_some()).map(|(r, _)| r.pairs.len()).max();
+    let floor = best.and_then(|n| floor(&family, n, "seeds"));
     let mut adjusted = family.adjusted().into_iter();
     let effect = match m.contrast {
         Contrast::MedianDifference => "difference of medians",
@@ -285,15 +332,16 @@ pub(super) fn section(md: &mut String, csv: &mut String, m: &Metric, rows: &[Row
     let mut shown = (0, 0);
     for (r, t) in rows.iter().zip(&tests) {
         let holm = t.map(|_| adjusted.next().expect("one adjusted p per test"));
-        let st = row_stats(m, r, cmp, (*t, holm), &mut shown);
+        let st = row_stats(m, r, cmp, (*t, holm), (&mut shown, floor.as_ref()));
         let _ = writeln!(md, "{}", md_row(m, r, &st));
-        let _ = writeln!(csv, "{}", csv_row(m, r, &st));
+        let _ = writeln!(csv, "{}", csv_row(m, r, &st, floor.as_ref()));
     }
     let _ = writeln!(
         md,
-        "\n{} Of {} comparisons, {} show the value better than `{}` and {} worse; the rest show no \
+        "\n{}{} Of {} comparisons, {} show the value better than `{}` and {} worse; the rest show no \
          difference at this level (which is not evidence of equality).\n",
         family.statement(),
+        floor.map_or(String::new(), |f| format!(" {}", f.sentence)),
         rows.len(),
         shown.0,
         cmp.baseline,

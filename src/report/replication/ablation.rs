@@ -299,6 +299,19 @@ impl<'a> Comparing<'a> {
                 }
             }
         }
+        let sizes = |i: usize| samples[i].1.len();
+        let extreme = (0..samples.len())
+            .flat_map(|i| (i + 1..samples.len()).map(move |j| (i, j)))
+            .filter_map(|(i, j)| {
+                let apart = crate::stats::design::groups_apart(&[sizes(i), sizes(j)]);
+                mann_whitney_u(&apart[0], &apart[1]).map(|t| t.p_value)
+            })
+            .fold(1.0, f64::min);
+        let tests = samples.len() * samples.len().saturating_sub(1) / 2;
+        let best = "the test of its largest groups, wholly apart";
+        if let Some(floor) = crate::stats::family::floor(tests, extreme, 0.05, best) {
+            let _ = writeln!(w.md, "\n{} Each metric's pairs are a family of their own.", floor.sentence);
+        }
         let _ = writeln!(w.md);
     }
 

@@ -142,6 +142,8 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
         p: Option<f64>,
         a12: f64,
         test: &'static str,
+        /// Its p on the most extreme data of its sizes.
+        extreme: f64,
     }
     let mut tests = Vec::new();
     for (m, fleets) in cells {
@@ -157,13 +159,17 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
                             continue;
                         }
                         let a12 = vargha_delaney_a12(&va, &vb);
-                        let (p, test) = match (va.len(), vb.len()) {
-                            (1, _) => (sign_test(&vb, va[0]), "sign"),
-                            (_, 1) => (sign_test(&va, vb[0]), "sign"),
-                            _ => (mann_whitney_u(&va, &vb).map(|w| w.p_value), "MWU"),
+                        let (p, test, extreme) = if va.len() == 1 || vb.len() == 1 {
+                            // A deterministic method's one plan against the other's seeds.
+                            let (seeds, plan) = if va.len() == 1 { (&vb, va[0]) } else { (&va, vb[0]) };
+                            (sign_test(seeds, plan), "sign", crate::stats::design::signed_rank_min_p(seeds.len()))
+                        } else {
+                            let apart = crate::stats::design::groups_apart(&[va.len(), vb.len()]);
+                            let extreme = mann_whitney_u(&apart[0], &apart[1]).map_or(1.0, |w| w.p_value);
+                            (mann_whitney_u(&va, &vb).map(|w| w.p_value), "MWU", extreme)
                         };
                         let row = format!("| {m} | {f} | {} vs {} | {metric} |", names[i], names[j]);
-                        tests.push(Test { row, p, a12, test });
+                        tests.push(Test { row, p, a12, test, extreme });
                     }
                 }
             }
@@ -187,6 +193,14 @@ fn pairwise(cells: &Cells, values: &dyn Fn(&Cell, &str) -> Vec<f64>) -> String {
     for (t, p) in tests.iter().zip(adjusted) {
         let p = if t.p.is_some() { format!("{p:.2e}") } else { "–".into() };
         let _ = writeln!(md, "{} {} | {p} | {:.2} | {} |", t.row, t.test, t.a12, a12_magnitude(t.a12));
+    }
+    let mut family = crate::stats::Family::new("the pairwise tests");
+    for t in &tests {
+        family.push(t.row.clone(), t.p.unwrap_or(1.0));
+    }
+    let extreme = tests.iter().map(|t| t.extreme).fold(1.0, f64::min);
+    if let Some(floor) = family.floor(extreme, 0.05, "the test of its largest samples, wholly apart") {
+        let _ = writeln!(md, "\n{}", floor.sentence);
     }
     md.push('\n');
     md

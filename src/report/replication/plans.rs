@@ -302,6 +302,7 @@ pub fn render(
         stem: "plans".into(),
         markdown: crate::report::with_failed_note(markdown, &failed),
         csv: to_csv(&ids, &runs),
+        design: None,
     })
 }
 
