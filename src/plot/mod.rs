@@ -6,6 +6,7 @@
 //! needs no system font libraries (DESIGN "Plots and fonts"). Files are written atomically.
 
 pub mod history;
+pub mod layout;
 pub mod path;
 
 use plotters::coord::Shift;
@@ -21,7 +22,7 @@ static REGISTER: Once = Once::new();
 /// Font family name used by every figure.
 pub const FAMILY: &str = "sans-serif";
 
-fn register_font() {
+pub(crate) fn register_font() {
     REGISTER.call_once(|| {
         if plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_err() {
             unreachable!("the embedded DejaVu Sans is a valid TrueType font");
@@ -150,6 +151,10 @@ pub fn panel_label(label: &str) -> String {
                 };
                 format!("{}={value}", key.rsplit('.').next().unwrap_or(key))
             }
+            // A bare map file (a panel of one map) is named by its stem too.
+            None if part.contains('/') => {
+                std::path::Path::new(part).file_stem().map_or(part.to_string(), |s| s.to_string_lossy().into_owned())
+            }
             None => part.to_string(),
         })
         .collect::<Vec<_>>()
@@ -179,6 +184,52 @@ pub fn series_colour(k: usize) -> RGBColor {
 /// `k + SERIES.len()` differ.
 pub fn series_dashed(k: usize) -> bool {
     (k % SERIES.len() == 5) != ((k / SERIES.len()) % 2 == 1)
+}
+
+/// Width in pixels of `s` drawn at `size` in the embedded font (its glyph layout).
+pub fn text_width(s: &str, size: f64) -> u32 {
+    register_font();
+    text(size).font.box_size(s).map_or_else(|_| (0.6 * size * s.chars().count() as f64) as u32, |b| b.0)
+}
+
+/// `title` broken at spaces into lines that each fit `width_px` at `size` (less 16 px of
+/// margin); a word wider than the width gets a line of its own.
+pub fn wrap(title: &str, width_px: u32, size: f64) -> Vec<String> {
+    let room = width_px.saturating_sub(16);
+    let mut lines: Vec<String> = Vec::new();
+    for word in title.split(' ') {
+        match lines.last_mut() {
+            Some(line) if text_width(&format!("{line} {word}"), size) <= room => {
+                line.push(' ');
+                line.push_str(word);
+            }
+            _ => lines.push(word.to_string()),
+        }
+    }
+    lines
+}
+
+/// Height in pixels of `title` wrapped to `width_px` at `size`, with the gap below it.
+pub fn title_height(title: &str, width_px: u32, size: f64) -> u32 {
+    wrap(title, width_px, size).len() as u32 * (clean_size(size) * 1.3) as u32 + 10
+}
+
+/// Draws `title` centred at the top of `area`, wrapped to its width, and returns the area below.
+pub fn titled<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    title: &str,
+    size: f64,
+) -> Result<DrawingArea<DB, Shift>, String> {
+    let width = area.dim_in_pixel().0;
+    let line = (clean_size(size) * 1.3) as i32;
+    let centred = text(size).pos(plotters::style::text_anchor::Pos::new(
+        plotters::style::text_anchor::HPos::Center,
+        plotters::style::text_anchor::VPos::Top,
+    ));
+    for (k, l) in wrap(title, width, size).iter().enumerate() {
+        area.draw(&Text::new(l.clone(), (width as i32 / 2, 4 + line * k as i32), centred.clone())).map_err(err)?;
+    }
+    Ok(area.margin(title_height(title, width, size), 0, 0, 0))
 }
 
 /// Whether `title` fits `width_px` at `size` px (the estimate of [`fitting_text`]).
@@ -286,9 +337,36 @@ pub fn side_legend<DB: DrawingBackend>(
     Ok(())
 }
 
+/// "1 run", "3 runs".
+pub fn runs_text(n: usize) -> String {
+    if n == 1 { "1 run".into() } else { format!("{n} runs") }
+}
+
 /// A metre tick label in its shortest form (`5`, `2.5`), never `5.0`.
 pub fn metre_tick(v: &f64) -> String {
     format!("{}", (v * 1e6).round() / 1e6 + 0.0)
+}
+
+/// Decimals that tell apart the ticks of an axis over `span` with at most `ticks` labels:
+/// plotters steps by 1, 2 or 5 times a power of ten, no finer than `span / ticks`.
+pub fn step_decimals(span: f64, ticks: usize) -> usize {
+    if span.is_nan() || span <= 0.0 || !span.is_finite() {
+        return 2;
+    }
+    let raw = span / ticks.max(1) as f64;
+    let power = raw.log10().floor();
+    let mantissa = raw / 10f64.powf(power);
+    let nice = if mantissa <= 1.0 + 1e-9 {
+        1.0
+    } else if mantissa <= 2.0 + 1e-9 {
+        2.0
+    } else if mantissa <= 5.0 + 1e-9 {
+        5.0
+    } else {
+        10.0
+    };
+    let step = nice * 10f64.powf(power);
+    (-(step.log10() + 1e-9).floor()).max(0.0) as usize
 }
 
 /// Tick labels with as many decimals as the range `span` needs (counts need none).
@@ -327,6 +405,24 @@ pub fn cell_runs<C: PartialEq + Copy>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tick_decimals_follow_the_step() {
+        for (span, ticks, decimals) in
+            [(1.0, 10, 1), (0.05, 10, 3), (0.005, 10, 4), (0.012, 8, 3), (10000.0, 10, 0), (1.5, 10, 1)]
+        {
+            assert_eq!(step_decimals(span, ticks), decimals, "{span} over {ticks}");
+        }
+    }
+
+    #[test]
+    fn a_title_wraps_at_spaces_to_fit() {
+        let title = "one two three four five six seven eight nine ten eleven twelve";
+        let lines = wrap(title, 200, 14.0);
+        assert!(lines.len() > 1 && lines.join(" ") == title, "{lines:?}");
+        assert!(lines.iter().all(|l| text_width(l, 14.0) <= 184), "{lines:?}");
+        assert_eq!(wrap("short", 400, 14.0), vec!["short".to_string()]);
+    }
 
     /// Metre ticks print without a trailing `.0` and without a negative zero.
     /// Every series of up to two rounds of the palette has its own look (colour, dashes).

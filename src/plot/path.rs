@@ -83,6 +83,32 @@ fn robot_tint(k: usize) -> RGBColor {
 }
 
 impl PathFigure<'_> {
+    /// What the figure shows, `(x0, y0, x1, y1)` in metres: the free cells and the paths with
+    /// a margin of half a metre (at least 3 % of the larger side), within the map — not the
+    /// unknown border a SLAM map carries around the building.
+    pub fn extent(&self) -> (f64, f64, f64, f64) {
+        let map = self.map;
+        let (ox, oy, res) = (map.origin().x, map.origin().y, map.resolution());
+        let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for r in 0..map.rows() {
+            for c in 0..map.cols() {
+                if map.state_at(map.index(r, c)) == CellState::Free {
+                    let (x, y) = (ox + c as f64 * res, oy + r as f64 * res);
+                    (x0, y0, x1, y1) = (x0.min(x), y0.min(y), x1.max(x + res), y1.max(y + res));
+                }
+            }
+        }
+        for p in self.paths.iter().flatten() {
+            (x0, y0, x1, y1) = (x0.min(p.x), y0.min(p.y), x1.max(p.x), y1.max(p.y));
+        }
+        let (mx0, my0, mx1, my1) = (ox, oy, ox + map.width_m(), oy + map.height_m());
+        if !x0.is_finite() {
+            return (mx0, my0, mx1, my1);
+        }
+        let margin = (0.03 * (x1 - x0).max(y1 - y0)).max(0.5);
+        ((x0 - margin).max(mx0), (y0 - margin).max(my0), (x1 + margin).min(mx1), (y1 + margin).min(my1))
+    }
+
     fn classes(&self) -> Vec<Class> {
         let n = self.grid.len();
         let mut visits = vec![0u32; n];
@@ -152,13 +178,13 @@ pub fn draw_map_paths<DB: DrawingBackend>(
 ) -> Result<f64, String> {
     let map = fig.map;
     let (ox, oy) = (map.origin().x, map.origin().y);
-    let (x1, y1) = (ox + map.width_m(), oy + map.height_m());
+    let (x0, y0, x1, y1) = fig.extent();
     let small = fonts.1 < 14.0;
     // Label areas wide enough for the tick labels and the axis title beside them; a margin
     // that keeps the last tick label inside the panel.
     let labels = if small { (34, 50) } else { (45, 62) };
     let mut chart =
-        super::equal_scale_chart(area, &fig.title, fonts.0, labels, if small { 14 } else { 16 }, ox..x1, oy..y1)?;
+        super::equal_scale_chart(area, &fig.title, fonts.0, labels, if small { 14 } else { 16 }, x0..x1, y0..y1)?;
     let tick = super::metre_tick;
     chart
         .configure_mesh()
@@ -176,11 +202,51 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     // Cells, merged into runs of one class per row to keep the SVG small.
     let classes = fig.classes();
     let res = map.resolution();
-    let rects = super::cell_runs(map.cols(), map.rows(), |i| classes[i]).into_iter().map(|(r, c0, c1, class)| {
-        let (xa, ya) = (ox + c0 as f64 * res, oy + r as f64 * res);
-        Rectangle::new([(xa, ya), (ox + c1 as f64 * res, ya + res)], class.colour().filled())
-    });
+    // Only the rows and columns inside the extent (the chart clips the rest anyway).
+    let inside = |(r, c0, c1, _): &(usize, usize, usize, Class)| {
+        let (ya, xa, xb) = (oy + *r as f64 * res, ox + *c0 as f64 * res, ox + *c1 as f64 * res);
+        ya + res >= y0 && ya <= y1 && xb >= x0 && xa <= x1
+    };
+    let rects = super::cell_runs(map.cols(), map.rows(), |i| classes[i]).into_iter().filter(inside).map(
+        |(r, c0, c1, class)| {
+            let (xa, ya) = (ox + c0 as f64 * res, oy + r as f64 * res);
+            Rectangle::new(
+                [(xa.max(x0), ya.max(y0)), ((ox + c1 as f64 * res).min(x1), (ya + res).min(y1))],
+                class.colour().filled(),
+            )
+        },
+    );
     chart.draw_series(rects).map_err(err)?;
+    draw_paths(&mut chart, fig, small, (ox, oy))?;
+    let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
+    let px_per_m = f64::from(b.0 - a.0);
+    // Walls and swept obstacle cells once more on top of the paths, each at least a pixel
+    // wide, so that thin walls and doors stay visible in small panels and a reader can judge
+    // whether a path crosses a wall.
+    let pad = if px_per_m > 0.0 { (0.5 / px_per_m - 0.5 * res).max(0.0) } else { 0.0 };
+    let on_top = super::cell_runs(map.cols(), map.rows(), |i| match classes[i] {
+        Class::Obstacle | Class::Hit => classes[i],
+        _ => Class::Never,
+    });
+    let walls = on_top.into_iter().filter(|run| run.3 != Class::Never).filter(inside).map(|(r, c0, c1, class)| {
+        let (xa, ya) = (ox + c0 as f64 * res, oy + r as f64 * res);
+        Rectangle::new([(xa - pad, ya - pad), (ox + c1 as f64 * res + pad, ya + res + pad)], class.colour().filled())
+    });
+    chart.draw_series(walls).map_err(err)?;
+    Ok(px_per_m)
+}
+
+/// The paths of `fig` on its chart: segment by segment, each viewpoint a dot, ▲ start and ✕ end.
+fn draw_paths<DB: DrawingBackend>(
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    fig: &PathFigure,
+    small: bool,
+    (ox, oy): (f64, f64),
+) -> Result<(), String> {
     let dot = if small { 1 } else { 2 };
     let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
     let half_px_m = if b.0 > a.0 { 0.5 / f64::from(b.0 - a.0) } else { 0.0 };
@@ -205,22 +271,7 @@ pub fn draw_map_paths<DB: DrawingBackend>(
             chart.draw_series([TriangleMarker::new((s.x, s.y), 6, GREEN.filled())]).map_err(err)?;
         }
     }
-    let (a, b) = (chart.backend_coord(&(ox, oy)), chart.backend_coord(&(ox + 1.0, oy)));
-    let px_per_m = f64::from(b.0 - a.0);
-    // Walls and swept obstacle cells once more on top of the paths, each at least a pixel
-    // wide, so that thin walls and doors stay visible in small panels and a reader can judge
-    // whether a path crosses a wall.
-    let pad = if px_per_m > 0.0 { (0.5 / px_per_m - 0.5 * res).max(0.0) } else { 0.0 };
-    let on_top = super::cell_runs(map.cols(), map.rows(), |i| match classes[i] {
-        Class::Obstacle | Class::Hit => classes[i],
-        _ => Class::Never,
-    });
-    let walls = on_top.into_iter().filter(|run| run.3 != Class::Never).map(|(r, c0, c1, class)| {
-        let (xa, ya) = (ox + c0 as f64 * res, oy + r as f64 * res);
-        Rectangle::new([(xa - pad, ya - pad), (ox + c1 as f64 * res + pad, ya + res + pad)], class.colour().filled())
-    });
-    chart.draw_series(walls).map_err(err)?;
-    Ok(px_per_m)
+    Ok(())
 }
 
 /// A round scale-bar length (1, 2 or 5 × 10^k m) near a fifth of `extent`.
@@ -232,7 +283,8 @@ pub fn scale_length(extent: f64) -> f64 {
 
 impl Figure for PathFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let aspect = self.map.height_m() / self.map.width_m();
+        let (x0, y0, x1, y1) = self.extent();
+        let aspect = (y1 - y0) / (x1 - x0);
         let w = 820u32;
         (w + 260, ((w as f64 - 80.0) * aspect) as u32 + 120)
     }
@@ -284,7 +336,8 @@ impl Figure for PathFigure<'_> {
         side.draw(&Cross::new((17, below + 26 + 9), 8, RED.stroke_width(3))).map_err(err)?;
         side.draw(&Text::new("end", (34, below + 26), text(17.0))).map_err(err)?;
         // The scale bar beside the map, not over it.
-        let len = scale_length(self.map.width_m().max(self.map.height_m()));
+        let (x0, y0, x1, y1) = self.extent();
+        let len = scale_length((x1 - x0).max(y1 - y0));
         let bar = (len * px_per_m).round() as i32;
         let y = below + 26 * 3;
         side.draw(&PathElement::new(vec![(8, y), (8 + bar, y)], BLACK.stroke_width(4))).map_err(err)?;

@@ -8,6 +8,7 @@ use super::ReportError;
 use super::study::Study;
 use crate::coverage::curve::{CoverageCurve, LEVELS};
 use crate::plot::{Figure, err, text};
+use crate::report::replication::ablation_figures::legend_layout;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
@@ -69,7 +70,7 @@ fn panel_columns(s: &Study) -> Vec<usize> {
 /// name the map (each panel is one map, and its title names it), and each key by its last
 /// name (`solver=ga`), so that the legend names what tells the series apart; a label with no
 /// part left is "executable runs".
-fn distinct_parts(labels: &[String]) -> Vec<String> {
+pub(super) fn distinct_parts(labels: &[String]) -> Vec<String> {
     let parts: Vec<Vec<&str>> = labels.iter().map(|l| l.split(", ").collect()).collect();
     let shared = |p: &str| labels.len() > 1 && parts.iter().all(|ps| ps.contains(&p));
     let short = |p: &str| match p.split_once('=') {
@@ -95,6 +96,18 @@ fn distinct_parts(labels: &[String]) -> Vec<String> {
         .collect()
 }
 
+/// The series a run of group `group` and planner `planner` belongs to: its `--by` group, with
+/// its planner where the study has several and the group does not name it; a group that names
+/// only the map (each panel is one map) is its planner's.
+pub(super) fn series_label(group: &str, planner: &str, one_planner: bool) -> String {
+    let only_map = group.split(", ").all(|part| part.starts_with("map.") || part.is_empty());
+    match (one_planner, group.contains("planner=")) {
+        (true, _) | (false, true) => group.to_string(),
+        (false, false) if only_map => planner.to_string(),
+        (false, false) => format!("planner={planner}, {group}"),
+    }
+}
+
 /// The panels: per map (and value of each [`panel_columns`] column), its series in the order
 /// the study lists them.
 fn panels(s: &Study) -> Panels {
@@ -118,7 +131,7 @@ fn panels(s: &Study) -> Panels {
                 missing += 1;
                 continue;
             };
-            let series = if one_planner { g.label.clone() } else { s.get(r, "planner") };
+            let series = series_label(&g.label, &s.get(r, "planner"), one_planner);
             if !order.contains(&series) {
                 order.push(series.clone());
             }
@@ -238,10 +251,14 @@ fn summarise(series: &[Series]) -> Vec<Drawn> {
         .collect()
 }
 
-/// One panel per map, one median line and quartile band per series.
+/// One panel per map, one median line and quartile band per series; one legend below the
+/// panels, each series in one colour in every panel.
 struct CurvesFigure {
     panels: Vec<(String, Vec<Drawn>)>,
 }
+
+const CURVES_TITLE: &str =
+    "Time to coverage: reachable coverage over mission time (median, band = quartiles over runs)";
 
 impl CurvesFigure {
     /// Rows and columns of panels: one column up to three panels, two beyond.
@@ -249,24 +266,61 @@ impl CurvesFigure {
         let n = self.panels.len().max(1);
         if n <= 3 { (n, 1) } else { (n.div_ceil(2), 2) }
     }
+
+    /// Every series in the order it first appears, with its legend label.
+    fn series(&self) -> Vec<String> {
+        let mut labels: Vec<String> = Vec::new();
+        for d in self.panels.iter().flat_map(|(_, s)| s) {
+            if !labels.contains(&d.label) {
+                labels.push(d.label.clone());
+            }
+        }
+        labels
+    }
+
+    /// The legend's entries: each series with its runs (summed over the panels).
+    fn entries(&self) -> Vec<String> {
+        self.series()
+            .into_iter()
+            .map(|label| {
+                let runs: usize =
+                    self.panels.iter().flat_map(|(_, s)| s).filter(|d| d.label == label).map(|d| d.runs).sum();
+                format!("{label} ({})", crate::plot::runs_text(runs))
+            })
+            .collect()
+    }
+
+    fn legend_height(&self, width: u32) -> u32 {
+        let lines = legend_layout(&self.entries(), width).last().map_or(1, |(line, _)| line + 1);
+        lines * 24 + 16
+    }
 }
 
 impl Figure for CurvesFigure {
     fn size(&self) -> (u32, u32) {
         let (rows, columns) = self.grid();
-        (1100 * columns as u32, 60 + 320 * rows as u32)
+        let width = 800 * columns as u32;
+        (width, crate::plot::title_height(CURVES_TITLE, width, 18.0) + 320 * rows as u32 + self.legend_height(width))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let title = "Time to coverage: reachable coverage over mission time (median, band = quartiles over runs)";
-        let root = root.titled(title, crate::plot::fitting_text(title, root.dim_in_pixel().0, 18.0)).map_err(err)?;
-        for (area, (map, series)) in root.split_evenly(self.grid()).iter().zip(&self.panels) {
-            let (plot, legend_area) = area.split_horizontally(area.dim_in_pixel().0 - 400);
-            let x_max = series.iter().flat_map(|s| s.curve.last().map(|c| c.0)).fold(1.0, f64::max);
-            let mut chart = ChartBuilder::on(&plot)
-                .caption(format!("map {map}"), text(15.0))
+        let root = crate::plot::titled(root, CURVES_TITLE, 18.0)?;
+        let (width, height) = root.dim_in_pixel();
+        let (panels, strip) = root.split_vertically(height - self.legend_height(width));
+        let series = self.series();
+        let entries = self.entries();
+        for (k, (label, (line, x))) in entries.iter().zip(legend_layout(&entries, width)).enumerate() {
+            let y = 20 + (line * 24) as i32;
+            let colour = crate::plot::series_colour(k);
+            strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(3))).map_err(err)?;
+            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
+        }
+        for (area, (map, drawn)) in panels.split_evenly(self.grid()).iter().zip(&self.panels) {
+            let x_max = drawn.iter().flat_map(|s| s.curve.last().map(|c| c.0)).fold(1.0, f64::max);
+            let mut chart = ChartBuilder::on(area)
+                .caption(crate::plot::panel_label(map), text(15.0))
                 .margin(8)
-                .margin_right(16)
+                .margin_right(24)
                 .x_label_area_size(45)
                 .y_label_area_size(70)
                 .build_cartesian_2d(0.0..x_max, 0.0..1.0)
@@ -279,23 +333,20 @@ impl Figure for CurvesFigure {
                 // the PNG of a many-map study tens of megabytes.
                 .max_light_lines(0)
                 .x_desc("mission time [s]")
-                .y_desc("coverage of reachable")
+                .y_desc("coverage of reachable cells")
                 .label_style(text(14.0))
                 .axis_desc_style(text(14.0))
                 .draw()
                 .map_err(err)?;
             let one_px = 1.0 / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
-            let mut entries = Vec::new();
-            for (k, s) in series.iter().enumerate() {
-                let colour = crate::plot::series_colour(k);
+            for s in drawn {
+                let colour = crate::plot::series_colour(series.iter().position(|l| *l == s.label).unwrap_or(0));
                 let band: Vec<(f64, f64)> =
                     s.curve.iter().map(|c| (c.0, c.3)).chain(s.curve.iter().rev().map(|c| (c.0, c.2))).collect();
                 chart.draw_series([Polygon::new(band, colour.mix(0.15).filled())]).map_err(err)?;
                 let median: Vec<(f64, f64)> = s.curve.iter().map(|c| (c.0, c.1)).collect();
                 crate::plot::draw_series_line(&mut chart, &median, colour, one_px)?;
-                entries.push((colour, format!("{} ({} runs)", s.label, s.runs)));
             }
-            crate::plot::legend(&legend_area, &entries, 40)?;
         }
         Ok(())
     }
@@ -304,6 +355,24 @@ impl Figure for CurvesFigure {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every `--by` group is a series; the planner joins it where the study has several.
+    #[test]
+    fn each_group_is_a_series_with_its_planner() {
+        for (group, planner, one, series) in [
+            (
+                "planner=cell_order, cell_order.solver=ga",
+                "cell_order",
+                false,
+                "planner=cell_order, cell_order.solver=ga",
+            ),
+            ("cell_order.solver=ga", "cell_order", false, "planner=cell_order, cell_order.solver=ga"),
+            ("map.source=office", "spiral", false, "spiral"),
+            ("thesis.selection=elite", "thesis", true, "thesis.selection=elite"),
+        ] {
+            assert_eq!(series_label(group, planner, one), series, "{group}");
+        }
+    }
 
     #[test]
     fn legend_labels_keep_what_tells_the_series_apart() {
@@ -320,6 +389,46 @@ mod tests {
         assert_eq!(distinct_parts(&by_map), ["executable runs", "executable runs"]);
         let both = ["map.source=office, thesis.moves=routed".to_string()];
         assert_eq!(distinct_parts(&both), ["moves=routed"]);
+    }
+
+    /// The four study shapes: every text on the canvas, no repeated tick, every series and map
+    /// named, "1 run" for one.
+    #[test]
+    fn the_curves_figure_keeps_its_texts_on_the_canvas() {
+        let drawn = |label: &str, runs: usize| Drawn {
+            label: label.into(),
+            runs,
+            curve: (0..=10).map(|k| (k as f64 * 400.0, (k as f64 / 10.0).min(0.95), 0.0, 1.0)).collect(),
+        };
+        type Panels = Vec<(String, Vec<Drawn>)>;
+        let shapes: [(&str, Panels); 4] = [
+            ("thesis", vec![("thesis-1".into(), vec![drawn("selection=elite", 10), drawn("selection=nsga2", 10)])]),
+            (
+                "mixed",
+                vec![(
+                    "experiments/maps/generated/office-1.yaml".into(),
+                    vec![drawn("boustrophedon", 1), drawn("spiral", 1), drawn("solver=ga", 3), drawn("solver=ils", 3)],
+                )],
+            ),
+            ("one run", vec![("basement".into(), vec![drawn("nearest", 1)])]),
+            ("many maps", (0..5).map(|m| (format!("maps/house-{m}.yaml"), vec![drawn("ils", 5)])).collect()),
+        ];
+        let mut found = Vec::new();
+        for (name, panels) in shapes {
+            let mut expected: Vec<String> =
+                panels.iter().flat_map(|(_, d)| d.iter().map(|d| d.label.clone())).collect();
+            expected.extend(panels.iter().map(|(m, _)| crate::plot::panel_label(m)));
+            let figure = CurvesFigure { panels };
+            let expected: Vec<&str> = expected.iter().map(String::as_str).collect();
+            for p in crate::plot::layout::problems(&figure, &expected).unwrap() {
+                found.push(format!("{name}: {p}"));
+            }
+            let texts = crate::plot::layout::drawn_texts(&figure).unwrap();
+            if texts.iter().any(|t| t.text.contains("(1 runs)") || t.text.starts_with("map ")) {
+                found.push(format!("{name}: \"1 runs\" or a map's path as a title"));
+            }
+        }
+        assert!(found.is_empty(), "{}", found.join("\n"));
     }
 
     #[test]

@@ -69,7 +69,7 @@ fn grid_shape(n: usize) -> (usize, usize) {
     (n.div_ceil(cols).max(1), cols)
 }
 
-const PARETO_TITLE: &str = "Best individual per run: coverage vs time efficiency (front in red)";
+const PARETO_TITLE: &str = "Best individual per run: 003's coverage against its time efficiency (front in red)";
 const PATHS_TITLE: &str =
     "Best path per group: blue path; cells green once, orange 2+, red obstacle hit; ▲ start, ✕ end";
 
@@ -80,13 +80,11 @@ impl Figure for ParetoFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = self.shape();
         let width = c as u32 * 480;
-        (width, r as u32 * 440 + 40 + self.legend_height(width))
+        (width, r as u32 * 440 + crate::plot::title_height(PARETO_TITLE, width, 18.0) + self.legend_height(width))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = root
-            .titled(PARETO_TITLE, crate::plot::fitting_text(PARETO_TITLE, root.dim_in_pixel().0, 20.0))
-            .map_err(err)?;
+        let root = crate::plot::titled(root, PARETO_TITLE, 18.0)?;
         let (width, height) = root.dim_in_pixel();
         let (root, strip) = root.split_vertically(height - self.legend_height(width));
         let labels = self.kind_labels();
@@ -97,25 +95,29 @@ impl Figure for ParetoFigure {
             strip.draw(&Circle::new((x + 11, y), 5, crate::plot::series_colour(k).filled())).map_err(err)?;
             strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
         }
-        let low = self.lower_corner();
+        let ranges = self.ranges();
         for (area, facet) in root.split_evenly(self.shape()).iter().zip(&self.facets) {
-            draw_pareto_facet(area, facet, labels.is_empty(), low)?;
+            draw_pareto_facet(area, facet, labels.is_empty(), ranges)?;
         }
         Ok(())
     }
 }
 
 impl ParetoFigure {
-    /// The axes' lower corner shared by every panel: 0.05 below the lowest point, at least 0.
-    fn lower_corner(&self) -> (f64, f64) {
-        let (mut lo_x, mut lo_y) = (1.0f64, 1.0f64);
+    /// The axes' ranges shared by every panel, `((x0, x1), (y0, y1))`: 0.05 beyond the points on
+    /// each side, within 0..1.
+    fn ranges(&self) -> ((f64, f64), (f64, f64)) {
+        let (mut lo_x, mut lo_y, mut hi_x, mut hi_y) = (1.0f64, 1.0f64, 0.0f64, 0.0f64);
         for f in &self.facets {
             for p in f.points.iter().chain(&f.excluded) {
-                lo_x = lo_x.min(p.0);
-                lo_y = lo_y.min(p.1);
+                (lo_x, lo_y, hi_x, hi_y) = (lo_x.min(p.0), lo_y.min(p.1), hi_x.max(p.0), hi_y.max(p.1));
             }
         }
-        ((lo_x - 0.05).max(0.0), (lo_y - 0.05).max(0.0))
+        if hi_x < lo_x {
+            return ((0.0, 1.0), (0.0, 1.0));
+        }
+        let fit = |lo: f64, hi: f64| ((lo - 0.05).max(0.0), (hi + 0.05).min(1.0));
+        (fit(lo_x, hi_x), fit(lo_y, hi_y))
     }
 }
 
@@ -125,7 +127,7 @@ fn draw_pareto_facet<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     facet: &ParetoFacet,
     one_kind: bool,
-    (lo_x, lo_y): (f64, f64),
+    ((x0, x1), (y0, y1)): ((f64, f64), (f64, f64)),
 ) -> Result<(), String> {
     let caption = crate::plot::panel_label(&facet.label);
     let mut chart = ChartBuilder::on(area)
@@ -133,13 +135,13 @@ fn draw_pareto_facet<DB: DrawingBackend>(
         .margin(8)
         .x_label_area_size(40)
         .y_label_area_size(55)
-        .build_cartesian_2d(lo_x..1.0, lo_y..1.0)
+        .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(err)?;
     chart
         .configure_mesh()
         .light_line_style(RGBColor(235, 235, 235))
-        .x_desc("t_final [-]")
-        .y_desc("cov_final [-]")
+        .x_desc("t_final: 003's time efficiency (higher is faster)")
+        .y_desc("cov_final: share of all free cells")
         .label_style(text(13.0))
         .axis_desc_style(text(14.0))
         .draw()
@@ -245,7 +247,10 @@ impl Figure for DiversityFigure {
             let y_max = shared.unwrap_or_else(|| g.y_top());
             let label = crate::plot::panel_label(&g.label);
             let mut chart = ChartBuilder::on(area)
-                .caption(format!("{label} ({} runs)", g.runs), crate::plot::fitting_text(&label, 800, 14.0))
+                .caption(
+                    format!("{label} ({})", crate::plot::runs_text(g.runs)),
+                    crate::plot::fitting_text(&label, 800, 14.0),
+                )
                 .margin(8)
                 .margin_right(24)
                 .x_label_area_size(if last { 45 } else { 25 })

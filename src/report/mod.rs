@@ -21,6 +21,7 @@ mod effects;
 pub mod figures;
 pub mod folder_record;
 pub mod measures;
+pub mod planners_pareto;
 pub mod replication;
 mod report_tables;
 pub mod rescore;

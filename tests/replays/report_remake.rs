@@ -17,6 +17,7 @@ use std::path::Path;
 const REPORTS: &[(&str, &str, &[&str])] = &[
     ("ablation", "report/summary.md", &["--by", "map.source"]),
     ("smoke", "report/summary.md", &[]),
+    ("figures-gallery", "report/summary.md", &["--by", "planner", "--by", "cell_order.solver"]),
     ("init-dist", "report/summary.md", &["--by", "thesis.init_dist_max"]),
     ("fleets", "summary.md", &[]),
     ("thesis-real-maps", "report/summary.md", &["--by", "map.source"]),

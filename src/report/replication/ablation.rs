@@ -27,7 +27,9 @@ const TABLE: [(&str, &str, usize); 10] = [
 ];
 
 /// The metrics tested pairwise.
-const TESTED: [&str; 4] = ["cov_final_reach", "t_final", "f_reach", "cam_walls_free"];
+/// The measures tested between planners: the common scorer's, which every planner shares
+/// (003's `t_final` and `f` are one GA's own and do not compare planners).
+const TESTED: [&str; 3] = ["cov_final_reach", "time_s", "cam_walls_free"];
 
 /// Where the comparison's figures and tables go, and what it found.
 pub struct PlannersCompared {
@@ -255,12 +257,9 @@ impl<'a> Comparing<'a> {
             "\nPairwise two-sided Mann–Whitney U tests (Holm-corrected over the pairs of a metric), A₁₂ = P(first > second):\n"
         );
         let _ = writeln!(w.md, "| metric | first | second | p (Holm) | A₁₂ | effect |\n|---|---|---|---|---|---|");
-        let samples: Vec<(&String, Vec<usize>)> = self
-            .present(map, true)
-            .into_iter()
-            .map(|v| (v, self.rows_of(map, v)))
-            .filter(|(_, r)| r.len() >= 2)
-            .collect();
+        type Sample<'a> = (&'a String, Vec<usize>);
+        let (samples, too_few): (Vec<Sample>, Vec<Sample>) =
+            self.present(map, true).into_iter().map(|v| (v, self.rows_of(map, v))).partition(|(_, r)| r.len() >= 2);
         for metric in TESTED {
             let mut pairs = Vec::new();
             for i in 0..samples.len() {
@@ -308,6 +307,10 @@ impl<'a> Comparing<'a> {
             })
             .fold(1.0, f64::min);
         let tests = samples.len() * samples.len().saturating_sub(1) / 2;
+        if !too_few.is_empty() {
+            let named: Vec<String> = too_few.iter().map(|(v, r)| format!("{v} ({} executable)", r.len())).collect();
+            let _ = writeln!(w.md, "\nNot tested (fewer than two executable plans): {}.", named.join(", "));
+        }
         let best = "the test of its largest groups, wholly apart";
         if let Some(floor) = crate::stats::family::floor(tests, extreme, 0.05, best) {
             let _ = writeln!(w.md, "\n{} Each metric's pairs are a family of their own.", floor.sentence);

@@ -26,6 +26,9 @@ pub struct BoxFigure {
     pub panels: Vec<(String, Vec<BoxSeries>)>,
 }
 
+/// Tick labels on a value axis (plotters steps no finer than the span over this).
+const Y_TICKS: usize = 10;
+
 /// Rows and columns of a panel grid: two columns from three panels on.
 fn shape(n: usize) -> (usize, usize) {
     if n <= 2 { (1, n.max(1)) } else { (n.div_ceil(2), 2) }
@@ -36,18 +39,28 @@ fn colour(k: usize) -> RGBColor {
 }
 
 impl BoxFigure {
-    /// Each box's axis label: the planner, with its executable share where some plans are not.
+    /// Each box's axis label: the planner, with its executable share where some plans are not,
+    /// and "(1 run)" for a group of one run (drawn as a point: a box needs several).
     fn labels(boxes: &[BoxSeries]) -> Vec<String> {
         boxes
             .iter()
             .map(|b| {
-                if b.excluded.is_empty() {
-                    b.label.clone()
-                } else {
-                    format!("{} ({}/{})", b.label, b.values.len(), b.values.len() + b.excluded.len())
+                let runs = b.values.len() + b.excluded.len();
+                match (b.excluded.is_empty(), runs) {
+                    (true, 1) => format!("{} (1 run)", b.label),
+                    (true, _) => b.label.clone(),
+                    (false, _) => format!("{} ({}/{runs})", b.label, b.values.len()),
                 }
             })
             .collect()
+    }
+
+    fn title(&self) -> String {
+        format!(
+            "{} per planner (box = IQR, line = median, whiskers = min..max of executable plans; a group of one \
+             run is a point; grey × = not executable; (k/n) = executable share)",
+            self.metric
+        )
     }
 
     /// Height of the band under each panel that holds its labels, written upwards.
@@ -62,19 +75,12 @@ impl Figure for BoxFigure {
         let (r, c) = shape(self.panels.len());
         // Labels written upwards under the boxes: a box needs its width, not its label's.
         let boxes = self.panels.iter().map(|(_, b)| b.len()).max().unwrap_or(1) as u32;
-        (c as u32 * (70 * boxes + 90).max(520), r as u32 * (300 + self.label_band()) + 40)
+        let width = c as u32 * (70 * boxes + 90).max(520);
+        (width, r as u32 * (300 + self.label_band()) + crate::plot::title_height(&self.title(), width, 16.0))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = root
-            .titled(
-                &format!(
-                    "{} per planner (box = IQR, line = median, whiskers = min..max of executable plans; grey × = not executable; (k/n) = executable share)",
-                    self.metric
-                ),
-                text(16.0),
-            )
-            .map_err(err)?;
+        let root = crate::plot::titled(root, &self.title(), 16.0)?;
         // One y range for every panel, so that the maps compare at a glance.
         let all: Vec<f64> = self
             .panels
@@ -95,12 +101,13 @@ impl Figure for BoxFigure {
                 .build_cartesian_2d(0.0..n as f64, (lo - pad)..(hi + pad))
                 .map_err(err)?;
             let labels = Self::labels(boxes);
-            let decimals = crate::plot::tick_decimals(hi - lo);
+            let decimals = crate::plot::step_decimals(hi - lo + 2.0 * pad, Y_TICKS);
             chart
                 .configure_mesh()
                 .disable_x_mesh()
                 .light_line_style(RGBColor(235, 235, 235))
                 .x_labels(0)
+                .y_labels(Y_TICKS)
                 .y_label_formatter(&|v| format!("{v:.decimals$}"))
                 .y_desc(&self.metric)
                 .label_style(text(12.0))
@@ -120,6 +127,14 @@ impl Figure for BoxFigure {
                     .draw_series(b.excluded.iter().map(|&v| Cross::new((k as f64 + 0.85, v), 4, grey.stroke_width(1))))
                     .map_err(err)?;
                 if b.values.is_empty() {
+                    continue;
+                }
+                if b.values.len() == 1 {
+                    let point = Circle::new((k as f64 + 0.5, b.values[0]), 5, colour(k).filled());
+                    chart.draw_series([point]).map_err(err)?;
+                    chart
+                        .draw_series([Circle::new((k as f64 + 0.5, b.values[0]), 5, BLACK.stroke_width(1))])
+                        .map_err(err)?;
                     continue;
                 }
                 let (q1, med, q3) = crate::stats::quartiles(&b.values);
@@ -153,6 +168,9 @@ pub struct Curve {
     pub runs: usize,
     /// The points.
     pub points: Vec<(f64, f64, f64, f64)>,
+    /// The median coverage of the same runs' plans as scored: above the curve's end where a
+    /// completion pass after the search adds cells (drawn as a diamond at the end).
+    pub scored: Option<f64>,
 }
 
 /// Height of one line of the legend below the convergence panels, in pixels.
@@ -177,6 +195,23 @@ pub fn legend_layout(labels: &[String], width: u32) -> Vec<(u32, i32)> {
         .collect()
 }
 
+/// The y range of a convergence panel: the bands and scored plans with a margin (the curves of
+/// a goal-driven planner lie within a few hundredths), within 0..1.
+fn fitted_range(curves: &[Curve]) -> (f64, f64) {
+    let (lo, hi) = curves
+        .iter()
+        .flat_map(|c| c.points.iter().flat_map(|p| [p.1, p.3]).chain(c.scored))
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| (l.min(v), h.max(v)));
+    let (lo, hi) = if lo.is_finite() { (lo, hi) } else { (0.0, 1.0) };
+    let pad = ((hi - lo) * 0.1).max(0.005);
+    ((lo - pad).max(0.0), (hi + pad).min(1.0))
+}
+
+const CONVERGENCE_TITLE: &str = "Best plan's footprint coverage of the reachable cells vs fitness evaluations: \
+                                 median, band = IQR over the seeds with an executable plan; ◆ = the plans as scored \
+                                 (after a completion pass, where there is one)";
+
 /// Convergence of the GAs: one panel per map.
 pub struct ConvergenceFigure {
     /// `(map, curves)` per panel.
@@ -200,7 +235,7 @@ impl ConvergenceFigure {
             .into_iter()
             .map(|c| {
                 let label = match runs.len() {
-                    1 => format!("{} ({} runs)", c.label, c.runs),
+                    1 => format!("{} ({})", c.label, crate::plot::runs_text(c.runs)),
                     _ => c.label.clone(),
                 };
                 (c, label)
@@ -220,16 +255,11 @@ impl Figure for ConvergenceFigure {
     fn size(&self) -> (u32, u32) {
         let (r, c) = shape(self.panels.len());
         let width = c as u32 * 620;
-        (width, r as u32 * 400 + 40 + self.legend_height(width))
+        (width, r as u32 * 400 + crate::plot::title_height(CONVERGENCE_TITLE, width, 16.0) + self.legend_height(width))
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = root
-            .titled(
-                "Best plan's footprint coverage of the reachable cells vs fitness evaluations: median, band = IQR over the seeds with an executable plan",
-                text(16.0),
-            )
-            .map_err(err)?;
+        let root = crate::plot::titled(root, CONVERGENCE_TITLE, 16.0)?;
         // One legend for all panels, below them, where it hides no curve, wrapped to the width.
         let (width, height) = root.dim_in_pixel();
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
@@ -251,16 +281,20 @@ impl Figure for ConvergenceFigure {
         }
         for (area, (map, curves)) in panels.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
             let x_max = curves.iter().flat_map(|c| c.points.last().map(|p| p.0)).fold(1.0f64, f64::max);
+            let (y0, y1) = fitted_range(curves);
+            let decimals = crate::plot::step_decimals(y1 - y0, Y_TICKS);
             let mut chart = ChartBuilder::on(area)
-                .caption(map, text(15.0))
+                .caption(crate::plot::panel_label(map), text(15.0))
                 .margin(10)
                 .margin_right(24)
                 .x_label_area_size(45)
-                .y_label_area_size(55)
-                .build_cartesian_2d(0.0..x_max, 0.0..1.0)
+                .y_label_area_size(65)
+                .build_cartesian_2d(0.0..x_max, y0..y1)
                 .map_err(err)?;
             chart
                 .configure_mesh()
+                .y_labels(Y_TICKS)
+                .y_label_formatter(&|v| format!("{v:.decimals$}"))
                 .light_line_style(RGBColor(235, 235, 235))
                 .x_desc("fitness evaluations")
                 .y_desc("cov_final (reachable cells)")
@@ -271,17 +305,29 @@ impl Figure for ConvergenceFigure {
                 .axis_desc_style(text(13.0))
                 .draw()
                 .map_err(err)?;
-            for c in curves {
+            for (drawn, c) in curves.iter().enumerate() {
                 let k = index_of(&c.label);
                 let col = colour(k);
+                // Earlier series wider, so that one lying on another still shows around it.
+                let stroke = 2 + 2 * (curves.len() - 1 - drawn) as u32;
                 let band: Vec<(f64, f64)> =
                     c.points.iter().map(|p| (p.0, p.3)).chain(c.points.iter().rev().map(|p| (p.0, p.1))).collect();
                 chart.draw_series([Polygon::new(band, col.mix(0.2).filled())]).map_err(err)?;
+                if let (Some(v), Some(last)) = (c.scored, c.points.last()) {
+                    let (x, y) = chart.backend_coord(&(last.0, v));
+                    let (ax, ay) = area.get_base_pixel();
+                    let (x, y) = (x - ax, y - ay);
+                    let r = 6 + 2 * (curves.len() - 1 - drawn) as i32;
+                    let diamond = vec![(x, y - r - 1), (x - r, y), (x, y + r + 1), (x + r, y)];
+                    area.draw(&Polygon::new(diamond.clone(), col.filled())).map_err(err)?;
+                    area.draw(&PathElement::new([diamond.clone(), vec![diamond[0]]].concat(), BLACK.stroke_width(1)))
+                        .map_err(err)?;
+                }
                 let median = c.points.iter().map(|p| (p.0, p.2));
                 if crate::plot::series_dashed(k) {
-                    chart.draw_series(DashedLineSeries::new(median, 7, 5, col.stroke_width(2))).map_err(err)?;
+                    chart.draw_series(DashedLineSeries::new(median, 7, 5, col.stroke_width(stroke))).map_err(err)?;
                 } else {
-                    chart.draw_series(LineSeries::new(median, col.stroke_width(2))).map_err(err)?;
+                    chart.draw_series(LineSeries::new(median, col.stroke_width(stroke))).map_err(err)?;
                 }
             }
         }
@@ -348,6 +394,9 @@ impl Figure for PlannerPathsFigure<'_> {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod layout_tests;
 
 #[cfg(test)]
 mod tests {

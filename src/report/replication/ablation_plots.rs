@@ -92,14 +92,17 @@ fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
     for map in &c.maps {
         let mut curves = Vec::new();
         for v in &c.variants {
-            let hs: Vec<Vec<(f64, f64)>> = c
+            let with_history: Vec<(usize, Vec<(f64, f64)>)> = c
                 .rows_of(map, v)
                 .iter()
-                .filter_map(|&r| history(&dir.join("runs").join(&c.t.rows[r][0]).join("history.csv")))
+                .filter_map(|&r| Some((r, history(&dir.join("runs").join(&c.t.rows[r][0]).join("history.csv"))?)))
                 .collect();
-            if hs.is_empty() {
+            if with_history.is_empty() {
                 continue;
             }
+            // The plans as scored (after a completion pass, where the planner has one).
+            let scored: Vec<f64> = with_history.iter().map(|(r, _)| c.num(*r, "cov_final_reach")).collect();
+            let hs: Vec<Vec<(f64, f64)>> = with_history.into_iter().map(|(_, h)| h).collect();
             let x_max = hs.iter().flat_map(|h| h.last().map(|p| p.0)).fold(0.0, f64::max);
             let points = (0..=60)
                 .map(|k| {
@@ -110,7 +113,8 @@ fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
                 })
                 .filter(|p| p.2.is_finite())
                 .collect();
-            curves.push(Curve { label: v.clone(), runs: hs.len(), points });
+            let scored = Some(quartiles(&scored).1).filter(|m| m.is_finite());
+            curves.push(Curve { label: v.clone(), runs: hs.len(), points, scored });
         }
         panels.push((short_map(map), curves));
     }
@@ -135,10 +139,10 @@ fn best_paths(c: &Comparing, dir: &Path) -> Vec<Vec<Option<LoadedPanel>>> {
                 let m = crate::map::ros::load_map(&cfg.map.source, &cfg.map.bare_image()).ok()?;
                 let g = CoverageGrid::new(&m);
                 let title = format!(
-                    "{v}, {}: cov {:.3}, t {:.3}",
+                    "{v}, {}: {:.0} s, {:.1} % of the reachable cells",
                     short_map(map),
-                    c.num(best, "cov_final_reach"),
-                    c.num(best, "t_final")
+                    c.num(best, "time_s"),
+                    100.0 * c.num(best, "cov_final_reach")
                 );
                 Some((m, g, paths, cfg.robot.width, title))
             });
