@@ -133,6 +133,8 @@ fn draw_pareto_facet<DB: DrawingBackend>(
     let mut chart = ChartBuilder::on(area)
         .caption(&caption, crate::plot::fitting_text(&caption, area.dim_in_pixel().0, 16.0))
         .margin(8)
+        // Room for the last tick label, centred on the right end of the axis.
+        .margin_right(24)
         .x_label_area_size(40)
         .y_label_area_size(55)
         .build_cartesian_2d(x0..x1, y0..y1)
@@ -337,5 +339,87 @@ mod tests {
                 (a, b) => assert_eq!(a, b, "{tops:?}"),
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod layout_tests {
+    //! The thesis GA's figures on their study shapes (groups of ten runs, one run, many groups):
+    //! texts on the canvas, ticks distinct, every group named.
+    use super::*;
+    use crate::coverage::CoverageGrid;
+    use crate::geom::Point;
+    use crate::plot::layout::problems;
+
+    fn facet(label: &str, n: usize) -> ParetoFacet {
+        let points: Vec<(f64, f64)> = (0..n).map(|k| (0.15 + 0.02 * k as f64, 0.41 - 0.01 * k as f64)).collect();
+        ParetoFacet {
+            label: label.into(),
+            front: (0..n).collect(),
+            rows: (0..n).collect(),
+            kinds: vec![0; n],
+            excluded: vec![(0.3, 0.2)],
+            points,
+        }
+    }
+
+    #[test]
+    fn pareto_diversity_and_path_figures_keep_their_texts_on_the_canvas() {
+        let mut found = Vec::new();
+        for (name, groups) in [
+            ("thesis", vec![("selection=elite", 10), ("selection=nsga2", 10)]),
+            ("one run", vec![("all", 1)]),
+            (
+                "many",
+                (0..9)
+                    .map(|_| ("map.source=experiments/maps/generated/house-1-noisy.yaml, selection=tournament", 5))
+                    .collect(),
+            ),
+        ] {
+            let facets = groups.iter().map(|(l, n)| facet(l, *n)).collect();
+            let figure = ParetoFigure { facets, shape: None, kinds: Vec::new() };
+            for p in
+                problems(&figure, &["t_final: 003's time efficiency", "cov_final: share of all free cells"]).unwrap()
+            {
+                found.push(format!("pareto {name}: {p}"));
+            }
+            let diversity = DiversityFigure {
+                groups: groups
+                    .iter()
+                    .map(|(l, n)| DiversityGroup {
+                        label: l.to_string(),
+                        runs: *n,
+                        curve: (0..50).map(|i| (i * 10, 40.0, 30.0, 55.0)).collect(),
+                    })
+                    .collect(),
+            };
+            for p in problems(&diversity, &[]).unwrap() {
+                found.push(format!("diversity {name}: {p}"));
+            }
+            let texts = crate::plot::layout::drawn_texts(&diversity).unwrap();
+            if groups.iter().any(|(_, n)| *n == 1) && !texts.iter().any(|t| t.text.contains("(1 run)")) {
+                found.push(format!("diversity {name}: a one-run group says \"1 runs\""));
+            }
+        }
+        let map = crate::map::presets::preset("thesis-1").unwrap();
+        let grid = CoverageGrid::new(&map);
+        let path = vec![Point::new(1.0, 1.0), Point::new(8.0, 1.0), Point::new(8.0, 8.0)];
+        let panel = |title: &str| crate::plot::path::PathFigure {
+            map: &map,
+            grid: &grid,
+            paths: vec![path.clone()],
+            width: 0.6,
+            robots: Vec::new(),
+            title: title.into(),
+        };
+        for n in [1, 4, 9] {
+            let panels = (0..n)
+                .map(|k| panel(&format!("selection=elite, c_len=0.{k}: 1234 s, 90.1 % of the reachable cells")))
+                .collect();
+            for p in problems(&PathsGridFigure { panels }, &["1234 s"]).unwrap() {
+                found.push(format!("paths {n}: {p}"));
+            }
+        }
+        assert!(found.is_empty(), "{}", found.join("\n"));
     }
 }
