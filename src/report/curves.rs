@@ -8,7 +8,7 @@ use super::ReportError;
 use super::study::Study;
 use crate::coverage::curve::{CoverageCurve, LEVELS};
 use crate::plot::{Figure, err, text};
-use crate::report::replication::ablation_figures::legend_layout;
+use crate::report::replication::ablation_figures::{draw_legend_strip, legend_strip_height};
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use std::collections::BTreeMap;
@@ -291,8 +291,7 @@ impl CurvesFigure {
     }
 
     fn legend_height(&self, width: u32) -> u32 {
-        let lines = legend_layout(&self.entries(), width).last().map_or(1, |(line, _)| line + 1);
-        lines * 24 + 16
+        legend_strip_height(&self.entries(), width)
     }
 }
 
@@ -309,12 +308,10 @@ impl Figure for CurvesFigure {
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
         let series = self.series();
         let entries = self.entries();
-        for (k, (label, (line, x))) in entries.iter().zip(legend_layout(&entries, width)).enumerate() {
-            let y = 20 + (line * 24) as i32;
+        draw_legend_strip(&strip, &entries, |k, (x, y)| {
             let colour = crate::plot::series_colour(k);
-            strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(3))).map_err(err)?;
-            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
-        }
+            strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(3))).map_err(err)
+        })?;
         for (area, (map, drawn)) in panels.split_evenly(self.grid()).iter().zip(&self.panels) {
             let x_max = drawn.iter().flat_map(|s| s.curve.last().map(|c| c.0)).fold(1.0, f64::max);
             let mut chart = ChartBuilder::on(area)

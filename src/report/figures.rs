@@ -59,8 +59,7 @@ impl ParetoFigure {
         if labels.is_empty() {
             return 0;
         }
-        let lines = super::ablation_figures::legend_layout(&labels, width).last().map_or(1, |(line, _)| line + 1);
-        lines * 24 + 16
+        super::ablation_figures::legend_strip_height(&labels, width)
     }
 }
 
@@ -88,13 +87,9 @@ impl Figure for ParetoFigure {
         let (width, height) = root.dim_in_pixel();
         let (root, strip) = root.split_vertically(height - self.legend_height(width));
         let labels = self.kind_labels();
-        for (k, (label, (line, x))) in
-            labels.iter().zip(super::ablation_figures::legend_layout(&labels, width)).enumerate()
-        {
-            let y = 20 + (line * 24) as i32;
-            strip.draw(&Circle::new((x + 11, y), 5, crate::plot::series_colour(k).filled())).map_err(err)?;
-            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
-        }
+        super::ablation_figures::draw_legend_strip(&strip, &labels, |k, (x, y)| {
+            strip.draw(&Circle::new((x + 11, y), 5, crate::plot::series_colour(k).filled())).map_err(err)
+        })?;
         let ranges = self.ranges();
         for (area, facet) in root.split_evenly(self.shape()).iter().zip(&self.facets) {
             draw_pareto_facet(area, facet, labels.is_empty(), ranges)?;

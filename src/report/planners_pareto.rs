@@ -58,9 +58,7 @@ fn marker<DB: DrawingBackend>(k: usize, at: (i32, i32), area: &DrawingArea<DB, S
 
 impl PlannersPareto {
     fn legend_height(&self, width: u32) -> u32 {
-        let labels = self.legend_labels();
-        let lines = super::ablation_figures::legend_layout(&labels, width).last().map_or(1, |(line, _)| line + 1);
-        lines * 24 + 16
+        super::ablation_figures::legend_strip_height(&self.legend_labels(), width)
     }
 
     /// Each group's label with its runs over every map.
@@ -91,13 +89,7 @@ impl Figure for PlannersPareto {
         let (width, height) = root.dim_in_pixel();
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
         let labels = self.legend_labels();
-        for (k, (label, (line, x))) in
-            labels.iter().zip(super::ablation_figures::legend_layout(&labels, width)).enumerate()
-        {
-            let y = 20 + (line * 24) as i32;
-            marker(k, (x + 11, y), &strip)?;
-            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
-        }
+        super::ablation_figures::draw_legend_strip(&strip, &labels, |k, (x, y)| marker(k, (x + 11, y), &strip))?;
         for (area, (map, points)) in panels.split_evenly(self.grid()).iter().zip(&self.panels) {
             draw_panel(area, map, points)?;
         }

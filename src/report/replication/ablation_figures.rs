@@ -176,6 +176,27 @@ pub struct Curve {
 /// Height of one line of the legend below the convergence panels, in pixels.
 const LEGEND_LINE: u32 = 24;
 
+/// Height of the legend strip of `labels` below panels `width` pixels wide (one line for none).
+pub fn legend_strip_height(labels: &[String], width: u32) -> u32 {
+    let lines = legend_layout(labels, width).last().map_or(1, |(line, _)| line + 1);
+    lines * LEGEND_LINE + 16
+}
+
+/// Draws the legend strip below a figure's panels: entry `k`'s key drawn by `key(k, (x, y))`
+/// at the start of its place (`y` the middle of its line), its label after it.
+pub fn draw_legend_strip<DB: DrawingBackend>(
+    strip: &DrawingArea<DB, Shift>,
+    labels: &[String],
+    key: impl Fn(usize, (i32, i32)) -> Result<(), String>,
+) -> Result<(), String> {
+    for (k, (label, (line, x))) in labels.iter().zip(legend_layout(labels, strip.dim_in_pixel().0)).enumerate() {
+        let y = 20 + (line * LEGEND_LINE) as i32;
+        key(k, (x, y))?;
+        strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
+    }
+    Ok(())
+}
+
 /// Where legend entries of `labels` go in a strip `width` pixels wide: `(line, x)` per entry,
 /// a new line whenever the next entry would run past the right edge.
 pub fn legend_layout(labels: &[String], width: u32) -> Vec<(u32, i32)> {
@@ -246,8 +267,7 @@ impl ConvergenceFigure {
     /// The legend strip's height for a figure `width` pixels wide.
     fn legend_height(&self, width: u32) -> u32 {
         let labels: Vec<String> = self.series().into_iter().map(|(_, l)| l).collect();
-        let lines = legend_layout(&labels, width).last().map_or(1, |(line, _)| line + 1);
-        lines * LEGEND_LINE + 16
+        legend_strip_height(&labels, width)
     }
 }
 
@@ -266,19 +286,14 @@ impl Figure for ConvergenceFigure {
         let series = self.series();
         let index_of = |label: &str| series.iter().position(|(s, _)| s.label == label).unwrap_or(0);
         let labels: Vec<String> = series.iter().map(|(_, l)| l.clone()).collect();
-        for (k, (label, (line, x))) in labels.iter().zip(legend_layout(&labels, width)).enumerate() {
-            let y = 20 + (line * LEGEND_LINE) as i32;
-            if crate::plot::series_dashed(k) {
-                for x0 in [x, x + 9, x + 18] {
-                    strip
-                        .draw(&PathElement::new(vec![(x0, y), (x0 + 5, y)], colour(k).stroke_width(3)))
-                        .map_err(err)?;
-                }
-            } else {
-                strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour(k).stroke_width(3))).map_err(err)?;
+        draw_legend_strip(&strip, &labels, |k, (x, y)| {
+            let dashes: &[(i32, i32)] =
+                if crate::plot::series_dashed(k) { &[(0, 5), (9, 14), (18, 23)] } else { &[(0, 22)] };
+            for &(a, b) in dashes {
+                strip.draw(&PathElement::new(vec![(x + a, y), (x + b, y)], colour(k).stroke_width(3))).map_err(err)?;
             }
-            strip.draw(&Text::new(label.clone(), (x + 28, y - 8), text(14.0))).map_err(err)?;
-        }
+            Ok(())
+        })?;
         for (area, (map, curves)) in panels.split_evenly(shape(self.panels.len())).iter().zip(&self.panels) {
             let x_max = curves.iter().flat_map(|c| c.points.last().map(|p| p.0)).fold(1.0f64, f64::max);
             let (y0, y1) = fitted_range(curves);
