@@ -43,11 +43,17 @@ pub(super) struct GroupTables<'a> {
     pub configs: &'a [ConfigRow],
     /// The swept-parameter columns.
     pub params: &'a [String],
+    /// Whether the tables give the common scorer's measures (a study that runs any planner
+    /// other than the thesis GA, [`super::common_tables`]) instead of 003's.
+    pub common: bool,
 }
 
 impl GroupTables<'_> {
     /// Appends the tables to `md`.
     pub fn write(&self, md: &mut String) {
+        if self.common {
+            return self.write_common(md);
+        }
         self.best_runs(md);
         self.best_configurations(md);
         self.fronts(md);
@@ -57,12 +63,12 @@ impl GroupTables<'_> {
     }
 
     /// A number of row `r` (NaN where absent).
-    fn num(&self, r: usize, c: &str) -> f64 {
+    pub(super) fn num(&self, r: usize, c: &str) -> f64 {
         self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
     }
 
     /// A cell of row `r` (empty where absent).
-    fn get(&self, r: usize, c: &str) -> String {
+    pub(super) fn get(&self, r: usize, c: &str) -> String {
         self.t.col(c).map(|i| self.t.rows[r][i].clone()).unwrap_or_default()
     }
 
@@ -239,7 +245,7 @@ impl GroupTables<'_> {
 
 /// A table cell of a mean and its 95 % CI half-width: "–" without runs, the mean alone with
 /// "(1 run)" where one run gives no interval.
-fn mean_ci_cell((mean, half): (f64, f64)) -> String {
+pub(super) fn mean_ci_cell((mean, half): (f64, f64)) -> String {
     match (mean.is_finite(), half.is_finite()) {
         (false, _) => "–".to_string(),
         (true, false) => format!("{mean:.4} (1 run)"),

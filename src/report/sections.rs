@@ -59,14 +59,14 @@ impl Section for Heading {
     }
 }
 
-/// The Pareto figure: with one planner, one panel per group, fronts over the executable plans
-/// on 003's measures; with several, one panel per map on the common scorer's mission time and
-/// reachable coverage ([`super::planners_pareto`]).
+/// The Pareto figure: for the thesis GA alone, one panel per group, fronts over the executable
+/// plans on 003's measures; with any other planner, one panel per map on the common scorer's
+/// mission time and reachable coverage ([`super::planners_pareto`]).
 struct ParetoFronts;
 
 impl Section for ParetoFronts {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        if s.kinds.len() > 1 {
+        if s.common_measures() {
             crate::plot::save(&planners_pareto(s), &s.out.join("pareto"))?;
             let _ = writeln!(md, "![Mission time against reachable coverage, every plan](pareto.png)\n");
             return Ok(());
@@ -195,7 +195,7 @@ impl Section for BestPaths {
                 _ => group_label.clone(),
             };
             // Across planners the common scorer's measures; for the thesis GA alone 003's, named.
-            let title = if s.kinds.len() > 1 {
+            let title = if s.common_measures() {
                 format!(
                     "{}: {:.0} s, {:.1} % of the reachable cells",
                     crate::plot::panel_label(&label),
@@ -260,6 +260,7 @@ impl Section for GroupTables {
             facets: &s.facets,
             configs: &s.configs,
             params: &s.params,
+            common: s.common_measures(),
         }
         .write(md);
         Ok(())

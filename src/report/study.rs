@@ -254,6 +254,13 @@ impl<'a> Study<'a> {
         study
     }
 
+    /// Whether the study's figures and tables give the common scorer's measures (mission time
+    /// and reachable coverage): every study that runs a planner other than the thesis GA, whose
+    /// `t_final` and `f` are 003's own measures ([`super::common_tables`]).
+    pub fn common_measures(&self) -> bool {
+        self.kinds.iter().any(|k| k != "thesis")
+    }
+
     /// A number of row `r` (NaN where absent).
     pub fn num(&self, r: usize, c: &str) -> f64 {
         self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
@@ -297,19 +304,30 @@ impl<'a> Study<'a> {
     }
 
     /// Best run per group (per group and projection where the study sweeps it: f1 and f2 are
-    /// different functions): the best executable one by `f_free`; a scope without one shows
-    /// its best run all the same.
+    /// different functions): the best executable one by `f_free`, or on the common scorer's
+    /// measures ([`Study::common_measures`]) by
+    /// [`super::common_tables::best_by_coverage_then_time`]; a scope without one shows its best
+    /// run all the same.
     fn best_runs(&self) -> Vec<(String, usize)> {
+        let common = self.common_measures();
         self.groups
             .iter()
             .flat_map(|g| {
                 super::report_tables::projection_scopes(&self.t, &g.rows).into_iter().map(|(suffix, rows)| {
                     let pool: Vec<usize> = rows.iter().copied().filter(|&r| self.executable(r)).collect();
                     let pool = if pool.is_empty() { rows } else { pool };
-                    let r = *pool
-                        .iter()
-                        .max_by(|&&a, &&b| self.num(a, "f_free").total_cmp(&self.num(b, "f_free")))
-                        .expect("non-empty scope");
+                    let by_f = || {
+                        *pool
+                            .iter()
+                            .max_by(|&&a, &&b| self.num(a, "f_free").total_cmp(&self.num(b, "f_free")))
+                            .expect("non-empty scope")
+                    };
+                    use super::common_tables::{COVERAGE, TIME, best_by_coverage_then_time};
+                    let r = match common {
+                        true => best_by_coverage_then_time(&pool, |r| (self.num(r, COVERAGE), self.num(r, TIME)))
+                            .unwrap_or_else(by_f),
+                        false => by_f(),
+                    };
                     (format!("{}{suffix}", g.label), r)
                 })
             })

@@ -372,3 +372,68 @@ fn an_empty_by_column_does_not_label_its_group() {
     assert!(md.contains("| thesis.selection=tournament, thesis.tournament_size=3 |"), "{md}");
     assert!(!md.contains("tournament_size= "), "{md}");
 }
+
+/// (run id, config id, replicate, planner, reachable coverage, mission time s).
+const MIXED: [(&str, &str, u32, &str, f64, f64); 4] = [
+    ("p1", "cfgP", 0, "spiral", 0.950, 900.0),
+    ("c1", "cfgC", 0, "cell_order", 0.901, 400.0),
+    ("c2", "cfgC", 1, "cell_order", 0.903, 500.0),
+    ("c3", "cfgC", 2, "cell_order", 0.899, 350.0),
+];
+
+/// A study that runs planners other than the thesis GA is tabled on the common scorer's
+/// measures: the best run covers most, the fastest of those within 0.005 of it; means of
+/// `cov_final_reach` and `time_s` with t-based intervals; no `t_final` or `f`.
+#[test]
+fn a_study_of_other_planners_is_tabled_on_mission_time_and_reachable_coverage() {
+    let dir = tempfile::tempdir().unwrap();
+    let header = covga::study::records::header(&[]);
+    let mut csv = header.join(",") + "\n";
+    for (id, config, rep, planner, cov, time) in MIXED {
+        let values: HashMap<&str, String> = [
+            ("run_id", id.to_string()),
+            ("config_id", config.to_string()),
+            ("replicate", rep.to_string()),
+            ("seed", "1".to_string()),
+            ("planner", planner.to_string()),
+            ("map", "thesis-1".to_string()),
+            ("executable", "true".to_string()),
+            ("planner_feasible", "true".to_string()),
+            ("violations", String::new()),
+            ("cov_final_free", (cov - 0.05).to_string()),
+            ("cov_final_reach", cov.to_string()),
+            ("time_s", time.to_string()),
+            // 003's f would pick c2 (the highest) as the cell-order group's best.
+            ("t_final", "0.5".to_string()),
+            ("f_free", cov.to_string()),
+            ("f_reach", cov.to_string()),
+            ("wall_s", "1".to_string()),
+        ]
+        .into_iter()
+        .collect();
+        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
+        csv += &(row.join(",") + "\n");
+    }
+    std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
+    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 4}").unwrap();
+    let o =
+        crate::common::command().args(["report", dir.path().to_str().unwrap(), "--by", "planner"]).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
+    for line in [
+        "## Best run per group (highest cov_final_reach; of those within 0.005 of it, the shortest time_s)",
+        // c3 lies within 0.005 of c2's 0.903 and is the fastest of the three.
+        "| planner=cell_order | c3 | cell_order | 0.8990 | 350.0 |",
+        "| planner=spiral | p1 | spiral | 0.9500 | 900.0 |",
+        // Means ± t(0.975, 2)·s/√3: coverage s = 0.002, time s = 76.376.
+        "| planner=cell_order | cell_order | 3 | 0.9010 ± 0.0050 | 416.7 ± 189.7 s |",
+        "| planner=spiral | spiral | 1 | 0.9500 (1 run) | 900.0 s (1 run) |",
+        // No plan of the three dominates another (faster ones cover less).
+        "| planner=cell_order | 3 | 3 | 3 | 1.000 | 1.000 | 1.000 |",
+        "| planner=cell_order | 3 | 3/3 | 0.9010 ± 0.0050 | 416.7 ± 189.7 s | 0.9010 ± 0.0050 |",
+        "![Mission time against reachable coverage, every plan](pareto.png)",
+    ] {
+        assert!(md.contains(line), "missing {line:?} in\n{md}");
+    }
+    assert!(!md.contains("highest f over") && !md.contains("| mean f |"), "{md}");
+}

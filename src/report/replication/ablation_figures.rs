@@ -350,6 +350,10 @@ impl Figure for ConvergenceFigure {
     }
 }
 
+/// The title of [`PlannerPathsFigure`].
+const PLANNER_PATHS_TITLE: &str = "Best executable run of each planner on each map: blue path; cells green once, orange 2+ \
+                                   times, red obstacle hit; ▲ start, ✕ end";
+
 /// The best path of each planner (columns) on each map (rows).
 pub struct PlannerPathsFigure<'a> {
     /// Rows of panels; a `None` cell is left empty.
@@ -361,17 +365,13 @@ pub struct PlannerPathsFigure<'a> {
 
 impl Figure for PlannerPathsFigure<'_> {
     fn size(&self) -> (u32, u32) {
-        let cols = self.rows.iter().map(Vec::len).max().unwrap_or(1).max(1);
-        (cols as u32 * 330, self.rows.len().max(1) as u32 * 350 + 40)
+        let cols = self.rows.iter().map(Vec::len).max().unwrap_or(1).max(1) as u32;
+        let title = crate::plot::title_height(PLANNER_PATHS_TITLE, cols * 330, 18.0);
+        (cols * 330, self.rows.len().max(1) as u32 * 350 + title)
     }
 
     fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = root
-            .titled(
-                "Best executable run of each planner on each map: blue path; cells green once, orange 2+ times, red obstacle hit; ▲ start, ✕ end",
-                text(18.0),
-            )
-            .map_err(err)?;
+        let root = crate::plot::titled(root, PLANNER_PATHS_TITLE, 18.0)?;
         let cols = self.rows.iter().map(Vec::len).max().unwrap_or(1).max(1);
         let areas = root.split_evenly((self.rows.len().max(1), cols));
         for (r, row) in self.rows.iter().enumerate() {
@@ -398,6 +398,13 @@ impl Figure for PlannerPathsFigure<'_> {
                         let width = area.dim_in_pixel().0;
                         let below =
                             area.titled(planner, crate::plot::fitting_text(planner, width, 14.0)).map_err(err)?;
+                        // The map on a line of its own where map and scores do not fit one.
+                        let (below, rest) = match rest.split_once(": ") {
+                            Some((map, scores)) if !crate::plot::fits(rest, width, 14.0) => {
+                                (below.titled(map, crate::plot::fitting_text(map, width, 13.0)).map_err(err)?, scores)
+                            }
+                            _ => (below, rest),
+                        };
                         draw_map_paths(&below, &PathFigure { title: rest.to_string(), ..p.clone() }, (14.0, 10.0))?;
                     }
                     None => {

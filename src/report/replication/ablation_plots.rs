@@ -121,14 +121,16 @@ fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
     ConvergenceFigure { panels }
 }
 
-/// The best executable run (by `f_reach`) of each variant on each map, loaded for its panel.
+/// The best run of each variant on each map on the common scorer's measures
+/// ([`crate::report::common_tables::best_by_coverage_then_time`]), loaded for its panel.
 fn best_paths(c: &Comparing, dir: &Path) -> Vec<Vec<Option<LoadedPanel>>> {
     let mut loaded = Vec::new();
     for map in &c.maps {
         let mut row = Vec::new();
         for v in &c.variants {
             let rows = c.rows_of(map, v);
-            let Some(&best) = rows.iter().max_by(|&&a, &&b| c.num(a, "f_reach").total_cmp(&c.num(b, "f_reach"))) else {
+            use crate::report::common_tables::{COVERAGE, TIME, best_by_coverage_then_time};
+            let Some(best) = best_by_coverage_then_time(&rows, |r| (c.num(r, COVERAGE), c.num(r, TIME))) else {
                 row.push(None);
                 continue;
             };

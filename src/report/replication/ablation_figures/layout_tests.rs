@@ -104,3 +104,37 @@ fn convergence_figures_keep_every_text_on_the_canvas_and_every_tick_distinct() {
     }
     assert!(found.is_empty(), "{}", found.join("\n"));
 }
+
+#[test]
+fn planner_path_grids_keep_every_text_on_the_canvas() {
+    use crate::coverage::CoverageGrid;
+    use crate::geom::Point;
+    let map = crate::map::presets::preset("thesis-1").unwrap();
+    let grid = CoverageGrid::new(&map);
+    let path = vec![Point::new(1.0, 1.0), Point::new(8.0, 1.0), Point::new(8.0, 8.0)];
+    let panel = |planner: &str, map_name: &str| PathFigure {
+        map: &map,
+        grid: &grid,
+        paths: vec![path.clone()],
+        width: 0.6,
+        robots: Vec::new(),
+        title: format!("{planner}, {map_name}: 1234 s, 90.1 % of the reachable cells"),
+    };
+    let mut found = Vec::new();
+    for (name, shape) in shapes() {
+        let rows: Vec<Vec<Option<PathFigure>>> = shape
+            .iter()
+            .map(|(map_name, groups)| groups.iter().map(|(g, _)| Some(panel(g, map_name))).collect())
+            .collect();
+        // One planner of the first map without an executable plan: its cell says so.
+        let mut rows = rows;
+        let mut missing: Vec<Vec<Option<String>>> = rows.iter().map(|r| vec![None; r.len()]).collect();
+        rows[0][0] = None;
+        missing[0][0] = Some("waypoint-camera: no executable plan of 10 runs".into());
+        let figure = PlannerPathsFigure { rows, missing };
+        for p in problems(&figure, &["1234 s", "no executable plan of 10 runs"]).unwrap() {
+            found.push(format!("planner paths {name}: {p}"));
+        }
+    }
+    assert!(found.is_empty(), "{}", found.join("\n"));
+}
