@@ -21,12 +21,29 @@ pub fn chains(clear: &Clearance, targets: &[bool]) -> Vec<Vec<Point>> {
     chains_within(clear, targets, (0..map.rows(), 0..map.cols()))
 }
 
+/// [`chains`] simplified where a straight move strays less than `tolerance_m` from them (the
+/// quota completion's chains: fewer, longer segments, fewer turns).
+pub fn straightened_chains(clear: &Clearance, targets: &[bool], tolerance_m: f64) -> Vec<Vec<Point>> {
+    let map = clear.map();
+    chains_in(clear, targets, (0..map.rows(), 0..map.cols()), tolerance_m)
+}
+
 /// [`chains`] whose walks start and run only in the map rows and columns of `window` (the
 /// targets lie inside it, less half a width): a cell's own completion reads its region alone.
 pub fn chains_within(
     clear: &Clearance,
     targets: &[bool],
     window: (std::ops::Range<usize>, std::ops::Range<usize>),
+) -> Vec<Vec<Point>> {
+    chains_in(clear, targets, window, 0.25 * clear.map().resolution())
+}
+
+/// [`chains_within`], simplified within `tolerance_m`.
+fn chains_in(
+    clear: &Clearance,
+    targets: &[bool],
+    window: (std::ops::Range<usize>, std::ops::Range<usize>),
+    tolerance_m: f64,
 ) -> Vec<Vec<Point>> {
     let map = clear.map();
     let (rows, cols) = (map.rows() as isize, map.cols() as isize);
@@ -96,16 +113,15 @@ pub fn chains_within(
             chain.push(j);
             here = j;
         }
-        out.push(simplify(clear, &chain.iter().map(|&i| centre(i)).collect::<Vec<_>>()));
+        out.push(simplify(clear, &chain.iter().map(|&i| centre(i)).collect::<Vec<_>>(), tolerance_m));
     }
     out
 }
 
 /// Drops the points of `pts` a straight move can skip: from each kept point, the farthest
-/// point reachable by a fitting segment that passes within a quarter cell of every point
+/// point reachable by a fitting segment that passes within `tol` metres of every point
 /// between them.
-fn simplify(clear: &Clearance, pts: &[Point]) -> Vec<Point> {
-    let tol = 0.25 * clear.map().resolution();
+fn simplify(clear: &Clearance, pts: &[Point], tol: f64) -> Vec<Point> {
     let mut out = vec![pts[0]];
     let mut a = 0;
     while a + 1 < pts.len() {

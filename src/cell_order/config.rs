@@ -59,6 +59,9 @@ pub enum Completion {
     /// ([`super::cell_completion`]), so that its time is part of the tour's cost; what that
     /// leaves gets the boundary pass after the tour.
     Cells,
+    /// The quota heuristic ([`super::quota`]): the boundary chains as pieces, the cheapest per
+    /// cell first (approach and turning counted) until the coverage goal is met, the rest after.
+    Quota,
     /// The patterns' greedy pass alone (what boustrophedon and spiral do).
     Greedy,
     /// Nothing: the sweeps only.
@@ -95,8 +98,8 @@ pub struct CellOrderSection {
     /// Local search (best choices, Or-opt, 2-opt) on the best and one random child of every
     /// generation.
     pub memetic: bool,
-    /// `"boundary"`, `"cells"`, `"greedy"` or `"none"`: how the strips the lanes leave are
-    /// visited.
+    /// `"boundary"`, `"cells"`, `"quota"`, `"greedy"` or `"none"`: how the strips the lanes leave
+    /// are visited.
     pub completion: Completion,
     /// The share of the reachable coverable cells the plan must cover, in (0, 1]: the GA ranks
     /// tours by when they reach it, the returned plan is the finalist whose common-scorer

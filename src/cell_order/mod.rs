@@ -6,8 +6,9 @@
 //! operators in [`operators`], the memetic step in [`local`]), the exact Held–Karp solver
 //! ([`exact`]) or the iterated local search of the GTSP reference ([`ils`]) orders them; the
 //! controls with no search ([`controls`]) give the plans a search has to beat. The plan drives the chosen sweeps joined by
-//! [`crate::map::clearance::Clearance::connect`] routes, then the patterns' completion pass,
-//! then to the end station: executable by construction.
+//! [`crate::map::clearance::Clearance::connect`] routes, then a completion pass (the boundary
+//! chains of [`boundary`], or the quota heuristic of [`quota`] that takes the cheapest pieces
+//! first up to the coverage goal), then to the end station: executable by construction.
 
 pub mod boundary;
 pub mod cell_completion;
@@ -18,6 +19,7 @@ pub mod ils;
 pub mod local;
 pub mod operators;
 mod planner;
+pub mod quota;
 pub mod rank;
 pub mod reads;
 pub mod search;
@@ -40,7 +42,7 @@ use std::time::Instant;
 use sweeps::CellSweeps;
 use tour::{Candidate, Instance, Tour, UNREACHED_S, leg_time, leg_turn_rad};
 
-pub use planner::time_to_goal;
+pub use planner::{area_bound_s, time_to_goal};
 
 /// The most candidate sweeps a run accepts (cells × directions × 4 entries): the leg-time
 /// matrix and the transit lengths each hold the square of it in `f32`, 3.2 GB at this bound.
@@ -57,6 +59,9 @@ pub struct Prepared<'m> {
     pub sweeps: CellSweeps,
     /// The tour problem.
     pub instance: Instance,
+    /// The share of the reachable coverable cells the plan must cover, where it has a goal
+    /// (the quota completion stops choosing pieces there).
+    pub coverage_goal: Option<f64>,
 }
 
 /// How a map is prepared for tours: the lane directions offered to every cell, the driving
@@ -70,6 +75,8 @@ pub struct Preparation<'a> {
     pub completion_m_per_m2: f64,
     /// The plan's completion.
     pub completion: Completion,
+    /// The plan's coverage goal, a share of the reachable coverable cells.
+    pub coverage_goal: Option<f64>,
 }
 
 impl<'a> Preparation<'a> {
@@ -79,6 +86,7 @@ impl<'a> Preparation<'a> {
             directions: &section.directions,
             completion_m_per_m2: section.completion_m_per_m2,
             completion: section.completion,
+            coverage_goal: section.coverage_goal,
         }
     }
 }
@@ -179,7 +187,7 @@ pub fn prepare_within<'m>(
         leg_time(metres, turn, speed, rot)
     });
     instance.completion_s_per_share = completion_m_per_m2 * s.map.resolution().powi(2) / speed * reachable;
-    Ok(Prepared { clear, reach, sweeps, instance })
+    Ok(Prepared { clear, reach, sweeps, instance, coverage_goal: how.coverage_goal })
 }
 
 /// The reachable clearance of `scenario`, its reach and its cells with their candidate sweeps
@@ -238,6 +246,7 @@ impl Prepared<'_> {
         match completion {
             Completion::None => {}
             Completion::Greedy => crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route),
+            Completion::Quota => quota::complete(&self.clear, &self.reach, robot, self.coverage_goal, &mut route),
             Completion::Boundary | Completion::Cells => {
                 let map = self.clear.map();
                 let grid = crate::coverage::CoverageGrid::new(map);

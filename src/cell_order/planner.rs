@@ -232,9 +232,18 @@ fn end_at_goal(
     path
 }
 
+/// A lower bound on the time any plan needs to cover the share `goal` of the reachable
+/// coverable cells: their area over the area a robot sweeps per second driving straight
+/// (width × speed); turning in place sweeps nothing new in the scorer's model (003 §3.3).
+pub fn area_bound_s(prepared: &Prepared, robot: &crate::coverage::Footprint, goal: f64) -> f64 {
+    let cell = prepared.clear.map().resolution().powi(2);
+    goal * prepared.reach.coverable_count() as f64 * cell / (robot.width * robot.speed)
+}
+
 /// The planner's own fields of `summary.json`.
 fn details_of(
     prepared: &Prepared,
+    robot: &crate::coverage::Footprint,
     solved: &Solved,
     skipped: usize,
     goal: Option<(f64, f64, Vec<f64>)>,
@@ -268,6 +277,7 @@ fn details_of(
     }
     if let Some((goal, time_s, finalists)) = goal {
         details.insert("coverage_goal".into(), goal.into());
+        details.insert("lower_bound_to_goal_s".into(), area_bound_s(prepared, robot, goal).into());
         // A goal not reached has no time: `null`, not the ranking's penalty.
         let reached = |t: f64| (t < UNREACHED_S).then_some(t);
         details.insert("time_to_goal_s".into(), reached(time_s).into());
@@ -298,6 +308,7 @@ impl Planner for CellOrderConfig {
             directions: &self.directions,
             completion_m_per_m2: self.completion_m_per_m2,
             completion: self.completion,
+            coverage_goal: self.coverage_goal,
         };
         let prepared = prepare_within(s, how, &cutoff).map_err(|e| match e {
             PrepareError::Interrupted => PlannerError::Interrupted,
@@ -347,6 +358,7 @@ impl Planner for CellOrderConfig {
             wall_s: started.elapsed().as_secs_f64(),
             details: details_of(
                 &prepared,
+                &s.robot,
                 &solved,
                 skipped,
                 chosen.goal,

@@ -155,7 +155,7 @@ fn a_coverage_goal_ends_the_plan_where_the_scorer_reaches_it() {
     let budget = Budget { evaluations: Some(3_000), ..Budget::iterations(1_000_000) };
     let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
     let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
-    for completion in [Completion::Boundary, Completion::Cells] {
+    for completion in [Completion::Boundary, Completion::Cells, Completion::Quota] {
         let whole = CellOrderSection { completion, ..CellOrderSection::default() }.validate(&ctx).unwrap();
         let goal = CellOrderSection { completion, coverage_goal: Some(0.9), ..CellOrderSection::default() };
         let planner = goal.validate(&ctx).unwrap();
@@ -169,6 +169,11 @@ fn a_coverage_goal_ends_the_plan_where_the_scorer_reaches_it() {
         let curve = CoverageCurve::of_plan(scorer.grid(), scorer.reach(), &a.plan, &[s.robot]);
         let reported = a.details["time_to_goal_s"].as_f64().unwrap();
         assert!((curve.time_to(0.9).unwrap() - reported).abs() < 1e-6, "{completion:?}: {reported}");
+        // The area bound: 0.9 of the reachable cells' area over width × speed, below the plan.
+        let bound = a.details["lower_bound_to_goal_s"].as_f64().unwrap();
+        let area = scorer.reach().coverable_count() as f64 * s.map.resolution().powi(2);
+        assert!((bound - 0.9 * area / (s.robot.width * s.robot.speed)).abs() < 1e-6 * bound, "{bound}");
+        assert!(bound > 0.0 && bound < reported, "{completion:?}: {bound} vs {reported}");
         let finalists: Vec<f64> =
             a.details["finalists_time_to_goal_s"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
         assert!(!finalists.is_empty() && finalists.iter().all(|&t| t >= reported), "{finalists:?}");
@@ -191,8 +196,8 @@ fn the_goal_cost_ranks_plans_as_the_scorer_does() {
     let m = covga::map::presets::preset("thesis-2").unwrap();
     let s = Scenario { robot: Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 }, ..scenario(m) };
     let s = Scenario { start: Point::new(1.3, 1.3), end: Point::new(1.3, 1.3), ..s };
-    for (completion, least) in [(Completion::Boundary, 0.93), (Completion::Cells, 0.9)] {
-        let section = CellOrderSection { completion, ..CellOrderSection::default() };
+    for (completion, least) in [(Completion::Boundary, 0.93), (Completion::Cells, 0.9), (Completion::Quota, 0.93)] {
+        let section = CellOrderSection { completion, coverage_goal: Some(0.9), ..CellOrderSection::default() };
         let prepared = prepare(&s, covga::cell_order::Preparation::of(&section)).unwrap();
         let ranked = sample(&prepared, &s, completion, 0.9, 1000, 1);
         let (rho, before) = (ranked.rho().unwrap(), ranked.rho_tour_time().unwrap());

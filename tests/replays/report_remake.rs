@@ -39,6 +39,11 @@ const REPORTS: &[(&str, &str, &[&str])] = &[
             "cell_order.seed_directions",
         ],
     ),
+    (
+        "quota-completion",
+        "report/summary.md",
+        &["--by", "cell_order.solver", "--by", "cell_order.completion", "--compare", "cell_order.completion=boundary"],
+    ),
     ("thesis-table-4-3", "report/summary.md", &["--by", "thesis.selection"]),
     (
         "thesis-table-4-3",

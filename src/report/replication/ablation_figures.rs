@@ -198,22 +198,13 @@ pub fn draw_legend_strip<DB: DrawingBackend>(
 }
 
 /// Where legend entries of `labels` go in a strip `width` pixels wide: `(line, x)` per entry,
-/// a new line whenever the next entry would run past the right edge.
+/// in columns as wide as the widest entry, as many as fit side by side (one at least), filled
+/// row by row, so that keys and labels line up down the strip.
 pub fn legend_layout(labels: &[String], width: u32) -> Vec<(u32, i32)> {
-    let (mut line, mut x) = (0u32, 20i32);
-    labels
-        .iter()
-        .map(|label| {
-            let w = 28 + (label.chars().count() as f64 * 0.6 * 14.0) as i32 + 30;
-            if x > 20 && x + w > width as i32 - 10 {
-                line += 1;
-                x = 20;
-            }
-            let at = (line, x);
-            x += w;
-            at
-        })
-        .collect()
+    let entry = |label: &String| 28 + (label.chars().count() as f64 * 0.6 * 14.0) as i32 + 30;
+    let column = labels.iter().map(entry).max().unwrap_or(1).max(1);
+    let columns = ((width as i32 - 30) / column).max(1) as usize;
+    (0..labels.len()).map(|k| ((k / columns) as u32, 20 + (k % columns) as i32 * column)).collect()
 }
 
 /// The y range of a convergence panel: the bands and scored plans with a margin (the curves of
@@ -424,16 +415,18 @@ mod layout_tests;
 mod tests {
     use super::*;
 
-    /// Entries run left to right and wrap before the right edge; an entry wider than the strip
-    /// still gets a line of its own.
+    /// Entries run left to right in columns as wide as the widest and wrap before the right
+    /// edge; an entry wider than the strip still gets a line of its own.
     #[test]
-    fn legend_entries_wrap_before_the_edge() {
+    fn legend_entries_line_up_in_columns_and_wrap_before_the_edge() {
         let labels = |n: &[usize]| n.iter().map(|&k| "x".repeat(k)).collect::<Vec<_>>();
         // An entry of k characters takes 28 + floor(8.4 k) + 30 pixels.
         for (chars, width, expected) in [
             (vec![10, 10], 1000, vec![(0, 20), (0, 162)]),
             (vec![10, 10, 10], 400, vec![(0, 20), (0, 162), (1, 20)]),
             (vec![200, 5], 300, vec![(0, 20), (1, 20)]),
+            // Three columns of the widest entry (310 px): the short ones keep its place.
+            (vec![30, 5, 5, 30], 1000, vec![(0, 20), (0, 330), (0, 640), (1, 20)]),
         ] {
             assert_eq!(legend_layout(&labels(&chars), width), expected, "{chars:?} in {width} px");
         }
