@@ -91,7 +91,7 @@ pub struct EvalArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
-    /// Folder for path.png, path.svg, path.csv and metrics.json.
+    /// Folder for path.png, path.svg, path.csv, coverage_curve.csv and metrics.json.
     #[arg(long, default_value = "out/eval")]
     out: PathBuf,
 }
@@ -196,7 +196,7 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
         println!("{}", evaluation.json()?);
     } else {
         print_table(&evaluation.report);
-        println!("wrote {}/path.png, path.svg, path.csv, metrics.json", a.out.display());
+        println!("wrote {}/path.png, path.svg, path.csv, coverage_curve.csv, metrics.json", a.out.display());
     }
     Ok(())
 }
@@ -205,7 +205,7 @@ fn print_table(r: &EvalReport) {
     let m = &r.metrics;
     let c = &r.common;
     let executable = if c.executable { "yes".to_string() } else { format!("NO ({})", c.not_executable_why()) };
-    let rows: [(&str, String); 24] = [
+    let rows: [(&str, String); 25] = [
         ("map", r.map.to_string()),
         ("path", r.source.clone()),
         ("robot", crate::coverage::motion::time_model(&r.robot)),
@@ -228,6 +228,14 @@ fn print_table(r: &EvalReport) {
         ("cov_final over reachable", format!("{:.6}", c.cov_final_reach)),
         ("camera walls / open", format!("{:.4} / {:.4}", c.cam_walls_free, c.cam_open_free)),
         ("time [s]", format!("{:.1}", c.time_s)),
+        (
+            "× the area bound",
+            format!(
+                "{:.2} (bound {:.1} s: covered area / (width · speed))",
+                c.time_s / r.time_lower_bound_s,
+                r.time_lower_bound_s
+            ),
+        ),
         (
             "unreachable pockets",
             r.pockets.map_or("-".into(), |n| format!("{n} ({:.2} m²)", r.pocket_area_m2.unwrap_or(0.0))),

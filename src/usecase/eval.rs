@@ -110,6 +110,13 @@ pub struct EvalReport {
     /// Fleet metrics (with a fleet).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fleet: Option<crate::fleet::metrics::FleetScore>,
+    /// Times to 80, 90 and 95 % of the reachable cells and the area over the curve
+    /// (`coverage_curve.csv` holds the curve), as `covga run` reports them.
+    pub coverage_curve: crate::coverage::curve::CurveSummary,
+    /// A lower bound on the time any plan needs to cover what this one covers of the reachable
+    /// cells: their area over the area the robots sweep per second driving straight (Σ width ×
+    /// speed); turning in place sweeps nothing new in the scorer's model.
+    pub time_lower_bound_s: f64,
 }
 
 /// A scored plan: the report and what its figure and files are made of.
@@ -124,6 +131,8 @@ pub struct Evaluation {
     pub paths: Vec<Vec<Point>>,
     /// The fleet's robots (name, width) in path order; empty without a fleet.
     pub robots: Vec<(String, f64)>,
+    /// The plan's time-to-coverage curve over the reachable cells, each agent on its own clock.
+    pub curve: crate::coverage::curve::CoverageCurve,
 }
 
 /// The map with the request's obstacles placed, the map before them and the cells they took.
@@ -323,8 +332,11 @@ pub fn evaluate(req: &EvalRequest) -> Result<Evaluation, UseCaseError> {
     }
     let sc = score(&metrics, &robot, map.resolution(), req.projection);
     let stations: Vec<Point> = paths.iter().filter_map(|p| p.first().copied()).collect();
-    let common =
-        Scorer::for_widths(&map, robot, &widths, req.projection, &camera, &stations).score_agents(&paths, &robots);
+    let scorer = Scorer::for_widths(&map, robot, &widths, req.projection, &camera, &stations);
+    let common = scorer.score_agents(&paths, &robots);
+    let curve = crate::coverage::curve::CoverageCurve::of_plan(scorer.grid(), scorer.reach(), &paths, &robots);
+    let sweep_rate: f64 = robots.iter().map(|r| r.width * r.speed).sum();
+    let time_lower_bound_s = common.unique_reach_cells as f64 * map.resolution().powi(2) / sweep_rate;
     let report = EvalReport {
         map: map.name().to_string(),
         source,
@@ -338,11 +350,13 @@ pub fn evaluate(req: &EvalRequest) -> Result<Evaluation, UseCaseError> {
         pockets: pockets.map(|p| p.0),
         pocket_area_m2: pockets.map(|p| p.1),
         fleet: fleet_score,
+        coverage_curve: curve.summary(),
+        time_lower_bound_s,
     };
     let robots = fleet_ref
         .map(|(_, f)| f.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect())
         .unwrap_or_default();
-    Ok(Evaluation { report, map, grid, paths, robots })
+    Ok(Evaluation { report, map, grid, paths, robots, curve })
 }
 
 impl Evaluation {
@@ -372,8 +386,8 @@ impl Evaluation {
         }
     }
 
-    /// Writes `metrics.json`, `path.csv`, `path.png` and `path.svg` into `out` (made if
-    /// missing); each file appears whole or not at all.
+    /// Writes `metrics.json`, `path.csv`, `coverage_curve.csv`, `path.png` and `path.svg` into
+    /// `out` (made if missing); each file appears whole or not at all.
     pub fn write(&self, out: &Path) -> Result<(), UseCaseError> {
         std::fs::create_dir_all(out)
             .map_err(|e| UseCaseError::Input(format!("{}: cannot create the output folder: {e}", out.display())))?;
@@ -381,6 +395,7 @@ impl Evaluation {
         let names: Vec<String> = self.robots.iter().map(|(n, _)| n.clone()).collect();
         crate::io::write_atomic(&out.join("path.csv"), &crate::io::fleet_path_csv(&self.paths, &names))
             .map_err(UseCaseError::internal)?;
+        crate::io::write_atomic(&out.join("coverage_curve.csv"), &self.curve.csv()).map_err(UseCaseError::internal)?;
         let figure = PathFigure {
             map: &self.map,
             grid: &self.grid,
