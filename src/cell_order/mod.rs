@@ -292,7 +292,10 @@ pub fn local_optimum_plan_within(
 ) -> Result<Vec<Point>, String> {
     let planning = scenario.for_planning();
     let cutoff = SetupCutoff { wall_clock: deadline, interrupt: None };
-    let prepared = prepare_within(&planning, Preparation::of(section), &cutoff).map_err(|e| e.to_string())?;
+    // The seed is the whole plan: a quota completion takes every piece (the section's
+    // coverage goal is not read here).
+    let how = Preparation { coverage_goal: None, ..Preparation::of(section) };
+    let prepared = prepare_within(&planning, how, &cutoff).map_err(|e| e.to_string())?;
     let mut tour = search::nearest_neighbour(&prepared.instance);
     local::improve(&prepared.instance, &mut tour, search::ROUNDS);
     Ok(prepared.path(&tour, &scenario.robot, (scenario.start, scenario.end), section.completion).0)

@@ -289,3 +289,31 @@ fn a_small_population_is_refused_only_by_the_key_its_selection_reads() {
     let tournament = check(&file("tournament_size = 11\n")).unwrap_err();
     assert!(tournament.contains("cell_order.tournament_size"), "{tournament}");
 }
+
+/// The quota completion drives the pieces its goal does not need after the others, so a plan
+/// with a goal ends covering what the whole plan covers; the thesis GA's cell-order seed is the
+/// whole plan whatever goal the section names (it does not read the goal).
+#[test]
+fn quota_plans_cover_all_in_the_end_and_the_seed_plan_ignores_the_goal() {
+    use covga::cell_order::config::Completion;
+    let s = scenario(random_map(11, 4));
+    let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
+    let whole = CellOrderSection { completion: Completion::Quota, ..CellOrderSection::default() };
+    let a = prepare(&s, covga::cell_order::Preparation::of(&whole)).unwrap();
+    let tour = covga::cell_order::search::nearest_neighbour(&a.instance);
+    let path = |p: &covga::cell_order::Prepared, c: Completion| p.path(&tour, &s.robot, (s.start, s.end), c).0;
+    // A goal a little above what the sweeps cover: the quota needs a few pieces only.
+    let sweeps = scorer.score(&[path(&a, Completion::None)]).cov_final_reach;
+    let goal = CellOrderSection { coverage_goal: Some(sweeps + 0.01), ..whole.clone() };
+    let b = prepare(&s, covga::cell_order::Preparation::of(&goal)).unwrap();
+    let (full, quota) = (path(&a, Completion::Quota), path(&b, Completion::Quota));
+    let (cf, cq) = (scorer.score(std::slice::from_ref(&full)), scorer.score(std::slice::from_ref(&quota)));
+    assert!(cf.executable && cq.executable, "{cf:?} {cq:?}");
+    // Both cover everything in the end (the pieces left follow the quota's).
+    assert!((cf.cov_final_reach - cq.cov_final_reach).abs() < 0.01, "{} {}", cf.cov_final_reach, cq.cov_final_reach);
+    assert!(cq.cov_final_reach > sweeps + 0.01, "{} after {sweeps}", cq.cov_final_reach);
+    // The goal changed which pieces come first; the seed plan does not read it.
+    assert_ne!(full, quota);
+    let seed = covga::cell_order::local_optimum_plan(&s, &whole).unwrap();
+    assert_eq!(covga::cell_order::local_optimum_plan(&s, &goal).unwrap(), seed);
+}
