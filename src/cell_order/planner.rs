@@ -151,6 +151,16 @@ struct Chosen {
 }
 
 impl CellOrderConfig {
+    /// How a run prepares its map.
+    fn preparation(&self) -> Preparation<'_> {
+        Preparation {
+            directions: &self.directions,
+            completion_m_per_m2: self.completion_m_per_m2,
+            completion: self.completion,
+            coverage_goal: self.coverage_goal,
+        }
+    }
+
     /// Every lane direction offered, where some came from the map's walls (for the summary).
     fn wall_directions_used(&self) -> Option<&[f64]> {
         (self.wall_directions > 0).then_some(self.directions.as_slice())
@@ -304,13 +314,7 @@ impl Planner for CellOrderConfig {
         let planning = scenario.for_planning();
         let s = &*planning;
         let cutoff = SetupCutoff::of_budget(budget, started);
-        let how = Preparation {
-            directions: &self.directions,
-            completion_m_per_m2: self.completion_m_per_m2,
-            completion: self.completion,
-            coverage_goal: self.coverage_goal,
-        };
-        let prepared = prepare_within(s, how, &cutoff).map_err(|e| match e {
+        let prepared = prepare_within(s, self.preparation(), &cutoff).map_err(|e| match e {
             PrepareError::Interrupted => PlannerError::Interrupted,
             PrepareError::Input(m) => PlannerError::Input(format!("cell_order on map `{}`: {m}", s.map.name())),
         })?;

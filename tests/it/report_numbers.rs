@@ -15,10 +15,23 @@ const RUNS: [(&str, &str, u32, &str, f64, f64, f64); 6] = [
     ("b3", "cfgB", 2, "0.4", 0.72, 0.60, 6.0),
 ];
 
+/// Writes a study folder's `runs.csv` (one row per map of column values; a column not given is
+/// 0) and `study.json` into `dir`.
+fn write_study(dir: &std::path::Path, params: &[String], rows: &[HashMap<&str, String>]) {
+    let header = covga::study::records::header(params);
+    let mut csv = header.join(",") + "\n";
+    for values in rows {
+        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
+        csv += &(row.join(",") + "\n");
+    }
+    std::fs::write(dir.join("runs.csv"), csv).unwrap();
+    let study = format!("{{\"grid_hash\": \"fixture\", \"runs\": {}}}", rows.len());
+    std::fs::write(dir.join("study.json"), study).unwrap();
+}
+
 fn fixture(dir: &std::path::Path) {
     let params = vec!["thesis.c_len".to_string()];
-    let header = covga::study::records::header(&params);
-    let mut csv = header.join(",") + "\n";
+    let mut rows = Vec::new();
     for (id, config, rep, c_len, cov, t, wall) in RUNS {
         let values: HashMap<&str, String> = [
             ("run_id", id.to_string()),
@@ -41,11 +54,9 @@ fn fixture(dir: &std::path::Path) {
         ]
         .into_iter()
         .collect();
-        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
-        csv += &(row.join(",") + "\n");
+        rows.push(values);
     }
-    std::fs::write(dir.join("runs.csv"), csv).unwrap();
-    std::fs::write(dir.join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 6}").unwrap();
+    write_study(dir, &params, &rows);
 }
 
 #[test]
@@ -278,8 +289,7 @@ fn two_grouping_columns_lay_the_panels_out_as_rows_by_columns() {
 fn f_is_ranked_and_averaged_within_one_projection() {
     let dir = tempfile::tempdir().unwrap();
     let params = vec!["scorer.projection".to_string()];
-    let header = covga::study::records::header(&params);
-    let mut csv = header.join(",") + "\n";
+    let mut rows = Vec::new();
     // (run, config, projection, cov_final, t_final): f1 = (c + t)/2 is larger than f2 = c·t,
     // so a ranking across projections would put every f1 run first.
     for (id, config, projection, cov, t) in [
@@ -307,11 +317,9 @@ fn f_is_ranked_and_averaged_within_one_projection() {
         ]
         .into_iter()
         .collect();
-        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
-        csv += &(row.join(",") + "\n");
+        rows.push(values);
     }
-    std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
-    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 4}").unwrap();
+    write_study(dir.path(), &params, &rows);
     let o = crate::common::command().args(["report", dir.path().to_str().unwrap()]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let md = std::fs::read_to_string(dir.path().join("report/summary.md")).unwrap();
@@ -387,8 +395,7 @@ const MIXED: [(&str, &str, u32, &str, f64, f64); 4] = [
 #[test]
 fn a_study_of_other_planners_is_tabled_on_mission_time_and_reachable_coverage() {
     let dir = tempfile::tempdir().unwrap();
-    let header = covga::study::records::header(&[]);
-    let mut csv = header.join(",") + "\n";
+    let mut rows = Vec::new();
     for (id, config, rep, planner, cov, time) in MIXED {
         let values: HashMap<&str, String> = [
             ("run_id", id.to_string()),
@@ -411,11 +418,9 @@ fn a_study_of_other_planners_is_tabled_on_mission_time_and_reachable_coverage() 
         ]
         .into_iter()
         .collect();
-        let row: Vec<String> = header.iter().map(|h| values.get(h.as_str()).cloned().unwrap_or("0".into())).collect();
-        csv += &(row.join(",") + "\n");
+        rows.push(values);
     }
-    std::fs::write(dir.path().join("runs.csv"), csv).unwrap();
-    std::fs::write(dir.path().join("study.json"), "{\"grid_hash\": \"fixture\", \"runs\": 4}").unwrap();
+    write_study(dir.path(), &[], &rows);
     let o =
         crate::common::command().args(["report", dir.path().to_str().unwrap(), "--by", "planner"]).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
