@@ -11,7 +11,7 @@
 use super::planners_pareto::{PlanPoint, non_dominated};
 use super::report_tables::GroupTables;
 use crate::cell_order::controls::COVERAGE_TIE;
-use crate::stats::{mean_ci95, mean_min_max};
+use crate::stats::mean_ci95;
 use std::fmt::Write as _;
 
 /// A mean and its 95 % CI half-width.
@@ -151,8 +151,7 @@ impl GroupTables<'_> {
                 })
                 .collect();
             let executable = points.iter().filter(|p| p.executable).count();
-            let w: Vec<f64> = g.rows.iter().map(|&r| self.num(r, "wall_s")).collect();
-            let (mean, lo, hi) = mean_min_max(&w);
+            let (mean, lo, hi) = self.wall_times(&g.rows);
             let _ = writeln!(
                 md,
                 "| {} | {} | {executable} | {} | {mean:.3} | {lo:.3} | {hi:.3} |",

@@ -67,6 +67,11 @@ impl GroupTables<'_> {
         self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
     }
 
+    /// The mean, least and most wall time of `rows`' runs [s].
+    pub(super) fn wall_times(&self, rows: &[usize]) -> (f64, f64, f64) {
+        mean_min_max(&rows.iter().map(|&r| self.num(r, "wall_s")).collect::<Vec<_>>())
+    }
+
     /// A cell of row `r` (empty where absent).
     pub(super) fn get(&self, r: usize, c: &str) -> String {
         self.t.col(c).map(|i| self.t.rows[r][i].clone()).unwrap_or_default()
@@ -138,8 +143,7 @@ impl GroupTables<'_> {
             "| group | runs | front size | hypervolume | wall s mean | min | max |\n|---|---|---|---|---|---|---|"
         );
         for (g, f) in groups.iter().zip(facets) {
-            let w: Vec<f64> = g.rows.iter().map(|&r| self.num(r, "wall_s")).collect();
-            let (mean, lo, hi) = mean_min_max(&w);
+            let (mean, lo, hi) = self.wall_times(&g.rows);
             let _ = writeln!(
                 md,
                 "| {} | {} | {} | {:.4} | {:.3} | {:.3} | {:.3} |",
