@@ -1,14 +1,14 @@
 //! Points, vectors, headings and turn angles.
 //!
 //! World frame as in ROS: x to the right, y up, metres. Headings of the thesis genome are in
-//! degrees measured from +x (003 §3.2); rotation time is computed in radians (spec R7).
+//! degrees measured from +x (003 §3.2); rotation time is computed in radians (R7).
 
 /// A position in metres in the world frame.
 pub type Point = nalgebra::Point2<f64>;
 /// A displacement in metres.
 pub type Vector = nalgebra::Vector2<f64>;
 
-/// Segments shorter than this (metres) are degenerate: they have no heading (spec R6, R18).
+/// Segments shorter than this (metres) are degenerate: they have no heading (R6, R18).
 pub const ZERO_LENGTH: f64 = 1e-9;
 
 /// Unit direction of a heading given in degrees (003 eq. 3.7).
@@ -46,7 +46,7 @@ pub fn normalise_deg(alpha: f64) -> f64 {
     if a >= 360.0 { 0.0 } else { a }
 }
 
-/// `polar(v)` of spec §2.2: the move `(alpha_deg in [0,360), dist_m)` reproducing `v`.
+/// `polar(v)` of thesis-ga §2.2: the move `(alpha_deg in [0,360), dist_m)` reproducing `v`.
 /// A (near) zero vector keeps `previous_alpha` and gets distance 0.
 pub fn polar_deg(v: Vector, previous_alpha: f64) -> (f64, f64) {
     let dist = v.norm();

@@ -5,8 +5,15 @@
 //! planner of 000 ([`waypoint`]), pattern baselines ([`patterns`]), random search
 //! ([`random_search`]) and fleets ([`fleet`]), all scored by one common scorer ([`coverage`])
 //! on occupancy grid maps ([`map`]); experiments ([`experiment`]), grid studies ([`study`]),
-//! reports ([`report`]), figures ([`plot`]) and the `covga` command line ([`cli`]). Paper
-//! references (`003 eq. 3.13`) point into `shared/seeds` of the project's design documents.
+//! reports ([`report`]), figures ([`plot`]) and the `covga` command line ([`cli`]).
+//!
+//! The user guide, the reference of every key and flag, and the design are the book in
+//! `docs/` (`mdbook build docs`; its pages are Markdown in `docs/src/`). Citations in this
+//! crate: `003 eq. 3.13` and `000 eq. 2` are equations, sections and tables of the two source
+//! papers (Alberding's master's thesis and Olson et al.'s waypoint-graph planner); `thesis-ga §9.1`
+//! and `R17` are sections and resolved ambiguities of the book's design decisions for the thesis
+//! GA (`docs/src/concepts/thesis-ga-decisions.md`), `waypoint §11.4` and `W18` those for the
+//! waypoint planner (`docs/src/concepts/waypoint-decisions.md`).
 //!
 //! The modules form layers, bottom to top; each imports only from its own layer and those
 //! below (`tests/it/architecture.rs` holds the order):

@@ -1,6 +1,6 @@
 //! Random search: the control that tells whether a GA's machinery helps at all. It draws
 //! random action genomes exactly as the thesis GA draws its initial population (003 §3.3.1,
-//! spec §6: `Init_AC` actions, moves up to `init_dist_max`, corrected and evaluated as in R17)
+//! thesis-ga §6: `Init_AC` actions, moves up to `init_dist_max`, corrected and evaluated as in R17)
 //! in batches of `Pop_min`, until the budget is spent (the executor's stop rules, as every planner's), and keeps the fittest by the
 //! thesis fitness `f_obstacle`. Budget-matched to the GAs through `budget.evaluations`.
 

@@ -65,20 +65,37 @@ def test_mypy_strict_checks_code_that_uses_covga(tmp_path):
     assert 'Argument "width" to "pattern" has incompatible type "str"' in bad.stdout
 
 
-def test_the_readmes_python_session_runs_as_written(tmp_path, monkeypatch):
-    """The README's "A short session" block, run as a user runs it from the repository root
-    (here a folder with the repository's experiments and grids, so that out/ lands in tmp)."""
+def test_the_books_python_session_runs_as_written(tmp_path, monkeypatch):
+    """The book's "A short session" block (docs/src/guide/python.md), run as a user runs it from
+    the repository root (here a folder with the repository's experiments and grids, so that out/
+    lands in tmp)."""
+    import re
+
+    from conftest import REPO
+
+    text = (REPO / "docs" / "src" / "guide" / "python.md").read_text()
+    block = re.search(r"A short session:\n\n```python\n(.*?)```", text, re.S)
+    assert block, "the book's Python session"
+    for name in ("experiments", "grids"):
+        (tmp_path / name).symlink_to(REPO / name)
+    monkeypatch.chdir(tmp_path)
+    scope: dict = {}
+    exec(compile(block.group(1), "docs/src/guide/python.md", "exec"), scope)
+    assert scope["scores"].shape == (1000, 4)
+    assert len(scope["runs"]) == 36 and (tmp_path / "out" / "smoke" / "report" / "summary.md").is_file()
+
+
+def test_the_readmes_python_lines_run_as_written(tmp_path, monkeypatch, capsys):
+    """The README's ```python block runs from the repository root and prints the scorer's
+    measures."""
     import re
 
     from conftest import REPO
 
     text = (REPO / "README.md").read_text()
-    block = re.search(r"A short session:\n\n```python\n(.*?)```", text, re.S)
-    assert block, "the README's Python session"
-    for name in ("experiments", "grids"):
-        (tmp_path / name).symlink_to(REPO / name)
-    monkeypatch.chdir(tmp_path)
-    scope: dict = {}
-    exec(compile(block.group(1), "README.md", "exec"), scope)
-    assert scope["scores"].shape == (1000, 4)
-    assert len(scope["runs"]) == 36 and (tmp_path / "out" / "smoke" / "report" / "summary.md").is_file()
+    blocks = re.findall(r"```python\n(.*?)```", text, re.S)
+    assert len(blocks) == 1, "the README has one Python block"
+    monkeypatch.chdir(REPO)
+    exec(compile(blocks[0], "README.md", "exec"), {})
+    printed = capsys.readouterr().out
+    assert "cov_final_reach" in printed and "time_s" in printed, printed

@@ -68,7 +68,8 @@ pub enum Completion {
     None,
 }
 
-/// `[cell_order]` as written.
+/// `[cell_order]`: the cell-order planner: a search over the order, lane direction and entry of
+/// the boustrophedon cells, and how the strips the lanes leave are covered.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct CellOrderSection {
@@ -84,7 +85,7 @@ pub struct CellOrderSection {
     pub tournament_size: usize,
     /// Selection pressure `SP` of the rank-based wheel (`sp` before).
     pub selection_pressure: f64,
-    /// Under `"elite"`: how many of the best may be parents (`select` before).
+    /// Under `"best"`: how many of the best may be parents (`select` before).
     pub best_parents: usize,
     /// The best carried over unchanged each generation.
     pub keep: usize,

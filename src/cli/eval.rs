@@ -80,7 +80,7 @@ pub struct EvalArgs {
     /// scenario of 003 §3.2.2. Repeatable.
     #[arg(long = "obstacle", allow_hyphen_values = true, value_name = "X0,Y0,X1,Y1")]
     obstacles: Vec<String>,
-    /// Keep the cells of `--obstacle` in the area `A_pix` (spec R29, as 003 Tables 3.1/3.2 do):
+    /// Keep the cells of `--obstacle` in the area `A_pix` (R29, as 003 Tables 3.1/3.2 do):
     /// a path that crosses them then loses coverage as well as fitness. By default obstacles
     /// are known beforehand and left out of `A_pix`, as in the thesis's experiments.
     #[arg(long)]

@@ -4,6 +4,7 @@ pub(crate) mod eval;
 mod grid;
 mod maps;
 mod migrate;
+mod reference;
 mod run;
 mod signals;
 
@@ -95,6 +96,8 @@ enum Command {
     Maps(maps::MapsArgs),
     /// Rewrite experiment and grid files to the current key names (keys that moved section).
     Migrate(migrate::MigrateArgs),
+    /// Write a reference page of the book: every key of an experiment file, or every command.
+    Reference(reference::ReferenceArgs),
 }
 
 /// Parses `args` and runs the command.
@@ -113,6 +116,7 @@ where
         Command::Report(a) => grid::report(a),
         Command::Maps(a) => maps::run(a),
         Command::Migrate(a) => migrate::run(a),
+        Command::Reference(a) => reference::run(a),
     }
 }
 

@@ -15,7 +15,7 @@ use super::sweep::{CoverageGrid, SweepCounts};
 use crate::geom::Point;
 
 /// The map as bit rows: which cells are free, and which free cells still count towards
-/// `A_pix` (not pre-marked, spec R25).
+/// `A_pix` (not pre-marked, R25).
 #[derive(Clone, Debug)]
 pub struct BitLayers {
     raster: RasterGrid,
@@ -267,7 +267,7 @@ mod tests {
 
     #[test]
     fn spec_cases_on_bit_rows() {
-        // The hand-computed cases of spec §3.3 (see coverage::tests): cov, cross, obj.
+        // The hand-computed cases of thesis-ga §3.3 (see coverage::tests): cov, cross, obj.
         let grid = CoverageGrid::new(&preset("thesis-1").unwrap());
         let layers = BitLayers::new(&grid);
         let mut v = VisitPlanes::default();

@@ -1,4 +1,4 @@
-//! The camera coverage model of 000 (§II-C.1, eq. 1, Fig. 4; spec §5, W8–W9): a forward
+//! The camera coverage model of 000 (§II-C.1, eq. 1, Fig. 4; waypoint §5, W8–W9): a forward
 //! camera with depth range `[d_min, d_max]` and horizontal field of view `θ_fov`, split into
 //! `m` angular sections; each section sees up to its first obstacle. [`ViewShape::Fan`] draws
 //! the view as the authors' public code does (a polygon through the section depths).
@@ -24,7 +24,7 @@ pub struct Camera {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ViewShape {
-    /// 000 eq. 1 as written (spec W9): a pixel is seen when it lies in a section, at a range
+    /// 000 eq. 1 as written (W9): a pixel is seen when it lies in a section, at a range
     /// between `d_min` and that section's first obstacle.
     #[default]
     Sections,

@@ -1,5 +1,5 @@
 //! Test support: inputs placed ulp by ulp so that a scan's own arithmetic lands exactly on a
-//! boundary (the half-open ends of spec §3.3), where only an exact comparison decides.
+//! boundary (the half-open ends of thesis-ga §3.3), where only an exact comparison decides.
 
 use super::raster::{RASTER_EPS, RasterGrid};
 use crate::geom::Point;

@@ -7,7 +7,7 @@ use super::{Footprint, PathMetrics, SweepCounts};
 use serde::{Deserialize, Serialize};
 
 /// The projection `f(x, y)` of the two objectives onto one number (003 eqs. 3.14–3.15).
-/// `f2` is the default (spec §5).
+/// `f2` is the default (thesis-ga §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize, Hash, Default)]
 #[serde(rename_all = "lowercase")]
 pub enum Projection {
@@ -44,7 +44,7 @@ pub fn t_actual(cov_m2: f64, r_speed: f64, r_width: f64) -> f64 {
 }
 
 /// `t_final = t_optimal / (t_actual + T_rot)` (003 eq. 3.13); 0 when nothing was covered
-/// (spec R10).
+/// (R10).
 pub fn t_final(t_optimal: f64, t_actual: f64, t_rot: f64) -> f64 {
     if t_actual <= 0.0 { 0.0 } else { t_optimal / (t_actual + t_rot) }
 }
@@ -60,7 +60,7 @@ pub fn f2(x: f64, y: f64) -> f64 {
 }
 
 /// `f_obstacle = f(x, y) / (2·obj_pix)`, and `f(x, y)` when `obj_pix = 0` (003 eq. 3.16,
-/// spec R9).
+/// R9).
 pub fn f_obstacle(f: f64, obj_pix: u64) -> f64 {
     if obj_pix == 0 { f } else { f / (2.0 * obj_pix as f64) }
 }
@@ -122,7 +122,7 @@ pub fn score_counts(
 mod tests {
     use super::*;
 
-    /// All 16 rows of 003 Tables 3.1/3.2 (spec §16.1): (obj_pix, projection, f_obstacle,
+    /// All 16 rows of 003 Tables 3.1/3.2 (thesis-ga §16.1): (obj_pix, projection, f_obstacle,
     /// cov_final, t_final).
     const TABLES_3_1_3_2: [(u64, Projection, f64, f64, f64); 16] = [
         (0, Projection::F1, 0.922019, 0.96, 0.884038),
@@ -169,7 +169,7 @@ mod tests {
 
     #[test]
     fn boustrophedon_cell_counts_give_table_3_1() {
-        // spec §16.1: unique 1944, cov_pix 2199 on A_pix = 2025, R_rot = 0.
+        // thesis-ga §16.1: unique 1944, cov_pix 2199 on A_pix = 2025, R_rot = 0.
         let m = PathMetrics { cells_swept: 2199, crossings: 255, area_cells: 2025, ..Default::default() };
         let s = score(&m, &Footprint::default(), 0.2, Projection::F1);
         assert!((s.cov_final - 0.96).abs() < 1e-12);
@@ -179,7 +179,7 @@ mod tests {
 
     #[test]
     fn one_cell_of_sweep_costs_a_third_of_a_second() {
-        // spec §4: M_res = 0.2, R_speed = 0.2, R_width = 0.6 → t_final = unique/(cov_pix + 3·T_rot).
+        // thesis-ga §4: M_res = 0.2, R_speed = 0.2, R_width = 0.6 → t_final = unique/(cov_pix + 3·T_rot).
         let m = PathMetrics { cells_swept: 300, crossings: 30, area_cells: 2025, t_rot_s: 10.0, ..Default::default() };
         let s = score(&m, &Footprint::default(), 0.2, Projection::F2);
         assert!((s.t_final - 270.0 / 330.0).abs() < 1e-12);

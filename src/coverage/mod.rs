@@ -147,7 +147,7 @@ mod tests {
     use super::*;
     use crate::map::presets::preset;
 
-    /// The five hand-computed cases of spec §3.3 on map 1.
+    /// The five hand-computed cases of thesis-ga §3.3 on map 1.
     #[test]
     fn spec_table_3_3_cases() {
         let map = preset("thesis-1").unwrap();

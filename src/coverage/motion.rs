@@ -1,5 +1,5 @@
 //! Path length (003 eq. 3.1), turning (eq. 3.2) and rotation time (eq. 3.3 as resolved by
-//! spec R6–R7).
+//! R6–R7).
 
 use crate::geom::{Point, Vector, ZERO_LENGTH};
 
@@ -40,7 +40,7 @@ pub fn abs_turn_deg(from: Vector, to: Vector) -> f64 {
 }
 
 /// `T_rot` in seconds: total absolute turn (rad) over the rotation speed `R_rot` (rad/s);
-/// 0 when `R_rot` = 0 disables the rotation cost (003 eq. 3.3, spec R6–R7).
+/// 0 when `R_rot` = 0 disables the rotation cost (003 eq. 3.3, R6–R7).
 pub fn rotation_time(total_turn_rad: f64, r_rot: f64) -> f64 {
     if r_rot > 0.0 { total_turn_rad / r_rot } else { 0.0 }
 }
@@ -90,7 +90,7 @@ mod tests {
         let (rad, n) = turning(&pts);
         assert!((rad.to_degrees() - 225.0).abs() < 1e-9);
         assert_eq!(n, 2);
-        // spec §3.3 table: T_rot = 0.625 s at 2π rad/s.
+        // thesis-ga §3.3 table: T_rot = 0.625 s at 2π rad/s.
         assert!((rotation_time(rad, std::f64::consts::TAU) - 0.625).abs() < 1e-12);
         assert!((path_length(&pts) - (6.0 + 18f64.sqrt())).abs() < 1e-12);
         assert_eq!(rotation_time(rad, 0.0), 0.0);

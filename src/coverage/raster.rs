@@ -1,4 +1,4 @@
-//! Swept-rectangle rasterisation (003 §3.1.2, Fig. 3.2b; cell rule of spec §3.3 / R4).
+//! Swept-rectangle rasterisation (003 §3.1.2, Fig. 3.2b; cell rule of thesis-ga §3.3 / R4).
 //!
 //! A segment `a → b` of length `L` swept by a robot of width `w` covers the cells whose centre
 //! `c` satisfies `0 ≤ t < L` and `−w/2 ≤ s < w/2`, with `t = (c − a)·û`, `s = (c − a)·n̂`,
@@ -12,7 +12,7 @@
 
 use crate::geom::{Point, ZERO_LENGTH};
 
-/// Tolerance of the half-open membership test (spec §3.3).
+/// Tolerance of the half-open membership test (thesis-ga §3.3).
 pub const RASTER_EPS: f64 = 1e-9;
 
 /// The geometry of a grid as the rasteriser needs it.
@@ -107,7 +107,7 @@ pub(super) fn settle_interval(
 }
 
 /// Calls `visit(row-major index)` once for every cell of the swept rectangle of `a → b` with
-/// robot width `width` (spec §3.3). Cells off the grid are ignored; a zero-length segment
+/// robot width `width` (thesis-ga §3.3). Cells off the grid are ignored; a zero-length segment
 /// sweeps nothing. The scan runs along the segment's major axis (rows for flat segments,
 /// columns for steep ones), so each scan line holds many cells; the order within a segment is
 /// therefore not row-major, which the counting of Listing 3.1 does not depend on.
@@ -355,7 +355,7 @@ mod tests {
 
     #[test]
     fn ends_near_a_centre_are_settled_by_the_exact_test() {
-        // `inside` plays the exact rule of spec §3.3, which knows nothing of the line's ends
+        // `inside` plays the exact rule of thesis-ga §3.3, which knows nothing of the line's ends
         // (cells 0 ..= 9 here); the interval [f0, f1] is its rounded image, off by
         // δ = 1e-9 (far below SETTLE_MARGIN) where rounding could put it.
         // Table: (f0, f1, always, the cells the rule admits, the run expected).
@@ -387,7 +387,7 @@ mod tests {
 
     #[test]
     fn an_edge_through_a_row_of_centres_keeps_that_row() {
-        // The s = −w/2 edge belongs (spec §3.3). It lies on the side of growing y for flat
+        // The s = −w/2 edge belongs (thesis-ga §3.3). It lies on the side of growing y for flat
         // segments pointing left, of falling y pointing right, of growing x for steep ones
         // pointing up and of falling x pointing down. With that edge through a line of
         // centres (the grid's last line too), the line is kept, whatever rounding does to the
@@ -437,7 +437,7 @@ mod tests {
         }
     }
 
-    /// Spec §3.3 is half-open: a cell belongs when `t < L − ε` and `s < w/2 − ε`. A segment
+    /// thesis-ga §3.3 is half-open: a cell belongs when `t < L − ε` and `s < w/2 − ε`. A segment
     /// (or a width) is placed ulp by ulp so that the exact test's own arithmetic puts a cell
     /// centre exactly on one of those ends: that cell is out, as the brute-force rule says, and
     /// in once the end moves past it.

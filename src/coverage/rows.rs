@@ -47,7 +47,7 @@ impl Constraint {
 }
 
 /// Calls `run(row, first_col, last_col)` (inclusive) for every row holding cells of the swept
-/// rectangle of `a → b` with robot width `width` (spec §3.3): the same cells as
+/// rectangle of `a → b` with robot width `width` (thesis-ga §3.3): the same cells as
 /// [`super::raster::for_each_swept_cell`], grouped by row. Cells off the grid are ignored;
 /// a zero-length segment sweeps nothing.
 pub fn for_each_swept_row(grid: &RasterGrid, a: Point, b: Point, width: f64, mut run: impl FnMut(usize, usize, usize)) {
@@ -84,7 +84,7 @@ pub fn for_each_swept_row(grid: &RasterGrid, a: Point, b: Point, width: f64, mut
     for row in row_lo as usize..=row_hi as usize {
         let rf = row as f64;
         let dy = dy0 + rf * res;
-        // The exact membership test of spec §3.3.
+        // The exact membership test of thesis-ga §3.3.
         let inside = |col: i64| {
             let dx = grid.origin_x + (col as f64 + 0.5) * res - a.x;
             let tt = dx * ux + dy * uy;
@@ -143,7 +143,7 @@ mod tests {
     #[test]
     fn centres_exactly_on_the_far_ends_are_outside() {
         use crate::coverage::exact::{far_end_on_a_centre, solve};
-        // Spec §3.3 is half-open: a cell belongs when t < L − ε and s < w/2 − ε. Each segment
+        // thesis-ga §3.3 is half-open: a cell belongs when t < L − ε and s < w/2 − ε. Each segment
         // is placed, ulp by ulp, so that the scan's own arithmetic puts whole cell centres
         // exactly on one of those ends; those cells are out, as the brute-force rule says.
         // t: along row 5 from column 0's centre; column 3's centre lies at t = L − ε.

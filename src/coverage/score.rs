@@ -349,7 +349,7 @@ mod tests {
 
     #[test]
     fn a_lane_on_map_1_by_hand() {
-        // spec §3.3 case 1: (1.3, 1.3) → (4.3, 1.3) sweeps 45 free cells, no crossing.
+        // thesis-ga §3.3 case 1: (1.3, 1.3) → (4.3, 1.3) sweeps 45 free cells, no crossing.
         let map = preset("thesis-1").unwrap();
         let robot = Footprint { width: 0.6, speed: 0.2, rot_speed: 0.0 };
         let s = Scorer::new(&map, robot, Projection::F2, &camera(), &[Point::new(1.3, 1.3)]);

@@ -1,4 +1,4 @@
-//! Cell counting along a path: Listing 3.1 of 003 with the reading of spec R5.
+//! Cell counting along a path: Listing 3.1 of 003 with the reading of R5.
 //!
 //! For every segment in order and every swept cell once: an obstacle cell adds to `obj_pix`;
 //! a free cell adds to `cov_pix`, adds to `cross_pix` when it was already visited, and its
@@ -10,7 +10,7 @@ use crate::geom::Point;
 use crate::map::{CellState, GridMap};
 
 /// The per-map, per-scenario layers the counting reads: which cells are obstacles and which
-/// are pre-marked as already covered (the retrain region of 003 §3.5.3, spec R25).
+/// are pre-marked as already covered (the retrain region of 003 §3.5.3, R25).
 #[derive(Clone, Debug)]
 pub struct CoverageGrid {
     raster: RasterGrid,
@@ -20,14 +20,14 @@ pub struct CoverageGrid {
 }
 
 impl CoverageGrid {
-    /// Layers of a map with nothing pre-marked; `A_pix` = free cells (spec R29).
+    /// Layers of a map with nothing pre-marked; `A_pix` = free cells (R29).
     pub fn new(map: &GridMap) -> Self {
         let blocked: Vec<bool> = map.cells().iter().map(|&c| c != CellState::Free).collect();
         Self { raster: RasterGrid::of(map), premark: vec![0; blocked.len()], area_cells: map.free_count(), blocked }
     }
 
     /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` (metres) as already
-    /// covered: their visit count starts at 1 and they leave `A_pix` (spec §13, R25).
+    /// covered: their visit count starts at 1 and they leave `A_pix` (thesis-ga §13, R25).
     pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
         let g = self.raster;
         for r in 0..g.rows {
@@ -302,7 +302,7 @@ mod tests {
 
     #[test]
     fn premark_of_the_retrain_corner_matches_spec() {
-        // spec §16.4: the 5 m corner square leaves A_pix = 1400 (map 1) and 1225 (map 2).
+        // thesis-ga §16.4: the 5 m corner square leaves A_pix = 1400 (map 1) and 1225 (map 2).
         for (name, expected) in [("thesis-1", 1400), ("thesis-2", 1225)] {
             let mut g = CoverageGrid::new(&preset(name).unwrap());
             g.premark_rect(5.0, 5.0, 10.0, 10.0);
@@ -329,7 +329,7 @@ mod tests {
     }
 
     /// A pre-marked cell swept twice counts two crossings (its pre-mark is a first visit,
-    /// spec R26); an ordinary cell swept twice one.
+    /// R26); an ordinary cell swept twice one.
     #[test]
     fn premarked_cells_swept_twice_cross_twice() {
         let mut g = CoverageGrid::new(&preset("thesis-1").unwrap());

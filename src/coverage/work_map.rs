@@ -1,4 +1,4 @@
-//! The working raster of the waypoint planner (000 §II-B.1, spec §2): the map resampled to
+//! The working raster of the waypoint planner (000 §II-B.1, waypoint §2): the map resampled to
 //! the pixel scale `s`, its occluded mask, the Euclidean distance transform and the safety
 //! buffer band. All geometry is in pixel units (W13); pixel `(col, row)` has its centre at
 //! `(col + 0.5, row + 0.5)`, row 0 at the bottom as in [`crate::map::GridMap`].
@@ -94,7 +94,7 @@ impl WorkMap {
     pub fn free_count(&self) -> usize {
         self.occluded.iter().filter(|o| !**o).count()
     }
-    /// Safety buffer band `B = {p ∈ F : D(p) ≤ b}` (spec §2).
+    /// Safety buffer band `B = {p ∈ F : D(p) ≤ b}` (waypoint §2).
     pub fn band(&self, b: f64) -> Vec<bool> {
         self.occluded.iter().zip(&self.dist).map(|(&o, &d)| !o && d <= b).collect()
     }

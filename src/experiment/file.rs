@@ -67,7 +67,7 @@ pub struct ExperimentFile {
     pub plugins: std::collections::BTreeMap<String, toml::Table>,
 }
 
-/// `[output]`.
+/// `[output]`: where a run writes and what beyond its usual files.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
 #[serde(deny_unknown_fields, default)]
 pub struct OutputSection {

@@ -6,6 +6,7 @@
 
 pub mod file;
 pub mod ignored;
+pub mod keys;
 pub mod memory;
 pub mod output;
 pub mod plugins;

@@ -16,7 +16,8 @@ use serde::{Deserialize, Serialize};
 /// pasted table from allocating one visit map per row).
 pub const MAX_ROBOTS: usize = 64;
 
-/// One `[[robots]]` entry as written.
+/// One `[[robots]]` entry: a robot of a fleet, its settings defaulting to `[robot]` and
+/// `[stations]`.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RobotEntry {
@@ -149,7 +150,7 @@ impl FleetMode {
     }
 }
 
-/// `[fleet]` of an experiment file.
+/// `[fleet]`: how the fleet of `[[robots]]` is planned.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct FleetSection {

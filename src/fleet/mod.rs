@@ -82,7 +82,7 @@ pub fn fleet_t_optimal(cov_actual_m2: f64, sweep_rate: f64) -> f64 {
 /// `t_final` of a fleet: 003 eq. 3.13 with the fleet's time taken as the makespan,
 /// `t_optimal / max_i (t_actual,i + T_rot,i)`, where `t_actual,i` is robot `i`'s eq. 3.12
 /// (`cov_[m²],i / (R_speed,i · R_width,i)`) and `T_rot,i` its rotation time; 0 when nothing was
-/// covered (spec R10). For one robot it is eq. 3.13.
+/// covered (R10). For one robot it is eq. 3.13.
 pub fn fleet_t_final(t_optimal: f64, robot_times: &[f64]) -> f64 {
     let makespan = robot_times.iter().copied().fold(0.0, f64::max);
     if makespan <= 0.0 { 0.0 } else { t_optimal / makespan }

@@ -1,4 +1,4 @@
-//! Parameter control schedules (003 §2.2.3.1, §3.5.2; spec §12).
+//! Parameter control schedules (003 §2.2.3.1, §3.5.2; thesis-ga §12).
 
 use serde::{Deserialize, Serialize};
 
@@ -10,14 +10,14 @@ pub fn linear_ramp(iteration: u32, iter_max: u32, min: f64, max: f64) -> f64 {
     (iteration as f64 / iter_max as f64).min(1.0) * (max - min) + min
 }
 
-/// Tournament size from the ramp: rounded, at least 1 (spec §12.1).
+/// Tournament size from the ramp: rounded, at least 1 (thesis-ga §12.1).
 pub fn ramp_tournament_size(iteration: u32, iter_max: u32, min: f64, max: f64) -> usize {
     linear_ramp(iteration, iter_max, min, max).round().max(1.0) as usize
 }
 
 /// `P_m,i = Iter_i / Iter_max` with `Iter_n = Σ_{k=1..n} k` (003 eq. 2.1), i.e.
 /// `i(i+1) / (I_max(I_max+1))`: both the numerator and the denominator are triangular sums
-/// (spec R23), so the schedule is normalised to reach exactly 1 at `i = I_max` and rises
+/// (R23), so the schedule is normalised to reach exactly 1 at `i = I_max` and rises
 /// quadratically from `2 / (I_max(I_max+1))` at the first iteration. Iterations past `I_max`
 /// (none in a run) stay at 1.
 pub fn muhlenbein_p_m(iteration: u32, iter_max: u32) -> f64 {
@@ -46,13 +46,13 @@ pub struct AdaptiveConstants {
 }
 
 impl Default for AdaptiveConstants {
-    /// `K_1 = 0.4`, `K_2 = 0.8`, `K = 0.5` (spec §12.2).
+    /// `K_1 = 0.4`, `K_2 = 0.8`, `K = 0.5` (thesis-ga §12.2).
     fn default() -> Self {
         Self { k1: 0.4, k2: 0.8, k: 0.5 }
     }
 }
 
-/// `Div / Div_max`, 0 when `Div_max = 0` (spec §12.2).
+/// `Div / Div_max`, 0 when `Div_max = 0` (thesis-ga §12.2).
 fn diversity_ratio(div: f64, div_max: f64) -> f64 {
     if div_max > 0.0 { (div / div_max).clamp(0.0, 1.0) } else { 0.0 }
 }

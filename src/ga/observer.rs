@@ -81,7 +81,7 @@ impl GenerationRecord {
     }
 }
 
-/// The statistics of one generation of the thesis GA (003 §4.1.2, spec §17).
+/// The statistics of one generation of the thesis GA (003 §4.1.2, thesis-ga §17).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
 pub struct GenerationStats {
     /// Iteration number (0 = the initial population).
@@ -114,7 +114,7 @@ pub struct GenerationStats {
     pub min_genome_len: u32,
     /// Longest genome.
     pub max_genome_len: u32,
-    /// Population diversity `Div` (spec §5), when it was measured (see
+    /// Population diversity `Div` (thesis-ga §5), when it was measured (see
     /// [`Observer::diversity_every`]).
     pub diversity: Option<f64>,
     /// Effective crossover probability `P_c`.

@@ -1,5 +1,5 @@
 //! Selection schemes as pure functions over fitness slices (higher is better): tournament,
-//! proportionate and rank-based roulette wheels (003 §2.2.1, spec §10), the `keep` best, and
+//! proportionate and rank-based roulette wheels (003 §2.2.1, thesis-ga §10), the `keep` best, and
 //! low-variance sampling. Shared by the thesis GA and the waypoint planner. Pareto selection
 //! over two objectives (NSGA-II) is in [`nsga2`].
 

@@ -2,7 +2,7 @@
 //! anywhere along a path — the path's Minkowski sum with the disc, vertices, turns and end caps
 //! included — and whether it stays on the map. This is the one executability rule of covga:
 //! a plan is executable when, for every path and its robot, no body pose touches an occupied,
-//! unknown or off-map cell (DESIGN.md, "The common scorer").
+//! unknown or off-map cell (the book's `docs/src/concepts/scorer.md`, "Executability").
 //!
 //! Why a disc and not the square of side `width` that 003's footprint sweeps: the robot turns
 //! in place at every vertex (003 eqs. 3.1–3.3), and a square turning in place covers its

@@ -2,7 +2,7 @@
 //! ([`ros`]), and the built-in presets ([`presets`]).
 //!
 //! Cell `(row, col)` covers `[ox + col·res, ox + (col+1)·res) × [oy + row·res, oy + (row+1)·res)`
-//! (spec thesis-ga §0), so row 0 is the bottom row; image row 0 is the top row and is flipped
+//! (thesis-ga §0), so row 0 is the bottom row; image row 0 is the top row and is flipped
 //! on load and save. Unknown cells are not free.
 
 pub mod body;
@@ -166,7 +166,7 @@ impl GridMap {
     pub fn height_m(&self) -> f64 {
         self.rows as f64 * self.resolution
     }
-    /// Number of free cells (`A_pix` of 003 §3.1 when obstacles are excluded, spec R29).
+    /// Number of free cells (`A_pix` of 003 §3.1 when obstacles are excluded, R29).
     pub fn free_count(&self) -> usize {
         self.free_count
     }
@@ -250,7 +250,7 @@ impl GridMap {
             && p.x <= self.origin.x + self.width_m()
             && p.y <= self.origin.y + self.height_m()
     }
-    /// The nearest point of the map's rectangle (the clamp of 003 §3.3.4, spec R8).
+    /// The nearest point of the map's rectangle (the clamp of 003 §3.3.4, R8).
     pub fn clamp(&self, p: Point) -> Point {
         Point::new(
             p.x.clamp(self.origin.x, self.origin.x + self.width_m()),

@@ -1,4 +1,4 @@
-//! Built-in maps: the two experiment maps of 003 (Fig. 4.1, geometry of spec §1.2 / §16.4) and a
+//! Built-in maps: the two experiment maps of 003 (Fig. 4.1, geometry of thesis-ga §1.2 / §16.4) and a
 //! synthetic office floor for the waypoint planner (000 §II-B uses real floor plans).
 
 use super::{CellState, GridMap, MapError};
@@ -22,8 +22,9 @@ pub fn preset(name: &str) -> Option<GridMap> {
 
 /// 003 map 1 (and map 2 with `disc`): 11 m × 11 m at 0.2 m, a 1 m wall frame, free area
 /// `[1, 10)² m` = 2025 cells. Map 2 adds the disc of cells whose centre is strictly within 2 m
-/// of (5.5, 5.5) m, tested in integer cell units (`dr² + dc² < 10²`, DESIGN "Numerical care"),
-/// leaving 1720 free cells (spec §16.4).
+/// of (5.5, 5.5) m, tested in integer cell units (`dr² + dc² < 10²`: in floating metres 12
+/// lattice points lie on the circle and rounding puts some inside), leaving 1720 free cells
+/// (thesis-ga §16.4).
 fn thesis_map(disc: bool) -> Result<GridMap, MapError> {
     const N: usize = 55;
     const WALL: usize = 5;
@@ -200,7 +201,7 @@ mod tests {
 
     #[test]
     fn thesis_free_cell_counts_match_spec() {
-        // spec §16.4: A_pix = 2025 on map 1 and 1720 on map 2 (disc of 305 cells).
+        // thesis-ga §16.4: A_pix = 2025 on map 1 and 1720 on map 2 (disc of 305 cells).
         assert_eq!(preset("thesis-1").unwrap().free_count(), 2025);
         assert_eq!(preset("thesis-2").unwrap().free_count(), 1720);
     }

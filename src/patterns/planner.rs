@@ -9,7 +9,8 @@ use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenari
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
 
-/// `[pattern]`: settings of the pattern planners.
+/// `[pattern]`: the boustrophedon and spiral patterns (and the thesis GA's seed plans made from
+/// them).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct PatternSection {

@@ -10,7 +10,7 @@ use crate::coverage::score::CameraSpec;
 use crate::map::GridMap;
 use serde::{Deserialize, Serialize};
 
-/// `[map]`.
+/// `[map]`: the occupancy grid to plan on: a preset, a ROS map_server YAML or a bare image.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct MapSection {
@@ -34,7 +34,8 @@ impl MapSection {
     }
 }
 
-/// `[robot]` (003 Table 4.2).
+/// `[robot]`: the robot's width, speed and turning speed (003 Table 4.2's robot by default,
+/// which turns for free: set `rot_speed` for a real robot).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct RobotSection {
@@ -46,7 +47,7 @@ pub struct RobotSection {
     pub rot_speed: f64,
 }
 
-/// `[stations]` (spec R3).
+/// `[stations]`: where every plan starts and ends, in metres in the map's frame (R3).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct StationsSection {
@@ -205,7 +206,7 @@ impl CameraSection {
     }
 }
 
-/// `[budget]`.
+/// `[budget]`: when a run stops: at the first limit reached (0 means no limit).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields, default)]
 pub struct BudgetSection {

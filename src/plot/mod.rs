@@ -3,7 +3,7 @@
 //! figure shares. Each planner draws its own figures and the reports theirs with these.
 //!
 //! Text uses DejaVu Sans embedded in the binary (plotters' `ab_glyph` backend), so building
-//! needs no system font libraries (DESIGN "Plots and fonts"). Files are written atomically.
+//! needs no system font libraries. Files are written atomically.
 
 pub mod history;
 pub mod layout;

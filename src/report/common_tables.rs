@@ -19,7 +19,7 @@ type MeanCi = (f64, f64);
 
 /// The common scorer's coverage column.
 pub const COVERAGE: &str = "cov_final_reach";
-/// The common scorer's mission-time column [s].
+/// The common scorer's mission-time column, in seconds.
 pub const TIME: &str = "time_s";
 
 /// The best of `items` by coverage and time: the fastest of those within [`COVERAGE_TIE`] of

@@ -243,7 +243,7 @@ pub struct Rendered {
     pub markdown: String,
     /// One row per stratum, value and metric.
     pub csv: String,
-    /// For a comparison, what its design can show ([`power`]), written by `--design`.
+    /// For a comparison, what its design can show (`power`), written by `--design`.
     pub design: Option<String>,
 }
 

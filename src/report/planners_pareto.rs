@@ -13,7 +13,7 @@ use plotters::prelude::*;
 pub struct PlanPoint {
     /// Its group.
     pub group: usize,
-    /// Mission time of its plan [s].
+    /// Mission time of its plan, in seconds.
     pub time_s: f64,
     /// Share of the reachable cells its plan covers.
     pub coverage: f64,

@@ -95,7 +95,7 @@ mod tests {
 
     #[test]
     fn mann_whitney_by_hand() {
-        // a = {1,2,3}, b = {4,5,6}: R1 = 6, U = 0, σ² = 9/12·7 = 5.25, z = (4.5 − 0.5)/√5.25.
+        // a = {1,2,3}, b = {4,5,6}: R_a = 6, U = 0, σ² = 9/12·7 = 5.25, z = (4.5 − 0.5)/√5.25.
         let t = mann_whitney_u(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0]).unwrap();
         assert_eq!(t.u, 0.0);
         assert!((t.z - 4.0 / 5.25f64.sqrt()).abs() < 1e-12);
@@ -112,11 +112,11 @@ mod tests {
         let t = mann_whitney_u(&[1.0, 2.0, 3.0], &[4.0, 5.0, 6.0, 7.0]).unwrap();
         assert_eq!(t.u, 0.0);
         assert!((t.z - 5.5 / 8f64.sqrt()).abs() < 1e-12, "{}", t.z);
-        // Two against two: R1 = 3, U = 0, σ² = 4/12 · 5, z = (2 − 0.5)/√(5/3).
+        // Two against two: R_a = 3, U = 0, σ² = 4/12 · 5, z = (2 − 0.5)/√(5/3).
         let t = mann_whitney_u(&[1.0, 2.0], &[3.0, 4.0]).unwrap();
         assert!((t.z - 1.5 / (5.0f64 / 3.0).sqrt()).abs() < 1e-12, "{}", t.z);
         assert!(mann_whitney_u(&[1.0, 1.0], &[1.0, 1.0]).is_none());
-        // With ties: a = {1,2,2}, b = {2,3,3,4}: mid-ranks 1 | 3 3 3 | 5.5 5.5 | 7, R1 = 7,
+        // With ties: a = {1,2,2}, b = {2,3,3,4}: mid-ranks 1 | 3 3 3 | 5.5 5.5 | 7, R_a = 7,
         // U = 7 − 6 = 1, Σ(t³−t) = 24 + 6 = 30, σ² = 12/12 · (8 − 30/42), z = (5 − 0.5)/σ.
         let t = mann_whitney_u(&[1.0, 2.0, 2.0], &[2.0, 3.0, 3.0, 4.0]).unwrap();
         assert_eq!(t.u, 1.0);

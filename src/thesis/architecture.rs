@@ -1,4 +1,4 @@
-//! One generation of each architecture (003 §3.5.1, Fig. 3.9; spec §11): (a) keep + selection
+//! One generation of each architecture (003 §3.5.1, Fig. 3.9; thesis-ga §11): (a) keep + selection
 //! + crossover + mutation + refill for Tournament / PRWS / RRWS, and (b) Elite families.
 //!
 //! Decisions that shape the generation (selection, pairing, crossover, cut points) come from
@@ -226,7 +226,7 @@ impl<T: Member> Generation<'_, T> {
         T::cross(&pop[a], &pop[b], self.params, self.scenario, rng, kids)
     }
 
-    /// Initial population of `size` genomes, evaluated (spec §6): the first `seeded` are
+    /// Initial population of `size` genomes, evaluated (thesis-ga §6): the first `seeded` are
     /// `seeds` in turn, as they are; the others random. Asks `stop` between blocks of members
     /// and gives up (`None`) when it says so: a large initial population on a large map is
     /// seconds of work that an interrupt must not wait for. Each member draws from its own
@@ -256,7 +256,7 @@ impl<T: Member> Generation<'_, T> {
         Some((jobs.into_iter().map(|j| j.ind).collect(), evaluations))
     }
 
-    /// Architecture (a) (spec §11.1): `keep` elite copies, `select` pairs by the scheme,
+    /// Architecture (a) (thesis-ga §11.1): `keep` elite copies, `select` pairs by the scheme,
     /// crossover with `P_c`, mutation of offspring and rest, refill to `Pop_min` (R22).
     /// New members are built in the members of `spare` (their buffers are reused, their
     /// contents overwritten); the members that do not pass on are put there.
@@ -336,7 +336,7 @@ impl<T: Member> Generation<'_, T> {
         }
     }
 
-    /// Architecture (b) (spec §11.2): random families of two; crossing families keep their two
+    /// Architecture (b) (thesis-ga §11.2): random families of two; crossing families keep their two
     /// best of parents and children (ties to children, R20); the others pass on, each
     /// re-initialised with `P_mI`; an odd individual passes unchanged. `spare` as in
     /// [`Self::step_a`].

@@ -48,7 +48,7 @@ pub struct GenomeError {
 }
 
 /// The full genome of live moves `moves` (S's move first): the moves, then the connector
-/// (recomputed by decoding) and E, so `G_len = moves.len() + 2` (spec §2.1). Headings are
+/// (recomputed by decoding) and E, so `G_len = moves.len() + 2` (thesis-ga §2.1). Headings are
 /// taken modulo 360°; distances must be finite and ≥ 0.
 pub fn genome_of(index: usize, moves: &[(f64, f64)]) -> Result<Vec<Action>, GenomeError> {
     let fail = |action: usize, message: String| GenomeError { genome: index, action, message };

@@ -1,5 +1,5 @@
 //! The `[thesis]` and `[retrain]` sections of an experiment file and their validation into the
-//! thesis GA's typed parameters (003 Tables 4.1–4.3 ranges, spec §14.2). Library users get the
+//! thesis GA's typed parameters (003 Tables 4.1–4.3 ranges, thesis-ga §14.2). Library users get the
 //! same checks through [`ThesisSection::validate`].
 
 use super::crossover::{ChildMode, ShortGenomes};
@@ -22,36 +22,39 @@ use serde::{Deserialize, Serialize};
 pub struct ThesisSection {
     /// `elite`, `nsga2`, or a registered parent draw (`tournament`, `prws`, `rrws`, …).
     pub selection: SelectionName,
-    /// `Pop_min`.
+    /// `Pop_min`: the population size (003 Table 4.2).
     pub pop_min: usize,
-    /// `Init_I`.
+    /// `Init_I`: initial genomes of the tournament and roulette schemes (003 Table 4.2); Elite
+    /// starts from `Pop_min`.
     pub init_individuals: usize,
-    /// `Init_AC`.
+    /// `Init_AC`: free actions of a new genome (003 §3.3.1).
     pub init_actions: usize,
     /// Upper bound of initial `AC_dist` in metres (R2).
     pub init_dist_max: f64,
-    /// Longest genome.
+    /// The longest genome in actions (003 §4.1.1: 300).
     pub max_genome_len: usize,
-    /// `P_c`.
+    /// `P_c`: crossover probability (003 Table 4.2).
     pub p_c: f64,
-    /// `C_len`.
+    /// `C_len`: the largest share of a genome one crossover exchanges (003 eq. 3.20).
     pub c_len: f64,
-    /// `C_child` (0 changing, 1 preserving, 2 both).
+    /// `C_child`: 0 two locality-changing children, 1 two locality-preserving ones, 2 all four
+    /// (003 §3.3.2).
     pub c_child: u8,
     /// `clamp` (default) or `literal`: crossover of genomes too short for the cut-point ranges
     /// of 003 eqs. 3.21–3.22 (see `ShortGenomes`).
     pub short_genomes: ShortGenomes,
-    /// `P_mA`.
+    /// `P_mA`: probability of an action mutation (003 §3.3.3).
     pub p_ma: f64,
-    /// `P_mI`.
+    /// `P_mI`: probability of re-initialising a genome (003 §3.3.3).
     pub p_mi: f64,
-    /// `keep` (tournament, PRWS, RRWS).
+    /// `keep`: the best members copied unchanged each iteration (tournament, PRWS, RRWS; 003
+    /// §3.5.1).
     pub keep: usize,
-    /// `select` (tournament, PRWS, RRWS).
+    /// `select`: pairs drawn each iteration (tournament, PRWS, RRWS; 003 §3.4.2).
     pub select: usize,
-    /// `TS` (tournament).
+    /// `TS`: tournament size (003 §3.4.2).
     pub tournament_size: usize,
-    /// `SP` (RRWS).
+    /// `SP`: selection pressure of the rank-based roulette wheel (003 §3.4.3).
     pub selection_pressure: f64,
     /// Parameter control.
     pub control: ControlSection,
@@ -149,7 +152,7 @@ pub fn param_key(param: Param) -> Option<&'static str> {
     }
 }
 
-/// `[thesis.control]`.
+/// `[thesis.control]`: parameter control of the thesis GA (thesis-ga §12), chosen by `kind`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "lowercase", deny_unknown_fields)]
 pub enum ControlSection {
@@ -188,7 +191,8 @@ fn k() -> f64 {
     AdaptiveConstants::default().k
 }
 
-/// `[retrain]` (spec §13).
+/// `[retrain]`: the changing environment of the thesis GA (thesis-ga §13): after
+/// `at_iteration` iterations a region counts as covered by another robot and the run goes on.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RetrainSection {
@@ -540,7 +544,7 @@ fn validate_control(t: &ThesisSection, selection: &Selection, origin: &str) -> R
 mod tests {
     use super::*;
 
-    /// F2 is the default projection (spec §5) and `C_child` = 2 (both) the default child mode.
+    /// F2 is the default projection (thesis-ga §5) and `C_child` = 2 (both) the default child mode.
     #[test]
     fn the_thesis_defaults() {
         assert_eq!(

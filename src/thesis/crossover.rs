@@ -1,12 +1,12 @@
 //! Modified dual-point crossover with locality-changing and locality-preserving children
-//! (003 §3.3.2, eqs. 3.20–3.22, Figs. 3.6–3.7; spec §7, R12–R14).
+//! (003 §3.3.2, eqs. 3.20–3.22, Figs. 3.6–3.7; thesis-ga §7, R12–R14).
 
 use super::genome::{Action, Frame, decode_prefix, set_move};
 use crate::geom::Point;
 use rand::Rng;
 use serde::{Deserialize, Serialize};
 
-/// `C_child`: which children a crossover produces (spec §7.5).
+/// `C_child`: which children a crossover produces (thesis-ga §7.5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum ChildMode {
@@ -54,7 +54,7 @@ pub enum ShortGenomes {
     /// genes let lengths change. Genomes long enough for eqs. 3.21–3.22 are untouched.
     #[default]
     Clamp,
-    /// eqs. 3.20–3.22 as printed (spec R12): one-gene blocks when `C_len·n < 2`, no crossover
+    /// eqs. 3.20–3.22 as printed (R12): one-gene blocks when `C_len·n < 2`, no crossover
     /// when `n < absShare + 3`.
     Literal,
 }
@@ -138,7 +138,7 @@ fn splice_into(
     child.extend_from_slice(&a[a1..]);
 }
 
-/// Locality-changing child of receiver `a` with donor block `b[b0..b1]` (spec §7.3): the
+/// Locality-changing child of receiver `a` with donor block `b[b0..b1]` (thesis-ga §7.3): the
 /// inserted genes keep their relative moves; the first gene after the block is re-aimed at the
 /// receiver's next viewpoint, so the rest of the receiver stays in place.
 pub fn changing_child(
@@ -177,7 +177,7 @@ pub fn changing_child_into(
     }
 }
 
-/// Locality-preserving child (spec §7.4): the inserted genes keep the donor's absolute
+/// Locality-preserving child (thesis-ga §7.4): the inserted genes keep the donor's absolute
 /// viewpoints; the gene before the block is re-aimed at the donor block's start and the gene
 /// after it from the block's end to the receiver's next viewpoint.
 pub fn preserving_child(a: Parent, block_a: (usize, usize), b: Parent, block_b: (usize, usize)) -> Vec<Action> {
@@ -202,7 +202,7 @@ pub fn preserving_child_into(
     }
 }
 
-/// Crossover of two parents (spec §7): draws blocks for both, redrawing up to 10 times while a
+/// Crossover of two parents (thesis-ga §7): draws blocks for both, redrawing up to 10 times while a
 /// child would exceed `max_len` (R14); `None` means "no crossover" (children = copies).
 #[allow(clippy::too_many_arguments)]
 pub fn crossover<R: Rng + ?Sized>(

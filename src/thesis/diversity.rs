@@ -1,4 +1,4 @@
-//! Population diversity from visit-count maps (003 §3.2.3, eqs. 3.17–3.19; spec §5, R11).
+//! Population diversity from visit-count maps (003 §3.2.3, eqs. 3.17–3.19; thesis-ga §5, R11).
 //!
 //! `Dist(M¹, M²) = Σ_cells |M¹ − M²|` (eq. 3.17); `Div` is its mean over unordered pairs.
 //! The pair sum is accumulated cell by cell without forming pairs: for one cell,
@@ -284,7 +284,7 @@ pub fn distance(a: &Individual, b: &Individual) -> u64 {
     distance_to_dense(&dense, sa, &b.visits)
 }
 
-/// `Div_max = max_{i,j} D_ij` over the population (spec §12.2); `O(N²)` sparse merges, in
+/// `Div_max = max_{i,j} D_ij` over the population (thesis-ga §12.2); `O(N²)` sparse merges, in
 /// parallel. Only the adaptive parameter control needs it.
 pub fn max_distance(pop: &[Individual]) -> u64 {
     max_distance_by(pop.len(), 1, |i, _| &pop[i].visits)

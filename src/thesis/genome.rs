@@ -1,5 +1,5 @@
-//! The action genome (003 §3.2, spec §2) and its decoding with out-of-bounds correction
-//! (003 eqs. 3.7–3.8, §3.3.4, Fig. 3.8; spec R1, R8).
+//! The action genome (003 §3.2, thesis-ga §2) and its decoding with out-of-bounds correction
+//! (003 eqs. 3.7–3.8, §3.3.4, Fig. 3.8; R1, R8).
 //!
 //! A genome is `S, AC_2, …, AC_{n−1}, E` stored as moves `(alpha_deg, dist_m)`. S sits at the
 //! fixed start and carries an evolvable move; the action at `n − 2` is the connector whose move
@@ -44,13 +44,13 @@ impl Action {
     pub fn direction(&self) -> Vector {
         self.direction
     }
-    /// A zero action: `AC_dist < 1e-9` m (spec R18).
+    /// A zero action: `AC_dist < 1e-9` m (R18).
     pub fn is_zero(&self) -> bool {
         self.dist_m < ZERO_LENGTH
     }
 }
 
-/// The smallest genome: S, the connector and E (spec §2.1).
+/// The smallest genome: S, the connector and E (thesis-ga §2.1).
 pub const MIN_GENOME_LEN: usize = 3;
 
 /// The fixed frame a genome is decoded in: stations and the map rectangle for clamping.
@@ -126,7 +126,7 @@ pub fn live(n: usize) -> std::ops::Range<usize> {
 }
 
 /// Decodes viewpoints up to `upto` with out-of-bounds correction and writes the corrected
-/// moves of the genes decoded back (spec §2.2, R8): the unclamped chain
+/// moves of the genes decoded back (thesis-ga §2.2, R8): the unclamped chain
 /// `q_{i+1} = q_i + d_i·dist_i` (eq. 3.8) is followed on the viewpoint lattice ([`snap`]),
 /// every point is clamped to the map,
 /// and each move whose start or end was changed is re-derived, so the next action still
@@ -176,7 +176,7 @@ fn decode_span(genome: &mut [Action], frame: &Frame, upto: usize, points: &mut V
     stable
 }
 
-/// Decodes the whole genome with correction (spec §2.2): viewpoints `0 ..= n − 2` as in
+/// Decodes the whole genome with correction (thesis-ga §2.2): viewpoints `0 ..= n − 2` as in
 /// [`decode_prefix`], the connector's move recomputed to reach E, and E appended. After this,
 /// the moves reproduce `points` exactly up to rounding.
 ///
@@ -234,13 +234,13 @@ pub fn set_move(genome: &mut [Action], i: usize, from: Point, to: Point) {
 }
 
 /// A random action: `α ~ U[0, 360)` degrees, `dist ~ U[0, dist_max]` metres (003 §3.3.1,
-/// spec §6, R2).
+/// thesis-ga §6, R2).
 pub fn random_action<R: Rng + ?Sized>(rng: &mut R, dist_max: f64) -> Action {
     let alpha_deg = rng.random_range(0.0..360.0);
     Action::new(alpha_deg, rng.random_range(0.0..=dist_max))
 }
 
-/// A fresh random genome (`randInit`, spec §6): S, `init_actions` random actions (the last of
+/// A fresh random genome (`randInit`, thesis-ga §6): S, `init_actions` random actions (the last of
 /// which is the connector) and E, so `G_len = init_actions + 2`. S's move is drawn too.
 pub fn random_genome<R: Rng + ?Sized>(rng: &mut R, init_actions: usize, dist_max: f64, out: &mut Vec<Action>) {
     out.clear();
@@ -340,7 +340,7 @@ mod tests {
 
     #[test]
     fn zero_actions_are_those_shorter_than_a_nanometre() {
-        // Spec R18: strictly below 1e-9 m.
+        // R18: strictly below 1e-9 m.
         for (dist, zero) in [(0.0, true), (0.999e-9, true), (1e-9, false), (1e-6, false)] {
             assert_eq!(a(30.0, dist).is_zero(), zero, "dist {dist}");
         }

@@ -163,7 +163,7 @@ impl IndividualFields {
     }
 }
 
-/// How fresh genomes are drawn when a dead genome is replaced (spec §6).
+/// How fresh genomes are drawn when a dead genome is replaced (thesis-ga §6).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct InitParams {
     /// `Init_AC`.
@@ -199,7 +199,7 @@ pub struct EvalScratch {
     views: SegmentViews,
 }
 
-/// Decodes with correction (written back) and evaluates, in place (spec §9 steps 1–2).
+/// Decodes with correction (written back) and evaluates, in place (thesis-ga §9 steps 1–2).
 ///
 /// With [`EvaluationMode::Incremental`] and a base, only the segments the new path does not
 /// share with the base's path are swept: the longest common prefix and suffix of viewpoints
@@ -390,7 +390,7 @@ fn edit(
     tally
 }
 
-/// Zero-action removal (003 §3.3.4, spec §9.2, R18): a free gene `1 ..= n − 3` that is a zero
+/// Zero-action removal (003 §3.3.4, thesis-ga §9.2, R18): a free gene `1 ..= n − 3` that is a zero
 /// action between two zero actions is deleted; all marks are taken on the current genome, then
 /// deleted, so every run of zeros shrinks to at most two. The path does not change. Returns
 /// the number of deleted genes.
@@ -449,7 +449,7 @@ fn remove_zero_actions_after(ind: &mut Individual, known: usize) -> usize {
     removed
 }
 
-/// Dead genome (spec §9.3, R18): every live gene is a zero action.
+/// Dead genome (thesis-ga §9.3, R18): every live gene is a zero action.
 pub fn is_dead(genome: &[Action]) -> bool {
     genome[live(genome.len())].iter().all(Action::is_zero)
 }

@@ -50,7 +50,7 @@ pub enum Origin<'a, T> {
 /// How changed genomes are re-drawn when dead and evaluated.
 #[derive(Clone, Copy, Debug)]
 pub struct Variation {
-    /// How a dead genome is re-initialised (spec §6).
+    /// How a dead genome is re-initialised (thesis-ga §6).
     pub init: InitParams,
     /// Incremental or full evaluation.
     pub mode: EvaluationMode,
@@ -120,7 +120,7 @@ pub trait Member: Clone + Default + Send + Sync {
     fn reevaluate(&mut self, world: &Self::World, mode: EvaluationMode, scratch: &mut EvalScratch) -> u64;
     /// `Div` of a population (003 eq. 3.18).
     fn diversity(pop: &[Self], scratch: &mut DiversityScratch) -> f64;
-    /// `Div_max` of a population (spec §12.2).
+    /// `Div_max` of a population (thesis-ga §12.2).
     fn max_distance(pop: &[Self]) -> u64;
     /// The cells the common scorer counts as reachable for a plan in `world`.
     fn reach_mask(world: &Self::World) -> ReachMask;
@@ -144,7 +144,7 @@ impl Premark for ThesisScenario {
     }
 }
 
-/// Applies `op` to one genome (spec §8, R15–R16) and says what changed.
+/// Applies `op` to one genome (thesis-ga §8, R15–R16) and says what changed.
 pub fn vary(genome: &mut Vec<Action>, op: Op, init: &InitParams, rng: &mut Rng) -> Mutation {
     match op {
         Op::Mutate { p_mi, p_ma } => mutate(genome, p_mi, p_ma, init, rng),

@@ -1,4 +1,4 @@
-//! Mutation (003 §3.3.3, spec §8, R15–R16): per individual, `randInit` with `P_mI`, otherwise
+//! Mutation (003 §3.3.3, thesis-ga §8, R15–R16): per individual, `randInit` with `P_mI`, otherwise
 //! with `P_mA` one live gene is changed by `randScale` or `randAngleOffset` (½ each).
 
 use super::genome::{Action, live, random_genome};

@@ -1,4 +1,4 @@
-//! Validated parameters of the thesis GA (003 Tables 4.1–4.3, spec §14). Built by the
+//! Validated parameters of the thesis GA (003 Tables 4.1–4.3, thesis-ga §14). Built by the
 //! experiment loader, which checks every range; the algorithm trusts them.
 
 use super::crossover::{ChildMode, ShortGenomes};
@@ -6,7 +6,7 @@ use super::individual::{EvaluationMode, InitParams};
 use crate::ga::control::AdaptiveConstants;
 use crate::ga::parents::{DrawParams, ParentDraw};
 
-/// Selection scheme and its parameters (003 §3.4, spec §10).
+/// Selection scheme and its parameters (003 §3.4, thesis-ga §10).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Selection {
     /// Elite families, architecture (b).
@@ -65,7 +65,7 @@ impl Selection {
     }
 }
 
-/// Parameter control (003 §2.2.3.1, §3.5.2; spec §12).
+/// Parameter control (003 §2.2.3.1, §3.5.2; thesis-ga §12).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Control {
     /// Fixed parameters.
@@ -85,7 +85,7 @@ pub enum Control {
 
 /// Default upper bound of `AC_dist` for fresh actions, in metres.
 ///
-/// 003 Sec. 3.3.1 gives the range [0, 50] "metres" (spec R2 keeps it literally). On the
+/// 003 Sec. 3.3.1 gives the range [0, 50] "metres" (R2 keeps it literally). On the
 /// 11 m maps that clamps nearly every initial viewpoint onto the map edge. Measured over a
 /// slice of Table 4.3 (192 configurations × 5 seeds, `results/init-dist/`), 3 m gives the
 /// highest coverage and fitness in every selection scheme: f higher than with 50 m in 155 of
@@ -161,7 +161,7 @@ impl ThesisParams {
     /// operator values of Table A.1 row (e) (`C_len` 0.1, `C_child` 2, `P_mA` 0.01, `P_mI` 0).
     ///
     /// Initial moves are drawn up to [`INIT_DIST_MAX_M`] metres, not the 50 m of a literal
-    /// reading of Sec. 3.3.1 (spec R2): see that constant.
+    /// reading of Sec. 3.3.1 (R2): see that constant.
     pub fn thesis_elite() -> Self {
         Self {
             selection: Selection::Elite,
@@ -193,7 +193,7 @@ impl ThesisParams {
     }
 }
 
-/// The changing-environment retrain (003 §3.5.3, spec §13, R25).
+/// The changing-environment retrain (003 §3.5.3, thesis-ga §13, R25).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Retrain {
     /// The region is marked as covered after this many iterations.

@@ -134,7 +134,7 @@ impl<T: Member> Ga<T> {
         Effective { p_c: p.p_c, p_mi: p.p_mi, p_ma: MutationRate::Fixed(p.p_ma), tournament_size, pressure }
     }
 
-    /// Operator probabilities for `iteration` under the configured control (spec §12).
+    /// Operator probabilities for `iteration` under the configured control (thesis-ga §12).
     pub fn effective(&self, state: &GaState<T>, iteration: u32, iter_max: u32) -> Effective {
         let mut e = self.fixed_effective();
         match self.params.control {
@@ -165,7 +165,7 @@ impl<T: Member> Ga<T> {
         e
     }
 
-    /// Creates and evaluates the initial population (spec §6) — iteration 0. Measures the
+    /// Creates and evaluates the initial population (thesis-ga §6) — iteration 0. Measures the
     /// diversity when `measure_diversity` or the parameter control needs it.
     pub fn init(&self, measure_diversity: bool) -> GaState<T> {
         self.init_until(measure_diversity, &|| false).expect("a set-up that never stops")
@@ -246,7 +246,7 @@ impl<T: Member> Ga<T> {
         self.measure_diversity(state, wanted);
     }
 
-    /// Marks `region` as already covered and re-evaluates everyone (spec §13, R25).
+    /// Marks `region` as already covered and re-evaluates everyone (thesis-ga §13, R25).
     pub fn change_environment(&mut self, state: &mut GaState<T>, region: [f64; 4])
     where
         T::World: Premark,
@@ -406,7 +406,7 @@ fn record<T: Member>(
     r
 }
 
-/// Statistics of the current population (spec §17); with `pareto`, the hypervolume of its
+/// Statistics of the current population (thesis-ga §17); with `pareto`, the hypervolume of its
 /// plans without obstacle sweeps too.
 pub fn stats<T: Member>(state: &GaState<T>, effective: &Effective, pareto: bool) -> GenerationStats {
     let pop = &state.population;

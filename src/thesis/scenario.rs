@@ -99,7 +99,7 @@ impl ThesisScenario {
     }
 
     /// Marks the free cells whose centre lies in `[x0, x1) × [y0, y1)` as already covered
-    /// (the retrain region, spec R25). Individuals must be re-evaluated in full afterwards.
+    /// (the retrain region, R25). Individuals must be re-evaluated in full afterwards.
     pub fn premark_rect(&mut self, x0: f64, y0: f64, x1: f64, y1: f64) {
         self.grid.premark_rect(x0, y0, x1, y1);
         self.layers = BitLayers::new(&self.grid);

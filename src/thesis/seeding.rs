@@ -91,7 +91,7 @@ impl SeedPlans {
 
 /// The action genome whose decoded path is `points` (from S, which `points[0]` must be, to E,
 /// the last point): one live action per leg but the last, which the connector drives; a path
-/// of one leg gets one zero action (spec §2.1's smallest genome).
+/// of one leg gets one zero action (thesis-ga §2.1's smallest genome).
 pub fn genome_of_path(points: &[Point]) -> Vec<Action> {
     let legs = points.len().saturating_sub(1);
     let mut genome = Vec::with_capacity(legs.max(1) + MIN_GENOME_LEN - 1);

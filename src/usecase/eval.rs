@@ -68,7 +68,7 @@ pub struct EvalRequest {
     pub robot: Footprint,
     /// Obstacles placed on the map: each as the user wrote it and its metre rectangle.
     pub obstacles: Vec<(String, [f64; 4])>,
-    /// Keep the obstacles' cells in `A_pix` (spec R29, 003 Tables 3.1/3.2).
+    /// Keep the obstacles' cells in `A_pix` (R29, 003 Tables 3.1/3.2).
     pub obstacle_in_area: bool,
     /// Projection of the thesis fitness.
     pub projection: Projection,

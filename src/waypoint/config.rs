@@ -1,4 +1,4 @@
-//! The `[waypoint]` section of an experiment file (000 Table I as reconciled, spec §18–19) and
+//! The `[waypoint]` section of an experiment file (000 Table I as reconciled, waypoint §18–19) and
 //! its validation into the waypoint planner's typed parameters.
 
 use crate::config::{ConfigError, check_range, check_unit};
@@ -9,7 +9,7 @@ use crate::planner::Context;
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use serde::{Deserialize, Serialize};
 
-/// `[waypoint]`: 000 Table I as reconciled (spec §18–19); metres, degrees. The camera and its
+/// `[waypoint]`: 000 Table I as reconciled (waypoint §18–19); metres, degrees. The camera and its
 /// raster are the common scorer's (`[scorer.camera]`), which the planner's camera objective
 /// measures.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -52,51 +52,53 @@ pub struct WaypointSection {
     pub agents: usize,
     /// Per-agent entry positions (m); empty = all start at `stations.start`.
     pub starts: Vec<[f64; 2]>,
-    /// `N`.
+    /// `N`: organisms per generation (000 Table I).
     pub population: usize,
-    /// Generations.
+    /// Generations `G` (W29).
     pub generations: u32,
-    /// `p_c`.
+    /// `p_c`: crossover probability (000 Table I).
     pub p_c: f64,
-    /// `p_A`.
+    /// `p_A`: probability of mutation A, the tail regrown (000 Table I).
     pub p_a: f64,
-    /// `p_B`.
+    /// `p_B`: probability of mutation B, the shortcut search (000 Table I).
     pub p_b: f64,
-    /// `γ`.
+    /// `γ`: fitness pressure of the parent sampling (000 §III-A.6, W28).
     pub gamma: f64,
-    /// `l_init`.
+    /// `l_init`: initial path length in waypoints (W15).
     pub l_init: usize,
-    /// `l_min`.
+    /// `l_min`: shortest path in waypoints (000 Table I).
     pub l_min: usize,
-    /// `l_max`.
+    /// `l_max`: longest path in waypoints (000 Table I).
     pub l_max: usize,
-    /// `T_x`.
+    /// `T_x`: the largest difference of the crossover waypoint's positions in the two parents
+    /// (000 Table I, W17).
     pub crossover_threshold: usize,
-    /// `n_B`.
+    /// `n_B`: shortcut tries per mutation B (000 Table I).
     pub b_instances: usize,
-    /// `D`.
+    /// `D`: mutation B's search distance in waypoints (000 Table I).
     pub b_distance: usize,
-    /// `p_acc`.
+    /// `p_acc`: probability of taking a shortcut found (000 Table I).
     pub b_accept: f64,
-    /// `M`.
+    /// `M`: path memory in waypoints, not revisited while a path grows (000 Table I).
     pub memory: usize,
-    /// `λ`.
+    /// `λ`: log-scale turning weight of the forward bias (000 Table I, W14).
     pub lambda: f64,
-    /// `ρ`.
+    /// `ρ`: turning cost factor of the flight time (000 eq. 3).
     pub rho: f64,
-    /// `α_cov`.
+    /// `α_cov`: weight of open space against walls in the coverage (000 eq. 2, W11).
     pub alpha_cov: f64,
-    /// `C_start`.
+    /// `C_start`: coverage required at generation 0 (000 Table I, W22).
     pub c_start: f64,
-    /// `C_end`.
+    /// `C_end`: coverage required after the ramp (000 Table I, W22).
     pub c_end: f64,
-    /// `G_age`.
+    /// `G_age`: generations of the coverage ramp (000 Table I, W22).
     pub aging: u32,
-    /// `T_sep`.
+    /// `T_sep`: the least separation along the path of a self loop closure, in waypoints (000
+    /// Table I, W23).
     pub lc_separation: usize,
     /// Minimum self loop closures (Table I: 2).
     pub lc_min: usize,
-    /// What counts as one loop closure: `run` (a run of consecutive re-flown edges, spec W23,
+    /// What counts as one loop closure: `run` (a run of consecutive re-flown edges, W23,
     /// default) or `edge` (every distinct re-flown edge, the authors' driver).
     pub lc_rule: super::evaluate::LoopClosureRule,
     /// Penalty per violated constraint type (scaled units).

@@ -1,5 +1,5 @@
 //! Objectives, constraints and penalties of the waypoint planner (000 §II-C, §III-A.4, §III-B;
-//! spec §5–6, §12–13): union camera coverage (eq. 2), flight time with turning cost (eq. 3),
+//! waypoint §5–6, §12–13): union camera coverage (eq. 2), flight time with turning cost (eq. 3),
 //! loop closures, the agents' loop-closure Laplacian, the coverage ramp and the scaled,
 //! penalised objective vector.
 
@@ -7,7 +7,7 @@ use super::graph::Graph;
 use super::precompute::{Traversals, Union};
 use crate::coverage::camera::wrap;
 
-/// Parameters of the objectives and constraints (Table I as reconciled in spec §18–19).
+/// Parameters of the objectives and constraints (Table I as reconciled in waypoint §18–19).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ObjectiveParams {
     /// `α_cov`, weight of open-space coverage in eq. 2.
@@ -34,7 +34,7 @@ pub struct ObjectiveParams {
     pub penalty: f64,
 }
 
-/// `C_req(g) = C_start + (C_end − C_start)·min(1, g/G_age)` (spec §12.2, W22).
+/// `C_req(g) = C_start + (C_end − C_start)·min(1, g/G_age)` (waypoint §12.2, W22).
 pub fn required_coverage(p: &ObjectiveParams, generation: u32) -> f64 {
     let t = if p.aging == 0 { 1.0 } else { (f64::from(generation) / f64::from(p.aging)).min(1.0) };
     p.c_start + (p.c_end - p.c_start) * t
@@ -132,7 +132,7 @@ pub fn add_views(path: &[u32], graph: &Graph, tr: &Traversals, u: &mut Union) {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LoopClosureRule {
-    /// A run of consecutive re-flown edges counts once (spec W23).
+    /// A run of consecutive re-flown edges counts once (W23).
     #[default]
     Run,
     /// Every distinct re-flown directed edge counts once (the authors' driver).
@@ -183,7 +183,7 @@ pub fn edge_loop_closures(a: &[u32], b: &[u32], same: bool, separation: usize) -
     })
 }
 
-/// Loop closures between the directed edges of `a` and `b` (spec §12.3, W23): matches `(i, j)`
+/// Loop closures between the directed edges of `a` and `b` (waypoint §12.3, W23): matches `(i, j)`
 /// with the same directed edge and, for a path with itself (`same`), `j − i ≥ separation`;
 /// a run of consecutive matches counts once.
 ///
@@ -297,7 +297,7 @@ impl Evaluation {
     pub fn connected(&self) -> bool {
         self.components == 1
     }
-    /// Scaled, penalised objectives `(f1, f2)` at required coverage `c_req` (spec §12–13).
+    /// Scaled, penalised objectives `(f1, f2)` at required coverage `c_req` (waypoint §12–13).
     pub fn objectives(&self, p: &ObjectiveParams, c_req: f64) -> [f64; 2] {
         let mut f1 = p.scale_coverage * self.coverage;
         let mut f2 = p.scale_time * self.flight_time;

@@ -1,7 +1,7 @@
 //! The waypoint geometry of 000 §II-B.2 in metres: grid step, safety buffer, anti-crowding
 //! distance, wall band and near-wall distance, each resolved from `[waypoint]` with 000's
 //! definition as the default and, where 000 gives only a bound or nothing, the authors'
-//! driver's choice (spec §3, §19).
+//! driver's choice (waypoint §3, §19).
 
 use super::config::WaypointSection;
 use crate::config::{ConfigError, check_range};

@@ -1,4 +1,4 @@
-//! The traversability graph (000 §II-D, spec §4, W6–W7): each waypoint links to its nearest
+//! The traversability graph (000 §II-D, waypoint §4, W6–W7): each waypoint links to its nearest
 //! neighbour in each of the eight 45° octants (undirected union), then edges whose segment
 //! touches an occluded pixel or that exceed the maximum traverse distance are removed, and only
 //! the component(s) of the start waypoint(s) are kept.

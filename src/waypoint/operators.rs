@@ -1,4 +1,4 @@
-//! Path operators of the waypoint GA (000 §II-D, §III-A.2–3; spec §8, §11): forward-biased
+//! Path operators of the waypoint GA (000 §II-D, §III-A.2–3; waypoint §8, §11): forward-biased
 //! random extension with short-term memory, crossover at a common waypoint, length repair,
 //! mutation A (tail regeneration) and mutation B (shortcuts).
 
@@ -6,7 +6,7 @@ use super::graph::Graph;
 use crate::coverage::camera::wrap;
 use rand::Rng;
 
-/// Operator parameters (Table I, spec §18–19).
+/// Operator parameters (Table I, waypoint §18–19).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct OperatorParams {
     /// `λ`, log-scale turning weight.
@@ -37,7 +37,7 @@ pub fn forward_weight(lambda: f64, turn: f64) -> f64 {
     10f64.powf(-lambda * wrap(turn).abs() / std::f64::consts::PI)
 }
 
-/// Extends `path` with random feasible moves up to `target` waypoints (spec §8): neighbours
+/// Extends `path` with random feasible moves up to `target` waypoints (waypoint §8): neighbours
 /// not among the last `M` waypoints (unless none is left), weighted towards going straight.
 pub fn extend_random<R: Rng + ?Sized>(path: &mut Vec<u32>, target: usize, g: &Graph, p: &OperatorParams, rng: &mut R) {
     let mut weights = Vec::with_capacity(8);
@@ -75,7 +75,7 @@ pub fn extend_random<R: Rng + ?Sized>(path: &mut Vec<u32>, target: usize, g: &Gr
     }
 }
 
-/// Crossover at a common waypoint (spec §11.1): positions `a ≥ 1`, `b ≥ 1` with
+/// Crossover at a common waypoint (waypoint §11.1): positions `a ≥ 1`, `b ≥ 1` with
 /// `P1[a] = P2[b]` and `|a − b| ≤ T_x`, one pair drawn uniformly; `None` when there is none.
 pub fn crossover<R: Rng + ?Sized>(
     p1: &[u32],
@@ -98,7 +98,7 @@ pub fn crossover<R: Rng + ?Sized>(
     Some((c1, c2))
 }
 
-/// Length repair (spec §11.2): truncate to `l_max`, extend randomly to `l_min`.
+/// Length repair (waypoint §11.2): truncate to `l_max`, extend randomly to `l_min`.
 pub fn repair<R: Rng + ?Sized>(path: &mut Vec<u32>, g: &Graph, p: &OperatorParams, rng: &mut R) {
     path.truncate(p.l_max);
     if path.len() < p.l_min {
@@ -106,7 +106,7 @@ pub fn repair<R: Rng + ?Sized>(path: &mut Vec<u32>, g: &Graph, p: &OperatorParam
     }
 }
 
-/// Mutation A (spec §11.3): keep `path[..=k]` for a uniform `k ≥ 1` and regrow the tail to a
+/// Mutation A (waypoint §11.3): keep `path[..=k]` for a uniform `k ≥ 1` and regrow the tail to a
 /// uniform length in `[len, l_max]`.
 pub fn mutation_a<R: Rng + ?Sized>(path: &mut Vec<u32>, g: &Graph, p: &OperatorParams, rng: &mut R) {
     let len = path.len();
@@ -141,7 +141,7 @@ pub fn short_hop(g: &Graph, a: u32, b: u32) -> Option<(usize, Option<u32>)> {
         .map(|m| (2, Some(m)))
 }
 
-/// Mutation B (spec §11.4, W18): `n_B` instances, each looking in a random window of `D + 1`
+/// Mutation B (waypoint §11.4, W18): `n_B` instances, each looking in a random window of `D + 1`
 /// waypoints for the farthest point reachable from its start in at most two hops by a strictly
 /// shorter route, and taking that shortcut with probability `p_acc` (never below `l_min`).
 pub fn mutation_b<R: Rng + ?Sized>(path: &mut Vec<u32>, g: &Graph, p: &OperatorParams, rng: &mut R) {

@@ -1,4 +1,4 @@
-//! Per-traversal precomputation (000 §II-D, spec §7): for every directed edge its length,
+//! Per-traversal precomputation (000 §II-D, waypoint §7): for every directed edge its length,
 //! heading, and the departure and arrival camera views as compact bitsets, so that evaluating a
 //! path is OR-ing masks and counting bits. With [`Sensing::Footprint`] (an option beyond 000,
 //! for the ablation's search-versus-objective comparison) a traversal's mask is instead the

@@ -1,4 +1,4 @@
-//! The maximin GA of 000 (§III, spec §10–17): initial population from feasible random paths,
+//! The maximin GA of 000 (§III, waypoint §10–17): initial population from feasible random paths,
 //! low-variance parent sampling with fitness pressure γ, row-wise crossover and mutations,
 //! penalised objectives with the coverage ramp, maximin fitness over parents ∪ children and
 //! elitism. Single and multi-agent (one row per agent).
@@ -17,7 +17,7 @@ use rand::Rng as _;
 use rand::seq::SliceRandom;
 use rayon::prelude::*;
 
-/// GA parameters (Table I, spec §18–19).
+/// GA parameters (Table I, waypoint §18–19).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct WaypointGaParams {
     /// `N`.
@@ -51,7 +51,7 @@ pub struct Organism {
     pub eval: Evaluation,
 }
 
-/// Per-generation statistics (spec §17).
+/// Per-generation statistics (waypoint §17).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize)]
 pub struct WaypointStats {
     /// Generation.
@@ -159,7 +159,7 @@ fn stats(g: u32, pop: &[Organism], p: &WaypointGaParams) -> WaypointStats {
     }
 }
 
-/// Selection weights from maximin values with pressure γ (spec §16, W28).
+/// Selection weights from maximin values with pressure γ (waypoint §16, W28).
 pub fn pressure_weights(fitness: &[f64], gamma: f64) -> Vec<f64> {
     let (lo, hi) = (
         fitness.iter().copied().fold(f64::INFINITY, f64::min),

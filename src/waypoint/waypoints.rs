@@ -1,4 +1,4 @@
-//! Waypoint placement (000 §II-B.2, Fig. 3; spec §3, W3–W5): a grid at the grid step, occluded
+//! Waypoint placement (000 §II-B.2, Fig. 3; waypoint §3, W3–W5): a grid at the grid step, occluded
 //! points removed, points in the safety buffer nudged away from walls (or deleted where the UAV
 //! cannot fit), crowded points merged into centroids, and space left without a waypoint filled
 //! again, so that no corridor or room loses all its waypoints.

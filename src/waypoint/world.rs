@@ -1,4 +1,4 @@
-//! The precomputed world of the waypoint planner (spec §2–§7): raster, waypoints, graph,
+//! The precomputed world of the waypoint planner (waypoint §2–§7): raster, waypoints, graph,
 //! traversal views, wall band and start waypoints, built once per map and parameter set.
 
 use super::graph::Graph;
@@ -9,7 +9,7 @@ use crate::coverage::views::bitset;
 use crate::coverage::work_map::WorkMap;
 use crate::map::GridMap;
 
-/// Which waypoints are used (spec §3.5).
+/// Which waypoints are used (waypoint §3.5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum WaypointSet {

@@ -1,6 +1,6 @@
 //! The layers of the crate, bottom to top: a module may import (`crate::…`) only from its own
 //! layer and the layers below, and top-level modules never form a cycle. The order is written
-//! once, here; `src/lib.rs` and the README's "Layout" describe it in words.
+//! once, here; `src/lib.rs` and the book's "Layers and data flow" describe it in words.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -186,8 +186,11 @@ fn the_checker_finds_an_upward_import_a_cycle_and_grouped_imports() {
     assert_eq!(violations(&[file("newthing.rs", "")]).len(), 1);
 }
 
+/// The book's page whose table describes the layers.
+const LAYERS_PAGE: &str = "docs/src/concepts/layers.md";
+
 /// The module names of each layer as `text` writes them: one group per line that `starts`
-/// accepts, the backticked names up to the line's `stop` (the README's table cell, the lib.rs
+/// accepts, the backticked names up to the line's `stop` (the book's table cell, the lib.rs
 /// list item's colon).
 fn described_layers(text: &str, starts: impl Fn(&str) -> Option<&str>, stop: char) -> Vec<Vec<String>> {
     text.lines()
@@ -216,12 +219,11 @@ fn layer_order_problems(what: &str, described: &[Vec<String>]) -> Vec<String> {
 }
 
 #[test]
-fn the_readme_and_lib_rs_describe_the_layer_order_of_this_test() {
+fn the_book_and_lib_rs_describe_the_layer_order_of_this_test() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
-    let layout = readme.split("## Layout").nth(1).expect("a Layout section").split("\n## ").next().unwrap();
+    let layout = std::fs::read_to_string(root.join(LAYERS_PAGE)).unwrap();
     let table = described_layers(
-        layout,
+        &layout,
         |l| {
             l.strip_prefix("| ")
                 .filter(|r| r.starts_with(|c: char| c.is_ascii_digit()))
@@ -247,7 +249,7 @@ fn the_readme_and_lib_rs_describe_the_layer_order_of_this_test() {
         },
         ':',
     );
-    let mut problems = layer_order_problems("README.md's Layout table", &table);
+    let mut problems = layer_order_problems(LAYERS_PAGE, &table);
     problems.extend(layer_order_problems("src/lib.rs's list of layers", &list));
     assert!(problems.is_empty(), "{}", problems.join("\n"));
     // The check fails where it should: two modules swapped.

@@ -1,7 +1,7 @@
 //! covga's integration tests, one binary (one link, shared helpers in `tests/common`): a
 //! module per command (`*_cli`, `report_*`), per planner property (`cell_order`, `thesis_*`,
 //! `planner_contract`, `parent_schemes`, `reachable`), per contract of the repository
-//! (`architecture`, `readme`, `run_ids`, `generated_maps`, `stats_reference`) and the
+//! (`architecture`, `citations`, `readme`, `reference`, `run_ids`, `generated_maps`, `stats_reference`) and the
 //! reliability suite of bad inputs and interrupts. The heavy replays of committed data (studies
 //! re-run, reports re-made, the fuzzing corpus, every key variation) are the other binary,
 //! `tests/replays`. `cargo test --release --test it MODULE::` runs one module.
@@ -12,6 +12,7 @@ mod common;
 mod architecture;
 mod cell_order;
 mod cell_order_controls;
+mod citations;
 mod eval_cli;
 mod generated_maps;
 mod grid_cli;
@@ -20,6 +21,7 @@ mod planner_contract;
 mod plugins;
 mod reachable;
 mod readme;
+mod reference;
 mod reliability;
 mod report_compare;
 mod report_numbers;

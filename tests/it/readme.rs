@@ -1,10 +1,15 @@
-//! The README against the binary: every `covga` line of its shell blocks names a subcommand and
-//! flags that exist; every grid whose run count it quotes expands to that count; every
-//! experiment file it runs is valid; every `eval` whose inputs exist runs; and the figures it
-//! quotes for the coverage completion are what `eval` prints today.
+//! The README and the book (`docs/src/`) against the binary: every `covga` line of their shell
+//! blocks names a subcommand and flags that exist; every grid whose run count they quote
+//! expands to that count; every experiment file they run is valid; every `eval` whose inputs
+//! exist runs; the commands of the README and of "Getting started" run as written, in order;
+//! the figures they quote are what the program prints today; and every link and anchor
+//! resolves (the book is built by `mdbook build docs` in CI; this check also covers reading the
+//! pages in the repository).
+
+mod links;
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Output;
 
 fn root() -> &'static Path {
@@ -17,6 +22,35 @@ fn covga(args: &[&str]) -> Output {
 
 fn readme() -> String {
     std::fs::read_to_string(root().join("README.md")).expect("README.md")
+}
+
+/// The README and every page of the book, as (path from the repository root, text).
+fn pages() -> Vec<(PathBuf, String)> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "md") {
+                out.push(path);
+            }
+        }
+    }
+    let mut files = vec![root().join("README.md")];
+    walk(&root().join("docs/src"), &mut files);
+    files.sort();
+    files
+        .into_iter()
+        .map(|f| {
+            let text = std::fs::read_to_string(&f).unwrap();
+            (f.strip_prefix(root()).unwrap().to_path_buf(), text)
+        })
+        .collect()
+}
+
+/// The README and the book as one text (the claims below may be on any page).
+fn all_text() -> String {
+    pages().into_iter().map(|(_, t)| t).collect::<Vec<_>>().join("\n")
 }
 
 /// The `covga …` lines of the README's `sh` blocks: (command tokens, trailing comment).
@@ -78,10 +112,10 @@ fn dry_run(grid: &str) -> (u64, u64) {
 }
 
 #[test]
-fn every_readme_command_uses_flags_that_exist() {
-    let text = readme();
+fn every_command_of_the_readme_and_the_book_uses_flags_that_exist() {
+    let text = all_text();
     let cmds = commands(&text);
-    assert!(cmds.len() >= 15, "found only {} covga commands in the README", cmds.len());
+    assert!(cmds.len() >= 40, "found only {} covga commands in the README and the book", cmds.len());
     let mut helps: HashMap<String, String> = HashMap::new();
     let mut problems = Vec::new();
     for (tokens, _) in &cmds {
@@ -108,7 +142,7 @@ fn every_readme_command_uses_flags_that_exist() {
 /// configurations × 3 seeds)`) and in the sentence on 003 Table 4.3's grids.
 #[test]
 fn quoted_grid_sizes_are_what_the_grids_expand_to() {
-    let text = readme();
+    let text = all_text();
     let mut checked = 0;
     for (tokens, comment) in commands(&text) {
         if tokens[1] != "grid" || !comment.contains("runs") || !root().join(&tokens[2]).exists() {
@@ -137,12 +171,17 @@ fn quoted_grid_sizes_are_what_the_grids_expand_to() {
     assert!(checked >= 6, "checked only {checked} quoted grid sizes");
 }
 
-/// The experiment files the README runs are valid as they stand.
+/// The experiment files the README and the book run are valid as they stand, and so is the
+/// README's TOML example.
 #[test]
-fn readme_experiment_files_are_valid() {
+fn experiment_files_of_the_readme_and_the_book_are_valid() {
     use covga::experiment::file::ExperimentFile;
     let mut checked = 0;
-    for (tokens, _) in commands(&readme()) {
+    let text = readme();
+    let example = text.split("```toml\n").nth(1).and_then(|b| b.split("```").next()).expect("the README's TOML");
+    let file = ExperimentFile::parse(example, "README.md").unwrap_or_else(|e| panic!("{e}"));
+    file.validate("README.md", root(), "readme").unwrap_or_else(|e| panic!("the README's TOML: {e}"));
+    for (tokens, _) in commands(&all_text()) {
         if tokens[1] != "run" || tokens.len() < 3 || !root().join(&tokens[2]).exists() {
             continue;
         }
@@ -156,9 +195,9 @@ fn readme_experiment_files_are_valid() {
 
 /// The `eval` lines whose inputs are in the project run as written.
 #[test]
-fn readme_eval_commands_run() {
+fn eval_commands_of_the_readme_and_the_book_run() {
     let mut ran = 0;
-    for (tokens, _) in commands(&readme()) {
+    for (tokens, _) in commands(&all_text()) {
         let inputs_exist = tokens
             .windows(2)
             .filter(|w| w[0] == "--map" || w[0] == "--path")
@@ -176,7 +215,7 @@ fn readme_eval_commands_run() {
     assert!(ran >= 3, "ran only {ran} eval commands");
 }
 
-/// The completion pass's figures in the README: unchanged on thesis-1, 0.936 → 0.974 on office.
+/// The completion pass's figures in the book: unchanged on thesis-1, 0.936 → 0.974 on office.
 #[test]
 fn the_completion_figures_are_what_eval_prints() {
     let reach = |map: &str, complete: bool| {
@@ -191,14 +230,14 @@ fn the_completion_figures_are_what_eval_prints() {
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         v["common"]["cov_final_reach"].as_f64().unwrap()
     };
-    let flat = readme().replace('\n', " ");
+    let flat = all_text().replace('\n', " ");
     let (t1, t1_plain) = (reach("thesis-1", true), reach("thesis-1", false));
     assert_eq!(format!("{t1:.3}"), format!("{t1_plain:.3}"));
     let thesis_1 = format!("(`cov_final_reach` {t1:.3} either way)");
     let office =
         format!("raises the boustrophedon's from {:.3} to {:.3}", reach("office", false), reach("office", true));
     for claim in [thesis_1, office] {
-        assert!(flat.contains(&claim), "the README should say `{claim}`");
+        assert!(flat.contains(&claim), "the book should say `{claim}`");
     }
 }
 
@@ -232,9 +271,9 @@ fn the_central_fleet_figures_are_what_the_example_gives() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let division = format!("against {:.0} s by area division", v["fleet"]["makespan_s"].as_f64().unwrap());
-    let flat = readme().replace('\n', " ");
+    let flat = all_text().replace('\n', " ");
     for claim in [central, division] {
-        assert!(flat.contains(&claim), "the README should say `{claim}`");
+        assert!(flat.contains(&claim), "the book should say `{claim}`");
     }
 }
 
@@ -273,4 +312,55 @@ fn the_quickstart_test_commands_are_what_ci_runs() {
     for line in ci_lines.iter().filter(|l| l.starts_with("cargo test")) {
         assert!(wanted.contains(line), ".ci/run's `{line}` is not in the README's quickstart");
     }
+}
+
+/// What a newcomer runs first: every `covga` command of the README and of "Getting started",
+/// in the order written, from a folder that has the repository's experiments and grids (so that
+/// `out/` lands in a temporary folder), each ending with success.
+#[test]
+fn the_readme_and_getting_started_commands_run_in_order() {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["experiments", "grids"] {
+        std::os::unix::fs::symlink(root().join(name), dir.path().join(name)).unwrap();
+    }
+    let mut ran = 0;
+    for page in ["README.md", "docs/src/getting-started/install.md", "docs/src/getting-started/your-floor-plan.md"] {
+        let text = std::fs::read_to_string(root().join(page)).unwrap();
+        for (tokens, _) in commands(&text) {
+            let args: Vec<&str> = tokens[1..].iter().map(String::as_str).collect();
+            let o = crate::common::covga_in(dir.path(), &args);
+            assert!(o.status.success(), "{page}: `{}`: {}", tokens.join(" "), String::from_utf8_lossy(&o.stderr));
+            ran += 1;
+        }
+    }
+    assert!(ran >= 8, "ran only {ran} commands");
+    assert!(dir.path().join("out/smoke/report/summary.md").is_file(), "the first report was written");
+}
+
+/// Every relative link and image of the README and the book points to a file of the
+/// repository, every `#anchor` to a heading or an `<a id>` of its page, and every page of the
+/// book is in its table of contents.
+#[test]
+fn every_link_and_anchor_resolves() {
+    let pages = pages();
+    let mut problems = Vec::new();
+    let mut checked = 0;
+    for (page, text) in &pages {
+        for link in links::links(text) {
+            checked += 1;
+            if let Err(p) = links::resolve(root(), page, &link) {
+                problems.push(format!("{}: `{link}`: {p}", page.display()));
+            }
+        }
+    }
+    assert!(checked >= 150, "only {checked} links checked");
+    let summary = std::fs::read_to_string(root().join("docs/src/SUMMARY.md")).unwrap();
+    let listed: Vec<String> = links::links(&summary).into_iter().map(|l| format!("docs/src/{l}")).collect();
+    for (page, _) in &pages {
+        let name = page.display().to_string();
+        if name.starts_with("docs/src/") && name != "docs/src/SUMMARY.md" && !listed.contains(&name) {
+            problems.push(format!("{name} is not in docs/src/SUMMARY.md"));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
 }

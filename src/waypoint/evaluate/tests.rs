@@ -198,7 +198,7 @@ fn penalties_and_violations_by_constraint() {
     }
 }
 
-/// Loop closures by their definition (spec W23), pair by pair: the reference the sorted-edge
+/// Loop closures by their definition (W23), pair by pair: the reference the sorted-edge
 /// count must equal.
 fn loop_closures_by_pairs(a: &[u32], b: &[u32], same: bool, separation: usize) -> usize {
     let (ea, eb) = (a.len().saturating_sub(1), b.len().saturating_sub(1));

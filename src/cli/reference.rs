@@ -1,0 +1,57 @@
+//! `covga reference`: the book's reference pages as the program writes them: every key of an
+//! experiment file (`keys`) and every command with its flags (`commands`), in Markdown.
+
+use super::CliError;
+use clap::{Args, CommandFactory, ValueEnum};
+
+/// Arguments of `covga reference`.
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    /// Which page: `keys` (docs/src/reference/keys.md) or `commands`
+    /// (docs/src/reference/commands.md)
+    page: Page,
+}
+
+/// A reference page of the book.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+enum Page {
+    /// Every key of every section of an experiment file.
+    Keys,
+    /// Every command and flag.
+    Commands,
+}
+
+/// Runs `covga reference`: the page on standard output.
+pub fn run(a: ReferenceArgs) -> Result<(), CliError> {
+    match a.page {
+        Page::Keys => print!("{}", crate::experiment::keys::markdown()),
+        Page::Commands => print!("{}", commands_markdown()),
+    }
+    Ok(())
+}
+
+/// Every command's long help, as `covga COMMAND --help` prints it.
+fn commands_markdown() -> String {
+    let mut root = super::Cli::command().bin_name("covga");
+    root.build();
+    let mut md = String::from(
+        "# Commands and flags\n\n\
+         Every command of `covga` with its flags, as `covga COMMAND --help` prints them. This page is\n\
+         written by `covga reference commands`; `tests/it/reference.rs` requires it to equal what the\n\
+         program writes.\n",
+    );
+    let mut stack = vec![root];
+    let mut pages = Vec::new();
+    while let Some(mut command) = stack.pop() {
+        let name = command.get_bin_name().unwrap_or("covga").to_string();
+        let help = command.render_long_help().to_string();
+        pages.push((name, help));
+        let mut children: Vec<clap::Command> = command.get_subcommands().cloned().collect();
+        children.reverse();
+        stack.extend(children.into_iter().filter(|c| c.get_name() != "help"));
+    }
+    for (name, help) in pages {
+        md.push_str(&format!("\n## `{name}`\n\n```text\n{}\n```\n", help.trim_end()));
+    }
+    md
+}
