@@ -96,7 +96,8 @@ enum Command {
     Maps(maps::MapsArgs),
     /// Rewrite experiment and grid files to the current key names (keys that moved section).
     Migrate(migrate::MigrateArgs),
-    /// Write a reference page of the book: every key of an experiment file, or every command.
+    /// Write a reference page of the book: every key of an experiment file, every command, or every
+    /// output file and column.
     Reference(reference::ReferenceArgs),
 }
 

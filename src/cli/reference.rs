@@ -1,5 +1,6 @@
 //! `covga reference`: the book's reference pages as the program writes them: every key of an
-//! experiment file (`keys`) and every command with its flags (`commands`), in Markdown.
+//! experiment file (`keys`), every command with its flags (`commands`) and every output file
+//! and column (`outputs`), in Markdown.
 
 use super::CliError;
 use clap::{Args, CommandFactory, ValueEnum};
@@ -7,8 +8,8 @@ use clap::{Args, CommandFactory, ValueEnum};
 /// Arguments of `covga reference`.
 #[derive(Args, Debug)]
 pub struct ReferenceArgs {
-    /// Which page: `keys` (docs/src/reference/keys.md) or `commands`
-    /// (docs/src/reference/commands.md)
+    /// Which page: `keys` (docs/src/reference/keys.md), `commands`
+    /// (docs/src/reference/commands.md) or `outputs` (docs/src/reference/outputs.md)
     page: Page,
 }
 
@@ -19,6 +20,8 @@ enum Page {
     Keys,
     /// Every command and flag.
     Commands,
+    /// Every output file and `runs.csv` column.
+    Outputs,
 }
 
 /// Runs `covga reference`: the page on standard output.
@@ -26,6 +29,7 @@ pub fn run(a: ReferenceArgs) -> Result<(), CliError> {
     match a.page {
         Page::Keys => print!("{}", crate::experiment::keys::markdown()),
         Page::Commands => print!("{}", commands_markdown()),
+        Page::Outputs => print!("{}", crate::study::outputs::markdown()),
     }
     Ok(())
 }

@@ -7,7 +7,7 @@
 //! without the page re-made fails.
 
 mod probe;
-mod source;
+pub mod source;
 
 use super::file::ExperimentFile;
 use source::{Field, Shape};

@@ -28,6 +28,43 @@ pub const FLEET_COLUMNS: [&str; 12] = [
     "negotiation_settled",
     "negotiation_last_change",
 ];
+/// What the columns of `runs.csv` other than the common scorer's hold (those are documented on
+/// [`crate::coverage::score::Score`]'s fields).
+const COLUMN_MEANINGS: [(&str, &str); 24] = [
+    ("run_id", "the run's id: a hash of its written configuration and its replicate"),
+    ("config_id", "the configuration's id: the same for every replicate of a configuration"),
+    ("replicate", "the replicate's number, from 0"),
+    ("seed", "the run's seed, derived from the study's seed and the replicate"),
+    ("planner", "the planner that made the plan (`fleet-…` for a fleet's method)"),
+    ("map", "the map's name"),
+    ("planner_feasible", "whether the plan meets the planner's own constraints (the waypoint planner's)"),
+    ("violations", "the planner's constraints the plan violates, in words"),
+    ("evaluations", "fitness evaluations spent"),
+    ("iterations", "iterations (generations) completed"),
+    ("stop", "why the run stopped: the budget's rule that ended it, or the planner's own"),
+    ("wall_s", "wall-clock seconds of the run (the one column that differs between identical runs)"),
+    ("fleet_name", "the fleet's label (`fleet.name`)"),
+    ("fleet_robots", "robots in the fleet"),
+    ("union_free", "free cells swept by any robot over all free cells"),
+    ("union_reach", "swept cells some robot can reach over the cells the robots can reach"),
+    ("overlap_fraction", "cells swept by two robots or more over the union"),
+    ("fleet_makespan_s", "the slowest robot's time in seconds"),
+    ("balance", "the slowest robot's time over the fastest's"),
+    ("fleet_cov_final", "003 eq. 3.10 over the union of the robots' sweeps"),
+    (
+        "fleet_t_final",
+        "003's `t_final` for the fleet: the covered area over the fleet's summed rate against its makespan",
+    ),
+    ("negotiation_rounds", "rounds of plan exchange (negotiation)"),
+    ("negotiation_settled", "whether the negotiation's plans settled"),
+    ("negotiation_last_change", "the share of swept cells the last round changed (negotiation)"),
+];
+
+/// What column `name` holds, for the id, run, effort and fleet columns.
+pub fn column_meaning(name: &str) -> Option<&'static str> {
+    COLUMN_MEANINGS.iter().find(|(c, _)| *c == name).map(|(_, m)| *m)
+}
+
 /// Columns that measure time and so differ between otherwise identical runs.
 pub const TIMING_COLUMNS: [&str; 1] = ["wall_s"];
 
@@ -303,6 +340,20 @@ mod tests {
         }
         assert_eq!(column_kind("thesis.tournament_size"), None, "a swept key's kind is its key's");
         assert_eq!(column_kind("cam_walls_free"), Some(ColumnKind::Float));
+    }
+
+    /// Every column that is not the common scorer's has its meaning, and every meaning names a
+    /// real column (the scorer's columns are documented on its fields).
+    #[test]
+    fn every_column_outside_the_scorer_has_a_meaning() {
+        let all = header(&[]);
+        let scorer = crate::coverage::score::Score::column_names();
+        for name in all.iter().filter(|c| !scorer.contains(&c.as_str())) {
+            assert!(column_meaning(name).is_some(), "{name} has no meaning");
+        }
+        for (name, _) in COLUMN_MEANINGS {
+            assert!(all.iter().any(|c| c == name), "{name} is no column");
+        }
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! The book's reference pages are what the program writes: `covga reference keys` (every key,
 //! its type, default and checked range, from the configuration types) and `covga reference
-//! commands` (every command's help). A default, a range, a doc comment or a flag changed
+//! commands` (every command's help) and `covga reference outputs` (every output file and
+//! `runs.csv` column). A default, a range, a doc comment or a flag changed
 //! without the page re-made fails here.
 
 use std::path::Path;
@@ -11,7 +12,11 @@ fn root() -> &'static Path {
 
 #[test]
 fn the_reference_pages_are_what_the_program_writes() {
-    for (page, file) in [("keys", "docs/src/reference/keys.md"), ("commands", "docs/src/reference/commands.md")] {
+    for (page, file) in [
+        ("keys", "docs/src/reference/keys.md"),
+        ("commands", "docs/src/reference/commands.md"),
+        ("outputs", "docs/src/reference/outputs.md"),
+    ] {
         let o = crate::common::covga_in(root(), &["reference", page]);
         assert!(o.status.success(), "covga reference {page}: {}", String::from_utf8_lossy(&o.stderr));
         let written = String::from_utf8(o.stdout).expect("UTF-8");

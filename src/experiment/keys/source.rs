@@ -61,6 +61,16 @@ pub fn section_type(ty: &str) -> Option<(&'static str, bool)> {
 /// variant).
 pub fn struct_shape(name: &str) -> Shape {
     let source = SECTION_TYPES.iter().find(|(n, _)| *n == name).map(|(_, s)| *s).expect("a section type");
+    shape_in(source, name)
+}
+
+/// The public fields of struct `name` declared in `source`, with their doc comments.
+pub fn fields_in(source: &str, name: &str) -> Vec<Field> {
+    shape_in(source, name).fields
+}
+
+/// The shape of struct or tagged enum `name` declared in `source`.
+fn shape_in(source: &str, name: &str) -> Shape {
     let lines: Vec<&str> = source.lines().collect();
     let struct_at = lines.iter().position(|l| *l == format!("pub struct {name} {{"));
     let enum_at = lines.iter().position(|l| *l == format!("pub enum {name} {{"));
