@@ -4,7 +4,7 @@
 //! notes and specification the project was started from, the folder of source papers).
 
 use std::collections::BTreeSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -16,17 +16,6 @@ const WAYPOINT_PAGE: &str = "docs/src/concepts/waypoint-decisions.md";
 
 /// Words that cite a document outside the repository.
 const OUTSIDE: [&str; 6] = ["spec §", "Spec §", "DESIGN.md", "DESIGN \"", "shared/", "design notes"];
-
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// The `<a id="…">` anchors of a page.
 fn anchors(page: &str) -> BTreeSet<String> {
@@ -111,9 +100,7 @@ fn problems(name: &str, text: &str, thesis: &BTreeSet<String>, waypoint: &BTreeS
 fn every_citation_in_src_resolves_to_an_anchor_of_the_book() {
     let (thesis, waypoint) = (anchors(THESIS_PAGE), anchors(WAYPOINT_PAGE));
     assert!(thesis.contains("r30") && waypoint.contains("w30"), "the pages hold every resolution");
-    let mut files = Vec::new();
-    rust_files(&root().join("src"), &mut files);
-    files.sort();
+    let files = crate::common::files_with_extension(&root().join("src"), "rs");
     let mut found = Vec::new();
     let mut cited = 0;
     for file in &files {

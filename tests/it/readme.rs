@@ -26,19 +26,8 @@ fn readme() -> String {
 
 /// The README and every page of the book, as (path from the repository root, text).
 fn pages() -> Vec<(PathBuf, String)> {
-    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
-        for entry in std::fs::read_dir(dir).unwrap() {
-            let path = entry.unwrap().path();
-            if path.is_dir() {
-                walk(&path, out);
-            } else if path.extension().is_some_and(|e| e == "md") {
-                out.push(path);
-            }
-        }
-    }
     let mut files = vec![root().join("README.md")];
-    walk(&root().join("docs/src"), &mut files);
-    files.sort();
+    files.extend(crate::common::files_with_extension(&root().join("docs/src"), "md"));
     files
         .into_iter()
         .map(|f| {
