@@ -1,12 +1,29 @@
 """Shared fixtures: the repository, the `covga` binary the CLI comparisons run, small inputs."""
 
+import _thread
 import os
+import signal
 import subprocess
+import threading
+import warnings
 from pathlib import Path
 
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
+
+
+def interrupt_after(seconds: float) -> threading.Timer:
+    """Ctrl-C in `seconds`, as a user's interpreter delivers it: `_thread.interrupt_main` calls
+    Python's SIGINT handler, so Python's own (which raises `KeyboardInterrupt`) is put back
+    first if a library an earlier test used left another one installed; a warning names it."""
+    handler = signal.getsignal(signal.SIGINT)
+    if handler is not signal.default_int_handler:
+        warnings.warn(f"an earlier test left SIGINT's handler at {handler!r}; Python's own put back")
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    timer = threading.Timer(seconds, _thread.interrupt_main)
+    timer.start()
+    return timer
 
 
 @pytest.fixture(scope="session")

@@ -1,13 +1,11 @@
 """Runs, studies and reports from Python against the command line."""
 
-import _thread
 import json
-import threading
 import time
 
 import numpy as np
 import pytest
-from conftest import SHORT_THESIS
+from conftest import SHORT_THESIS, interrupt_after
 
 import covga
 
@@ -158,15 +156,9 @@ def test_a_renamed_key_warns_and_runs_as_its_new_name(tmp_path):
     assert a.summary["score"] == b.summary["score"]
 
 
-def _interrupt_after(seconds):
-    timer = threading.Timer(seconds, _thread.interrupt_main)
-    timer.start()
-    return timer
-
-
 def test_ctrl_c_stops_a_run_and_leaves_no_folder(tmp_path):
     long_run = {"planner": "thesis", "map": {"source": "thesis-1"}, "budget": {"iterations": 100000}}
-    timer = _interrupt_after(0.5)
+    timer = interrupt_after(0.5)
     with pytest.raises(KeyboardInterrupt):
         covga.run(long_run, out=tmp_path / "stopped")
     timer.join()
@@ -275,7 +267,7 @@ def _same_rows_but_wall_time(tmp_path):
 def test_ctrl_c_stops_a_study_which_then_resumes(tmp_path):
     grid_file = tmp_path / "slow.toml"
     grid_file.write_text(GRID.replace("iterations = 60", "iterations = 2000"))
-    timer = _interrupt_after(0.5)
+    timer = interrupt_after(0.5)
     with pytest.raises(KeyboardInterrupt):
         covga.grid(grid_file, jobs=1, out=tmp_path / "study")
     timer.join()
@@ -289,7 +281,7 @@ def test_ctrl_c_stops_the_runs_in_progress_without_recording_them(tmp_path):
     grid_file = tmp_path / "long.toml"
     grid_file.write_text(GRID.replace("iterations = 60", "iterations = 1000000"))
     started = time.monotonic()
-    timer = _interrupt_after(1.0)
+    timer = interrupt_after(1.0)
     with pytest.raises(KeyboardInterrupt):
         covga.grid(grid_file, jobs=2, out=tmp_path / "study")
     timer.join()

@@ -108,15 +108,14 @@ def test_a_batch_too_large_for_memory_is_refused_before_it_is_built():
 
 
 def test_ctrl_c_stops_a_batch_within_a_second():
-    import _thread
-    import threading
     import time
+
+    from conftest import interrupt_after
 
     rng = np.random.default_rng(5)
     batch = np.stack([np.column_stack([rng.uniform(-180, 180, 150), rng.uniform(0, 6, 150)]) for _ in range(12000)])
-    timer = threading.Timer(0.3, _thread.interrupt_main)
     started = time.monotonic()
-    timer.start()
+    timer = interrupt_after(0.3)
     with pytest.raises(KeyboardInterrupt):
         covga.thesis.evaluate("office", batch, start=(2.0, 2.0), moves="routed")
     timer.join()
