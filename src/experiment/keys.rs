@@ -56,7 +56,8 @@ fn default_table() -> toml::Table {
     let file = ExperimentFile {
         cell_order: Some(Default::default()),
         fleet: Some(Default::default()),
-        retrain: Some(crate::thesis::config::RetrainSection { at_iteration: 2000, region: [5.0, 5.0, 10.0, 10.0] }),
+        // `at_iteration` is required (the page says so); the rest of the table takes its defaults.
+        retrain: Some(toml::from_str("at_iteration = 0").expect("a retrain table")),
         ..ExperimentFile::default()
     };
     toml::Table::try_from(&file).expect("the default experiment file serialises")
@@ -90,7 +91,11 @@ fn collect(out: &mut Vec<SectionDoc>, table: &str, prefix: &str, shape: &Shape, 
 /// The reference of one key.
 fn key_doc(key: &str, field: &Field, defaults: &toml::Table) -> KeyDoc {
     let value = lookup(defaults, key);
-    let default = value.map_or_else(|| "unset".to_string(), show_value);
+    let default = match value {
+        _ if field.required => "required".to_string(),
+        Some(v) => show_value(v),
+        None => "unset".to_string(),
+    };
     let kind = source::toml_type(&field.ty, value);
     KeyDoc {
         key: key.to_string(),
@@ -135,8 +140,9 @@ fn render(sections: &[SectionDoc]) -> String {
     let mut md = String::from(
         "# Experiment keys\n\n\
          Every key of an experiment file, section by section, with its TOML type, its default (as\n\
-         `config.toml` writes it; `unset` where the key is optional) and the values its checks\n\
-         allow. This page is written by `covga reference keys` from the configuration types, their\n\
+         `config.toml` writes it; `unset` where the key is optional; `required` where a file that\n\
+         has the key's table must set it) and the values its checks allow. This page is written\n\
+         by `covga reference keys` from the configuration types, their\n\
          doc comments and their checks; `tests/it/reference.rs` requires it to equal what the program\n\
          writes, so a default or a range cannot change without it. Symbols in backticks are the\n\
          papers' (`P_mA`, `C_len`: 003, the thesis; `p_A`, `T_x`: 000, the waypoint planner).\n\
@@ -196,6 +202,11 @@ mod tests {
         assert!(projection.allowed.contains("`f1`") && projection.allowed.contains("`f2`"), "{projection:?}");
         assert_eq!(key("map.resolution").default, "unset");
         assert_eq!(key("stations.start").default, "[1.3, 1.3]");
+        for required in ["retrain.at_iteration", "robots[].name", "thesis.control.min"] {
+            assert_eq!(key(required).default, "required", "{required}");
+        }
+        assert_eq!(key("retrain.region").default, "[5.0, 5.0, 10.0, 10.0]");
+        assert_eq!(key("thesis.control.k1").default, "unset", "a variant's field with a default");
     }
 
     /// A default that changes changes the page (so the committed page no longer equals it), and

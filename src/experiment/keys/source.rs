@@ -13,6 +13,9 @@ pub struct Field {
     pub doc: String,
     /// The variant of a tagged enum this field belongs to.
     pub variant: Option<String>,
+    /// Whether a file that has the field's table must set it (neither the type nor the field
+    /// has a serde default).
+    pub required: bool,
 }
 
 /// A section type: its doc comment and its fields.
@@ -77,8 +80,19 @@ fn shape_in(source: &str, name: &str) -> Shape {
     let at = struct_at.or(enum_at).unwrap_or_else(|| panic!("no declaration of {name}"));
     let doc = doc_above(&lines, at);
     let body = lines[at + 1..].iter().take_while(|l| **l != "}").copied();
-    let fields = if struct_at.is_some() { struct_fields(body) } else { variant_fields(body) };
+    let fields = if struct_at.is_some() { struct_fields(body, defaults_all(&lines, at)) } else { variant_fields(body) };
     Shape { doc, fields }
+}
+
+/// Whether the type declared at line `at` takes its defaults for absent fields
+/// (`#[serde(default)]` among its attributes).
+fn defaults_all(lines: &[&str], at: usize) -> bool {
+    lines[..at]
+        .iter()
+        .rev()
+        .map(|l| l.trim())
+        .take_while(|l| l.starts_with("#[") || l.starts_with("///"))
+        .any(|l| l.starts_with("#[serde(") && l.contains("default"))
 }
 
 /// The doc comment above line `at`, attributes skipped.
@@ -97,22 +111,25 @@ fn doc_above(lines: &[&str], at: usize) -> String {
 }
 
 /// The `pub` fields of a struct body, with their docs; `#[serde(skip)]` fields left out.
-fn struct_fields<'a>(body: impl Iterator<Item = &'a str>) -> Vec<Field> {
+/// `all_default`: the struct takes defaults for absent fields.
+fn struct_fields<'a>(body: impl Iterator<Item = &'a str>, all_default: bool) -> Vec<Field> {
     let mut fields = Vec::new();
-    let (mut doc, mut rename, mut skip) = (Vec::new(), None, false);
+    let (mut doc, mut rename, mut skip, mut default) = (Vec::new(), None, false, false);
     for line in body.map(str::trim) {
         if let Some(text) = line.strip_prefix("///") {
             doc.push(text.trim().to_string());
         } else if line.starts_with("#[serde(") {
             skip |= line.contains("(skip)");
+            default |= line.contains("default");
             rename = line.split("rename = \"").nth(1).and_then(|r| r.split('"').next()).map(str::to_string);
         } else if let Some((name, ty)) = line.strip_prefix("pub ").and_then(|l| l.split_once(": ")) {
             if !skip {
                 let name = rename.take().unwrap_or_else(|| name.to_string());
                 let ty = ty.trim_end_matches(',').to_string();
-                fields.push(Field { name, ty, doc: clean_doc(&doc.join(" ")), variant: None });
+                let required = !all_default && !default;
+                fields.push(Field { name, ty, doc: clean_doc(&doc.join(" ")), variant: None, required });
             }
-            (doc, rename, skip) = (Vec::new(), None, false);
+            (doc, rename, skip, default) = (Vec::new(), None, false, false);
         }
     }
     fields
@@ -125,11 +142,14 @@ fn variant_fields<'a>(body: impl Iterator<Item = &'a str>) -> Vec<Field> {
     let mut fields = Vec::new();
     let mut doc = Vec::new();
     let mut variant: Option<String> = None;
-    for line in body.filter(|l| !l.trim().starts_with("#[")) {
+    let mut default = false;
+    for line in body {
         let depth = line.len() - line.trim_start().len();
         let line = line.trim();
         if let Some(text) = line.strip_prefix("///") {
             doc.push(text.trim().to_string());
+        } else if line.starts_with("#[") {
+            default |= line.starts_with("#[serde(") && line.contains("default");
         } else if depth == 4 && line.starts_with(|c: char| c.is_ascii_uppercase()) {
             let name = line.trim_end_matches([',', '{', ' ']).to_lowercase();
             kinds.push(format!("`{name}`: {}", clean_doc(&doc.join(" "))));
@@ -138,11 +158,14 @@ fn variant_fields<'a>(body: impl Iterator<Item = &'a str>) -> Vec<Field> {
         } else if let (Some((name, ty)), Some(v)) = (line.split_once(": "), &variant) {
             let ty = ty.trim_end_matches(',').to_string();
             let doc_line = format!("{} (with `kind = \"{v}\"`)", clean_doc(&doc.join(" ")));
-            fields.push(Field { name: name.to_string(), ty, doc: doc_line, variant: Some(v.clone()) });
+            let required = !default;
+            fields.push(Field { name: name.to_string(), ty, doc: doc_line, variant: Some(v.clone()), required });
             doc.clear();
+            default = false;
         }
     }
-    let kind = Field { name: "kind".into(), ty: "String".into(), doc: kinds.join("; "), variant: None };
+    let kind =
+        Field { name: "kind".into(), ty: "String".into(), doc: kinds.join("; "), variant: None, required: false };
     std::iter::once(kind).chain(fields).collect()
 }
 
