@@ -113,6 +113,13 @@ pub struct CellOrderSection {
     /// Left out of the canonical form while off, so that run ids made before it stay.
     #[serde(skip_serializing_if = "std::ops::Not::not")]
     pub seed_directions: bool,
+    /// Put the classical control's plans (one boustrophedon over the whole reachable map per
+    /// lane direction, with this completion) among a search's finalists, so that the common
+    /// scorer returns whichever plan reaches the coverage goal first and a search is never
+    /// slower than the classical control. Needs `coverage_goal`; read by `"ga"` and `"ils"`.
+    /// Left out of the canonical form while off, so that run ids made before it stay.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub classical_finalists: bool,
     /// How many of the map's dominant wall orientations
     /// ([`crate::map::orientation::wall_orientations`]) join `directions` as lane directions
     /// (those within 1° of one already there are not added twice); 0 to 8.
@@ -141,6 +148,7 @@ impl Default for CellOrderSection {
             completion: Completion::Boundary,
             coverage_goal: None,
             seed_directions: false,
+            classical_finalists: false,
             wall_directions: 0,
             completion_m_per_m2: 20.0,
         }
@@ -162,6 +170,8 @@ pub struct CellOrderConfig {
     pub coverage_goal: Option<f64>,
     /// Seed the GA with the nearest-neighbour tour at each single direction.
     pub seed_directions: bool,
+    /// The classical control's plans among a search's finalists.
+    pub classical_finalists: bool,
     /// How many of `directions` were added from the map's walls (the last ones).
     pub wall_directions: usize,
     /// Completion driving charged per square metre a sweep leaves, in metres.
@@ -252,6 +262,13 @@ impl CellOrderSection {
                 format!("= {g} is outside (0, 1] (a share of the reachable cells)"),
             ));
         }
+        if self.classical_finalists && self.coverage_goal.is_none() {
+            return Err(ctx.error(
+                "cell_order.classical_finalists",
+                "= true needs cell_order.coverage_goal: a search's plans and the classical control's are compared \
+                 by their time to it",
+            ));
+        }
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             check_exact_cells(ctx, &directions)?;
         }
@@ -277,6 +294,7 @@ impl CellOrderSection {
             completion: self.completion,
             coverage_goal: self.coverage_goal,
             seed_directions: self.seed_directions,
+            classical_finalists: self.classical_finalists,
             wall_directions: self.wall_directions,
             completion_m_per_m2: self.completion_m_per_m2,
             width: ctx.scenario.robot.width,

@@ -15,6 +15,7 @@ pub mod cell_completion;
 pub mod config;
 pub mod controls;
 pub mod exact;
+pub mod gtsplib;
 pub mod ils;
 pub mod local;
 pub mod operators;

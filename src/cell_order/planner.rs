@@ -137,6 +137,19 @@ impl CellOrderConfig {
     }
 }
 
+impl CellOrderConfig {
+    /// The tour problem this configuration's runs solve on `scenario`, prepared as a run
+    /// prepares it (on the planning raster), as GTSPLIB text named `name` and the CSV of what
+    /// each node is ([`super::gtsplib`]). Its objective is the whole tour's time: a coverage
+    /// goal, which ends a run's plan early, is not part of the GTSP.
+    pub fn gtsplib(&self, scenario: &Scenario, name: &str) -> Result<(String, String), String> {
+        let planning = scenario.for_planning();
+        let prepared = prepare(&planning, self.preparation())?;
+        let inst = &prepared.instance;
+        Ok((super::gtsplib::instance_text(inst, name), super::gtsplib::nodes_csv(inst, &prepared.sweeps)))
+    }
+}
+
 /// The plan a run returns, and how it was chosen.
 struct Chosen {
     /// Which finalist.
@@ -254,15 +267,17 @@ pub fn area_bound_s(prepared: &Prepared, robot: &crate::coverage::Footprint, goa
 fn details_of(
     prepared: &Prepared,
     robot: &crate::coverage::Footprint,
-    solved: &Solved,
+    (solved, classical_chosen): (&Solved, bool),
     skipped: usize,
     goal: Option<(f64, f64, Vec<f64>)>,
     directions: Option<&[f64]>,
     control_direction: Option<f64>,
 ) -> serde_json::Map<String, serde_json::Value> {
     let inst = &prepared.instance;
+    // A classical plan chosen over the search's has no tour of the cells.
+    let no_tour = Tour { order: Vec::new(), choice: Vec::new() };
     let tour: Vec<serde_json::Value> = prepared
-        .sweeps_of(&solved.tour)
+        .sweeps_of(if classical_chosen { &no_tour } else { &solved.tour })
         .zip(&solved.tour.order)
         .map(|(w, k)| serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry}))
         .collect();
@@ -284,6 +299,9 @@ fn details_of(
     }
     if let Some(d) = control_direction {
         details.insert("control_direction_deg".into(), d.into());
+    }
+    if classical_chosen {
+        details.insert("classical_chosen".into(), true.into());
     }
     if let Some((goal, time_s, finalists)) = goal {
         details.insert("coverage_goal".into(), goal.into());
@@ -320,7 +338,7 @@ impl Planner for CellOrderConfig {
         })?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
         let mut solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
-        let candidates: Vec<(Vec<Point>, usize)> = match self.solver {
+        let mut candidates: Vec<(Vec<Point>, usize)> = match self.solver {
             Solver::Boustrophedon => solved.lanes.iter().map(|l| (l.path.clone(), l.skipped)).collect(),
             Solver::Ga | Solver::Ils | Solver::Exact | Solver::Nearest => {
                 // Without a goal a searching solver returns its best: only that one is driven.
@@ -329,21 +347,30 @@ impl Planner for CellOrderConfig {
                 tours.iter().map(|t| prepared.path(t, &s.robot, (s.start, s.end), self.completion)).collect()
             }
         };
+        // The classical control's plans after the search's finalists (validation asks for a goal).
+        let classical_from = candidates.len();
+        if self.classical_finalists && matches!(self.solver, Solver::Ga | Solver::Ils) {
+            let lanes = controls::boustrophedon_plans(&prepared, s, &self.directions, self.completion)
+                .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+            candidates.extend(lanes.into_iter().map(|l| (l.path, l.skipped)));
+        }
         // The common scorer reads every candidate where it chooses among them.
         if self.coverage_goal.is_some() || self.solver.is_control() {
             solved.evaluations += candidates.len() as u64;
         }
         let chosen = self.chosen_plan(&prepared, candidates, s, &grid);
+        let classical_chosen = chosen.index >= classical_from;
         let control_direction = match self.solver {
             Solver::Nearest | Solver::Boustrophedon => Some(self.directions[chosen.index]),
-            Solver::Ga | Solver::Ils | Solver::Exact => None,
+            Solver::Ga | Solver::Ils => classical_chosen.then(|| self.directions[chosen.index - classical_from]),
+            Solver::Exact => None,
         };
         if let Some(tour) = solved.finalists.get(chosen.index) {
             solved.tour = tour.clone();
             solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
         }
         let (path, skipped) = (chosen.path, chosen.skipped);
-        if self.solver == Solver::Boustrophedon {
+        if self.solver == Solver::Boustrophedon || classical_chosen {
             // No tour: the cost is the plan's own mission time.
             solved.cost = crate::coverage::curve::segment_end_times(&path, &s.robot).last().copied().unwrap_or(0.0);
         }
@@ -363,7 +390,7 @@ impl Planner for CellOrderConfig {
             details: details_of(
                 &prepared,
                 &s.robot,
-                &solved,
+                (&solved, classical_chosen),
                 skipped,
                 chosen.goal,
                 self.wall_directions_used(),

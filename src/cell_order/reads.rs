@@ -6,7 +6,7 @@ use super::config::{CellOrderSection, Solver};
 use crate::planner::sections::unread_section;
 
 /// The `[cell_order]` keys of its GA, which the other solvers do not read.
-const GA_KEYS: [&str; 11] = [
+const GA_KEYS: [&str; 12] = [
     "cell_order.population",
     "cell_order.selection",
     "cell_order.tournament_size",
@@ -18,7 +18,11 @@ const GA_KEYS: [&str; 11] = [
     "cell_order.p_choice",
     "cell_order.memetic",
     "cell_order.seed_directions",
+    "cell_order.classical_finalists",
 ];
+
+/// The keys of [`GA_KEYS`] the iterated local search reads too: how a search starts and ends.
+const SEARCH_KEYS: [&str; 2] = ["cell_order.seed_directions", "cell_order.classical_finalists"];
 
 impl CellOrderSection {
     /// Why the cell-order planner with these settings does not read `key` (a dotted key or a
@@ -32,9 +36,9 @@ impl CellOrderSection {
             Solver::Exact => ga_key.then(|| {
                 "cell_order.solver = \"exact\" runs no GA (Held–Karp reads only the directions and completion)".into()
             }),
-            Solver::Ils => (ga_key && key != "cell_order.seed_directions").then(|| {
+            Solver::Ils => (ga_key && !SEARCH_KEYS.contains(&key)).then(|| {
                 "cell_order.solver = \"ils\" runs no GA (iterated local search reads the directions, completion, \
-                 coverage_goal and seed_directions)"
+                 coverage_goal, seed_directions and classical_finalists)"
                     .into()
             }),
             Solver::Nearest | Solver::Boustrophedon => ga_key.then(|| {

@@ -2,6 +2,7 @@
 
 pub(crate) mod eval;
 mod grid;
+mod gtsp;
 mod maps;
 mod migrate;
 mod reference;
@@ -99,6 +100,9 @@ enum Command {
     /// Write a reference page of the book: every key of an experiment file, every command, or every
     /// output file and column.
     Reference(reference::ReferenceArgs),
+    /// Write a cell-order experiment's tour problem as a GTSPLIB instance (for an established
+    /// GTSP solver to check the searches against).
+    Gtsp(gtsp::GtspArgs),
 }
 
 /// Parses `args` and runs the command.
@@ -118,6 +122,7 @@ where
         Command::Maps(a) => maps::run(a),
         Command::Migrate(a) => migrate::run(a),
         Command::Reference(a) => reference::run(a),
+        Command::Gtsp(a) => gtsp::run(a),
     }
 }
 

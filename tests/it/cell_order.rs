@@ -317,3 +317,66 @@ fn quota_plans_cover_all_in_the_end_and_the_seed_plan_ignores_the_goal() {
     let seed = covga::cell_order::local_optimum_plan(&s, &whole).unwrap();
     assert_eq!(covga::cell_order::local_optimum_plan(&s, &goal).unwrap(), seed);
 }
+
+/// `covga gtsp` writes the tour problem a run solves: the exact solver's tour, read back
+/// through the nodes file, weighs its `tour_cost_s` on the written matrix (to the millisecond
+/// rounding of each arc); a file of another planner is refused with exit code 2 and no file.
+#[test]
+fn gtsp_writes_the_instance_a_run_solves() {
+    let dir = tempfile::tempdir().unwrap();
+    let experiment = dir.path().join("exact.toml");
+    std::fs::write(
+        &experiment,
+        "planner = \"cell_order\"\n[map]\nsource = \"thesis-2\"\n[robot]\nrot_speed = 0.52\n\
+         [stations]\nstart = [1.3, 1.3]\n[cell_order]\nsolver = \"exact\"\n",
+    )
+    .unwrap();
+    let (problem, nodes, run) = (dir.path().join("p.gtsp"), dir.path().join("n.csv"), dir.path().join("run"));
+    let p = |x: &std::path::Path| x.to_str().unwrap().to_string();
+    crate::common::assert_success(&crate::common::covga(&[
+        "gtsp",
+        &p(&experiment),
+        "--out",
+        &p(&problem),
+        "--nodes",
+        &p(&nodes),
+    ]));
+    crate::common::assert_success(&crate::common::covga(&["run", &p(&experiment), "--out", &p(&run), "--quiet"]));
+    let text = std::fs::read_to_string(&problem).unwrap();
+    let dimension: usize = text.lines().find_map(|l| l.strip_prefix("DIMENSION : ")).unwrap().parse().unwrap();
+    let matrix: Vec<Vec<i64>> = text
+        .lines()
+        .skip_while(|l| *l != "EDGE_WEIGHT_SECTION")
+        .skip(1)
+        .take(dimension)
+        .map(|l| l.split(' ').map(|w| w.parse().unwrap()).collect())
+        .collect();
+    let node_of: std::collections::HashMap<(u64, String, u64), usize> = std::fs::read_to_string(&nodes)
+        .unwrap()
+        .lines()
+        .skip(2)
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            ((f[1].parse().unwrap(), f[3].to_string(), f[4].parse().unwrap()), f[0].parse::<usize>().unwrap() - 1)
+        })
+        .collect();
+    assert_eq!(node_of.len() + 1, dimension);
+    let summary = crate::common::summary(&run);
+    let mut tour = vec![0];
+    for s in summary["tour"].as_array().unwrap() {
+        let direction = format!("{}", s["direction_deg"].as_f64().unwrap());
+        tour.push(node_of[&(s["cell"].as_u64().unwrap(), direction, s["entry"].as_u64().unwrap())]);
+    }
+    tour.push(0);
+    let weight_s = tour.windows(2).map(|w| matrix[w[0]][w[1]]).sum::<i64>() as f64 * 1e-3;
+    let cost = summary["tour_cost_s"].as_f64().unwrap();
+    assert!((weight_s - cost).abs() <= 0.5e-3 * (tour.len() - 1) as f64, "{weight_s} vs {cost}");
+    assert!(cost > 0.0);
+
+    let pattern = dir.path().join("pattern.toml");
+    std::fs::write(&pattern, "planner = \"boustrophedon\"\n[map]\nsource = \"thesis-1\"\n").unwrap();
+    let refused = crate::common::covga(&["gtsp", &p(&pattern), "--out", &p(&dir.path().join("x.gtsp"))]);
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("planner = \"cell_order\""));
+    assert!(!dir.path().join("x.gtsp").exists());
+}

@@ -97,3 +97,40 @@ fn a_grid_runs_the_controls_and_the_exact_solver_once() {
         assert_eq!(file.is_deterministic(), once, "{solver}");
     }
 }
+
+/// With `classical_finalists` the common scorer chooses among the search's finalists and the
+/// classical control's plans: the returned plan reaches the goal no later than the plain
+/// search's (same seed) or the classical control's, and says which kind it is.
+#[test]
+fn classical_finalists_keep_a_search_no_slower_than_the_classical_control() {
+    let s = scenario("office", Point::new(2.0, 2.0), 0.52);
+    let budget = Budget { evaluations: Some(2_000), ..Budget::iterations(1_000_000) };
+    let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: Checks::Full };
+    let goal = Some(0.9);
+    let run = |section: CellOrderSection| section.validate(&ctx).unwrap().run(&s, 3, &budget, &mut []).unwrap();
+    let classical = run(CellOrderSection { solver: Solver::Boustrophedon, coverage_goal: goal, ..Default::default() });
+    let plain = run(CellOrderSection { solver: Solver::Ils, coverage_goal: goal, ..Default::default() });
+    let both = run(CellOrderSection {
+        solver: Solver::Ils,
+        coverage_goal: goal,
+        classical_finalists: true,
+        ..Default::default()
+    });
+    let time = |o: &covga::planner::RunOutcome| o.details["time_to_goal_s"].as_f64().unwrap();
+    let t = time(&both);
+    assert!(t <= time(&plain) && t <= time(&classical), "{t} vs ILS {} classical {}", time(&plain), time(&classical));
+    let finalists = times(&both.details, "finalists_time_to_goal_s");
+    assert_eq!(finalists.len(), times(&plain.details, "finalists_time_to_goal_s").len() + 4);
+    assert_eq!(finalists[finalists.len() - 4..], times(&classical.details, "finalists_time_to_goal_s")[..]);
+    let chose_classical = both.details.get("classical_chosen").is_some();
+    assert_eq!(chose_classical, both.details.contains_key("control_direction_deg"));
+    assert_eq!(chose_classical, both.details["tour"].as_array().unwrap().is_empty());
+    assert_eq!(chose_classical, t == time(&classical) && t < time(&plain));
+    let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
+    assert!(scorer.score(&both.plan).executable);
+
+    let unset = CellOrderSection { solver: Solver::Ils, classical_finalists: true, ..Default::default() };
+    let e = unset.validate(&ctx).unwrap_err();
+    assert_eq!(e.key, "cell_order.classical_finalists");
+    assert!(e.message.contains("cell_order.coverage_goal"), "{}", e.message);
+}

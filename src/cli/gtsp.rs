@@ -1,0 +1,49 @@
+//! `covga gtsp`: write the tour problem of a cell-order experiment as a GTSPLIB instance, for
+//! checking covga's searches with an established GTSP solver.
+
+use super::CliError;
+use crate::experiment::registry::PlannerConfig;
+use crate::usecase::run::{ExperimentText, prepare};
+use std::path::PathBuf;
+
+/// Arguments of `covga gtsp`.
+#[derive(clap::Args, Debug)]
+pub struct GtspArgs {
+    /// A `planner = "cell_order"` experiment file (TOML).
+    file: PathBuf,
+    /// Where to write the instance: GTSPLIB `TYPE : AGTSP`, a full matrix of weights in
+    /// milliseconds (leg plus the entered sweep's own time), one set per cell, node 1 the
+    /// stations. A tour's weight is its mission time (a coverage goal is not part of it).
+    #[arg(long)]
+    out: PathBuf,
+    /// Where to write what each node is (CSV: node, cell, choice, direction_deg, entry, as
+    /// `summary.json`'s `tour` names a sweep).
+    #[arg(long)]
+    nodes: Option<PathBuf>,
+}
+
+/// Runs `covga gtsp` with its parsed arguments.
+pub fn run(a: GtspArgs) -> Result<(), CliError> {
+    let source = ExperimentText::read(&a.file)?;
+    let prepared = prepare(&source, None, None)?;
+    let exp = &prepared.experiment;
+    let PlannerConfig::CellOrder(config) = &exp.planner else {
+        return Err(CliError::Input(format!(
+            "{}: covga gtsp writes the tour problem of planner = \"cell_order\"; this file's planner is `{}`",
+            prepared.origin,
+            exp.file.planner.name()
+        )));
+    };
+    let name = format!("{}-{}", source.stem, exp.scenario.map.name());
+    let (instance, nodes) =
+        config.gtsplib(&exp.scenario, &name).map_err(|m| CliError::Input(format!("{}: {m}", prepared.origin)))?;
+    let write = |path: &PathBuf, text: &str| {
+        crate::io::write_atomic(path, text.as_bytes())
+            .map_err(|e| CliError::Internal(format!("cannot write {}: {e}", path.display())))
+    };
+    write(&a.out, &instance)?;
+    if let Some(path) = &a.nodes {
+        write(path, &nodes)?;
+    }
+    Ok(())
+}
