@@ -252,8 +252,8 @@ impl ExperimentFile {
     }
 
     /// The map of `[map]` (a preset by name, else a path, relative ones read from `base`),
-    /// loaded by `load` once its keys are checked.
-    fn load_map(&self, origin: &str, base: &Path, load: &MapLoader<'_>) -> Result<GridMap, ConfigError> {
+    /// loaded by `load` once its keys are checked; messages name `origin`.
+    pub fn load_map(&self, origin: &str, base: &Path, load: &MapLoader<'_>) -> Result<GridMap, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
         let source =
             if crate::map::presets::preset(&self.map.source).is_some() || Path::new(&self.map.source).is_absolute() {

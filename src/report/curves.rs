@@ -5,6 +5,7 @@
 //! `coverage_curve.csv` ([`crate::coverage::curve`]); executable plans only.
 
 use super::ReportError;
+use super::bound::AreaBounds;
 use super::study::Study;
 use crate::coverage::curve::{CoverageCurve, LEVELS};
 use crate::plot::{Figure, err, text};
@@ -22,6 +23,8 @@ const SAMPLES: usize = 240;
 struct Series {
     label: String,
     times: Vec<[Option<f64>; 3]>,
+    /// Each run's area bound on the time to all its reachable cells ([`AreaBounds`]).
+    bounds: Vec<Option<f64>>,
     curves: Vec<CoverageCurve>,
 }
 
@@ -110,7 +113,7 @@ pub(super) fn series_label(group: &str, planner: &str, one_planner: bool) -> Str
 
 /// The panels: per map (and value of each [`panel_columns`] column), its series in the order
 /// the study lists them.
-fn panels(s: &Study) -> Panels {
+fn panels(s: &Study, bounds: &AreaBounds) -> Panels {
     let one_planner = s.kinds.len() <= 1;
     let splits = panel_columns(s);
     let mut by_panel: BTreeMap<String, BTreeMap<String, Vec<Run>>> = BTreeMap::new();
@@ -158,6 +161,7 @@ fn panels(s: &Study) -> Panels {
                     series.remove(label).map(|runs| Series {
                         label: names[label].clone(),
                         times: runs.iter().map(|r| r.times).collect(),
+                        bounds: runs.iter().map(|r| bounds.to_level_s(&r.id, 1.0)).collect(),
                         curves: runs.into_iter().filter_map(|r| r.curve).collect(),
                     })
                 })
@@ -173,7 +177,8 @@ pub(super) struct CoverageCurves;
 
 impl super::sections::Section for CoverageCurves {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        let panels = match panels(s) {
+        let bounds = AreaBounds::of(s.dir, &s.t);
+        let panels = match panels(s, &bounds) {
             Panels::Made(panels) => panels,
             Panels::Partial { missing, of } => {
                 let _ = writeln!(
@@ -199,11 +204,17 @@ impl super::sections::Section for CoverageCurves {
             md,
             "Reachable coverage against mission time along each executable plan (median over the runs, band \
              between the quartiles; a segment's cells count once it is driven). Times to a level are medians over \
-             the runs that reach it.\n\n![Time-to-coverage curves](coverage_curves.png)\n"
+             the runs that reach it; in brackets, the median over them of the time over the area bound (the \
+             level's share of the reachable cells' area over the robots' combined width × speed: no plan covers it \
+             sooner).\n\n![Time-to-coverage curves](coverage_curves.png)\n"
         );
+        if let Some(why) = &bounds.missing {
+            let _ = writeln!(md, "The area bound is not given: {why}.\n");
+        }
         let _ = writeln!(
             md,
-            "| map | series | runs | reach 80 % | time to 80 % [s] | reach 90 % | time to 90 % [s] | reach 95 % | time to 95 % [s] |"
+            "| map | series | runs | reach 80 % | time to 80 % [s] (× bound) | reach 90 % | time to 90 % [s] (× bound) | \
+             reach 95 % | time to 95 % [s] (× bound) |"
         );
         let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
         for (map, series) in &panels {
@@ -212,13 +223,34 @@ impl super::sections::Section for CoverageCurves {
                 for k in 0..LEVELS.len() {
                     let times: Vec<f64> = se.times.iter().filter_map(|t| t[k]).collect();
                     cells.push(format!("{} of {}", times.len(), se.times.len()));
-                    cells.push(if times.is_empty() { "–".into() } else { format!("{:.0}", quartiles(&times).0) });
+                    cells.push(level_cell(&times, &bound_ratios(se, k)));
                 }
                 let _ = writeln!(md, "| {map} | {} | {} | {} |", se.label, se.times.len(), cells.join(" | "));
             }
         }
         let _ = writeln!(md);
         Ok(())
+    }
+}
+
+/// Each run's time to level `k` over its area bound, for the runs that reach the level; empty
+/// where any of them has no bound.
+fn bound_ratios(se: &Series, k: usize) -> Vec<f64> {
+    let pairs: Vec<(f64, Option<f64>)> =
+        se.times.iter().zip(&se.bounds).filter_map(|(t, b)| t[k].map(|t| (t, *b))).collect();
+    match pairs.iter().all(|(_, b)| b.is_some_and(|b| b > 0.0)) {
+        true => pairs.into_iter().filter_map(|(t, b)| b.map(|b| t / (LEVELS[k] * b))).collect(),
+        false => Vec::new(),
+    }
+}
+
+/// A table cell: the median time to a level and, where there are bounds, the median of the
+/// times over them.
+fn level_cell(times: &[f64], ratios: &[f64]) -> String {
+    match (times.is_empty(), ratios.is_empty()) {
+        (true, _) => "–".into(),
+        (false, true) => format!("{:.0}", quartiles(times).0),
+        (false, false) => format!("{:.0} ({:.2}×)", quartiles(times).0, quartiles(ratios).0),
     }
 }
 
@@ -429,6 +461,21 @@ mod tests {
     }
 
     #[test]
+    fn a_level_shows_the_median_time_and_its_median_ratio_to_the_bound() {
+        let times = vec![[Some(80.0), Some(100.0), None], [Some(40.0), None, None], [None, None, None]];
+        let se = Series { label: "a".into(), times, bounds: vec![Some(100.0), Some(50.0), None], curves: Vec::new() };
+        // 80 s over 0.8 × 100 s and 40 s over 0.8 × 50 s; the third run reaches no level.
+        assert_eq!(bound_ratios(&se, 0), vec![1.0, 1.0]);
+        assert_eq!(level_cell(&[80.0, 40.0], &bound_ratios(&se, 0)), "60 (1.00×)");
+        assert_eq!(level_cell(&[100.0], &bound_ratios(&se, 1)), "100 (1.11×)");
+        assert_eq!(level_cell(&[], &bound_ratios(&se, 2)), "–");
+        // A run that reaches the level without a bound: no ratio for anyone.
+        let se = Series { bounds: vec![Some(100.0), None, None], ..se };
+        assert!(bound_ratios(&se, 0).is_empty());
+        assert_eq!(level_cell(&[80.0, 40.0], &[]), "60");
+    }
+
+    #[test]
     fn curves_are_read_and_sampled_as_steps() {
         let read_curve = |f: &std::path::Path| CoverageCurve::parse_csv(&std::fs::read_to_string(f).ok()?);
         let dir = std::env::temp_dir().join(format!("covga-curves-{}", std::process::id()));
@@ -445,7 +492,7 @@ mod tests {
             assert!(read_curve(&file).is_none(), "{bad:?} is not a curve");
         }
         let slower = CoverageCurve::parse_csv("time_s,coverage_reach\n0,0\n20,0.5\n40,0.9\n60,0.95\n").unwrap();
-        let series = [Series { label: "a".into(), times: Vec::new(), curves: vec![c, slower] }];
+        let series = [Series { label: "a".into(), times: Vec::new(), bounds: Vec::new(), curves: vec![c, slower] }];
         let drawn = summarise(&series);
         assert_eq!(drawn[0].curve.len(), SAMPLES + 1);
         // At the end of the longer plan both runs have reached 0.95.

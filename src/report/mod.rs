@@ -14,6 +14,7 @@
 //! what `study::Study` computes once.
 
 pub mod anova_report;
+mod bound;
 pub mod common_tables;
 pub mod compare;
 mod curves;

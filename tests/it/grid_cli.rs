@@ -417,6 +417,8 @@ fn ablation_smoke_runs_every_planner_with_the_same_columns() {
     assert!(out.join("report/coverage_curves.png").is_file());
     let curves = md.split("## Time to coverage").nth(1).unwrap().split("\n## ").next().unwrap();
     assert!(curves.lines().filter(|l| l.starts_with("| thesis-1 | ")).count() >= 2, "{curves}");
+    // Each time beside its area bound (the study's grid file gives the robots and the map).
+    assert!(curves.contains("×)") && !curves.contains("not given"), "{curves}");
     // Each pair of cells that differs in one factor gets a finding: the comparison, or why it
     // cannot be made on executable plans (the thesis GA's plans often touch a wall with the
     // robot's body at a vertex, which 003's penalty does not see).

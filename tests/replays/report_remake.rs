@@ -147,10 +147,13 @@ const REPORTS: &[(&str, &str, &[&str])] = &[
     ),
 ];
 
-/// A study folder holding a committed study's runs.csv (decompressed) and study.json.
+/// A study folder holding a committed study's runs.csv (decompressed), study.json and grid.toml
+/// (which gives the time-to-coverage table each run's area bound).
 fn committed_study(folder: &Path) -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::copy(folder.join("study.json"), dir.path().join("study.json")).unwrap();
+    for file in ["study.json", "grid.toml"] {
+        std::fs::copy(folder.join(file), dir.path().join(file)).unwrap();
+    }
     let plain = folder.join("runs.csv");
     let text = if plain.exists() {
         std::fs::read(&plain).unwrap()
