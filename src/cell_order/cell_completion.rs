@@ -115,7 +115,7 @@ mod tests {
         let mut clear = Clearance::new(&m, 0.6);
         let reach = Reach::new(&clear, &[Point::new(1.3, 1.3)]);
         clear.restrict(reach.centres().to_vec());
-        let before = CellSweeps::new(&clear, 0.6, &[0.0, 90.0], reach.coverable());
+        let before = CellSweeps::new(&clear, 0.6, &[0.0, 90.0], reach.coverable(), 0.0);
         let mut after = before.clone();
         after.complete_in_cells(&clear, 0.6, reach.coverable(), 0.2);
         let (mut left_before, mut left_after) = (0, 0);

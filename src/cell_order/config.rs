@@ -128,6 +128,14 @@ pub struct CellOrderSection {
     /// Completion driving charged per square metre a sweep leaves in its cell, in metres
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
     pub completion_m_per_m2: f64,
+    /// The longest gap, in metres, a lane continues across ([`super::merged_lanes`]): where the
+    /// robot can drive around the obstacle in it on a detour at most two widths longer than
+    /// the gap (a speck, a pillar; not a wall between rooms), the lane goes on around it and
+    /// the cells on both sides merge into one of longer lanes. 0 (the default) ends a lane at
+    /// every obstacle; 0 to 50. Left out of the canonical form while 0, so that run ids made
+    /// before it stay.
+    #[serde(skip_serializing_if = "is_zero_f64")]
+    pub merge_gap_m: f64,
 }
 
 impl Default for CellOrderSection {
@@ -151,6 +159,7 @@ impl Default for CellOrderSection {
             classical_finalists: false,
             wall_directions: 0,
             completion_m_per_m2: 20.0,
+            merge_gap_m: 0.0,
         }
     }
 }
@@ -176,6 +185,8 @@ pub struct CellOrderConfig {
     pub wall_directions: usize,
     /// Completion driving charged per square metre a sweep leaves, in metres.
     pub completion_m_per_m2: f64,
+    /// The longest gap a lane continues across, in metres.
+    pub merge_gap_m: f64,
     /// The robot's width (for the memory estimate).
     pub width: f64,
 }
@@ -183,6 +194,11 @@ pub struct CellOrderConfig {
 /// Whether a count is zero (a key left out of the canonical form at its default).
 fn is_zero(n: &usize) -> bool {
     *n == 0
+}
+
+/// Whether a length is zero (a key left out of the canonical form at its default).
+fn is_zero_f64(x: &f64) -> bool {
+    *x == 0.0
 }
 
 /// `directions` and, after them, the `count` dominant wall orientations of `map` that lie more
@@ -251,6 +267,7 @@ impl CellOrderSection {
         check_range(o, "cell_order.p_c", self.p_c, 0.0, 1.0, "[0, 1]")?;
         check_range(o, "cell_order.p_m", self.p_m, 0.0, 1.0, "[0, 1]")?;
         check_range(o, "cell_order.completion_m_per_m2", self.completion_m_per_m2, 0.0, 1e4, "[0, 10000] m per m²")?;
+        check_range(o, "cell_order.merge_gap_m", self.merge_gap_m, 0.0, 50.0, "[0, 50] metres")?;
         if let Some(p) = self.p_choice {
             check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
         }
@@ -270,7 +287,7 @@ impl CellOrderSection {
             ));
         }
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
-            check_exact_cells(ctx, &directions)?;
+            check_exact_cells(ctx, &directions, self.merge_gap_m)?;
         }
         let params = DrawParams {
             tournament_size: self.tournament_size,
@@ -297,6 +314,7 @@ impl CellOrderSection {
             classical_finalists: self.classical_finalists,
             wall_directions: self.wall_directions,
             completion_m_per_m2: self.completion_m_per_m2,
+            merge_gap_m: self.merge_gap_m,
             width: ctx.scenario.robot.width,
         })
     }
@@ -305,9 +323,9 @@ impl CellOrderSection {
 /// The exact solver's cell limit ([`super::exact::MAX_EXACT_CELLS`]), counted on the
 /// decomposition before a run: the cells are known only after it, and a grid must refuse the
 /// configuration before it writes anything.
-fn check_exact_cells(ctx: &Context, directions: &[f64]) -> Result<(), ConfigError> {
+fn check_exact_cells(ctx: &Context, directions: &[f64], merge_gap_m: f64) -> Result<(), ConfigError> {
     let planning = ctx.scenario.for_planning();
-    let (_, _, sweeps) = super::decompose(&planning, directions)
+    let (_, _, sweeps) = super::decompose(&planning, directions, merge_gap_m)
         .map_err(|m| ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name())))?;
     if sweeps.len() > super::exact::MAX_EXACT_CELLS {
         return Err(ctx.error(

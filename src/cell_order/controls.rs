@@ -45,20 +45,33 @@ pub struct Lanes {
     pub skipped: usize,
 }
 
-/// A boustrophedon over the whole reachable map of `prepared` at each of `directions`, from the
-/// start station, completed as `completion` says and driven to the end station.
+/// A boustrophedon over the whole reachable map of `prepared` at each of `directions`, its
+/// lanes joined across gaps of up to `merge_gap_m` as the searches' are
+/// ([`super::merged_lanes`]), from the start station, completed as `completion` says and
+/// driven to the end station.
 pub fn boustrophedon_plans(
     prepared: &Prepared,
     scenario: &Scenario,
     directions: &[f64],
-    completion: Completion,
+    (completion, merge_gap_m): (Completion, f64),
 ) -> Result<Vec<Lanes>, String> {
+    use crate::patterns::boustrophedon::{decompose, lane_pieces, plan, sweep_cells_with};
     let robot = &scenario.robot;
+    let clear = &prepared.clear;
     directions
         .iter()
         .map(|&d| {
-            let route = crate::patterns::boustrophedon::plan(&prepared.clear, robot.width, d, scenario.start)
-                .map_err(|e| format!("boustrophedon at {d}°: {e}"))?;
+            let route = if merge_gap_m > 0.0 {
+                let lanes =
+                    super::merged_lanes::joined(clear, lane_pieces(clear, robot.width, d), merge_gap_m, robot.width);
+                let cells = decompose(&lanes);
+                if cells.is_empty() {
+                    return Err(format!("boustrophedon at {d}°: no lane of a robot {} m wide fits", robot.width));
+                }
+                sweep_cells_with(clear, &cells, scenario.start, true)
+            } else {
+                plan(clear, robot.width, d, scenario.start).map_err(|e| format!("boustrophedon at {d}°: {e}"))?
+            };
             let (path, skipped) = prepared.complete(route, robot, scenario.end, completion);
             Ok(Lanes { direction_deg: d, path, skipped })
         })

@@ -18,6 +18,7 @@ pub mod exact;
 pub mod gtsplib;
 pub mod ils;
 pub mod local;
+pub mod merged_lanes;
 pub mod operators;
 mod planner;
 pub mod quota;
@@ -78,6 +79,9 @@ pub struct Preparation<'a> {
     pub completion: Completion,
     /// The plan's coverage goal, a share of the reachable coverable cells.
     pub coverage_goal: Option<f64>,
+    /// The longest gap a lane continues across ([`merged_lanes`]); 0 splits lanes at every
+    /// obstacle.
+    pub merge_gap_m: f64,
 }
 
 impl<'a> Preparation<'a> {
@@ -88,6 +92,7 @@ impl<'a> Preparation<'a> {
             completion_m_per_m2: section.completion_m_per_m2,
             completion: section.completion,
             coverage_goal: section.coverage_goal,
+            merge_gap_m: section.merge_gap_m,
         }
     }
 }
@@ -132,7 +137,7 @@ pub fn prepare_within<'m>(
             begun.elapsed().as_secs_f64()
         )),
     };
-    let (clear, reach, mut sweeps) = decompose(scenario, directions).map_err(PrepareError::Input)?;
+    let (clear, reach, mut sweeps) = decompose(scenario, directions, how.merge_gap_m).map_err(PrepareError::Input)?;
     if how.completion == Completion::Cells {
         sweeps.complete_in_cells(&clear, s.robot.width, reach.coverable(), s.robot.speed);
     }
@@ -192,9 +197,13 @@ pub fn prepare_within<'m>(
 }
 
 /// The reachable clearance of `scenario`, its reach and its cells with their candidate sweeps
-/// at `directions`: the first, cheap part of [`prepare`] (no transit), which validation uses
-/// to count the cells.
-pub fn decompose<'m>(scenario: &'m Scenario, directions: &[f64]) -> Result<(Clearance<'m>, Reach, CellSweeps), String> {
+/// at `directions`, lanes joined across gaps of up to `merge_gap_m`: the first, cheap part of
+/// [`prepare`] (no transit), which validation uses to count the cells.
+pub fn decompose<'m>(
+    scenario: &'m Scenario,
+    directions: &[f64],
+    merge_gap_m: f64,
+) -> Result<(Clearance<'m>, Reach, CellSweeps), String> {
     let s = scenario;
     let width = s.robot.width;
     let mut clear = Clearance::new(&s.map, width);
@@ -203,7 +212,7 @@ pub fn decompose<'m>(scenario: &'m Scenario, directions: &[f64]) -> Result<(Clea
         return Err(format!("no free area reachable from the start fits a robot {width} m wide"));
     }
     clear.restrict(reach.centres().to_vec());
-    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable());
+    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable(), merge_gap_m);
     if sweeps.is_empty() {
         return Err(format!("no lane of a robot {width} m wide fits the area reachable from the start"));
     }

@@ -110,8 +110,13 @@ impl CellOrderConfig {
                 Ok(self.control(prepared, controls::direction_tours(prepared, &self.directions), Vec::new()))
             }
             Solver::Boustrophedon => {
-                let lanes = controls::boustrophedon_plans(prepared, scenario, &self.directions, self.completion)
-                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+                let lanes = controls::boustrophedon_plans(
+                    prepared,
+                    scenario,
+                    &self.directions,
+                    (self.completion, self.merge_gap_m),
+                )
+                .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
                 Ok(self.control(prepared, Vec::new(), lanes))
             }
             Solver::Exact => exact_tour(prepared, scenario),
@@ -171,6 +176,7 @@ impl CellOrderConfig {
             completion_m_per_m2: self.completion_m_per_m2,
             completion: self.completion,
             coverage_goal: self.coverage_goal,
+            merge_gap_m: self.merge_gap_m,
         }
     }
 
@@ -350,8 +356,9 @@ impl Planner for CellOrderConfig {
         // The classical control's plans after the search's finalists (validation asks for a goal).
         let classical_from = candidates.len();
         if self.classical_finalists && matches!(self.solver, Solver::Ga | Solver::Ils) {
-            let lanes = controls::boustrophedon_plans(&prepared, s, &self.directions, self.completion)
-                .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+            let lanes =
+                controls::boustrophedon_plans(&prepared, s, &self.directions, (self.completion, self.merge_gap_m))
+                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
             candidates.extend(lanes.into_iter().map(|l| (l.path, l.skipped)));
         }
         // The common scorer reads every candidate where it chooses among them.

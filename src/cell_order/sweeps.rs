@@ -13,7 +13,7 @@
 
 use crate::geom::{Point, Vector};
 use crate::map::clearance::Clearance;
-use crate::patterns::boustrophedon::{Piece, decompose, lane_pieces, sweep_cells};
+use crate::patterns::boustrophedon::{Piece, decompose, lane_pieces, sweep_cells_with};
 
 /// One way to sweep one cell: its polyline (first point the entry, last the exit), length,
 /// total turning inside it and the headings at both ends.
@@ -85,9 +85,15 @@ pub struct CellSweeps {
 impl CellSweeps {
     /// Decomposes the free space `clear` allows (restricted to the reachable part) and builds
     /// every cell's sweeps at `directions` (degrees) for a robot `width` wide; each sweep
-    /// counts the cells of `coverable` (one flag per map cell) in its region it leaves.
-    pub fn new(clear: &Clearance, width: f64, directions: &[f64], coverable: &[bool]) -> Self {
-        let by_direction: Vec<Vec<Vec<Piece>>> = directions.iter().map(|&d| lane_pieces(clear, width, d)).collect();
+    /// counts the cells of `coverable` (one flag per map cell) in its region it leaves. With
+    /// `merge_gap_m` > 0 the lanes first continue across small obstacles
+    /// ([`super::merged_lanes`]), so that the cells are fewer and their lanes longer.
+    pub fn new(clear: &Clearance, width: f64, directions: &[f64], coverable: &[bool], merge_gap_m: f64) -> Self {
+        let joined = merge_gap_m > 0.0;
+        let by_direction: Vec<Vec<Vec<Piece>>> = directions
+            .iter()
+            .map(|&d| super::merged_lanes::joined(clear, lane_pieces(clear, width, d), merge_gap_m, width))
+            .collect();
         let decompositions: Vec<Vec<Vec<Piece>>> = by_direction.iter().map(|lanes| decompose(lanes)).collect();
         // The coarsest decomposition; the first direction among equals.
         let base = (0..directions.len())
@@ -111,14 +117,14 @@ impl CellSweeps {
                     let pieces: Vec<Vec<Piece>> = if d == base {
                         vec![base_cells[k].clone()]
                     } else {
-                        let lanes = lanes_in_region(clear.map(), &by_direction[d], &labels, k, dir);
+                        let lanes = lanes_in_region(clear, &by_direction[d], (&labels, k), dir, joined);
                         decompose(&lanes)
                     };
                     if pieces.is_empty() {
                         continue;
                     }
                     for (entry, corner) in corners(&pieces).into_iter().enumerate() {
-                        let route = sweep_cells(clear, &pieces, corner);
+                        let route = sweep_cells_with(clear, &pieces, corner, joined);
                         out.push(Sweep::new(dir, entry as u8, route.into_points()));
                     }
                 }
@@ -247,14 +253,17 @@ fn region_labels(clear: &Clearance, width: f64, angle_deg: f64, cells: &[Vec<Pie
 }
 
 /// The parts of `lanes` (the whole map's lane pieces at `angle_deg`) whose points lie in
-/// region `k`, lane by lane; parts shorter than one map cell are dropped.
+/// region `k`, lane by lane; parts shorter than one map cell are dropped. Where the lanes are
+/// `joined` across obstacles, a part goes on over the obstacle's cells (which belong to no
+/// region) and starts and ends at points of the region where the robot fits.
 fn lanes_in_region(
-    map: &crate::map::GridMap,
+    clear: &Clearance,
     lanes: &[Vec<Piece>],
-    label: &[u32],
-    k: usize,
+    (label, k): (&[u32], usize),
     angle_deg: f64,
+    joined: bool,
 ) -> Vec<Vec<Piece>> {
+    let map = clear.map();
     let u = Vector::new(angle_deg.to_radians().cos(), angle_deg.to_radians().sin());
     let res = map.resolution();
     let inside = |p: Point| map.cell_at(p).is_some_and(|(r, c)| label[map.index(r, c)] == k as u32);
@@ -267,12 +276,24 @@ fn lanes_in_region(
                 let steps = (len / (0.25 * res)).ceil().max(1.0) as usize;
                 let at = |i: usize| piece.a + (piece.b - piece.a) * (i as f64 / steps as f64);
                 let mut run: Option<usize> = None;
+                // A joined piece crosses the obstacle it goes around: cells of no region carry
+                // the run on, and it ends at its last point in the region.
+                let mut last_in = 0;
                 for i in 0..=steps + 1 {
-                    let ok = i <= steps && inside(at(i));
+                    let here = (i <= steps).then(|| at(i));
+                    // A part starts and ends where the robot fits (beside the obstacle a joined
+                    // piece passes it does not); in between it goes on over the obstacle.
+                    let own = here.is_some_and(|p| inside(p) && (!joined || clear.fits(p)));
+                    let across =
+                        |p: Point| map.cell_at(p).is_some_and(|(r, c)| label[map.index(r, c)] == u32::MAX) || inside(p);
+                    let ok = own || (joined && run.is_some() && here.is_some_and(across));
+                    if own {
+                        last_in = i;
+                    }
                     match (run, ok) {
                         (None, true) => run = Some(i),
                         (Some(s), false) => {
-                            let (a, b) = (at(s), at(i - 1));
+                            let (a, b) = (at(s), at(last_in.max(s)));
                             if (b - a).norm() >= res {
                                 out.push(Piece { a, b, lo: a.coords.dot(&u), hi: b.coords.dot(&u) });
                             }
@@ -299,7 +320,7 @@ mod tests {
         let mut clear = Clearance::new(&m, 0.6);
         clear.restrict(reachable_centres(&clear, &[Point::new(1.3, 1.3)]));
         let all = vec![true; m.rows() * m.cols()];
-        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all);
+        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all, 0.0);
         assert_eq!(s.len(), 1, "an empty square is one cell");
         assert_eq!(s.cells[0].len(), 16);
         for sweep in &s.cells[0] {
@@ -323,7 +344,7 @@ mod tests {
         let mut clear = Clearance::new(&m, 0.6);
         clear.restrict(reachable_centres(&clear, &[Point::new(1.3, 1.3)]));
         let all = vec![true; m.rows() * m.cols()];
-        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all);
+        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all, 0.0);
         assert_eq!(s.len(), 4);
         for cell in &s.cells {
             let dirs: std::collections::BTreeSet<i64> = cell.iter().map(|w| w.direction_deg as i64).collect();

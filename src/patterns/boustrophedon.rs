@@ -119,6 +119,14 @@ pub fn plan(clear: &Clearance, width: f64, angle_deg: f64, start: Point) -> Resu
 /// nearest to where the robot is (nearest neighbour), each cell lane by lane from that corner,
 /// joined by collision-free connecting moves.
 pub fn sweep_cells(clear: &Clearance, cells: &[Vec<Piece>], start: Point) -> GrowingRoute {
+    sweep_cells_with(clear, cells, start, false)
+}
+
+/// [`sweep_cells`]; with `along`, a piece whose straight line is blocked (one joined across an
+/// obstacle, [`crate::cell_order::merged_lanes`]) is driven along its lane, around each
+/// obstacle from one fitting stretch to the next, instead of by the shortest route between its
+/// ends.
+pub fn sweep_cells_with(clear: &Clearance, cells: &[Vec<Piece>], start: Point, along: bool) -> GrowingRoute {
     let mut route = GrowingRoute::new(start);
     let mut visited = vec![false; cells.len()];
     for _ in 0..cells.len() {
@@ -142,6 +150,12 @@ pub fn sweep_cells(clear: &Clearance, cells: &[Vec<Piece>], start: Point) -> Gro
         for piece in order {
             let (a, b) = if flip { (piece.b, piece.a) } else { (piece.a, piece.b) };
             route.go(clear, a);
+            if along && !clear.segment_fits(a, b) {
+                for (t0, t1) in clear.fitting_intervals(a, b, clear.map().resolution()) {
+                    route.go(clear, a + (b - a) * t0);
+                    route.go(clear, a + (b - a) * t1);
+                }
+            }
             route.go(clear, b);
             flip = !flip;
         }

@@ -49,6 +49,15 @@ impl BucketQueue {
         (self.at, self.len) = (0, 0);
     }
 
+    /// Starts a search: `item` with `key`, at any key, into a queue just made or cleared (the
+    /// current bucket moves to it, since a search's source may lie at any distance; every
+    /// bucket is empty, so which one is current changes no order).
+    pub fn push_source(&mut self, key: u64, item: u32) {
+        assert!(self.len == 0, "bucket queue: a source pushed into a queue holding {} items", self.len);
+        self.at = key >> self.shift;
+        self.push(key, item);
+    }
+
     /// Adds `item` with `key`: at or above the bucket of the last key taken (of 0 after
     /// [`Self::clear`]), less than the span above it (panics otherwise: the queue would hand
     /// items out of order or lose them).
@@ -91,6 +100,21 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use std::cmp::Reverse;
     use std::collections::BinaryHeap;
+
+    #[test]
+    fn a_source_may_start_at_any_key() {
+        let mut queue = BucketQueue::new(1024, 140_000);
+        // Past the span above bucket 0: a search's source a snap away from its cell centre.
+        queue.push_source(149_817, 3);
+        queue.push(149_817 + 100_000, 4);
+        queue.push(149_817 + 10, 5);
+        assert_eq!(queue.pop(), Some((149_817, 3)));
+        assert_eq!(queue.pop(), Some((149_827, 5)));
+        assert_eq!(queue.pop(), Some((249_817, 4)));
+        queue.clear();
+        queue.push_source(5, 1);
+        assert_eq!(queue.pop(), Some((5, 1)));
+    }
 
     #[test]
     fn it_hands_items_out_as_a_binary_heap_of_key_then_item_does() {

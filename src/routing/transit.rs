@@ -160,7 +160,7 @@ impl Search {
         let (dist, touched, heap) = (&mut self.dist, &mut self.touched, &mut self.heap);
         touched.push(source);
         dist[source] = offset;
-        heap.push(key(offset), source as u32);
+        heap.push_source(key(offset), source as u32);
         while let Some((k, i)) = heap.pop() {
             let i = i as usize;
             if k > key(dist[i]) {

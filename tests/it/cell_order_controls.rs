@@ -134,3 +134,39 @@ fn classical_finalists_keep_a_search_no_slower_than_the_classical_control() {
     assert_eq!(e.key, "cell_order.classical_finalists");
     assert!(e.message.contains("cell_order.coverage_goal"), "{}", e.message);
 }
+
+/// Lanes joined across small obstacles (`merge_gap_m`) on a noisy generated floor plan: fewer
+/// cells, every control's plan executable and still at the goal; 0 is the plan without the key.
+#[test]
+fn joined_lanes_merge_cells_and_keep_every_plan_executable() {
+    let text = |solver: &str, gap: Option<f64>| {
+        format!(
+            "planner = \"cell_order\"\n[map]\nsource = \"experiments/maps/generated/office-2-noisy.yaml\"\n\
+             [robot]\nwidth = 0.6\nspeed = 0.3\nrot_speed = 0.52\n[stations]\nstart = [13.0, 9.228109852534242]\n\
+             [cell_order]\nsolver = \"{solver}\"\ncompletion = \"quota\"\ncoverage_goal = 0.9\n{}",
+            gap.map_or(String::new(), |g| format!("merge_gap_m = {g}\n"))
+        )
+    };
+    let run = |solver: &str, gap: Option<f64>| {
+        let exp = covga::experiment::ExperimentFile::parse(&text(solver, gap), "t.toml")
+            .unwrap()
+            .validate("t.toml", std::path::Path::new("."), "t")
+            .unwrap();
+        let s = &exp.scenario;
+        let out = exp.planner.planner().run(s, 1, &exp.budget, &mut []).unwrap();
+        let score = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]).score(&out.plan);
+        assert!(score.executable && score.cov_final_reach >= 0.9 - 1e-9, "{solver} {gap:?}: {score:?}");
+        out
+    };
+    let cells = |o: &covga::planner::RunOutcome| o.details["cells"].as_u64().unwrap();
+    let split = run("nearest", None);
+    assert_eq!(split.plan, run("nearest", Some(0.0)).plan, "0 joins nothing");
+    let joined = run("nearest", Some(2.4));
+    assert!(cells(&joined) * 2 < cells(&split), "{} cells joined, {} split", cells(&joined), cells(&split));
+    run("boustrophedon", Some(2.4));
+
+    let exp = covga::experiment::ExperimentFile::parse(&text("nearest", Some(60.0)), "t.toml").unwrap();
+    let e = exp.validate("t.toml", std::path::Path::new("."), "t").unwrap_err();
+    assert_eq!(e.key, "cell_order.merge_gap_m");
+    assert!(e.message.contains("[0, 50]"), "{}", e.message);
+}

@@ -44,6 +44,11 @@ const REPORTS: &[(&str, &str, &[&str])] = &[
         "report/summary.md",
         &["--by", "cell_order.solver", "--by", "cell_order.completion", "--compare", "cell_order.completion=boundary"],
     ),
+    (
+        "merged-lanes",
+        "report/summary.md",
+        &["--by", "cell_order.solver", "--by", "cell_order.merge_gap_m", "--compare", "cell_order.merge_gap_m=0"],
+    ),
     ("thesis-table-4-3", "report/summary.md", &["--by", "thesis.selection"]),
     (
         "thesis-table-4-3",
