@@ -271,21 +271,7 @@ impl CellOrderSection {
         if let Some(p) = self.p_choice {
             check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
         }
-        if let Some(g) = self.coverage_goal
-            && !(g > 0.0 && g <= 1.0)
-        {
-            return Err(ctx.error(
-                "cell_order.coverage_goal",
-                format!("= {g} is outside (0, 1] (a share of the reachable cells)"),
-            ));
-        }
-        if self.classical_finalists && self.coverage_goal.is_none() {
-            return Err(ctx.error(
-                "cell_order.classical_finalists",
-                "= true needs cell_order.coverage_goal: a search's plans and the classical control's are compared \
-                 by their time to it",
-            ));
-        }
+        self.check_goal(ctx)?;
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
             check_exact_cells(ctx, &directions, self.merge_gap_m)?;
         }
@@ -317,6 +303,26 @@ impl CellOrderSection {
             merge_gap_m: self.merge_gap_m,
             width: ctx.scenario.robot.width,
         })
+    }
+
+    /// The coverage goal in (0, 1], and present where `classical_finalists` needs it.
+    fn check_goal(&self, ctx: &Context) -> Result<(), ConfigError> {
+        if let Some(g) = self.coverage_goal
+            && !(g > 0.0 && g <= 1.0)
+        {
+            return Err(ctx.error(
+                "cell_order.coverage_goal",
+                format!("= {g} is outside (0, 1] (a share of the reachable cells)"),
+            ));
+        }
+        if self.classical_finalists && self.coverage_goal.is_none() {
+            return Err(ctx.error(
+                "cell_order.classical_finalists",
+                "= true needs cell_order.coverage_goal: a search's plans and the classical control's are compared \
+                 by their time to it",
+            ));
+        }
+        Ok(())
     }
 }
 

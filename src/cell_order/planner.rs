@@ -155,6 +155,40 @@ impl CellOrderConfig {
     }
 }
 
+impl CellOrderConfig {
+    /// The plans the common scorer chooses among, each with the targets it skipped: the
+    /// classical control's, or the solver's finalists driven (its best alone where a search
+    /// has no goal), then with `classical_finalists` the classical control's plans, which start
+    /// at the index returned.
+    fn candidates(
+        &self,
+        prepared: &Prepared,
+        s: &Scenario,
+        solved: &Solved,
+    ) -> Result<(Vec<ScoredPlan>, usize), PlannerError> {
+        let mut candidates: Vec<ScoredPlan> = match self.solver {
+            Solver::Boustrophedon => solved.lanes.iter().map(|l| (l.path.clone(), l.skipped)).collect(),
+            Solver::Ga | Solver::Ils | Solver::Exact | Solver::Nearest => {
+                let all = self.coverage_goal.is_some() || self.solver == Solver::Nearest;
+                let tours = if all { &solved.finalists[..] } else { &solved.finalists[..1] };
+                tours.iter().map(|t| prepared.path(t, &s.robot, (s.start, s.end), self.completion)).collect()
+            }
+        };
+        // Validation asks for a goal with `classical_finalists`.
+        let classical_from = candidates.len();
+        if self.classical_finalists && matches!(self.solver, Solver::Ga | Solver::Ils) {
+            let lanes =
+                controls::boustrophedon_plans(prepared, s, &self.directions, (self.completion, self.merge_gap_m))
+                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
+            candidates.extend(lanes.into_iter().map(|l| (l.path, l.skipped)));
+        }
+        Ok((candidates, classical_from))
+    }
+}
+
+/// A plan the common scorer may choose, with the targets it skipped.
+type ScoredPlan = (Vec<Point>, usize);
+
 /// The plan a run returns, and how it was chosen.
 struct Chosen {
     /// Which finalist.
@@ -344,23 +378,7 @@ impl Planner for CellOrderConfig {
         })?;
         let grid = crate::coverage::CoverageGrid::new(&s.map);
         let mut solved = self.solve(&prepared, s, &grid, (seed, started), budget, observers)?;
-        let mut candidates: Vec<(Vec<Point>, usize)> = match self.solver {
-            Solver::Boustrophedon => solved.lanes.iter().map(|l| (l.path.clone(), l.skipped)).collect(),
-            Solver::Ga | Solver::Ils | Solver::Exact | Solver::Nearest => {
-                // Without a goal a searching solver returns its best: only that one is driven.
-                let all = self.coverage_goal.is_some() || self.solver == Solver::Nearest;
-                let tours = if all { &solved.finalists[..] } else { &solved.finalists[..1] };
-                tours.iter().map(|t| prepared.path(t, &s.robot, (s.start, s.end), self.completion)).collect()
-            }
-        };
-        // The classical control's plans after the search's finalists (validation asks for a goal).
-        let classical_from = candidates.len();
-        if self.classical_finalists && matches!(self.solver, Solver::Ga | Solver::Ils) {
-            let lanes =
-                controls::boustrophedon_plans(&prepared, s, &self.directions, (self.completion, self.merge_gap_m))
-                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
-            candidates.extend(lanes.into_iter().map(|l| (l.path, l.skipped)));
-        }
+        let (candidates, classical_from) = self.candidates(&prepared, s, &solved)?;
         // The common scorer reads every candidate where it chooses among them.
         if self.coverage_goal.is_some() || self.solver.is_control() {
             solved.evaluations += candidates.len() as u64;
