@@ -129,11 +129,11 @@ pub struct CellOrderSection {
     /// (the completion pass drove about 23 m per m² it swept on basement with a 0.6 m robot).
     pub completion_m_per_m2: f64,
     /// The longest gap, in metres, a lane continues across ([`super::merged_lanes`]): where the
-    /// robot can drive around the obstacle in it on a detour at most two widths longer than
-    /// the gap (a speck, a pillar; not a wall between rooms), the lane goes on around it and
-    /// the cells on both sides merge into one of longer lanes. 0 (the default) ends a lane at
-    /// every obstacle; 0 to 50. Left out of the canonical form while 0, so that run ids made
-    /// before it stay.
+    /// obstacles in it are small (each fits in a square of this side: a speck, a pillar; not a
+    /// wall) and the robot can drive around them on a detour at most two widths longer than the
+    /// gap, the lane goes on around them and the cells on both sides merge into one of longer
+    /// lanes. 0 (the default) ends a lane at every obstacle; 0 to 50. Left out of the canonical
+    /// form while 0, so that run ids made before it stay.
     #[serde(skip_serializing_if = "is_zero_f64")]
     pub merge_gap_m: f64,
 }
