@@ -58,13 +58,12 @@ pub fn boustrophedon_plans(
     use crate::patterns::boustrophedon::{decompose, lane_pieces, plan, sweep_cells_with};
     let robot = &scenario.robot;
     let clear = &prepared.clear;
+    let join = super::merged_lanes::LaneJoin::new(clear, merge_gap_m, robot.width);
     directions
         .iter()
         .map(|&d| {
             let route = if merge_gap_m > 0.0 {
-                let lanes =
-                    super::merged_lanes::joined(clear, lane_pieces(clear, robot.width, d), merge_gap_m, robot.width);
-                let cells = decompose(&lanes);
+                let cells = decompose(&join.joined(lane_pieces(clear, robot.width, d)));
                 if cells.is_empty() {
                     return Err(format!("boustrophedon at {d}°: no lane of a robot {} m wide fits", robot.width));
                 }

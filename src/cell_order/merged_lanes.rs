@@ -15,34 +15,50 @@ use crate::patterns::boustrophedon::Piece;
 /// How much longer than the gap the detour around the obstacle in it may be, in robot widths.
 pub const DETOUR_SLACK_WIDTHS: f64 = 2.0;
 
-/// `lanes` with the consecutive pieces of each lane joined across every gap of at most
-/// `merge_gap_m` metres whose obstacles within the robot's radius are all small (each fits in a
-/// square of side `merge_gap_m`) and whose detour (the wall-free route from one piece's end to
-/// the next one's start) is at most [`DETOUR_SLACK_WIDTHS`] · `width` longer than the gap;
-/// `lanes` as they are when `merge_gap_m` is 0.
-pub fn joined(clear: &Clearance, lanes: Vec<Vec<Piece>>, merge_gap_m: f64, width: f64) -> Vec<Vec<Piece>> {
-    if merge_gap_m <= 0.0 {
-        return lanes;
+/// How lanes are joined on one map: the gap, the robot's width and, where the gap is not 0,
+/// the map's small obstacles (found once for every lane direction).
+pub struct LaneJoin<'c, 'm> {
+    clear: &'c Clearance<'m>,
+    merge_gap_m: f64,
+    width: f64,
+    small: Option<SmallObstacles<'c>>,
+}
+
+impl<'c, 'm> LaneJoin<'c, 'm> {
+    /// Joins across gaps of at most `merge_gap_m` metres for a robot `width` wide on `clear`'s
+    /// map; 0 joins nothing.
+    pub fn new(clear: &'c Clearance<'m>, merge_gap_m: f64, width: f64) -> Self {
+        let small = (merge_gap_m > 0.0).then(|| SmallObstacles::of(clear.map(), merge_gap_m));
+        Self { clear, merge_gap_m, width, small }
     }
-    let small = SmallObstacles::of(clear.map(), merge_gap_m);
-    lanes
-        .into_iter()
-        .map(|lane| {
-            let mut out: Vec<Piece> = Vec::with_capacity(lane.len());
-            for q in lane {
-                if let Some(p) = out.last_mut()
-                    && q.lo - p.hi <= merge_gap_m
-                    && small.only_small_near(p.b, q.a, 0.5 * width)
-                    && detour_m(clear, p.b, q.a).is_some_and(|d| d <= q.lo - p.hi + DETOUR_SLACK_WIDTHS * width)
-                {
-                    (p.b, p.hi) = (q.b, q.hi);
-                    continue;
+
+    /// `lanes` with the consecutive pieces of each lane joined across every gap of at most the
+    /// merge gap whose obstacles within the robot's radius are all small (each fits in a square
+    /// of the gap's side) and whose detour (the wall-free route from one piece's end to the
+    /// next one's start) is at most [`DETOUR_SLACK_WIDTHS`] widths longer than the gap; `lanes`
+    /// as they are when the gap is 0.
+    pub fn joined(&self, lanes: Vec<Vec<Piece>>) -> Vec<Vec<Piece>> {
+        let Some(small) = &self.small else { return lanes };
+        let (clear, width) = (self.clear, self.width);
+        lanes
+            .into_iter()
+            .map(|lane| {
+                let mut out: Vec<Piece> = Vec::with_capacity(lane.len());
+                for q in lane {
+                    if let Some(p) = out.last_mut()
+                        && q.lo - p.hi <= self.merge_gap_m
+                        && small.only_small_near(p.b, q.a, 0.5 * width)
+                        && detour_m(clear, p.b, q.a).is_some_and(|d| d <= q.lo - p.hi + DETOUR_SLACK_WIDTHS * width)
+                    {
+                        (p.b, p.hi) = (q.b, q.hi);
+                        continue;
+                    }
+                    out.push(q);
                 }
-                out.push(q);
-            }
-            out
-        })
-        .collect()
+                out
+            })
+            .collect()
+    }
 }
 
 /// The map's obstacles (8-connected components of cells that are not free), each marked small
@@ -126,14 +142,8 @@ impl<'m> SmallObstacles<'m> {
 
 /// The length of the wall-free route from `a` to `b`, if there is one.
 fn detour_m(clear: &Clearance, a: crate::geom::Point, b: crate::geom::Point) -> Option<f64> {
-    let hops = clear.connect(a, b)?;
-    let mut length = 0.0;
-    let mut prev = a;
-    for p in hops {
-        length += (p - prev).norm();
-        prev = p;
-    }
-    Some(length)
+    let route: Vec<crate::geom::Point> = std::iter::once(a).chain(clear.connect(a, b)?).collect();
+    Some(crate::coverage::motion::path_length(&route))
 }
 
 #[cfg(test)]
@@ -166,7 +176,7 @@ mod tests {
         let map = room(true);
         let clear = Clearance::new(&map, 0.6);
         let split = lane_pieces(&clear, 0.6, 0.0);
-        let merged = joined(&clear, split.clone(), 2.0, 0.6);
+        let merged = LaneJoin::new(&clear, 2.0, 0.6).joined(split.clone());
         let pieces = |lanes: &[Vec<Piece>]| lanes.iter().map(Vec::len).sum::<usize>();
         // The lanes the pillar cuts are whole again; those the wall cuts stay cut.
         assert!(pieces(&merged) < pieces(&split), "{} vs {}", pieces(&merged), pieces(&split));
@@ -178,7 +188,7 @@ mod tests {
             }
         }
         assert!(decompose(&merged).len() < decompose(&split).len());
-        assert_eq!(pieces(&joined(&clear, split.clone(), 0.0, 0.6)), pieces(&split));
+        assert_eq!(pieces(&LaneJoin::new(&clear, 0.0, 0.6).joined(split.clone())), pieces(&split));
     }
 
     #[test]
@@ -199,7 +209,7 @@ mod tests {
     fn a_joined_lane_is_driven_around_the_pillar_without_touching_it() {
         let map = room(false);
         let clear = Clearance::new(&map, 0.6);
-        let cells = decompose(&joined(&clear, lane_pieces(&clear, 0.6, 0.0), 2.0, 0.6));
+        let cells = decompose(&LaneJoin::new(&clear, 2.0, 0.6).joined(lane_pieces(&clear, 0.6, 0.0)));
         assert_eq!(cells.len(), 1, "the pillar no longer splits the room");
         let route = sweep_cells_with(&clear, &cells, Point::new(0.5, 0.5), true);
         let points = route.points();

@@ -90,10 +90,9 @@ impl CellSweeps {
     /// ([`super::merged_lanes`]), so that the cells are fewer and their lanes longer.
     pub fn new(clear: &Clearance, width: f64, directions: &[f64], coverable: &[bool], merge_gap_m: f64) -> Self {
         let joined = merge_gap_m > 0.0;
-        let by_direction: Vec<Vec<Vec<Piece>>> = directions
-            .iter()
-            .map(|&d| super::merged_lanes::joined(clear, lane_pieces(clear, width, d), merge_gap_m, width))
-            .collect();
+        let join = super::merged_lanes::LaneJoin::new(clear, merge_gap_m, width);
+        let by_direction: Vec<Vec<Vec<Piece>>> =
+            directions.iter().map(|&d| join.joined(lane_pieces(clear, width, d))).collect();
         let decompositions: Vec<Vec<Vec<Piece>>> = by_direction.iter().map(|lanes| decompose(lanes)).collect();
         // The coarsest decomposition; the first direction among equals.
         let base = (0..directions.len())
