@@ -44,7 +44,7 @@ use std::time::Instant;
 use sweeps::CellSweeps;
 use tour::{Candidate, Instance, Tour, UNREACHED_S, leg_time, leg_turn_rad};
 
-pub use planner::{area_bound_s, time_to_goal};
+pub use planner::{lower_bound_to_goal, time_to_goal};
 
 /// The most candidate sweeps a run accepts (cells × directions × 4 entries): the leg-time
 /// matrix and the transit lengths each hold the square of it in `f32`, 3.2 GB at this bound.

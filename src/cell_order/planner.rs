@@ -3,6 +3,7 @@
 //! the common scorer finds fastest to the coverage goal, and reports it.
 
 use super::*;
+use crate::coverage::bound::{TimeBound, free_diameter_m};
 
 /// A solved tour and what it cost to find.
 struct Solved {
@@ -296,11 +297,13 @@ fn end_at_goal(
 }
 
 /// A lower bound on the time any plan needs to cover the share `goal` of the reachable
-/// coverable cells: their area over the area a robot sweeps per second driving straight
-/// (width × speed); turning in place sweeps nothing new in the scorer's model (003 §3.3).
-pub fn area_bound_s(prepared: &Prepared, robot: &crate::coverage::Footprint, goal: f64) -> f64 {
-    let cell = prepared.clear.map().resolution().powi(2);
-    goal * prepared.reach.coverable_count() as f64 * cell / (robot.width * robot.speed)
+/// coverable cells ([`crate::coverage::bound`]): their area over the area a robot sweeps per
+/// second driving straight (width × speed; turning in place sweeps nothing new in the scorer's
+/// model, 003 §3.3), plus the turning any path covering that area inside the map needs.
+pub fn lower_bound_to_goal(prepared: &Prepared, robot: &crate::coverage::Footprint, goal: f64) -> TimeBound {
+    let map = prepared.clear.map();
+    let area = goal * prepared.reach.coverable_count() as f64 * map.resolution().powi(2);
+    TimeBound::one_robot(area, (robot.width, robot.speed, robot.rot_speed), free_diameter_m(map))
 }
 
 /// The planner's own fields of `summary.json`.
@@ -345,7 +348,9 @@ fn details_of(
     }
     if let Some((goal, time_s, finalists)) = goal {
         details.insert("coverage_goal".into(), goal.into());
-        details.insert("lower_bound_to_goal_s".into(), area_bound_s(prepared, robot, goal).into());
+        let bound = lower_bound_to_goal(prepared, robot, goal);
+        details.insert("lower_bound_to_goal_s".into(), bound.total_s().into());
+        details.insert("turning_bound_to_goal_s".into(), bound.turning_s.into());
         // A goal not reached has no time: `null`, not the ranking's penalty.
         let reached = |t: f64| (t < UNREACHED_S).then_some(t);
         details.insert("time_to_goal_s".into(), reached(time_s).into());

@@ -3,11 +3,13 @@
 //! thesis fitness equations that turn them into `cov_final`, `t_final` and `f` ([`fitness`],
 //! 003 §3.2.1); visit maps as bit planes that GAs edit segment by segment ([`bits`],
 //! [`planes`]); the camera model of 000 on its working raster ([`camera`], [`work_map`]); and
-//! the common scorer every planner is compared by ([`score`]). Wall-free routes and transit
+//! the common scorer every planner is compared by ([`score`]), and the lower bounds on the time
+//! to cover an area that every time is read against ([`bound`]). Wall-free routes and transit
 //! lengths live one layer up, in [`crate::routing`]. Planners build on this layer; it depends
 //! on none of them.
 
 pub mod bits;
+pub mod bound;
 pub mod camera;
 pub mod curve;
 #[cfg(test)]

@@ -1,43 +1,64 @@
-//! The area bound beside a plan's times to coverage: no plan covers the share `L` of the
-//! reachable cells sooner than `L` times their area over the robots' combined sweep rate
-//! (`Σ R_width · R_speed`), since driving straight is the fastest the scorer's footprint sweeps
-//! new ground and turning in place sweeps none (003 §3.3; the bound `covga eval` and the
-//! cell-order planner write). The report reads each run's robots and map resolution from the
-//! study's grid file and its reachable cells from `runs.csv`, so the bound needs no run folder.
+//! The lower bound beside a plan's times to coverage ([`crate::coverage::bound`]): no plan
+//! covers the share `L` of the reachable cells sooner than their area over the robots'
+//! combined sweep rate (`Σ R_width · R_speed`), since driving straight is the fastest the
+//! scorer's footprint sweeps new ground and turning in place sweeps none (003 §3.3); one robot
+//! that turns at a finite rate also needs the turning any path covering that area inside the
+//! map's free space must make (the bound `covga eval` writes). The report reads each run's
+//! robots and map from the study's grid file and its reachable cells from `runs.csv`, so the
+//! bound needs no run folder.
 
+use crate::coverage::bound::{TimeBound, area_time_s, free_diameter_m};
 use crate::experiment::file::ExperimentFile;
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// Each run's time to cover all its reachable cells at the area bound, in seconds, or why the
-/// study's runs have none.
+/// What a run's bound is made of.
+#[derive(Debug, Clone, Copy)]
+struct RunBound {
+    /// The reachable cells' area, m².
+    reachable_m2: f64,
+    /// One robot's (width, speed, rot_speed), or for a fleet its combined sweep rate alone.
+    robot: Robots,
+    /// An upper bound on the map's free-space diameter, m.
+    diameter_m: f64,
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Robots {
+    One(f64, f64, f64),
+    Fleet { sweep_rate: f64 },
+}
+
+/// Each run's lower bound on its times to coverage, or why the study's runs have none.
 pub(super) struct AreaBounds {
-    full_s: BTreeMap<String, f64>,
+    runs: BTreeMap<String, RunBound>,
     /// Why no bound is given, where some run has none.
     pub missing: Option<String>,
 }
 
-/// The combined sweep rate of a run's robots in m²/s: its `[[robots]]` (each defaulting to
-/// `[robot]`), else its one robot.
-fn sweep_rate(file: &ExperimentFile) -> f64 {
+/// A run's robots: its `[[robots]]` (each defaulting to `[robot]`) as their combined sweep rate
+/// in m²/s, else its one robot.
+fn robots(file: &ExperimentFile) -> Robots {
     let r = &file.robot;
     if file.robots.is_empty() {
-        return r.width * r.speed;
+        return Robots::One(r.width, r.speed, r.rot_speed);
     }
-    file.robots.iter().map(|e| e.width.unwrap_or(r.width) * e.speed.unwrap_or(r.speed)).sum()
+    Robots::Fleet {
+        sweep_rate: file.robots.iter().map(|e| e.width.unwrap_or(r.width) * e.speed.unwrap_or(r.speed)).sum(),
+    }
 }
 
 impl AreaBounds {
     /// The bounds of the runs in `t`, read with the grid file of study folder `dir`.
     pub fn of(dir: &Path, t: &RunsTable) -> Self {
         match Self::read(dir, t) {
-            Ok(full_s) => Self { full_s, missing: None },
-            Err(why) => Self { full_s: BTreeMap::new(), missing: Some(why) },
+            Ok(runs) => Self { runs, missing: None },
+            Err(why) => Self { runs: BTreeMap::new(), missing: Some(why) },
         }
     }
 
-    fn read(dir: &Path, t: &RunsTable) -> Result<BTreeMap<String, f64>, String> {
+    fn read(dir: &Path, t: &RunsTable) -> Result<BTreeMap<String, RunBound>, String> {
         let grid_file = dir.join("grid.toml");
         let grid = crate::study::grid::Study::load(&grid_file).map_err(|e| e.to_string())?;
         let files: BTreeMap<&str, &ExperimentFile> = grid.runs.iter().map(|r| (r.id.as_str(), &r.file)).collect();
@@ -45,34 +66,48 @@ impl AreaBounds {
         let (Some(id_col), Some(cells_col)) = (id_col, cells_col) else {
             return Err("runs.csv has no `run_id` or `reachable_cells` column".into());
         };
-        // Each map once: the resolution is all the bound needs of it.
-        let mut resolutions: Vec<(crate::planner::sections::MapSection, f64)> = Vec::new();
+        // Each map once: its resolution and free-space diameter are all the bound needs of it.
+        let mut maps: Vec<(crate::planner::sections::MapSection, f64, f64)> = Vec::new();
         let load = |src: &str, image: &crate::map::ros::BareImage| crate::map::ros::load_map(src, image);
         let mut out = BTreeMap::new();
         for row in &t.rows {
             let id = &row[id_col];
             let file =
                 files.get(id.as_str()).ok_or_else(|| format!("run {id} is not one of {}", grid_file.display()))?;
-            let resolution = match resolutions.iter().find(|(m, _)| *m == file.map) {
-                Some((_, r)) => *r,
+            let (resolution, diameter_m) = match maps.iter().find(|(m, ..)| *m == file.map) {
+                Some((_, r, d)) => (*r, *d),
                 None => {
                     let map = file
                         .load_map(&grid_file.display().to_string(), Path::new("."), &load)
                         .map_err(|e| e.to_string())?;
-                    resolutions.push((file.map.clone(), map.resolution()));
-                    map.resolution()
+                    let d = free_diameter_m(&map);
+                    maps.push((file.map.clone(), map.resolution(), d));
+                    (map.resolution(), d)
                 }
             };
             let cells: f64 =
                 row[cells_col].parse().map_err(|_| format!("run {id}: reachable_cells `{}`", row[cells_col]))?;
-            out.insert(id.clone(), cells * resolution * resolution / sweep_rate(file));
+            let reachable_m2 = cells * resolution * resolution;
+            out.insert(id.clone(), RunBound { reachable_m2, robot: robots(file), diameter_m });
         }
         Ok(out)
     }
 
     /// Run `id`'s bound on the time to the share `level` of its reachable cells.
     pub fn to_level_s(&self, id: &str, level: f64) -> Option<f64> {
-        self.full_s.get(id).map(|t| level * t)
+        self.runs.get(id).map(|b| b.time_to_level_s(level))
+    }
+}
+
+impl RunBound {
+    fn time_to_level_s(self, level: f64) -> f64 {
+        let area = level * self.reachable_m2;
+        match self.robot {
+            Robots::One(width, speed, rot_speed) => {
+                TimeBound::one_robot(area, (width, speed, rot_speed), self.diameter_m).total_s()
+            }
+            Robots::Fleet { sweep_rate } => area_time_s(area, sweep_rate),
+        }
     }
 }
 
@@ -83,8 +118,8 @@ mod tests {
     #[test]
     fn a_fleet_sweeps_at_the_sum_of_its_robots_rates() {
         let mut file = ExperimentFile::default();
-        (file.robot.width, file.robot.speed) = (0.6, 0.3);
-        assert!((sweep_rate(&file) - 0.18).abs() < 1e-12);
+        (file.robot.width, file.robot.speed, file.robot.rot_speed) = (0.6, 0.3, 0.52);
+        assert!(matches!(robots(&file), Robots::One(w, v, o) if (w, v, o) == (0.6, 0.3, 0.52)));
         let entry = |width: Option<f64>, speed: Option<f64>| crate::fleet::config::RobotEntry {
             name: "r".into(),
             width,
@@ -94,6 +129,20 @@ mod tests {
             end: None,
         };
         file.robots = vec![entry(None, None), entry(Some(0.4), None), entry(None, Some(0.5))];
-        assert!((sweep_rate(&file) - (0.18 + 0.4 * 0.3 + 0.6 * 0.5)).abs() < 1e-12);
+        let Robots::Fleet { sweep_rate } = robots(&file) else { panic!("a fleet") };
+        assert!((sweep_rate - (0.18 + 0.4 * 0.3 + 0.6 * 0.5)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn one_turning_robot_adds_the_turning_bound_and_a_fleet_does_not() {
+        let one = RunBound { reachable_m2: 100.0, robot: Robots::One(0.5, 0.2, 0.5), diameter_m: 10.0 };
+        // 0.9 × 100 m² over 0.1 m²/s is 900 s; 180 m of path in a 10 m region turns too.
+        let t = one.time_to_level_s(0.9);
+        let turning = crate::coverage::bound::min_turning_rad(180.0, 10.0) / 0.5;
+        assert!(turning > 0.0 && (t - (900.0 + turning)).abs() < 1e-9, "{t}");
+        let fleet = RunBound { robot: Robots::Fleet { sweep_rate: 0.1 }, ..one };
+        assert!((fleet.time_to_level_s(0.9) - 900.0).abs() < 1e-9);
+        let free = RunBound { robot: Robots::One(0.5, 0.2, 0.0), ..one };
+        assert!((free.time_to_level_s(0.9) - 900.0).abs() < 1e-9);
     }
 }

@@ -23,8 +23,8 @@ const SAMPLES: usize = 240;
 struct Series {
     label: String,
     times: Vec<[Option<f64>; 3]>,
-    /// Each run's area bound on the time to all its reachable cells ([`AreaBounds`]).
-    bounds: Vec<Option<f64>>,
+    /// Each run's lower bound on the time to each level ([`AreaBounds`]).
+    bounds: Vec<Option<[f64; 3]>>,
     curves: Vec<CoverageCurve>,
 }
 
@@ -161,7 +161,7 @@ fn panels(s: &Study, bounds: &AreaBounds) -> Panels {
                     series.remove(label).map(|runs| Series {
                         label: names[label].clone(),
                         times: runs.iter().map(|r| r.times).collect(),
-                        bounds: runs.iter().map(|r| bounds.to_level_s(&r.id, 1.0)).collect(),
+                        bounds: runs.iter().map(|r| level_bounds(bounds, &r.id)).collect(),
                         curves: runs.into_iter().filter_map(|r| r.curve).collect(),
                     })
                 })
@@ -204,12 +204,13 @@ impl super::sections::Section for CoverageCurves {
             md,
             "Reachable coverage against mission time along each executable plan (median over the runs, band \
              between the quartiles; a segment's cells count once it is driven). Times to a level are medians over \
-             the runs that reach it; in brackets, the median over them of the time over the area bound (the \
-             level's share of the reachable cells' area over the robots' combined width × speed: no plan covers it \
-             sooner).\n\n![Time-to-coverage curves](coverage_curves.png)\n"
+             the runs that reach it; in brackets, the median over them of the time over the lower bound (the \
+             level's share of the reachable cells' area over the robots' combined width × speed, plus for one \
+             robot that turns at a finite rate the turning any path covering that area inside the map needs: no \
+             plan covers it sooner).\n\n![Time-to-coverage curves](coverage_curves.png)\n"
         );
         if let Some(why) = &bounds.missing {
-            let _ = writeln!(md, "The area bound is not given: {why}.\n");
+            let _ = writeln!(md, "The lower bound is not given: {why}.\n");
         }
         let _ = writeln!(
             md,
@@ -233,13 +234,19 @@ impl super::sections::Section for CoverageCurves {
     }
 }
 
-/// Each run's time to level `k` over its area bound, for the runs that reach the level; empty
+/// Run `id`'s bound on the time to each level, where it has one.
+fn level_bounds(bounds: &AreaBounds, id: &str) -> Option<[f64; 3]> {
+    let b = LEVELS.map(|l| bounds.to_level_s(id, l));
+    Some([b[0]?, b[1]?, b[2]?])
+}
+
+/// Each run's time to level `k` over its bound, for the runs that reach the level; empty
 /// where any of them has no bound.
 fn bound_ratios(se: &Series, k: usize) -> Vec<f64> {
     let pairs: Vec<(f64, Option<f64>)> =
-        se.times.iter().zip(&se.bounds).filter_map(|(t, b)| t[k].map(|t| (t, *b))).collect();
+        se.times.iter().zip(&se.bounds).filter_map(|(t, b)| t[k].map(|t| (t, b.map(|b| b[k])))).collect();
     match pairs.iter().all(|(_, b)| b.is_some_and(|b| b > 0.0)) {
-        true => pairs.into_iter().filter_map(|(t, b)| b.map(|b| t / (LEVELS[k] * b))).collect(),
+        true => pairs.into_iter().filter_map(|(t, b)| b.map(|b| t / b)).collect(),
         false => Vec::new(),
     }
 }
@@ -463,14 +470,15 @@ mod tests {
     #[test]
     fn a_level_shows_the_median_time_and_its_median_ratio_to_the_bound() {
         let times = vec![[Some(80.0), Some(100.0), None], [Some(40.0), None, None], [None, None, None]];
-        let se = Series { label: "a".into(), times, bounds: vec![Some(100.0), Some(50.0), None], curves: Vec::new() };
+        let b = |full: f64| Some(LEVELS.map(|l| l * full));
+        let se = Series { label: "a".into(), times, bounds: vec![b(100.0), b(50.0), None], curves: Vec::new() };
         // 80 s over 0.8 × 100 s and 40 s over 0.8 × 50 s; the third run reaches no level.
         assert_eq!(bound_ratios(&se, 0), vec![1.0, 1.0]);
         assert_eq!(level_cell(&[80.0, 40.0], &bound_ratios(&se, 0)), "60 (1.00×)");
         assert_eq!(level_cell(&[100.0], &bound_ratios(&se, 1)), "100 (1.11×)");
         assert_eq!(level_cell(&[], &bound_ratios(&se, 2)), "–");
         // A run that reaches the level without a bound: no ratio for anyone.
-        let se = Series { bounds: vec![Some(100.0), None, None], ..se };
+        let se = Series { bounds: vec![b(100.0), None, None], ..se };
         assert!(bound_ratios(&se, 0).is_empty());
         assert_eq!(level_cell(&[80.0, 40.0], &[]), "60");
     }

@@ -46,7 +46,7 @@ const STUDY_FILES: [(&str, &str); 5] = [
 const EVAL_FILES: [(&str, &str); 4] = [
     (
         "metrics.json",
-        "the common scorer's metrics of the plan (and a fleet's with `--fleet`), the time model, the area bound",
+        "the common scorer's metrics of the plan (and a fleet's with `--fleet`), the time model, the lower bound (area and turning)",
     ),
     ("path.csv", "the plan scored, `agent,index,x_m,y_m`"),
     ("coverage_curve.csv", "reachable coverage against mission time along the plan"),

@@ -5,6 +5,7 @@
 //! messages use.
 
 use super::UseCaseError;
+use crate::coverage::bound::{TimeBound, area_time_s};
 use crate::coverage::fitness::{Projection, ThesisScore, score};
 use crate::coverage::score::{CameraSpec, Score, Scorer};
 use crate::coverage::{CoverageGrid, Footprint, PathMetrics, SweepScratch};
@@ -114,9 +115,15 @@ pub struct EvalReport {
     /// (`coverage_curve.csv` holds the curve), as `covga run` reports them.
     pub coverage_curve: crate::coverage::curve::CurveSummary,
     /// A lower bound on the time any plan needs to cover what this one covers of the reachable
-    /// cells: their area over the area the robots sweep per second driving straight (Σ width ×
-    /// speed); turning in place sweeps nothing new in the scorer's model.
+    /// cells: the area bound (their area over the area the robots sweep per second driving
+    /// straight, Σ width × speed; turning in place sweeps nothing new in the scorer's model)
+    /// plus, for one robot that turns at a finite rate, the turning bound's time
+    /// (`turning_bound_s`; [`crate::coverage::bound`]).
     pub time_lower_bound_s: f64,
+    /// The turning bound's share of `time_lower_bound_s`: the least turning any path covering
+    /// that area inside the map's free space needs, over `rot_speed` (0 for free turning and
+    /// for fleets).
+    pub turning_bound_s: f64,
 }
 
 /// A scored plan: the report and what its figure and files are made of.
@@ -335,8 +342,17 @@ pub fn evaluate(req: &EvalRequest) -> Result<Evaluation, UseCaseError> {
     let scorer = Scorer::for_widths(&map, robot, &widths, req.projection, &camera, &stations);
     let common = scorer.score_agents(&paths, &robots);
     let curve = crate::coverage::curve::CoverageCurve::of_plan(scorer.grid(), scorer.reach(), &paths, &robots);
+    let covered_m2 = common.unique_reach_cells as f64 * map.resolution().powi(2);
     let sweep_rate: f64 = robots.iter().map(|r| r.width * r.speed).sum();
-    let time_lower_bound_s = common.unique_reach_cells as f64 * map.resolution().powi(2) / sweep_rate;
+    // The turning bound is one path's: a fleet gets the area bound alone.
+    let turning_bound_s = match robots.as_slice() {
+        [one] => {
+            let diameter = crate::coverage::bound::free_diameter_m(&map);
+            TimeBound::one_robot(covered_m2, (one.width, one.speed, one.rot_speed), diameter).turning_s
+        }
+        _ => 0.0,
+    };
+    let time_lower_bound_s = area_time_s(covered_m2, sweep_rate) + turning_bound_s;
     let report = EvalReport {
         map: map.name().to_string(),
         source,
@@ -352,6 +368,7 @@ pub fn evaluate(req: &EvalRequest) -> Result<Evaluation, UseCaseError> {
         fleet: fleet_score,
         coverage_curve: curve.summary(),
         time_lower_bound_s,
+        turning_bound_s,
     };
     let robots = fleet_ref
         .map(|(_, f)| f.robots().iter().map(|r| (r.name.clone(), r.footprint.width)).collect())

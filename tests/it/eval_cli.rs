@@ -31,8 +31,8 @@ fn patterns_meet_the_thesis_reference_quality() {
         for f in ["path.png", "path.svg", "path.csv", "metrics.json", "coverage_curve.csv"] {
             assert!(out_dir.join(f).metadata().unwrap().len() > 100, "{f}");
         }
-        // The curve ends at the plan's time and reachable coverage; the area bound lies below
-        // the time: the covered reachable area over width × speed (0.6 m at 0.2 m/s).
+        // The curve ends at the plan's time and reachable coverage; the bound lies below the
+        // time: the covered reachable area over width × speed (0.6 m at 0.2 m/s), turning free.
         let curve = std::fs::read_to_string(out_dir.join("coverage_curve.csv")).unwrap();
         let last: Vec<f64> = curve.lines().last().unwrap().split(',').map(|x| x.parse().unwrap()).collect();
         let common = &v["common"];
@@ -42,6 +42,7 @@ fn patterns_meet_the_thesis_reference_quality() {
         let resolution = covga::map::presets::preset(map).unwrap().resolution();
         let area = num(common, "unique_reach_cells") * resolution * resolution;
         assert!((bound - area / (0.6 * 0.2)).abs() < 1e-6 * bound && bound < num(common, "time_s"), "{bound}");
+        assert_eq!(num(&v, "turning_bound_s"), 0.0);
         let to_80 = v["coverage_curve"]["time_to_80_s"].as_f64().unwrap();
         assert!(to_80 > 0.0 && to_80 < last[0], "{to_80}");
         // The written path scores the same when read back.
@@ -90,7 +91,7 @@ fn table_output_lists_every_metric() {
         "f1",
         "f2",
         "f_obstacle",
-        "× the area bound",
+        "× the bound",
     ] {
         assert!(text.contains(key), "{key} missing:\n{text}");
     }
