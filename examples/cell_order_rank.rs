@@ -27,7 +27,7 @@ struct Panel {
     points: Vec<(f64, f64)>,
 }
 
-/// The panels in rows of four (rotation speed × completion per map).
+/// The panels in rows of four, in the order map, robot (rotation speed), completion.
 struct RankFigure {
     panels: Vec<Panel>,
 }

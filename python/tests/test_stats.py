@@ -235,5 +235,6 @@ def test_committed_pooled_tests_are_scipys_over_the_units():
             effects.setdefault(plan, []).append(math.log(float(r["time_s"]) / base))
     units = [np.median(e) for e in effects.values()]
     want = sp.wilcoxon(units, method="exact").pvalue
-    p, n = _pooled_p(folder, "report-controls", "compare-cell_order.solver-nearest", "ils (cell_order.seed_directions=true)")
+    p, n = _pooled_p(folder, "report-controls", "compare-cell_order.solver-nearest",
+                     "ils (cell_order.seed_directions=true) (cell_order.classical_finalists=true)")
     assert (p, n) == (pytest.approx(want, rel=1e-12), len(units))
