@@ -14,8 +14,9 @@
 //!   spends more than `θ` of turning (the piece's own and the turn at the cut). Any `θ` gives a
 //!   valid bound `(k − 1) · θ`; [`min_turning_rad`] takes the best of a fine set of them.
 //!
-//! Both hold for any path, in the continuous model (up to the grid's discretisation of the
-//! covered area). The turning bound is weak where the map is large and its rooms narrow: it
+//! Both hold for any path that stays in the free space (an executable plan; a plan that crosses
+//! walls may beat the turning bound), in the continuous model (up to the grid's discretisation
+//! of the covered area). The turning bound is weak where the map is large and its rooms narrow: it
 //! knows only the diameter, not the rooms, so it proves the turns a long sweep cannot avoid,
 //! not the many a room of short lanes makes.
 
