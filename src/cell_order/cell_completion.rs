@@ -40,7 +40,7 @@ pub fn extend(clear: &Clearance, width: f64, labels: &[u32], coverable: &[bool],
             }
             let mut points = std::mem::take(&mut sweep.points);
             points.extend_from_slice(&route.points()[1..]);
-            *sweep = Sweep::new(sweep.direction_deg, sweep.entry, points);
+            *sweep = Sweep { split: sweep.split, ..Sweep::new(sweep.direction_deg, sweep.entry, points) };
         }
     });
 }
@@ -115,7 +115,13 @@ mod tests {
         let mut clear = Clearance::new(&m, 0.6);
         let reach = Reach::new(&clear, &[Point::new(1.3, 1.3)]);
         clear.restrict(reach.centres().to_vec());
-        let before = CellSweeps::new(&clear, 0.6, &[0.0, 90.0], reach.coverable(), 0.0);
+        let before = CellSweeps::new(
+            &clear,
+            0.6,
+            &[0.0, 90.0],
+            reach.coverable(),
+            super::super::merged_lanes::LaneLayout::SPLIT,
+        );
         let mut after = before.clone();
         after.complete_in_cells(&clear, 0.6, reach.coverable(), 0.2);
         let (mut left_before, mut left_after) = (0, 0);

@@ -62,6 +62,10 @@ pub enum Completion {
     /// The quota heuristic ([`super::quota`]): the boundary chains as pieces, the cheapest per
     /// cell first (approach and turning counted) until the coverage goal is met, the rest after.
     Quota,
+    /// The quota heuristic's pieces with a local search ([`super::piece_search`]) deciding
+    /// which of them meet the goal, in which order and which way round, by their time with the
+    /// transit and turning between them (the quota heuristic itself without a coverage goal).
+    QuotaSearch,
     /// The patterns' greedy pass alone (what boustrophedon and spiral do).
     Greedy,
     /// Nothing: the sweeps only.
@@ -99,7 +103,7 @@ pub struct CellOrderSection {
     /// Local search (best choices, Or-opt, 2-opt) on the best and one random child of every
     /// generation.
     pub memetic: bool,
-    /// `"boundary"`, `"cells"`, `"quota"`, `"greedy"` or `"none"`: how the strips the lanes leave
+    /// `"boundary"`, `"cells"`, `"quota"`, `"quota_search"`, `"greedy"` or `"none"`: how the strips the lanes leave
     /// are visited.
     pub completion: Completion,
     /// The share of the reachable coverable cells the plan must cover, in (0, 1]: the GA ranks
@@ -136,6 +140,13 @@ pub struct CellOrderSection {
     /// form while 0, so that run ids made before it stay.
     #[serde(skip_serializing_if = "is_zero_f64")]
     pub merge_gap_m: f64,
+    /// Offer every cell, beside its sweeps with lanes joined across small obstacles, its sweeps
+    /// with lanes split at every obstacle, so that a search chooses per cell between the two
+    /// layouts (and lane direction and entry, as always); the no-search and classical controls
+    /// try each layout for the whole map. Needs `merge_gap_m` > 0. Left out of the canonical
+    /// form while off, so that run ids made before it stay.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub offer_split_lanes: bool,
 }
 
 impl Default for CellOrderSection {
@@ -160,6 +171,7 @@ impl Default for CellOrderSection {
             wall_directions: 0,
             completion_m_per_m2: 20.0,
             merge_gap_m: 0.0,
+            offer_split_lanes: false,
         }
     }
 }
@@ -185,8 +197,9 @@ pub struct CellOrderConfig {
     pub wall_directions: usize,
     /// Completion driving charged per square metre a sweep leaves, in metres.
     pub completion_m_per_m2: f64,
-    /// The longest gap a lane continues across, in metres.
-    pub merge_gap_m: f64,
+    /// How lanes are laid out: the longest gap a lane continues across, in metres, and
+    /// whether split sweeps are offered beside joined ones.
+    pub layout: super::merged_lanes::LaneLayout,
     /// The robot's width (for the memory estimate).
     pub width: f64,
 }
@@ -267,13 +280,13 @@ impl CellOrderSection {
         check_range(o, "cell_order.p_c", self.p_c, 0.0, 1.0, "[0, 1]")?;
         check_range(o, "cell_order.p_m", self.p_m, 0.0, 1.0, "[0, 1]")?;
         check_range(o, "cell_order.completion_m_per_m2", self.completion_m_per_m2, 0.0, 1e4, "[0, 10000] m per m²")?;
-        check_range(o, "cell_order.merge_gap_m", self.merge_gap_m, 0.0, 50.0, "[0, 50] metres")?;
+        let layout = self.lane_layout(ctx)?;
         if let Some(p) = self.p_choice {
             check_range(o, "cell_order.p_choice", p, 0.0, 1.0, "[0, 1]")?;
         }
         self.check_goal(ctx)?;
         if self.solver == Solver::Exact && ctx.checks == crate::planner::Checks::Full {
-            check_exact_cells(ctx, &directions, self.merge_gap_m)?;
+            check_exact_cells(ctx, &directions, layout)?;
         }
         let params = DrawParams {
             tournament_size: self.tournament_size,
@@ -300,9 +313,21 @@ impl CellOrderSection {
             classical_finalists: self.classical_finalists,
             wall_directions: self.wall_directions,
             completion_m_per_m2: self.completion_m_per_m2,
-            merge_gap_m: self.merge_gap_m,
+            layout,
             width: ctx.scenario.robot.width,
         })
+    }
+
+    /// The lane layouts offered: `merge_gap_m` in range, and split lanes only beside joined ones.
+    fn lane_layout(&self, ctx: &Context) -> Result<super::merged_lanes::LaneLayout, ConfigError> {
+        check_range(ctx.origin, "cell_order.merge_gap_m", self.merge_gap_m, 0.0, 50.0, "[0, 50] metres")?;
+        if self.offer_split_lanes && self.merge_gap_m == 0.0 {
+            return Err(ctx.error(
+                "cell_order.offer_split_lanes",
+                "= true needs cell_order.merge_gap_m > 0 (with 0 every lane is already split at every obstacle)",
+            ));
+        }
+        Ok(super::merged_lanes::LaneLayout { merge_gap_m: self.merge_gap_m, split_too: self.offer_split_lanes })
     }
 
     /// The coverage goal in (0, 1], and present where `classical_finalists` needs it.
@@ -329,9 +354,13 @@ impl CellOrderSection {
 /// The exact solver's cell limit ([`super::exact::MAX_EXACT_CELLS`]), counted on the
 /// decomposition before a run: the cells are known only after it, and a grid must refuse the
 /// configuration before it writes anything.
-fn check_exact_cells(ctx: &Context, directions: &[f64], merge_gap_m: f64) -> Result<(), ConfigError> {
+fn check_exact_cells(
+    ctx: &Context,
+    directions: &[f64],
+    layout: super::merged_lanes::LaneLayout,
+) -> Result<(), ConfigError> {
     let planning = ctx.scenario.for_planning();
-    let (_, _, sweeps) = super::decompose(&planning, directions, merge_gap_m)
+    let (_, _, sweeps) = super::decompose(&planning, directions, layout)
         .map_err(|m| ctx.error("cell_order.solver", format!("cell_order on map `{}`: {m}", ctx.scenario.map.name())))?;
     if sweeps.len() > super::exact::MAX_EXACT_CELLS {
         return Err(ctx.error(
@@ -351,12 +380,13 @@ impl CellOrderConfig {
     /// An estimate of a run's own memory on `map`, made before anything is allocated: the
     /// leg-time matrix over candidate sweeps and the transit lengths between their ends (each
     /// `f32`, candidates squared; cells taken as at least two widths square, four entries per
-    /// direction; the run refuses more than [`super::MAX_CANDIDATES`] candidates) and one
-    /// Dijkstra buffer per thread.
+    /// direction and layout offered; the run refuses more than [`super::MAX_CANDIDATES`]
+    /// candidates) and one Dijkstra buffer per thread.
     pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
         let free_m2 = map.free_count() as f64 * map.resolution().powi(2);
         let cells = (free_m2 / (4.0 * self.width * self.width)).ceil();
-        let candidates = (cells * 4.0 * self.directions.len() as f64).min(super::MAX_CANDIDATES as f64);
+        let layouts = self.layout.control_layouts().len() as f64;
+        let candidates = (cells * 4.0 * self.directions.len() as f64 * layouts).min(super::MAX_CANDIDATES as f64);
         let legs = 2.0 * 4.0 * candidates * candidates;
         let dijkstra = 16.0 * (map.rows() * map.cols()) as f64 * threads.max(1) as f64;
         MemoryEstimate {

@@ -12,6 +12,39 @@
 use crate::map::clearance::Clearance;
 use crate::patterns::boustrophedon::Piece;
 
+/// How a map's lanes are laid out for the cell-order planner: joined across gaps of up to
+/// `merge_gap_m` metres, and whether every cell is also offered its sweeps with lanes split at
+/// every obstacle, so that a search chooses per cell between joined and split lanes (the
+/// per-region layout choice; the controls try each layout for the whole map).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaneLayout {
+    /// The longest gap a lane continues across, in metres; 0 splits lanes at every obstacle.
+    pub merge_gap_m: f64,
+    /// Offer every cell its split sweeps beside its joined ones (only where lanes are joined).
+    pub split_too: bool,
+}
+
+impl LaneLayout {
+    /// Lanes split at every obstacle, as a plain boustrophedon decomposition has them.
+    pub const SPLIT: Self = Self { merge_gap_m: 0.0, split_too: false };
+
+    /// Lanes joined across gaps of up to `merge_gap_m`, with no split alternative.
+    pub fn joined(merge_gap_m: f64) -> Self {
+        Self { merge_gap_m, split_too: false }
+    }
+
+    /// The layouts the controls try, one plan each per lane direction: `false` for the
+    /// (possibly joined) lanes, then `true` for the split ones where they are offered.
+    pub fn control_layouts(&self) -> &'static [bool] {
+        if self.offers_split() { &[false, true] } else { &[false] }
+    }
+
+    /// Whether split sweeps are offered beside joined ones.
+    pub fn offers_split(&self) -> bool {
+        self.split_too && self.merge_gap_m > 0.0
+    }
+}
+
 /// How much longer than the gap the detour around the obstacle in it may be, in robot widths.
 pub const DETOUR_SLACK_WIDTHS: f64 = 2.0;
 

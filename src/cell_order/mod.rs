@@ -20,6 +20,7 @@ pub mod ils;
 pub mod local;
 pub mod merged_lanes;
 pub mod operators;
+pub mod piece_search;
 mod planner;
 pub mod quota;
 pub mod rank;
@@ -79,9 +80,9 @@ pub struct Preparation<'a> {
     pub completion: Completion,
     /// The plan's coverage goal, a share of the reachable coverable cells.
     pub coverage_goal: Option<f64>,
-    /// The longest gap a lane continues across ([`merged_lanes`]); 0 splits lanes at every
-    /// obstacle.
-    pub merge_gap_m: f64,
+    /// How lanes are laid out: joined across gaps of up to a length ([`merged_lanes`]; 0
+    /// splits them at every obstacle), and whether split sweeps are offered beside joined ones.
+    pub layout: merged_lanes::LaneLayout,
 }
 
 impl<'a> Preparation<'a> {
@@ -92,7 +93,7 @@ impl<'a> Preparation<'a> {
             completion_m_per_m2: section.completion_m_per_m2,
             completion: section.completion,
             coverage_goal: section.coverage_goal,
-            merge_gap_m: section.merge_gap_m,
+            layout: merged_lanes::LaneLayout { merge_gap_m: section.merge_gap_m, split_too: section.offer_split_lanes },
         }
     }
 }
@@ -137,7 +138,7 @@ pub fn prepare_within<'m>(
             begun.elapsed().as_secs_f64()
         )),
     };
-    let (clear, reach, mut sweeps) = decompose(scenario, directions, how.merge_gap_m).map_err(PrepareError::Input)?;
+    let (clear, reach, mut sweeps) = decompose(scenario, directions, how.layout).map_err(PrepareError::Input)?;
     if how.completion == Completion::Cells {
         sweeps.complete_in_cells(&clear, s.robot.width, reach.coverable(), s.robot.speed);
     }
@@ -197,12 +198,12 @@ pub fn prepare_within<'m>(
 }
 
 /// The reachable clearance of `scenario`, its reach and its cells with their candidate sweeps
-/// at `directions`, lanes joined across gaps of up to `merge_gap_m`: the first, cheap part of
+/// at `directions`, lanes laid out as `layout` says: the first, cheap part of
 /// [`prepare`] (no transit), which validation uses to count the cells.
 pub fn decompose<'m>(
     scenario: &'m Scenario,
     directions: &[f64],
-    merge_gap_m: f64,
+    layout: merged_lanes::LaneLayout,
 ) -> Result<(Clearance<'m>, Reach, CellSweeps), String> {
     let s = scenario;
     let width = s.robot.width;
@@ -212,7 +213,7 @@ pub fn decompose<'m>(
         return Err(format!("no free area reachable from the start fits a robot {width} m wide"));
     }
     clear.restrict(reach.centres().to_vec());
-    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable(), merge_gap_m);
+    let sweeps = CellSweeps::new(&clear, width, directions, reach.coverable(), layout);
     if sweeps.is_empty() {
         return Err(format!("no lane of a robot {width} m wide fits the area reachable from the start"));
     }
@@ -256,7 +257,10 @@ impl Prepared<'_> {
         match completion {
             Completion::None => {}
             Completion::Greedy => crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route),
-            Completion::Quota => quota::complete(&self.clear, &self.reach, robot, self.coverage_goal, &mut route),
+            Completion::Quota | Completion::QuotaSearch => {
+                let searched = completion == Completion::QuotaSearch;
+                quota::complete(&self.clear, &self.reach, robot, (self.coverage_goal, searched), &mut route)
+            }
             Completion::Boundary | Completion::Cells => {
                 let map = self.clear.map();
                 let grid = crate::coverage::CoverageGrid::new(map);

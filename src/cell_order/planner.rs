@@ -76,7 +76,7 @@ impl CellOrderConfig {
                 let mut to_record = |g: &search::Generation| g.record(lanes.of(prepared, scenario, g.best.0), members);
                 let observers = &mut Observers::new(observers);
                 let seeds = if self.seed_directions {
-                    controls::direction_tours(prepared, &self.directions)
+                    controls::direction_tours(prepared, &self.directions, self.layout.control_layouts())
                 } else {
                     Vec::new()
                 };
@@ -107,17 +107,17 @@ impl CellOrderConfig {
                     lanes: Vec::new(),
                 })
             }
-            Solver::Nearest => {
-                Ok(self.control(prepared, controls::direction_tours(prepared, &self.directions), Vec::new()))
-            }
+            Solver::Nearest => Ok(self.control(
+                prepared,
+                controls::direction_tours(prepared, &self.directions, self.layout.control_layouts()),
+                Vec::new(),
+            )),
             Solver::Boustrophedon => {
-                let lanes = controls::boustrophedon_plans(
-                    prepared,
-                    scenario,
-                    &self.directions,
-                    (self.completion, self.merge_gap_m),
-                )
-                .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
+                let lanes =
+                    controls::boustrophedon_plans(prepared, scenario, &self.directions, (self.completion, self.layout))
+                        .map_err(|e| {
+                            PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name()))
+                        })?;
                 Ok(self.control(prepared, Vec::new(), lanes))
             }
             Solver::Exact => exact_tour(prepared, scenario),
@@ -178,9 +178,8 @@ impl CellOrderConfig {
         // Validation asks for a goal with `classical_finalists`.
         let classical_from = candidates.len();
         if self.classical_finalists && matches!(self.solver, Solver::Ga | Solver::Ils) {
-            let lanes =
-                controls::boustrophedon_plans(prepared, s, &self.directions, (self.completion, self.merge_gap_m))
-                    .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
+            let lanes = controls::boustrophedon_plans(prepared, s, &self.directions, (self.completion, self.layout))
+                .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", s.map.name())))?;
             candidates.extend(lanes.into_iter().map(|l| (l.path, l.skipped)));
         }
         Ok((candidates, classical_from))
@@ -211,7 +210,7 @@ impl CellOrderConfig {
             completion_m_per_m2: self.completion_m_per_m2,
             completion: self.completion,
             coverage_goal: self.coverage_goal,
-            merge_gap_m: self.merge_gap_m,
+            layout: self.layout,
         }
     }
 
@@ -314,7 +313,7 @@ fn details_of(
     skipped: usize,
     goal: Option<(f64, f64, Vec<f64>)>,
     directions: Option<&[f64]>,
-    control_direction: Option<f64>,
+    control_plan: Option<(f64, Option<bool>)>,
 ) -> serde_json::Map<String, serde_json::Value> {
     let inst = &prepared.instance;
     // A classical plan chosen over the search's has no tour of the cells.
@@ -322,7 +321,13 @@ fn details_of(
     let tour: Vec<serde_json::Value> = prepared
         .sweeps_of(if classical_chosen { &no_tour } else { &solved.tour })
         .zip(&solved.tour.order)
-        .map(|(w, k)| serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry}))
+        .map(|(w, k)| {
+            let mut item = serde_json::json!({"cell": k, "direction_deg": w.direction_deg, "entry": w.entry});
+            if w.split {
+                item["split_lanes"] = true.into();
+            }
+            item
+        })
         .collect();
     let mut details = crate::planner::details(serde_json::json!({
         "cells": inst.cells(),
@@ -340,8 +345,11 @@ fn details_of(
     if let Some(d) = directions {
         details.insert("directions_deg".into(), d.into());
     }
-    if let Some(d) = control_direction {
+    if let Some((d, split)) = control_plan {
         details.insert("control_direction_deg".into(), d.into());
+        if let Some(split) = split {
+            details.insert("control_split_lanes".into(), split.into());
+        }
     }
     if classical_chosen {
         details.insert("classical_chosen".into(), true.into());
@@ -390,11 +398,14 @@ impl Planner for CellOrderConfig {
         }
         let chosen = self.chosen_plan(&prepared, candidates, s, &grid);
         let classical_chosen = chosen.index >= classical_from;
-        let control_direction = match self.solver {
-            Solver::Nearest | Solver::Boustrophedon => Some(self.directions[chosen.index]),
-            Solver::Ga | Solver::Ils => classical_chosen.then(|| self.directions[chosen.index - classical_from]),
+        let plan_of = |i: usize| controls::control_plan(&self.directions, self.layout.control_layouts(), i);
+        let control_plan = match self.solver {
+            Solver::Nearest | Solver::Boustrophedon => Some(plan_of(chosen.index)),
+            Solver::Ga | Solver::Ils => classical_chosen.then(|| plan_of(chosen.index - classical_from)),
             Solver::Exact => None,
         };
+        // Which layout the control plan has, where two were offered.
+        let control_plan = control_plan.map(|(d, split)| (d, self.layout.offers_split().then_some(split)));
         if let Some(tour) = solved.finalists.get(chosen.index) {
             solved.tour = tour.clone();
             solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
@@ -424,7 +435,7 @@ impl Planner for CellOrderConfig {
                 skipped,
                 chosen.goal,
                 self.wall_directions_used(),
-                control_direction,
+                control_plan,
             ),
             files: Vec::new(),
             history: match self.solver {

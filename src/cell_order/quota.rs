@@ -150,12 +150,13 @@ pub fn cheapest_first(pieces: &[Piece], needed: Option<usize>, cells: usize) -> 
 
 /// `route` completed by the quota heuristic for `goal` (a share of `reach`'s coverable cells;
 /// `None`: every piece by the same rule), the pieces it leaves in the boundary pass's order,
-/// then the greedy pass.
+/// then the greedy pass. With `searched` (and a goal) the pieces that meet the goal, their order
+/// and their directions are [`super::piece_search::search`]'s, started from the heuristic's.
 pub fn complete(
     clear: &Clearance,
     reach: &Reach,
     robot: &crate::coverage::Footprint,
-    goal: Option<f64>,
+    (goal, searched): (Option<f64>, bool),
     route: &mut GrowingRoute,
 ) {
     let width = robot.width;
@@ -170,19 +171,50 @@ pub fn complete(
     let needed = goal.map(|g| ((g * reach.coverable_count() as f64 - 1e-9).ceil() as usize).saturating_sub(swept));
     let chosen = cheapest_first(&all, needed, grid.len());
     let mut used = vec![false; all.len()];
-    for &k in &chosen {
-        used[k] = true;
+    if let (true, Some(needed)) = (searched, needed) {
+        let start = (route.last(), last_heading(route.points()));
+        for (k, reversed) in super::piece_search::search(&all, &chosen, needed, grid.len(), start, robot) {
+            used[k] = true;
+            let points = &all[k].points;
+            let mut go = |p: &Point| {
+                route.go(clear, *p);
+            };
+            if reversed { points.iter().rev().for_each(&mut go) } else { points.iter().for_each(&mut go) }
+        }
+    } else {
+        for &k in &chosen {
+            used[k] = true;
+        }
+        let first: Vec<Vec<Point>> = chosen.iter().map(|&k| all[k].points.clone()).collect();
+        drive_in_order(clear, robot, &first, route);
     }
-    let first: Vec<Vec<Point>> = chosen.iter().map(|&k| all[k].points.clone()).collect();
     let rest: Vec<Vec<Point>> = (0..all.len()).filter(|&k| !used[k]).map(|k| all[k].points.clone()).collect();
-    for group in [first, rest] {
-        for chain in boundary::order(&group, route.last(), None, robot.speed) {
-            for p in chain {
-                route.go(clear, p);
-            }
+    drive_in_order(clear, robot, &rest, route);
+    crate::patterns::complete::complete(clear, reach, width, route);
+}
+
+/// `chains` driven in the boundary pass's order from where `route` ends.
+fn drive_in_order(
+    clear: &Clearance,
+    robot: &crate::coverage::Footprint,
+    chains: &[Vec<Point>],
+    route: &mut GrowingRoute,
+) {
+    for chain in boundary::order(chains, route.last(), None, robot.speed) {
+        for p in chain {
+            route.go(clear, p);
         }
     }
-    crate::patterns::complete::complete(clear, reach, width, route);
+}
+
+/// The heading of a path's last move (zero for a path that has not moved).
+fn last_heading(points: &[Point]) -> crate::geom::Vector {
+    let end = *points.last().expect("a route has its start");
+    points
+        .iter()
+        .rev()
+        .find(|p| (end - **p).norm() > crate::geom::ZERO_LENGTH)
+        .map_or(crate::geom::Vector::zeros(), |p| (end - p).normalize())
 }
 
 #[cfg(test)]

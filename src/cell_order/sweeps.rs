@@ -11,6 +11,7 @@
 //! which is what a genome of one order plus one choice per cell needs (the generalised
 //! travelling-salesman view of Bähnemann et al. 2019, where each cell is a cluster of sweeps).
 
+use super::merged_lanes::LaneLayout;
 use crate::geom::{Point, Vector};
 use crate::map::clearance::Clearance;
 use crate::patterns::boustrophedon::{Piece, decompose, lane_pieces, sweep_cells_with};
@@ -36,6 +37,9 @@ pub struct Sweep {
     /// Coverable cells of the cell's region that this sweep leaves unswept (set by
     /// [`CellSweeps::new`]).
     pub missed_cells: usize,
+    /// Whether its lanes end at every obstacle where the map's lanes are otherwise joined
+    /// across small ones ([`super::merged_lanes::LaneLayout::split_too`]).
+    pub split: bool,
 }
 
 impl Sweep {
@@ -55,6 +59,7 @@ impl Sweep {
             end_heading: points.windows(2).rev().find_map(heading).unwrap_or(zero),
             points,
             missed_cells: 0,
+            split: false,
         }
     }
 
@@ -85,14 +90,16 @@ pub struct CellSweeps {
 impl CellSweeps {
     /// Decomposes the free space `clear` allows (restricted to the reachable part) and builds
     /// every cell's sweeps at `directions` (degrees) for a robot `width` wide; each sweep
-    /// counts the cells of `coverable` (one flag per map cell) in its region it leaves. With
-    /// `merge_gap_m` > 0 the lanes first continue across small obstacles
-    /// ([`super::merged_lanes`]), so that the cells are fewer and their lanes longer.
-    pub fn new(clear: &Clearance, width: f64, directions: &[f64], coverable: &[bool], merge_gap_m: f64) -> Self {
-        let joined = merge_gap_m > 0.0;
-        let join = super::merged_lanes::LaneJoin::new(clear, merge_gap_m, width);
-        let by_direction: Vec<Vec<Vec<Piece>>> =
-            directions.iter().map(|&d| join.joined(lane_pieces(clear, width, d))).collect();
+    /// counts the cells of `coverable` (one flag per map cell) in its region it leaves. Where
+    /// `layout.merge_gap_m` > 0 the lanes first continue across small obstacles
+    /// ([`super::merged_lanes`]), so that the cells are fewer and their lanes longer; with
+    /// `layout.split_too` each cell is also offered, at every direction where they differ, the
+    /// sweeps of its region with lanes split at every obstacle.
+    pub fn new(clear: &Clearance, width: f64, directions: &[f64], coverable: &[bool], layout: LaneLayout) -> Self {
+        let joined = layout.merge_gap_m > 0.0;
+        let join = super::merged_lanes::LaneJoin::new(clear, layout.merge_gap_m, width);
+        let split_lanes: Vec<Vec<Vec<Piece>>> = directions.iter().map(|&d| lane_pieces(clear, width, d)).collect();
+        let by_direction: Vec<Vec<Vec<Piece>>> = split_lanes.iter().map(|lanes| join.joined(lanes.clone())).collect();
         let decompositions: Vec<Vec<Vec<Piece>>> = by_direction.iter().map(|lanes| decompose(lanes)).collect();
         // The coarsest decomposition; the first direction among equals.
         let base = (0..directions.len())
@@ -122,9 +129,14 @@ impl CellSweeps {
                     if pieces.is_empty() {
                         continue;
                     }
-                    for (entry, corner) in corners(&pieces).into_iter().enumerate() {
-                        let route = sweep_cells_with(clear, &pieces, corner, joined);
-                        out.push(Sweep::new(dir, entry as u8, route.into_points()));
+                    push_sweeps(clear, (dir, &pieces), joined, &mut out);
+                    if layout.offers_split() {
+                        let split = decompose(&lanes_in_region(clear, &split_lanes[d], (&labels, k), dir, false));
+                        if !split.is_empty() && split != pieces {
+                            let first = out.len();
+                            push_sweeps(clear, (dir, &split), false, &mut out);
+                            out[first..].iter_mut().for_each(|w| w.split = true);
+                        }
                     }
                 }
                 out
@@ -149,6 +161,15 @@ impl CellSweeps {
     /// Whether there is no cell.
     pub fn is_empty(&self) -> bool {
         self.cells.is_empty()
+    }
+}
+
+/// The sweeps of a cell's (sub-)`pieces` at lane direction `dir`, one per entry corner, their
+/// lanes driven around the obstacles they cross where they are `joined`.
+fn push_sweeps(clear: &Clearance, (dir, pieces): (f64, &[Vec<Piece>]), joined: bool, out: &mut Vec<Sweep>) {
+    for (entry, corner) in corners(pieces).into_iter().enumerate() {
+        let route = sweep_cells_with(clear, pieces, corner, joined);
+        out.push(Sweep::new(dir, entry as u8, route.into_points()));
     }
 }
 
@@ -319,7 +340,7 @@ mod tests {
         let mut clear = Clearance::new(&m, 0.6);
         clear.restrict(reachable_centres(&clear, &[Point::new(1.3, 1.3)]));
         let all = vec![true; m.rows() * m.cols()];
-        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all, 0.0);
+        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all, LaneLayout::SPLIT);
         assert_eq!(s.len(), 1, "an empty square is one cell");
         assert_eq!(s.cells[0].len(), 16);
         for sweep in &s.cells[0] {
@@ -343,11 +364,58 @@ mod tests {
         let mut clear = Clearance::new(&m, 0.6);
         clear.restrict(reachable_centres(&clear, &[Point::new(1.3, 1.3)]));
         let all = vec![true; m.rows() * m.cols()];
-        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all, 0.0);
+        let s = CellSweeps::new(&clear, 0.6, &[0.0, 45.0, 90.0, 135.0], &all, LaneLayout::SPLIT);
         assert_eq!(s.len(), 4);
         for cell in &s.cells {
             let dirs: std::collections::BTreeSet<i64> = cell.iter().map(|w| w.direction_deg as i64).collect();
             assert_eq!(dirs.len(), 4, "{dirs:?}");
         }
+    }
+
+    /// A 10 × 6 m room at 0.1 m with a 0.4 m pillar in the middle.
+    fn pillar_room() -> crate::map::GridMap {
+        use crate::map::CellState;
+        let (cols, rows) = (100, 60);
+        let cells = (0..rows * cols)
+            .map(|i| {
+                let (r, c) = (i / cols, i % cols);
+                let border = r == 0 || c == 0 || r == rows - 1 || c == cols - 1;
+                let pillar = (48..52).contains(&c) && (28..32).contains(&r);
+                if border || pillar { CellState::Occupied } else { CellState::Free }
+            })
+            .collect();
+        crate::map::GridMap::new("room", cols, rows, 0.1, Point::origin(), cells).unwrap()
+    }
+
+    #[test]
+    fn split_sweeps_are_offered_beside_joined_ones_only_where_they_differ() {
+        let m = pillar_room();
+        let mut clear = Clearance::new(&m, 0.6);
+        clear.restrict(reachable_centres(&clear, &[Point::new(1.0, 1.0)]));
+        let all = vec![true; m.rows() * m.cols()];
+        let dirs = [0.0, 45.0, 90.0, 135.0];
+        let build = |merge_gap_m: f64, split_too: bool| {
+            CellSweeps::new(&clear, 0.6, &dirs, &all, LaneLayout { merge_gap_m, split_too })
+        };
+        let joined = build(2.0, false);
+        assert_eq!(joined.len(), 1, "the pillar's lanes are joined: one cell");
+        assert!(joined.cells[0].iter().all(|w| !w.split));
+        let both = build(2.0, true);
+        assert_eq!(both.len(), 1);
+        assert_eq!(both.cells[0].iter().filter(|w| !w.split).cloned().collect::<Vec<_>>(), joined.cells[0]);
+        let split: Vec<&Sweep> = both.cells[0].iter().filter(|w| w.split).collect();
+        for d in [0.0, 90.0] {
+            assert_eq!(split.iter().filter(|w| w.direction_deg == d).count(), 4, "the pillar splits lanes at {d}°");
+        }
+        for w in &split {
+            for s in w.points.windows(2) {
+                assert!(clear.segment_fits(s[0], s[1]), "{} {}: {s:?}", w.direction_deg, w.entry);
+            }
+            // Split lanes end at the pillar instead of driving round it: another sweep.
+            let twin = joined.cells[0].iter().find(|j| j.direction_deg == w.direction_deg && j.entry == w.entry);
+            assert_ne!(w.points, twin.unwrap().points, "{} {}", w.direction_deg, w.entry);
+        }
+        // With lanes split everywhere there is nothing else to offer.
+        assert_eq!(build(0.0, true).cells, build(0.0, false).cells);
     }
 }

@@ -10,7 +10,7 @@ use super::{GrowingRoute, PatternError};
 use crate::geom::{Point, Vector};
 
 /// One fitting piece of a lane: its two ends.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Piece {
     /// The end at the low lane coordinate.
     pub a: Point,

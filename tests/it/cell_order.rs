@@ -155,7 +155,7 @@ fn a_coverage_goal_ends_the_plan_where_the_scorer_reaches_it() {
     let budget = Budget { evaluations: Some(3_000), ..Budget::iterations(1_000_000) };
     let ctx = Context { origin: "test", scenario: &s, budget: &budget, checks: covga::planner::Checks::Full };
     let scorer = Scorer::new(&s.map, s.robot, s.projection, &s.camera, &[s.start]);
-    for completion in [Completion::Boundary, Completion::Cells, Completion::Quota] {
+    for completion in [Completion::Boundary, Completion::Cells, Completion::Quota, Completion::QuotaSearch] {
         let whole = CellOrderSection { completion, ..CellOrderSection::default() }.validate(&ctx).unwrap();
         let goal = CellOrderSection { completion, coverage_goal: Some(0.9), ..CellOrderSection::default() };
         let planner = goal.validate(&ctx).unwrap();
@@ -292,7 +292,7 @@ fn a_small_population_is_refused_only_by_the_key_its_selection_reads() {
     assert!(tournament.contains("cell_order.tournament_size"), "{tournament}");
 }
 
-/// The quota completion drives the pieces its goal does not need after the others, so a plan
+/// The quota completion (searched or not) drives the pieces its goal does not need after the others, so a plan
 /// with a goal ends covering what the whole plan covers; the thesis GA's cell-order seed is the
 /// whole plan whatever goal the section names (it does not read the goal).
 #[test]
@@ -314,6 +314,9 @@ fn quota_plans_cover_all_in_the_end_and_the_seed_plan_ignores_the_goal() {
     // Both cover everything in the end (the pieces left follow the quota's).
     assert!((cf.cov_final_reach - cq.cov_final_reach).abs() < 0.01, "{} {}", cf.cov_final_reach, cq.cov_final_reach);
     assert!(cq.cov_final_reach > sweeps + 0.01, "{} after {sweeps}", cq.cov_final_reach);
+    // So does the searched completion, whose search chooses only the pieces the goal needs.
+    let searched = scorer.score(&[path(&b, Completion::QuotaSearch)]);
+    assert!(searched.executable && (cf.cov_final_reach - searched.cov_final_reach).abs() < 0.01, "{searched:?}");
     // The goal changed which pieces come first; the seed plan does not read it.
     assert_ne!(full, quota);
     let seed = covga::cell_order::local_optimum_plan(&s, &whole).unwrap();

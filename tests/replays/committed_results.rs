@@ -1,7 +1,8 @@
 //! Committed results re-run exactly: for every study under `results/` (a folder with
 //! `study.json` and `runs.csv` or `runs.csv.xz`), the grid file it names still expands to the
-//! same runs, and the cheapest committed row of each (planner, map) pair, run again with
-//! today's code, gives the committed row in every column but the timings.
+//! same runs, and the cheapest committed rows of each planner, each map not re-run by an
+//! earlier folder and each swept value ([`cheap_rows`]), run again with today's code, give the
+//! committed rows in every column but the timings.
 //!
 //! Every committed study reads its maps from the repository (presets or `experiments/maps/`),
 //! so a fresh clone re-runs them all; a row whose map file is missing fails. When a change
@@ -12,7 +13,7 @@ use crate::common::repo;
 use covga::study::grid::Study;
 use covga::study::records::{RunsTable, TIMING_COLUMNS, row};
 use covga::study::runner::{MapCache, experiment_of, grid_hash};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Committed rows whose recorded run took longer than this are not re-run (seconds).
@@ -57,25 +58,35 @@ fn study_dirs() -> Vec<PathBuf> {
 /// [`MAX_ROW_SECONDS`]) of each planner and of each map, so that every planner and every map
 /// kind of the study is re-run at least once; and the cheapest row under
 /// [`MAX_VALUE_ROW_SECONDS`] of each value of each swept key (`columns`), so that an option a
-/// study sweeps (routed moves, a seeded population, a selection scheme) is re-run too.
-fn cheap_rows(table: &RunsTable, columns: &[String]) -> Vec<String> {
+/// study sweeps (routed moves, a seeded population, a selection scheme) is re-run too. A map
+/// an earlier study folder re-ran (`seen_maps`) gets no row of its own, nor does a value of a
+/// key that only names the map (`map.*`, `stations.*`): studies that sweep options over the
+/// same floor plans re-run each option, not each plan again. The maps of the rows picked join
+/// `seen_maps`.
+fn cheap_rows(table: &RunsTable, columns: &[String], seen_maps: &mut BTreeSet<String>) -> Vec<String> {
     let col = |n: &str| table.col(n).unwrap_or_else(|| panic!("runs.csv has no {n} column"));
     // The metric `planner` column, not a swept `planner` key of the same name before it.
     let planner = table.header.iter().rposition(|h| h == "planner").expect("a planner column");
     let (id, map, wall) = (col("run_id"), col("map"), col("wall_s"));
     // A swept key's column is the first of that name (a metric column can share it).
-    let swept: Vec<usize> = columns.iter().map(|c| col(c)).collect();
+    let swept: Vec<(usize, bool)> =
+        columns.iter().map(|c| (col(c), c.starts_with("map.") || c.starts_with("stations."))).collect();
     let mut best: BTreeMap<(u8, String), (f64, String)> = BTreeMap::new();
     for r in &table.rows {
         let secs: f64 = r[wall].parse().unwrap_or(f64::INFINITY);
         if secs > MAX_ROW_SECONDS {
             continue;
         }
-        let values = swept
-            .iter()
-            .filter(|&&c| secs <= MAX_VALUE_ROW_SECONDS && !r[c].is_empty())
-            .map(|&c| (2, format!("{}={}", table.header[c], r[c])));
-        for key in [(0, r[planner].clone()), (1, r[map].clone())].into_iter().chain(values) {
+        let known = seen_maps.contains(&r[map]);
+        let mut slots = vec![(0, r[planner].clone())];
+        if !known {
+            slots.push((1, r[map].clone()));
+        }
+        if secs <= MAX_VALUE_ROW_SECONDS {
+            let values = swept.iter().filter(|&&(c, of_map)| !(r[c].is_empty() || (known && of_map)));
+            slots.extend(values.map(|&(c, _)| (2, format!("{}={}", table.header[c], r[c]))));
+        }
+        for key in slots {
             let slot = best.entry(key).or_insert((secs, r[id].clone()));
             if (secs, &r[id]) < (slot.0, &slot.1) {
                 *slot = (secs, r[id].clone());
@@ -85,6 +96,9 @@ fn cheap_rows(table: &RunsTable, columns: &[String]) -> Vec<String> {
     let mut picked: Vec<String> = best.into_values().map(|(_, id)| id).collect();
     picked.sort();
     picked.dedup();
+    for r in table.rows.iter().filter(|r| picked.binary_search(&r[id]).is_ok()) {
+        seen_maps.insert(r[map].clone());
+    }
     picked
 }
 
@@ -95,6 +109,7 @@ fn committed_study_rows_re_run_exactly() {
     let scratch = tempfile::tempdir().expect("tempdir");
     let mut failures = Vec::new();
     let mut checked = 0;
+    let mut seen_maps = BTreeSet::new();
     for dir in dirs {
         let name = dir.file_name().unwrap().to_string_lossy().into_owned();
         let meta: serde_json::Value =
@@ -115,7 +130,7 @@ fn committed_study_rows_re_run_exactly() {
         // The metric `planner` column, not a swept `planner` key of the same name before it.
         let metric_planner = table.header.iter().rposition(|h| h == "planner").expect("a planner column");
         let maps = MapCache::default();
-        for id in cheap_rows(&table, &study.columns) {
+        for id in cheap_rows(&table, &study.columns, &mut seen_maps) {
             let run = study.runs.iter().find(|r| r.id == id).unwrap_or_else(|| panic!("{name}: no run {id}"));
             assert!(
                 !map_missing(&run.file.map.source),

@@ -49,6 +49,23 @@ const REPORTS: &[(&str, &str, &[&str])] = &[
         "report/summary.md",
         &["--by", "cell_order.solver", "--by", "cell_order.merge_gap_m", "--compare", "cell_order.merge_gap_m=0"],
     ),
+    (
+        "lane-layouts",
+        "report/summary.md",
+        &[
+            "--by",
+            "cell_order.solver",
+            "--by",
+            "cell_order.offer_split_lanes",
+            "--compare",
+            "cell_order.offer_split_lanes=false",
+        ],
+    ),
+    (
+        "quota-search",
+        "report/summary.md",
+        &["--by", "cell_order.solver", "--by", "cell_order.completion", "--compare", "cell_order.completion=quota"],
+    ),
     ("thesis-table-4-3", "report/summary.md", &["--by", "thesis.selection"]),
     (
         "thesis-table-4-3",
