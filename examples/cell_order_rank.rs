@@ -1,7 +1,8 @@
 //! How well the cell-order GA's tour cost ranks plans as the common scorer does, on the
 //! cell-order study's maps and robots: for each map, robot and completion (the boundary pass,
-//! the completion inside each cell, and the quota completion on lanes joined across gaps of up
-//! to 2.4 m, as the cell-order study runs it), 1 000 sampled plans
+//! the completion inside each cell, and the searched quota completion on lanes joined across
+//! gaps of up to 2.4 m and offered split per cell, as the cell-order study runs it), 1 000
+//! sampled plans
 //! ([`covga::cell_order::rank::sample`]), Spearman's ρ of the cost the GA ranks by (with the
 //! coverage goal) and of the whole tour's time (what it ranked by before) against the
 //! scorer's time to the goal. Writes `rank.csv` (one row per plan) and `rank.png`/`.svg` (one
@@ -92,24 +93,27 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("|---|---|---|---|---|---|");
     for (source, start) in MAPS {
         for rot_speed in [0.0, 0.5] {
-            for (completion, merge_gap_m) in
-                [(Completion::Boundary, 0.0), (Completion::Cells, 0.0), (Completion::Quota, 2.4)]
-            {
+            for (name, completion, merge_gap_m, offer_split_lanes) in [
+                ("boundary", Completion::Boundary, 0.0, false),
+                ("cells", Completion::Cells, 0.0, false),
+                ("quota_search-merged", Completion::QuotaSearch, 2.4, true),
+            ] {
                 let mut file = ExperimentFile { planner: PlannerKind::CellOrder, ..ExperimentFile::default() };
                 file.map.source = source.into();
                 file.stations.start = start;
                 (file.robot.width, file.robot.speed, file.robot.rot_speed) = (0.6, 0.2, rot_speed);
                 let exp = file.validate("cell_order_rank", Path::new("."), "cell_order_rank")?;
                 // The quota takes pieces up to the goal, so it needs the goal to plan with.
-                let coverage_goal = (completion == Completion::Quota).then_some(goal);
-                let section =
-                    CellOrderSection { completion, merge_gap_m, coverage_goal, ..CellOrderSection::default() };
+                let coverage_goal = (completion == Completion::QuotaSearch).then_some(goal);
+                let section = CellOrderSection {
+                    completion,
+                    merge_gap_m,
+                    offer_split_lanes,
+                    coverage_goal,
+                    ..CellOrderSection::default()
+                };
                 let prepared = prepare(&exp.scenario, Preparation::of(&section))?;
                 let ranked = sample(&prepared, &exp.scenario, completion, goal, plans, 1);
-                let name = match merge_gap_m > 0.0 {
-                    true => format!("{completion:?}-merged").to_lowercase(),
-                    false => format!("{completion:?}").to_lowercase(),
-                };
                 for (i, ((a, b), c)) in ranked.surrogate.iter().zip(&ranked.tour_time).zip(&ranked.scorer).enumerate() {
                     writeln!(csv, "{source},{rot_speed},{name},{i},{a},{b},{c}")?;
                 }
