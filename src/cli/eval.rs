@@ -91,9 +91,22 @@ pub struct EvalArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     json: bool,
-    /// Folder for path.png, path.svg, path.csv, coverage_curve.csv and metrics.json.
-    #[arg(long, default_value = "out/eval")]
-    out: PathBuf,
+    /// Folder for path.png, path.svg, path.csv, coverage_curve.csv and metrics.json (default:
+    /// out/eval-MAP, MAP the preset's name or the map file's stem, so that checking a second
+    /// map keeps the first one's files).
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// The default results folder of `covga eval` for the map argument `map`: `out/eval-NAME`,
+/// NAME the preset's name or the map file's stem, characters other than letters, digits, `-`,
+/// `_` and `.` written as `_`.
+fn default_out(map: &str) -> PathBuf {
+    let stem = std::path::Path::new(map).file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name: String =
+        stem.chars().map(|c| if c.is_alphanumeric() || matches!(c, '-' | '_' | '.') { c } else { '_' }).collect();
+    let name = if name.is_empty() || name.chars().all(|c| c == '.') { "map".to_string() } else { name };
+    PathBuf::from("out").join(format!("eval-{name}"))
 }
 
 /// Parses `X0,Y0,X1,Y1` (metres, `X0 < X1`, `Y0 < Y1`).
@@ -191,14 +204,29 @@ impl EvalArgs {
 /// Runs `covga eval` with its parsed arguments.
 pub fn run(a: EvalArgs) -> Result<(), CliError> {
     let evaluation = evaluate(&a.request()?)?;
-    evaluation.write(&a.out)?;
+    let out = a.out.clone().unwrap_or_else(|| default_out(&a.map));
+    evaluation.write(&out)?;
     if a.json {
         println!("{}", evaluation.json()?);
     } else {
         print_table(&evaluation.report);
-        println!("wrote {}/path.png, path.svg, path.csv, coverage_curve.csv, metrics.json", a.out.display());
+        println!("wrote {}/path.png, path.svg, path.csv, coverage_curve.csv, metrics.json", out.display());
     }
     Ok(())
+}
+
+/// The plan's time as a multiple of its lower bound, with the bound; a plan that covers no
+/// area (a single point) has a bound of 0 s and no multiple.
+fn times_the_bound(time_s: f64, r: &EvalReport) -> String {
+    let bound = format!(
+        "bound {:.1} s: covered area / (width · speed), plus {:.1} s of turning",
+        r.time_lower_bound_s, r.turning_bound_s
+    );
+    if r.time_lower_bound_s > 0.0 && time_s.is_finite() {
+        format!("{:.2} ({bound})", time_s / r.time_lower_bound_s)
+    } else {
+        format!("- ({bound}; the plan covers no area to bound)")
+    }
 }
 
 fn print_table(r: &EvalReport) {
@@ -228,15 +256,7 @@ fn print_table(r: &EvalReport) {
         ("cov_final over reachable", format!("{:.6}", c.cov_final_reach)),
         ("camera walls / open", format!("{:.4} / {:.4}", c.cam_walls_free, c.cam_open_free)),
         ("time [s]", format!("{:.1}", c.time_s)),
-        (
-            "× the bound",
-            format!(
-                "{:.2} (bound {:.1} s: covered area / (width · speed), plus {:.1} s of turning)",
-                c.time_s / r.time_lower_bound_s,
-                r.time_lower_bound_s,
-                r.turning_bound_s
-            ),
-        ),
+        ("× the bound", times_the_bound(c.time_s, r)),
         (
             "unreachable pockets",
             r.pockets.map_or("-".into(), |n| format!("{n} ({:.2} m²)", r.pocket_area_m2.unwrap_or(0.0))),
@@ -262,5 +282,18 @@ fn print_table(r: &EvalReport) {
         for (k, v) in rows {
             println!("  {k:<26} {v}");
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_folder_is_named_after_the_map() {
+        assert_eq!(default_out("thesis-1"), PathBuf::from("out/eval-thesis-1"));
+        assert_eq!(default_out("m/house-2.yaml"), PathBuf::from("out/eval-house-2"));
+        assert_eq!(default_out("floor plan.png"), PathBuf::from("out/eval-floor_plan"));
+        assert_eq!(default_out(""), PathBuf::from("out/eval-map"));
     }
 }

@@ -4,7 +4,7 @@
 use super::CliError;
 use crate::experiment::registry::PlannerConfig;
 use crate::usecase::run::{ExperimentText, prepare};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `covga gtsp`.
 #[derive(clap::Args, Debug)]
@@ -24,6 +24,15 @@ pub struct GtspArgs {
 
 /// Runs `covga gtsp` with its parsed arguments.
 pub fn run(a: GtspArgs) -> Result<(), CliError> {
+    if let Some(nodes) = &a.nodes
+        && same_file(&a.out, nodes)
+    {
+        return Err(CliError::Input(format!(
+            "--out {} and --nodes {} name the same file: the nodes would overwrite the instance; give two files",
+            a.out.display(),
+            nodes.display()
+        )));
+    }
     let source = ExperimentText::read(&a.file)?;
     let prepared = prepare(&source, None, None)?;
     let exp = &prepared.experiment;
@@ -46,4 +55,23 @@ pub fn run(a: GtspArgs) -> Result<(), CliError> {
         write(path, &nodes)?;
     }
     Ok(())
+}
+
+/// Whether `a` and `b` name one file: the same path once made absolute, or, where both exist,
+/// the same file (through links or `..`).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let absolute = |p: &Path| std::path::absolute(p).ok();
+    let canonical = |p: &Path| std::fs::canonicalize(p).ok();
+    absolute(a).is_some_and(|x| Some(x) == absolute(b)) || canonical(a).is_some_and(|x| Some(x) == canonical(b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_file_under_two_spellings_is_the_same() {
+        assert!(same_file(Path::new("x.gtsp"), Path::new("./x.gtsp")));
+        assert!(!same_file(Path::new("x.gtsp"), Path::new("x.csv")));
+    }
 }

@@ -25,13 +25,18 @@ enum Page {
 }
 
 /// Runs `covga reference`: the page on standard output.
+/// A page that cannot be written (standard output closed or full) is an error, not a panic.
 pub fn run(a: ReferenceArgs) -> Result<(), CliError> {
-    match a.page {
-        Page::Keys => print!("{}", crate::experiment::keys::markdown()),
-        Page::Commands => print!("{}", commands_markdown()),
-        Page::Outputs => print!("{}", crate::study::outputs::markdown()),
-    }
-    Ok(())
+    use std::io::Write;
+    let page = match a.page {
+        Page::Keys => crate::experiment::keys::markdown(),
+        Page::Commands => commands_markdown(),
+        Page::Outputs => crate::study::outputs::markdown(),
+    };
+    let mut out = std::io::stdout().lock();
+    out.write_all(page.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(|e| CliError::Internal(format!("cannot write the page to standard output: {e}")))
 }
 
 /// Every command's long help, as `covga COMMAND --help` prints it.

@@ -70,13 +70,26 @@ pub fn run(a: RunArgs) -> Result<(), CliError> {
     drop(watch);
     progress.0.finish_and_clear();
     let (summary, dir) = ran?;
-    for w in &summary.warnings {
+    for w in summary.warnings.iter().cloned().chain(missed_goal(&summary.details, summary.score.cov_final_reach)) {
         eprintln!("warning: {origin}: {w}");
     }
     if !a.quiet {
         print_summary(&prepared, &summary, &dir);
     }
     Ok(())
+}
+
+/// The warning for a coverage goal (`coverage_goal` among the planner's `details`, as
+/// `cell_order.coverage_goal` records it) that the scored plan does not reach: `reached`, its
+/// share of the reachable cells, is below the goal.
+fn missed_goal(details: &serde_json::Map<String, serde_json::Value>, reached: f64) -> Option<String> {
+    let goal = details.get("coverage_goal")?.as_f64()?;
+    (reached < goal).then(|| {
+        format!(
+            "the plan covers {reached:.4} of the reachable cells, short of its coverage goal \
+             (cell_order.coverage_goal = {goal})"
+        )
+    })
 }
 
 /// The run's summary as `covga run` prints it.
@@ -125,5 +138,19 @@ fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) 
             println!("planner constraints: NOT met ({})", summary.violations.join("; "));
         }
         println!("wrote {}", dir.display());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_coverage_goal_the_plan_misses_is_warned_about() {
+        let details = serde_json::json!({"coverage_goal": 0.9}).as_object().cloned().unwrap();
+        let warning = missed_goal(&details, 0.848).expect("a warning");
+        assert!(warning.contains("0.8480") && warning.contains("cell_order.coverage_goal = 0.9"), "{warning}");
+        assert_eq!(missed_goal(&details, 0.9), None);
+        assert_eq!(missed_goal(&serde_json::Map::new(), 0.1), None);
     }
 }

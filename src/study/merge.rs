@@ -26,6 +26,9 @@ pub enum MergeError {
     /// Shards or runs are missing.
     #[error("{0}")]
     Incomplete(String),
+    /// Another covga process (a grid, a shard, a merge) is writing the folder now.
+    #[error("{0}")]
+    Busy(String),
 }
 
 /// Shard files `runs-shard-K-of-N.csv` that should be there but are not.
@@ -45,10 +48,44 @@ fn missing_shards(names: &[String]) -> Vec<String> {
         .collect()
 }
 
+/// What to do about the `missing` files and runs of a study whose runs files are `names`:
+/// rerun the missing shards where shard files are missing or the study is sharded, else resume
+/// the study, which runs only the runs not yet recorded.
+fn what_to_rerun(names: &[String], missing: &[String]) -> &'static str {
+    let sharded = names.iter().any(|n| n.starts_with("runs-shard-"));
+    if sharded || missing.iter().any(|m| m.starts_with("runs-shard-")) {
+        "rerun the missing shards"
+    } else {
+        "resume the study with `covga grid` into this folder, which runs only the runs not yet recorded"
+    }
+}
+
 /// Merges the runs files of `dir` into `dir/runs.csv`; returns (files, runs, what is missing).
 /// A missing shard file, or fewer runs than `study.json` records, is an error unless
 /// `allow_partial`, when it is reported in the third value instead.
+///
+/// Refused while a grid (or a shard of one) writes the folder: merge takes the folder's lock
+/// exclusively, as a whole-study grid does, so that it never replaces a `runs.csv` a running
+/// grid still appends to.
 pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<String>), MergeError> {
+    if !dir.join("study.json").is_file() {
+        // No study folder: refused as the listing refuses it, with no lock file left there.
+        runs_files(dir)?;
+    }
+    let lock_existed = dir.join(".covga.lock").exists();
+    let lock = crate::io::FolderLock::take(dir, true).map_err(MergeError::Busy)?;
+    let merged = merge_locked(dir, allow_partial);
+    drop(lock);
+    if !lock_existed {
+        // A merge leaves the folder as it was but for runs.csv: its lock file goes too.
+        let _ = std::fs::remove_file(dir.join(".covga.lock"));
+    }
+    merged
+}
+
+/// [`merge`] once the folder's lock is held.
+fn merge_locked(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<String>), MergeError> {
+    // Listed under the lock: a shard may have written its first file meanwhile.
     let files = runs_files(dir)?;
     let table = merged_rows(&files)?;
     let names: Vec<String> =
@@ -57,9 +94,10 @@ pub fn merge(dir: &Path, allow_partial: bool) -> Result<(usize, usize, Vec<Strin
     missing.extend(check_against_study(dir, &table)?);
     if !missing.is_empty() && !allow_partial {
         return Err(MergeError::Incomplete(format!(
-            "{}: the study is incomplete, missing {}; rerun the missing shards (or merge with --allow-partial)",
+            "{}: the study is incomplete, missing {}; {} (or merge with --allow-partial)",
             dir.display(),
-            missing.join(", ")
+            missing.join(", "),
+            what_to_rerun(&names, &missing)
         )));
     }
     let out = dir.join("runs.csv");
@@ -185,5 +223,14 @@ mod tests {
             ["runs-shard-0-of-3.csv", "runs-shard-2-of-3.csv", "runs.csv"].iter().map(|s| s.to_string()).collect();
         assert_eq!(missing_shards(&names), vec!["runs-shard-1-of-3.csv".to_string()]);
         assert!(missing_shards(&["runs.csv".to_string()]).is_empty());
+    }
+
+    #[test]
+    fn an_unsharded_study_is_resumed_not_rerun_by_shard() {
+        let unsharded = what_to_rerun(&["runs.csv".to_string()], &["3 of 8 runs".to_string()]);
+        assert!(!unsharded.contains("shard"), "{unsharded}");
+        assert!(unsharded.contains("covga grid"), "{unsharded}");
+        let sharded = what_to_rerun(&["runs-shard-0-of-2.csv".to_string()], &["3 of 8 runs".to_string()]);
+        assert!(sharded.contains("missing shards"), "{sharded}");
     }
 }

@@ -10,6 +10,7 @@ use std::process::{Command, Stdio};
 mod bad_input;
 mod interrupts;
 
+mod fourth_pass;
 mod third_pass;
 
 /// A small valid experiment (map 1, Elite, 20 individuals, 3 iterations).
