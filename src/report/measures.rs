@@ -43,6 +43,9 @@ pub enum Value {
     Bool(bool),
     /// No value: a figure the run records as `null` (a coverage it never reached, say).
     Null,
+    /// Not recorded: a `summary.json` figure the run's planner does not write (a coverage goal's
+    /// time of a planner that has no goal, in a study of several planners).
+    Missing,
 }
 
 impl Value {
@@ -52,6 +55,7 @@ impl Value {
             Value::Num(x) => x.to_string(),
             Value::Bool(b) => b.to_string(),
             Value::Null => "null".into(),
+            Value::Missing => "missing".into(),
         }
     }
 
@@ -61,6 +65,7 @@ impl Value {
             "true" => Some(Value::Bool(true)),
             "false" => Some(Value::Bool(false)),
             "null" | "" => Some(Value::Null),
+            "missing" => Some(Value::Missing),
             _ => cell.parse::<f64>().ok().filter(|x| x.is_finite()).map(Value::Num),
         }
     }
@@ -107,15 +112,13 @@ fn read_folder(folder: &Path, keys: &[(String, Source)]) -> Result<BTreeMap<Stri
                     let text = std::fs::read_to_string(&file).map_err(|e| bad(&file, e.to_string()))?;
                     summary = Some(serde_json::from_str(&text).map_err(|e| bad(&file, e.to_string()))?);
                 }
-                let mut v = summary.as_ref().expect("read above");
-                for step in path {
-                    v = v.get(step).ok_or_else(|| bad(&file, format!("no `{key}` (no `{step}` along it)")))?;
-                }
-                match v {
-                    serde_json::Value::Bool(b) => Value::Bool(*b),
-                    serde_json::Value::Number(n) => Value::Num(n.as_f64().unwrap_or(f64::NAN)),
-                    serde_json::Value::Null => Value::Null,
-                    other => {
+                match path.iter().try_fold(summary.as_ref().expect("read above"), |v, step| v.get(step)) {
+                    // Counted apart: another planner's runs of the study may record it.
+                    None => Value::Missing,
+                    Some(serde_json::Value::Bool(b)) => Value::Bool(*b),
+                    Some(serde_json::Value::Number(n)) => Value::Num(n.as_f64().unwrap_or(f64::NAN)),
+                    Some(serde_json::Value::Null) => Value::Null,
+                    Some(other) => {
                         return Err(bad(&file, format!("`{key}` is {other}, not a number, true/false or null")));
                     }
                 }
@@ -190,7 +193,7 @@ fn significant(x: f64) -> String {
 /// runs that record no value (`null`) are counted beside them, never taken as a number.
 fn summarise(values: &[Value]) -> String {
     let mut nums = Vec::new();
-    let (mut yes, mut bools, mut nulls) = (0, 0, 0);
+    let (mut yes, mut bools, mut nulls, mut missing) = (0, 0, 0, 0);
     for v in values {
         match v {
             Value::Num(x) => nums.push(*x),
@@ -199,13 +202,18 @@ fn summarise(values: &[Value]) -> String {
                 bools += 1;
             }
             Value::Null => nulls += 1,
+            Value::Missing => missing += 1,
         }
     }
-    let without = match nulls {
-        0 => String::new(),
-        n if n == values.len() => return format!("no value ({n} null)"),
-        n => format!("; {n} null"),
-    };
+    let apart: Vec<String> = [(nulls, "null"), (missing, "missing")]
+        .into_iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, what)| format!("{n} {what}"))
+        .collect();
+    if nulls + missing == values.len() && !values.is_empty() {
+        return format!("no value ({})", apart.join(", "));
+    }
+    let without = if apart.is_empty() { String::new() } else { format!("; {}", apart.join("; ")) };
     if !nums.is_empty() && bools > 0 {
         return "numbers and yes/no mixed".into();
     }
@@ -272,6 +280,14 @@ pub(super) fn render(
         }
         values.insert(row[id].as_str(), v);
     }
+    let nowhere = (0..sources.len()).find(|&k| values.values().all(|v| v[k] == Value::Missing));
+    if let Some(k) = nowhere.filter(|_| !values.is_empty()) {
+        return Err(ReportError::Input(format!(
+            "--measure {}: no run of {} records it (not a runs.csv column, and no run's summary.json has it)",
+            sources[k].0,
+            dir.display()
+        )));
+    }
     let mut md = String::from("# Measures per group\n\n");
     if !selected.is_empty() {
         let _ = writeln!(md, "Runs with {} only.\n", selected.join(", "));
@@ -307,11 +323,7 @@ fn markdown(
         "What each run recorded, read from {}. Numbers: the median of the group's runs with the least and the \
          greatest [min, max]; yes/no figures: the runs where it holds, of the group's runs.{}\n",
         read.join("; "),
-        if values.values().flatten().any(|v| *v == Value::Null) {
-            " Runs that record no value (`null`: a coverage never reached, say) are counted apart."
-        } else {
-            ""
-        }
+        apart_note(values)
     );
     let _ =
         writeln!(md, "| group | runs | {} |", sources.iter().map(|(k, _)| k.as_str()).collect::<Vec<_>>().join(" | "));
@@ -323,6 +335,21 @@ fn markdown(
         let _ = writeln!(md, "| {} | {} | {} |", g.label, g.rows.len(), cells.join(" | "));
     }
     md
+}
+
+/// What the table says of runs counted apart: those that record `null` and those that do not
+/// record the figure at all.
+fn apart_note(values: &BTreeMap<&str, Vec<Value>>) -> String {
+    let mut note = String::new();
+    if values.values().flatten().any(|v| *v == Value::Null) {
+        note.push_str(" Runs that record no value (`null`: a coverage never reached, say) are counted apart.");
+    }
+    if values.values().flatten().any(|v| *v == Value::Missing) {
+        note.push_str(
+            " Runs whose `summary.json` does not record the figure (`missing`: a planner without it) are counted apart.",
+        );
+    }
+    note
 }
 
 /// `measures.csv`: one row per run, by run id.
@@ -360,7 +387,7 @@ mod tests {
 
     #[test]
     fn groups_summarise_numbers_as_median_and_range_and_yes_no_as_counts() {
-        let cases: [(&[Value], &str); 9] = [
+        let cases: [(&[Value], &str); 11] = [
             (&[Value::Num(1.0), Value::Num(3.0), Value::Num(2.0)], "2 [1, 3]"),
             (&[Value::Num(0.877), Value::Num(0.9634), Value::Num(0.7731)], "0.8770 [0.7731, 0.9634]"),
             (&[Value::Num(382.0), Value::Num(180.0)], "281 [180, 382]"),
@@ -370,6 +397,8 @@ mod tests {
             (&[Value::Num(1.0), Value::Null, Value::Num(3.0)], "2 [1, 3]; 1 null"),
             (&[Value::Null, Value::Null], "no value (2 null)"),
             (&[Value::Bool(true), Value::Null], "1/1; 1 null"),
+            (&[Value::Num(1.0), Value::Missing, Value::Num(3.0), Value::Null], "2 [1, 3]; 1 null; 1 missing"),
+            (&[Value::Missing, Value::Null], "no value (1 null, 1 missing)"),
         ];
         for (values, want) in cases {
             assert_eq!(summarise(values), want);
@@ -397,7 +426,10 @@ mod tests {
         assert_eq!(got["connected"], Value::Bool(true));
         assert_eq!(got["objectives.wall_coverage"], Value::Num(0.9));
         assert_eq!(got["history.best_walls@50"], Value::Num(0.75));
-        for missing in ["objectives.open_coverage", "history.best_walls@100", "history.mean_walls@0"] {
+        // A summary figure the run does not record is counted apart, not an error.
+        let k = [("objectives.open_coverage".to_string(), source(&t, "objectives.open_coverage").unwrap())];
+        assert_eq!(read_folder(&dir, &k).unwrap()["objectives.open_coverage"], Value::Missing);
+        for missing in ["history.best_walls@100", "history.mean_walls@0"] {
             let k = [(missing.to_string(), source(&t, missing).unwrap())];
             let e = read_folder(&dir, &k).unwrap_err().to_string();
             assert!(e.contains("summary.json") || e.contains("history.csv"), "{missing}: {e}");

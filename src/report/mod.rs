@@ -30,12 +30,14 @@ pub mod rescore;
 pub mod search_objective;
 mod sections;
 mod study;
+mod values;
 
 use crate::ga::pareto::non_dominated;
 use crate::stats::median;
 use crate::study::records::RunsTable;
 pub use replication::{ablation, ablation_figures, claims, fleet_report, plans, seed_to_seed, thesis_report};
 use std::path::Path;
+pub(super) use values::{check_against_grid, check_finite};
 
 /// Report failures.
 #[derive(Debug, thiserror::Error)]
@@ -151,6 +153,7 @@ pub(super) fn read_filtered_runs(
     let input = |m: String| ReportError::Input(format!("{}: {m}", file.display()));
     let mut t = RunsTable::parse(&text).map_err(input)?;
     check_finite(&t).map_err(input)?;
+    check_against_grid(dir, &t).map_err(input)?;
     let recorded = t.rows.len();
     let failed = take_failed(&mut t);
     for (key, wants) in where_keys(filter) {
@@ -201,66 +204,6 @@ pub(super) fn cell_matches(cell: &str, want: &str) -> bool {
         (Ok(a), Ok(b)) => a == b,
         _ => cell == want,
     }
-}
-
-/// A metric of runs.csv that is not a finite number (a hand-edited or damaged file): the
-/// report would print `NaN ± NaN` or an infinite hypervolume as if they were results.
-pub(super) fn check_finite(t: &RunsTable) -> Result<(), String> {
-    let id = t.col("run_id");
-    if let Some(i) = id {
-        let mut seen = std::collections::BTreeSet::new();
-        for row in &t.rows {
-            if !seen.insert(row[i].as_str()) {
-                return Err(format!(
-                    "run {} is recorded twice: every run id appears once (was the file edited by hand?)",
-                    row[i]
-                ));
-            }
-        }
-    }
-    // Shares lie in [0, 1]; lengths, times and counts are not negative.
-    let shares =
-        ["cov_final_free", "cov_final_reach", "cam_walls_free", "cam_open_free", "cam_walls_reach", "cam_open_reach"];
-    for name in crate::coverage::score::Score::column_names() {
-        let Some(c) = t.col(name) else { continue };
-        let (lo, hi) = if shares.contains(&name) { (0.0, 1.0) } else { (0.0, f64::INFINITY) };
-        for row in &t.rows {
-            if row[c].parse::<f64>().is_ok_and(|v| v.is_finite() && !(lo..=hi).contains(&v)) {
-                return Err(format!(
-                    "run {} has `{name}` = {}: allowed [{lo}, {hi}] (was the file edited by hand?)",
-                    id.map_or("?", |i| row[i].as_str()),
-                    row[c]
-                ));
-            }
-        }
-    }
-    // Yes/no columns hold `true` or `false`: read as anything else they would count as "no".
-    let failed = t.col("stop");
-    for name in ["executable", "planner_feasible"] {
-        let Some(c) = t.col(name) else { continue };
-        for row in t.rows.iter().filter(|r| failed.is_none_or(|f| r[f] != crate::study::records::FAILED_STOP)) {
-            if row[c] != "true" && row[c] != "false" {
-                return Err(format!(
-                    "run {} has `{name}` = `{}`: allowed `true` or `false` (was the file edited by hand?)",
-                    id.map_or("?", |i| row[i].as_str()),
-                    row[c]
-                ));
-            }
-        }
-    }
-    for name in crate::coverage::score::Score::column_names() {
-        let Some(c) = t.col(name) else { continue };
-        for row in &t.rows {
-            if row[c].parse::<f64>().is_ok_and(|v| !v.is_finite()) {
-                return Err(format!(
-                    "run {} has `{name}` = {}: every metric must be a finite number (was the file edited by hand?)",
-                    id.map_or("?", |i| row[i].as_str()),
-                    row[c]
-                ));
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Takes the rows of runs that failed while running out of `t` and returns them as

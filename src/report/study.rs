@@ -36,6 +36,7 @@ impl Loaded {
         let input = |m: String| ReportError::Input(format!("{}: {m}", runs_file.display()));
         let mut t = RunsTable::parse(&text).map_err(input)?;
         check_finite(&t).map_err(input)?;
+        super::check_against_grid(dir, &t).map_err(input)?;
         let recorded = t.rows.len();
         let failed = take_failed(&mut t);
         if t.rows.is_empty() && !failed.is_empty() {

@@ -11,6 +11,7 @@ mod bad_input;
 mod interrupts;
 
 mod fourth_pass;
+mod report_inputs;
 mod third_pass;
 
 /// A small valid experiment (map 1, Elite, 20 individuals, 3 iterations).

@@ -104,6 +104,7 @@ impl Reference {
         }
         let mut by_map = BTreeMap::new();
         for (i, r) in table.rows.iter().enumerate() {
+            check_reference_row(&table, r, i).map_err(input)?;
             if by_map.insert(r[map].clone(), i).is_some() {
                 return Err(input(format!("two plans for map {}: one reference plan per map", r[map])));
             }
@@ -115,6 +116,30 @@ impl Reference {
     pub fn num(&self, map: &str, column: &str) -> Option<f64> {
         self.by_map.get(map).and_then(|&i| self.table.num(&self.table.rows[i], column))
     }
+}
+
+/// Refuses a reference plan (row `i` of `table`) that no run can be set against: one without
+/// a number in a column the comparison reads, or with no time (every run's time is read as a
+/// share of its reference plan's).
+fn check_reference_row(table: &RunsTable, row: &[String], i: usize) -> Result<(), String> {
+    let id = table.col("run_id").map_or("?", |c| row[c].as_str());
+    for need in ["cov_final_reach", "cov_final_free", "t_final", "time_s"] {
+        let cell = table.col(need).map_or("", |c| row[c].as_str());
+        let value = cell.parse::<f64>().ok().filter(|v| v.is_finite());
+        let Some(value) = value else {
+            return Err(format!(
+                "run {id} (line {}) has `{need}` = `{cell}`: a reference plan needs a number there (a failed run is no reference)",
+                i + 2
+            ));
+        };
+        if need == "time_s" && value <= 0.0 {
+            return Err(format!(
+                "run {id} (line {}) has `time_s` = {cell}: a reference plan takes time (allowed > 0 s); the runs' times are read against it",
+                i + 2
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Hypervolume of the non-dominated set of `points` (both maximised) above (0, 0), and its

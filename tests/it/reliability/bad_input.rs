@@ -406,13 +406,13 @@ const CASES: &[Case] = &[
         name: "report of a share above 1",
         files: &[("study.json", "{\"runs\": 1}"), ("runs.csv", "run_id,cov_final_free\na,1.7\n")],
         args: &["report", "."],
-        needle: "run a has `cov_final_free` = 1.7: allowed [0, 1]",
+        needle: "run a has `cov_final_free` = 1.7 (line 2): allowed [0, 1]",
     },
     Case {
         name: "report of a negative time",
         files: &[("study.json", "{\"runs\": 1}"), ("runs.csv", "run_id,time_s\na,-5\n")],
         args: &["report", "."],
-        needle: "run a has `time_s` = -5: allowed [0, inf]",
+        needle: "run a has `time_s` = -5 (line 2): allowed [0, inf]",
     },
     Case {
         name: "report of a corrupt study.json",

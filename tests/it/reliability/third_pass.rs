@@ -187,7 +187,7 @@ fn report_inputs_are_checked_and_keys_compare_alike() {
     for bad in ["TRUE", "1", "maybe", ""] {
         write(dir.path(), "S/runs.csv", &edited("executable", bad));
         let err = refused(&run(dir.path(), &["report", "S"]), 2);
-        assert!(err.contains(&format!("`executable` = `{bad}`: allowed `true` or `false`")), "{bad}: {err}");
+        assert!(err.contains(&format!("`executable` = `{bad}` (line 2): allowed `true` or `false`")), "{bad}: {err}");
     }
     write(dir.path(), "S/runs.csv", &runs);
     // A reference plan with a negative or undefined time.
