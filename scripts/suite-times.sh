@@ -1,62 +1,45 @@
 #!/usr/bin/env bash
-# The test suite, part by part, with each part's wall time: the unit tests (`--lib`, `--bins`),
-# every module of the integration binary `tests/it` and of the heavy replays `tests/replays`.
-# Writes the table to tests/suite-times.md (or the file given as $1) and exits non-zero when a
-# part fails. Together the parts are `cargo test --release`; run on the machine the table names.
+# Records where CI's time goes: clones this checkout's HEAD into a fresh folder and runs
+# `bash .ci/run` there cold (no target/, and an empty $COVGA_CACHE: no Python environment, no
+# mdbook), as CI does on a clean clone, with every step's wall time logged (scripts/steps.sh).
+# Writes the table to tests/suite-times.md (or the file given as $1) and exits with CI's
+# status. What a cold clone still finds on the machine is said in the file: crates.io's
+# downloads in ~/.cargo and Debian's Slurm packages, once installed, stay installed.
+#
+#   bash scripts/suite-times.sh            # commit first: the clone is of HEAD
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-tests/suite-times.md}"
-log="$(mktemp)"
-trap 'rm -f "$log"' EXIT
-
-build_start=$(date +%s.%N)
-cargo test --release --no-run --quiet 2>>"$log"
-build_s=$(awk "BEGIN { print $(date +%s.%N) - $build_start }")
-
-rows=""
-fast_s=0
-heavy_s=0
-failed=0
-# Runs one part; adds a row "| part | tests | seconds |".
-part() {
-  local name="$1" kind="$2"
-  shift 2
-  local start end secs passed
-  start=$(date +%s.%N)
-  if ! cargo test --release --quiet "$@" >"$log.part" 2>&1; then
-    failed=1
-    echo "FAILED: $name" >&2
-    cat "$log.part" >&2
-  fi
-  end=$(date +%s.%N)
-  secs=$(awk "BEGIN { print $end - $start }")
-  passed=$(grep -o '[0-9]* passed' "$log.part" | awk '{s += $1} END {print s + 0}')
-  rows+="| \`$name\` | $passed | $(printf '%.1f' "$secs") |"$'\n'
-  if [ "$kind" = fast ]; then fast_s=$(awk "BEGIN { print $fast_s + $secs }"); else heavy_s=$(awk "BEGIN { print $heavy_s + $secs }"); fi
-  printf '%-28s %4s tests %7.1f s\n' "$name" "$passed" "$secs"
-}
-
-modules() { sed -n 's/^mod \([a-z_0-9]*\);$/\1/p' "$1" | grep -v '^common$'; }
-
-part "--lib" fast --lib
-part "--bins" fast --bins
-for m in $(modules tests/it/main.rs); do part "it $m" fast --test it -- "$m::"; done
-for m in $(modules tests/replays/main.rs); do part "replays $m" heavy --test replays -- "$m::"; done
-rm -f "$log.part"
+work=$(mktemp -d /tmp/covga-suite-times.XXXXXX)
+trap 'rm -rf "$work"' EXIT
+git clone --quiet --no-hardlinks . "$work/covga"
+commit=$(git rev-parse --short HEAD)
+log="$work/steps.tsv"
+slurm_before=$(command -v slurmctld >/dev/null && echo "installed before the run" || echo "installed by the run")
+start=$(date +%s.%N)
+status=0
+(cd "$work/covga" && CI=true COVGA_STEP_LOG="$log" COVGA_CACHE="$work/cache" bash .ci/run) >"$work/ci.log" 2>&1 || status=$?
+total=$(awk "BEGIN { printf \"%.0f\", $(date +%s.%N) - $start }")
+[ "$status" = 0 ] || { tail -n 60 "$work/ci.log" >&2; echo "CI failed (exit $status)" >&2; }
 
 {
-  echo "# Test suite times"
+  echo "# CI times"
   echo
-  echo "Written by \`bash scripts/suite-times.sh\` on $(nproc) cores ($(date -u +%Y-%m-%d)); wall seconds per part,"
-  echo "each part one process. The fast part is \`cargo test --release --lib --bins --test it\`; the"
-  echo "heavy replays \`cargo test --release --test replays\` (a CI step of their own)."
+  echo "Written by \`bash scripts/suite-times.sh\` on $(nproc) cores, $(date -u +%Y-%m-%d), commit $commit:"
+  echo "\`bash .ci/run\` in a fresh clone, cold (no \`target/\`, no Python environment, no mdbook;"
+  echo "crates.io's downloads cached in \`~/.cargo\`; Slurm's Debian packages $slurm_before)."
+  echo "Wall seconds per step, as \`.ci/run\` prints them (\`::: step NAME: S s\`)."
   echo
-  echo "| part | tests | seconds |"
-  echo "|---|---:|---:|"
-  printf '%s' "$rows"
+  echo "| step | seconds | minutes | status |"
+  echo "|---|---:|---:|---|"
+  awk -F'\t' '{ printf "| %s | %.1f | %.1f | %s |\n", $1, $2, $2 / 60, $3 }' "$log"
+  echo "| **CI in all** | **$total** | **$(awk "BEGIN { printf \"%.1f\", $total / 60 }")** | $([ "$status" = 0 ] && echo ok || echo "exit $status") |"
   echo
-  printf 'Build of every test binary (incremental, after the last change): %.0f s. ' "$build_s"
-  printf 'Fast part: %.0f s. Heavy replays: %.0f s.\n' "$fast_s" "$heavy_s"
+  echo "The steps: \`fmt\`, \`clippy\` (\`--workspace --all-targets\`), \`rustdoc\`, \`book\` (scripts/book.sh),"
+  echo "then scripts/test.sh: \`build\` (one release build, no debug info, of every test binary, the"
+  echo "binary and the library the Python extension links), \`fast-tests\` (\`--lib --bins --test it\`),"
+  echo "\`replays\` (\`--test replays\`: one test per committed study, run side by side), \`python\`"
+  echo "(scripts/python-tests.sh: the environment, the wheel, mypy, pytest) and \`slurm\`."
 } >"$out"
 echo "wrote $out"
-exit "$failed"
+exit "$status"

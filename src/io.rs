@@ -2,6 +2,7 @@
 //! process never leaves a half-written result file.
 
 pub mod memory;
+pub mod png;
 
 use std::io::Write;
 use std::path::Path;

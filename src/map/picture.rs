@@ -31,10 +31,8 @@ pub fn png(map: &GridMap) -> Vec<u8> {
         let row = map.rows() - 1 - py / k;
         pixels.extend((0..w).map(|px| grey(map.state(row, px / k))));
     }
-    let image = image::GrayImage::from_raw(w as u32, h as u32, pixels).expect("one byte per pixel");
-    let mut out = std::io::Cursor::new(Vec::new());
-    image.write_to(&mut out, image::ImageFormat::Png).expect("a PNG encodes into memory");
-    out.into_inner()
+    crate::io::png::encode(&pixels, w as u32, h as u32, crate::io::png::Channels::Grey)
+        .expect("a PNG of one byte per pixel encodes into memory")
 }
 
 #[cfg(test)]

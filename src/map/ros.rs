@@ -239,7 +239,7 @@ pub fn decode_map_image(
 ) -> Result<GridMap, MapError> {
     let image_error = |message: String| MapError::Image { path: path.to_path_buf(), message };
     let reader = || {
-        image::ImageReader::new(std::io::Cursor::new(bytes))
+        image::io::Reader::new(std::io::Cursor::new(bytes))
             .with_guessed_format()
             .map_err(|e| image_error(e.to_string()))
     };
@@ -251,7 +251,7 @@ pub fn decode_map_image(
         )));
     }
     let mut limited = reader()?;
-    let mut limits = image::Limits::default();
+    let mut limits = image::io::Limits::default();
     // The decoded image (up to 4 bytes per pixel in the decoder) and its grey-alpha copy.
     limits.max_alloc = Some(16 * MAX_MAP_CELLS);
     limited.limits(limits);

@@ -65,10 +65,7 @@ pub fn save<F: Figure>(figure: &F, stem: &Path) -> Result<(), PlotError> {
         figure.draw(&root).map_err(|m| fail("png", m))?;
         root.present().map_err(|e| fail("png", err(e)))?;
     }
-    let mut png = Vec::new();
-    let img = image::RgbImage::from_raw(w, h, rgb).ok_or_else(|| fail("png", "buffer size".into()))?;
-    img.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
-        .map_err(|e| fail("png", e.to_string()))?;
+    let png = crate::io::png::encode(&rgb, w, h, crate::io::png::Channels::Rgb).map_err(|e| fail("png", e))?;
     crate::io::write_atomic(&stem.with_extension("png"), &png).map_err(|e| fail("png", e.to_string()))?;
     let mut svg = String::new();
     {

@@ -6,9 +6,11 @@
 
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::output::run_experiment;
+use std::collections::HashMap;
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
+use std::sync::{Arc, Mutex, OnceLock};
 
 /// The repository root (where `results/`, `grids/` and `experiments/` lie).
 pub fn repo() -> PathBuf {
@@ -36,6 +38,26 @@ pub fn files_with_extension(dir: &Path, ext: &str) -> Vec<PathBuf> {
 /// The `covga` binary under test, not yet started.
 pub fn command() -> Command {
     Command::new(env!("CARGO_BIN_EXE_covga"))
+}
+
+/// `covga grid GRID --dry-run` (GRID relative to the repository root, or absolute) into an
+/// empty folder, run once per test process and remembered: several tests read the dry runs of
+/// the shipped grids, some of which check tens of thousands of runs.
+pub fn grid_dry_run(grid: &Path) -> Output {
+    type Slots = Mutex<HashMap<PathBuf, Arc<OnceLock<Output>>>>;
+    static RUNS: OnceLock<Slots> = OnceLock::new();
+    let path = repo().join(grid);
+    let slot = RUNS.get_or_init(Slots::default).lock().expect("dry runs").entry(path.clone()).or_default().clone();
+    slot.get_or_init(|| {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let out = dir.path().join("study");
+        command()
+            .current_dir(repo())
+            .args([OsStr::new("grid"), path.as_os_str(), OsStr::new("--dry-run"), OsStr::new("--out"), out.as_os_str()])
+            .output()
+            .expect("covga runs")
+    })
+    .clone()
 }
 
 /// `covga ARGS` in the test's working directory (the repository root), run to the end.

@@ -61,12 +61,12 @@ fn thesis_grids_expand_to_table_4_3() {
         ("smoke.toml", 36),
         ("thesis-seeding.toml", 24),
     ] {
-        let o = covga(&["grid", root.join(file).to_str().unwrap(), "--dry-run"]);
+        let o = crate::common::grid_dry_run(&root.join(file));
         ok(&o);
         let text = String::from_utf8_lossy(&o.stdout);
         assert!(text.contains(&format!(": {runs} runs")), "{file}: {text}");
     }
-    let o = covga(&["grid", root.join("thesis-table-4-3.toml").to_str().unwrap(), "--dry-run"]);
+    let o = crate::common::grid_dry_run(&root.join("thesis-table-4-3.toml"));
     let text = String::from_utf8_lossy(&o.stdout);
     for line in [
         // Three seeds of every configuration.

@@ -89,9 +89,7 @@ fn numbers(text: &str) -> Vec<u64> {
 
 /// `(runs, configurations)` of a grid by its dry run.
 fn dry_run(grid: &str) -> (u64, u64) {
-    let dir = tempfile::tempdir().unwrap();
-    let out = dir.path().join("study");
-    let o = covga(&["grid", grid, "--dry-run", "--out", out.to_str().unwrap()]);
+    let o = crate::common::grid_dry_run(Path::new(grid));
     assert!(o.status.success(), "{grid}: {}", String::from_utf8_lossy(&o.stderr));
     let first = String::from_utf8_lossy(&o.stdout).lines().next().unwrap_or_default().to_string();
     // `grids/x.toml: 36 runs (12 configurations x replicates)`
@@ -279,27 +277,37 @@ fn eval_help_names_every_preset_and_maps_needs_a_folder() {
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0, "covga maps without --out wrote files");
 }
 
-/// Every test command of the README's quickstart (`cargo test …`, `bash scripts/…tests.sh`) is a
-/// line of `.ci/run`, and every `cargo test` line of `.ci/run` is in the quickstart: what a
-/// newcomer runs is what CI runs.
+/// The README's quickstart has one test command, `bash scripts/test.sh`, and it is a line of
+/// `.ci/run`, which runs no test suite of its own: what a newcomer runs is what CI runs. The
+/// script runs every test binary under `tests/`, the Python tests and the Slurm test.
 #[test]
-fn the_quickstart_test_commands_are_what_ci_runs() {
+fn the_quickstart_test_command_is_what_ci_runs() {
     let text = readme();
     let quickstart = text.split("## Quickstart").nth(1).expect("a Quickstart section");
     let block = quickstart.split("```sh").nth(1).and_then(|b| b.split("```").next()).expect("its sh block");
-    let wanted: Vec<&str> = block
-        .lines()
-        .map(|l| l.split('#').next().unwrap_or("").trim())
-        .filter(|c| c.starts_with("cargo test") || (c.starts_with("bash scripts/") && c.ends_with("tests.sh")))
-        .collect();
-    assert!(wanted.iter().filter(|c| c.starts_with("cargo test")).count() >= 1, "no cargo test in {block}");
+    let commands: Vec<&str> =
+        block.lines().map(|l| l.split('#').next().unwrap_or("").trim()).filter(|c| !c.is_empty()).collect();
+    let tests: Vec<&str> =
+        commands.iter().copied().filter(|c| c.starts_with("cargo test") || c.starts_with("bash scripts/")).collect();
+    assert_eq!(tests, ["bash scripts/test.sh"], "the quickstart's test commands");
+    assert_eq!(commands.len(), 3, "install, run and test: {commands:?}");
     let ci = std::fs::read_to_string(root().join(".ci/run")).expect(".ci/run");
     let ci_lines: Vec<&str> = ci.lines().map(str::trim).collect();
-    for command in &wanted {
-        assert!(ci_lines.contains(command), "the README's `{command}` is not a line of .ci/run");
+    assert!(ci_lines.contains(&"bash scripts/test.sh"), ".ci/run does not run bash scripts/test.sh");
+    assert!(!ci.contains("cargo test"), ".ci/run runs a test suite of its own instead of through scripts/test.sh");
+    let script = std::fs::read_to_string(root().join("scripts/test.sh")).expect("scripts/test.sh");
+    let binaries: Vec<String> = std::fs::read_dir(root().join("tests"))
+        .unwrap()
+        .flatten()
+        .filter(|e| e.path().join("main.rs").exists())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(binaries.len() >= 2, "test binaries under tests/: {binaries:?}");
+    for binary in binaries {
+        assert!(script.contains(&format!("--test {binary}")), "scripts/test.sh does not run tests/{binary}");
     }
-    for line in ci_lines.iter().filter(|l| l.starts_with("cargo test")) {
-        assert!(wanted.contains(line), ".ci/run's `{line}` is not in the README's quickstart");
+    for suite in ["--lib", "scripts/python-tests.sh", "tests/slurm/smoke-array.sh"] {
+        assert!(script.contains(suite), "scripts/test.sh does not run {suite}");
     }
 }
 

@@ -219,12 +219,10 @@ fn without_run_folders(text: &str, tmp: &str, folder: &str, record: bool) -> Str
     out.join("\n")
 }
 
-#[test]
-fn every_committed_summary_is_what_covga_report_writes() {
-    let mut studies: Vec<&str> = REPORTS.iter().map(|r| r.0).collect();
-    studies.dedup();
+/// Every committed summary of study folder `study` re-made and compared.
+fn remake_study(study: &str) {
     let mut failures = Vec::new();
-    for study in studies {
+    {
         let folder = Path::new("results").join(study);
         let dir = committed_study(&folder);
         let tmp = dir.path().to_str().unwrap();
@@ -268,6 +266,44 @@ fn every_committed_summary_is_what_covga_report_writes() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// One test per study folder with committed summaries (`test name => "folder"`), so the test
+/// harness re-makes them side by side, and the list of folders.
+macro_rules! remake {
+    ($($test:ident => $folder:literal),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                remake_study($folder);
+            }
+        )*
+        /// The study folders whose summaries have a test of their own.
+        const REMADE: &[&str] = &[$($folder),*];
+    };
+}
+
+remake! {
+    ablation => "ablation",
+    smoke => "smoke",
+    figures_gallery => "figures-gallery",
+    init_dist => "init-dist",
+    fleets => "fleets",
+    thesis_real_maps => "thesis-real-maps",
+    cell_order => "cell-order",
+    quota_completion => "quota-completion",
+    merged_lanes => "merged-lanes",
+    lane_layouts => "lane-layouts",
+    quota_search => "quota-search",
+    thesis_table_4_3 => "thesis-table-4-3",
+}
+
+/// A study added to [`REPORTS`] without a test of its own fails here.
+#[test]
+fn every_listed_study_has_a_remake_test() {
+    let mut studies: Vec<&str> = REPORTS.iter().map(|r| r.0).collect();
+    studies.dedup();
+    assert_eq!(studies, REMADE, "studies of REPORTS (left) and those with a test (right)");
 }
 
 /// Every `summary.md` under `results/` is one of [`REPORTS`]: a summary added without a way

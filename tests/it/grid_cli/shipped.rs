@@ -43,17 +43,7 @@ fn every_shipped_grid_dry_runs_and_every_shipped_experiment_validates() {
     for g in &grids {
         let text = std::fs::read_to_string(g).unwrap();
         assert!(!reads_outside_the_repository(root, g, &text), "{}: names a file outside the repository", g.display());
-        let o = crate::common::command()
-            .current_dir(root)
-            .args([
-                "grid",
-                g.to_str().unwrap(),
-                "--dry-run",
-                "--out",
-                std::env::temp_dir().join("covga-dry").to_str().unwrap(),
-            ])
-            .output()
-            .unwrap();
+        let o = crate::common::grid_dry_run(g);
         assert!(o.status.success(), "{}: {}", g.display(), String::from_utf8_lossy(&o.stderr));
         checked += 1;
     }
