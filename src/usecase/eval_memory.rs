@@ -21,7 +21,7 @@ const SCORING_BYTES_PER_CELL: f64 = 128.0;
 /// its clearance, the reachable set, the lanes' and the completion pass's layers. Measured: the
 /// peak resident memory of `eval` on thesis-1 for robots 0.05 and 0.03 m wide (refined rasters
 /// of 0.8 and 2.2 million cells) grows by 103 bytes a cell.
-const PLANNING_BYTES_PER_CELL: f64 = 128.0;
+pub const PLANNING_BYTES_PER_CELL: f64 = 128.0;
 
 /// What `eval` holds whatever the map: the program, the font, the figure buffers.
 const BASELINE_BYTES: f64 = 32e6;

@@ -75,3 +75,18 @@ fn a_large_map_is_refused_naming_the_map_and_a_path_alone_plans_nothing() {
     let o = crate::common::covga_in(dir.path(), &["eval", "--width", "0.004", "--path", "p.csv", "--json"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+#[test]
+fn a_run_of_a_routing_planner_for_a_narrow_robot_is_refused_before_planning() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("b.toml"), "planner = \"boustrophedon\"\nrobot.width = 0.004\n").unwrap();
+    std::fs::write(dir.path().join("c.toml"), "planner = \"cell_order\"\nrobot.width = 0.001\n").unwrap();
+    let err = refused_quickly(dir.path(), covga_limited(dir.path(), 2_000_000, &["run", "b.toml", "--quiet"]));
+    for part in ["`robot.width`", "11000 × 11000 cells", "memory limit of", "--max-memory"] {
+        assert!(err.contains(part), "no `{part}` in: {err}");
+    }
+    let err = refused_quickly(dir.path(), covga_limited(dir.path(), 2_000_000, &["run", "c.toml", "--quiet"]));
+    for part in ["robot.width = 0.001 m", "268435456", "give robot.width of at least 0.0027 m"] {
+        assert!(err.contains(part), "no `{part}` in: {err}");
+    }
+}
