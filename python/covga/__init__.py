@@ -59,7 +59,7 @@ def _cell_states(occupancy: np.ndarray) -> np.ndarray:
         # Which of True and False is free depends on who built the array (Map.free is True on
         # free cells, an obstacle mask True on occupied ones): a guess would invert half of them.
         raise ConfigError(
-            "occupancy array of dtype bool: True could mean occupied (an obstacle mask) or free (Map.free()); "
+            "occupancy array of dtype bool: True could mean occupied (an obstacle mask) or free (Map.free); "
             "pass occupancy percentages instead: np.where(occupied, 100, 0) for a mask of obstacles, "
             "np.where(free, 0, 100) for a mask of free cells"
         )

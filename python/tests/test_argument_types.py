@@ -56,5 +56,5 @@ def test_numbers_of_every_numeric_type_are_still_accepted():
     a = covga.score("thesis-1", PATH, width=np.float32(0.6), speed=np.int64(1), rot_speed=0)
     b = covga.score("thesis-1", PATH, width=0.6, speed=1.0, rot_speed=0.0)
     assert a["cov_final_reach"] == pytest.approx(b["cov_final_reach"])
-    plan = covga.pattern("thesis-1", width=1, angle=np.float64(0.0), complete=np.bool_(True))
+    plan = covga.pattern("thesis-1", start=(3, 3), width=1, angle=np.float64(0.0), complete=np.bool_(True))
     assert plan.shape[1] == 2

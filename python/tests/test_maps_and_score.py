@@ -40,8 +40,10 @@ def test_map_from_arrays_and_ros_files_agree(tmp_path, cli):
     office = covga.load_map("office")
     assert np.array_equal(from_file.states, office.states)
     occupied = office.states == 1
-    from_bool = covga.load_map(occupied, resolution=office.resolution, origin=office.origin)
-    assert np.array_equal(from_bool.free, ~occupied)
+    with pytest.raises(covga.ConfigError, match="dtype bool"):
+        covga.load_map(occupied, resolution=office.resolution, origin=office.origin)
+    from_mask = covga.load_map(np.where(occupied, 100, 0), resolution=office.resolution, origin=office.origin)
+    assert np.array_equal(from_mask.free, ~occupied)
     percent = np.where(office.states == 0, 0, np.where(office.states == 1, 100, -1))
     from_percent = covga.load_map(percent, resolution=office.resolution, origin=office.origin)
     assert np.array_equal(from_percent.states, office.states)
