@@ -56,7 +56,13 @@ _FREE_BELOW = _covga.FREE_BELOW_PERCENT
 def _cell_states(occupancy: np.ndarray) -> np.ndarray:
     """Cell states (0 free, 1 occupied, 2 unknown) of an occupancy array."""
     if occupancy.dtype == np.bool_:
-        return occupancy.astype(np.int8)
+        # Which of True and False is free depends on who built the array (Map.free is True on
+        # free cells, an obstacle mask True on occupied ones): a guess would invert half of them.
+        raise ConfigError(
+            "occupancy array of dtype bool: True could mean occupied (an obstacle mask) or free (Map.free); "
+            "pass occupancy percentages instead: np.where(occupied, 100, 0) for a mask of obstacles, "
+            "np.where(free, 0, 100) for a mask of free cells"
+        )
     if not np.issubdtype(occupancy.dtype, np.number) or occupancy.dtype.kind == "c":
         raise ConfigError(f"occupancy array of dtype {occupancy.dtype}: expected bool or real numbers")
     values = occupancy.astype(np.float64)
@@ -88,6 +94,14 @@ def _number(value: Any, key: str, integer: bool = False) -> Any:
         kind = "a whole number" if integer else "a number"
         raise ConfigError(f"{key} = {value!r}: expected {kind}")
     return int(value) if integer else float(value)
+
+
+def _flag(value: Any, key: str) -> bool:
+    """``value`` as a bool, or ConfigError naming ``key``: numbers and text are refused rather
+    than read by their truth (``"no"`` would be True)."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ConfigError(f"{key} = {value!r}: expected True or False")
+    return bool(value)
 
 
 def _threads(value: Any) -> Optional[int]:
@@ -123,9 +137,12 @@ def load_map(
     ``source`` is a preset name (``thesis-1``, ``thesis-2``, ``office``, ``office-large``,
     ``office-ring``), a ROS map YAML, a PGM/PNG image (with ``resolution`` in metres per pixel),
     or a 2-D occupancy array indexed ``[row, col]`` with row 0 at the bottom (smallest y), as a
-    ROS ``OccupancyGrid`` stores it: bool (``True`` occupied), or percentages (negative unknown,
-    above 65 occupied, below 19.6 free, between unknown, as map_server thresholds them). An
-    array needs ``resolution``; ``origin`` is its lower-left corner in metres.
+    ROS ``OccupancyGrid`` stores it: occupancy percentages (negative unknown, above 65
+    occupied, below 19.6 free, between unknown, as map_server thresholds them), so a ROS grid's
+    ``data`` reshaped to ``(height, width)`` loads as it is. An array needs ``resolution``;
+    ``origin`` is its lower-left corner in metres. A bool array is refused (``ConfigError``):
+    whether ``True`` marks occupied cells (an obstacle mask) or free ones (:meth:`Map.free`) is
+    the caller's to say, as ``np.where(occupied, 100, 0)`` or ``np.where(free, 0, 100)``.
 
     A bare image is read with map_server's default thresholds (grey >= 206 free, <= 89
     occupied, unknown between) unless ``free_threshold`` is given: then grey values at or above
@@ -221,11 +238,12 @@ def score(
             UserWarning,
             stacklevel=2,
         )
-    width = 0.6 if width is None else width
-    speed = 0.2 if speed is None else speed
-    rot_speed = 0.0 if rot_speed is None else rot_speed
-    if not isinstance(raster, (bool, np.bool_)):
-        raise ConfigError(f"raster = {raster!r}: expected True or False")
+    width = 0.6 if width is None else _number(width, "width")
+    speed = 0.2 if speed is None else _number(speed, "speed")
+    rot_speed = 0.0 if rot_speed is None else _number(rot_speed, "rot_speed")
+    raster = _flag(raster, "raster")
+    if not isinstance(projection, str):
+        raise ConfigError(f"projection = {projection!r}: expected 'f1' or 'f2'")
     camera_json = None if camera is None else json.dumps(dict(camera))
     the_map, paths = load_map(map), _paths(path)
     text, layers = _covga.score(
@@ -251,7 +269,10 @@ def pattern(
     ``complete``, the strips the pattern leaves are visited afterwards (as ``covga eval``)."""
     s = _point(start, "start")
     e = None if end is None else _point(end, "end")
-    return _covga.pattern(load_map(map), kind, s, float(width), float(angle), e, bool(complete))
+    if not isinstance(kind, str):
+        raise ConfigError(f"kind = {kind!r}: expected 'boustrophedon' or 'spiral'")
+    width, angle = _number(width, "width"), _number(angle, "angle")
+    return _covga.pattern(load_map(map), kind, s, width, angle, e, _flag(complete, "complete"))
 
 
 @dataclass
@@ -386,6 +407,8 @@ def run(
     if seed is not None and not (isinstance(seed, (int, np.integer)) and 0 <= int(seed) <= 2**63 - 1):
         raise ConfigError(f"seed = {seed!r} is out of range: expected an integer in [0, {2**63 - 1}]")
     seed = None if seed is None else int(seed)
+    if figures is not None:
+        figures = _flag(figures, "figures")
     if out is None:
         with tempfile.TemporaryDirectory(prefix="covga-run-") as tmp:
             folder = Path(tmp) / "run"

@@ -83,6 +83,8 @@ def sign_test(a: Sequence[float], b: Optional[Sequence[float]] = None, *, agains
     """Two-sided exact sign test: of the pairs ``a[i] − b[i]`` against 0 when ``b`` is given,
     else of ``a`` against the constant ``against``. Ties are dropped; ``None`` when all tie."""
     if b is None:
+        if isinstance(against, bool) or not isinstance(against, (int, float, np.integer, np.floating)):
+            raise ConfigError(f"against = {against!r}: expected a number")
         return _covga.stats_sign_test(_sample(a, "a"), float(against))
     a, b = _paired(a, b)
     return _covga.stats_sign_test([x - y for x, y in zip(a, b)], 0.0)
@@ -128,6 +130,8 @@ def bootstrap_ci(
     inputs and seed give the same interval. ``None`` for a ratio whose ``b`` is not positive."""
     if contrast not in ("median_difference", "median_ratio"):
         raise ConfigError(f'contrast = {contrast!r}: expected "median_difference" or "median_ratio"')
+    if not isinstance(paired, (bool, np.bool_)):
+        raise ConfigError(f"paired = {paired!r}: expected True or False")
     a, b = _paired(a, b) if paired else (_sample(a, "a"), _sample(b, "b"))
     if not a or not b:
         raise ConfigError("a and b: each sample needs at least one value")

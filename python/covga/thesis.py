@@ -57,16 +57,16 @@ def evaluate(
     that would sweep an obstacle drives around it, as ``thesis.moves = "routed"``). ``threads``:
     worker threads (default one per CPU, or ``RAYON_NUM_THREADS``); the scores do not depend on it.
     """
-    from . import _point, _threads, load_map
+    from . import _number, _point, _threads, load_map
 
     s = _point(start, "start")
     e = None if end is None else _point(end, "end")
     return _covga.thesis_evaluate(
         load_map(map),
         _genomes(genomes),
-        float(width),
-        float(speed),
-        float(rot_speed),
+        _number(width, "width"),
+        _number(speed, "speed"),
+        _number(rot_speed, "rot_speed"),
         s,
         e,
         projection,
@@ -87,12 +87,12 @@ def decode(
     array of live moves, as :func:`evaluate` takes them) decoded as the GA decodes its own
     (moves leaving the map clamped, 003 eqs. 3.7-3.8, the connector aimed at ``end``), joined
     by straight or routed ``moves``; for a run's best genome, its ``best_path.csv``."""
-    from . import _point, load_map
+    from . import _number, _point, load_map
 
     s = _point(start, "start")
     e = None if end is None else _point(end, "end")
     g = rows_of_pairs(genome, "genome", "L", "numbers (heading in degrees, distance in metres)")
-    return _covga.thesis_decode(load_map(map), g, float(width), s, e, moves)
+    return _covga.thesis_decode(load_map(map), g, _number(width, "width"), s, e, moves)
 
 
 def read_population_genomes(run_dir: Union[str, "os.PathLike[str]"]) -> list[np.ndarray]:

@@ -40,8 +40,10 @@ def test_map_from_arrays_and_ros_files_agree(tmp_path, cli):
     office = covga.load_map("office")
     assert np.array_equal(from_file.states, office.states)
     occupied = office.states == 1
-    from_bool = covga.load_map(occupied, resolution=office.resolution, origin=office.origin)
-    assert np.array_equal(from_bool.free, ~occupied)
+    with pytest.raises(covga.ConfigError, match="dtype bool"):
+        covga.load_map(occupied, resolution=office.resolution, origin=office.origin)
+    from_mask = covga.load_map(np.where(occupied, 100, 0), resolution=office.resolution, origin=office.origin)
+    assert np.array_equal(from_mask.free, ~occupied)
     percent = np.where(office.states == 0, 0, np.where(office.states == 1, 100, -1))
     from_percent = covga.load_map(percent, resolution=office.resolution, origin=office.origin)
     assert np.array_equal(from_percent.states, office.states)
@@ -73,7 +75,7 @@ def test_occupancy_percent_thresholds(value, state):
         (np.zeros((3, 3, 3)), {"resolution": 0.1}, "expected 2-D"),
         (np.full((3, 3), 150.0), {"resolution": 0.1}, "occupancy 150.0 at [0, 0] is out of range"),
         (np.full((3, 3), np.nan), {"resolution": 0.1}, "occupancy nan at [0, 0]"),
-        (np.ones((3, 3), dtype=bool), {"resolution": 0.1}, "no free cell"),
+        (np.full((3, 3), 100), {"resolution": 0.1}, "no free cell"),
         (np.zeros((3, 3)), {"resolution": -0.1}, "resolution"),
         ("no-such-map", {}, "unknown map `no-such-map`"),
         ("room.png", {}, "the bare image `room.png` needs its metres per pixel"),
@@ -209,9 +211,9 @@ def test_a_map_pickles_copies_and_compares_bit_for_bit():
     [
         (lambda: covga.load_map("thesis-1", origin=(1.0, 2.0)), "origin= and name= apply to occupancy arrays only"),
         (lambda: covga.load_map("thesis-1", name="x"), "origin= and name= apply to occupancy arrays only"),
-        (lambda: covga.load_map(np.zeros((3, 3), dtype=bool), resolution=0.1, origin=(0, 0, 0)), "two numbers"),
-        (lambda: covga.load_map(np.zeros((3, 3), dtype=bool), resolution="0.1"), "resolution = '0.1': expected a number"),
-        (lambda: covga.load_map(np.zeros((3, 3), dtype=bool), resolution=0.1, free_threshold=250), "bare PGM/PNG"),
+        (lambda: covga.load_map(np.zeros((3, 3)), resolution=0.1, origin=(0, 0, 0)), "two numbers"),
+        (lambda: covga.load_map(np.zeros((3, 3)), resolution="0.1"), "resolution = '0.1': expected a number"),
+        (lambda: covga.load_map(np.zeros((3, 3)), resolution=0.1, free_threshold=250), "bare PGM/PNG"),
         (lambda: covga.load_map("office", free_threshold=2.5), "free_threshold = 2.5: expected a whole number"),
         (lambda: covga.load_map("office", free_threshold="250"), "free_threshold = '250': expected a whole number"),
         (lambda: covga.thesis.evaluate("thesis-1", np.zeros((1, 3, 2)), start=1.0), "start = 1.0: expected a point"),

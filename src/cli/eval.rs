@@ -96,6 +96,10 @@ pub struct EvalArgs {
     /// map keeps the first one's files).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Memory eval may use (8G, 512M, 2GiB; default: the memory available); a map and width
+    /// that would need more are refused before anything large is allocated.
+    #[arg(long, value_parser = crate::io::parse_bytes)]
+    max_memory: Option<u64>,
 }
 
 /// The default results folder of `covga eval` for the map argument `map`: `out/eval-NAME`,
@@ -197,6 +201,7 @@ impl EvalArgs {
             },
             plan,
             fleet: a.fleet.clone(),
+            max_memory: a.max_memory,
         })
     }
 }

@@ -201,6 +201,11 @@ impl ExperimentFile {
         let (robot, start, end) = self.robot_and_stations(origin, &map)?;
         let camera = self.scorer.camera.spec(origin, &map)?;
         let scenario = Scenario { map, robot, start, end, projection: self.scorer.projection, camera };
+        if self.planner.plans_on_refined_raster() {
+            // Before the planner's checks, some of which decompose the planning raster.
+            crate::map::refine::check_planning_size(&scenario.map, robot.width, "robot.width")
+                .map_err(|m| err("", m))?;
+        }
         let b = self.budget;
         let budget = Budget {
             iterations: b.iterations,

@@ -28,6 +28,14 @@ impl Experiment {
         let common = COMMON_BYTES_PER_CELL * cells;
         let mut e = self.planner.memory_estimate(map, threads);
         e.bytes += common + BASELINE_BYTES;
+        let width = self.scenario.robot.width;
+        let (cols, rows) = crate::map::refine::planning_size(map, width);
+        if self.file.planner.plans_on_refined_raster() && (cols, rows) != (map.cols() as u64, map.rows() as u64) {
+            // A narrow robot on coarse cells: planned on the map split k × k (`map::refine`).
+            e.bytes += crate::usecase::eval_memory::PLANNING_BYTES_PER_CELL * cols as f64 * rows as f64;
+            e.key = "robot.width";
+            e.what = format!("{}, planned on {cols} × {rows} cells for a robot {width} m wide", e.what);
+        }
         e
     }
 

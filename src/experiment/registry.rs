@@ -40,6 +40,14 @@ pub enum PlannerKind {
     Plugin(&'static PlannerPlugin),
 }
 
+impl PlannerKind {
+    /// Whether the planner plans on the raster of [`crate::map::refine::planning_map`] (the
+    /// patterns and the cell-order planner), which a narrow robot on coarse cells refines.
+    pub fn plans_on_refined_raster(self) -> bool {
+        matches!(self, PlannerKind::Boustrophedon | PlannerKind::Spiral | PlannerKind::CellOrder)
+    }
+}
+
 impl PartialEq for PlannerPlugin {
     /// The same registration (names are unique among them).
     fn eq(&self, other: &Self) -> bool {

@@ -62,6 +62,42 @@ pub fn planning_map(map: &GridMap, width: f64) -> Cow<'_, GridMap> {
     }
 }
 
+/// The most cells a planning raster may have: the cap on a map's cells
+/// ([`super::ros::MAX_MAP_CELLS`]), so that no width refines a map past what could be loaded.
+pub const MAX_PLANNING_CELLS: u64 = super::ros::MAX_MAP_CELLS;
+
+/// Columns and rows of the raster [`planning_map`] plans `map` on for a robot `width` metres
+/// wide, computed without building it.
+pub fn planning_size(map: &GridMap, width: f64) -> (u64, u64) {
+    let k = refinement(map.resolution(), width) as u64;
+    (map.cols() as u64 * k, map.rows() as u64 * k)
+}
+
+/// Refuses a robot `width` metres wide (named `width_name` in the message) for which `map`'s
+/// planning raster would have more than [`MAX_PLANNING_CELLS`] cells, naming its size and the
+/// least width that stays within the cap; checked before anything is allocated.
+pub fn check_planning_size(map: &GridMap, width: f64, width_name: &str) -> Result<(), String> {
+    let (cols, rows) = planning_size(map, width);
+    let cells = cols as f64 * rows as f64;
+    if cells <= MAX_PLANNING_CELLS as f64 {
+        return Ok(());
+    }
+    let k = refinement(map.resolution(), width);
+    // The largest split that stays within the cap, and the least width that asks for no more.
+    let k_max = ((MAX_PLANNING_CELLS as f64 / (map.cols() * map.rows()) as f64).sqrt().floor()).max(1.0);
+    let min_width = ((map.resolution() / (REFINED_CELL_PER_WIDTH * k_max)) * 1e4).ceil() / 1e4;
+    let short = crate::io::short_number;
+    Err(format!(
+        "{width_name} = {} m: the planners split map `{}`'s {} m cells {k} × {k} for so narrow a robot (to cells of \
+         at most a quarter of its width), a raster of {cols} × {rows} = {cells:.3e} cells, more than the \
+         {MAX_PLANNING_CELLS} a map may have; give {width_name} of at least {} m, or a map with finer cells",
+        short(width),
+        map.name(),
+        short(map.resolution()),
+        short(min_width),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

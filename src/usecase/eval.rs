@@ -77,6 +77,9 @@ pub struct EvalRequest {
     pub plan: EvalPlan,
     /// A fleet file: score the plan as this fleet's (one path per robot).
     pub fleet: Option<PathBuf>,
+    /// The memory `eval` may use in bytes (default: the memory available, [`crate::io::memory`]);
+    /// a map and width that would need more are refused before anything large is allocated.
+    pub max_memory: Option<u64>,
 }
 
 /// Everything `eval` reports, as `metrics.json` holds it.
@@ -146,6 +149,9 @@ pub struct Evaluation {
 /// The camera comes from the map as loaded (obstacles change neither its size nor its cells').
 fn obstructed_map(req: &EvalRequest) -> Result<(GridMap, GridMap, usize, CameraSpec), UseCaseError> {
     let mut map = load_map(&req.map, &req.image).map_err(UseCaseError::input)?;
+    let planned =
+        matches!(req.plan, EvalPlan::Pattern { pattern: EvalPattern::Boustrophedon { .. } | EvalPattern::Spiral, .. });
+    super::eval_memory::check(&map, req.robot.width, planned, req.max_memory)?;
     let camera = eval_camera(&map, &req.map)?;
     let unobstructed = map.clone();
     if req.obstacle_in_area && req.obstacles.is_empty() {
@@ -461,6 +467,7 @@ mod tests {
             projection: Projection::F1,
             plan,
             fleet: None,
+            max_memory: None,
         }
     }
 

@@ -13,6 +13,7 @@
 //! ([`crate::report::write_report`]) are library functions of their own layers already.
 
 pub mod eval;
+pub mod eval_memory;
 pub mod migrate;
 pub mod run;
 
