@@ -32,7 +32,7 @@ impl Experiment {
         let (cols, rows) = crate::map::refine::planning_size(map, width);
         if self.file.planner.plans_on_refined_raster() && (cols, rows) != (map.cols() as u64, map.rows() as u64) {
             // A narrow robot on coarse cells: planned on the map split k × k (`map::refine`).
-            e.bytes += crate::usecase::eval_memory::PLANNING_BYTES_PER_CELL * cols as f64 * rows as f64;
+            e.bytes += crate::map::refine::PLANNING_BYTES_PER_CELL * cols as f64 * rows as f64;
             e.key = "robot.width";
             e.what = format!("{}, planned on {cols} × {rows} cells for a robot {width} m wide", e.what);
         }

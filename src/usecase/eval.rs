@@ -151,8 +151,8 @@ fn obstructed_map(req: &EvalRequest) -> Result<(GridMap, GridMap, usize, CameraS
     let mut map = load_map(&req.map, &req.image).map_err(UseCaseError::input)?;
     let planned =
         matches!(req.plan, EvalPlan::Pattern { pattern: EvalPattern::Boustrophedon { .. } | EvalPattern::Spiral, .. });
-    super::eval_memory::check(&map, req.robot.width, planned, req.max_memory)?;
     let camera = eval_camera(&map, &req.map)?;
+    super::eval_memory::check(&map, req.robot.width, planned, req.max_memory)?;
     let unobstructed = map.clone();
     if req.obstacle_in_area && req.obstacles.is_empty() {
         return Err(UseCaseError::Input("--obstacle-in-area needs at least one --obstacle X0,Y0,X1,Y1".into()));

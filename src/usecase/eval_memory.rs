@@ -9,19 +9,13 @@ use super::UseCaseError;
 use crate::io::human_bytes;
 use crate::io::memory::{MemoryLimit, memory_limit};
 use crate::map::GridMap;
-use crate::map::refine::{check_planning_size, planning_size};
+use crate::map::refine::{PLANNING_BYTES_PER_CELL, check_planning_size, planning_size};
 
 /// Bytes per map cell that reading and scoring hold, an upper estimate: the decoded image, the
 /// map and its copy before the obstacles, the clearance and reachable sets, the coverage grid,
 /// the scorer's visit counts, camera band and curve, the figure. Measured: the peak resident
 /// memory of `eval --path` on all-free maps of 1 and 4 million cells grows by 115 bytes a cell.
 const SCORING_BYTES_PER_CELL: f64 = 128.0;
-
-/// Bytes per cell of the raster a pattern is planned on, an upper estimate: the refined map,
-/// its clearance, the reachable set, the lanes' and the completion pass's layers. Measured: the
-/// peak resident memory of `eval` on thesis-1 for robots 0.05 and 0.03 m wide (refined rasters
-/// of 0.8 and 2.2 million cells) grows by 103 bytes a cell.
-pub const PLANNING_BYTES_PER_CELL: f64 = 128.0;
 
 /// What `eval` holds whatever the map: the program, the font, the figure buffers.
 const BASELINE_BYTES: f64 = 32e6;
@@ -51,6 +45,8 @@ pub fn estimate(map: &GridMap, width: f64, planned: bool) -> (f64, String) {
 /// memory limit (`max_memory` when given), naming the flag to change.
 pub fn check(map: &GridMap, width: f64, planned: bool, max_memory: Option<u64>) -> Result<(), UseCaseError> {
     if planned {
+        // The lanes' own cap first: it names the narrowest width a pattern is planned for.
+        crate::patterns::check_lane_count(map, width).map_err(|e| UseCaseError::Input(format!("--width: {e}")))?;
         check_planning_size(map, width, "--width").map_err(UseCaseError::Input)?;
     }
     let Some(limit) = memory_limit(max_memory) else { return Ok(()) };
