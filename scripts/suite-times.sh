@@ -33,13 +33,18 @@ total=$(awk "BEGIN { printf \"%.0f\", $(date +%s.%N) - $start }")
   echo "| step | seconds | minutes | status |"
   echo "|---|---:|---:|---|"
   awk -F'\t' '{ printf "| %s | %.1f | %.1f | %s |\n", $1, $2, $2 / 60, $3 }' "$log"
+  # Each Rust test binary's own time within rust-tests, from the test harness's summary lines.
+  awk '/^ *Running /{ name = $2 " " $3 } /^test result:/ && name != "" {
+         for (i = 1; i <= NF; i++) if ($i == "in") secs = $(i + 1); sub(/s$/, "", secs);
+         printf "| rust-tests: %s, %s | %.1f | %.1f | |\n", name, $4 " tests", secs, secs / 60; name = "" }' "$work/ci.log"
   echo "| **CI in all** | **$total** | **$(awk "BEGIN { printf \"%.1f\", $total / 60 }")** | $([ "$status" = 0 ] && echo ok || echo "exit $status") |"
   echo
   echo "The steps: \`fmt\`, \`clippy\` (\`--workspace --all-targets\`), \`rustdoc\`; \`book\` (scripts/book.sh) runs"
   echo "in the background beside scripts/test.sh (its time overlaps the others; \`book-wait\` is what"
   echo "CI waited for it at the end); scripts/test.sh: \`build\` (one release build, no debug info, of every test binary, the"
-  echo "binary and the library the Python extension links), \`fast-tests\` (\`--lib --bins --test it\`),"
-  echo "\`replays\` (\`--test replays\`: one test per committed study, run side by side), \`python\`"
+  echo "binary and the library the Python extension links), \`rust-tests\` (\`--tests\`: the unit tests, tests/it,"
+  echo "and tests/replays with one test per committed study, run side by side; each binary's own time"
+  echo "is a row of its own), \`python\`"
   echo "(scripts/python-tests.sh: the wheel, mypy, pytest; \`python-env\` is what was left of the"
   echo "environment's install, started in the background when scripts/test.sh began) and \`slurm\`"
   echo "(likewise \`slurm-install\`). The rows overlapping others are not added up: **CI in all** is"

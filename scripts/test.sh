@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every test suite, each a timed step (scripts/steps.sh): the Rust build of every test binary,
-# the fast tests (unit, property and end-to-end: `--lib --bins --test it`), the heavy replays
-# of the committed studies (`--test replays`), the Python package's tests
+# the Rust tests (unit and property tests, the end-to-end tests of tests/it, the heavy replays
+# of the committed studies in tests/replays), the Python package's tests
 # (scripts/python-tests.sh) and, where Slurm is installed or CI runs as root, the Slurm
 # job-array test (tests/slurm/smoke-array.sh). .ci/run calls it after formatting, lints and
 # the documentation. All the Rust steps share one release build (no debug info): the tests, the
@@ -29,11 +29,12 @@ finished() {
   wait "$1" || { cat "$2" >&2; return 1; }
 }
 
-# `--workspace` everywhere: the dependencies' features are then those the Python extension
-# (python/) builds with, so the covga library is compiled once for both.
-step build cargo test --release --workspace --no-run --lib --bins --test it --test replays
-step fast-tests cargo test --release --workspace --lib --bins --test it
-step replays cargo test --release --workspace --test replays
+# `--workspace`: the dependencies' features are then those the Python extension (python/)
+# builds with, so the covga library is compiled once for both; `--tests` (not `--lib`), so the
+# extension's crate, which has no Rust tests, is left to maturin. The unit tests, tests/it and
+# tests/replays run one binary after the other, each printing its own time.
+step build cargo test --release --workspace --tests --no-run
+step rust-tests cargo test --release --workspace --tests
 step python-env finished "$python_prepare" target/python-prepare.log
 step python bash scripts/python-tests.sh
 if $slurm; then

@@ -234,7 +234,7 @@ def test_grid_report_and_read_study_match_the_cli(tmp_path, cli):
     assert (tmp_path / "py/report-measures/measures.md").read_bytes() == (
         tmp_path / "cli/report-measures/measures.md").read_bytes()
     assert "| thesis.selection=elite | 4 |" in (tmp_path / "py/report-measures/measures.md").read_text()
-    with pytest.raises(covga.ConfigError, match="no `objectives.nothing`"):
+    with pytest.raises(covga.ConfigError, match="--measure objectives.nothing: no run of"):
         covga.report(tmp_path / "py", name="measures", measures=["objectives.nothing"])
     with pytest.raises(covga.ConfigError, match="a list of keys"):
         covga.report(tmp_path / "py", name="measures", measures="time_s")

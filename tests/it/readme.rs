@@ -279,7 +279,8 @@ fn eval_help_names_every_preset_and_maps_needs_a_folder() {
 
 /// The README's quickstart has one test command, `bash scripts/test.sh`, and it is a line of
 /// `.ci/run`, which runs no test suite of its own: what a newcomer runs is what CI runs. The
-/// script runs every test binary under `tests/`, the Python tests and the Slurm test.
+/// script runs every test target (`--tests`: the unit tests and each binary under `tests/`),
+/// the Python tests and the Slurm test.
 #[test]
 fn the_quickstart_test_command_is_what_ci_runs() {
     let text = readme();
@@ -303,10 +304,18 @@ fn the_quickstart_test_command_is_what_ci_runs() {
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .collect();
     assert!(binaries.len() >= 2, "test binaries under tests/: {binaries:?}");
+    assert!(
+        script.contains("cargo test --release --workspace --tests\n"),
+        "scripts/test.sh does not run every test binary"
+    );
     for binary in binaries {
-        assert!(script.contains(&format!("--test {binary}")), "scripts/test.sh does not run tests/{binary}");
+        let manifest = std::fs::read_to_string(root().join("Cargo.toml")).unwrap();
+        assert!(
+            !manifest.contains(&format!("path = \"tests/{binary}/main.rs\"\ntest = false")),
+            "tests/{binary} is left out"
+        );
     }
-    for suite in ["--lib", "scripts/python-tests.sh", "tests/slurm/smoke-array.sh"] {
+    for suite in ["scripts/python-tests.sh", "tests/slurm/smoke-array.sh"] {
         assert!(script.contains(suite), "scripts/test.sh does not run {suite}");
     }
 }
