@@ -34,7 +34,7 @@ total=$(awk "BEGIN { printf \"%.0f\", $(date +%s.%N) - $start }")
   echo "|---|---:|---:|---|"
   awk -F'\t' '{ printf "| %s | %.1f | %.1f | %s |\n", $1, $2, $2 / 60, $3 }' "$log"
   # Each Rust test binary's own time within rust-tests, from the test harness's summary lines.
-  awk '/^ *Running /{ name = $2 " " $3 } /^test result:/ && name != "" {
+  awk '/^ *Running /{ name = ($2 == "unittests") ? $2 " " $3 : $2 } /^test result:/ && name != "" {
          for (i = 1; i <= NF; i++) if ($i == "in") secs = $(i + 1); sub(/s$/, "", secs);
          printf "| rust-tests: %s, %s | %.1f | %.1f | |\n", name, $4 " tests", secs, secs / 60; name = "" }' "$work/ci.log"
   echo "| **CI in all** | **$total** | **$(awk "BEGIN { printf \"%.1f\", $total / 60 }")** | $([ "$status" = 0 ] && echo ok || echo "exit $status") |"
