@@ -30,6 +30,8 @@ total=$(awk "BEGIN { printf \"%.0f\", $(date +%s.%N) - $start }")
   echo "crates.io's downloads cached in \`~/.cargo\`; Slurm's Debian packages $slurm_before)."
   echo "Wall seconds per step, as \`.ci/run\` prints them (\`::: step NAME: S s\`)."
   echo
+  echo "**Cold clean-clone CI total: $total s ($(awk "BEGIN { printf \"%.1f\", $total / 60 }") min), $([ "$status" = 0 ] && echo "every step passing" || echo "failed, exit $status").**"
+  echo
   echo "| step | seconds | minutes | status |"
   echo "|---|---:|---:|---|"
   awk -F'\t' '{ printf "| %s | %.1f | %.1f | %s |\n", $1, $2, $2 / 60, $3 }' "$log"
