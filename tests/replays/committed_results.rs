@@ -273,21 +273,8 @@ fn replay_study(name: &str) {
     );
 }
 
-/// One test per committed study folder (`test name => "folder"`), and the list of folders.
-macro_rules! replay {
-    ($($test:ident => $folder:literal),* $(,)?) => {
-        $(
-            #[test]
-            fn $test() {
-                replay_study($folder);
-            }
-        )*
-        /// The study folders that have a test of their own.
-        const REPLAYED: &[&str] = &[$($folder),*];
-    };
-}
-
-replay! {
+per_study_tests! {
+    replay_study, REPLAYED:
     ablation => "ablation",
     cell_order => "cell-order",
     figures_gallery => "figures-gallery",

@@ -7,6 +7,21 @@
 #[path = "../common/mod.rs"]
 mod common;
 
+/// One test per study folder (`test name => "folder"`), each calling `$run("folder")`, so the
+/// test harness runs the studies side by side; and `$list`, the folders that have a test.
+macro_rules! per_study_tests {
+    ($run:ident, $list:ident: $($test:ident => $folder:literal),* $(,)?) => {
+        $(
+            #[test]
+            fn $test() {
+                $run($folder);
+            }
+        )*
+        /// The study folders that have a test of their own.
+        const $list: &[&str] = &[$($folder),*];
+    };
+}
+
 mod committed_results;
 mod fuzz_corpus;
 mod report_remake;

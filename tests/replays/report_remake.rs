@@ -268,22 +268,8 @@ fn remake_study(study: &str) {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-/// One test per study folder with committed summaries (`test name => "folder"`), so the test
-/// harness re-makes them side by side, and the list of folders.
-macro_rules! remake {
-    ($($test:ident => $folder:literal),* $(,)?) => {
-        $(
-            #[test]
-            fn $test() {
-                remake_study($folder);
-            }
-        )*
-        /// The study folders whose summaries have a test of their own.
-        const REMADE: &[&str] = &[$($folder),*];
-    };
-}
-
-remake! {
+per_study_tests! {
+    remake_study, REMADE:
     ablation => "ablation",
     smoke => "smoke",
     figures_gallery => "figures-gallery",
