@@ -198,7 +198,7 @@ struct Chosen {
     /// Targets its completion had to skip.
     skipped: usize,
     /// With a coverage goal: the goal, the chosen plan's time to it on the common scorer's
-    /// curve, and every finalist's.
+    /// curve of the planning raster, and every finalist's.
     goal: Option<(f64, f64, Vec<f64>)>,
 }
 
@@ -302,7 +302,7 @@ fn end_at_goal(
 pub fn lower_bound_to_goal(prepared: &Prepared, robot: &crate::coverage::Footprint, goal: f64) -> TimeBound {
     let map = prepared.clear.map();
     let area = goal * prepared.reach.coverable_count() as f64 * map.resolution().powi(2);
-    TimeBound::one_robot(area, (robot.width, robot.speed, robot.rot_speed), free_diameter_m(map))
+    TimeBound::one_robot(area, (robot.width, robot.speed, robot.rot_speed), map.resolution(), free_diameter_m(map))
 }
 
 /// The planner's own fields of `summary.json`.
@@ -416,6 +416,12 @@ impl Planner for CellOrderConfig {
             solved.cost = crate::coverage::curve::segment_end_times(&path, &s.robot).last().copied().unwrap_or(0.0);
         }
         let grid = crate::coverage::CoverageGrid::new(&scenario.map);
+        // The goal time is the scored plan's, on the map as given (the same as the planning
+        // raster's where the map is planned as it is).
+        let goal = chosen.goal.map(|(goal, _, finalists)| {
+            let curve = CoverageCurve::of_plan(&grid, &scenario.reach(), std::slice::from_ref(&path), &[s.robot]);
+            (goal, time_to_goal(&curve, goal), finalists)
+        });
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, scenario.map.resolution(), s.projection);
         Ok(RunOutcome {
@@ -433,7 +439,7 @@ impl Planner for CellOrderConfig {
                 &s.robot,
                 (&solved, classical_chosen),
                 skipped,
-                chosen.goal,
+                goal,
                 self.wall_directions_used(),
                 control_plan,
             ),

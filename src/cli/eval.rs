@@ -224,8 +224,9 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
 /// area (a single point) has a bound of 0 s and no multiple.
 fn times_the_bound(time_s: f64, r: &EvalReport) -> String {
     let bound = format!(
-        "bound {:.1} s: covered area / (width · speed), plus {:.1} s of turning",
-        r.time_lower_bound_s, r.turning_bound_s
+        "bound {:.1} s: the least driving that sweeps the covered cells, plus {:.1} s of turning",
+        r.time_lower_bound_s - r.turning_bound_s,
+        r.turning_bound_s
     );
     if r.time_lower_bound_s > 0.0 && time_s.is_finite() {
         format!("{:.2} ({bound})", time_s / r.time_lower_bound_s)

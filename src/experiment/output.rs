@@ -170,6 +170,20 @@ fn common_score(scorer: &Scorer, plan: &[Vec<crate::geom::Point>], agents: &[Age
     }
 }
 
+/// A planner's `details` with its `time_to_goal_s` read off the common scorer's `curve` on the
+/// map as given, wherever the planner states a `coverage_goal`: a planner that plans on a
+/// refined raster (or on its own reachable set) estimates the time where it chooses its plan,
+/// but the recorded goal time is the scored plan's (`null` where the plan does not reach it).
+fn with_goal_time_of(
+    mut details: serde_json::Map<String, serde_json::Value>,
+    curve: &crate::coverage::curve::CoverageCurve,
+) -> serde_json::Map<String, serde_json::Value> {
+    if let Some(goal) = details.get("coverage_goal").and_then(serde_json::Value::as_f64) {
+        details.insert("time_to_goal_s".into(), curve.time_to(goal).into());
+    }
+    details
+}
+
 /// The time-to-coverage curve of a plan, each agent on its own clock: each named robot at its
 /// own width and speeds, any other plan with the experiment's robot on every path.
 fn coverage_curve(
@@ -314,7 +328,7 @@ pub fn run_experiment(
         time_model: crate::coverage::motion::time_model(&exp.scenario.robot),
         coverage_curve: curve.summary(),
         fleet,
-        details: outcome.details.clone(),
+        details: with_goal_time_of(outcome.details.clone(), &curve),
         wall_s: outcome.wall_s,
     };
     write("summary.json", serde_json::to_string_pretty(&summary).expect("summary serialises").as_bytes())?;

@@ -1,9 +1,8 @@
 //! The lower bound beside a plan's times to coverage ([`crate::coverage::bound`]): no plan
-//! covers the share `L` of the reachable cells sooner than their area over the robots'
-//! combined sweep rate (`Σ R_width · R_speed`), since driving straight is the fastest the
-//! scorer's footprint sweeps new ground and turning in place sweeps none (003 §3.3); one robot
-//! that turns at a finite rate also needs the turning any path covering that area inside the
-//! map's free space must make (the bound `covga eval` writes). The report reads each run's
+//! covers the share `L` of the reachable cells sooner than the length bound allows (their area
+//! over what the robots' sweeps can add per second on the map's cells, 003 §3.3: turning in
+//! place sweeps nothing); one robot that turns at a finite rate also needs the turning any path
+//! covering that area must make (the bound `covga eval` writes). The report reads each run's
 //! robots and map from the study's grid file and its reachable cells from `runs.csv`, so the
 //! bound needs no run folder.
 
@@ -14,20 +13,23 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 /// What a run's bound is made of.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 struct RunBound {
     /// The reachable cells' area, m².
     reachable_m2: f64,
-    /// One robot's (width, speed, rot_speed), or for a fleet its combined sweep rate alone.
+    /// One robot's (width, speed, rot_speed), or a fleet's robots.
     robot: Robots,
+    /// The map's cell size, m.
+    resolution: f64,
     /// An upper bound on the map's free-space diameter, m.
     diameter_m: f64,
 }
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 enum Robots {
     One(f64, f64, f64),
-    Fleet { sweep_rate: f64 },
+    /// Each robot's (width, speed): a fleet's bound is its makespan's length bound.
+    Fleet(Vec<(f64, f64)>),
 }
 
 /// Each run's lower bound on its times to coverage, or why the study's runs have none.
@@ -37,16 +39,14 @@ pub(super) struct AreaBounds {
     pub missing: Option<String>,
 }
 
-/// A run's robots: its `[[robots]]` (each defaulting to `[robot]`) as their combined sweep rate
-/// in m²/s, else its one robot.
+/// A run's robots: its `[[robots]]` (each defaulting to `[robot]`) as their widths and speeds,
+/// else its one robot.
 fn robots(file: &ExperimentFile) -> Robots {
     let r = &file.robot;
     if file.robots.is_empty() {
         return Robots::One(r.width, r.speed, r.rot_speed);
     }
-    Robots::Fleet {
-        sweep_rate: file.robots.iter().map(|e| e.width.unwrap_or(r.width) * e.speed.unwrap_or(r.speed)).sum(),
-    }
+    Robots::Fleet(file.robots.iter().map(|e| (e.width.unwrap_or(r.width), e.speed.unwrap_or(r.speed))).collect())
 }
 
 impl AreaBounds {
@@ -88,7 +88,7 @@ impl AreaBounds {
             let cells: f64 =
                 row[cells_col].parse().map_err(|_| format!("run {id}: reachable_cells `{}`", row[cells_col]))?;
             let reachable_m2 = cells * resolution * resolution;
-            out.insert(id.clone(), RunBound { reachable_m2, robot: robots(file), diameter_m });
+            out.insert(id.clone(), RunBound { reachable_m2, robot: robots(file), resolution, diameter_m });
         }
         Ok(out)
     }
@@ -100,13 +100,13 @@ impl AreaBounds {
 }
 
 impl RunBound {
-    fn time_to_level_s(self, level: f64) -> f64 {
+    fn time_to_level_s(&self, level: f64) -> f64 {
         let area = level * self.reachable_m2;
-        match self.robot {
-            Robots::One(width, speed, rot_speed) => {
-                TimeBound::one_robot(area, (width, speed, rot_speed), self.diameter_m).total_s()
+        match &self.robot {
+            &Robots::One(width, speed, rot_speed) => {
+                TimeBound::one_robot(area, (width, speed, rot_speed), self.resolution, self.diameter_m).total_s()
             }
-            Robots::Fleet { sweep_rate } => area_time_s(area, sweep_rate),
+            Robots::Fleet(robots) => area_time_s(area, robots, self.resolution),
         }
     }
 }
@@ -129,20 +129,23 @@ mod tests {
             end: None,
         };
         file.robots = vec![entry(None, None), entry(Some(0.4), None), entry(None, Some(0.5))];
-        let Robots::Fleet { sweep_rate } = robots(&file) else { panic!("a fleet") };
-        assert!((sweep_rate - (0.18 + 0.4 * 0.3 + 0.6 * 0.5)).abs() < 1e-12);
+        let Robots::Fleet(fleet) = robots(&file) else { panic!("a fleet") };
+        assert_eq!(fleet, vec![(0.6, 0.3), (0.4, 0.3), (0.6, 0.5)]);
     }
 
     #[test]
     fn one_turning_robot_adds_the_turning_bound_and_a_fleet_does_not() {
-        let one = RunBound { reachable_m2: 100.0, robot: Robots::One(0.5, 0.2, 0.5), diameter_m: 10.0 };
-        // 0.9 × 100 m² over 0.1 m²/s is 900 s; 180 m of path in a 10 m region turns too.
+        use crate::coverage::bound::{area_time_s, min_turning_rad};
+        let one =
+            RunBound { reachable_m2: 100.0, robot: Robots::One(0.5, 0.2, 0.5), resolution: 0.05, diameter_m: 10.0 };
+        // 90 m² at 0.5 m and 0.2 m/s on 0.05 m cells, and in a 10 m region the turning too.
         let t = one.time_to_level_s(0.9);
-        let turning = crate::coverage::bound::min_turning_rad(180.0, 10.0) / 0.5;
-        assert!(turning > 0.0 && (t - (900.0 + turning)).abs() < 1e-9, "{t}");
-        let fleet = RunBound { robot: Robots::Fleet { sweep_rate: 0.1 }, ..one };
-        assert!((fleet.time_to_level_s(0.9) - 900.0).abs() < 1e-9);
+        let (length_s, turning) =
+            (area_time_s(90.0, &[(0.5, 0.2)], 0.05), min_turning_rad(90.0, 0.5, 0.05, 10.0) / 0.5);
+        assert!(turning > 0.0 && length_s > 700.0 && (t - (length_s + turning)).abs() < 1e-9, "{t}");
+        let fleet = RunBound { robot: Robots::Fleet(vec![(0.5, 0.2)]), ..one.clone() };
+        assert!((fleet.time_to_level_s(0.9) - length_s).abs() < 1e-9);
         let free = RunBound { robot: Robots::One(0.5, 0.2, 0.0), ..one };
-        assert!((free.time_to_level_s(0.9) - 900.0).abs() < 1e-9);
+        assert!((free.time_to_level_s(0.9) - length_s).abs() < 1e-9);
     }
 }

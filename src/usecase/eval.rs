@@ -349,16 +349,17 @@ pub fn evaluate(req: &EvalRequest) -> Result<Evaluation, UseCaseError> {
     let common = scorer.score_agents(&paths, &robots);
     let curve = crate::coverage::curve::CoverageCurve::of_plan(scorer.grid(), scorer.reach(), &paths, &robots);
     let covered_m2 = common.unique_reach_cells as f64 * map.resolution().powi(2);
-    let sweep_rate: f64 = robots.iter().map(|r| r.width * r.speed).sum();
-    // The turning bound is one path's: a fleet gets the area bound alone.
+    let rates: Vec<(f64, f64)> = robots.iter().map(|r| (r.width, r.speed)).collect();
+    // The turning bound is one path's: a fleet gets the length bound alone (its makespan).
     let turning_bound_s = match robots.as_slice() {
         [one] => {
             let diameter = crate::coverage::bound::free_diameter_m(&map);
-            TimeBound::one_robot(covered_m2, (one.width, one.speed, one.rot_speed), diameter).turning_s
+            TimeBound::one_robot(covered_m2, (one.width, one.speed, one.rot_speed), map.resolution(), diameter)
+                .turning_s
         }
         _ => 0.0,
     };
-    let time_lower_bound_s = area_time_s(covered_m2, sweep_rate) + turning_bound_s;
+    let time_lower_bound_s = area_time_s(covered_m2, &rates, map.resolution()) + turning_bound_s;
     let report = EvalReport {
         map: map.name().to_string(),
         source,

@@ -116,3 +116,4 @@ pub fn runner_options<'a>(
         retry_failed: false,
     }
 }
+pub mod raster_cases;

@@ -24,5 +24,6 @@ macro_rules! per_study_tests {
 
 mod committed_results;
 mod fuzz_corpus;
+mod raster_cases;
 mod report_remake;
 mod unread_keys;
