@@ -103,22 +103,15 @@ impl Planner for RandomSearch {
             "fitness": sc.fitness,
             "genome_len": best.len(),
         }));
-        Ok(RunOutcome {
-            plan: vec![best.points.clone()],
-            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
-            feasible: best.sweep.obj_pix == 0,
-            warnings: Vec::new(),
-            violations: obstacle_violations(best.sweep.obj_pix),
-            evaluations,
-            iterations: iteration,
-            stop,
-            wall_s: started.elapsed().as_secs_f64(),
-            details,
-            files: vec![("best_genome.csv".into(), best.genome_csv())],
-            history: crate::planner::History::Generations,
-            agents: Vec::new(),
-            artifacts: Box::new(()),
-        })
+        Ok(RunOutcome::new(vec![best.points.clone()], stop)
+            .with_objectives(vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)])
+            .with_violations(obstacle_violations(best.sweep.obj_pix))
+            .with_feasible(best.sweep.obj_pix == 0)
+            .with_effort(evaluations, iteration)
+            .with_wall_s(started.elapsed().as_secs_f64())
+            .with_details(details)
+            .with_files(vec![("best_genome.csv".into(), best.genome_csv())])
+            .with_history(crate::planner::History::Generations))
     }
 }
 

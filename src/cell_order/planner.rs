@@ -424,33 +424,25 @@ impl Planner for CellOrderConfig {
         });
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, scenario.map.resolution(), s.projection);
-        Ok(RunOutcome {
-            plan: vec![path],
-            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("tour_cost_s", solved.cost)],
-            feasible: true,
-            warnings: Vec::new(),
-            violations: Vec::new(),
-            evaluations: solved.evaluations,
-            iterations: solved.iterations,
-            stop: solved.stop,
-            wall_s: started.elapsed().as_secs_f64(),
-            details: details_of(
-                &prepared,
-                &s.robot,
-                (&solved, classical_chosen),
-                skipped,
-                goal,
-                self.wall_directions_used(),
-                control_plan,
-            ),
-            files: Vec::new(),
-            history: match self.solver {
-                Solver::Ga | Solver::Ils => crate::planner::History::Generations,
-                Solver::Exact | Solver::Nearest | Solver::Boustrophedon => crate::planner::History::None,
-            },
-            agents: Vec::new(),
-            artifacts: Box::new(()),
-        })
+        let details = details_of(
+            &prepared,
+            &s.robot,
+            (&solved, classical_chosen),
+            skipped,
+            goal,
+            self.wall_directions_used(),
+            control_plan,
+        );
+        let history = match self.solver {
+            Solver::Ga | Solver::Ils => crate::planner::History::Generations,
+            Solver::Exact | Solver::Nearest | Solver::Boustrophedon => crate::planner::History::None,
+        };
+        Ok(RunOutcome::new(vec![path], solved.stop)
+            .with_objectives(vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("tour_cost_s", solved.cost)])
+            .with_effort(solved.evaluations, solved.iterations)
+            .with_wall_s(started.elapsed().as_secs_f64())
+            .with_details(details)
+            .with_history(history))
     }
 }
 

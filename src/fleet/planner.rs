@@ -234,26 +234,19 @@ impl Planner for FleetPlanner {
         FleetDetails { fleet_name: self.name.clone(), negotiation: None }.write_into(&mut details);
         let mut violations = plan.violations;
         violations.extend(obstacle_violations(score.obstacle_cells));
-        Ok(RunOutcome {
-            plan: plan.paths,
-            objectives: vec![
+        Ok(RunOutcome::new(plan.paths, plan.stop)
+            .with_objectives(vec![
                 ("union_reach", score.union_reach),
                 ("makespan_s", score.makespan_s),
                 ("cov_final", score.cov_final),
                 ("t_final", score.t_final),
-            ],
-            feasible: violations.is_empty(),
-            violations,
-            warnings: Vec::new(),
-            evaluations: plan.evaluations,
-            iterations: plan.iterations,
-            stop: plan.stop,
-            wall_s: started.elapsed().as_secs_f64(),
-            details,
-            files: plan.files,
-            history: plan.history,
-            agents: self.fleet.robots().to_vec(),
-            artifacts: Box::new(()),
-        })
+            ])
+            .with_violations(violations)
+            .with_effort(plan.evaluations, plan.iterations)
+            .with_wall_s(started.elapsed().as_secs_f64())
+            .with_details(details)
+            .with_files(plan.files)
+            .with_history(plan.history)
+            .with_agents(self.fleet.robots().to_vec()))
     }
 }

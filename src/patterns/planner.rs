@@ -123,21 +123,11 @@ impl Planner for PatternConfig {
         if let Pattern::Boustrophedon { angle_deg } = self.pattern {
             details.insert("angle_deg".into(), angle_deg.into());
         }
-        Ok(RunOutcome {
-            plan: vec![planned.points],
-            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
-            feasible: true,
-            warnings: Vec::new(),
-            violations: Vec::new(),
-            evaluations: 1,
-            iterations: 0,
-            stop: StopReason::Completed,
-            wall_s: started.elapsed().as_secs_f64(),
-            details,
-            files: Vec::new(),
-            history: crate::planner::History::Generations,
-            agents: Vec::new(),
-            artifacts: Box::new(()),
-        })
+        Ok(RunOutcome::new(vec![planned.points], StopReason::Completed)
+            .with_objectives(vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)])
+            .with_effort(1, 0)
+            .with_wall_s(started.elapsed().as_secs_f64())
+            .with_details(details)
+            .with_history(crate::planner::History::Generations))
     }
 }

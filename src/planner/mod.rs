@@ -166,7 +166,10 @@ pub enum StopReason {
     Interrupted,
 }
 
-/// The result of one run of any planner.
+/// The result of one run of any planner. Made with [`RunOutcome::new`] and its `with_*`
+/// setters (a planner outside the crate cannot write the struct literal), so that a field added
+/// later, with its default, breaks no planner.
+#[non_exhaustive]
 pub struct RunOutcome {
     /// The reported plan.
     pub plan: Plan,
@@ -198,6 +201,99 @@ pub struct RunOutcome {
     pub agents: Vec<Agent>,
     /// Whatever the planner needs later to draw its own figures.
     pub artifacts: Box<dyn Any + Send>,
+}
+
+impl RunOutcome {
+    /// A run that returns `plan` and ended for `stop`: feasible, no objectives, warnings,
+    /// details or files, no evaluations or iterations counted, no history, flown by the
+    /// scenario's robot. The `with_*` setters fill in the rest.
+    pub fn new(plan: Plan, stop: StopReason) -> Self {
+        Self {
+            plan,
+            objectives: Vec::new(),
+            feasible: true,
+            violations: Vec::new(),
+            warnings: Vec::new(),
+            evaluations: 0,
+            iterations: 0,
+            stop,
+            wall_s: 0.0,
+            details: serde_json::Map::new(),
+            files: Vec::new(),
+            history: History::None,
+            agents: Vec::new(),
+            artifacts: Box::new(()),
+        }
+    }
+
+    /// The planner's own objectives of the plan, by name.
+    pub fn with_objectives(mut self, objectives: Vec<(&'static str, f64)>) -> Self {
+        self.objectives = objectives;
+        self
+    }
+
+    /// The constraints the plan violates, in words; the plan is feasible when there are none.
+    pub fn with_violations(mut self, violations: Vec<String>) -> Self {
+        self.feasible = violations.is_empty();
+        self.violations = violations;
+        self
+    }
+
+    /// The plan's feasibility as the planner judges it, where it is not the absence of
+    /// violations in words.
+    pub fn with_feasible(mut self, feasible: bool) -> Self {
+        self.feasible = feasible;
+        self
+    }
+
+    /// What the user should know about the run's set-up.
+    pub fn with_warnings(mut self, warnings: Vec<String>) -> Self {
+        self.warnings = warnings;
+        self
+    }
+
+    /// Fitness evaluations spent and iterations (generations) completed.
+    pub fn with_effort(mut self, evaluations: u64, iterations: u32) -> Self {
+        self.evaluations = evaluations;
+        self.iterations = iterations;
+        self
+    }
+
+    /// The run's wall time in seconds.
+    pub fn with_wall_s(mut self, wall_s: f64) -> Self {
+        self.wall_s = wall_s;
+        self
+    }
+
+    /// Planner-specific summary fields.
+    pub fn with_details(mut self, details: serde_json::Map<String, serde_json::Value>) -> Self {
+        self.details = details;
+        self
+    }
+
+    /// Planner-specific result files: name and bytes.
+    pub fn with_files(mut self, files: Vec<(String, Vec<u8>)>) -> Self {
+        self.files = files;
+        self
+    }
+
+    /// Where the run's history comes from.
+    pub fn with_history(mut self, history: History) -> Self {
+        self.history = history;
+        self
+    }
+
+    /// The robots that fly the plan, one per path.
+    pub fn with_agents(mut self, agents: Vec<Agent>) -> Self {
+        self.agents = agents;
+        self
+    }
+
+    /// Whatever the planner needs later to draw its own figures.
+    pub fn with_artifacts(mut self, artifacts: Box<dyn Any + Send>) -> Self {
+        self.artifacts = artifacts;
+        self
+    }
 }
 
 /// Where a run's `history.csv` comes from.

@@ -125,22 +125,16 @@ impl Planner for ThesisConfig {
         if self.population_genomes {
             files.push(("population_genomes.csv".into(), population_genomes_csv(&out.population)));
         }
-        Ok(RunOutcome {
-            plan: vec![ga.scenario.driven(&best.points)],
-            objectives: vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)],
-            feasible: best.sweep.obj_pix == 0,
-            warnings: Vec::new(),
-            violations: crate::coverage::score::obstacle_violations(best.sweep.obj_pix),
-            evaluations: out.evaluations,
-            iterations: out.iterations,
-            stop: out.stop,
-            wall_s: out.wall_s,
-            details,
-            files,
-            history: crate::planner::History::Generations,
-            agents: Vec::new(),
-            artifacts: Box::new((out, seed)),
-        })
+        Ok(RunOutcome::new(vec![ga.scenario.driven(&best.points)], out.stop)
+            .with_objectives(vec![("cov_final", sc.cov_final), ("t_final", sc.t_final), ("fitness", sc.fitness)])
+            .with_violations(crate::coverage::score::obstacle_violations(best.sweep.obj_pix))
+            .with_feasible(best.sweep.obj_pix == 0)
+            .with_effort(out.evaluations, out.iterations)
+            .with_wall_s(out.wall_s)
+            .with_details(details)
+            .with_files(files)
+            .with_history(crate::planner::History::Generations)
+            .with_artifacts(Box::new((out, seed))))
     }
 
     fn write_figures(

@@ -224,31 +224,27 @@ impl Planner for WaypointConfig {
         let viol = violations(self, best, outcome.generations);
         let warnings = setup_warnings(self, &world);
         let details = self.details(scenario, &world, best, &outcome, precompute_s);
-        Ok(RunOutcome {
-            // Every agent starts and ends at the stations, as every other planner's plan does.
-            plan: {
-                let legs = crate::planner::legs::StationLegs::new(&scenario.map, scenario.robot.width, scenario.start);
-                paths_m(&world, best).iter().map(|p| legs.around(p, scenario.end)).collect()
-            },
-            objectives: vec![
-                ("coverage", e.coverage),
-                ("wall_coverage", e.walls),
-                ("open_coverage", e.open),
-                ("flight_time", e.flight_time),
-            ],
-            feasible: viol.is_empty(),
-            violations: viol,
-            warnings,
-            evaluations: outcome.evaluations,
-            iterations: outcome.generations,
-            stop: outcome.stop,
-            wall_s: started.elapsed().as_secs_f64(),
-            details,
-            files: Vec::new(),
-            history: crate::planner::History::Generations,
-            agents: Vec::new(),
-            artifacts: Box::new(Artifacts { world, outcome }),
-        })
+        // Every agent starts and ends at the stations, as every other planner's plan does.
+        let plan = {
+            let legs = crate::planner::legs::StationLegs::new(&scenario.map, scenario.robot.width, scenario.start);
+            paths_m(&world, best).iter().map(|p| legs.around(p, scenario.end)).collect()
+        };
+        let objectives = vec![
+            ("coverage", e.coverage),
+            ("wall_coverage", e.walls),
+            ("open_coverage", e.open),
+            ("flight_time", e.flight_time),
+        ];
+        let (evaluations, generations, stop) = (outcome.evaluations, outcome.generations, outcome.stop);
+        Ok(RunOutcome::new(plan, stop)
+            .with_objectives(objectives)
+            .with_violations(viol)
+            .with_warnings(warnings)
+            .with_effort(evaluations, generations)
+            .with_wall_s(started.elapsed().as_secs_f64())
+            .with_details(details)
+            .with_history(crate::planner::History::Generations)
+            .with_artifacts(Box::new(Artifacts { world, outcome })))
     }
 
     fn write_figures(

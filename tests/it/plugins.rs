@@ -10,7 +10,7 @@ use covga::experiment::plugins::{PlannerPlugin, PluginError, PluginPlanner, regi
 use covga::experiment::registry::PlannerKind;
 use covga::ga::observer::Observer;
 use covga::geom::Point;
-use covga::planner::{Budget, Context, History, Planner, PlannerError, RunOutcome, Scenario, StopReason};
+use covga::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use covga::study::grid::Study;
 use covga::study::runner::{RunDone, run_study};
 use covga::usecase::run::{ExperimentText, prepare, run_in_folder};
@@ -40,22 +40,10 @@ impl Planner for Rays {
             path.push(Point::new(s.start.x + self.reach_m * angle.cos(), s.start.y + self.reach_m * angle.sin()));
             path.push(s.start);
         }
-        Ok(RunOutcome {
-            plan: vec![path],
-            objectives: vec![("rays", f64::from(self.rays))],
-            feasible: true,
-            violations: Vec::new(),
-            warnings: Vec::new(),
-            evaluations: 1,
-            iterations: 0,
-            stop: StopReason::Completed,
-            wall_s: 0.0,
-            details: covga::planner::details(serde_json::json!({ "rays": self.rays })),
-            files: Vec::new(),
-            history: History::None,
-            agents: Vec::new(),
-            artifacts: Box::new(()),
-        })
+        Ok(RunOutcome::new(vec![path], StopReason::Completed)
+            .with_objectives(vec![("rays", f64::from(self.rays))])
+            .with_effort(1, 0)
+            .with_details(covga::planner::details(serde_json::json!({ "rays": self.rays }))))
     }
 }
 
