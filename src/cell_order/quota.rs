@@ -10,7 +10,7 @@
 
 use super::boundary;
 use crate::coverage::CoverageGrid;
-use crate::coverage::motion::{path_length, rotation_time, turning};
+use crate::coverage::motion::{drive_time_s, path_length, turning};
 use crate::geom::Point;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
@@ -72,7 +72,7 @@ pub fn pieces(
             for &i in &cells {
                 seen[i as usize] = false;
             }
-            let time_s = path_length(&points) / speed + rotation_time(turning(&points).0, rot_speed);
+            let time_s = drive_time_s(path_length(&points), turning(&points).0, speed, rot_speed);
             Piece { points, cells, time_s }
         })
         .collect()

@@ -5,7 +5,7 @@
 //! the leg to the end station (the generalised travelling-salesman problem of Bähnemann et al.
 //! 2019 with sweeps as cluster members).
 
-use crate::coverage::motion::{abs_turn_deg, rotation_time};
+use crate::coverage::motion::abs_turn_deg;
 use crate::geom::{Point, Vector};
 
 /// One candidate sweep as the tour sees it.
@@ -193,7 +193,7 @@ pub struct Tour {
 /// The rotation-aware leg time: transit length over speed plus the estimated turning over the
 /// rotation speed (003 eqs. 3.1–3.3 applied to the leg).
 pub fn leg_time(metres: f64, turn_rad: f64, speed: f64, rot_speed: f64) -> f64 {
-    metres / speed + rotation_time(turn_rad, rot_speed)
+    crate::coverage::motion::drive_time_s(metres, turn_rad, speed, rot_speed)
 }
 
 #[cfg(test)]

@@ -39,6 +39,20 @@ pub struct Footprint {
     pub rot_speed: f64,
 }
 
+impl Footprint {
+    /// The time this robot takes to drive `length_m` and turn `turn_rad` in place
+    /// ([`motion::drive_time_s`], 003 eqs. 3.1–3.3).
+    pub fn time_s(&self, length_m: f64, turn_rad: f64) -> f64 {
+        motion::drive_time_s(length_m, turn_rad, self.speed, self.rot_speed)
+    }
+
+    /// The time this robot takes to drive `points`: their length (003 eq. 3.1) and turning
+    /// (eq. 3.2) through [`Footprint::time_s`].
+    pub fn path_time_s(&self, points: &[crate::geom::Point]) -> f64 {
+        self.time_s(motion::path_length(points), motion::turning(points).0)
+    }
+}
+
 impl Default for Footprint {
     /// The thesis robot: 0.6 m wide, 0.2 m/s, no rotation cost.
     fn default() -> Self {

@@ -45,6 +45,14 @@ pub fn rotation_time(total_turn_rad: f64, r_rot: f64) -> f64 {
     if r_rot > 0.0 { total_turn_rad / r_rot } else { 0.0 }
 }
 
+/// The time model of 003 eqs. 3.1–3.3: `length_m` at `speed` plus `turn_rad` at `rot_speed`
+/// (free when `rot_speed` is 0). Every path time in covga (the scorer's, a fleet robot's, a
+/// cell-order leg's or piece's) is this function's; only the coverage curve's clock adds the
+/// same two terms segment by segment.
+pub fn drive_time_s(length_m: f64, turn_rad: f64, speed: f64, rot_speed: f64) -> f64 {
+    length_m / speed + rotation_time(turn_rad, rot_speed)
+}
+
 /// The robot and the time model a plan's `time_s` follows, in words for a summary:
 /// `time_s = length / speed + turning / rot_speed`, and whether turning is free (`rot_speed` =
 /// 0, the default of 003's experiments: a plan's turns then cost nothing).
@@ -72,6 +80,19 @@ pub fn plan_totals(paths: &[Vec<Point>]) -> (f64, f64, usize) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_path_time_is_its_length_at_speed_plus_its_turning_at_rot_speed() {
+        // Table-driven: (length, turning, speed, rot_speed, seconds).
+        let table =
+            [(10.0, std::f64::consts::PI, 0.2, 0.5, 50.0 + 2.0 * std::f64::consts::PI), (3.0, 7.0, 0.3, 0.0, 10.0)];
+        for (length, turn, speed, rot, expected) in table {
+            assert!((drive_time_s(length, turn, speed, rot) - expected).abs() < 1e-12);
+        }
+        let robot = crate::coverage::Footprint { width: 0.6, speed: 0.2, rot_speed: 0.5 };
+        let path = [Point::new(0.0, 0.0), Point::new(2.0, 0.0), Point::new(2.0, 2.0)];
+        assert_eq!(robot.path_time_s(&path), drive_time_s(4.0, std::f64::consts::FRAC_PI_2, 0.2, 0.5));
+    }
 
     #[test]
     fn the_time_model_says_when_turning_is_free() {

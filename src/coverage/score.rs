@@ -294,7 +294,7 @@ impl Scorer {
             let len = motion::path_length(p);
             let (turn, _) = motion::turning(p);
             lengths.push(len);
-            times.push(len / r.speed + motion::rotation_time(turn, r.rot_speed));
+            times.push(r.time_s(len, turn));
         }
         let body = crate::map::body::contact(&self.map, paths, &widths);
         // Pose by pose: for one plan that is faster than segment masks, which help only when

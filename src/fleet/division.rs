@@ -300,9 +300,7 @@ pub const LANE_TURNS: [f64; 4] = [0.0, 45.0, 90.0, 135.0];
 
 /// Length over speed plus rotation time (003 eqs. 3.1–3.3).
 fn robot_time(points: &[Point], robot: &crate::coverage::Footprint) -> f64 {
-    let (turn, _) = crate::coverage::motion::turning(points);
-    crate::coverage::motion::path_length(points) / robot.speed
-        + crate::coverage::motion::rotation_time(turn, robot.rot_speed)
+    robot.path_time_s(points)
 }
 
 /// Plans a boustrophedon in each robot's region, with the quickest of the lane directions

@@ -106,7 +106,7 @@ impl FleetScorer {
             let (turn, _) = motion::turning(p);
             let t_rot = motion::rotation_time(turn, r.footprint.rot_speed);
             lengths.push(length);
-            times.push(length / r.footprint.speed + t_rot);
+            times.push(r.footprint.time_s(length, turn));
             eq_3_13_times.push(t_actual(area_m2(share.cov_pix, res), r.footprint.speed, r.footprint.width) + t_rot);
         }
         let actual = cov_actual(area_m2(total.cov_pix, res), area_m2(total.cross_pix, res));
