@@ -30,6 +30,8 @@ const LAYERS: &[&[&str]] = &[
     &["usecase"],
     &["cli"],
     &["fuzz_entry"],
+    // Names what the layers hold for users and plugins; nothing imports it.
+    &["prelude"],
 ];
 
 /// The layer of a top-level module, or `None` for one the order does not name.
