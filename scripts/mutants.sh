@@ -24,14 +24,17 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v cargo-mutants >/dev/null || cargo install cargo-mutants --locked
+# The core, one file a path (tests/it/mutation_tooling.rs checks that each is there, and that
+# every pin of .cargo/mutants.toml names a file, a function and an operator that are there).
 core=(
   src/coverage/bits.rs src/coverage/planes.rs src/coverage/rows.rs src/coverage/raster.rs src/coverage/sweep.rs src/coverage/score.rs
-  src/coverage/segments.rs src/coverage/lanes.rs
-  src/coverage/fitness.rs src/thesis/crossover.rs src/thesis/mutation.rs src/thesis/genome.rs
+  src/coverage/views.rs src/coverage/fitness.rs
+  src/thesis/segments.rs src/thesis/lanes.rs src/thesis/crossover.rs src/thesis/mutation.rs src/thesis/genome.rs
   src/thesis/individual.rs src/thesis/diversity.rs src/thesis/architecture.rs
   src/ga/selection.rs src/ga/control.rs src/ga/pareto.rs src/ga/rng.rs src/ga/maximin.rs
   src/waypoint/evaluate.rs src/waypoint/operators.rs
-  src/report/stats.rs src/report/mod.rs
+  src/stats/describe.rs src/stats/rank_sum.rs src/stats/kruskal.rs src/stats/effect.rs src/stats/family.rs
+  src/stats/paired.rs src/report/analysis/runs.rs
 )
 if [ "${1:-}" = "--check-pins" ]; then
   # A pin (`file:line:column: …` in .cargo/mutants.toml) goes stale when its line moves, and the

@@ -28,7 +28,7 @@ import os
 import shutil
 import sys
 
-FRONT_MIN_COVERAGE = 0.01  # src/report/mod.rs
+FRONT_MIN_COVERAGE = 0.01  # src/report/analysis/runs.rs
 
 
 def read(path):

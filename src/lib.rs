@@ -34,9 +34,11 @@
 //!    own section and drawing its own figures;
 //! 8. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
 //! 9. [`study`]: grids, the runner, records, merge, estimates, Slurm;
-//! 10. [`report`]: the sections of `covga report`;
+//! 10. [`report`]: `covga report`, in rooms (figures, the study analysis, tables and
+//!     comparisons, the replication of the papers, the summary's sections);
 //! 11. [`usecase`]: run and eval as library functions, under the command line and Python;
-//! 12. [`cli`] (and [`fuzz_entry`]): thin fronts over the library.
+//! 12. [`cli`] (and [`fuzz_entry`]), [`prelude`]: thin fronts over the library, and the one
+//!     import a program or a planner from outside needs.
 
 pub mod cell_order;
 pub mod cli;
@@ -52,6 +54,7 @@ pub mod map;
 pub mod patterns;
 pub mod planner;
 pub mod plot;
+pub mod prelude;
 pub mod random_search;
 pub mod report;
 pub mod routing;

@@ -393,7 +393,7 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     println!("wrote {} and the figures beside it", path.display());
     if let Some(previous) = &a.previous {
         let folder = path.parent().unwrap_or(&a.dir);
-        let file = crate::report::rescore::write(&a.dir, previous, folder).map_err(|e| match e {
+        let file = crate::report::tables::rescore::write(&a.dir, previous, folder).map_err(|e| match e {
             crate::report::ReportError::Input(m) => CliError::Input(m),
             other => CliError::internal(other),
         })?;

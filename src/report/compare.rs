@@ -16,14 +16,20 @@ mod findings;
 mod like;
 mod pooled;
 mod power;
+mod strata;
 mod strongest;
 mod text;
 mod units;
 
+use strata::{Design, design, seed_pairs};
 use text::{executability, intro, p_text, section};
 
-use super::design::{followed_by, split_followers};
-use super::{ReportError, cmp_group_values, param_columns};
+use crate::report::analysis::ReportError;
+use crate::report::analysis::design::followed_by;
+use crate::report::analysis::rendered::Rendered;
+use crate::report::analysis::runs::{
+    cell_matches, cmp_group_values, param_columns, read_filtered_runs, with_failed_note,
+};
 use crate::stats::{Contrast, Family, bootstrap_ci, vargha_delaney_a12, wilcoxon_signed_rank};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
@@ -139,137 +145,6 @@ fn quoted(text: &str) -> String {
     format!("\"{}\"", text.replace('"', "\"\""))
 }
 
-/// The rows of runs.csv by stratum (the other parameters that vary on their own) and value.
-struct Design {
-    strata: Vec<String>,
-    /// Their columns.
-    kept: Vec<usize>,
-    /// Parameters that follow the strata's own (confounded with them), with the ones they follow.
-    followers: Vec<(String, String)>,
-    /// Parameters set under some compared values only (never on the baseline's runs): written
-    /// into those values' labels.
-    nested: Vec<String>,
-    /// With several controls as the baseline: the strongest in each stratum.
-    strongest: BTreeMap<String, String>,
-    /// Whether a configuration recorded once pairs with every seed of the other side (a
-    /// finished study); else runs pair by seed only.
-    once_run_pairs: bool,
-    /// `(stratum, value) → seed → row`.
-    cells: BTreeMap<(String, String), BTreeMap<String, usize>>,
-    /// Each stratum's label → its parameters, `(column, value)`.
-    params: BTreeMap<String, Vec<(String, String)>>,
-}
-
-impl Design {
-    /// Whether some compared configuration ran once while others ran over several seeds.
-    fn once_run(&self) -> bool {
-        let sizes: std::collections::BTreeSet<usize> = self.cells.values().map(BTreeMap::len).collect();
-        sizes.contains(&1) && sizes.iter().any(|&n| n > 1)
-    }
-
-    /// Whether the comparisons are also pooled over the strata: when there is more than one.
-    fn pooled(&self) -> bool {
-        let mut strata = self.cells.keys().map(|(s, _)| s);
-        strata.next().is_some_and(|first| strata.any(|s| s != first))
-    }
-}
-
-fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
-    let others: Vec<usize> =
-        param_columns(t).into_iter().filter(|p| *p != cmp.key).filter_map(|name| t.col(&name)).collect();
-    // A parameter set only under some of the compared values (the GA's memetic step under
-    // `solver = "ga"`) is empty on every baseline row: it is part of those values, not a stratum.
-    let controls = strongest::controls(&cmp.baseline);
-    let is_baseline = |r: &Vec<String>| controls.contains(&r[key].as_str());
-    let (nested, candidates): (Vec<usize>, Vec<usize>) = others.into_iter().partition(|&c| {
-        t.rows.iter().filter(|r| is_baseline(r)).all(|r| r[c].is_empty()) && t.rows.iter().any(|r| !r[c].is_empty())
-    });
-    let (kept, followers) = split_followers(t, &candidates);
-    let strata: Vec<String> = kept.iter().map(|&c| t.header[c].clone()).collect();
-    let followers: Vec<(String, String)> = followers.into_iter().map(|(c, of)| (t.header[c].clone(), of)).collect();
-    let seed = t.col("seed").unwrap_or(0);
-    let mut cells: BTreeMap<(String, String), BTreeMap<String, usize>> = BTreeMap::new();
-    let mut params = BTreeMap::new();
-    for (i, r) in t.rows.iter().enumerate() {
-        let label = kept.iter().map(|&c| format!("{}={}", t.header[c], r[c])).collect::<Vec<_>>().join(", ");
-        params
-            .entry(label.clone())
-            .or_insert_with(|| kept.iter().map(|&c| (t.header[c].clone(), r[c].clone())).collect::<Vec<_>>());
-        let mut value = r[key].clone();
-        for &c in nested.iter().filter(|&&c| !r[c].is_empty()) {
-            let _ = write!(value, " ({}={})", t.header[c], r[c]);
-        }
-        cells.entry((label, value)).or_default().insert(r[seed].clone(), i);
-    }
-    let nested = nested.iter().map(|&c| t.header[c].clone()).collect();
-    // Several controls: each stratum's strongest stands for the baseline there, the controls
-    // themselves are not compared.
-    let mut strongest = BTreeMap::new();
-    if controls.len() > 1 {
-        strongest = strongest::per_stratum(t, &cells, &controls);
-        for (stratum, control) in &strongest {
-            let runs = cells[&(stratum.clone(), control.clone())].clone();
-            cells.insert((stratum.clone(), cmp.baseline.clone()), runs);
-        }
-        cells.retain(|(_, v), _| !controls.contains(&v.as_str()));
-    }
-    Design { strata, kept, followers, nested, strongest, once_run_pairs: true, cells, params }
-}
-
-/// The pairs of a baseline's runs and a value's, by seed; where one side ran once and the other
-/// over several seeds (a grid runs a configuration whose planner reads no seed once), its one
-/// run pairs with every run of the other.
-fn seed_pairs(base: &BTreeMap<String, usize>, other: &BTreeMap<String, usize>, once_run: bool) -> Vec<(usize, usize)> {
-    match (base.len(), other.len()) {
-        _ if !once_run => base.iter().filter_map(|(seed, &b)| other.get(seed).map(|&o| (b, o))).collect(),
-        (1, n) if n > 1 => {
-            let b = *base.values().next().expect("one run");
-            other.values().map(|&o| (b, o)).collect()
-        }
-        (n, 1) if n > 1 => {
-            let o = *other.values().next().expect("one run");
-            base.values().map(|&b| (b, o)).collect()
-        }
-        _ => base.iter().filter_map(|(seed, &b)| other.get(seed).map(|&o| (b, o))).collect(),
-    }
-}
-
-/// A comparison made, not yet written: its files' names and texts.
-#[derive(Clone, Debug)]
-pub struct Rendered {
-    /// `compare-KEY` (the key's characters other than letters, digits, `.` and `-` as `_`).
-    pub stem: String,
-    /// The markdown report.
-    pub markdown: String,
-    /// One row per stratum, value and metric.
-    pub csv: String,
-    /// For a comparison, what its design can show (`power`), written by `--design`.
-    pub design: Option<String>,
-}
-
-impl Rendered {
-    /// Writes `STEM.md` and `STEM.csv` into `out`; returns the markdown's path.
-    pub fn save(&self, out: &Path) -> Result<PathBuf, ReportError> {
-        let md = out.join(format!("{}.md", self.stem));
-        let csv = out.join(format!("{}.csv", self.stem));
-        for (path, text) in [(&md, &self.markdown), (&csv, &self.csv)] {
-            crate::io::write_atomic(path, text.as_bytes())
-                .map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
-        }
-        Ok(md)
-    }
-
-    /// Writes the design file of a comparison, `design-KEY.md` beside `compare-KEY.md`, into
-    /// `out`; returns its path (none for files that are not a comparison).
-    pub fn save_design(&self, out: &Path) -> Result<Option<PathBuf>, ReportError> {
-        let Some(design) = &self.design else { return Ok(None) };
-        let path = out.join(format!("design-{}.md", self.stem.trim_start_matches("compare-")));
-        crate::io::write_atomic(&path, design.as_bytes())
-            .map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
-        Ok(Some(path))
-    }
-}
-
 /// Reads `dir`'s runs.csv (failed runs left out, the `--where` pairs of `filter` applied as
 /// the report applies them) and makes each comparison, writing nothing: a comparison that
 /// cannot be made is refused before the report folder is touched.
@@ -281,7 +156,7 @@ pub fn render_all(
     if comparisons.is_empty() {
         return Ok(Vec::new());
     }
-    let (t, recorded, failed) = super::read_filtered_runs(dir, filter)?;
+    let (t, recorded, failed) = read_filtered_runs(dir, filter)?;
     // A configuration recorded once pairs with every seed only in a finished study: in one
     // stopped part-way it may be a seeded configuration whose other seeds have not run.
     let expected = std::fs::read_to_string(dir.join("study.json"))
@@ -292,8 +167,7 @@ pub fn render_all(
     let mut rendered: Vec<Rendered> = comparisons
         .iter()
         .map(|c| {
-            render_with(&t, c, complete)
-                .map(|r| Rendered { markdown: super::with_failed_note(r.markdown, &failed), ..r })
+            render_with(&t, c, complete).map(|r| Rendered { markdown: with_failed_note(r.markdown, &failed), ..r })
         })
         .collect::<Result<_, _>>()?;
     // Several baselines of one key (and kind of plans) would share a file: each then names its
@@ -329,7 +203,7 @@ fn numeric_baseline(t: &RunsTable, cmp: &Comparison) -> Comparison {
         if t.rows.iter().any(|r| r[c] == want) {
             return want.to_string();
         }
-        t.rows.iter().map(|r| &r[c]).find(|v| super::cell_matches(v, want)).cloned().unwrap_or_else(|| want.to_string())
+        t.rows.iter().map(|r| &r[c]).find(|v| cell_matches(v, want)).cloned().unwrap_or_else(|| want.to_string())
     };
     let baseline = strongest::controls(&cmp.baseline).into_iter().map(recorded).collect::<Vec<_>>().join("|");
     Comparison { baseline, ..cmp.clone() }

@@ -1,11 +1,20 @@
 //! The sections of a study's `summary.md`, in the order they are written: each a small type
 //! behind [`Section`], listed once in [`SECTIONS`]. A new section is a type and a line there.
 
-use super::figures::{DiversityFigure, DiversityGroup, ParetoFacet, ParetoFigure, PathsGridFigure};
-use super::study::Study;
-use super::{ReportError, median, read_history_diversity};
+mod curves;
+
 use crate::coverage::CoverageGrid;
 use crate::plot::path::PathFigure;
+use crate::report::analysis::ReportError;
+use crate::report::analysis::runs::read_history_diversity;
+use crate::report::analysis::study::Study;
+use crate::report::figures::diversity::{DiversityFigure, DiversityGroup};
+use crate::report::figures::pareto::{ParetoFacet, ParetoFigure};
+use crate::report::figures::paths::PathsGridFigure;
+use crate::report::figures::planners_pareto::{PlanPoint, PlannersPareto};
+use crate::report::replication::{ablation, thesis_report};
+use crate::report::tables::{anova, groups};
+use crate::stats::median;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
 
@@ -26,7 +35,7 @@ pub(super) const SECTIONS: &[&dyn Section] = &[
     &ParetoFronts,
     &Diversity,
     &BestPaths,
-    &super::curves::CoverageCurves,
+    &curves::CoverageCurves,
     &PlannerComparison,
     &GroupTables,
     &ThesisTables,
@@ -61,7 +70,7 @@ impl Section for Heading {
 
 /// The Pareto figure: for the thesis GA alone, one panel per group, fronts over the executable
 /// plans on 003's measures; with any other planner, one panel per map on the common scorer's
-/// mission time and reachable coverage ([`super::planners_pareto`]).
+/// mission time and reachable coverage ([`PlannersPareto`]).
 struct ParetoFronts;
 
 impl Section for ParetoFronts {
@@ -91,13 +100,12 @@ impl Section for ParetoFronts {
 }
 
 /// The Pareto view across planners: per map, each run's plan in its group's series.
-fn planners_pareto(s: &Study) -> super::planners_pareto::PlannersPareto {
-    use super::planners_pareto::{PlanPoint, PlannersPareto};
+fn planners_pareto(s: &Study) -> PlannersPareto {
     let mut groups: Vec<String> = Vec::new();
     let mut panels: Vec<(String, Vec<PlanPoint>)> = Vec::new();
     for g in &s.groups {
         for &r in &g.rows {
-            let label = super::curves::series_label(&g.label, &s.get(r, "planner"), false);
+            let label = curves::series_label(&g.label, &s.get(r, "planner"), false);
             let group = match groups.iter().position(|l| *l == label) {
                 Some(k) => k,
                 None => {
@@ -118,7 +126,7 @@ fn planners_pareto(s: &Study) -> super::planners_pareto::PlannersPareto {
             }
         }
     }
-    let names = super::curves::distinct_parts(&groups);
+    let names = curves::distinct_parts(&groups);
     PlannersPareto { groups: names, panels }
 }
 
@@ -235,25 +243,25 @@ impl Section for BestPaths {
     }
 }
 
-/// The planner comparison of a study that runs several planners ([`super::ablation`]).
+/// The planner comparison of a study that runs several planners ([`ablation`]).
 struct PlannerComparison;
 
 impl Section for PlannerComparison {
     fn applies(&self, s: &Study) -> bool {
-        super::ablation::applies(&s.t)
+        ablation::applies(&s.t)
     }
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        md.push_str(&super::ablation::compare(s.dir, &s.t, &s.out)?.markdown);
+        md.push_str(&ablation::compare(s.dir, &s.t, &s.out)?.markdown);
         Ok(())
     }
 }
 
-/// The tables per group: fronts, best runs, configurations ([`super::report_tables`]).
+/// The tables per group: fronts, best runs, configurations ([`groups`]).
 struct GroupTables;
 
 impl Section for GroupTables {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        super::report_tables::GroupTables {
+        groups::GroupTables {
             t: &s.t,
             groups: &s.groups,
             best: &s.best,
@@ -267,25 +275,25 @@ impl Section for GroupTables {
     }
 }
 
-/// The thesis's tables and claims, for a study of the thesis GA ([`super::thesis_report`]).
+/// The thesis's tables and claims, for a study of the thesis GA ([`thesis_report`]).
 struct ThesisTables;
 
 impl Section for ThesisTables {
     fn applies(&self, s: &Study) -> bool {
-        super::thesis_report::applies(&s.t)
+        thesis_report::applies(&s.t)
     }
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        md.push_str(&super::thesis_report::sections(&s.t, &s.folders));
+        md.push_str(&thesis_report::sections(&s.t, &s.folders));
         Ok(())
     }
 }
 
-/// The ANOVA of the swept parameters ([`super::anova_report`]).
+/// The ANOVA of the swept parameters ([`anova`]).
 struct Anova;
 
 impl Section for Anova {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        md.push_str(&super::anova_report::section(&s.t, &s.params));
+        md.push_str(&anova::section(&s.t, &s.params));
         Ok(())
     }
 }

@@ -7,7 +7,7 @@
 //! Sums of squares are sequential (type I) in the order of the terms: main effects first, then
 //! interactions. For balanced, crossed grids (every combination of the unconditional factors,
 //! each with the same replicates) they equal the type II and III sums; the report fits only
-//! such grids and says why it fits none otherwise (`report::anova_report`).
+//! such grids and says why it fits none otherwise (`report::tables::anova`).
 
 use crate::stats::ranks;
 use faer::Mat;

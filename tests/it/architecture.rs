@@ -5,6 +5,8 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
+mod report_rooms;
+
 /// Top-level modules of `src/`, bottom layer first. Modules in one layer are peers: they may
 /// import each other, but never in a cycle. `ga` (selection, control, RNG streams, observers)
 /// needs nothing of the maps and sits below them, since the coverage layer hashes with its
@@ -28,6 +30,8 @@ const LAYERS: &[&[&str]] = &[
     &["usecase"],
     &["cli"],
     &["fuzz_entry"],
+    // Names what the layers hold for users and plugins; nothing imports it.
+    &["prelude"],
 ];
 
 /// The layer of a top-level module, or `None` for one the order does not name.

@@ -1,8 +1,8 @@
 //! covga's integration tests, one binary (one link, shared helpers in `tests/common`): a
 //! module per command (`*_cli`, `report_*`), per planner property (`cell_order`, `thesis_*`,
 //! `planner_contract`, `parent_schemes`, `reachable`), per contract of the repository
-//! (`architecture`, `citations`, `readme`, `reference`, `run_ids`, `generated_maps`, `stats_reference`) and the
-//! reliability suite of bad inputs and interrupts. The heavy replays of committed data (studies
+//! (`architecture`, `citations`, `readme`, `reference`, `run_ids`, `generated_maps`, `stats_reference`,
+//! `mutation_tooling`) and the reliability suite of bad inputs and interrupts. The heavy replays of committed data (studies
 //! re-run, reports re-made, the fuzzing corpus, every key variation) are the other binary,
 //! `tests/replays`. `cargo test --release --test it MODULE::` runs one module.
 
@@ -16,6 +16,7 @@ mod citations;
 mod eval_cli;
 mod generated_maps;
 mod grid_cli;
+mod mutation_tooling;
 mod parent_schemes;
 mod planner_contract;
 mod plugins;

@@ -3,17 +3,15 @@
 //! an experiment file then selects it with `planner = "rays"` and sets it with
 //! `[plugins.rays]`. Checked with no edit of covga: validation names its keys, the warnings
 //! name what it does not read, a run writes the usual folder scored by the common scorer, runs
-//! repeat exactly, and a grid study sweeps it beside a built-in planner.
+//! repeat exactly, and a grid study sweeps it beside a built-in planner. It takes everything it
+//! uses from `covga::prelude`, the crate's one import for planners from outside.
 
-use covga::config::{ConfigError, check_range};
-use covga::experiment::plugins::{PlannerPlugin, PluginError, PluginPlanner, register};
-use covga::experiment::registry::PlannerKind;
-use covga::ga::observer::Observer;
-use covga::geom::Point;
-use covga::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario, StopReason};
-use covga::study::grid::Study;
-use covga::study::runner::{RunDone, run_study};
-use covga::usecase::run::{ExperimentText, prepare, run_in_folder};
+use covga::prelude::{
+    Budget, ConfigError, Context, ExperimentText, Observer, Planner, PlannerError, PlannerKind, PlannerPlugin,
+    PluginError, PluginPlanner, Point, RunDone, RunOutcome, Scenario, StopReason, Study, check_range, details, prepare,
+    register, run_in_folder, run_study,
+};
+use std::path::Path;
 use std::sync::{Arc, Once};
 
 /// The toy planner's settings, checked.
@@ -43,7 +41,7 @@ impl Planner for Rays {
         Ok(RunOutcome::new(vec![path], StopReason::Completed)
             .with_objectives(vec![("rays", f64::from(self.rays))])
             .with_effort(1, 0)
-            .with_details(covga::planner::details(serde_json::json!({ "rays": self.rays }))))
+            .with_details(details(serde_json::json!({ "rays": self.rays }))))
     }
 }
 
@@ -143,4 +141,18 @@ fn a_planner_from_outside_runs_like_a_built_in_one_alone_and_in_a_grid() {
     let runs = std::fs::read_to_string(tmp.path().join("study/runs.csv")).unwrap();
     assert!(runs.lines().next().unwrap().contains("plugins.rays.rays"), "{runs}");
     assert_eq!(runs.lines().filter(|l| l.contains(",rays,")).count(), 2, "{runs}");
+}
+
+/// The toy planner reaches covga through the prelude alone: every `covga::` path of this file
+/// starts with `covga::prelude`, so what a planner from outside needs is there.
+#[test]
+fn the_toy_planner_imports_from_the_prelude_alone() {
+    let source = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/it/plugins.rs")).unwrap();
+    let needle = ["covga", "::"].concat();
+    let outside: Vec<&str> = source
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .filter(|l| l.match_indices(&needle).any(|(k, _)| !l[k + needle.len()..].starts_with("prelude")))
+        .collect();
+    assert!(outside.is_empty(), "paths into covga past its prelude:\n{}", outside.join("\n"));
 }

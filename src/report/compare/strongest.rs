@@ -4,7 +4,7 @@
 //! the faster one is the one a search has to beat). Which control that is, stratum by stratum,
 //! is stated in the comparison's text.
 
-use super::super::median;
+use crate::stats::median;
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 

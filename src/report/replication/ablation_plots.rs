@@ -1,12 +1,15 @@
-//! The figures of the planner comparison ([`super::ablation`]): box plots of coverage and
+//! The figures of the planner comparison ([`super::ablation`], read from [`super::comparing`]): box plots of coverage and
 //! time per map, the GAs' convergence curves (median and quartiles over seeds) and the best
 //! executable path of each planner on each map.
 
-use super::ablation::{Comparing, short_map};
-use super::ablation_figures::{BoxFigure, BoxSeries, ConvergenceFigure, Curve, PlannerPathsFigure};
+use super::comparing::{Comparing, short_map};
 use crate::coverage::CoverageGrid;
 use crate::plot::path::PathFigure;
-use crate::report::ReportError;
+use crate::report::analysis::ReportError;
+use crate::report::analysis::best::{COVERAGE, TIME, best_by_coverage_then_time};
+use crate::report::figures::boxes::{BoxFigure, BoxSeries};
+use crate::report::figures::convergence::{ConvergenceFigure, Curve};
+use crate::report::figures::paths::PlannerPathsFigure;
 use crate::stats::quartiles;
 use crate::study::records::RunsTable;
 use std::path::Path;
@@ -122,14 +125,13 @@ fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
 }
 
 /// The best run of each variant on each map on the common scorer's measures
-/// ([`crate::report::common_tables::best_by_coverage_then_time`]), loaded for its panel.
+/// ([`best_by_coverage_then_time`]), loaded for its panel.
 fn best_paths(c: &Comparing, dir: &Path) -> Vec<Vec<Option<LoadedPanel>>> {
     let mut loaded = Vec::new();
     for map in &c.maps {
         let mut row = Vec::new();
         for v in &c.variants {
             let rows = c.rows_of(map, v);
-            use crate::report::common_tables::{COVERAGE, TIME, best_by_coverage_then_time};
             let Some(best) = best_by_coverage_then_time(&rows, |r| (c.num(r, COVERAGE), c.num(r, TIME))) else {
                 row.push(None);
                 continue;

@@ -13,7 +13,6 @@ use crate::stats::{a12_magnitude, mann_whitney_u, quartiles};
 use crate::study::records::RunsTable;
 use statrs::distribution::{ContinuousCDF, Normal};
 use std::fmt::Write as _;
-use std::path::Path;
 
 /// What a verdict says.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -116,16 +115,6 @@ pub fn compare_rates((ka, na): (usize, usize), (kb, nb): (usize, usize), expect:
         1.0
     };
     ClaimTest { n, effect: pa - pb, p, verdict: judge(expect, pa > pb, p, n) }
-}
-
-/// Mean diversity over the last tenth of the rows of a run's `history.csv`.
-pub fn final_diversity(history: &Path) -> Option<f64> {
-    let text = std::fs::read_to_string(history).ok()?;
-    let mut lines = text.lines();
-    let col = lines.next()?.split(',').position(|h| h == "diversity")?;
-    let values: Vec<f64> = lines.filter_map(|l| l.split(',').nth(col)?.parse().ok()).collect();
-    let tail = &values[values.len() - (values.len() / 10).max(1).min(values.len())..];
-    (!tail.is_empty()).then(|| tail.iter().sum::<f64>() / tail.len() as f64)
 }
 
 /// The runs of the thesis figures (map 1, `R_rot` = 0) with what the claims read.
@@ -299,7 +288,7 @@ fn parameter_claims(runs: &Runs, out: &mut Vec<Row>) {
 
 /// The claims section of the thesis report, for the runs of `t`, their final diversity read
 /// through `folders`.
-pub fn section(t: &RunsTable, folders: &crate::report::folder_record::FolderRecords) -> String {
+pub fn section(t: &RunsTable, folders: &crate::report::analysis::folder_record::FolderRecords) -> String {
     let mut md = String::from("\n## The claims of 003 §5.1, checked\n\n");
     let rows: Vec<usize> = (0..t.rows.len())
         .filter(|&r| {
@@ -380,19 +369,5 @@ mod tests {
         assert_eq!(c.verdict, Verdict::Holds);
         assert_eq!(compare_rates((30, 100), (15, 100), Expect::Lower).verdict, Verdict::DoesNotHold);
         assert_eq!(compare_rates((0, 0), (1, 2), Expect::Lower).verdict, Verdict::CannotSay);
-    }
-
-    #[test]
-    fn final_diversity_is_the_mean_of_the_last_tenth() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = dir.path().join("history.csv");
-        let mut text = String::from("iteration,diversity\n");
-        for i in 0..20 {
-            text.push_str(&format!("{i},{}\n", i * 10));
-        }
-        std::fs::write(&p, text).unwrap();
-        // Last 2 of 20 rows: 180 and 190.
-        assert_eq!(final_diversity(&p), Some(185.0));
-        assert_eq!(final_diversity(&dir.path().join("none.csv")), None);
     }
 }

@@ -4,7 +4,7 @@
 //! plan); the makespan speed-up with fleet size; the negotiation's convergence. Methods are
 //! compared only through the fleet metrics of the common scorer ([`crate::fleet::metrics`]).
 
-use crate::report::ReportError;
+use crate::report::analysis::ReportError;
 use crate::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, sign_test, vargha_delaney_a12};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;

@@ -15,14 +15,20 @@
 //! committed `plans.md` re-makes byte for byte from committed files.
 
 use crate::ga::pareto::{hypervolume_2d, non_dominated};
-use crate::report::ReportError;
-use crate::report::compare::Rendered;
+use crate::report::analysis::ReportError;
+use crate::report::analysis::rendered::Rendered;
+use crate::report::analysis::runs::{read_filtered_runs, run_folder, with_failed_note};
+use crate::report::analysis::values::check_finite;
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 mod text;
+
+/// Why `--plans` and `--seed-to-seed` refuse a fleet study.
+pub(crate) const FLEET_NOT_PLANS: &str = "--plans and --seed-to-seed read studies of one robot's plans; this is a fleet study (its \
+                                          report compares the fleets' union coverage and makespan)";
 
 /// Relative slack when a population member is compared with the reference plan on `cov_final`
 /// and `t_final`: the seed genome scores as the plan it encodes up to a few cells (a lane edge
@@ -91,7 +97,7 @@ impl Reference {
         let text = std::fs::read_to_string(file).map_err(|e| input(e.to_string()))?;
         let table = RunsTable::parse(&text).map_err(input)?;
         // The reference rows are the yardstick of every run: checked as a study's own rows are.
-        crate::report::check_finite(&table).map_err(input)?;
+        check_finite(&table).map_err(input)?;
         let Some(map) = map_column(&table) else {
             return Err(input(
                 "no `map.source` or `map` column: the reference plans are matched to runs by their map".into(),
@@ -272,12 +278,12 @@ pub fn render(
     previous: &Path,
 ) -> Result<Rendered, ReportError> {
     let file = dir.join("runs.csv");
-    let (t, _, failed) = crate::report::read_filtered_runs(dir, filter)?;
+    let (t, _, failed) = read_filtered_runs(dir, filter)?;
     if t.rows.is_empty() {
         return Err(ReportError::Input(format!("{}: no runs to report", file.display())));
     }
     if super::fleet_report::applies(&t) {
-        return Err(ReportError::Input(crate::report::FLEET_NOT_PLANS.into()));
+        return Err(ReportError::Input(FLEET_NOT_PLANS.into()));
     }
     let reference = reference.map(Reference::read).transpose()?;
     let (Some(id), Some(map)) = (t.col("run_id"), map_column(&t)) else {
@@ -302,8 +308,7 @@ pub fn render(
             let target = reference
                 .as_ref()
                 .and_then(|r| Some((r.num(&row[map], "cov_final_free")?, r.num(&row[map], "t_final")?)));
-            let folder =
-                crate::report::run_folder(dir, &row[id], "the report reads each run's population from its folder")?;
+            let folder = run_folder(dir, &row[id], "the report reads each run's population from its folder")?;
             runs.insert(row[id].clone(), read_run(&folder, target)?);
         }
         runs
@@ -325,7 +330,7 @@ pub fn render(
     let markdown = text::markdown(&t, &runs, reference.as_ref());
     Ok(Rendered {
         stem: "plans".into(),
-        markdown: crate::report::with_failed_note(markdown, &failed),
+        markdown: with_failed_note(markdown, &failed),
         csv: to_csv(&ids, &runs),
         design: None,
     })

@@ -12,7 +12,8 @@
 //!   function × selection; the thesis's best individual, one seed) beside the same cell here:
 //!   the best run by f, the median run, and how many runs reach or dominate the thesis's point.
 
-use crate::report::ReportError;
+use crate::report::analysis::ReportError;
+use crate::report::analysis::runs::cell_matches;
 use crate::stats::{quartiles, spearman};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
@@ -181,9 +182,7 @@ fn thesis_cells(t: &RunsTable) -> String {
         let runs: Vec<&Vec<String>> = t
             .rows
             .iter()
-            .filter(|r| {
-                r[map] == m && crate::report::cell_matches(&r[rot], r_rot) && r[proj] == fitness && r[sel] == selection
-            })
+            .filter(|r| r[map] == m && cell_matches(&r[rot], r_rot) && r[proj] == fitness && r[sel] == selection)
             .collect();
         let Some(best) = runs.iter().copied().reduce(|a, b| if num(b, f) > num(a, f) { b } else { a }) else {
             continue;

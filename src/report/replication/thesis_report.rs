@@ -39,7 +39,7 @@ pub fn durations(t: &RunsTable) -> BTreeMap<String, (usize, f64, f64, f64)> {
 /// The thesis sections: run durations beside Table 4.4 and, for studies over the Table 4.3
 /// operators, the claims of 003 §5.1 checked on the runs of `t` (their histories read through
 /// `folders`).
-pub fn sections(t: &RunsTable, folders: &crate::report::folder_record::FolderRecords) -> String {
+pub fn sections(t: &RunsTable, folders: &crate::report::analysis::folder_record::FolderRecords) -> String {
     let mut md = section(t);
     if ["thesis.c_len", "thesis.c_child", "thesis.p_mi"].iter().all(|c| t.col(c).is_some()) {
         md.push_str(&super::claims::section(t, folders));

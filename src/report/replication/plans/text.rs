@@ -4,8 +4,8 @@
 //! paired tests between a factor's values are `covga report --compare`'s.
 
 use super::{EQUAL, HOLDS_TOLERANCE, Reference, RunPlans};
-use crate::report::design::split_followers;
-use crate::report::{cmp_group_values, param_columns};
+use crate::report::analysis::design::split_followers;
+use crate::report::analysis::runs::{cmp_group_values, param_columns};
 use crate::stats::quartiles;
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;

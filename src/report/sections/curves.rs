@@ -4,14 +4,13 @@
 //! and a table of the times to 80, 90 and 95 % of the reachable cells. Read from each run's
 //! `coverage_curve.csv` ([`crate::coverage::curve`]); executable plans only.
 
-use super::ReportError;
-use super::bound::AreaBounds;
-use super::study::Study;
+use super::Section;
 use crate::coverage::curve::{CoverageCurve, LEVELS};
-use crate::plot::{Figure, err, text};
-use crate::report::replication::ablation_figures::{draw_legend_strip, legend_strip_height};
-use plotters::coord::Shift;
-use plotters::prelude::*;
+use crate::report::analysis::ReportError;
+use crate::report::analysis::bound::AreaBounds;
+use crate::report::analysis::design::followed_by;
+use crate::report::analysis::study::Study;
+use crate::report::figures::curves::{CurvesFigure, Drawn};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
@@ -61,9 +60,7 @@ fn panel_columns(s: &Study) -> Vec<usize> {
         .filter_map(|p| s.t.col(p))
         .filter(|&c| {
             let values: std::collections::BTreeSet<&str> = s.t.rows.iter().map(|r| r[c].as_str()).collect();
-            values.len() > 1
-                && !values.contains("")
-                && map.is_none_or(|m| super::design::followed_by(&s.t, c, &[m]).is_none())
+            values.len() > 1 && !values.contains("") && map.is_none_or(|m| followed_by(&s.t, c, &[m]).is_none())
         })
         .collect()
 }
@@ -73,7 +70,7 @@ fn panel_columns(s: &Study) -> Vec<usize> {
 /// name the map (each panel is one map, and its title names it), and each key by its last
 /// name (`solver=ga`), so that the legend names what tells the series apart; a label with no
 /// part left is "executable runs".
-pub(super) fn distinct_parts(labels: &[String]) -> Vec<String> {
+pub(crate) fn distinct_parts(labels: &[String]) -> Vec<String> {
     let parts: Vec<Vec<&str>> = labels.iter().map(|l| l.split(", ").collect()).collect();
     let shared = |p: &str| labels.len() > 1 && parts.iter().all(|ps| ps.contains(&p));
     let short = |p: &str| match p.split_once('=') {
@@ -102,7 +99,7 @@ pub(super) fn distinct_parts(labels: &[String]) -> Vec<String> {
 /// The series a run of group `group` and planner `planner` belongs to: its `--by` group, with
 /// its planner where the study has several and the group does not name it; a group that names
 /// only the map (each panel is one map) is its planner's.
-pub(super) fn series_label(group: &str, planner: &str, one_planner: bool) -> String {
+pub(crate) fn series_label(group: &str, planner: &str, one_planner: bool) -> String {
     let only_map = group.split(", ").all(|part| part.starts_with("map.") || part.is_empty());
     match (one_planner, group.contains("planner=")) {
         (true, _) | (false, true) => group.to_string(),
@@ -173,9 +170,9 @@ fn panels(s: &Study, bounds: &AreaBounds) -> Panels {
 }
 
 /// The section: the figure and the table, where runs have curves.
-pub(super) struct CoverageCurves;
+pub(crate) struct CoverageCurves;
 
-impl super::sections::Section for CoverageCurves {
+impl Section for CoverageCurves {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
         let bounds = AreaBounds::of(s.dir, &s.t);
         let panels = match panels(s, &bounds) {
@@ -261,13 +258,6 @@ fn level_cell(times: &[f64], ratios: &[f64]) -> String {
     }
 }
 
-/// A series drawn: label, runs, and `(time, median, q1, q3)` at the panel's sample times.
-struct Drawn {
-    label: String,
-    runs: usize,
-    curve: Vec<(f64, f64, f64, f64)>,
-}
-
 /// Samples every series of a panel at [`SAMPLES`] times up to the longest plan's end.
 fn summarise(series: &[Series]) -> Vec<Drawn> {
     let end =
@@ -288,104 +278,6 @@ fn summarise(series: &[Series]) -> Vec<Drawn> {
                 .collect(),
         })
         .collect()
-}
-
-/// One panel per map, one median line and quartile band per series; one legend below the
-/// panels, each series in one colour in every panel.
-struct CurvesFigure {
-    panels: Vec<(String, Vec<Drawn>)>,
-}
-
-const CURVES_TITLE: &str =
-    "Time to coverage: reachable coverage over mission time (median, band = quartiles over runs)";
-
-impl CurvesFigure {
-    /// Rows and columns of panels: one column up to three panels, two beyond.
-    fn grid(&self) -> (usize, usize) {
-        let n = self.panels.len().max(1);
-        if n <= 3 { (n, 1) } else { (n.div_ceil(2), 2) }
-    }
-
-    /// Every series in the order it first appears, with its legend label.
-    fn series(&self) -> Vec<String> {
-        let mut labels: Vec<String> = Vec::new();
-        for d in self.panels.iter().flat_map(|(_, s)| s) {
-            if !labels.contains(&d.label) {
-                labels.push(d.label.clone());
-            }
-        }
-        labels
-    }
-
-    /// The legend's entries: each series with its runs (summed over the panels).
-    fn entries(&self) -> Vec<String> {
-        self.series()
-            .into_iter()
-            .map(|label| {
-                let runs: usize =
-                    self.panels.iter().flat_map(|(_, s)| s).filter(|d| d.label == label).map(|d| d.runs).sum();
-                format!("{label} ({})", crate::plot::runs_text(runs))
-            })
-            .collect()
-    }
-
-    fn legend_height(&self, width: u32) -> u32 {
-        legend_strip_height(&self.entries(), width)
-    }
-}
-
-impl Figure for CurvesFigure {
-    fn size(&self) -> (u32, u32) {
-        let (rows, columns) = self.grid();
-        let width = 800 * columns as u32;
-        (width, crate::plot::title_height(CURVES_TITLE, width, 18.0) + 320 * rows as u32 + self.legend_height(width))
-    }
-
-    fn draw<DB: DrawingBackend>(&self, root: &DrawingArea<DB, Shift>) -> Result<(), String> {
-        let root = crate::plot::titled(root, CURVES_TITLE, 18.0)?;
-        let (width, height) = root.dim_in_pixel();
-        let (panels, strip) = root.split_vertically(height - self.legend_height(width));
-        let series = self.series();
-        let entries = self.entries();
-        draw_legend_strip(&strip, &entries, |k, (x, y)| {
-            let colour = crate::plot::series_colour(k);
-            strip.draw(&PathElement::new(vec![(x, y), (x + 22, y)], colour.stroke_width(3))).map_err(err)
-        })?;
-        for (area, (map, drawn)) in panels.split_evenly(self.grid()).iter().zip(&self.panels) {
-            let x_max = drawn.iter().flat_map(|s| s.curve.last().map(|c| c.0)).fold(1.0, f64::max);
-            let mut chart = ChartBuilder::on(area)
-                .caption(crate::plot::panel_label(map), text(15.0))
-                .margin(8)
-                .margin_right(24)
-                .x_label_area_size(45)
-                .y_label_area_size(70)
-                .build_cartesian_2d(0.0..x_max, 0.0..1.0)
-                .map_err(err)?;
-            chart
-                .configure_mesh()
-                .y_label_formatter(&|v| format!("{v:.1}"))
-                .x_label_formatter(&|v| format!("{v:.0}"))
-                // No minor grid: at one line every few pixels it blurred the curves and made
-                // the PNG of a many-map study tens of megabytes.
-                .max_light_lines(0)
-                .x_desc("mission time [s]")
-                .y_desc("coverage of reachable cells")
-                .label_style(text(14.0))
-                .axis_desc_style(text(14.0))
-                .draw()
-                .map_err(err)?;
-            let one_px = 1.0 / f64::from(chart.plotting_area().dim_in_pixel().1.max(1));
-            for s in drawn {
-                let colour = crate::plot::series_colour(series.iter().position(|l| *l == s.label).unwrap_or(0));
-                let band: Vec<(f64, f64)> =
-                    s.curve.iter().map(|c| (c.0, c.3)).chain(s.curve.iter().rev().map(|c| (c.0, c.2))).collect();
-                chart.draw_series([Polygon::new(band, colour.mix(0.15).filled())]).map_err(err)?;
-                let median: Vec<(f64, f64)> = s.curve.iter().map(|c| (c.0, c.1)).collect();
-                crate::plot::draw_series_line(&mut chart, &median, colour, one_px)?;
-            }
-        }
-        Ok(())
-    }
 }
 
 #[cfg(test)]
@@ -425,46 +317,6 @@ mod tests {
         assert_eq!(distinct_parts(&by_map), ["executable runs", "executable runs"]);
         let both = ["map.source=office, thesis.moves=routed".to_string()];
         assert_eq!(distinct_parts(&both), ["moves=routed"]);
-    }
-
-    /// The four study shapes: every text on the canvas, no repeated tick, every series and map
-    /// named, "1 run" for one.
-    #[test]
-    fn the_curves_figure_keeps_its_texts_on_the_canvas() {
-        let drawn = |label: &str, runs: usize| Drawn {
-            label: label.into(),
-            runs,
-            curve: (0..=10).map(|k| (k as f64 * 400.0, (k as f64 / 10.0).min(0.95), 0.0, 1.0)).collect(),
-        };
-        type Panels = Vec<(String, Vec<Drawn>)>;
-        let shapes: [(&str, Panels); 4] = [
-            ("thesis", vec![("thesis-1".into(), vec![drawn("selection=elite", 10), drawn("selection=nsga2", 10)])]),
-            (
-                "mixed",
-                vec![(
-                    "experiments/maps/generated/office-1.yaml".into(),
-                    vec![drawn("boustrophedon", 1), drawn("spiral", 1), drawn("solver=ga", 3), drawn("solver=ils", 3)],
-                )],
-            ),
-            ("one run", vec![("basement".into(), vec![drawn("nearest", 1)])]),
-            ("many maps", (0..5).map(|m| (format!("maps/house-{m}.yaml"), vec![drawn("ils", 5)])).collect()),
-        ];
-        let mut found = Vec::new();
-        for (name, panels) in shapes {
-            let mut expected: Vec<String> =
-                panels.iter().flat_map(|(_, d)| d.iter().map(|d| d.label.clone())).collect();
-            expected.extend(panels.iter().map(|(m, _)| crate::plot::panel_label(m)));
-            let figure = CurvesFigure { panels };
-            let expected: Vec<&str> = expected.iter().map(String::as_str).collect();
-            for p in crate::plot::layout::problems(&figure, &expected).unwrap() {
-                found.push(format!("{name}: {p}"));
-            }
-            let texts = crate::plot::layout::drawn_texts(&figure).unwrap();
-            if texts.iter().any(|t| t.text.contains("(1 runs)") || t.text.starts_with("map ")) {
-                found.push(format!("{name}: \"1 runs\" or a map's path as a title"));
-            }
-        }
-        assert!(found.is_empty(), "{}", found.join("\n"));
     }
 
     #[test]

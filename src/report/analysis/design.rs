@@ -1,12 +1,13 @@
 //! How the swept parameters of a study relate: which one follows (is a function of) others,
 //! so that a report names it as confounded with them instead of testing it on its own, and
-//! which are crossed with each other.
+//! which are crossed with each other; and the fitness projection a study may sweep, within
+//! which a best or a mean of `f` is taken.
 
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 
 /// Whether the column `c` is a function of the columns `of` over the rows.
-pub(super) fn follows(t: &RunsTable, c: usize, of: &[usize]) -> bool {
+pub(crate) fn follows(t: &RunsTable, c: usize, of: &[usize]) -> bool {
     let mut seen: BTreeMap<Vec<&str>, &str> = BTreeMap::new();
     t.rows.iter().all(|r| {
         let key: Vec<&str> = of.iter().map(|&i| r[i].as_str()).collect();
@@ -16,7 +17,7 @@ pub(super) fn follows(t: &RunsTable, c: usize, of: &[usize]) -> bool {
 
 /// The columns among `kept` that `c` follows: one alone where one suffices, else all of them;
 /// `None` when `c` does not follow them.
-pub(super) fn followed_by(t: &RunsTable, c: usize, kept: &[usize]) -> Option<String> {
+pub(crate) fn followed_by(t: &RunsTable, c: usize, kept: &[usize]) -> Option<String> {
     let names = |cols: &[usize]| cols.iter().map(|&i| t.header[i].as_str()).collect::<Vec<_>>().join(", ");
     if kept.is_empty() || !follows(t, c, kept) {
         return None;
@@ -27,7 +28,7 @@ pub(super) fn followed_by(t: &RunsTable, c: usize, kept: &[usize]) -> Option<Str
 /// The swept columns `candidates` (in order) that vary, split into the ones kept as factors
 /// of their own and the ones that follow the kept ones before them (with the names of those
 /// they follow). A column set to one value in every row is in neither.
-pub(super) fn split_followers(t: &RunsTable, candidates: &[usize]) -> (Vec<usize>, Vec<(usize, String)>) {
+pub(crate) fn split_followers(t: &RunsTable, candidates: &[usize]) -> (Vec<usize>, Vec<(usize, String)>) {
     let (mut kept, mut followers) = (Vec::new(), Vec::new());
     for &c in candidates {
         let values: std::collections::BTreeSet<&str> = t.rows.iter().map(|r| r[c].as_str()).collect();
@@ -44,7 +45,7 @@ pub(super) fn split_followers(t: &RunsTable, candidates: &[usize]) -> (Vec<usize
 
 /// How a factor's values meet the other factors in the rows where it is set.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub(super) enum Crossing {
+pub(crate) enum Crossing {
     /// Every combination of the other factors that occurs with one of its values occurs with
     /// each of them: a difference between its values is its own (the factors `nested`, set
     /// under some of its values only, are pooled within those).
@@ -58,7 +59,7 @@ pub(super) enum Crossing {
 /// set). A factor set under some of `p`'s values and empty under the others (a tournament size
 /// under tournament selection only) is nested in `p`, not crossed with it, and is left out of
 /// the check.
-pub(super) fn crossing(t: &RunsTable, p: usize, rows: &[usize], others: &[usize]) -> Crossing {
+pub(crate) fn crossing(t: &RunsTable, p: usize, rows: &[usize], others: &[usize]) -> Crossing {
     let value_of = |r: usize, c: usize| t.rows[r][c].as_str();
     let mut by_value: BTreeMap<&str, Vec<usize>> = BTreeMap::new();
     for &r in rows {
@@ -106,6 +107,39 @@ pub(super) fn crossing(t: &RunsTable, p: usize, rows: &[usize], others: &[usize]
         })
         .collect();
     Crossing::NotCrossed { with: if with.is_empty() { checked } else { with } }
+}
+
+/// The swept key that picks the fitness function.
+pub const PROJECTION: &str = "scorer.projection";
+
+/// The projections of a study that sweeps them, when `metric` is an `f` (which then must be
+/// compared within one projection only); `None` otherwise.
+pub fn projection_levels(t: &RunsTable, metric: &str) -> Option<Vec<String>> {
+    if !metric.starts_with("f_") {
+        return None;
+    }
+    let c = t.col(PROJECTION)?;
+    let levels: std::collections::BTreeSet<String> =
+        t.rows.iter().map(|r| r[c].clone()).filter(|v| !v.is_empty()).collect();
+    (levels.len() > 1).then(|| levels.into_iter().collect())
+}
+
+/// `rows` per projection where the study sweeps it (f1 and f2 are different functions, so a
+/// best or a mean of f is taken within one), each with the suffix that names it; otherwise all
+/// of `rows` with an empty suffix.
+pub fn projection_scopes(t: &RunsTable, rows: &[usize]) -> Vec<(String, Vec<usize>)> {
+    let (Some(levels), Some(c)) = (projection_levels(t, "f_free"), t.col(PROJECTION)) else {
+        return vec![(String::new(), rows.to_vec())];
+    };
+    let scopes: Vec<(String, Vec<usize>)> = levels
+        .into_iter()
+        .filter_map(|l| {
+            let scoped: Vec<usize> = rows.iter().copied().filter(|&r| t.rows[r][c] == l).collect();
+            (!scoped.is_empty()).then(|| (format!(", {PROJECTION}={l}"), scoped))
+        })
+        .collect();
+    // Rows of one projection (a group of `--by scorer.projection`) need no split.
+    if scopes.len() > 1 { scopes } else { vec![(String::new(), rows.to_vec())] }
 }
 
 #[cfg(test)]

@@ -1,18 +1,23 @@
 //! A study folder as `covga report` reads it: the runs table checked once ([`Loaded`]), and the
 //! groups, Pareto facets, best runs and configurations every section shares ([`Study`]).
 
-use super::figures::ParetoFacet;
-use super::{
-    ConfigRow, Group, ReportError, ReportOptions, cell_matches, check_finite, cmp_group_values, coverage_front,
-    failed_note, incomplete_note, param_columns, take_failed,
+use super::ReportError;
+use super::best::{COVERAGE, TIME, best_by_coverage_then_time};
+use super::design::projection_scopes;
+use super::folder_record::FolderRecords;
+use super::runs::{
+    ConfigRow, Group, cell_matches, cmp_group_values, coverage_front, failed_note, incomplete_note, param_columns,
+    take_failed, where_keys,
 };
+use super::values::{check_against_grid, check_finite};
+use crate::report::figures::pareto::ParetoFacet;
 use crate::stats::mean_ci95;
 use crate::study::records::RunsTable;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// A study folder's runs, checked and filtered, and where its report goes.
-pub(super) struct Loaded {
+pub(crate) struct Loaded {
     /// The runs that finished, after `--where`.
     pub t: RunsTable,
     /// The `--where` filters, in words (`key = value`).
@@ -26,17 +31,23 @@ pub(super) struct Loaded {
 }
 
 impl Loaded {
-    /// Reads `dir`'s `study.json` and `runs.csv`, sets failed runs apart, applies the filters
-    /// of `opts` and checks its `--by` columns; creates nothing ([`Loaded::create_folder`] does,
-    /// once every part of the report has been made).
-    pub fn read(dir: &Path, opts: &ReportOptions) -> Result<Self, ReportError> {
+    /// Reads `dir`'s `study.json` and `runs.csv`, sets failed runs apart, applies the `--where`
+    /// pairs of `filter` and checks the `--by` columns `by`; the report folder is named by
+    /// `name` (`--name`). Creates nothing ([`Loaded::create_folder`] does, once every part of
+    /// the report has been made).
+    pub fn read(
+        dir: &Path,
+        by: &[String],
+        filter: &[(String, String)],
+        name: Option<&str>,
+    ) -> Result<Self, ReportError> {
         check_study_json(dir)?;
         let runs_file = dir.join("runs.csv");
         let text = std::fs::read_to_string(&runs_file).map_err(|e| missing_runs(dir, &runs_file, e))?;
         let input = |m: String| ReportError::Input(format!("{}: {m}", runs_file.display()));
         let mut t = RunsTable::parse(&text).map_err(input)?;
         check_finite(&t).map_err(input)?;
-        super::check_against_grid(dir, &t).map_err(input)?;
+        check_against_grid(dir, &t).map_err(input)?;
         let recorded = t.rows.len();
         let failed = take_failed(&mut t);
         if t.rows.is_empty() && !failed.is_empty() {
@@ -47,18 +58,18 @@ impl Loaded {
                 failed[0]
             )));
         }
-        let selected = apply_filters(&mut t, &opts.filter, &runs_file)?;
+        let selected = apply_filters(&mut t, filter, &runs_file)?;
         if t.rows.is_empty() {
             return Err(ReportError::Input(format!("{}: no runs recorded yet", runs_file.display())));
         }
-        if let Some(b) = opts.by.iter().find(|b| t.col(b).is_none()) {
+        if let Some(b) = by.iter().find(|b| t.col(b).is_none()) {
             return Err(ReportError::Input(format!(
                 "--by `{b}` is not a column of {}; columns: {}",
                 runs_file.display(),
                 t.header.join(", ")
             )));
         }
-        let out = report_folder(dir, opts.name.as_deref())?;
+        let out = report_folder(dir, name)?;
         // Without the runs' own files the report has tables only: say so rather than leave the
         // path and history figures out without a word.
         let no_run_files = (!dir.join("runs").is_dir()).then(|| {
@@ -150,7 +161,7 @@ fn missing_runs(dir: &Path, runs_file: &Path, e: std::io::Error) -> ReportError 
 /// any of its values); the filters in words.
 fn apply_filters(t: &mut RunsTable, filter: &[(String, String)], runs_file: &Path) -> Result<Vec<String>, ReportError> {
     let mut selected = Vec::new();
-    for (key, wants) in super::where_keys(filter) {
+    for (key, wants) in where_keys(filter) {
         let Some(c) = t.col(key) else {
             return Err(ReportError::Input(format!(
                 "--where `{key}` is not a column of {}; columns: {}",
@@ -174,7 +185,7 @@ fn apply_filters(t: &mut RunsTable, filter: &[(String, String)], runs_file: &Pat
 }
 
 /// `<dir>/report`, or `<dir>/report-NAME` for `--name NAME`.
-pub(super) fn report_folder(dir: &Path, name: Option<&str>) -> Result<PathBuf, ReportError> {
+pub(crate) fn report_folder(dir: &Path, name: Option<&str>) -> Result<PathBuf, ReportError> {
     match name {
         Some(name) => {
             if name.is_empty() || !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
@@ -189,7 +200,7 @@ pub(super) fn report_folder(dir: &Path, name: Option<&str>) -> Result<PathBuf, R
 }
 
 /// What the sections of a report share, computed once.
-pub(super) struct Study<'a> {
+pub(crate) struct Study<'a> {
     /// The study folder.
     pub dir: &'a Path,
     /// The `--by` columns.
@@ -214,12 +225,12 @@ pub(super) struct Study<'a> {
     /// Configurations over their replicates, best mean f first.
     pub configs: Vec<ConfigRow>,
     /// The runs' folders, or what an earlier report recorded of them.
-    pub folders: super::folder_record::FolderRecords,
+    pub folders: FolderRecords,
 }
 
 impl<'a> Study<'a> {
     /// Groups, facets, best runs and configurations of `loaded`.
-    pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded, folders: super::folder_record::FolderRecords) -> Self {
+    pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded, folders: FolderRecords) -> Self {
         let Loaded { t, selected, out, incomplete, failed: _ } = loaded;
         let mut study = Self {
             dir,
@@ -257,7 +268,7 @@ impl<'a> Study<'a> {
 
     /// Whether the study's figures and tables give the common scorer's measures (mission time
     /// and reachable coverage): every study that runs a planner other than the thesis GA, whose
-    /// `t_final` and `f` are 003's own measures ([`super::common_tables`]).
+    /// `t_final` and `f` are 003's own measures ([`super::best`]).
     pub fn common_measures(&self) -> bool {
         self.kinds.iter().any(|k| k != "thesis")
     }
@@ -307,14 +318,14 @@ impl<'a> Study<'a> {
     /// Best run per group (per group and projection where the study sweeps it: f1 and f2 are
     /// different functions): the best executable one by `f_free`, or on the common scorer's
     /// measures ([`Study::common_measures`]) by
-    /// [`super::common_tables::best_by_coverage_then_time`]; a scope without one shows its best
+    /// [`best_by_coverage_then_time`]; a scope without one shows its best
     /// run all the same.
     fn best_runs(&self) -> Vec<(String, usize)> {
         let common = self.common_measures();
         self.groups
             .iter()
             .flat_map(|g| {
-                super::report_tables::projection_scopes(&self.t, &g.rows).into_iter().map(|(suffix, rows)| {
+                projection_scopes(&self.t, &g.rows).into_iter().map(|(suffix, rows)| {
                     let pool: Vec<usize> = rows.iter().copied().filter(|&r| self.executable(r)).collect();
                     let pool = if pool.is_empty() { rows } else { pool };
                     let by_f = || {
@@ -323,7 +334,6 @@ impl<'a> Study<'a> {
                             .max_by(|&&a, &&b| self.num(a, "f_free").total_cmp(&self.num(b, "f_free")))
                             .expect("non-empty scope")
                     };
-                    use super::common_tables::{COVERAGE, TIME, best_by_coverage_then_time};
                     let r = match common {
                         true => best_by_coverage_then_time(&pool, |r| (self.num(r, COVERAGE), self.num(r, TIME)))
                             .unwrap_or_else(by_f),

@@ -1,7 +1,7 @@
 //! The ANOVA section of `covga report` (003 §5.3): which swept parameters explain how much of
 //! each metric's spread, and how much is left to the seed.
 
-use super::design::{Crossing, crossing, split_followers};
+use crate::report::analysis::design::{Crossing, PROJECTION, crossing, projection_levels, split_followers};
 use crate::stats::anova::{Anova, Factor, TermSpec, anova, replicate_spread};
 use crate::study::records::RunsTable;
 use std::fmt::Write as _;
@@ -97,21 +97,6 @@ fn table(out: &mut Written, a: &Anova, spread: (f64, f64)) {
     out.full.push('\n');
     out.condensed.push_str(&residual);
     out.condensed.push('\n');
-}
-
-/// The swept key that picks the fitness function.
-pub const PROJECTION: &str = "scorer.projection";
-
-/// The projections of a study that sweeps them, when `metric` is an `f` (which then must be
-/// compared within one projection only); `None` otherwise.
-pub fn projection_levels(t: &RunsTable, metric: &str) -> Option<Vec<String>> {
-    if !metric.starts_with("f_") {
-        return None;
-    }
-    let c = t.col(PROJECTION)?;
-    let levels: std::collections::BTreeSet<String> =
-        t.rows.iter().map(|r| r[c].clone()).filter(|v| !v.is_empty()).collect();
-    (levels.len() > 1).then(|| levels.into_iter().collect())
 }
 
 /// The rows of `t` whose `column` is `value`.

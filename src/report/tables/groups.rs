@@ -2,34 +2,16 @@
 //! group (003 Tables A.1/A.2), fronts with hypervolume and run durations (Table 4.4), means
 //! with confidence intervals, and the Kruskal–Wallis tests of [`super::effects`].
 
-use super::anova_report::{PROJECTION, projection_levels};
-use super::figures::ParetoFacet;
-use super::{ConfigRow, Group};
 use crate::ga::pareto::hypervolume_2d;
+use crate::report::analysis::design::{PROJECTION, projection_levels, projection_scopes};
+use crate::report::analysis::runs::{ConfigRow, Group};
+use crate::report::figures::pareto::ParetoFacet;
 use crate::stats::{mean_ci95, mean_min_max};
 use crate::study::records::RunsTable;
 use std::fmt::Write as _;
 
-/// `rows` per projection where the study sweeps it (f1 and f2 are different functions, so a
-/// best or a mean of f is taken within one), each with the suffix that names it; otherwise all
-/// of `rows` with an empty suffix.
-pub(super) fn projection_scopes(t: &RunsTable, rows: &[usize]) -> Vec<(String, Vec<usize>)> {
-    let (Some(levels), Some(c)) = (projection_levels(t, "f_free"), t.col(PROJECTION)) else {
-        return vec![(String::new(), rows.to_vec())];
-    };
-    let scopes: Vec<(String, Vec<usize>)> = levels
-        .into_iter()
-        .filter_map(|l| {
-            let scoped: Vec<usize> = rows.iter().copied().filter(|&r| t.rows[r][c] == l).collect();
-            (!scoped.is_empty()).then(|| (format!(", {PROJECTION}={l}"), scoped))
-        })
-        .collect();
-    // Rows of one projection (a group of `--by scorer.projection`) need no split.
-    if scopes.len() > 1 { scopes } else { vec![(String::new(), rows.to_vec())] }
-}
-
 /// What the tables are made of.
-pub(super) struct GroupTables<'a> {
+pub(crate) struct GroupTables<'a> {
     /// The runs.
     pub t: &'a RunsTable,
     /// The groups of `--by`.
@@ -44,7 +26,7 @@ pub(super) struct GroupTables<'a> {
     /// The swept-parameter columns.
     pub params: &'a [String],
     /// Whether the tables give the common scorer's measures (a study that runs any planner
-    /// other than the thesis GA, [`super::common_tables`]) instead of 003's.
+    /// other than the thesis GA, [`super::common`]) instead of 003's.
     pub common: bool,
 }
 
@@ -63,17 +45,17 @@ impl GroupTables<'_> {
     }
 
     /// A number of row `r` (NaN where absent).
-    pub(super) fn num(&self, r: usize, c: &str) -> f64 {
+    pub(crate) fn num(&self, r: usize, c: &str) -> f64 {
         self.t.num(&self.t.rows[r], c).unwrap_or(f64::NAN)
     }
 
     /// The mean, least and most wall time of `rows`' runs [s].
-    pub(super) fn wall_times(&self, rows: &[usize]) -> (f64, f64, f64) {
+    pub(crate) fn wall_times(&self, rows: &[usize]) -> (f64, f64, f64) {
         mean_min_max(&rows.iter().map(|&r| self.num(r, "wall_s")).collect::<Vec<_>>())
     }
 
     /// A cell of row `r` (empty where absent).
-    pub(super) fn get(&self, r: usize, c: &str) -> String {
+    pub(crate) fn get(&self, r: usize, c: &str) -> String {
         self.t.col(c).map(|i| self.t.rows[r][i].clone()).unwrap_or_default()
     }
 
@@ -249,7 +231,7 @@ impl GroupTables<'_> {
 
 /// A table cell of a mean and its 95 % CI half-width: "–" without runs, the mean alone with
 /// "(1 run)" where one run gives no interval.
-pub(super) fn mean_ci_cell((mean, half): (f64, f64)) -> String {
+pub(crate) fn mean_ci_cell((mean, half): (f64, f64)) -> String {
     match (mean.is_finite(), half.is_finite()) {
         (false, _) => "–".to_string(),
         (true, false) => format!("{mean:.4} (1 run)"),

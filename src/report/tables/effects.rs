@@ -13,9 +13,8 @@
 //! what its GA optimises (coverage of all free cells, `t_final`, f within one projection). All
 //! tests of the section form one family, Holm-corrected, and the section says so.
 
-use super::anova_report::{PROJECTION, projection_levels};
-use super::cmp_group_values;
-use super::design::{Crossing, crossing, split_followers};
+use crate::report::analysis::design::{Crossing, PROJECTION, crossing, projection_levels, split_followers};
+use crate::report::analysis::runs::cmp_group_values;
 use crate::stats::{Family, kruskal_wallis, quartiles};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
@@ -41,7 +40,7 @@ const MEASURES: [(&str, &str, bool); 5] = [
 ];
 
 /// Appends the section to `md`: the tests of `params` (swept columns) over `t`'s runs.
-pub(super) fn section(md: &mut String, t: &RunsTable, params: &[String]) {
+pub(crate) fn section(md: &mut String, t: &RunsTable, params: &[String]) {
     let candidates: Vec<usize> = params.iter().filter_map(|p| t.col(p)).collect();
     let (kept, followers) = split_followers(t, &candidates);
     let name = |c: usize| t.header[c].clone();

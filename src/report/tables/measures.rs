@@ -13,8 +13,9 @@
 //! the column of `history.csv` in the row of that iteration; else a dotted path into
 //! `summary.json` (`objectives.wall_coverage`).
 
-use super::ReportError;
-use super::compare::Rendered;
+use crate::report::analysis::ReportError;
+use crate::report::analysis::rendered::Rendered;
+use crate::report::analysis::runs::{Group, run_folder};
 use crate::study::records::RunsTable;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -221,15 +222,15 @@ fn summarise(values: &[Value]) -> String {
         return format!("{yes}/{bools}{without}");
     }
     let (lo, hi) = nums.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| (a.min(x), b.max(x)));
-    format!("{} [{}, {}]{without}", significant(super::median(&mut nums)), significant(lo), significant(hi))
+    format!("{} [{}, {}]{without}", significant(crate::stats::median(&mut nums)), significant(lo), significant(hi))
 }
 
 /// Makes `measures.md` and `measures.csv` of `keys` over `groups` of `t`, reading the run
 /// folders of `dir` or, where the study holds none, `previous/measures.csv`; writes nothing.
-pub(super) fn render(
+pub(crate) fn render(
     dir: &Path,
     t: &RunsTable,
-    groups: &[super::Group],
+    groups: &[Group],
     selected: &[String],
     keys: &[String],
     previous: &Path,
@@ -247,7 +248,7 @@ pub(super) fn render(
     } else if dir.join("runs").is_dir() {
         let mut all = BTreeMap::new();
         for row in &t.rows {
-            let folder = super::run_folder(dir, &row[id], "--measure reads it there")?;
+            let folder = run_folder(dir, &row[id], "--measure reads it there")?;
             all.insert(row[id].clone(), read_folder(&folder, &sources)?);
         }
         all
@@ -300,7 +301,7 @@ pub(super) fn render(
 fn markdown(
     t: &RunsTable,
     id: usize,
-    groups: &[super::Group],
+    groups: &[Group],
     sources: &[(String, Source)],
     values: &BTreeMap<&str, Vec<Value>>,
 ) -> String {

@@ -179,8 +179,8 @@ pub fn write(
     dir: &std::path::Path,
     previous: &std::path::Path,
     out: &std::path::Path,
-) -> Result<std::path::PathBuf, super::ReportError> {
-    use super::ReportError;
+) -> Result<std::path::PathBuf, crate::report::analysis::ReportError> {
+    use crate::report::analysis::ReportError;
     let read = |p: &std::path::Path| -> Result<RunsTable, ReportError> {
         let text = std::fs::read_to_string(p).map_err(|e| ReportError::Input(format!("{}: {e}", p.display())))?;
         RunsTable::parse(&text).map_err(|m| ReportError::Input(format!("{}: {m}", p.display())))

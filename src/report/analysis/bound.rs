@@ -33,7 +33,7 @@ enum Robots {
 }
 
 /// Each run's lower bound on its times to coverage, or why the study's runs have none.
-pub(super) struct AreaBounds {
+pub(crate) struct AreaBounds {
     runs: BTreeMap<String, RunBound>,
     /// Why no bound is given, where some run has none.
     pub missing: Option<String>,

@@ -4,51 +4,16 @@
 //! (its time efficiency and its weighted fitness) and do not rank plans of different planners,
 //! so these tables leave them to `runs.csv` and `configurations.csv`.
 //!
-//! The best plan of a set is the one covering most, where a plan within
-//! [`COVERAGE_TIE`] of that coverage is as good and the fastest of those wins: a planner that
-//! covers 0.1 % more in twice the time is not the better one.
+//! The best plan of a set is picked by [`best_by_coverage_then_time`].
 
-use super::planners_pareto::{PlanPoint, non_dominated};
-use super::report_tables::GroupTables;
-use crate::cell_order::controls::COVERAGE_TIE;
+use super::groups::{GroupTables, mean_ci_cell};
+use crate::report::analysis::best::{COVERAGE, TIME, best_by_coverage_then_time, rule_in_words};
+use crate::report::figures::planners_pareto::{PlanPoint, non_dominated};
 use crate::stats::mean_ci95;
 use std::fmt::Write as _;
 
 /// A mean and its 95 % CI half-width.
 type MeanCi = (f64, f64);
-
-/// The common scorer's coverage column.
-pub const COVERAGE: &str = "cov_final_reach";
-/// The common scorer's mission-time column, in seconds.
-pub const TIME: &str = "time_s";
-
-/// The best of `items` by coverage and time: the fastest of those within [`COVERAGE_TIE`] of
-/// the highest coverage, the first of equals; `None` when no item has a finite coverage and
-/// time.
-pub fn best_by_coverage_then_time<T: Copy>(items: &[T], measures: impl Fn(T) -> (f64, f64)) -> Option<T> {
-    let finite: Vec<(T, f64, f64)> = items
-        .iter()
-        .map(|&i| {
-            let (c, t) = measures(i);
-            (i, c, t)
-        })
-        .filter(|(_, c, t)| c.is_finite() && t.is_finite())
-        .collect();
-    let top = finite.iter().map(|x| x.1).fold(f64::NEG_INFINITY, f64::max);
-    finite
-        .iter()
-        .filter(|x| x.1 >= top - COVERAGE_TIE)
-        .fold(None, |best: Option<&(T, f64, f64)>, x| match best {
-            Some(b) if b.2 <= x.2 => Some(b),
-            _ => Some(x),
-        })
-        .map(|x| x.0)
-}
-
-/// The rule [`best_by_coverage_then_time`] applies, in words for a table's heading.
-pub fn rule_in_words() -> String {
-    format!("highest {COVERAGE}; of those within {COVERAGE_TIE} of it, the shortest {TIME}")
-}
 
 impl GroupTables<'_> {
     /// The columns that name a run's configuration: `planner` where the study runs several
@@ -68,7 +33,7 @@ impl GroupTables<'_> {
     }
 
     /// Appends the tables on the common scorer's measures to `md`.
-    pub(super) fn write_common(&self, md: &mut String) {
+    pub(crate) fn write_common(&self, md: &mut String) {
         self.common_best_runs(md);
         self.common_best_configurations(md);
         self.common_fronts(md);
@@ -124,7 +89,7 @@ impl GroupTables<'_> {
                     g.label,
                     vals.join(" | "),
                     rows.len(),
-                    super::report_tables::mean_ci_cell(c),
+                    mean_ci_cell(c),
                     time_cell(t)
                 );
             }
@@ -187,9 +152,9 @@ impl GroupTables<'_> {
                 g.rows.len(),
                 drivable.len(),
                 g.rows.len(),
-                super::report_tables::mean_ci_cell(c),
+                mean_ci_cell(c),
                 time_cell(t),
-                super::report_tables::mean_ci_cell(all)
+                mean_ci_cell(all)
             );
         }
     }
@@ -219,14 +184,7 @@ impl GroupTables<'_> {
         for (i, c, t) in ranked.into_iter().take(20) {
             let rows = &self.configs[i].1;
             let vals: Vec<String> = params.iter().map(|p| self.get(rows[0], p)).collect();
-            let _ = writeln!(
-                md,
-                "| {} | {} | {} | {} |",
-                vals.join(" | "),
-                rows.len(),
-                super::report_tables::mean_ci_cell(c),
-                time_cell(t)
-            );
+            let _ = writeln!(md, "| {} | {} | {} | {} |", vals.join(" | "), rows.len(), mean_ci_cell(c), time_cell(t));
         }
     }
 }
@@ -238,35 +196,5 @@ fn time_cell((mean, half): (f64, f64)) -> String {
         (false, _) => "–".to_string(),
         (true, false) => format!("{mean:.1} s (1 run)"),
         (true, true) => format!("{mean:.1} ± {half:.1} s"),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_best_plan_covers_most_and_of_near_equals_is_fastest() {
-        // (coverage, time) per item, and the best.
-        type Case<'a> = (&'a [(f64, f64)], Option<usize>);
-        let cases: &[Case] = &[
-            (&[], None),
-            (&[(f64::NAN, 1.0)], None),
-            // More coverage beyond the tie wins however slow.
-            (&[(0.90, 100.0), (0.95, 900.0)], Some(1)),
-            // Within the tie the faster wins, even with a little less coverage.
-            (&[(0.950, 900.0), (0.947, 400.0)], Some(1)),
-            // Just outside the tie: coverage decides.
-            (&[(0.950, 900.0), (0.944, 400.0)], Some(0)),
-            // Equal plans: the first.
-            (&[(0.9, 5.0), (0.9, 5.0)], Some(0)),
-            // A plan without a time is no candidate.
-            (&[(0.99, f64::NAN), (0.9, 5.0)], Some(1)),
-        ];
-        for (items, want) in cases {
-            let idx: Vec<usize> = (0..items.len()).collect();
-            assert_eq!(best_by_coverage_then_time(&idx, |i| items[i]), *want, "{items:?}");
-        }
-        assert!(rule_in_words().contains("0.005"));
     }
 }

@@ -58,7 +58,7 @@ fn marker<DB: DrawingBackend>(k: usize, at: (i32, i32), area: &DrawingArea<DB, S
 
 impl PlannersPareto {
     fn legend_height(&self, width: u32) -> u32 {
-        super::ablation_figures::legend_strip_height(&self.legend_labels(), width)
+        super::panels::legend_strip_height(&self.legend_labels(), width)
     }
 
     /// Each group's label with its runs over every map.
@@ -89,7 +89,7 @@ impl Figure for PlannersPareto {
         let (width, height) = root.dim_in_pixel();
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
         let labels = self.legend_labels();
-        super::ablation_figures::draw_legend_strip(&strip, &labels, |k, (x, y)| marker(k, (x + 11, y), &strip))?;
+        super::panels::draw_legend_strip(&strip, &labels, |k, (x, y)| marker(k, (x + 11, y), &strip))?;
         for (area, (map, points)) in panels.split_evenly(self.grid()).iter().zip(&self.panels) {
             draw_panel(area, map, points)?;
         }

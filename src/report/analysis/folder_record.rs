@@ -67,7 +67,7 @@ impl FolderRecords {
     /// Run `id`'s final diversity (claims of 003 §5.1).
     pub fn final_diversity(&self, id: &str) -> Option<f64> {
         let Some(runs) = &self.runs else { return self.recorded.get(id)?.final_diversity };
-        let v = super::claims::final_diversity(&runs.join(id).join("history.csv"));
+        let v = final_diversity(&runs.join(id).join("history.csv"));
         if v.is_some() {
             self.read.borrow_mut().entry(id.to_string()).or_default().final_diversity = v;
         }
@@ -149,6 +149,16 @@ fn read(file: &Path) -> Result<BTreeMap<String, Record>, ReportError> {
     Ok(out)
 }
 
+/// Mean diversity over the last tenth of the rows of a run's `history.csv`.
+pub fn final_diversity(history: &Path) -> Option<f64> {
+    let text = std::fs::read_to_string(history).ok()?;
+    let mut lines = text.lines();
+    let col = lines.next()?.split(',').position(|h| h == "diversity")?;
+    let values: Vec<f64> = lines.filter_map(|l| l.split(',').nth(col)?.parse().ok()).collect();
+    let tail = &values[values.len() - (values.len() / 10).max(1).min(values.len())..];
+    (!tail.is_empty()).then(|| tail.iter().sum::<f64>() / tail.len() as f64)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -180,5 +190,19 @@ mod tests {
         assert_eq!(t.unwrap()[2], None, "a level the plan never reaches stays unreached");
         assert!(recorded.curve("a").is_none(), "curves come from folders only");
         assert_eq!(recorded.final_diversity("missing"), None, "a run without a history is not made one");
+    }
+
+    #[test]
+    fn final_diversity_is_the_mean_of_the_last_tenth() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = dir.path().join("history.csv");
+        let mut text = String::from("iteration,diversity\n");
+        for i in 0..20 {
+            text.push_str(&format!("{i},{}\n", i * 10));
+        }
+        std::fs::write(&p, text).unwrap();
+        // Last 2 of 20 rows: 180 and 190.
+        assert_eq!(final_diversity(&p), Some(185.0));
+        assert_eq!(final_diversity(&dir.path().join("none.csv")), None);
     }
 }
