@@ -16,17 +16,10 @@ use pyo3::prelude::*;
 
 /// The robot of `width`, `speed` and `rot_speed`, checked as `covga eval` checks them.
 fn robot(map: &Map, width: f64, speed: f64, rot_speed: f64) -> PyResult<Footprint> {
-    for (name, v) in [("width", width), ("speed", speed)] {
-        if !(v.is_finite() && v > 0.0) {
-            return Err(config_error(format!("{name} = {v} is out of range: expected a finite number > 0")));
-        }
-    }
-    if !(rot_speed.is_finite() && rot_speed >= 0.0) {
-        return Err(config_error(format!(
-            "rot_speed = {rot_speed} is out of range: expected a finite number >= 0 (0 disables the rotation cost)"
-        )));
-    }
     let footprint = Footprint { width, speed, rot_speed };
+    if let Some((name, v, allowed)) = footprint.out_of_range() {
+        return Err(config_error(format!("{name} = {v} is out of range: allowed {allowed}")));
+    }
     footprint.check_fits(&map.inner).map_err(|m| config_error(format!("width {m}")))?;
     Ok(footprint)
 }

@@ -127,23 +127,10 @@ fn parse_rect(text: &str) -> Result<[f64; 4], String> {
 }
 
 fn check_robot(a: &EvalArgs) -> Result<Footprint, CliError> {
-    let positive = |name: &str, v: f64| {
-        if v.is_finite() && v > 0.0 {
-            Ok(())
-        } else {
-            Err(CliError::Input(format!(
-                "--{name} = {} is out of range: expected a finite number > 0",
-                crate::io::short_number(v)
-            )))
-        }
-    };
-    positive("width", a.width)?;
-    positive("speed", a.speed)?;
-    if !(a.rot_speed.is_finite() && a.rot_speed >= 0.0) {
-        return Err(CliError::Input(format!(
-            "--rot-speed = {} is out of range: expected a finite number >= 0 (0 disables the rotation cost)",
-            a.rot_speed
-        )));
+    let robot = Footprint { width: a.width, speed: a.speed, rot_speed: a.rot_speed };
+    if let Some((name, v, allowed)) = robot.out_of_range() {
+        let (flag, v) = (name.replace('_', "-"), crate::io::short_number(v));
+        return Err(CliError::Input(format!("--{flag} = {v} is out of range: allowed {allowed}")));
     }
     if !(a.angle.is_finite() && (-360.0..=360.0).contains(&a.angle)) {
         let angle = crate::io::short_number(a.angle);

@@ -39,7 +39,27 @@ pub struct Footprint {
     pub rot_speed: f64,
 }
 
+/// The robot's three numbers with their allowed ranges (name, least, most, the range in words):
+/// the one validation every front uses (experiment files, fleets, `covga eval`, Python), each
+/// naming the key or flag its user wrote.
+pub const ROBOT_RANGES: [(&str, f64, f64, &str); 3] = [
+    ("width", f64::MIN_POSITIVE, f64::MAX, "a finite number > 0 metres"),
+    ("speed", 1e-9, f64::MAX, "a finite number >= 1e-9 m/s"),
+    ("rot_speed", 0.0, f64::MAX, "a finite number >= 0 rad/s (0 disables the rotation cost)"),
+];
+
 impl Footprint {
+    /// The first of the robot's numbers outside [`ROBOT_RANGES`] (NaN and infinities included):
+    /// its name, its value and the range in words; `None` where all three are allowed.
+    pub fn out_of_range(&self) -> Option<(&'static str, f64, &'static str)> {
+        let values = [self.width, self.speed, self.rot_speed];
+        ROBOT_RANGES
+            .iter()
+            .zip(values)
+            .find(|&(&(_, lo, hi, _), v)| !(v.is_finite() && v >= lo && v <= hi))
+            .map(|(&(name, _, _, allowed), v)| (name, v, allowed))
+    }
+
     /// The time this robot takes to drive `length_m` and turn `turn_rad` in place
     /// ([`motion::drive_time_s`], 003 eqs. 3.1–3.3).
     pub fn time_s(&self, length_m: f64, turn_rad: f64) -> f64 {
@@ -162,6 +182,24 @@ impl Footprint {
 mod tests {
     use super::*;
     use crate::map::presets::preset;
+
+    /// The one robot check: each number against its range, NaN and infinities refused.
+    #[test]
+    fn a_robot_out_of_range_is_named_by_its_first_bad_number() {
+        let r = |width, speed, rot_speed| Footprint { width, speed, rot_speed }.out_of_range().map(|(n, ..)| n);
+        let table = [
+            (0.6, 0.2, 0.52, None),
+            (0.0, 0.2, 0.0, Some("width")),
+            (f64::NAN, 0.2, 0.0, Some("width")),
+            (0.6, 0.0, 0.0, Some("speed")),
+            (0.6, 1e-10, 0.0, Some("speed")),
+            (0.6, 0.2, -1.0, Some("rot_speed")),
+            (0.6, 0.2, f64::INFINITY, Some("rot_speed")),
+        ];
+        for (w, v, o, expected) in table {
+            assert_eq!(r(w, v, o), expected, "{w} {v} {o}");
+        }
+    }
 
     /// The five hand-computed cases of thesis-ga §3.3 on map 1.
     #[test]

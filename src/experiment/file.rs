@@ -241,16 +241,12 @@ impl ExperimentFile {
             ));
         }
         let r = self.robot;
-        check_range(origin, "robot.width", r.width, 1e-6, f64::MAX, ">= 1e-6 metres")?;
-        check_range(origin, "robot.speed", r.speed, 1e-9, f64::MAX, ">= 1e-9 m/s")?;
-        check_range(
-            origin,
-            "robot.rot_speed",
-            r.rot_speed,
-            0.0,
-            f64::MAX,
-            ">= 0 rad/s (0 disables the rotation cost)",
-        )?;
+        if let Some((name, v, allowed)) =
+            (Footprint { width: r.width, speed: r.speed, rot_speed: r.rot_speed }).out_of_range()
+        {
+            let v = crate::io::short_number(v);
+            return Err(err(&format!("robot.{name}"), format!("= {v} is out of range: allowed {allowed}")));
+        }
         let b = self.budget;
         check_range(origin, "budget.wall_clock_s", b.wall_clock_s, 0.0, 1e9, "[0, 1e9] seconds (0 = no limit)")?;
         if b.evaluations > i64::MAX as u64 {

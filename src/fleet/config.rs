@@ -83,10 +83,11 @@ pub fn validate(
         let width = e.width.unwrap_or(robot.width);
         let speed = e.speed.unwrap_or(robot.speed);
         let rot_speed = e.rot_speed.unwrap_or(robot.rot_speed);
-        check_range(origin, &named("width"), width, 1e-6, 1e6, "(0, 1e6] m")?;
-        check_range(origin, &named("speed"), speed, 1e-9, 1e6, "(0, 1e6] m/s")?;
-        check_range(origin, &named("rot_speed"), rot_speed, 0.0, 1e6, "[0, 1e6] rad/s (0 = no rotation cost)")?;
         let footprint = Footprint { width, speed, rot_speed };
+        if let Some((name, v, allowed)) = footprint.out_of_range() {
+            let v = crate::io::short_number(v);
+            return Err(ConfigError::new(origin, &named(name), format!("= {v} is out of range: allowed {allowed}")));
+        }
         footprint.check_fits(map).map_err(|m| ConfigError::new(origin, &named("width"), m))?;
         let s = e.start.unwrap_or(start);
         let s = Point::new(s[0], s[1]);

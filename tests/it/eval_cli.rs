@@ -32,7 +32,7 @@ fn patterns_meet_the_thesis_reference_quality() {
             assert!(out_dir.join(f).metadata().unwrap().len() > 100, "{f}");
         }
         // The curve ends at the plan's time and reachable coverage; the bound lies below the
-        // time: the covered reachable area over width × speed (0.6 m at 0.2 m/s), turning free.
+        // time: the length bound of the covered reachable area (0.6 m at 0.2 m/s), turning free.
         let curve = std::fs::read_to_string(out_dir.join("coverage_curve.csv")).unwrap();
         let last: Vec<f64> = curve.lines().last().unwrap().split(',').map(|x| x.parse().unwrap()).collect();
         let common = &v["common"];
@@ -41,7 +41,8 @@ fn patterns_meet_the_thesis_reference_quality() {
         let bound = num(&v, "time_lower_bound_s");
         let resolution = covga::map::presets::preset(map).unwrap().resolution();
         let area = num(common, "unique_reach_cells") * resolution * resolution;
-        assert!((bound - area / (0.6 * 0.2)).abs() < 1e-6 * bound && bound < num(common, "time_s"), "{bound}");
+        let expected = covga::coverage::bound::area_time_s(area, &[(0.6, 0.2)], resolution);
+        assert!((bound - expected).abs() < 1e-6 * bound && bound < num(common, "time_s"), "{bound}");
         assert_eq!(num(&v, "turning_bound_s"), 0.0);
         let to_80 = v["coverage_curve"]["time_to_80_s"].as_f64().unwrap();
         assert!(to_80 > 0.0 && to_80 < last[0], "{to_80}");

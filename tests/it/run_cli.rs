@@ -415,8 +415,8 @@ fn endless_input_files_are_refused_at_their_limit() {
 fn range_messages_name_the_real_bound() {
     let dir = tempfile::tempdir().unwrap();
     let cases = [
-        ("[robot]\nwidth = 5e-324\n", "robot.width", ">= 1e-6 metres"),
-        ("[robot]\nspeed = 1e-300\n", "robot.speed", ">= 1e-9 m/s"),
+        ("[robot]\nwidth = 5e-324\n", "robot.width", "a finite number > 0 metres"),
+        ("[robot]\nspeed = 1e-300\n", "robot.speed", "a finite number >= 1e-9 m/s"),
         ("[thesis]\ninit_dist_max = 1e18\n", "thesis.init_dist_max", "[1e-9, 1e6] metres"),
     ];
     for (k, (text, key, bound)) in cases.iter().enumerate() {
