@@ -273,6 +273,7 @@ impl Study {
         for (n, c) in grid.conditional.iter_mut().enumerate() {
             c.axes = current_spelling(&c.axes, &origin, &format!("conditional[{n}].axes"), &mut renamed)?;
             c.when = current_spelling(&c.when, &origin, &format!("conditional[{n}].when"), &mut renamed)?;
+            renamed.extend(crate::experiment::renamed::current_when_values(&mut c.when));
         }
         let axes = values_of(&grid.axes, &origin, "axes")?;
         for (k, vals) in &axes {
