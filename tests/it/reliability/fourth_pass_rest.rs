@@ -44,3 +44,45 @@ fn migrate_renames_the_values_a_when_table_tests() {
     assert_eq!(after, before, "the migrated grid has the runs it had");
 }
 
+/// A fleet's evaluation names each robot's time model (not the command line's default robot)
+/// and divides the makespan, not the sum of the robots' times, by the makespan's bound.
+#[test]
+fn a_fleet_evaluation_names_each_robots_time_model_and_bounds_its_makespan() {
+    let dir = tempfile::tempdir().unwrap();
+    let robots = "[[robots]]\nname = \"small\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
+                  [[robots]]\nname = \"large\"\nwidth = 0.9\nspeed = 0.5\nrot_speed = 0.5\nstart = [5.5, 9.5]\n";
+    write(dir.path(), "fleet.toml", robots);
+    let table = ok(&run(dir.path(), &["eval", "--map", "thesis-1", "--fleet", "fleet.toml", "--divide", "--out", "E"]));
+    let row =
+        |name: &str| table.lines().find(|l| l.trim_start().starts_with(name)).unwrap_or_else(|| panic!("{table}"));
+    assert!(row("robot ").contains("2 robots, each with its own time model"), "{table}");
+    assert!(!table.contains("0.6 m wide"), "the command line's default robot is no fleet robot's: {table}");
+    assert!(row("robot small").contains("0.4 m wide; time_s = length / 0.2 m/s (rot_speed = 0"), "{table}");
+    assert!(row("robot large").contains("0.9 m wide; time_s = length / 0.5 m/s + turning / 0.5 rad/s"), "{table}");
+    let metrics: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("E/metrics.json")).unwrap()).unwrap();
+    let (makespan, bound) =
+        (metrics["fleet"]["makespan_s"].as_f64().unwrap(), metrics["time_lower_bound_s"].as_f64().unwrap());
+    assert!(metrics["common"]["time_s"].as_f64().unwrap() > makespan * 1.2, "two robots' times sum past the makespan");
+    let line = row("× the bound");
+    assert!(line.starts_with(&format!("× the bound                {:.2}, the makespan", makespan / bound)), "{line}");
+    assert!(row("time [s]").contains("summed over 2 paths; makespan"), "{table}");
+}
+
+/// `covga run` of a fleet names each robot's time model, on screen and in `summary.json`.
+#[test]
+fn a_fleet_run_names_each_robots_time_model() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = "planner = \"thesis\"\n[fleet]\nmode = \"divide\"\n\
+                [[robots]]\nname = \"small\"\nwidth = 0.4\nspeed = 0.2\nstart = [1.3, 1.3]\n\
+                [[robots]]\nname = \"large\"\nwidth = 0.9\nspeed = 0.5\nstart = [5.5, 9.5]\n";
+    write(dir.path(), "f.toml", file);
+    let out = ok(&run(dir.path(), &["run", "f.toml", "--out", "o"]));
+    assert!(!out.contains("robot: 0.6 m wide"), "{out}");
+    assert!(out.contains("  small: 0.4 m wide; time_s = length / 0.2 m/s"), "{out}");
+    assert!(out.contains("  large: 0.9 m wide; time_s = length / 0.5 m/s"), "{out}");
+    let summary = crate::common::summary(&dir.path().join("o"));
+    let model = summary["time_model"].as_str().unwrap();
+    assert!(model.starts_with("per robot: small: 0.4 m wide") && model.contains("; large: 0.9 m wide"), "{model}");
+}
+
