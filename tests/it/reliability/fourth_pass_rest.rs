@@ -86,3 +86,17 @@ fn a_fleet_run_names_each_robots_time_model() {
     assert!(model.starts_with("per robot: small: 0.4 m wide") && model.contains("; large: 0.9 m wide"), "{model}");
 }
 
+/// An instance whose arcs weigh past a GTSPLIB solver's 32-bit weights (a robot crawling at a
+/// micrometre a second) is refused, naming the speeds, and nothing is written.
+#[test]
+fn gtsp_refuses_weights_past_32_bits() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "c.toml", "planner = \"cell_order\"\nrobot.speed = 1e-6\n");
+    let err = refused(&run(dir.path(), &["gtsp", "c.toml", "--out", "x.gtsp", "--nodes", "x.csv"]), 2);
+    assert!(err.contains("c.toml: at robot.speed = 0.000001 m/s") && err.contains("2147483647 ms"), "{err}");
+    assert!(!dir.path().join("x.gtsp").exists() && !dir.path().join("x.csv").exists());
+    // A real robot's instance is written as before.
+    write(dir.path(), "r.toml", "planner = \"cell_order\"\nrobot.speed = 0.2\n");
+    ok(&run(dir.path(), &["gtsp", "r.toml", "--out", "r.gtsp"]));
+}
+
