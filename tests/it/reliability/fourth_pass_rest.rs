@@ -100,3 +100,36 @@ fn gtsp_refuses_weights_past_32_bits() {
     ok(&run(dir.path(), &["gtsp", "r.toml", "--out", "r.gtsp"]));
 }
 
+/// A map of one cell: smaller than one pixel of the default camera it is refused for its size
+/// (no camera key named: the user set none); one pixel or more across it is scored.
+#[test]
+fn a_one_cell_map_is_refused_for_its_size_or_scored() {
+    let dir = tempfile::tempdir().unwrap();
+    write(dir.path(), "one.pgm", "P2\n1 1\n255\n254\n");
+    let eval = |resolution: &str| {
+        let half = (resolution.parse::<f64>().unwrap() / 2.0).to_string();
+        let start = format!("{half},{half}");
+        let width = (resolution.parse::<f64>().unwrap() / 3.0).to_string();
+        run(
+            dir.path(),
+            &[
+                "eval",
+                "--map",
+                "one.pgm",
+                "--resolution",
+                resolution,
+                "--start",
+                &start,
+                "--width",
+                &width,
+                "--out",
+                "E",
+            ],
+        )
+    };
+    let err = refused(&eval("0.1"), 2);
+    assert!(err.contains("map `one.pgm` is 0.1 m across") && err.contains("0.15 m"), "{err}");
+    assert!(!err.contains("scorer.camera"), "{err}");
+    assert!(ok(&eval("0.2")).contains("reachable cells            1 of 1 free"));
+}
+
