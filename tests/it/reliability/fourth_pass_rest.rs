@@ -133,3 +133,21 @@ fn a_one_cell_map_is_refused_for_its_size_or_scored() {
     assert!(ok(&eval("0.2")).contains("reachable cells            1 of 1 free"));
 }
 
+/// A whole-study run in a folder holding a shard of the study is refused (it would run the
+/// shard's runs again into a second runs file); merged first, the study resumes from them.
+#[test]
+fn a_whole_study_run_is_refused_beside_an_unmerged_shard() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = "seeds = 2\n[base]\n[base.thesis]\npop_min = 20\ninit_actions = 20\n[base.budget]\niterations = 3\n\
+                [axes]\n\"thesis.c_len\" = [0.1, 0.4]\n";
+    write(dir.path(), "g.toml", grid);
+    ok(&run(dir.path(), &["grid", "g.toml", "--shard", "0/2", "--out", "S"]));
+    let err = refused(&run(dir.path(), &["grid", "g.toml", "--out", "S"]), 2);
+    assert!(err.contains("runs-shard-0-of-2.csv: records 2 runs of shard 0/2"), "{err}");
+    assert!(err.contains("--shard K/2") && err.contains("covga merge S"), "{err}");
+    assert!(!dir.path().join("S/runs.csv").exists(), "nothing written");
+    ok(&run(dir.path(), &["merge", "S", "--allow-partial"]));
+    let o = run(dir.path(), &["grid", "g.toml", "--out", "S"]);
+    assert!(ok(&o).contains("4 runs: 2 already recorded, 2 run now"), "{}", String::from_utf8_lossy(&o.stdout));
+}
+
