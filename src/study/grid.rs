@@ -303,8 +303,9 @@ impl Study {
         expand::check_distinct_ids(&origin, &grid, &columns, &runs)?;
         renamed.sort_unstable();
         renamed.dedup();
-        let warnings =
+        let mut warnings: Vec<String> =
             renamed.into_iter().map(|(old, new)| crate::experiment::renamed::warning(&origin, old, new)).collect();
+        warnings.extend(expand::unread_budget(&origin, &base, &columns, &runs));
         Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs, warnings })
     }
 

@@ -151,3 +151,23 @@ fn a_whole_study_run_is_refused_beside_an_unmerged_shard() {
     assert!(ok(&o).contains("4 runs: 2 already recorded, 2 run now"), "{}", String::from_utf8_lossy(&o.stdout));
 }
 
+/// A grid of a pattern planner with a budget warns that the budget is ignored, as `covga run`
+/// does for such a file.
+#[test]
+fn a_pattern_grid_with_a_budget_is_warned_about() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = "[base]\nplanner = \"spiral\"\n[base.budget]\niterations = 5\n[axes]\n\"robot.width\" = [0.5, 0.6]\n";
+    write(dir.path(), "g.toml", grid);
+    let o = run(dir.path(), &["grid", "g.toml", "--dry-run", "--out", "S"]);
+    ok(&o);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("warning: g.toml: `budget.iterations` is ignored by 2 of 2 runs: planner = \"spiral\" plans once"),
+        "{err}"
+    );
+    // A grid whose every run reads its budget is not warned.
+    write(dir.path(), "t.toml", &grid.replace("spiral", "thesis"));
+    let o = run(dir.path(), &["grid", "t.toml", "--dry-run", "--out", "T"]);
+    assert!(!String::from_utf8_lossy(&o.stderr).contains("is ignored"), "{o:?}");
+}
+
