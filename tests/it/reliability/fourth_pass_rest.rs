@@ -171,3 +171,42 @@ fn a_pattern_grid_with_a_budget_is_warned_about() {
     assert!(!String::from_utf8_lossy(&o.stderr).contains("is ignored"), "{o:?}");
 }
 
+/// The book's sentence on how far each planner passes `budget.evaluations` quotes what the
+/// planners do today, measured as it says.
+#[test]
+fn the_books_overshoot_figures_are_what_the_planners_spend() {
+    let root = crate::common::repo();
+    let page = std::fs::read_to_string(root.join("docs/src/guide/planners.md")).unwrap();
+    let page = page.split_whitespace().collect::<Vec<_>>().join(" ");
+    let at = page.find("Measured with `evaluations = ").expect("the measured overshoots");
+    let sentence = &page[at..at + page[at..].find(". ").unwrap()];
+    let number = |text: &str| -> u64 {
+        let digits: String =
+            text.chars().skip_while(|c| !c.is_ascii_digit()).take_while(char::is_ascii_digit).collect();
+        digits.parse().unwrap_or_else(|_| panic!("no number in `{text}`"))
+    };
+    let (setup, figures) = sentence.split_once("): ").expect("`(...): planner N, ...`");
+    assert!(setup.contains("on thesis-1"), "{sentence}");
+    let limit = number(&setup[setup.find("evaluations = ").unwrap()..]);
+    let iterations = number(&setup[setup.find("iterations = ").unwrap()..]);
+    // The figures end where a parenthesis or the sentence does.
+    let quoted: Vec<(String, u64)> = figures
+        .split(" (")
+        .next()
+        .unwrap()
+        .split(", ")
+        .map(|f| {
+            let (name, n) = f.rsplit_once(' ').unwrap();
+            (name.replace(' ', "_"), number(n))
+        })
+        .collect();
+    let names: Vec<&str> = quoted.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(names, ["cell_order", "random_search", "thesis"], "{sentence}");
+    for (planner, figure) in quoted {
+        let out = tempfile::tempdir().unwrap();
+        let text = format!("planner = \"{planner}\"\n[budget]\nevaluations = {limit}\niterations = {iterations}\n");
+        crate::common::run_text(&text, &root, out.path());
+        let spent = crate::common::summary(out.path())["evaluations"].as_u64().unwrap();
+        assert_eq!(figure, spent, "{planner}: the book says {figure}, the planner spends {spent}: {sentence}");
+    }
+}
