@@ -15,6 +15,10 @@ use super::tour::{Instance, Tour};
 /// Seconds per unit of weight.
 pub const WEIGHT_S: f64 = 1e-3;
 
+/// The heaviest weight a GTSPLIB solver reads: GLKH, GLNS and LKH-3 read the matrix into
+/// 32-bit integers, so a heavier arc would wrap or be cut short there.
+pub const MAX_WEIGHT: i64 = i32::MAX as i64;
+
 /// The weight of an arc of `seconds`.
 fn weight(seconds: f64) -> i64 {
     (seconds / WEIGHT_S).round() as i64
@@ -29,6 +33,29 @@ pub fn arc_weight(inst: &Instance, from: usize, to: usize) -> i64 {
     let candidate = |node: usize| node.checked_sub(1);
     let (a, b) = (candidate(from), candidate(to));
     weight(inst.leg(a, b) + b.map_or(0.0, |g| inst.own(g)))
+}
+
+/// The weight of the instance's heaviest arc.
+pub fn heaviest_arc(inst: &Instance) -> i64 {
+    let nodes = 1 + (0..inst.cells()).map(|k| inst.choices(k)).sum::<usize>();
+    (0..nodes).flat_map(|from| (0..nodes).map(move |to| arc_weight(inst, from, to))).max().unwrap_or(0)
+}
+
+/// Refuses an instance whose heaviest arc is past [`MAX_WEIGHT`] (a robot so slow that a leg
+/// takes weeks), naming the robot's speeds that make it so.
+pub fn check_weights(inst: &Instance, robot: &crate::coverage::Footprint) -> Result<(), String> {
+    let heaviest = heaviest_arc(inst);
+    if heaviest <= MAX_WEIGHT {
+        return Ok(());
+    }
+    Err(format!(
+        "at robot.speed = {} m/s and robot.rot_speed = {} rad/s an arc of the tour problem takes {:.0} s \
+         ({heaviest} ms), past the {MAX_WEIGHT} ms (about 24.8 days) a GTSPLIB solver reads as a 32-bit \
+         weight; raise robot.speed (and robot.rot_speed where turning is that slow); nothing written",
+        robot.speed,
+        robot.rot_speed,
+        heaviest as f64 * WEIGHT_S,
+    ))
 }
 
 /// The instance as GTSPLIB text (`TYPE : AGTSP`, a full matrix, one set per cell and one for
@@ -131,5 +158,15 @@ mod tests {
             sets[1..4].iter().flat_map(|l| l.split(' ').skip(1)).filter_map(|n| n.parse().ok()).collect();
         assert_eq!(members, (2..=nodes).collect::<Vec<_>>());
         assert_eq!(sets[4], "EOF");
+    }
+
+    #[test]
+    fn the_heaviest_arc_is_the_largest_weight_of_the_matrix() {
+        let inst = line(4);
+        let nodes = 1 + (0..4).map(|k| inst.choices(k)).sum::<usize>();
+        let all: Vec<i64> =
+            (0..nodes).flat_map(|f| (0..nodes).map(move |t| (f, t))).map(|(f, t)| arc_weight(&inst, f, t)).collect();
+        assert_eq!(heaviest_arc(&inst), *all.iter().max().unwrap());
+        assert!(heaviest_arc(&inst) > 0);
     }
 }

@@ -152,6 +152,7 @@ impl CellOrderConfig {
         let planning = scenario.for_planning();
         let prepared = prepare(&planning, self.preparation())?;
         let inst = &prepared.instance;
+        super::gtsplib::check_weights(inst, &scenario.robot)?;
         Ok((super::gtsplib::instance_text(inst, name), super::gtsplib::nodes_csv(inst, &prepared.sweeps)))
     }
 }

@@ -208,17 +208,39 @@ pub fn run(a: EvalArgs) -> Result<(), CliError> {
 }
 
 /// The plan's time as a multiple of its lower bound, with the bound; a plan that covers no
-/// area (a single point) has a bound of 0 s and no multiple.
-fn times_the_bound(time_s: f64, r: &EvalReport) -> String {
+/// area (a single point) has a bound of 0 s and no multiple. A plan of several paths is timed
+/// by its makespan (its slowest path's time): the length bound over the summed sweep rates is a
+/// bound on the makespan, not on the sum of the paths' times.
+fn times_the_bound(r: &EvalReport) -> String {
+    let c = &r.common;
+    let (time_s, what) = if r.agents > 1 { (c.makespan_s, "the makespan") } else { (c.time_s, "the time") };
     let bound = format!(
         "bound {:.1} s: the least driving that sweeps the covered cells, plus {:.1} s of turning",
         r.time_lower_bound_s - r.turning_bound_s,
         r.turning_bound_s
     );
     if r.time_lower_bound_s > 0.0 && time_s.is_finite() {
-        format!("{:.2} ({bound})", time_s / r.time_lower_bound_s)
+        format!("{:.2}, {what} {time_s:.1} s over its bound ({bound})", time_s / r.time_lower_bound_s)
     } else {
         format!("- ({bound}; the plan covers no area to bound)")
+    }
+}
+
+/// The robot row: one robot's time model, or for a fleet word that each robot has its own.
+fn robot_row(r: &EvalReport) -> String {
+    match &r.fleet {
+        Some(f) => format!("{} robots, each with its own time model (listed under fleet)", f.robots.len()),
+        None => crate::coverage::motion::time_model(&r.robot),
+    }
+}
+
+/// The time row: a plan of several paths sums their times, and says so beside its makespan.
+fn time_row(r: &EvalReport) -> String {
+    let c = &r.common;
+    if r.agents > 1 {
+        format!("{:.1} (summed over {} paths; makespan {:.1})", c.time_s, r.agents, c.makespan_s)
+    } else {
+        format!("{:.1}", c.time_s)
     }
 }
 
@@ -229,7 +251,7 @@ fn print_table(r: &EvalReport) {
     let rows: [(&str, String); 25] = [
         ("map", r.map.to_string()),
         ("path", r.source.clone()),
-        ("robot", crate::coverage::motion::time_model(&r.robot)),
+        ("robot", robot_row(r)),
         ("agents", r.agents.to_string()),
         ("executable", executable),
         ("cells swept (cov_pix)", m.cells_swept.to_string()),
@@ -248,8 +270,8 @@ fn print_table(r: &EvalReport) {
         ("reachable cells", format!("{} of {} free", c.reachable_cells, c.free_cells)),
         ("cov_final over reachable", format!("{:.6}", c.cov_final_reach)),
         ("camera walls / open", format!("{:.4} / {:.4}", c.cam_walls_free, c.cam_open_free)),
-        ("time [s]", format!("{:.1}", c.time_s)),
-        ("× the bound", times_the_bound(c.time_s, r)),
+        ("time [s]", time_row(r)),
+        ("× the bound", times_the_bound(r)),
         (
             "unreachable pockets",
             r.pockets.map_or("-".into(), |n| format!("{n} ({:.2} m²)", r.pocket_area_m2.unwrap_or(0.0))),
@@ -274,6 +296,9 @@ fn print_table(r: &EvalReport) {
         ];
         for (k, v) in rows {
             println!("  {k:<26} {v}");
+        }
+        for (name, model) in f.robots.iter().zip(&f.robot_time_model) {
+            println!("  {:<26} {model}", format!("robot {name}"));
         }
     }
 }

@@ -3,6 +3,7 @@
 pub(crate) mod eval;
 mod grid;
 mod gtsp;
+mod init;
 mod maps;
 mod migrate;
 mod reference;
@@ -93,6 +94,8 @@ enum Command {
     Merge(grid::MergeArgs),
     /// Figures, tables and statistics of a study folder (report/summary.md).
     Report(grid::ReportArgs),
+    /// Write the recommended experiment file for a floor plan (map, start, robot), commented.
+    Init(init::InitArgs),
     /// Write the built-in maps as ROS map_server files (YAML + PGM).
     Maps(maps::MapsArgs),
     /// Rewrite experiment and grid files to the current key names (keys that moved section).
@@ -119,6 +122,7 @@ where
         Command::Grid(a) => grid::run(a),
         Command::Merge(a) => grid::merge(a),
         Command::Report(a) => grid::report(a),
+        Command::Init(a) => init::run(a),
         Command::Maps(a) => maps::run(a),
         Command::Migrate(a) => migrate::run(a),
         Command::Reference(a) => reference::run(a),

@@ -126,7 +126,16 @@ fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) 
                 s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
             );
         }
-        println!("robot: {}", crate::coverage::motion::time_model(&exp.scenario.robot));
+        match summary.fleet.as_ref().filter(|_| matches!(exp.planner, PlannerConfig::Fleet(_))) {
+            // A fleet's robots each drive at their own speeds: each one's time model is named.
+            Some(f) => {
+                println!("robots (each with its own time model):");
+                for (name, model) in f.robots.iter().zip(&f.robot_time_model) {
+                    println!("  {name}: {model}");
+                }
+            }
+            None => println!("robot: {}", summary.time_model),
+        }
         if s.executable {
             println!("executable: yes");
         } else {

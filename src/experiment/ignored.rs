@@ -28,9 +28,9 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
 }
 
 /// Why `file`'s planner reads no `[budget]` key, if it reads none: it plans once, in full.
-/// Said of an experiment file's keys only: a grid may give a budget to every planner of a
-/// `planner` axis, and its run ids count the budget whether the planner reads it or not.
-fn why_budget_unread(file: &ExperimentFile) -> Option<String> {
+/// A grid may give a budget to every planner of a `planner` axis, and its run ids count the
+/// budget whether the planner reads it or not: a grid warns how many of its runs ignore it.
+pub fn why_budget_unread(file: &ExperimentFile) -> Option<String> {
     let divide = !file.robots.is_empty()
         && file.fleet.as_ref().is_some_and(|f| f.mode == crate::fleet::config::FleetMode::Divide);
     let what = match file.planner {

@@ -10,6 +10,7 @@ pub mod keys;
 pub mod memory;
 pub mod output;
 pub mod plugins;
+pub mod recommended;
 pub mod registry;
 pub mod renamed;
 

@@ -132,7 +132,8 @@ pub struct Summary {
     /// The common scorer's metrics of the plan.
     pub score: Score,
     /// The robot and the time model `score.time_s` follows, in words
-    /// ([`crate::coverage::motion::time_model`]).
+    /// ([`crate::coverage::motion::time_model`]); for a fleet, each robot's (`per robot: name:
+    /// model; …`).
     pub time_model: String,
     /// The plan's time-to-coverage curve in figures: times to 80, 90 and 95 % of the reachable
     /// cells and the area over the curve (the curve itself is `coverage_curve.csv`).
@@ -146,6 +147,17 @@ pub struct Summary {
     pub details: serde_json::Map<String, serde_json::Value>,
     /// Wall time in seconds (the only field that differs between identical runs).
     pub wall_s: f64,
+}
+
+/// The time model of a plan in words: the experiment's robot, or for a plan that names its
+/// robots (a fleet) each robot's own, since each drives at its own speeds.
+fn plan_time_model(exp: &Experiment, agents: &[Agent]) -> String {
+    if agents.is_empty() {
+        return crate::coverage::motion::time_model(&exp.scenario.robot);
+    }
+    let each: Vec<String> =
+        agents.iter().map(|a| format!("{}: {}", a.name, crate::coverage::motion::time_model(&a.footprint))).collect();
+    format!("per robot: {}", each.join("; "))
 }
 
 /// The common scorer of an experiment: its map, robot, projection and camera, with the
@@ -325,7 +337,7 @@ pub fn run_experiment(
         warnings: outcome.warnings.clone(),
         objectives: outcome.objectives.iter().map(|(k, v)| (k.to_string(), *v)).collect(),
         score,
-        time_model: crate::coverage::motion::time_model(&exp.scenario.robot),
+        time_model: plan_time_model(exp, &outcome.agents),
         coverage_curve: curve.summary(),
         fleet,
         details: with_goal_time_of(outcome.details.clone(), &curve),

@@ -63,6 +63,20 @@ pub fn renamed_values_in_text(text: &str) -> Moves {
         .collect()
 }
 
+/// Gives the old values a grid conditional's `when` table `t` (dotted keys) tests their new
+/// spelling, returning the renames made: a run's experiment reads an old value under its new
+/// spelling, so a `when` that kept the old one would match no run.
+pub fn current_when_values(t: &mut Table) -> Moves {
+    let mut moved = Moves::new();
+    for r in RENAMED_VALUES {
+        if let Some(v) = t.get_mut(r.key).filter(|v| v.as_str() == Some(r.old)) {
+            *v = Value::String(r.new.to_string());
+            moved.push((r.said_old, r.said_new));
+        }
+    }
+    moved
+}
+
 /// Gives the old values of the experiment table `t` (nested sections) their new spelling,
 /// with the decor of each value kept.
 fn rename_values(t: &mut dyn toml_edit::TableLike, moved: &mut Moves) {
@@ -89,6 +103,21 @@ fn rename_axis_values(t: &mut dyn toml_edit::TableLike, moved: &mut Moves) {
     for r in RENAMED_VALUES {
         let Some(values) = t.get_mut(r.key).and_then(toml_edit::Item::as_array_mut) else { continue };
         for value in values.iter_mut().filter(|v| v.as_str() == Some(r.old)) {
+            let decor = value.decor().clone();
+            *value = toml_edit::Value::from(r.new);
+            *value.decor_mut() = decor;
+            moved.push((r.said_old, r.said_new));
+        }
+    }
+}
+
+/// Gives the old values a conditional's `when` table `t` tests (`"cell_order.selection" =
+/// "elite"`) their new spelling: the axes they are tested against take it too, so a `when`
+/// left with the old value would match no run.
+fn rename_when_values(t: &mut dyn toml_edit::TableLike, moved: &mut Moves) {
+    for r in RENAMED_VALUES {
+        let Some(value) = t.get_mut(r.key).and_then(toml_edit::Item::as_value_mut) else { continue };
+        if value.as_str() == Some(r.old) {
             let decor = value.decor().clone();
             *value = toml_edit::Value::from(r.new);
             *value.decor_mut() = decor;
@@ -198,7 +227,10 @@ pub fn migrate_text(text: &str, origin: &str) -> Result<(String, Moves), ConfigE
                     if let Some(t) = c.get_mut(part).and_then(toml_edit::Item::as_table_like_mut) {
                         rename_dotted(t, origin, &format!("conditional[{n}].{part}"), &mut moved)?;
                         if part == "axes" {
+                            rename_axis_values(t, &mut moved);
                             refuse_moved_table_axes(t, origin, &format!("conditional[{n}].axes"))?;
+                        } else {
+                            rename_when_values(t, &mut moved);
                         }
                     }
                 }

@@ -34,6 +34,9 @@ pub struct FleetScore {
     pub robot_length_m: Vec<f64>,
     /// Each robot's time: length / speed + turn / rotation speed (003 eqs. 3.1–3.3), seconds.
     pub robot_time_s: Vec<f64>,
+    /// Each robot's time model, in words ([`motion::time_model`]): a fleet's robots each
+    /// drive at their own speeds, so no one robot's model describes the fleet's times.
+    pub robot_time_model: Vec<String>,
     /// The slowest robot's time in seconds.
     pub makespan_s: f64,
     /// Slowest over fastest robot time (`None` when a robot does not move).
@@ -125,6 +128,7 @@ impl FleetScorer {
             robot_cells,
             robot_length_m: lengths,
             robot_time_s: times,
+            robot_time_model: robots.iter().map(|r| motion::time_model(&r.footprint)).collect(),
             makespan_s,
             balance: (fastest > 0.0).then(|| makespan_s / fastest),
             obstacle_cells: total.obj_pix,

@@ -1,5 +1,6 @@
 //! Path pictures: the map, free cells covered once / several times / never, pre-marked cells,
-//! obstacle cells the path swept, the path on top, a legend and a metre scale.
+//! obstacle cells the path swept, the occupied or unknown cells the robot's body touches (what
+//! makes a plan not executable), the path on top, a legend and a metre scale.
 
 use super::{Figure, err, legend, text};
 use crate::coverage::CoverageGrid;
@@ -16,6 +17,7 @@ const ONCE: RGBColor = RGBColor(150, 215, 150);
 const SEVERAL: RGBColor = RGBColor(240, 170, 80);
 const PREMARKED: RGBColor = RGBColor(170, 200, 240);
 const HIT: RGBColor = RGBColor(220, 30, 30);
+const TOUCHED: RGBColor = RGBColor(170, 0, 220);
 const PATH: RGBColor = RGBColor(20, 40, 160);
 /// Colours of a fleet's robots, in order (repeated past eight robots).
 const ROBOTS: [RGBColor; 8] = [
@@ -56,6 +58,9 @@ enum Class {
     Several,
     Premarked,
     Hit,
+    /// Occupied or unknown, not swept, but touched by the robot's body (a disc of its width
+    /// along the path, turns and ends included: the executability rule of `map::body`).
+    Touched,
     /// Swept by this one robot of a fleet (any number of times).
     Robot(usize),
 }
@@ -70,6 +75,7 @@ impl Class {
             Class::Several => SEVERAL,
             Class::Premarked => PREMARKED,
             Class::Hit => HIT,
+            Class::Touched => TOUCHED,
             Class::Robot(k) => robot_tint(k),
         }
     }
@@ -132,9 +138,17 @@ impl PathFigure<'_> {
                 });
             }
         }
+        let mut touched = vec![false; n];
+        for (k, path) in self.paths.iter().enumerate() {
+            let width = self.robots.get(k).map_or(self.width, |r| r.1);
+            for i in crate::map::body::touched_cells(self.map, path, width).0 {
+                touched[i] = true;
+            }
+        }
         (0..n)
             .map(|i| match self.map.state_at(i) {
                 _ if hits[i] => Class::Hit,
+                _ if touched[i] => Class::Touched,
                 CellState::Occupied => Class::Obstacle,
                 CellState::Unknown => Class::Unknown,
                 CellState::Free if self.grid.is_premarked(i) => Class::Premarked,
@@ -225,7 +239,7 @@ pub fn draw_map_paths<DB: DrawingBackend>(
     // whether a path crosses a wall.
     let pad = if px_per_m > 0.0 { (0.5 / px_per_m - 0.5 * res).max(0.0) } else { 0.0 };
     let on_top = super::cell_runs(map.cols(), map.rows(), |i| match classes[i] {
-        Class::Obstacle | Class::Hit => classes[i],
+        Class::Obstacle | Class::Hit | Class::Touched => classes[i],
         _ => Class::Never,
     });
     let walls = on_top.into_iter().filter(|run| run.3 != Class::Never).filter(inside).map(|(r, c0, c1, class)| {
@@ -301,6 +315,7 @@ impl Figure for PathFigure<'_> {
             (SEVERAL, if fleet { "swept by 2+ robots" } else { "covered 2+ times" }),
             (PREMARKED, "pre-marked as covered"),
             (HIT, "obstacle swept"),
+            (TOUCHED, "touched by the body"),
             (OBSTACLE, "obstacle"),
             (UNKNOWN, "unknown"),
         ];
@@ -413,5 +428,34 @@ mod tests {
         assert!(at(5.0, 5.0) == Class::Never);
         let count = |k: Class| classes.iter().filter(|c| **c == k).count();
         assert_eq!((count(Class::Robot(0)), count(Class::Robot(1)), count(Class::Several)), (20, 60, 20));
+    }
+
+    /// A wall the swept rectangle misses but the body (a disc of the robot's width) touches is
+    /// drawn as touched, so that a figure shows where a plan is not executable.
+    #[test]
+    fn walls_the_body_touches_are_classed_as_touched() {
+        // 10 × 10 cells of 0.1 m, column 5 (x in [0.5, 0.6)) a wall; a 0.5 m robot along
+        // x = 0.26 sweeps cell centres up to x = 0.51 (not the wall's, at 0.55), while its body
+        // comes within 0.24 m of the wall.
+        let (cols, rows) = (10, 10);
+        let mut cells = vec![CellState::Free; cols * rows];
+        for r in 0..rows {
+            cells[r * cols + 5] = CellState::Occupied;
+        }
+        let map = GridMap::new("wall", cols, rows, 0.1, Point::origin(), cells).unwrap();
+        let grid = CoverageGrid::new(&map);
+        let figure = |x: f64| PathFigure {
+            map: &map,
+            grid: &grid,
+            paths: vec![vec![Point::new(x, 0.3), Point::new(x, 0.7)]],
+            width: 0.5,
+            robots: Vec::new(),
+            title: String::new(),
+        };
+        let classes = figure(0.26).classes();
+        let touched: Vec<usize> = (0..classes.len()).filter(|&i| classes[i] == Class::Touched).collect();
+        assert!(!touched.is_empty() && touched.iter().all(|i| i % cols == 5), "{touched:?}");
+        assert!(!classes.contains(&Class::Hit));
+        assert!(!figure(0.2).classes().contains(&Class::Touched), "a body clear of the wall touches nothing");
     }
 }

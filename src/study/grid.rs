@@ -273,6 +273,7 @@ impl Study {
         for (n, c) in grid.conditional.iter_mut().enumerate() {
             c.axes = current_spelling(&c.axes, &origin, &format!("conditional[{n}].axes"), &mut renamed)?;
             c.when = current_spelling(&c.when, &origin, &format!("conditional[{n}].when"), &mut renamed)?;
+            renamed.extend(crate::experiment::renamed::current_when_values(&mut c.when));
         }
         let axes = values_of(&grid.axes, &origin, "axes")?;
         for (k, vals) in &axes {
@@ -302,8 +303,9 @@ impl Study {
         expand::check_distinct_ids(&origin, &grid, &columns, &runs)?;
         renamed.sort_unstable();
         renamed.dedup();
-        let warnings =
+        let mut warnings: Vec<String> =
             renamed.into_iter().map(|(old, new)| crate::experiment::renamed::warning(&origin, old, new)).collect();
+        warnings.extend(expand::unread_budget(&origin, &base, &columns, &runs));
         Ok(Self { path: path.to_path_buf(), text: text.to_string(), columns, runs, warnings })
     }
 

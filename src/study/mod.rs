@@ -12,4 +12,5 @@ pub mod order;
 pub mod outputs;
 pub mod records;
 pub mod runner;
+pub mod shard_files;
 pub mod slurm;

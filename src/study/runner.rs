@@ -327,8 +327,9 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
         let message = message.strip_prefix(&format!("{}: ", opts.out.display())).unwrap_or(&message).to_string();
         StudyError::Mismatch { path: opts.out.clone(), message }
     })?;
-    if let Some(shard) = opts.shard {
-        check_shard_count(&opts.out, shard)?;
+    match opts.shard {
+        Some(shard) => super::shard_files::check_shard_count(&opts.out, shard)?,
+        None => super::shard_files::check_no_unmerged_shards(&opts.out)?,
     }
     let _lock = StudyLock::take(&file)?;
     write_study_files(study, &opts.out)?;
@@ -476,32 +477,6 @@ fn complete(file: &Path, selected: usize, skipped: usize, completed: usize) -> R
     Ok(StudyOutcome { selected, skipped, completed, failed: failures.len(), first_failure })
 }
 
-/// Ids recorded in an existing runs file; drops a half-written last line in place.
-/// Refuses shard `shard` in a folder that holds shard files of another shard count: shards of
-/// two counts split the runs differently, so some runs would be computed twice and others by
-/// neither split's merge.
-fn check_shard_count(out: &Path, shard: Shard) -> Result<(), StudyError> {
-    let Ok(entries) = std::fs::read_dir(out) else { return Ok(()) };
-    for name in entries.flatten().map(|e| e.file_name().to_string_lossy().into_owned()) {
-        let count = name
-            .strip_prefix("runs-shard-")
-            .and_then(|n| n.strip_suffix(".csv"))
-            .and_then(|n| n.split_once("-of-"))
-            .and_then(|(_, c)| c.parse::<usize>().ok());
-        if let Some(count) = count.filter(|&c| c != shard.count) {
-            return Err(StudyError::Mismatch {
-                path: out.join(&name),
-                message: format!(
-                    "holds shards of {count}, and this is shard {}/{}: every shard of a study uses one count (the \
-                     runs are split by it); use --shard I/{count}, or another --out folder",
-                    shard.index, shard.count
-                ),
-            });
-        }
-    }
-    Ok(())
-}
-
 /// Takes the rows of failed runs out of the runs file `file` (whose columns are `head`), so
 /// that they run again; the file is replaced atomically, the other rows kept as they were.
 fn drop_failed_rows(file: &Path, head: &[String]) -> Result<(), StudyError> {
@@ -522,6 +497,7 @@ fn drop_failed_rows(file: &Path, head: &[String]) -> Result<(), StudyError> {
     crate::io::write_atomic(file, &bytes).map_err(io(file))
 }
 
+/// Ids recorded in an existing runs file; drops a half-written last line in place.
 fn recorded_ids(file: &Path, head: &[String]) -> Result<std::collections::HashSet<String>, StudyError> {
     let Ok(bytes) = std::fs::read(file) else { return Ok(Default::default()) };
     let text = String::from_utf8_lossy(&bytes).into_owned();

@@ -298,10 +298,22 @@ fn plan_paths(
 /// The camera of the common scorer's `cov_cam`: 000's default (`[scorer.camera]`'s defaults).
 /// Its wall band is half 000's narrowest hallway, which bounds the map's cell size, and `eval`
 /// has no camera settings, so a coarser map is blamed on its resolution. A map smaller than
-/// that hallway is one hallway: the band is at most half the map's longer side.
+/// that hallway is one hallway: the band is at most half the map's longer side, and at least
+/// one pixel of the camera's working raster; a map smaller than one such pixel is refused for
+/// its size (the user set no camera key, so no key is blamed).
 fn eval_camera(map: &GridMap, source: &str) -> Result<CameraSpec, UseCaseError> {
     let mut camera = crate::planner::sections::CameraSection::default();
-    let hallway = (2.0 * crate::planner::sections::DEFAULT_WALL_BAND_M).min(map.width_m().max(map.height_m()));
+    let longest = map.width_m().max(map.height_m());
+    if longest < camera.scale {
+        return Err(UseCaseError::Input(format!(
+            "map `{source}` is {} m across: the camera coverage eval reports (000's default camera) needs a map \
+             at least one camera pixel, {} m, across; give a map of at least {} m",
+            crate::io::short_number(longest),
+            crate::io::short_number(camera.scale),
+            crate::io::short_number(camera.scale)
+        )));
+    }
+    let hallway = (2.0 * crate::planner::sections::DEFAULT_WALL_BAND_M).min(longest);
     if map.resolution() > hallway {
         return Err(UseCaseError::Input(format!(
             "map `{source}` has cells of {} m: the camera coverage eval reports (000's default camera, narrowest hallway {} m) needs cells of at most {} m; give a finer map (`--resolution` for a bare image, `resolution:` in a ROS map YAML)",
@@ -310,7 +322,7 @@ fn eval_camera(map: &GridMap, source: &str) -> Result<CameraSpec, UseCaseError> 
             crate::io::short_number(hallway)
         )));
     }
-    camera.wall_band = Some(hallway / 2.0);
+    camera.wall_band = Some((hallway / 2.0).max(camera.scale));
     camera.spec("default camera", map).map_err(UseCaseError::input)
 }
 

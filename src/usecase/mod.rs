@@ -7,13 +7,15 @@
 //!   `metrics.json`, `path.csv` and the path figure;
 //! - [`run`]: read, validate and run one experiment into a results folder that holds no other
 //!   run's files, leaving nothing behind when it is refused or interrupted;
-//! - [`migrate`]: rewrite experiment and grid files to the current key names.
+//! - [`migrate`]: rewrite experiment and grid files to the current key names;
+//! - [`init`]: write the recommended experiment file for a floor plan, validated first.
 //!
 //! Grid studies ([`crate::study::runner::run_study`]) and reports
 //! ([`crate::report::write_report`]) are library functions of their own layers already.
 
 pub mod eval;
 pub mod eval_memory;
+pub mod init;
 pub mod migrate;
 pub mod run;
 

@@ -11,6 +11,7 @@ mod bad_input;
 mod interrupts;
 
 mod fourth_pass;
+mod fourth_pass_rest;
 mod goal_and_bound;
 mod map_memory;
 mod report_inputs;

@@ -249,3 +249,36 @@ fn self_runs(
     }
     Ok(())
 }
+
+/// The warning for a grid that sets a budget (in its base or an axis) some of whose runs' planners
+/// read none (patterns, area division: they plan once, in full), with how many runs and why;
+/// `None` where every run reads its budget or the grid sets none.
+pub(super) fn unread_budget(origin: &str, base: &Table, columns: &[String], runs: &[RunSpec]) -> Option<String> {
+    let mut keys: Vec<String> = base
+        .get("budget")
+        .and_then(toml::Value::as_table)
+        .map(|t| t.keys().map(|k| format!("budget.{k}")).collect())
+        .unwrap_or_default();
+    keys.extend(columns.iter().filter(|c| c.starts_with("budget.")).cloned());
+    keys.sort();
+    keys.dedup();
+    if keys.is_empty() {
+        return None;
+    }
+    let mut reasons: Vec<String> = Vec::new();
+    let mut unread = 0;
+    for why in runs.iter().filter_map(|r| crate::experiment::ignored::why_budget_unread(&r.file)) {
+        unread += 1;
+        if !reasons.contains(&why) {
+            reasons.push(why);
+        }
+    }
+    (unread > 0).then(|| {
+        format!(
+            "{origin}: `{}` is ignored by {unread} of {} runs: {}",
+            keys.join("`, `"),
+            runs.len(),
+            reasons.join("; ")
+        )
+    })
+}
