@@ -169,12 +169,14 @@ fn a_coverage_goal_ends_the_plan_where_the_scorer_reaches_it() {
         let curve = CoverageCurve::of_plan(scorer.grid(), scorer.reach(), &a.plan, &[s.robot]);
         let reported = a.details["time_to_goal_s"].as_f64().unwrap();
         assert!((curve.time_to(0.9).unwrap() - reported).abs() < 1e-6, "{completion:?}: {reported}");
-        // The bound: 0.9 of the reachable cells' area over width × speed, plus the turning
+        // The bound: the length bound of 0.9 of the reachable cells' area, plus the turning
         // bound's time, below the plan.
         let bound = a.details["lower_bound_to_goal_s"].as_f64().unwrap();
         let turning = a.details["turning_bound_to_goal_s"].as_f64().unwrap();
         let area = scorer.reach().coverable_count() as f64 * s.map.resolution().powi(2);
-        assert!((bound - turning - 0.9 * area / (s.robot.width * s.robot.speed)).abs() < 1e-6 * bound, "{bound}");
+        let length_s =
+            covga::coverage::bound::area_time_s(0.9 * area, &[(s.robot.width, s.robot.speed)], s.map.resolution());
+        assert!((bound - turning - length_s).abs() < 1e-6 * bound, "{bound}");
         assert!(turning >= 0.0 && (s.robot.rot_speed > 0.0 || turning == 0.0), "{turning}");
         assert!(bound > 0.0 && bound < reported, "{completion:?}: {bound} vs {reported}");
         let finalists: Vec<f64> =
