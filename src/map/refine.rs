@@ -45,6 +45,7 @@ pub fn refined(map: &GridMap, k: usize) -> GridMap {
     }
     GridMap::new(map.name(), cols, rows, map.resolution() / k as f64, map.origin(), cells)
         .expect("a refined map has the free cells of its map and a positive resolution")
+        .scored_on(map.scored_resolution())
 }
 
 /// Per cell of `map` refined by `k` ([`refined`]), the flag of the cell of `map` it lies in.
