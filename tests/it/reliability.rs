@@ -12,6 +12,7 @@ mod interrupts;
 
 mod fourth_pass;
 mod map_memory;
+mod one_raster;
 mod report_inputs;
 mod third_pass;
 
