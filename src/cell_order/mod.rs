@@ -8,7 +8,8 @@
 //! controls with no search ([`controls`]) give the plans a search has to beat. The plan drives the chosen sweeps joined by
 //! [`crate::map::clearance::Clearance::connect`] routes, then a completion pass (the boundary
 //! chains of [`boundary`], or the quota heuristic of [`quota`] that takes the cheapest pieces
-//! first up to the coverage goal), then to the end station: executable by construction.
+//! first up to the coverage goal), then to the end station. Every plan is checked with the body
+//! rule and repaired where it touches before it is returned ([`crate::planner::executable`]).
 
 pub mod boundary;
 pub mod cell_completion;
@@ -284,7 +285,9 @@ impl Prepared<'_> {
         }
         route.finish(&self.clear, end);
         let skipped = route.skipped();
-        (route.into_points(), skipped)
+        // Repaired here, so that the plans a run chooses among are scored as they will be
+        // driven; the run checks the one it returns.
+        (crate::planner::executable::repaired(&self.clear, width, route.into_points()), skipped)
     }
 }
 

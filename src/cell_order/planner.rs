@@ -412,6 +412,8 @@ impl Planner for CellOrderConfig {
             solved.cost = prepared.instance.cost(&solved.tour, self.coverage_goal);
         }
         let (path, skipped) = (chosen.path, chosen.skipped);
+        let path = crate::planner::executable::executable(&prepared.clear, s.robot.width, path)
+            .map_err(|e| PlannerError::Input(format!("cell_order on map `{}`: {e}", scenario.map.name())))?;
         if self.solver == Solver::Boustrophedon || classical_chosen {
             // No tour: the cost is the plan's own mission time.
             solved.cost = crate::coverage::curve::segment_end_times(&path, &s.robot).last().copied().unwrap_or(0.0);

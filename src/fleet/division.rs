@@ -348,7 +348,9 @@ pub fn plan(map: &GridMap, fleet: &Fleet, angle_deg: f64) -> Result<(Vec<Vec<Poi
                         width,
                     }
                 }
-                PatternError::TooManyLanes { .. } => DivisionError::Pattern { robot: robot.name.clone(), source },
+                PatternError::TooManyLanes { .. } | PatternError::NotExecutable(_) => {
+                    DivisionError::Pattern { robot: robot.name.clone(), source }
+                }
             })?;
             let time = robot_time(&planned.points, &robot.footprint);
             if best.as_ref().is_none_or(|(t, _)| time < *t) {

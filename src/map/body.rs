@@ -19,9 +19,11 @@
 //! line, at most half a cell apart ([`super::clearance::Clearance::fitting_intervals`]), and
 //! a line that keeps the radius at two samples can pass a wall's corner between them by up to
 //! `r − √(r² − (res/4)²)` (4 mm for a 0.6 m robot on 0.2 m cells, 0.3 mm on 0.05 m cells).
-//! That is the slack, so that the pattern and cell-order plans, which keep the clearance at
-//! every sample, are executable; a vertex or a turn inside a wall, the failure this rule
-//! exists to catch, is caught at any resolution. A robot narrower than half a cell keeps at
+//! That is the slack, so that moves tested at those samples pass; the pattern and cell-order
+//! plans are not assumed to: each is read with this rule before it is returned, and repaired
+//! or refused where it touches ([`crate::planner::executable`]: a connecting hop from a lane
+//! end at the clearance limit is tested at no sample). A vertex or a turn inside a wall, the
+//! failure this rule exists to catch, is caught at any resolution. A robot narrower than half a cell keeps at
 //! least half its radius. The map's edge is tested without slack (the capsule's extremes are
 //! its vertices, which the planners test exactly).
 //!

@@ -288,6 +288,18 @@ impl<'m> Clearance<'m> {
             out.push(raw[next]);
             anchor = next;
         }
+        // From a point the body fits at, the first hop must pass the body rule too: a lane end
+        // at the clearance limit between cell centres (a lane through a gap exactly one robot
+        // wide) can see its nearest centre only past a wall's corner. Then the route starts at
+        // the nearest centre it sees; where it sees none, the plan's check detours
+        // ([`crate::planner::executable`]).
+        if self.fits_geometry(a)
+            && !crate::map::body::segment_clear_of_cells(&self.map, a, out[0], 2.0 * self.radius)
+            && let Some(c) = self.visible_centre(a)
+            && let Some(rest) = self.connect(c, b)
+        {
+            out = std::iter::once(c).chain(rest).collect();
+        }
         // Every hop after the first must fit: the first may leave a start that the disc does
         // not fit (a station next to a wall), the others must not cut through obstacles.
         let mut prev = out[0];
@@ -298,6 +310,31 @@ impl<'m> Clearance<'m> {
             prev = p;
         }
         Some(out)
+    }
+
+    /// The fitting cell centre nearest to `p` that a straight move from `p` reaches with the
+    /// disc clear all along ([`Clearance::segment_fits`]), within the clearance window about
+    /// `p`.
+    fn visible_centre(&self, p: Point) -> Option<Point> {
+        let m = &*self.map;
+        let (r0, c0) = m.cell_at(m.clamp(p))?;
+        let k = self.window;
+        let mut best: Option<(f64, Point)> = None;
+        for r in (r0 as isize - k).max(0)..=(r0 as isize + k).min(m.rows() as isize - 1) {
+            for c in (c0 as isize - k).max(0)..=(c0 as isize + k).min(m.cols() as isize - 1) {
+                let (r, c) = (r as usize, c as usize);
+                let q = m.cell_centre(r, c);
+                let d = (q - p).norm();
+                if self.centre_ok[m.index(r, c)]
+                    && best.is_none_or(|(bd, _)| d < bd)
+                    && d > 1e-12
+                    && self.segment_fits(p, q)
+                {
+                    best = Some((d, q));
+                }
+            }
+        }
+        best.map(|(_, q)| q)
     }
 
     /// The 8 neighbours of cell `i` that a robot centred on `i` can step to: fitting centres,

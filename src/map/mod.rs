@@ -108,6 +108,9 @@ pub struct GridMap {
     origin: Point,
     cells: Vec<CellState>,
     free_count: usize,
+    /// The cell size of the raster a plan made on this map is scored on: the resolution, or for
+    /// a planning raster split from a coarser map ([`refine::refined`]), that map's.
+    scored_resolution: f64,
 }
 
 impl GridMap {
@@ -135,7 +138,20 @@ impl GridMap {
         if free_count == 0 {
             return Err(MapError::NoFreeCell { source_name: name });
         }
-        Ok(Self { name, cols, rows, resolution, origin, cells, free_count })
+        Ok(Self { name, cols, rows, resolution, origin, cells, free_count, scored_resolution: resolution })
+    }
+
+    /// This map, scored on cells of `resolution` metres sharing its origin (a planning raster
+    /// split from a map of that resolution).
+    pub fn scored_on(mut self, resolution: f64) -> Self {
+        self.scored_resolution = resolution;
+        self
+    }
+
+    /// The cell size of the raster plans on this map are scored on (the map's own, unless it
+    /// was split from a coarser map for planning).
+    pub fn scored_resolution(&self) -> f64 {
+        self.scored_resolution
     }
 
     /// A short name (preset name or file name) used in outputs.

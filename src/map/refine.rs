@@ -23,14 +23,29 @@ pub const MAX_CELL_PER_WIDTH: f64 = 0.5;
 /// The cell size, as a fraction of the robot's width, that a coarser map is refined to (at most).
 pub const REFINED_CELL_PER_WIDTH: f64 = 0.25;
 
+/// How many times [`refinement`]'s least split it may grow to open passages of whole cells.
+pub const MAX_PASSAGE_SPLIT: usize = 2;
+
 /// How many cells each cell of a map of `resolution` metres per cell is split into along each
-/// axis for a robot `width` metres wide: 1 where `resolution ≤ width/2`, else the least `k`
-/// with `resolution / k ≤ width/4`.
+/// axis for a robot `width` metres wide: 1 where `resolution ≤ width/2`; else the least `k`
+/// with `resolution / k ≤ width/4`, raised (up to [`MAX_PASSAGE_SPLIT`] times) until the
+/// narrowest passage of whole cells the robot fits through holds a cell centre it fits at.
+///
+/// Why the second rule: such a passage (a door or a gap between pillars `g` = `n · resolution`
+/// wide, the least multiple of the cell above the width) lets the robot's centre through only
+/// within `(g − width)/2` of its middle, and its middle is a cell border or a cell centre of the
+/// map. A refined raster of cells `ρ` has a centre within `ρ/2` of any line, so `ρ < g − width`
+/// keeps the passage open to the planners as it is to the scorer (a 0.9 m robot on 0.5 m cells
+/// between pillars 1 m apart: `ρ` = 0.083 m, where 0.167 m closed the passage).
 pub fn refinement(resolution: f64, width: f64) -> usize {
     if !(width > 0.0 && resolution.is_finite()) || resolution <= MAX_CELL_PER_WIDTH * width {
         return 1;
     }
-    (resolution / (REFINED_CELL_PER_WIDTH * width) - 1e-9).ceil().max(1.0) as usize
+    let k = (resolution / (REFINED_CELL_PER_WIDTH * width) - 1e-9).ceil().max(1.0) as usize;
+    let passage = ((width / resolution + 1e-9).floor() + 1.0) * resolution;
+    // A margin of 1 %: the passage's centre must fit with more than rounding to spare.
+    let open = (1.01 * resolution / (passage - width)).ceil().max(1.0) as usize;
+    k.max(open.min(MAX_PASSAGE_SPLIT * k))
 }
 
 /// `map` with every cell split into `k × k` cells of the same state (the same frame, name and
@@ -45,6 +60,7 @@ pub fn refined(map: &GridMap, k: usize) -> GridMap {
     }
     GridMap::new(map.name(), cols, rows, map.resolution() / k as f64, map.origin(), cells)
         .expect("a refined map has the free cells of its map and a positive resolution")
+        .scored_on(map.scored_resolution())
 }
 
 /// Per cell of `map` refined by `k` ([`refined`]), the flag of the cell of `map` it lies in.
@@ -117,10 +133,13 @@ mod tests {
             (0.05, 0.6, 1),
             (0.2, 0.4, 1),
             (0.3, 0.6, 1),
-            (0.31, 0.6, 3),
+            // The 0.62 m passage needs cells under 0.02 m: the split stops at twice the least.
+            (0.31, 0.6, 6),
             (0.4, 0.6, 3),
             (0.45, 0.6, 3),
             (0.5, 0.6, 4),
+            // Pillars 1 m apart and a 0.9 m robot: cells under 0.1 m (the least split gives 0.167).
+            (0.5, 0.9, 6),
             (0.5, 0.3, 7),
             (0.5, f64::NAN, 1),
         ];

@@ -23,6 +23,10 @@ pub enum PatternError {
         /// The robot width.
         width: f64,
     },
+    /// The plan touches a wall, an unknown cell or the map's edge and no detour repairs it
+    /// (the body rule of [`crate::map::body`], checked before a plan is returned).
+    #[error("{0}")]
+    NotExecutable(String),
     /// The robot is so narrow that the lanes across the map would not fit in memory or time.
     #[error(
         "a robot {} m wide needs about {lanes:.3e} lanes across map `{map}` ({across:.1} m); at most {MAX_LANES} \
@@ -142,10 +146,16 @@ pub fn plan_region(
     route.finish(&whole, end);
     Ok(PatternPlan {
         skipped_targets: route.skipped,
-        points: route.points,
+        points: checked(&whole, width, route.points)?,
         pockets: reach.pocket_count(),
         pocket_area_m2: reach.pocket_area_m2(),
     })
+}
+
+/// `points` made executable on the planning raster of `clear` ([`crate::planner::executable`]),
+/// or why it cannot be.
+fn checked(clear: &Clearance, width: f64, points: Vec<Point>) -> Result<Vec<Point>, PatternError> {
+    crate::planner::executable::executable(clear, width, points).map_err(|e| PatternError::NotExecutable(e.to_string()))
 }
 
 /// A growing polyline that starts at a station; targets it cannot reach are skipped.
@@ -277,7 +287,7 @@ pub fn plan(
     route.finish(&clear, end);
     Ok(PatternPlan {
         skipped_targets: route.skipped,
-        points: route.points,
+        points: checked(&clear, width, route.points)?,
         pockets: reach.pocket_count(),
         pocket_area_m2: reach.pocket_area_m2(),
     })

@@ -1,5 +1,6 @@
 //! Boustrophedon and spiral behind the common [`Planner`] interface: deterministic, one
-//! evaluation, feasible by construction; pockets the robot cannot reach are reported.
+//! evaluation, each plan checked with the body rule before it is returned
+//! ([`crate::planner::executable`]); pockets the robot cannot reach are reported.
 
 use super::{Pattern, plan};
 use crate::config::{ConfigError, check_range};

@@ -14,6 +14,7 @@ mod fourth_pass;
 mod fourth_pass_rest;
 mod goal_and_bound;
 mod map_memory;
+mod one_raster;
 mod report_inputs;
 mod third_pass;
 
