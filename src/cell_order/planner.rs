@@ -296,23 +296,22 @@ fn end_at_goal(
     path
 }
 
-/// A lower bound on the time any plan needs to cover the share `goal` of the reachable
-/// coverable cells ([`crate::coverage::bound`]): their area over the area a robot sweeps per
-/// second driving straight (width × speed; turning in place sweeps nothing new in the scorer's
-/// model, 003 §3.3), plus the turning any path covering that area inside the map needs.
-pub fn lower_bound_to_goal(prepared: &Prepared, robot: &crate::coverage::Footprint, goal: f64) -> TimeBound {
-    let map = prepared.clear.map();
-    let area = goal * prepared.reach.coverable_count() as f64 * map.resolution().powi(2);
+/// A lower bound on the time any plan needs to cover the share `goal` of the cells the common
+/// scorer counts reachable on `scenario`'s map as given ([`crate::coverage::bound`]: the length
+/// bound of their area on its cells, plus the turning any path covering it needs), whatever
+/// raster the plan was made on.
+pub fn lower_bound_to_goal(scenario: &Scenario, goal: f64) -> TimeBound {
+    let (map, robot) = (&scenario.map, &scenario.robot);
+    let area = goal * scenario.reach().coverable_count() as f64 * map.resolution().powi(2);
     TimeBound::one_robot(area, (robot.width, robot.speed, robot.rot_speed), map.resolution(), free_diameter_m(map))
 }
 
 /// The planner's own fields of `summary.json`.
 fn details_of(
     prepared: &Prepared,
-    robot: &crate::coverage::Footprint,
     (solved, classical_chosen): (&Solved, bool),
     skipped: usize,
-    goal: Option<(f64, f64, Vec<f64>)>,
+    goal: Option<(f64, f64, Vec<f64>, TimeBound)>,
     directions: Option<&[f64]>,
     control_plan: Option<(f64, Option<bool>)>,
 ) -> serde_json::Map<String, serde_json::Value> {
@@ -355,9 +354,9 @@ fn details_of(
     if classical_chosen {
         details.insert("classical_chosen".into(), true.into());
     }
-    if let Some((goal, time_s, finalists)) = goal {
+    if let Some((goal, time_s, finalists, bound)) = goal {
         details.insert("coverage_goal".into(), goal.into());
-        let bound = lower_bound_to_goal(prepared, robot, goal);
+
         details.insert("lower_bound_to_goal_s".into(), bound.total_s().into());
         details.insert("turning_bound_to_goal_s".into(), bound.turning_s.into());
         // A goal not reached has no time: `null`, not the ranking's penalty.
@@ -423,13 +422,12 @@ impl Planner for CellOrderConfig {
         // raster's where the map is planned as it is).
         let goal = chosen.goal.map(|(goal, _, finalists)| {
             let curve = CoverageCurve::of_plan(&grid, &scenario.reach(), std::slice::from_ref(&path), &[s.robot]);
-            (goal, time_to_goal(&curve, goal), finalists)
+            (goal, time_to_goal(&curve, goal), finalists, lower_bound_to_goal(scenario, goal))
         });
         let metrics = s.robot.measure(&grid, &mut crate::coverage::SweepScratch::new(&grid), &path);
         let sc = crate::coverage::fitness::score(&metrics, &s.robot, scenario.map.resolution(), s.projection);
         let details = details_of(
             &prepared,
-            &s.robot,
             (&solved, classical_chosen),
             skipped,
             goal,

@@ -49,8 +49,21 @@ pub struct Case {
     pub planner: Planner,
 }
 
-/// What a case found wrong, in words (empty: nothing).
-pub type Findings = Vec<String>;
+/// What a case can find wrong.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Kind {
+    /// A goal time other than the scorer's curve's, or a time below its bound.
+    Agreement,
+    /// A plan the body rule refuses.
+    NotExecutable,
+    /// A plan short of [`MIN_REACHABLE_SHARE`] of the reachable cells.
+    ShortCoverage,
+    /// A refusal where the scorer counts reachable cells from a start the robot fits at.
+    WrongRefusal,
+}
+
+/// What a case found wrong, each with its kind and in words (empty: nothing).
+pub type Findings = Vec<(Kind, String)>;
 
 fn log_uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
     (lo.ln() + rng.random::<f64>() * (hi.ln() - lo.ln())).exp()
@@ -189,7 +202,7 @@ impl Case {
         let load = move |_: &str, _: &covga::map::ros::BareImage| Ok(map.clone());
         let file = match ExperimentFile::parse(&text, "case.toml") {
             Ok(f) => f,
-            Err(e) => return vec![format!("the case's file does not parse: {e}")],
+            Err(e) => return vec![(Kind::Agreement, format!("the case's file does not parse: {e}"))],
         };
         let scenario_reach = self.scorer_reach();
         let exp = match file.validate_with("case.toml", dir.path(), "case", &load, Checks::Full) {
@@ -212,7 +225,7 @@ impl Case {
     fn refusal(&self, message: &str, reach: Option<usize>) -> Findings {
         match reach {
             None | Some(0) => Vec::new(),
-            Some(n) => vec![format!("refused with {n} reachable coverable cells: {message}")],
+            Some(n) => vec![(Kind::WrongRefusal, format!("refused with {n} reachable coverable cells: {message}"))],
         }
     }
 
@@ -220,17 +233,18 @@ impl Case {
         let mut out = Vec::new();
         let score = &s.score;
         if !score.executable {
-            out.push(format!("not executable: {}", score.not_executable_why()));
+            out.push((Kind::NotExecutable, format!("not executable: {}", score.not_executable_why())));
         }
         if score.reachable_cells > 0 && score.cov_final_reach < MIN_REACHABLE_SHARE {
-            out.push(format!("covers {:.4} of {} reachable cells", score.cov_final_reach, score.reachable_cells));
+            let what = format!("covers {:.4} of {} reachable cells", score.cov_final_reach, score.reachable_cells);
+            out.push((Kind::ShortCoverage, what));
         }
         let time = score.time_s;
         let area = score.unique_reach_cells as f64 * self.map.resolution().powi(2);
         let bound =
             TimeBound::one_robot(area, (self.width, 0.2, 0.52), self.map.resolution(), free_diameter_m(&self.map));
         if bound.total_s() > time + 1e-6 {
-            out.push(format!("time {time:.3} s below the bound {:.3} s", bound.total_s()));
+            out.push((Kind::Agreement, format!("time {time:.3} s below the bound {:.3} s", bound.total_s())));
         }
         if let Some(goal) = s.details.get("coverage_goal").and_then(|g| g.as_f64()) {
             let recorded = s.details.get("time_to_goal_s").and_then(|t| t.as_f64());
@@ -239,44 +253,57 @@ impl Case {
                 _ => None,
             };
             if recorded != curve {
-                out.push(format!("goal time {recorded:?} against the curve's {curve:?}"));
+                out.push((Kind::Agreement, format!("goal time {recorded:?} against the curve's {curve:?}")));
             }
             let lower = s.details.get("lower_bound_to_goal_s").and_then(|t| t.as_f64()).unwrap_or(0.0);
             if let Some(t) = recorded.filter(|&t| t + 1e-6 < lower) {
-                out.push(format!("goal time {t:.3} s below its bound {lower:.3} s"));
+                out.push((Kind::Agreement, format!("goal time {t:.3} s below its bound {lower:.3} s")));
             }
         }
         out
     }
 }
 
-/// Runs cases `range` (in parallel) and returns each failing case's description and findings.
-pub fn failures(range: std::ops::Range<u64>) -> (usize, Vec<String>) {
+/// What cases `range` found (run in parallel): how many drew a map, and each finding's kind
+/// with the case described.
+pub fn failures(range: std::ops::Range<u64>) -> (usize, Vec<(Kind, String)>) {
     use rayon::prelude::*;
-    let results: Vec<(bool, Option<String>)> = range
+    let results: Vec<(bool, Vec<(Kind, String)>)> = range
         .into_par_iter()
         .map(|i| match draw(i) {
-            None => (false, None),
+            None => (false, Vec::new()),
             Some(case) => {
-                let findings = case.check();
-                let described = (!findings.is_empty()).then(|| {
-                    format!(
-                        "case {i}: {:?} width {:.4} on {} ({} × {} cells of {:.4} m), start ({:.4}, {:.4}): {}",
-                        case.planner,
-                        case.width,
-                        case.source,
-                        case.map.cols(),
-                        case.map.rows(),
-                        case.map.resolution(),
-                        case.start.x,
-                        case.start.y,
-                        findings.join("; ")
-                    )
-                });
-                (true, described)
+                let described = format!(
+                    "case {i}: {:?} width {:.4} on {} ({} × {} cells of {:.4} m), start ({:.4}, {:.4})",
+                    case.planner,
+                    case.width,
+                    case.source,
+                    case.map.cols(),
+                    case.map.rows(),
+                    case.map.resolution(),
+                    case.start.x,
+                    case.start.y,
+                );
+                (true, case.check().into_iter().map(|(k, f)| (k, format!("{described}: {f}"))).collect())
             }
         })
         .collect();
     let ran = results.iter().filter(|r| r.0).count();
-    (ran, results.into_iter().filter_map(|r| r.1).collect())
+    (ran, results.into_iter().flat_map(|r| r.1).collect())
+}
+
+/// Asserts what cases `range` must show: at least `least` of them drew a map, planners and the
+/// scorer agree on every goal time and bound, and each other kind of finding stays within its
+/// `ceilings` (the counts measured when the open part of the issue was written down; a change
+/// that adds one fails, and one that removes some should lower the ceiling).
+pub fn assert_cases(range: std::ops::Range<u64>, least: usize, ceilings: &[(Kind, usize)]) {
+    let (ran, found) = failures(range);
+    assert!(ran >= least, "only {ran} cases drew a map, {least} wanted");
+    let listed = |kind: Kind| found.iter().filter(|f| f.0 == kind).map(|f| f.1.as_str()).collect::<Vec<_>>();
+    let agreement = listed(Kind::Agreement);
+    assert!(agreement.is_empty(), "{} of {ran} cases disagree:\n{}", agreement.len(), agreement.join("\n"));
+    for &(kind, most) in ceilings {
+        let these = listed(kind);
+        assert!(these.len() <= most, "{kind:?}: {} of {ran} cases, at most {most}:\n{}", these.len(), these.join("\n"));
+    }
 }
