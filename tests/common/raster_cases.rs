@@ -268,26 +268,32 @@ impl Case {
 /// with the case described.
 pub fn failures(range: std::ops::Range<u64>) -> (usize, Vec<(Kind, String)>) {
     use rayon::prelude::*;
-    let results: Vec<(bool, Vec<(Kind, String)>)> = range
-        .into_par_iter()
-        .map(|i| match draw(i) {
-            None => (false, Vec::new()),
-            Some(case) => {
-                let described = format!(
-                    "case {i}: {:?} width {:.4} on {} ({} × {} cells of {:.4} m), start ({:.4}, {:.4})",
-                    case.planner,
-                    case.width,
-                    case.source,
-                    case.map.cols(),
-                    case.map.rows(),
-                    case.map.resolution(),
-                    case.start.x,
-                    case.start.y,
-                );
-                (true, case.check().into_iter().map(|(k, f)| (k, format!("{described}: {f}"))).collect())
-            }
-        })
-        .collect();
+    // A pool of their own: the cases would otherwise queue every other test's parallel work in
+    // the same process behind thousands of theirs.
+    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("a thread pool");
+    let results: Vec<(bool, Vec<(Kind, String)>)> = pool.install(|| {
+        range
+            .into_par_iter()
+            .map(|i| match draw(i) {
+                None => (false, Vec::new()),
+                Some(case) => {
+                    let described = format!(
+                        "case {i}: {:?} width {:.4} on {} ({} × {} cells of {:.4} m), start ({:.4}, {:.4})",
+                        case.planner,
+                        case.width,
+                        case.source,
+                        case.map.cols(),
+                        case.map.rows(),
+                        case.map.resolution(),
+                        case.start.x,
+                        case.start.y,
+                    );
+                    (true, case.check().into_iter().map(|(k, f)| (k, format!("{described}: {f}"))).collect())
+                }
+            })
+            .collect()
+    });
     let ran = results.iter().filter(|r| r.0).count();
     (ran, results.into_iter().flat_map(|r| r.1).collect())
 }
