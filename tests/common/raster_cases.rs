@@ -105,6 +105,17 @@ pub fn resampled(map: &GridMap, resolution: f64, (x0, y0, w, h): (f64, f64, f64,
     GridMap::new(map.name(), cols, rows, resolution, Point::new(x0, y0), cells).ok()
 }
 
+/// A random window of `map` at most `side` metres a side, resampled to cells of `resolution`.
+fn window(rng: &mut ChaCha8Rng, map: &GridMap, name: &str, resolution: f64, side: f64) -> Option<(GridMap, String)> {
+    let (w, h) = (map.width_m().min(side), map.height_m().min(side));
+    let (x0, y0) = (
+        map.origin().x + rng.random::<f64>() * (map.width_m() - w),
+        map.origin().y + rng.random::<f64>() * (map.height_m() - h),
+    );
+    let described = format!("{name} window ({x0:.3}, {y0:.3}) {w:.3} × {h:.3} m");
+    Some((resampled(map, resolution, (x0, y0, w, h))?, described))
+}
+
 /// The map of case `index`, its description, at cells of `resolution` for a robot `width`.
 fn draw_map(rng: &mut ChaCha8Rng, resolution: f64, width: f64) -> Option<(GridMap, String)> {
     let k = covga::map::refine::refinement(resolution, width) as f64;
@@ -127,29 +138,12 @@ fn draw_map(rng: &mut ChaCha8Rng, resolution: f64, width: f64) -> Option<(GridMa
         }
         1 => {
             let name = ["thesis-1", "thesis-2", "office"][rng.random_range(0..3)];
-            let map = covga::map::presets::preset(name)?;
-            let (w, h) = (map.width_m().min(side), map.height_m().min(side));
-            let (x0, y0) = (
-                map.origin().x + rng.random::<f64>() * (map.width_m() - w),
-                map.origin().y + rng.random::<f64>() * (map.height_m() - h),
-            );
-            Some((
-                resampled(&map, resolution, (x0, y0, w, h))?,
-                format!("{name} window ({x0:.3}, {y0:.3}) {w:.3} × {h:.3} m"),
-            ))
+            window(rng, &covga::map::presets::preset(name)?, name, resolution, side)
         }
         _ => {
             let path = concat!(env!("CARGO_MANIFEST_DIR"), "/experiments/maps/basement.yaml");
             let map = covga::map::ros::load_ros_yaml(std::path::Path::new(path)).ok()?;
-            let (w, h) = (map.width_m().min(side), map.height_m().min(side));
-            let (x0, y0) = (
-                map.origin().x + rng.random::<f64>() * (map.width_m() - w),
-                map.origin().y + rng.random::<f64>() * (map.height_m() - h),
-            );
-            Some((
-                resampled(&map, resolution, (x0, y0, w, h))?,
-                format!("basement window ({x0:.3}, {y0:.3}) {w:.3} × {h:.3} m"),
-            ))
+            window(rng, &map, "basement", resolution, side)
         }
     }
 }

@@ -6,19 +6,21 @@ use std::process::{Output, Stdio};
 
 use crate::common::covga_in as run;
 
-fn ok(o: &Output) -> String {
+/// The output of a command that succeeded.
+pub(super) fn ok(o: &Output) -> String {
     assert!(o.status.success(), "{}\n{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// The error output of a command that ended with exit code `code`.
-fn refused(o: &Output, code: i32) -> String {
+pub(super) fn refused(o: &Output, code: i32) -> String {
     let err = String::from_utf8_lossy(&o.stderr).into_owned();
     assert_eq!(o.status.code(), Some(code), "{err}");
     err
 }
 
-fn write(dir: &Path, name: &str, text: &str) {
+/// Writes `text` to `dir/name`, making its folder.
+pub(super) fn write(dir: &Path, name: &str, text: &str) {
     let path = dir.join(name);
     std::fs::create_dir_all(path.parent().unwrap()).unwrap();
     std::fs::write(path, text).unwrap();

@@ -1,28 +1,9 @@
 //! The rest of the fourth hardening pass's smaller findings (item 9): one case per finding,
 //! each failing on the code before it.
 
-use std::path::Path;
-use std::process::Output;
-
 use crate::common::covga_in as run;
 
-fn ok(o: &Output) -> String {
-    assert!(o.status.success(), "{}\n{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr));
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-/// The error output of a command that ended with exit code `code`.
-fn refused(o: &Output, code: i32) -> String {
-    let err = String::from_utf8_lossy(&o.stderr).into_owned();
-    assert_eq!(o.status.code(), Some(code), "{err}");
-    err
-}
-
-fn write(dir: &Path, name: &str, text: &str) {
-    let path = dir.join(name);
-    std::fs::create_dir_all(path.parent().unwrap()).unwrap();
-    std::fs::write(path, text).unwrap();
-}
+use super::fourth_pass::{ok, refused, write};
 
 /// A conditional's `when` that tests an old value (`"elite"`) matches the runs that read it under
 /// its new spelling, and `migrate` gives it the new spelling with the axis it tests (both were
