@@ -10,6 +10,7 @@ pub mod clearance;
 pub mod coverable;
 pub mod generate;
 pub mod orientation;
+pub mod passages;
 pub mod picture;
 pub mod presets;
 pub mod reach;
@@ -176,11 +177,23 @@ impl GridMap {
     }
     /// Width of the map in metres (`M_width`).
     pub fn width_m(&self) -> f64 {
-        self.cols as f64 * self.resolution
+        self.extent_m(self.cols)
     }
     /// Height of the map in metres (`M_height`).
     pub fn height_m(&self) -> f64 {
-        self.rows as f64 * self.resolution
+        self.extent_m(self.rows)
+    }
+
+    /// The length of `n` cells: `n · resolution`, or on a planning raster split `k × k` from a
+    /// coarser map, `(n / k) · that map's resolution`, so that the split map's edges are its
+    /// map's to the bit (`n·(res/k)` and `(n/k)·res` differ in the last bit for about one split
+    /// in five, and a plan at the clearance limit off one edge would leave the other).
+    fn extent_m(&self, n: usize) -> f64 {
+        if self.scored_resolution == self.resolution {
+            return n as f64 * self.resolution;
+        }
+        let k = (self.scored_resolution / self.resolution).round() as usize;
+        if k > 1 && n.is_multiple_of(k) { (n / k) as f64 * self.scored_resolution } else { n as f64 * self.resolution }
     }
     /// Number of free cells (`A_pix` of 003 §3.1 when obstacles are excluded, R29).
     pub fn free_count(&self) -> usize {

@@ -11,7 +11,7 @@ pub mod spiral;
 use crate::geom::Point;
 use crate::map::GridMap;
 pub use crate::map::clearance::{self, Clearance};
-use crate::map::refine::planning_map;
+use crate::map::passages::planning_map_from;
 use std::borrow::Cow;
 
 /// Why a pattern could not be planned.
@@ -102,7 +102,7 @@ pub fn plan_region(
 ) -> Result<PatternPlan, PatternError> {
     check_lane_count(map, width)?;
     // Planned on the refined raster where the map is coarse (`map::refine`).
-    let k = crate::map::refine::refinement(map.resolution(), width);
+    let k = crate::map::passages::planning_refinement(map, width, start);
     let (map, region, targets) = if k > 1 {
         use crate::map::refine::{refined, refined_flags};
         (Cow::Owned(refined(map, k)), Cow::Owned(refined(region, k)), Cow::Owned(refined_flags(map, targets, k)))
@@ -241,7 +241,7 @@ pub fn check_plan_inputs(map: &GridMap, width: f64, start: Point, end: Point, na
     map.check_station(start, start_name)?;
     map.check_station(end, end_name)?;
     check_lane_count(map, width).map_err(|e| format!("{width_name}: {e}"))?;
-    let planning = planning_map(map, width);
+    let planning = planning_map_from(map, width, start);
     let clear = Clearance::new(&planning, width);
     for (p, name) in [(start, start_name), (end, end_name)] {
         if let Some(why) = station_misfit(&clear, p, name) {
@@ -269,7 +269,7 @@ pub fn plan(
 ) -> Result<PatternPlan, PatternError> {
     check_lane_count(map, width)?;
     // Planned on the refined raster where the map is coarse (`map::refine`).
-    let map = &*planning_map(map, width);
+    let map = &*planning_map_from(map, width, start);
     let mut clear = Clearance::new(map, width);
     let reach = crate::map::reach::Reach::new(&clear, &[start]);
     if reach.centres().iter().all(|c| !c) {

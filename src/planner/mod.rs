@@ -57,10 +57,11 @@ impl Scenario {
     }
 
     /// The scenario a routing planner (patterns, cell order) plans on: this one, or where the
-    /// map's cells are coarser than half the robot's width, the same with the map's cells split
-    /// ([`crate::map::refine`]). Its plans are plans on this scenario's map.
+    /// map's cells are coarser than half the robot's width or close a passage the scorer counts
+    /// open, the same with the map's cells split ([`crate::map::refine`],
+    /// [`crate::map::passages`]). Its plans are plans on this scenario's map.
     pub fn for_planning(&self) -> std::borrow::Cow<'_, Scenario> {
-        match crate::map::refine::planning_map(&self.map, self.robot.width) {
+        match crate::map::passages::planning_map_from(&self.map, self.robot.width, self.start) {
             std::borrow::Cow::Borrowed(_) => std::borrow::Cow::Borrowed(self),
             std::borrow::Cow::Owned(map) => std::borrow::Cow::Owned(Scenario { map, ..self.clone() }),
         }

@@ -337,7 +337,15 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     if opts.retry_failed {
         drop_failed_rows(&file, &head)?;
     }
-    let done_ids = recorded_ids(&file, &head)?;
+    let mut done_ids = recorded_ids(&file, &head)?;
+    let fresh_file = done_ids.is_empty();
+    if opts.shard.is_some() {
+        // A shard in a folder whose `runs.csv` already records some of its runs (the study was
+        // run whole there, or shards were merged) runs only the rest; the merge unites them.
+        let whole = super::shard_files::ids_in_whole_study_file(&opts.out, opts.retry_failed);
+        let mine: Vec<String> = selected.iter().filter(|r| whole.contains(&r.id)).map(|r| r.id.clone()).collect();
+        done_ids.extend(mine);
+    }
     let mut pending: Vec<&RunSpec> = selected.iter().filter(|r| !done_ids.contains(&r.id)).copied().collect();
     // Handed out one at a time in the order asked for (results never depend on it).
     let cost = match opts.order {
@@ -347,7 +355,7 @@ pub fn run_study(study: &Study, opts: &RunnerOptions) -> Result<StudyOutcome, St
     super::order::sort_runs(&mut pending, opts.order, |r| cost.get(&r.id).copied().unwrap_or(0.0));
     let skipped = selected.len() - pending.len();
     let writer = std::fs::OpenOptions::new().create(true).append(true).open(&file).map_err(io(&file))?;
-    if done_ids.is_empty() {
+    if fresh_file {
         let mut w = &writer;
         w.set_len(0).map_err(io(&file))?;
         w.write_all(&csv_line(&head)).map_err(io(&file))?;

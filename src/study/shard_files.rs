@@ -49,6 +49,17 @@ fn ids_in(file: &Path) -> HashSet<String> {
     table.rows.into_iter().map(|mut r| std::mem::take(&mut r[id])).collect()
 }
 
+/// The runs a shard need not run again: those the folder's `runs.csv` records (a whole-study
+/// run's, or the merge of shards), less its failed runs when they are to be retried. Read
+/// without changing the file: another shard may be reading it too.
+pub fn ids_in_whole_study_file(out: &Path, retry_failed: bool) -> HashSet<String> {
+    let Ok(text) = std::fs::read_to_string(out.join("runs.csv")) else { return HashSet::new() };
+    let Ok(table) = RunsTable::parse(&text) else { return HashSet::new() };
+    let (Some(id), stop) = (table.col("run_id"), table.col("stop")) else { return HashSet::new() };
+    let failed = |r: &Vec<String>| retry_failed && stop.is_some_and(|s| r[s] == super::records::FAILED_STOP);
+    table.rows.iter().filter(|r| !failed(r)).map(|r| r[id].clone()).collect()
+}
+
 /// Refuses a whole-study run in a folder whose shard files record runs that its `runs.csv`
 /// does not: it would run them again into a second runs file of the one study. Once the
 /// shards are merged (`covga merge`, which writes their union into `runs.csv`), resuming the

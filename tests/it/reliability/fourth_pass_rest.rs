@@ -132,6 +132,26 @@ fn a_whole_study_run_is_refused_beside_an_unmerged_shard() {
     assert!(ok(&o).contains("4 runs: 2 already recorded, 2 run now"), "{}", String::from_utf8_lossy(&o.stdout));
 }
 
+/// The reverse: a shard in a folder whose `runs.csv` a whole-study run wrote runs none of the
+/// runs that file records (it ran them all again before), and the merge unites the two.
+#[test]
+fn a_shard_beside_a_whole_study_runs_file_runs_only_what_it_lacks() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = "seeds = 2\n[base]\n[base.thesis]\npop_min = 20\ninit_actions = 20\n[base.budget]\niterations = 3\n\
+                [axes]\n\"thesis.c_len\" = [0.1, 0.4]\n";
+    write(dir.path(), "g.toml", grid);
+    ok(&run(dir.path(), &["grid", "g.toml", "--out", "W"]));
+    let whole = std::fs::read_to_string(dir.path().join("W/runs.csv")).unwrap();
+    let o = run(dir.path(), &["grid", "g.toml", "--shard", "1/2", "--out", "W"]);
+    assert!(
+        ok(&o).contains("2 runs in shard 1/2: 2 already recorded, 0 run now"),
+        "{}",
+        String::from_utf8_lossy(&o.stdout)
+    );
+    ok(&run(dir.path(), &["merge", "W", "--allow-partial"]));
+    assert_eq!(std::fs::read_to_string(dir.path().join("W/runs.csv")).unwrap(), whole, "the merge keeps each run once");
+}
+
 /// A grid of a pattern planner with a budget warns that the budget is ignored, as `covga run`
 /// does for such a file.
 #[test]
