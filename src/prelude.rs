@@ -34,6 +34,7 @@ pub use crate::planner::executor::{Finish, Interrupt, Search, StopRule, StopRule
 pub use crate::config::{ConfigError, check_range};
 pub use crate::experiment::plugins::{PlannerPlugin, PluginError, PluginPlanner, register};
 pub use crate::experiment::registry::PlannerKind;
+pub use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 
 // Scoring a plan: the common scorer, and `covga eval` as a library call.
 pub use crate::coverage::score::{CameraSpec, Score, Scorer};

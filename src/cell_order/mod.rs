@@ -15,6 +15,7 @@ pub mod boundary;
 pub mod cell_completion;
 pub mod config;
 pub mod controls;
+pub mod entry;
 pub mod exact;
 pub mod gtsplib;
 pub mod ils;

@@ -3,6 +3,7 @@
 
 pub mod boustrophedon;
 pub mod complete;
+pub mod entry;
 pub mod hand_made;
 pub mod planner;
 

@@ -12,6 +12,7 @@
 //! runner) sees only `&dyn Planner`. The closed list of planners lives one layer up, in
 //! the registry of the experiment layer, so that this layer depends on no planner.
 
+pub mod entry;
 pub mod executable;
 pub mod executor;
 pub mod legs;
