@@ -11,9 +11,6 @@ use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, secti
 use std::collections::BTreeMap;
 use std::sync::{Arc, RwLock};
 
-/// A validated planner from outside the crate: the interface every registered planner has.
-pub use crate::planner::entry::RegisteredPlanner as PluginPlanner;
-
 /// How a plugin checks its section (empty when the file has none) and makes its planner.
 pub type ValidateSection = fn(&toml::Table, &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError>;
 

@@ -5,6 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
+mod planners;
 mod report_rooms;
 
 /// Top-level modules of `src/`, bottom layer first. Modules in one layer are peers: they may
