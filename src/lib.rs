@@ -28,10 +28,11 @@
 //! 4. [`routing`]: wall-free routes and transit lengths for every planner that routes;
 //! 5. [`plot`]: figure primitives (maps, paths, charts, legends);
 //! 6. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
-//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`] and
-//!    [`fleet`]: the planners (the cell-order GA orders the patterns' cells, random search
-//!    draws the thesis genome at random, a fleet is planned by the others), each validating its
-//!    own section and drawing its own figures;
+//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`],
+//!    [`seeded`] and [`fleet`]: the planners, peers that import none of each other, each
+//!    validating its own section and drawing its own figures; then the compositions of them
+//!    (random search draws the thesis genome at random, the thesis GA is seeded with other
+//!    planners' plans, a fleet is planned by the others);
 //! 8. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
 //! 9. [`study`]: grids, the runner, records, merge, estimates, Slurm;
 //! 10. [`report`]: `covga report`, in rooms (figures, the study analysis, tables and
@@ -57,6 +58,7 @@ pub mod plot;
 pub mod prelude;
 pub mod random_search;
 pub mod report;
+pub mod seeded;
 pub mod routing;
 pub mod stats;
 pub mod study;

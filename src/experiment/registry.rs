@@ -17,7 +17,7 @@ use std::sync::Arc;
 /// covga's own planners, in the order studies list them: the registration point, where a new
 /// planner's entry adds its line. Planners from outside follow them in the order registered.
 pub const PLANNERS: &[&dyn PlannerEntry] = &[
-    &crate::thesis::entry::Thesis,
+    &crate::seeded::Thesis,
     &crate::waypoint::entry::Waypoint,
     &crate::random_search::RandomSearchEntry,
     &crate::patterns::entry::Pattern(crate::patterns::planner::PatternKind::Boustrophedon),

@@ -23,7 +23,7 @@ const LAYERS: &[&[&str]] = &[
     &["plot"],
     &["planner"],
     &["thesis", "waypoint", "patterns", "cell_order"],
-    &["random_search"],
+    &["random_search", "seeded"],
     &["fleet"],
     &["experiment"],
     &["study"],
