@@ -25,7 +25,9 @@
 //! 2. [`map`]: grids, ROS files, presets, clearance and reachability;
 //! 3. [`coverage`]: the swept footprint, the camera, the thesis fitness equations and the
 //!    common scorer;
-//! 4. [`routing`]: wall-free routes and transit lengths for every planner that routes;
+//! 4. [`routing`], [`lanes`]: wall-free routes and transit lengths for every planner that
+//!    routes; the boustrophedon's lanes and cells, the route along them and coverage
+//!    completion, which the sweeping planners share;
 //! 5. [`plot`]: figure primitives (maps, paths, charts, legends);
 //! 6. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
 //! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`],
@@ -51,6 +53,7 @@ pub mod fuzz_entry;
 pub mod ga;
 pub mod geom;
 pub mod io;
+pub mod lanes;
 pub mod map;
 pub mod patterns;
 pub mod planner;
@@ -58,8 +61,8 @@ pub mod plot;
 pub mod prelude;
 pub mod random_search;
 pub mod report;
-pub mod seeded;
 pub mod routing;
+pub mod seeded;
 pub mod stats;
 pub mod study;
 pub mod thesis;

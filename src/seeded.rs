@@ -37,7 +37,8 @@ impl PlannerEntry for Thesis {
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        let seeds = Seeds { pattern: section_or_default(file, "pattern"), cell_order: section_or_default(file, "cell_order") };
+        let seeds =
+            Seeds { pattern: section_or_default(file, "pattern"), cell_order: section_or_default(file, "cell_order") };
         let alpha_cov = section_or_default::<WaypointSection>(file, "waypoint").alpha_cov;
         let retrain = section::<RetrainSection>(file, "retrain");
         let thesis = section_or_default::<ThesisSection>(file, "thesis").validate(retrain, &seeds, alpha_cov, ctx)?;
@@ -65,12 +66,7 @@ impl SeedPlanner for Seeds {
         }
     }
 
-    fn plan(
-        &self,
-        seed: SeedPlan,
-        s: &Scenario,
-        deadline: Option<(Instant, Duration)>,
-    ) -> Result<Vec<Point>, String> {
+    fn plan(&self, seed: SeedPlan, s: &Scenario, deadline: Option<(Instant, Duration)>) -> Result<Vec<Point>, String> {
         let pattern_plan = |kind| {
             plan(&s.map, kind, s.robot.width, s.start, s.end, self.pattern.complete)
                 .map(|planned| planned.points)

@@ -185,7 +185,7 @@ impl ExperimentFile {
         if self.planner.plans_on_refined_raster() {
             // Before the planner's checks, some of which decompose the planning raster; the
             // lanes' own cap first, as it names the narrowest width a pattern is planned for.
-            crate::patterns::check_lane_count(&scenario.map, robot.width)
+            crate::lanes::check_lane_count(&scenario.map, robot.width)
                 .map_err(|e| err("robot.width", e.to_string()))?;
             crate::map::refine::check_planning_size(&scenario.map, robot.width, "robot.width")
                 .map_err(|m| err("", m))?;

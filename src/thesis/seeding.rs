@@ -116,8 +116,12 @@ pub trait SeedPlanner {
     /// The plan `plan` on `scenario` (from its start to its end), or why it cannot be made;
     /// the cell-order plan's preparation is refused past `deadline` (the run's wall clock and
     /// its limit).
-    fn plan(&self, plan: SeedPlan, scenario: &Scenario, deadline: Option<(Instant, Duration)>)
-    -> Result<Vec<Point>, String>;
+    fn plan(
+        &self,
+        plan: SeedPlan,
+        scenario: &Scenario,
+        deadline: Option<(Instant, Duration)>,
+    ) -> Result<Vec<Point>, String>;
 }
 
 /// The genome of each pattern's plan on the scenario, or why it cannot seed: the pattern

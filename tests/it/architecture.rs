@@ -19,7 +19,7 @@ const LAYERS: &[&[&str]] = &[
     &["ga"],
     &["map"],
     &["coverage"],
-    &["routing"],
+    &["routing", "lanes"],
     &["plot"],
     &["planner"],
     &["thesis", "waypoint", "patterns", "cell_order"],

@@ -1,9 +1,12 @@
-//! The registry of planners: `PLANNERS` (`src/experiment/registry.rs`) is the one list of
-//! covga's own planners, each line naming the entry its planner's module holds, so that a new
-//! planner is its folder and its line there (the developer guide's count). Nothing else outside
-//! a planner's module names its entry, and no code outside the planners picks one by name.
+//! The planners: peers on one floor, none importing another (what one planner makes of
+//! another's plan, a fleet of a planner, random search with the thesis GA's section are
+//! compositions in the layers above them), and the registry of them: `PLANNERS`
+//! (`src/experiment/registry.rs`) is the one list of covga's own planners, each line naming
+//! the entry its planner's module holds, so that a new planner is its folder and its line there
+//! (the developer guide's count). Nothing else outside a planner's module names its entry, and
+//! no code outside the planners picks one by name.
 
-use super::{LAYERS, layer, source_files};
+use super::{LAYERS, imported_modules, layer, source_files, top_module};
 use std::path::Path;
 
 /// The registry's source, relative to `src/`.
@@ -48,6 +51,44 @@ fn picked_by_name(files: &[(String, String)]) -> Vec<String> {
         .filter(|(_, source)| source.split("#[cfg(test)]").next().unwrap_or("").contains("PlannerKind::named(\""))
         .map(|(path, _)| format!("src/{path} picks a planner by name"))
         .collect()
+}
+
+/// The planners' floor: the layer of `LAYERS` that holds the thesis GA.
+fn planners_floor() -> &'static [&'static str] {
+    LAYERS[layer("thesis").expect("the thesis GA has a layer")]
+}
+
+/// Every import of `files` from one planner of `floor` into another (tests included).
+fn imports_between_planners(files: &[(String, String)], floor: &[&str]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (path, source) in files {
+        let from = top_module(path);
+        if !floor.contains(&from.as_str()) {
+            continue;
+        }
+        for to in imported_modules(source) {
+            if to != from && floor.contains(&to.as_str()) {
+                out.push(format!("src/{path}: the planner `{from}` imports the planner `{to}`"));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn no_planner_imports_another() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    source_files(&root, &root, &mut files);
+    let floor = planners_floor();
+    assert!(floor.len() >= 4, "{floor:?}");
+    let problems = imports_between_planners(&files, floor);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // The check fails where it should: a seed plan made inside the thesis GA.
+    let seeding = [("thesis/seeding.rs".to_string(), "use crate::cell_order::local_optimum_plan;\n".to_string())];
+    assert_eq!(imports_between_planners(&seeding, floor).len(), 1);
+    let own = [("thesis/seeding.rs".to_string(), "use crate::thesis::genome::Action;\n".to_string())];
+    assert!(imports_between_planners(&own, floor).is_empty());
 }
 
 #[test]
