@@ -1,5 +1,6 @@
 //! The one registry of planners: [`PLANNERS`], the list of covga's own planners (one line
-//! each, every planner's entry in its own folder), and the planners registered from outside
+//! each, every planner's entry in its own module; the thesis GA's in [`crate::seeded`], which
+//! composes it with the planners whose plans seed it), and the planners registered from outside
 //! ([`super::plugins::register`]), all the same [`PlannerEntry`]. An experiment file names one
 //! (`planner = "…"`) as a [`PlannerKind`]; the entry says which keys it reads, whether it
 //! ignores the seed, and validates its settings into the [`PlannerConfig`] a run runs, which
@@ -140,11 +141,6 @@ impl PlannerConfig {
             return Ok(PlannerConfig(single));
         }
         Ok(PlannerConfig(Arc::new(super::fleets::validate(file, ctx)?)))
-    }
-
-    /// A planner validated elsewhere (a test's, a benchmark's).
-    pub fn new(planner: Arc<dyn RegisteredPlanner>) -> Self {
-        PlannerConfig(planner)
     }
 
     /// The planner.

@@ -13,7 +13,7 @@ use std::path::Path;
 const REGISTRY: &str = "experiment/registry.rs";
 
 /// The entries of `PLANNERS` in `registry` (its source text): each line's path without its
-/// `&crate::` and its arguments (`thesis::entry::Thesis`).
+/// `&crate::` and its arguments (`cell_order::entry::CellOrder`).
 fn listed_entries(registry: &str) -> Vec<String> {
     let Some(start) = registry.find("pub const PLANNERS") else { return Vec::new() };
     let body = &registry[start..];
@@ -24,7 +24,7 @@ fn listed_entries(registry: &str) -> Vec<String> {
         .collect()
 }
 
-/// The top-level module of an entry path (`thesis::entry::Thesis` → `thesis`).
+/// The top-level module of an entry path (`cell_order::entry::CellOrder` → `cell_order`).
 fn module_of(entry: &str) -> &str {
     entry.split("::").next().unwrap_or(entry)
 }
