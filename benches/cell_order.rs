@@ -23,7 +23,8 @@ fn hall(c: &mut Criterion) {
     let spec =
         PlanSpec { kind: PlanKind::Hall, width_m: 20.0, height_m: 20.0, resolution: 0.05, noisy: false, seed: 0 };
     let hall = generate(&spec).expect("a hall");
-    let file = ExperimentFile { planner: PlannerKind::CellOrder, ..ExperimentFile::default() };
+    let file =
+        ExperimentFile { planner: PlannerKind::named("cell_order").expect("a planner"), ..ExperimentFile::default() };
     let mut exp = file.validate("bench", Path::new("."), "bench").expect("valid");
     exp.scenario.map = hall.map;
     (exp.scenario.start, exp.scenario.end) = (hall.start, hall.start);
@@ -43,7 +44,8 @@ fn bench(c: &mut Criterion) {
         eprintln!("cell_order bench: {} is missing (run from the repository root); nothing to measure", map.display());
         return;
     }
-    let mut file = ExperimentFile { planner: PlannerKind::CellOrder, ..ExperimentFile::default() };
+    let mut file =
+        ExperimentFile { planner: PlannerKind::named("cell_order").expect("a planner"), ..ExperimentFile::default() };
     file.map.source = map.display().to_string();
     file.stations.start = [0.0, 0.0];
     let exp = file.validate("bench", Path::new("."), "bench").expect("valid");

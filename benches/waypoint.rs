@@ -6,10 +6,11 @@
 //! `cargo bench --bench waypoint`
 
 use covga::experiment::file::ExperimentFile;
-use covga::experiment::registry::{PlannerConfig, PlannerKind};
+use covga::experiment::registry::PlannerKind;
 use covga::ga::observer::{GenerationRecord, Observers};
 use covga::map::presets::preset;
 use covga::planner::Budget;
+use covga::waypoint::config::WaypointConfig;
 use covga::waypoint::run::run;
 use covga::waypoint::world::World;
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -17,13 +18,14 @@ use std::path::Path;
 use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
-    let file = ExperimentFile { planner: PlannerKind::Waypoint, ..ExperimentFile::default() };
+    let file =
+        ExperimentFile { planner: PlannerKind::named("waypoint").expect("a planner"), ..ExperimentFile::default() };
     let mut file = file;
     file.map.source = "office".into();
     file.stations.start = [2.0, 2.0];
     file.waypoint.l_init = 200;
     let exp = file.validate("bench", Path::new("."), "bench").expect("valid");
-    let PlannerConfig::Waypoint(plan) = exp.planner else { panic!("a waypoint experiment") };
+    let plan = exp.planner.downcast_ref::<WaypointConfig>().expect("a waypoint experiment").clone();
     let map = preset("office").expect("preset");
     let mut group = c.benchmark_group("waypoint");
     group.sample_size(10).warm_up_time(Duration::from_secs(1)).measurement_time(Duration::from_secs(20));
@@ -43,7 +45,7 @@ fn bench(c: &mut Criterion) {
     });
     let ring = ExperimentFile::read(Path::new("experiments/olson-ring.toml")).expect("olson-ring.toml");
     let ring = ring.validate("olson-ring", Path::new("experiments"), "olson-ring").expect("valid");
-    let PlannerConfig::Waypoint(mut ring_plan) = ring.planner else { panic!("a waypoint experiment") };
+    let mut ring_plan = ring.planner.downcast_ref::<WaypointConfig>().expect("a waypoint experiment").clone();
     ring_plan.ga.generations = 100;
     let ring_world = World::build(&ring.scenario.map, &ring_plan.world, 1).expect("world");
     group.measurement_time(Duration::from_secs(30));

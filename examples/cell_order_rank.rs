@@ -98,7 +98,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ("cells", Completion::Cells, 0.0, false),
                 ("quota_search-merged", Completion::QuotaSearch, 2.4, true),
             ] {
-                let mut file = ExperimentFile { planner: PlannerKind::CellOrder, ..ExperimentFile::default() };
+                let mut file = ExperimentFile {
+                    planner: PlannerKind::named("cell_order").expect("a planner"),
+                    ..ExperimentFile::default()
+                };
                 file.map.source = source.into();
                 file.stations.start = start;
                 (file.robot.width, file.robot.speed, file.robot.rot_speed) = (0.6, 0.2, rot_speed);

@@ -25,13 +25,16 @@
 //! 2. [`map`]: grids, ROS files, presets, clearance and reachability;
 //! 3. [`coverage`]: the swept footprint, the camera, the thesis fitness equations and the
 //!    common scorer;
-//! 4. [`routing`]: wall-free routes and transit lengths for every planner that routes;
+//! 4. [`routing`], [`lanes`]: wall-free routes and transit lengths for every planner that
+//!    routes; the boustrophedon's lanes and cells, the route along them and coverage
+//!    completion, which the sweeping planners share;
 //! 5. [`plot`]: figure primitives (maps, paths, charts, legends);
 //! 6. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
-//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`] and
-//!    [`fleet`]: the planners (the cell-order GA orders the patterns' cells, random search
-//!    draws the thesis genome at random, a fleet is planned by the others), each validating its
-//!    own section and drawing its own figures;
+//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`],
+//!    [`seeded`] and [`fleet`]: the planners, peers that import none of each other, each
+//!    validating its own section and drawing its own figures; then the compositions of them
+//!    (random search draws the thesis genome at random, the thesis GA is seeded with other
+//!    planners' plans, a fleet is planned by the others);
 //! 8. [`experiment`]: the experiment file, the one registry of planners, one run's folder;
 //! 9. [`study`]: grids, the runner, records, merge, estimates, Slurm;
 //! 10. [`report`]: `covga report`, in rooms (figures, the study analysis, tables and
@@ -50,6 +53,7 @@ pub mod fuzz_entry;
 pub mod ga;
 pub mod geom;
 pub mod io;
+pub mod lanes;
 pub mod map;
 pub mod patterns;
 pub mod planner;
@@ -58,6 +62,7 @@ pub mod prelude;
 pub mod random_search;
 pub mod report;
 pub mod routing;
+pub mod seeded;
 pub mod stats;
 pub mod study;
 pub mod thesis;

@@ -5,8 +5,8 @@
 //! tests); these are the few a program that plans, scores, runs or studies coverage works with,
 //! each under its own path too. A planner from outside implements [`Planner`] (an iterative one
 //! a [`Search`] driven by [`execute`], reporting to the run's [`Observers`]), registers a
-//! [`PlannerPlugin`] whose `validate` checks its section and returns a [`PluginPlanner`], and
-//! is then selected by `planner = "<name>"` in an experiment file like a built-in planner
+//! [`PlannerPlugin`] (a [`PlannerEntry`], as covga's own planners are) whose `validate`
+//! checks its section and returns a [`RegisteredPlanner`], and is then selected by `planner = "<name>"` in an experiment file like a built-in planner
 //! (`tests/it/plugins.rs`, which imports from here alone). The book's developer guide walks
 //! through it.
 //!
@@ -32,8 +32,9 @@ pub use crate::planner::executor::{Finish, Interrupt, Search, StopRule, StopRule
 
 // Planners from outside: their registration and the checks of their sections.
 pub use crate::config::{ConfigError, check_range};
-pub use crate::experiment::plugins::{PlannerPlugin, PluginError, PluginPlanner, register};
+pub use crate::experiment::plugins::{PlannerPlugin, PluginError, register};
 pub use crate::experiment::registry::PlannerKind;
+pub use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 
 // Scoring a plan: the common scorer, and `covga eval` as a library call.
 pub use crate::coverage::score::{CameraSpec, Score, Scorer};

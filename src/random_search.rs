@@ -8,6 +8,7 @@ use crate::config::ConfigError;
 use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer, Observers};
 use crate::ga::rng::{Purpose, stream};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section_or_default};
 use crate::planner::executor::{Search, StopRules, execute};
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario};
@@ -17,6 +18,7 @@ use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, I
 use crate::thesis::member::{Member, ReachMask};
 use crate::thesis::scenario::ThesisScenario;
 use rayon::prelude::*;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Random search over thesis genomes.
@@ -68,6 +70,38 @@ impl RandomSearch {
             key: "thesis.pop_min",
             what: format!("batches of {} random genomes", self.batch),
         }
+    }
+}
+
+/// Random search's entry in the registry of planners: `planner = "random_search"`, drawing as
+/// `[thesis]` says.
+pub struct RandomSearchEntry;
+
+impl PlannerEntry for RandomSearchEntry {
+    fn name(&self) -> &'static str {
+        "random_search"
+    }
+
+    fn why_unread(&self, _file: &dyn FileSections, key: &str) -> Option<String> {
+        why_unread(key)
+    }
+
+    fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
+        Ok(Arc::new(RandomSearch::validate(&section_or_default::<ThesisSection>(file, "thesis"), ctx)?))
+    }
+}
+
+impl RegisteredPlanner for RandomSearch {
+    fn memory_estimate(&self, map: &crate::map::GridMap, _threads: usize) -> MemoryEstimate {
+        RandomSearch::memory_estimate(self, map)
+    }
+
+    fn evaluation_rule(&self) -> &'static str {
+        "stops after the first batch that reaches the limit: fewer than random_search.batch evaluations past it"
+    }
+
+    fn progress_length(&self, budget: &Budget) -> u64 {
+        u64::from(budget.iterations)
     }
 }
 

@@ -37,6 +37,7 @@ __all__ = [
     "grid",
     "load_map",
     "pattern",
+    "planners",
     "plot",
     "read_study",
     "report",
@@ -385,6 +386,13 @@ def _read_result(folder: Path, kept: bool, messages: list[str]) -> Result:
     return Result(
         summary, tables["history"], plan, tables["population"], folder if kept else None, messages, config, genomes
     )
+
+
+def planners() -> list[str]:
+    """The planners an experiment may name (``planner = "…"``), from covga's one registry of
+    planners, in the order studies list them: covga's own, then those registered from outside
+    by the program covga runs in. :func:`run` runs any of them by name."""
+    return list(_covga.planners())
 
 
 def run(

@@ -96,6 +96,7 @@ fn _covga(m: &Bound<'_, PyModule>) -> PyResult<()> {
         .filter_map(|c| covga::study::records::column_kind(&c).map(|k| (c, k.name())))
         .collect();
     m.add("RUNS_COLUMN_KINDS", kinds)?;
+    m.add_function(wrap_pyfunction!(runs::planners, m)?)?;
     m.add_function(wrap_pyfunction!(runs::run_experiment, m)?)?;
     m.add_function(wrap_pyfunction!(runs::run_grid, m)?)?;
     m.add_function(wrap_pyfunction!(runs::write_report, m)?)?;

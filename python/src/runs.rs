@@ -212,3 +212,11 @@ pub fn write_report(
 pub fn raise_panic(py: Python<'_>) -> PyResult<()> {
     crate::released(py, || -> PyResult<()> { panic!("a deliberate panic to test the guard") })
 }
+
+/// The planners an experiment may name (`planner = "…"`), from covga's one registry of
+/// planners, in the order studies list them: covga's own, then those registered from outside
+/// by the program covga runs in.
+#[pyfunction]
+pub fn planners() -> Vec<&'static str> {
+    covga::experiment::registry::PlannerKind::all().into_iter().map(|k| k.name()).collect()
+}

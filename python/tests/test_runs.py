@@ -352,3 +352,24 @@ def test_read_study_dtypes_do_not_depend_on_the_values(tmp_path):
     # A swept key's column is typed by its values: whole numbers with a gap stay integers.
     assert a["thesis.tournament_size"].dtype == pd.Int64Dtype()
     assert a["thesis.tournament_size"].isna().tolist() == [False, True]
+
+
+@pytest.mark.filterwarnings("ignore:.*is ignored")
+def test_every_registered_planner_runs_by_name():
+    names = covga.planners()
+    assert names[:6] == ["thesis", "waypoint", "random_search", "boustrophedon", "spiral", "cell_order"]
+    for name in names:
+        result = covga.run(
+            {
+                "planner": name,
+                "map": {"source": "thesis-2"},
+                "stations": {"start": [1.3, 1.3]},
+                "thesis": {"pop_min": 10, "init_individuals": 10, "init_actions": 10},
+                "waypoint": {"population": 10},
+                "cell_order": {"population": 10},
+                "budget": {"evaluations": 200},
+            },
+            seed=3,
+        )
+        assert result.summary["planner"] == name
+        assert result.plan[0][0].tolist() == [1.3, 1.3], name

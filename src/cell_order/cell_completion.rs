@@ -12,8 +12,8 @@
 
 use super::boundary::{chains_within, order};
 use super::sweeps::Sweep;
+use crate::lanes::GrowingRoute;
 use crate::map::clearance::Clearance;
-use crate::patterns::GrowingRoute;
 use rayon::prelude::*;
 use std::ops::Range;
 

@@ -246,7 +246,7 @@ impl CellOrderSection {
     /// Checks every key against its range.
     pub fn validate(&self, ctx: &Context) -> Result<CellOrderConfig, ConfigError> {
         let o = ctx.origin;
-        crate::patterns::check_lane_count(&ctx.scenario.map, ctx.scenario.robot.width)
+        crate::lanes::check_lane_count(&ctx.scenario.map, ctx.scenario.robot.width)
             .map_err(|e| ctx.error("robot.width", e.to_string()))?;
         if self.directions.is_empty() || self.directions.len() > 36 {
             return Err(ctx.error("cell_order.directions", "needs 1 to 36 lane directions in degrees"));

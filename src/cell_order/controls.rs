@@ -72,7 +72,7 @@ pub fn boustrophedon_plans(
     directions: &[f64],
     (completion, layout): (Completion, LaneLayout),
 ) -> Result<Vec<Lanes>, String> {
-    use crate::patterns::boustrophedon::{decompose, lane_pieces, plan, sweep_cells_with};
+    use crate::lanes::boustrophedon::{decompose, lane_pieces, plan, sweep_cells_with};
     let robot = &scenario.robot;
     let clear = &prepared.clear;
     let join = super::merged_lanes::LaneJoin::new(clear, layout.merge_gap_m, robot.width);

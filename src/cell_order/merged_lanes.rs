@@ -6,11 +6,11 @@
 //! pillar; not a wall, which joins the map's other walls) — and the robot can drive around it
 //! on a detour at most [`DETOUR_SLACK_WIDTHS`] robot widths longer than the gap. Cells merge
 //! across the obstacle, and the sweep of a joined piece drives its lane around it
-//! ([`crate::patterns::boustrophedon::sweep_cells_with`]), so that the plan stays executable.
+//! ([`crate::lanes::boustrophedon::sweep_cells_with`]), so that the plan stays executable.
 //! This is the merged-cells question Bähnemann et al. (2019) leave open.
 
+use crate::lanes::boustrophedon::Piece;
 use crate::map::clearance::Clearance;
-use crate::patterns::boustrophedon::Piece;
 
 /// How a map's lanes are laid out for the cell-order planner: joined across gaps of up to
 /// `merge_gap_m` metres, and whether every cell is also offered its sweeps with lanes split at
@@ -183,8 +183,8 @@ fn detour_m(clear: &Clearance, a: crate::geom::Point, b: crate::geom::Point) -> 
 mod tests {
     use super::*;
     use crate::geom::Point;
+    use crate::lanes::boustrophedon::{decompose, lane_pieces, sweep_cells_with};
     use crate::map::{CellState, GridMap};
-    use crate::patterns::boustrophedon::{decompose, lane_pieces, sweep_cells_with};
 
     /// A 10 × 6 m room at 0.1 m with a 0.4 m pillar in the middle and, where `wall`, a wall
     /// 0.2 m thick across the room at x = 7 m, its door (y from 4.8 to 5.9 m) at the top.

@@ -15,6 +15,7 @@ pub mod boundary;
 pub mod cell_completion;
 pub mod config;
 pub mod controls;
+pub mod entry;
 pub mod exact;
 pub mod gtsplib;
 pub mod ils;
@@ -35,9 +36,9 @@ use crate::coverage::curve::CoverageCurve;
 use crate::coverage::motion::rotation_time;
 use crate::ga::observer::{Observer, Observers};
 use crate::geom::{Point, Vector};
+use crate::lanes::GrowingRoute;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
-use crate::patterns::GrowingRoute;
 use crate::planner::executor::SetupCutoff;
 use crate::planner::{Budget, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use crate::routing::transit::{Transit, distinct};
@@ -257,7 +258,7 @@ impl Prepared<'_> {
         let width = robot.width;
         match completion {
             Completion::None => {}
-            Completion::Greedy => crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route),
+            Completion::Greedy => crate::lanes::complete::complete(&self.clear, &self.reach, width, &mut route),
             Completion::Quota | Completion::QuotaSearch => {
                 let searched = completion == Completion::QuotaSearch;
                 quota::complete(&self.clear, &self.reach, robot, (self.coverage_goal, searched), &mut route)
@@ -280,7 +281,7 @@ impl Prepared<'_> {
                         route.go(&self.clear, p);
                     }
                 }
-                crate::patterns::complete::complete(&self.clear, &self.reach, width, &mut route);
+                crate::lanes::complete::complete(&self.clear, &self.reach, width, &mut route);
             }
         }
         route.finish(&self.clear, end);

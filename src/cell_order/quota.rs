@@ -12,9 +12,9 @@ use super::boundary;
 use crate::coverage::CoverageGrid;
 use crate::coverage::motion::{drive_time_s, path_length, turning};
 use crate::geom::Point;
+use crate::lanes::GrowingRoute;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
-use crate::patterns::GrowingRoute;
 
 /// One piece of the completion: a boundary chain with the cells it sweeps and its time.
 #[derive(Clone, Debug, PartialEq)]
@@ -190,7 +190,7 @@ pub fn complete(
     }
     let rest: Vec<Vec<Point>> = (0..all.len()).filter(|&k| !used[k]).map(|k| all[k].points.clone()).collect();
     drive_in_order(clear, robot, &rest, route);
-    crate::patterns::complete::complete(clear, reach, width, route);
+    crate::lanes::complete::complete(clear, reach, width, route);
 }
 
 /// `chains` driven in the boundary pass's order from where `route` ends.

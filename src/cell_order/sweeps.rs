@@ -13,8 +13,8 @@
 
 use super::merged_lanes::LaneLayout;
 use crate::geom::{Point, Vector};
+use crate::lanes::boustrophedon::{Piece, decompose, lane_pieces, sweep_cells_with};
 use crate::map::clearance::Clearance;
-use crate::patterns::boustrophedon::{Piece, decompose, lane_pieces, sweep_cells_with};
 
 /// One way to sweep one cell: its polyline (first point the entry, last the exit), length,
 /// total turning inside it and the headings at both ends.

@@ -2,7 +2,7 @@
 //! checking covga's searches with an established GTSP solver.
 
 use super::CliError;
-use crate::experiment::registry::PlannerConfig;
+use crate::cell_order::config::CellOrderConfig;
 use crate::usecase::run::{ExperimentText, prepare};
 use std::path::{Path, PathBuf};
 
@@ -36,7 +36,7 @@ pub fn run(a: GtspArgs) -> Result<(), CliError> {
     let source = ExperimentText::read(&a.file)?;
     let prepared = prepare(&source, None, None)?;
     let exp = &prepared.experiment;
-    let PlannerConfig::CellOrder(config) = &exp.planner else {
+    let Some(config) = exp.planner.downcast_ref::<CellOrderConfig>() else {
         return Err(CliError::Input(format!(
             "{}: covga gtsp writes the tour problem of planner = \"cell_order\"; this file's planner is `{}`",
             prepared.origin,

@@ -2,7 +2,7 @@
 
 use super::CliError;
 use crate::experiment::output::Summary;
-use crate::experiment::registry::PlannerConfig;
+use crate::fleet::planner::FleetPlanner;
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::usecase::run::{ExperimentText, Prepared, prepare, run_in_folder};
 use std::io::IsTerminal;
@@ -120,13 +120,13 @@ fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) 
                 f.t_final
             );
         }
-        if !matches!(exp.planner, PlannerConfig::Fleet(_)) {
+        if exp.planner.downcast_ref::<FleetPlanner>().is_none() {
             println!(
                 "common score: cov_final {:.4} (reachable {:.4})  t_final {:.4}  camera walls {:.4}  length {:.1} m  time {:.0} s",
                 s.cov_final_free, s.cov_final_reach, s.t_final, s.cam_walls_free, s.length_m, s.time_s
             );
         }
-        match summary.fleet.as_ref().filter(|_| matches!(exp.planner, PlannerConfig::Fleet(_))) {
+        match summary.fleet.as_ref().filter(|_| exp.planner.downcast_ref::<FleetPlanner>().is_some()) {
             // A fleet's robots each drive at their own speeds: each one's time model is named.
             Some(f) => {
                 println!("robots (each with its own time model):");

@@ -37,6 +37,12 @@ pub enum ViewShape {
     Fan,
 }
 
+/// `C = α·C_open + (1 − α)·C_walls` (000 eq. 2): the camera coverage of open floor and walls
+/// blended by the weight `α` of the open floor.
+pub fn blended_coverage(alpha: f64, open: f64, walls: f64) -> f64 {
+    alpha * open + (1.0 - alpha) * walls
+}
+
 /// `wrap(θ)` into (−π, π].
 pub fn wrap(a: f64) -> f64 {
     let mut x = a.rem_euclid(std::f64::consts::TAU);

@@ -12,11 +12,13 @@ use crate::coverage::Footprint;
 use crate::geom::Point;
 use crate::map::GridMap;
 use crate::patterns::planner::PatternSection;
+pub use crate::planner::sections::OutputSection;
 use crate::planner::sections::{BudgetSection, MapSection, RobotSection, ScorerSection, StationsSection};
 use crate::planner::{Budget, Checks, Context, Scenario};
 use crate::thesis::config::{RetrainSection, ThesisSection};
 use crate::waypoint::config::WaypointSection;
 use serde::{Deserialize, Serialize};
+use std::any::Any;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
@@ -67,32 +69,11 @@ pub struct ExperimentFile {
     pub plugins: std::collections::BTreeMap<String, toml::Table>,
 }
 
-/// `[output]`: where a run writes and what beyond its usual files.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
-#[serde(deny_unknown_fields, default)]
-pub struct OutputSection {
-    /// Results folder (default `out/<file stem>`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub dir: Option<PathBuf>,
-    /// `history.csv` records the population diversity every this many iterations (and at
-    /// iteration 0); the other rows leave it empty. Measuring it is a pass over every visit
-    /// map, about a fifth of a thesis GA run when done every iteration. Absent means 1, every
-    /// iteration, so that the written `config.toml` and run ids of files without it stay as
-    /// they were.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub diversity_every: Option<u32>,
-    /// The thesis GA also writes its final population's genomes (`population_genomes.csv`:
-    /// each member's live moves, in the order of `population.csv`), for a notebook to decode
-    /// or re-score them. Absent means false (a study's runs never write them).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub population_genomes: Option<bool>,
-}
-
 impl Default for ExperimentFile {
     fn default() -> Self {
         Self {
             seed: 1,
-            planner: PlannerKind::Thesis,
+            planner: PlannerKind::default(),
             map: MapSection::default(),
             robot: RobotSection::default(),
             stations: StationsSection::default(),
@@ -191,9 +172,9 @@ impl ExperimentFile {
         checks: Checks,
     ) -> Result<Experiment, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-        if self.planner == PlannerKind::CellOrder && self.cell_order.is_none() {
+        if let Some(name) = self.planner.entry().written_in_full() {
             // The written config.toml shows every setting of the planner that ran.
-            self.cell_order = Some(CellOrderSection::default());
+            self.fill_section(name);
         }
         self.check_numbers(origin)?;
         super::plugins::check_sections(&self.plugins, origin)?;
@@ -204,7 +185,7 @@ impl ExperimentFile {
         if self.planner.plans_on_refined_raster() {
             // Before the planner's checks, some of which decompose the planning raster; the
             // lanes' own cap first, as it names the narrowest width a pattern is planned for.
-            crate::patterns::check_lane_count(&scenario.map, robot.width)
+            crate::lanes::check_lane_count(&scenario.map, robot.width)
                 .map_err(|e| err("robot.width", e.to_string()))?;
             crate::map::refine::check_planning_size(&scenario.map, robot.width, "robot.width")
                 .map_err(|m| err("", m))?;
@@ -229,6 +210,13 @@ impl ExperimentFile {
         }
         self.stations.end = Some([end.x, end.y]);
         Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, diversity_every })
+    }
+
+    /// Sets the optional planner section `[name]` to its defaults where the file leaves it out.
+    fn fill_section(&mut self, name: &str) {
+        if name == "cell_order" {
+            self.cell_order.get_or_insert_with(CellOrderSection::default);
+        }
     }
 
     /// The seed, the robot's and the budget's numbers against their ranges.
@@ -315,5 +303,22 @@ impl ExperimentFile {
             }
         }
         Ok((robot, start, end))
+    }
+}
+
+impl crate::planner::entry::FileSections for ExperimentFile {
+    /// The planner sections, `[output]` and the plugins' tables, as the planners' entries read
+    /// them.
+    fn section(&self, name: &str) -> Option<&dyn Any> {
+        match name {
+            "thesis" => Some(&self.thesis),
+            "waypoint" => Some(&self.waypoint),
+            "pattern" => Some(&self.pattern),
+            "cell_order" => self.cell_order.as_ref().map(|s| s as &dyn Any),
+            "retrain" => self.retrain.as_ref().map(|s| s as &dyn Any),
+            "output" => Some(&self.output),
+            "plugins" => Some(&self.plugins),
+            _ => None,
+        }
     }
 }

@@ -4,24 +4,23 @@
 //! runs would differ only in a value nothing reads.
 
 use super::file::ExperimentFile;
-use super::registry::PlannerKind;
 
 /// Why `file`'s planner and selection do not read `key` (a dotted key such as
 /// `thesis.keep`, or a section such as `pattern`; a renamed key by its current name), or
 /// `None` when they read it. Each planner's module says which keys of the planner sections it
-/// reads ([`PlannerKind::why_unread`]); every planner reads the shared sections (`[scorer]`
+/// reads ([`super::registry::PlannerKind::why_unread`]); every planner reads the shared sections (`[scorer]`
 /// scores every plan), and what `[output]` asks of a run is said here.
 pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
     let key = super::renamed::current_key(key);
     let planner = file.planner;
     let name = planner.name();
-    if key == "output.population_genomes" && (planner != PlannerKind::Thesis || !file.robots.is_empty()) {
+    if key == "output.population_genomes" && (!planner.entry().reads_output(key) || !file.robots.is_empty()) {
         return Some(format!(
             "only the single-robot thesis GA writes its population's genomes; planner = \"{name}\"{}",
             if file.robots.is_empty() { "" } else { " with [[robots]]" }
         ));
     }
-    if key == "output.diversity_every" && planner != PlannerKind::Thesis {
+    if key == "output.diversity_every" && !planner.entry().reads_output(key) {
         return Some(format!("only the thesis GA measures the population's diversity; planner = \"{name}\""));
     }
     planner.why_unread(file, key)
@@ -33,16 +32,12 @@ pub fn why_ignored(file: &ExperimentFile, key: &str) -> Option<String> {
 pub fn why_budget_unread(file: &ExperimentFile) -> Option<String> {
     let divide = !file.robots.is_empty()
         && file.fleet.as_ref().is_some_and(|f| f.mode == crate::fleet::config::FleetMode::Divide);
-    let what = match file.planner {
-        PlannerKind::Boustrophedon | PlannerKind::Spiral => format!("planner = \"{}\"", file.planner.name()),
-        _ if divide => "fleet.mode = \"divide\"".to_string(),
-        PlannerKind::Thesis
-        | PlannerKind::Waypoint
-        | PlannerKind::RandomSearch
-        | PlannerKind::CellOrder
-        | PlannerKind::Plugin(_) => {
-            return None;
-        }
+    let what = if file.planner.entry().plans_once() {
+        format!("planner = \"{}\"", file.planner.name())
+    } else if divide {
+        "fleet.mode = \"divide\"".to_string()
+    } else {
+        return None;
     };
     Some(format!("{what} plans once, in full, and reads no budget (no limit of time or evaluations)"))
 }

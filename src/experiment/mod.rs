@@ -5,6 +5,7 @@
 //! fleets included.
 
 pub mod file;
+pub mod fleets;
 pub mod ignored;
 pub mod keys;
 pub mod memory;

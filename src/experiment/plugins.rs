@@ -1,42 +1,18 @@
 //! Planners added from outside the crate. A program that links covga registers its planner
 //! once, before it reads an experiment file ([`register`]); from then on `planner = "name"`
-//! selects it, its settings are the table `[plugins.name]`, and it runs, writes, warns and
-//! joins grids and reports as a built-in planner does. The built-in planners stay variants of
-//! [`PlannerKind`](super::registry::PlannerKind), so that every `match` on them is exhaustive;
-//! a plugin is the one variant that stands for all planners from outside.
+//! selects it and it runs, writes, warns and joins grids and reports as covga's own planners
+//! do: it is a [`PlannerEntry`] of the one registry ([`super::registry`]), as they are.
+//! [`PlannerPlugin`] is the entry of a planner whose settings are one table of its own,
+//! `[plugins.<name>]`.
 
 use crate::config::ConfigError;
-use crate::map::GridMap;
-use crate::planner::memory::MemoryEstimate;
-use crate::planner::{Budget, Context, Planner};
+use crate::planner::Context;
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section};
+use std::collections::BTreeMap;
 use std::sync::{Arc, RwLock};
 
-/// A planner from outside the crate, as a run needs it besides the [`Planner`] interface.
-/// Each method has a default that holds for a planner that iterates under the budget.
-pub trait PluginPlanner: Planner + std::fmt::Debug {
-    /// An upper estimate of the planner's own memory on `map` with `threads` evaluation
-    /// threads (nothing by default).
-    fn memory_estimate(&self, map: &GridMap, threads: usize) -> MemoryEstimate {
-        let _ = threads;
-        MemoryEstimate {
-            bytes: 0.0,
-            key: "planner",
-            what: format!("{} on {} cells", self.name(), map.rows() * map.cols()),
-        }
-    }
-    /// How far past `budget.evaluations` it can go, in words (`summary.json`'s
-    /// `evaluation_budget`).
-    fn evaluation_rule(&self) -> &'static str {
-        "as the planner's own documentation says (a planner added from outside covga)"
-    }
-    /// The length of a run's progress in the units of its generation records.
-    fn progress_length(&self, budget: &Budget) -> u64 {
-        u64::from(budget.iterations)
-    }
-}
-
 /// How a plugin checks its section (empty when the file has none) and makes its planner.
-pub type ValidateSection = fn(&toml::Table, &Context) -> Result<Arc<dyn PluginPlanner>, ConfigError>;
+pub type ValidateSection = fn(&toml::Table, &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError>;
 
 /// What registers a planner: its name, whether it reads the seed, the keys of its section
 /// and how the section becomes a planner.
@@ -65,58 +41,84 @@ pub enum PluginError {
     BadName(&'static str),
 }
 
-static PLUGINS: RwLock<Vec<&'static PlannerPlugin>> = RwLock::new(Vec::new());
+impl PlannerEntry for PlannerPlugin {
+    fn name(&self) -> &'static str {
+        self.name
+    }
 
-/// Registers `plugin` for every experiment file read after it, in any thread.
-pub fn register(plugin: &'static PlannerPlugin) -> Result<(), PluginError> {
-    let name = plugin.name;
+    fn is_deterministic(&self) -> bool {
+        self.deterministic
+    }
+
+    fn plugin_keys(&self) -> Option<&'static [&'static str]> {
+        Some(self.keys)
+    }
+
+    /// It reads none of the planner sections (its own table is the registry's to answer for).
+    fn why_unread(&self, _file: &dyn FileSections, key: &str) -> Option<String> {
+        crate::planner::sections::unread_section(key, self.name, &[])
+    }
+
+    /// Checks `[plugins.<name>]`, an empty table where the file has none.
+    fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
+        let tables = section::<BTreeMap<String, toml::Table>>(file, "plugins");
+        (self.validate)(tables.and_then(|t| t.get(self.name)).unwrap_or(&toml::Table::new()), ctx)
+    }
+}
+
+static PLUGINS: RwLock<Vec<&'static dyn PlannerEntry>> = RwLock::new(Vec::new());
+
+/// Registers `planner` for every experiment file read after it, in any thread: a
+/// [`PlannerPlugin`], or any other [`PlannerEntry`].
+pub fn register(planner: &'static dyn PlannerEntry) -> Result<(), PluginError> {
+    let name = planner.name();
     let mut chars = name.chars();
     let well_formed = chars.next().is_some_and(|c| c.is_ascii_lowercase())
         && chars.all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
     if !well_formed {
         return Err(PluginError::BadName(name));
     }
-    let built_in = super::registry::PlannerKind::ALL.iter().any(|k| k.name() == name);
+    let built_in = super::registry::PLANNERS.iter().any(|p| p.name() == name);
     let mut plugins = PLUGINS.write().unwrap_or_else(std::sync::PoisonError::into_inner);
-    if built_in || plugins.iter().any(|p| p.name == name) {
+    if built_in || plugins.iter().any(|p| p.name() == name) {
         return Err(PluginError::Taken(name));
     }
-    plugins.push(plugin);
+    plugins.push(planner);
     Ok(())
 }
 
-/// The registered plugin named `name`.
-pub fn find(name: &str) -> Option<&'static PlannerPlugin> {
-    PLUGINS.read().unwrap_or_else(std::sync::PoisonError::into_inner).iter().copied().find(|p| p.name == name)
+/// The planner registered from outside under `name`.
+pub fn find(name: &str) -> Option<&'static dyn PlannerEntry> {
+    PLUGINS.read().unwrap_or_else(std::sync::PoisonError::into_inner).iter().copied().find(|p| p.name() == name)
 }
 
-/// Every registered plugin, in the order of registration.
-pub fn registered() -> Vec<&'static PlannerPlugin> {
+/// Every planner registered from outside, in the order of registration.
+pub fn registered() -> Vec<&'static dyn PlannerEntry> {
     PLUGINS.read().unwrap_or_else(std::sync::PoisonError::into_inner).clone()
 }
 
-/// Why the planner `planner` (a plugin's name, or `None` for a built-in planner) does not read
-/// `key` of the `plugins` table, or `None` when it reads it: each plugin reads its own
-/// section's listed keys only.
-pub fn why_unread(planner: Option<&'static PlannerPlugin>, key: &str) -> Option<String> {
+/// Why the planner called `planner`, whose table `[plugins.<planner>]` has the keys `keys`
+/// (`None` for a planner without one), does not read `key` of the `plugins` table, or `None`
+/// when it reads it: each planner reads its own table's listed keys only.
+pub fn why_unread(planner: &str, keys: Option<&[&str]>, key: &str) -> Option<String> {
     let rest = if key == "plugins" { "" } else { key.strip_prefix("plugins.")? };
     let (section, inner) = rest.split_once('.').map_or((rest, None), |(s, k)| (s, Some(k)));
-    match planner {
-        Some(p) if p.name == section || section.is_empty() => {
-            let unread = inner.is_some_and(|k| !p.keys.contains(&k));
-            unread.then(|| format!("planner = \"{}\" reads {} of [plugins.{}]", p.name, keys_text(p), p.name))
+    match keys {
+        Some(keys) if planner == section || section.is_empty() => {
+            let unread = inner.is_some_and(|k| !keys.contains(&k));
+            unread.then(|| format!("planner = \"{planner}\" reads {} of [plugins.{planner}]", keys_text(keys)))
         }
         Some(_) | None if section.is_empty() => Some("no planner added from outside covga runs here".to_string()),
         Some(_) | None => Some(format!("only planner = \"{section}\" reads [plugins.{section}]")),
     }
 }
 
-/// A plugin's keys as the warnings list them.
-fn keys_text(p: &PlannerPlugin) -> String {
-    if p.keys.is_empty() {
+/// A table's keys as the warnings list them.
+fn keys_text(keys: &[&str]) -> String {
+    if keys.is_empty() {
         return "no key".to_string();
     }
-    p.keys.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
+    keys.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")
 }
 
 /// Refuses a `[plugins.<name>]` section whose planner is not registered, naming the section.
@@ -124,13 +126,13 @@ pub fn check_sections(
     sections: &std::collections::BTreeMap<String, toml::Table>,
     origin: &str,
 ) -> Result<(), ConfigError> {
-    match sections.keys().find(|name| find(name).is_none()) {
+    match sections.keys().find(|name| find(name).is_none_or(|p| p.plugin_keys().is_none())) {
         Some(name) => Err(ConfigError::new(
             origin,
             &format!("plugins.{name}"),
             format!(
                 "names no registered planner (registered: {})",
-                match registered().iter().map(|p| format!("`{}`", p.name)).collect::<Vec<_>>().join(", ") {
+                match registered().iter().map(|p| format!("`{}`", p.name())).collect::<Vec<_>>().join(", ") {
                     list if list.is_empty() => "none".to_string(),
                     list => list,
                 }

@@ -13,10 +13,11 @@
 
 use super::Fleet;
 use crate::geom::Point;
+use crate::lanes::PatternError;
 use crate::map::clearance::Clearance;
 use crate::map::reach::Reach;
 use crate::map::{CellState, GridMap};
-use crate::patterns::{self, Pattern, PatternError};
+use crate::patterns::{self, Pattern};
 use std::cmp::Reverse;
 use std::collections::{BinaryHeap, VecDeque};
 

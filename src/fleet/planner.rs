@@ -5,11 +5,12 @@
 //! output scores and draws each robot at its own width.
 
 use super::Fleet;
-use super::config::FleetMethod;
+use super::config::{FleetMethod, FleetMode};
 use super::details::{FleetDetails, Negotiation};
 use super::metrics::FleetScorer;
 use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer};
+use crate::planner::entry::RegisteredPlanner;
 use crate::planner::memory::MemoryEstimate;
 use crate::planner::{Budget, History, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use std::time::Instant;
@@ -145,12 +146,12 @@ impl FleetPlanner {
     }
 }
 
-impl FleetPlanner {
+impl RegisteredPlanner for FleetPlanner {
     /// An upper estimate of a run's memory on `map` with `threads` evaluation threads: the
     /// thesis GA's population once per robot for the centralised GA (a member holds a genome and
     /// visit map per robot) and for the negotiation (one GA per robot); the waypoint team's
     /// world; nothing worth counting for area division.
-    pub fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
+    fn memory_estimate(&self, map: &crate::map::GridMap, threads: usize) -> MemoryEstimate {
         let robots = self.fleet.len() as f64;
         match &self.method {
             FleetMethod::Central(params) | FleetMethod::Negotiate(params, _) => {
@@ -172,6 +173,33 @@ impl FleetPlanner {
                 what: format!("{robots} regions on {} cells", map.rows() * map.cols()),
             },
             FleetMethod::Waypoint(w) => w.memory_estimate(map),
+        }
+    }
+
+    fn evaluation_rule(&self) -> &'static str {
+        match self.method.mode() {
+            FleetMode::Negotiate => {
+                "each robot's GA has an equal share of the limit and stops after the first generation that reaches \
+                 its share: fewer than one generation per robot past it"
+            }
+            FleetMode::Central => {
+                "stops after the first generation that reaches the limit: fewer than one generation's evaluations \
+                 past it"
+            }
+            FleetMode::Waypoint => {
+                "stops after the first generation that reaches the limit: fewer than one generation's children past it"
+            }
+            FleetMode::Divide => "plans once: no evaluation, whatever the limit",
+        }
+    }
+
+    /// The central GA's iterations, the waypoint team's generations, nothing for the methods
+    /// that report rounds of their own or plan in one step.
+    fn progress_length(&self, budget: &Budget) -> u64 {
+        match &self.method {
+            FleetMethod::Central(_) => u64::from(budget.iterations),
+            FleetMethod::Waypoint(w) => w.ga.generations as u64,
+            FleetMethod::Negotiate(..) | FleetMethod::Divide { .. } => 0,
         }
     }
 }

@@ -1,66 +1,19 @@
-//! Classical coverage patterns used as baselines: boustrophedon ([`boustrophedon`]) and an
-//! inward spiral ([`spiral`]), both built on collision-free connections ([`clearance`]).
+//! Classical coverage patterns used as baselines: boustrophedon (its lanes are the lanes layer's,
+//! [`crate::lanes::boustrophedon`]) and an inward spiral ([`spiral`]), both built on
+//! collision-free connections ([`crate::map::clearance`]).
 
-pub mod boustrophedon;
-pub mod complete;
+pub mod entry;
 pub mod hand_made;
 pub mod planner;
 
 pub mod spiral;
 
 use crate::geom::Point;
+use crate::lanes::{GrowingRoute, PatternError, boustrophedon, check_lane_count};
 use crate::map::GridMap;
-pub use crate::map::clearance::{self, Clearance};
+use crate::map::clearance::Clearance;
 use crate::map::passages::planning_map_from;
 use std::borrow::Cow;
-
-/// Why a pattern could not be planned.
-#[derive(Debug, thiserror::Error, PartialEq)]
-pub enum PatternError {
-    /// No place reachable from the start fits the robot.
-    #[error("no free area reachable from the start fits a robot {width} m wide")]
-    NoRoom {
-        /// The robot width.
-        width: f64,
-    },
-    /// The plan touches a wall, an unknown cell or the map's edge and no detour repairs it
-    /// (the body rule of [`crate::map::body`], checked before a plan is returned).
-    #[error("{0}")]
-    NotExecutable(String),
-    /// The robot is so narrow that the lanes across the map would not fit in memory or time.
-    #[error(
-        "a robot {} m wide needs about {lanes:.3e} lanes across map `{map}` ({across:.1} m); at most {MAX_LANES} \
-         are planned (a width of at least {min_width:.3e} m)",
-        crate::io::short_number(*width)
-    )]
-    TooManyLanes {
-        /// The robot width.
-        width: f64,
-        /// The map's name.
-        map: String,
-        /// Its diagonal in metres.
-        across: f64,
-        /// Lanes one width apart across the diagonal.
-        lanes: f64,
-        /// The narrowest width within the limit.
-        min_width: f64,
-    },
-}
-
-/// The most lanes a pattern lays across a map (at any direction): far above any real floor plan
-/// at a real robot's width (basement, 30 m across at 0.6 m: 71), and a bound that keeps a
-/// mistyped width from allocating lanes without end.
-pub const MAX_LANES: f64 = 100_000.0;
-
-/// Refuses a width that would lay more than [`MAX_LANES`] lanes across `map`'s diagonal.
-pub fn check_lane_count(map: &GridMap, width: f64) -> Result<(), PatternError> {
-    let across = map.width_m().hypot(map.height_m());
-    let lanes = across / width;
-    if lanes.is_finite() && lanes <= MAX_LANES {
-        return Ok(());
-    }
-    Err(PatternError::TooManyLanes { width, map: map.name().to_string(), across, lanes, min_width: across / MAX_LANES })
-}
 
 /// A coverage pattern.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -135,18 +88,17 @@ pub fn plan_region(
             Pattern::Spiral => spiral::plan(&lanes, width, from)?,
         };
         // The lanes' route starts at `from`, which the route has reached.
-        route.points.extend_from_slice(&lanes_route.points[1..]);
-        route.skipped += lanes_route.skipped;
+        route.append(lanes_route);
         route
     } else {
         GrowingRoute::new(start)
     };
     reach.keep_only(targets);
-    self::complete::complete(&whole, &reach, width, &mut route);
+    crate::lanes::complete::complete(&whole, &reach, width, &mut route);
     route.finish(&whole, end);
     Ok(PatternPlan {
-        skipped_targets: route.skipped,
-        points: checked(&whole, width, route.points)?,
+        skipped_targets: route.skipped(),
+        points: checked(&whole, width, route.into_points())?,
         pockets: reach.pocket_count(),
         pocket_area_m2: reach.pocket_area_m2(),
     })
@@ -158,82 +110,9 @@ fn checked(clear: &Clearance, width: f64, points: Vec<Point>) -> Result<Vec<Poin
     crate::planner::executable::executable(clear, width, points).map_err(|e| PatternError::NotExecutable(e.to_string()))
 }
 
-/// A growing polyline that starts at a station; targets it cannot reach are skipped.
-#[derive(Clone, Debug)]
-pub struct GrowingRoute {
-    points: Vec<Point>,
-    skipped: usize,
-}
-
-impl GrowingRoute {
-    /// A route standing at `start`.
-    pub fn new(start: Point) -> Self {
-        Self { points: vec![start], skipped: 0 }
-    }
-    /// The points so far, the start first.
-    pub fn points(&self) -> &[Point] {
-        &self.points
-    }
-    /// Targets skipped because no collision-free connection reached them.
-    pub fn skipped(&self) -> usize {
-        self.skipped
-    }
-    /// The points, giving the route up.
-    pub fn into_points(self) -> Vec<Point> {
-        self.points
-    }
-    /// Drives along `points` as they are (a sweep planned collision-free beforehand), after a
-    /// connecting move to the first; `false` when that move found no connection.
-    pub fn drive(&mut self, clear: &Clearance, points: &[Point]) -> bool {
-        let Some((&first, rest)) = points.split_first() else { return true };
-        if !self.go(clear, first) {
-            return false;
-        }
-        self.points.extend_from_slice(rest);
-        true
-    }
-    /// Where the route stands.
-    pub fn last(&self) -> Point {
-        *self.points.last().expect("a route has a start")
-    }
-    /// Moves to `p` along a collision-free connection (repeated points are dropped); `false`
-    /// when `p` cannot be reached, and the route stays where it is.
-    fn connect(&mut self, clear: &Clearance, p: Point) -> bool {
-        let here = self.last();
-        if (p - here).norm() < 1e-9 {
-            return true;
-        }
-        match clear.connect(here, p) {
-            Some(hops) => {
-                self.points.extend(hops);
-                true
-            }
-            None => false,
-        }
-    }
-    /// `GrowingRoute::connect`, counting a target that cannot be reached as skipped.
-    pub fn go(&mut self, clear: &Clearance, p: Point) -> bool {
-        let reached = self.connect(clear, p);
-        self.skipped += usize::from(!reached);
-        reached
-    }
-    /// Returns to the end station: through the fitting cell nearest to it when the station
-    /// itself is too close to a wall for the disc (stations are free cells, checked at load).
-    pub fn finish(&mut self, clear: &Clearance, end: Point) {
-        if self.connect(clear, end) {
-            return;
-        }
-        if let Some(i) = clear.snap(end) {
-            let cols = clear.map().cols();
-            self.go(clear, clear.map().cell_centre(i / cols, i % cols));
-        }
-        self.points.push(end);
-    }
-}
-
 /// Checks the inputs of [`plan`] as a user gives them, naming the input that is wrong with
 /// `names` (`[start, end, width]`, e.g. `["--start", "--end", "--width"]`): both stations on
-/// free cells of the map where the robot's body fits, a lane count within [`MAX_LANES`], and
+/// free cells of the map where the robot's body fits, a lane count within [`crate::lanes::MAX_LANES`], and
 /// an end the robot can reach from the start.
 pub fn check_plan_inputs(map: &GridMap, width: f64, start: Point, end: Point, names: [&str; 3]) -> Result<(), String> {
     use crate::map::reach::{station_misfit, unreachable_end};
@@ -282,12 +161,12 @@ pub fn plan(
     };
     let mut route = route;
     if complete {
-        self::complete::complete(&clear, &reach, width, &mut route);
+        crate::lanes::complete::complete(&clear, &reach, width, &mut route);
     }
     route.finish(&clear, end);
     Ok(PatternPlan {
-        skipped_targets: route.skipped,
-        points: checked(&clear, width, route.points)?,
+        skipped_targets: route.skipped(),
+        points: checked(&clear, width, route.into_points())?,
         pockets: reach.pocket_count(),
         pocket_area_m2: reach.pocket_area_m2(),
     })

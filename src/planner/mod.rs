@@ -9,9 +9,11 @@
 //! Why a trait here and the registry above the planners: each planner keeps its typed,
 //! validated parameters, its section's validation ([`Context`]) and its state inside its own
 //! module and implements [`Planner`]; everything downstream (the run loop, output files, study
-//! runner) sees only `&dyn Planner`. The closed list of planners lives one layer up, in
-//! the registry of the experiment layer, so that this layer depends on no planner.
+//! runner) sees only `&dyn Planner`. How a planner registers ([`entry`]) is written here,
+//! and each planner's module holds its entry; the list of them lives one layer up, in the
+//! registry of the experiment layer, so that this layer depends on no planner.
 
+pub mod entry;
 pub mod executable;
 pub mod executor;
 pub mod legs;

@@ -9,6 +9,7 @@ use crate::coverage::fitness::Projection;
 use crate::coverage::score::CameraSpec;
 use crate::map::GridMap;
 use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
 
 /// `[map]`: the occupancy grid to plan on: a preset, a ROS map_server YAML or a bare image.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -241,4 +242,25 @@ impl Default for BudgetSection {
     fn default() -> Self {
         Self { iterations: 2000, evaluations: 0, wall_clock_s: 0.0, stall_iterations: 0 }
     }
+}
+
+/// `[output]`: where a run writes and what beyond its usual files.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize, Default)]
+#[serde(deny_unknown_fields, default)]
+pub struct OutputSection {
+    /// Results folder (default `out/<file stem>`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dir: Option<PathBuf>,
+    /// `history.csv` records the population diversity every this many iterations (and at
+    /// iteration 0); the other rows leave it empty. Measuring it is a pass over every visit
+    /// map, about a fifth of a thesis GA run when done every iteration. Absent means 1, every
+    /// iteration, so that the written `config.toml` and run ids of files without it stay as
+    /// they were.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diversity_every: Option<u32>,
+    /// The thesis GA also writes its final population's genomes (`population_genomes.csv`:
+    /// each member's live moves, in the order of `population.csv`), for a notebook to decode
+    /// or re-score them. Absent means false (a study's runs never write them).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub population_genomes: Option<bool>,
 }

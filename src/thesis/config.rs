@@ -8,7 +8,7 @@ use super::individual::{EvaluationMode, InitParams};
 use super::objective::Objective;
 use super::params::{Control, Retrain, SeedBound, Selection, ThesisParams};
 use super::scenario::Moves;
-use super::seeding::{SeedPlan, SeedPlans, SeedSettings, seed_genomes};
+use super::seeding::{SeedPlanner, SeedPlans, seed_genomes};
 use crate::config::{ConfigError, check_range, check_unit};
 use crate::ga::control::AdaptiveConstants;
 use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
@@ -267,12 +267,12 @@ pub struct ThesisConfig {
 
 impl ThesisSection {
     /// Validates this section and the experiment's `[retrain]` (if any) into the thesis GA.
-    /// `settings` are the file's `[pattern]` and `[cell_order]`, the settings of the seed plans.
+    /// `seeds` makes the seed plans (with the file's settings of the planners that make them).
     /// `alpha_cov` is `waypoint.alpha_cov`, the weight of the camera objective.
     pub fn validate(
         &self,
         retrain: Option<&RetrainSection>,
-        settings: SeedSettings,
+        seeds: &dyn SeedPlanner,
         alpha_cov: f64,
         ctx: &Context,
     ) -> Result<ThesisConfig, ConfigError> {
@@ -322,7 +322,7 @@ impl ThesisSection {
                 Some(Retrain { at_iteration: rt.at_iteration, region: rt.region })
             }
         };
-        let (seeds, seeded) = self.seeds(&params, settings, ctx)?;
+        let (seeds, seeded) = self.seeds(&params, seeds, ctx)?;
         let objective = (self.objective, alpha_cov);
         Ok(ThesisConfig { params, retrain, seeds, seeded, moves: self.moves, objective, population_genomes: false })
     }
@@ -331,7 +331,7 @@ impl ThesisSection {
     fn seeds(
         &self,
         params: &ThesisParams,
-        settings: SeedSettings,
+        planner: &dyn SeedPlanner,
         ctx: &Context,
     ) -> Result<(Vec<Vec<Action>>, usize), ConfigError> {
         if !self.seed_bound.is_none() && !matches!(params.selection, Selection::Nsga2 | Selection::Elite) {
@@ -358,17 +358,7 @@ impl ThesisSection {
         }
         // The sections the seeds read, with their own range checks under their own keys.
         for plan in self.seed_population.plans() {
-            match plan {
-                SeedPlan::CellOrder => {
-                    settings.cell_order.validate(ctx)?;
-                }
-                SeedPlan::Boustrophedon => {
-                    settings.pattern.validate(crate::patterns::planner::PatternKind::Boustrophedon, ctx)?;
-                }
-                SeedPlan::Spiral => {
-                    settings.pattern.validate(crate::patterns::planner::PatternKind::Spiral, ctx)?;
-                }
-            }
+            planner.check(plan, ctx)?;
         }
         if !self.seed_bound.is_none() && params.selection == Selection::Elite && params.p_mi > 0.0 {
             return Err(ctx.error(
@@ -384,7 +374,7 @@ impl ThesisSection {
             return Ok((Vec::new(), 0));
         }
         let deadline = ctx.budget.wall_clock.map(|d| (std::time::Instant::now() + d, d));
-        let genomes = seed_genomes(self.seed_population, settings, ctx.scenario, params.max_genome_len, deadline)
+        let genomes = seed_genomes(self.seed_population, planner, ctx.scenario, params.max_genome_len, deadline)
             .map_err(|m| ctx.error("thesis.seed_population", m))?;
         let size = params.initial_size();
         let seeded = ((share * size as f64).ceil() as usize).max(genomes.len()).min(size);

@@ -9,6 +9,7 @@ pub mod batch;
 pub mod config;
 pub mod crossover;
 pub mod diversity;
+pub mod entry;
 pub mod genome;
 pub mod individual;
 pub mod lanes;

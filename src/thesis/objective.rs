@@ -9,12 +9,12 @@
 //! stay 003's. A move's views are kept per segment ([`SegmentViews`]), so a plan costs an OR
 //! of the views of its moves plus the views of the moves no earlier plan had.
 
+use crate::coverage::camera::blended_coverage;
 use crate::coverage::fitness::{Projection, ThesisScore, f_obstacle};
 use crate::coverage::score::CameraSpec;
 use crate::coverage::views::{CameraLayer, SegmentViews};
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::waypoint::evaluate::blended_coverage;
 use serde::{Deserialize, Serialize};
 
 /// `thesis.objective`: what `cov_final` measures.

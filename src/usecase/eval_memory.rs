@@ -46,7 +46,7 @@ pub fn estimate(map: &GridMap, width: f64, planned: bool) -> (f64, String) {
 pub fn check(map: &GridMap, width: f64, planned: bool, max_memory: Option<u64>) -> Result<(), UseCaseError> {
     if planned {
         // The lanes' own cap first: it names the narrowest width a pattern is planned for.
-        crate::patterns::check_lane_count(map, width).map_err(|e| UseCaseError::Input(format!("--width: {e}")))?;
+        crate::lanes::check_lane_count(map, width).map_err(|e| UseCaseError::Input(format!("--width: {e}")))?;
         check_planning_size(map, width, "--width").map_err(UseCaseError::Input)?;
     }
     let Some(limit) = memory_limit(max_memory) else { return Ok(()) };

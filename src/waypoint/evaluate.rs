@@ -5,7 +5,7 @@
 
 use super::graph::Graph;
 use super::precompute::{Traversals, Union};
-use crate::coverage::camera::wrap;
+use crate::coverage::camera::{blended_coverage, wrap};
 
 /// Parameters of the objectives and constraints (Table I as reconciled in waypoint §18–19).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,11 +38,6 @@ pub struct ObjectiveParams {
 pub fn required_coverage(p: &ObjectiveParams, generation: u32) -> f64 {
     let t = if p.aging == 0 { 1.0 } else { (f64::from(generation) / f64::from(p.aging)).min(1.0) };
     p.c_start + (p.c_end - p.c_start) * t
-}
-
-/// `C = α·C_open + (1 − α)·C_walls` (000 eq. 2).
-pub fn blended_coverage(alpha: f64, open: f64, walls: f64) -> f64 {
-    alpha * open + (1.0 - alpha) * walls
 }
 
 /// Turning surcharge `ρ·|Δψ/(π/2)|^ρ` of one interior waypoint (000 eq. 3, W12).

@@ -5,6 +5,7 @@
 //! ([`config`]) and the planner's figures ([`figures`]).
 
 pub mod config;
+pub mod entry;
 pub mod evaluate;
 pub mod figures;
 pub mod geometry;

@@ -5,6 +5,7 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
+mod planners;
 mod report_rooms;
 
 /// Top-level modules of `src/`, bottom layer first. Modules in one layer are peers: they may
@@ -18,11 +19,11 @@ const LAYERS: &[&[&str]] = &[
     &["ga"],
     &["map"],
     &["coverage"],
-    &["routing"],
+    &["routing", "lanes"],
     &["plot"],
     &["planner"],
     &["thesis", "waypoint", "patterns", "cell_order"],
-    &["random_search"],
+    &["random_search", "seeded"],
     &["fleet"],
     &["experiment"],
     &["study"],

@@ -1,5 +1,5 @@
 //! The contract every planner keeps, checked for every kind of the registry
-//! (`PlannerKind::ALL`), so that a planner added there is covered without an edit here: the
+//! (`PlannerKind::built_in`, the list `PLANNERS`), so that a planner added there is covered without an edit here: the
 //! same file and seed give the same files; the evaluation budget is kept to within one step
 //! (one generation, or one batch, of the planner's own); the history counts iterations 0..n
 //! with evaluations that never fall and end at the summary's; the returned plan is what the
@@ -54,7 +54,7 @@ fn history(dir: &Path) -> Vec<(u64, u64)> {
 
 #[test]
 fn every_planner_keeps_the_contract() {
-    for kind in PlannerKind::ALL {
+    for kind in PlannerKind::built_in() {
         let name = kind.name();
         let text = experiment(kind);
         let (a, b) = (run(&text), run(&text));
@@ -128,7 +128,7 @@ fn every_planner_keeps_the_contract() {
 #[test]
 fn every_planner_names_the_sections_it_does_not_read() {
     let sections = ["thesis.pop_min", "waypoint.population", "pattern.angle_deg", "cell_order.population"];
-    for kind in PlannerKind::ALL {
+    for kind in PlannerKind::built_in() {
         let file = ExperimentFile::parse(&experiment(kind), "c.toml").unwrap();
         let read: Vec<&str> = sections.iter().copied().filter(|k| why_ignored(&file, k).is_none()).collect();
         // A planner reads its own section, and random search the thesis's genome keys.
@@ -140,7 +140,7 @@ fn every_planner_names_the_sections_it_does_not_read() {
 /// stops it there, a stall limit of one stops it at the first iteration with no better best.
 #[test]
 fn every_iterative_planner_stops_on_the_budgets_iterations_and_stalls() {
-    for kind in PlannerKind::ALL {
+    for kind in PlannerKind::built_in() {
         let name = kind.name();
         let cases = [
             ("evaluations = 200000\niterations = 3\n".to_string(), "iterations"),

@@ -8,8 +8,8 @@
 
 use covga::prelude::{
     Budget, ConfigError, Context, ExperimentText, Observer, Planner, PlannerError, PlannerKind, PlannerPlugin,
-    PluginError, PluginPlanner, Point, RunDone, RunOutcome, Scenario, StopReason, Study, check_range, details, prepare,
-    register, run_in_folder, run_study,
+    PluginError, Point, RegisteredPlanner, RunDone, RunOutcome, Scenario, StopReason, Study, check_range, details,
+    prepare, register, run_in_folder, run_study, write_report,
 };
 use std::path::Path;
 use std::sync::{Arc, Once};
@@ -45,10 +45,10 @@ impl Planner for Rays {
     }
 }
 
-impl PluginPlanner for Rays {}
+impl RegisteredPlanner for Rays {}
 
 /// `[plugins.rays]`: `rays` in 1..=64 (default 4), `reach_m` in (0, 100] (default 1).
-fn validate(section: &toml::Table, ctx: &Context) -> Result<Arc<dyn PluginPlanner>, ConfigError> {
+fn validate(section: &toml::Table, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
     let number = |key: &str, default: f64| match section.get(key) {
         None => Ok(default),
         Some(v) => v.as_float().or_else(|| v.as_integer().map(|i| i as f64)).ok_or_else(|| {
@@ -141,6 +141,33 @@ fn a_planner_from_outside_runs_like_a_built_in_one_alone_and_in_a_grid() {
     let runs = std::fs::read_to_string(tmp.path().join("study/runs.csv")).unwrap();
     assert!(runs.lines().next().unwrap().contains("plugins.rays.rays"), "{runs}");
     assert_eq!(runs.lines().filter(|l| l.contains(",rays,")).count(), 2, "{runs}");
+}
+
+/// `covga report` over a study of the toy planner beside the thesis GA: the toy's runs are
+/// its own planner in the report (measured by the common scorer as every planner other than
+/// the thesis GA is, and labelled with its name), not runs of the thesis GA.
+#[test]
+fn a_planner_from_outside_is_reported_under_its_own_name() {
+    registered();
+    let tmp = tempfile::tempdir().unwrap();
+    let grid = tmp.path().join("g.toml");
+    std::fs::write(
+        &grid,
+        "seeds = 1\n[base]\n[base.map]\nsource = \"thesis-2\"\n[base.stations]\nstart = [1.3, 1.3]\n\
+         [base.budget]\niterations = 3\n[axes]\nplanner = [\"thesis\", \"rays\"]\n",
+    )
+    .unwrap();
+    let study = Study::load(&grid).unwrap();
+    let quiet = |_: RunDone| {};
+    let dir = tmp.path().join("study");
+    assert_eq!(run_study(&study, &crate::common::runner_options(&dir, 2, &quiet)).unwrap().completed, 2);
+    let summary = std::fs::read_to_string(write_report(&dir, &[]).unwrap()).unwrap();
+    assert!(summary.contains("Mission time against reachable coverage"), "{summary}");
+    let pareto = std::fs::read_to_string(dir.join("report/pareto.svg")).unwrap();
+    let labels: Vec<&str> =
+        pareto.split('>').filter_map(|t| t.split('<').next()).filter(|t| t.contains("rays")).collect();
+    assert!(!labels.is_empty(), "the toy planner's runs carry its name in the figure's legend");
+    assert!(labels.iter().all(|l| !l.contains("thesis")), "{labels:?}");
 }
 
 /// The toy planner reaches covga through the prelude alone: every `covga::` path of this file

@@ -30,7 +30,7 @@ pub struct Shape {
 /// Every type that is a table of an experiment file, with the source that declares it.
 const SECTION_TYPES: [(&str, &str); 16] = [
     ("ExperimentFile", include_str!("../file.rs")),
-    ("OutputSection", include_str!("../file.rs")),
+    ("OutputSection", include_str!("../../planner/sections.rs")),
     ("MapSection", include_str!("../../planner/sections.rs")),
     ("RobotSection", include_str!("../../planner/sections.rs")),
     ("StationsSection", include_str!("../../planner/sections.rs")),

@@ -253,12 +253,7 @@ impl<'a> Study<'a> {
             [a, b] => Some((study.distinct(a), study.distinct(b))),
             _ => None,
         };
-        // The planners of a comparison, in the registry's order, each with its own colour.
-        study.kinds = crate::experiment::registry::PlannerKind::ALL
-            .iter()
-            .map(|k| k.name().to_string())
-            .filter(|k| study.t.col("planner").is_some_and(|c| study.t.rows.iter().any(|row| &row[c] == k)))
-            .collect();
+        study.kinds = planners_of(&study.t);
         study.facets = study.pareto_facets();
         study.best = study.best_runs();
         study.params = param_columns(&study.t);
@@ -378,4 +373,24 @@ impl<'a> Study<'a> {
         crate::io::write_atomic(&self.out.join("configurations.csv"), csv.as_bytes())
             .map_err(|e| ReportError::Io(e.to_string()))
     }
+}
+
+/// The planners of a study's runs, each with its own colour and label: the registered ones in
+/// the registry's order (covga's own, then those registered from outside), then any other
+/// planner the runs name, in the order they first appear (a study run by a program that
+/// registered a planner, reported by one that did not).
+pub fn planners_of(t: &RunsTable) -> Vec<String> {
+    let Some(c) = t.col("planner") else { return Vec::new() };
+    let ran = |name: &str| t.rows.iter().any(|row| row[c] == name);
+    let mut kinds: Vec<String> = crate::experiment::registry::PlannerKind::all()
+        .into_iter()
+        .map(|k| k.name().to_string())
+        .filter(|k| ran(k))
+        .collect();
+    for row in &t.rows {
+        if !row[c].is_empty() && !kinds.contains(&row[c]) {
+            kinds.push(row[c].clone());
+        }
+    }
+    kinds
 }

@@ -148,7 +148,7 @@ impl<'a> Comparing<'a> {
                 maps.push(r[mc].clone());
             }
         }
-        let order: Vec<&str> = crate::experiment::registry::PlannerKind::ALL.iter().map(|k| k.name()).collect();
+        let order: Vec<&str> = crate::experiment::registry::PlannerKind::all().iter().map(|k| k.name()).collect();
         let mut variants: Vec<String> = label.clone();
         variants.sort_by_key(|l| (order.iter().position(|o| l.starts_with(o)).unwrap_or(order.len()), l.clone()));
         variants.dedup();

@@ -72,15 +72,17 @@ fn estimates_come_from_records_then_calibration_then_budget() {
     // Nothing recorded: the budget figure, evaluations or iterations times map cells.
     let e = estimates(&s, &runs, dir.path(), &maps);
     assert_eq!(e.source, EstimateSource::Budget);
+    let named = |name: &str| PlannerKind::named(name).unwrap();
+    let (boustrophedon, thesis) = (named("boustrophedon"), named("thesis"));
     let by_kind = |kind: PlannerKind, it: u32| {
         let r = runs.iter().find(|r| r.file.planner == kind && iterations(r) == it).unwrap();
         e.cost[&r.id]
     };
-    let cells = by_kind(PlannerKind::Boustrophedon, 10);
+    let cells = by_kind(boustrophedon, 10);
     assert!(cells > 100.0);
-    assert_eq!(by_kind(PlannerKind::Boustrophedon, 40), cells, "a pattern plans once");
-    assert_eq!(by_kind(PlannerKind::Thesis, 10), 10.0 * cells);
-    assert_eq!(by_kind(PlannerKind::Thesis, 40), 40.0 * cells);
+    assert_eq!(by_kind(boustrophedon, 40), cells, "a pattern plans once");
+    assert_eq!(by_kind(thesis, 10), 10.0 * cells);
+    assert_eq!(by_kind(thesis, 40), 40.0 * cells);
     // One run recorded: its configuration (both replicates) takes its time, the others the
     // mean of all records.
     let first = runs[0];
@@ -126,12 +128,13 @@ fn an_unrecorded_branch_takes_its_budget_at_the_recorded_rate() {
     let grid = "seeds = 2\n[base]\n[axes]\n\"planner\" = [\"thesis\", \"boustrophedon\"]\n[[conditional]]\nwhen = { \"planner\" = \"thesis\" }\naxes = { \"budget.iterations\" = [10, 40] }\n";
     let s = Study::parse(grid, Path::new("g.toml")).unwrap();
     let runs: Vec<&RunSpec> = s.runs.iter().collect();
-    let thesis10 = runs.iter().find(|r| r.file.planner == PlannerKind::Thesis && iterations(r) == 10).unwrap();
+    let thesis = PlannerKind::named("thesis").unwrap();
+    let thesis10 = runs.iter().find(|r| r.file.planner == thesis && iterations(r) == 10).unwrap();
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("runs.csv"), format!("run_id,wall_s\n{},5\n", thesis10.id)).unwrap();
     let e = estimates(&s, &runs, dir.path(), &MapCache::default());
     for r in &runs {
-        let want = if r.file.planner == PlannerKind::Thesis { 5.0 } else { 0.5 };
+        let want = if r.file.planner == thesis { 5.0 } else { 0.5 };
         assert!((e.cost[&r.id] - want).abs() < 1e-12, "{} {}", r.branch, e.cost[&r.id]);
     }
 }

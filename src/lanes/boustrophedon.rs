@@ -5,9 +5,9 @@
 //! (the hand-made pattern of 003 Table 3.1, generalised). Pieces only exist where the robot
 //! fits and can get to from the start (the clearance is restricted to the reachable part).
 
-use super::clearance::Clearance;
 use super::{GrowingRoute, PatternError};
 use crate::geom::{Point, Vector};
+use crate::map::clearance::Clearance;
 
 /// One fitting piece of a lane: its two ends.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -159,7 +159,7 @@ pub fn sweep_cells(clear: &Clearance, cells: &[Vec<Piece>], start: Point) -> Gro
 }
 
 /// [`sweep_cells`]; with `along`, a piece whose straight line is blocked (one joined across an
-/// obstacle, [`crate::cell_order::merged_lanes`]) is driven along its lane, around each
+/// obstacle, the cell-order planner's merged lanes) is driven along its lane, around each
 /// obstacle from one fitting stretch to the next, instead of by the shortest route between its
 /// ends.
 pub fn sweep_cells_with(clear: &Clearance, cells: &[Vec<Piece>], start: Point, along: bool) -> GrowingRoute {
