@@ -375,7 +375,8 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     if a.design && comparisons.is_empty() {
         return Err(CliError::Input("--design: tells what a comparison can show; name one with --compare".into()));
     }
-    let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons).map_err(input)?;
+    let out = crate::report::analysis::study::report_folder(&a.dir, a.name.as_deref()).map_err(input)?;
+    let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons, &out).map_err(input)?;
     let opts = crate::report::ReportOptions {
         by: a.by,
         filter,

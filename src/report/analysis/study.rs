@@ -231,7 +231,8 @@ pub(crate) struct Study<'a> {
 impl<'a> Study<'a> {
     /// Groups, facets, best runs and configurations of `loaded`.
     pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded, folders: FolderRecords) -> Self {
-        let Loaded { t, selected, out, incomplete, failed: _ } = loaded;
+        let Loaded { mut t, selected, out, incomplete, failed: _ } = loaded;
+        super::level::add_level_columns(&mut t, &folders);
         let mut study = Self {
             dir,
             by,
