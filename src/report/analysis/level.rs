@@ -77,7 +77,8 @@ impl TimeMeasure {
         let exec = t.col("executable");
         let rows: Vec<usize> = rows.iter().copied().filter(|&r| exec.is_none_or(|c| t.rows[r][c] == "true")).collect();
         let cov = |r: usize| t.num(&t.rows[r], "cov_final_reach").unwrap_or(f64::NAN);
-        let (lo, hi) = rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| (a.min(cov(r)), b.max(cov(r))));
+        let (lo, hi) =
+            rows.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| (a.min(cov(r)), b.max(cov(r))));
         if rows.is_empty() || hi - lo <= EQUAL_COVERAGE {
             return Self { column: MISSION_TIME, basis: Basis::EqualCoverage };
         }
@@ -128,7 +129,8 @@ mod tests {
     use super::*;
 
     fn table(rows: &[(&str, &str, &str)]) -> RunsTable {
-        let mut text = String::from("run_id,executable,cov_final_reach,time_s,time_to_80_s,time_to_90_s,time_to_95_s\n");
+        let mut text =
+            String::from("run_id,executable,cov_final_reach,time_s,time_to_80_s,time_to_90_s,time_to_95_s\n");
         for (i, (cov, t90, t95)) in rows.iter().enumerate() {
             text.push_str(&format!("r{i},true,{cov},100,10,{t90},{t95}\n"));
         }

@@ -409,7 +409,12 @@ fn margin_section(
         }
     }
     let mut adjusted = family.adjusted().into_iter();
-    let _ = writeln!(md, "## `{}` against a margin of {:.0} %, pooled over the {unit_plural}\n", m.column, (1.0 - MARGIN) * 100.0);
+    let _ = writeln!(
+        md,
+        "## `{}` against a margin of {:.0} %, pooled over the {unit_plural}\n",
+        m.column,
+        (1.0 - MARGIN) * 100.0
+    );
     let _ = writeln!(
         md,
         "Is the value at least {:.0} % faster? Each {}'s ratio is the exponential of its effect above (the median \
@@ -450,7 +455,11 @@ fn margin_section(
             holm.map_or("–".into(), p_text),
             g.p_pratt.map_or("–".into(), p_text),
         );
-        let note = format!("{finding}; mean unit ratio {:.3}; any difference with Pratt's zeros p {}", g.mean, g.p_pratt.map_or("–".into(), p_text));
+        let note = format!(
+            "{finding}; mean unit ratio {:.3}; any difference with Pratt's zeros p {}",
+            g.mean,
+            g.p_pratt.map_or("–".into(), p_text)
+        );
         let _ = writeln!(
             csv,
             "{},,,unit ratio against {MARGIN},{},{},{},{},{},,wilcoxon one-sided,{},{},,{}",

@@ -123,8 +123,10 @@ fn by_floor_plan(strata: &BTreeMap<String, Vec<(String, String)>>) -> Option<Uni
     let plan_of = |params: &[(String, String)]| {
         params.iter().find(|(c, _)| c == "map.source").map(|(_, v)| crate::map::generate::clean_twin(v).to_string())
     };
-    let of: BTreeMap<String, String> =
-        strata.iter().map(|(s, p)| plan_of(p).map(|plan| (s.clone(), format!("map.source={plan}")))).collect::<Option<_>>()?;
+    let of: BTreeMap<String, String> = strata
+        .iter()
+        .map(|(s, p)| plan_of(p).map(|plan| (s.clone(), format!("map.source={plan}"))))
+        .collect::<Option<_>>()?;
     let plans = of.values().collect::<std::collections::BTreeSet<_>>().len();
     if plans < 2 || plans == strata.len() {
         return None;

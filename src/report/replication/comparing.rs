@@ -386,8 +386,14 @@ impl<'a> Comparing<'a> {
                                        (their curves are not here to compare them at one level)"
                     .to_string(),
             };
+            let leaders = match fast == first {
+                true => format!("{first} covers most and has the {which}: {t_fast:.0} s"),
+                false => format!(
+                    "{first} covers most, {fast} has the {which}: {t_fast:.0} s, against {t_first:.0} s for {first}"
+                ),
+            };
             w.findings.push(format!(
-                "On {name}, median coverage of the reachable cells ranks {}; {first} covers most, {fast} has the {which}: {t_fast:.0} s, against {t_first:.0} s for {first}.",
+                "On {name}, median coverage of the reachable cells ranks {}; {leaders}.",
                 ranking.join(" > "),
             ));
         }
