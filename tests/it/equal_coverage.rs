@@ -20,6 +20,9 @@ fn a_goal_against_a_full_sweep_is_compared_at_the_goal() {
     let out = dir.path().join("out");
     let o = covga(&["grid", grid.to_str().unwrap(), "--jobs", "1", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The progress names the coverage it prints: the common scorer's, of the reachable cells.
+    let progress = String::from_utf8_lossy(&o.stderr);
+    assert!(progress.contains(" cov_final_reach 0.") && !progress.contains(" cov_final 0."), "{progress}");
     let o = covga(&["report", out.to_str().unwrap(), "--by", "planner", "--compare", "planner=boustrophedon"]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let summary = std::fs::read_to_string(out.join("report/summary.md")).unwrap();
@@ -40,4 +43,8 @@ fn a_goal_against_a_full_sweep_is_compared_at_the_goal() {
     assert!(csv.lines().any(|l| l.contains(",time_to_90_s,")), "{csv}");
     assert!(!csv.lines().any(|l| l.contains(",time_s,")), "{csv}");
     assert!(out.join("report/boxplots_time.png").is_file());
+    // The configurations' means on the summary's measures, each configuration's planner named.
+    let conf = std::fs::read_to_string(out.join("report/configurations.csv")).unwrap();
+    assert!(conf.starts_with("config_id,planner,n,cov_final_reach_mean,cov_final_reach_ci95,time_s_mean,"), "{conf}");
+    assert!(conf.lines().skip(1).any(|l| l.split(',').nth(1) == Some("cell_order")), "{conf}");
 }

@@ -21,7 +21,15 @@ pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)], time
     }
     let mut out = String::from("## Findings\n\n");
     for v in values {
-        let _ = writeln!(out, "- **`{v}`**");
+        match v.is_empty() {
+            // Runs whose configuration leaves the key out (a conditional sets it for some only).
+            true => {
+                let _ = writeln!(out, "- **the runs that do not set the key**");
+            }
+            false => {
+                let _ = writeln!(out, "- **`{v}`**");
+            }
+        }
         let pooled_executable =
             t.rows.iter().find(|r| r[c.value] == v && r[c.metric] == "executable" && r[c.stratum] == "pooled");
         if let Some(p) = pooled_executable {
@@ -178,6 +186,16 @@ fn plural(unit: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn runs_that_do_not_set_the_key_are_named_as_such() {
+        let csv = "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,unit,\
+                   units,estimate,ci_low,ci_high,value_better,value_worse,note\n\
+                   m=1,,time_s,10,10,9,10,10,seed,10,0.8,0.7,0.9,10,0,better than c (shown)\n";
+        let text = findings(csv, "c", &[], ("time_s", "time".into()));
+        assert!(text.contains("- **the runs that do not set the key**"), "{text}");
+        assert!(!text.contains("**``**"), "{text}");
+    }
 
     #[test]
     fn findings_count_the_strata_and_quote_the_pooled_effect_from_the_table() {
