@@ -25,6 +25,24 @@ fn committed_study(folder: &Path) -> tempfile::TempDir {
     dir
 }
 
+/// [`committed_study`] with the study's grid file and what its reports recorded of the run
+/// folders (`report/run-folders.csv`, and report folder `report`'s own): each plan's times to
+/// coverage, which a comparison of plans of unequal coverage reads.
+fn committed_study_with_record(folder: &Path, report: &str) -> tempfile::TempDir {
+    let dir = committed_study(folder);
+    if folder.join("grid.toml").exists() {
+        std::fs::copy(folder.join("grid.toml"), dir.path().join("grid.toml")).unwrap();
+    }
+    for r in ["report", report] {
+        let record = folder.join(r).join("run-folders.csv");
+        if record.exists() {
+            std::fs::create_dir_all(dir.path().join(r)).unwrap();
+            std::fs::copy(&record, dir.path().join(r).join("run-folders.csv")).unwrap();
+        }
+    }
+    dir
+}
+
 /// A study folder holding the committed runs.csv and study.json of `results/init-dist`.
 fn study() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
@@ -157,7 +175,7 @@ fn committed_comparisons_are_remade_byte_for_byte() {
         ),
     ];
     for (folder, (report, naming), compare, every) in studies {
-        let dir = committed_study(Path::new(folder));
+        let dir = committed_study_with_record(Path::new(folder), report);
         let mut args = vec!["report".to_string(), dir.path().to_str().unwrap().to_string()];
         args.extend(naming.iter().map(|a| a.to_string()));
         for c in compare {

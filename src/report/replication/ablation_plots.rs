@@ -28,7 +28,7 @@ pub(super) fn draw(c: &Comparing, dir: &Path, out: &Path) -> Result<(), ReportEr
     )?;
     crate::plot::save(
         &BoxFigure {
-            metric: "time [s]: to the level each panel names, or the whole mission".into(),
+            metric: "time [s] to the panel's level".into(),
             panels: boxes(c, |map| {
                 let m = c.time_measure(map);
                 (m.column, format!(": {}", m.name()))
