@@ -41,6 +41,13 @@ pub(super) fn intro(
     for (name, of) in &d.followers {
         let _ = write!(s, " `{name}` follows {of} (confounded with it: not a stratum of its own).");
     }
+    for (name, value) in &d.fixed_on_baseline {
+        let _ = write!(
+            s,
+            " `{name}` is `{value}` on every run of the baseline and takes other values elsewhere: the values are \
+             told apart by it (every variant against the baseline), not stratified."
+        );
+    }
     for name in &d.nested {
         let _ = write!(
             s,

@@ -147,9 +147,9 @@ fn by_floor_plan(strata: &BTreeMap<String, Vec<(String, String)>>) -> Option<Uni
         of,
         reason: format!(
             "The pooled unit is the floor plan ({plans} units from {} strata): the strata on one floor plan, \
-             whatever tells them apart ({}), are not independent (a search seeded with a control's tours can \
-             return the control's plan there), so each floor plan counts once; a unit's effect is the median \
-             of every pair on it.",
+             whatever tells them apart ({}), are not independent (they share the plan's rooms, clutter and \
+             start, and a search seeded with another plan can return it there), so each floor plan counts \
+             once; a unit's effect is the median of every pair on it.",
             strata.len(),
             differ.join(", ")
         ),
