@@ -64,9 +64,13 @@ pub(super) fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
         let mut on_baseline = t.rows.iter().filter(|r| is_baseline(r)).map(|r| &r[c]);
         let first = on_baseline.next();
         let problem = ["map.", "robot.", "stations."].iter().any(|p| t.header[c].starts_with(p));
+        // The baseline's setting must be shared by another value's runs (the seeded GA's with the
+        // seeded local search): a parameter that only follows the key (a budget set per map)
+        // tells nothing apart.
         first.is_some_and(|v| !v.is_empty() && on_baseline.all(|x| x == v))
             && !problem
             && t.rows.iter().any(|r| !is_baseline(r) && Some(&r[c]) != first)
+            && t.rows.iter().any(|r| !is_baseline(r) && Some(&r[c]) == first)
     };
     let (fixed_cols, candidates): (Vec<usize>, Vec<usize>) = candidates.into_iter().partition(|&c| fixed(c));
     let (kept, followers) = split_followers(t, &candidates);

@@ -125,7 +125,7 @@ fn pairs_by_seed_within_strata_corrects_the_family_and_names_the_confounded_colu
     assert!(text.contains("`budget` follows map"), "{text}");
     let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
     let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
-    assert_eq!(csv.rows.len(), 9, "pooled and two strata × executability and two metrics");
+    assert_eq!(csv.rows.len(), 10, "pooled and two strata × executability and two metrics, and the margin");
     let exec_m2 = csv.rows.iter().find(|r| get(r, "metric") == "executable" && get(r, "stratum") == "map=m2").unwrap();
     // Seed 0 of b on m2 is the only discordant pair: McNemar's exact p = 1.
     assert_eq!((get(exec_m2, "value_better"), get(exec_m2, "value_worse")), ("0".into(), "1".into()));
