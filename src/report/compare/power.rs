@@ -54,13 +54,12 @@ fn level_row(what: &str, tests: usize, units: usize) -> String {
     )
 }
 
+/// The rows of the comparison for one metric column, stratum by stratum.
+type RowsOf<'a> = &'a dyn Fn(&str) -> Vec<Row>;
+
 /// The design file of a comparison: `rows_of(metric)` gives each metric's stratum rows (the
 /// executable pairs); `units` the pooled units, where the comparison pools.
-pub(super) fn text(
-    title: &str,
-    (metrics, rows_of): (&[Metric], &dyn Fn(&str) -> Vec<Row>),
-    units: Option<&Units>,
-) -> String {
+pub(super) fn text(title: &str, (metrics, rows_of): (&[Metric], RowsOf), units: Option<&Units>) -> String {
     let alpha = 1.0 - LEVEL;
     let mut md = format!("# What {title} can show\n\n");
     let _ = writeln!(
