@@ -14,6 +14,7 @@
 
 mod findings;
 mod like;
+mod margin;
 mod pooled;
 mod power;
 mod strata;
