@@ -183,7 +183,11 @@ pub fn write_report(
         .map_err(config_error)?;
     crate::released(py, || {
         let dir = Path::new(dir);
-        let rendered = covga::report::compare::render_all(dir, &filter, &comparisons).map_err(error)?;
+        let out = match &name {
+            Some(n) => dir.join(format!("report-{n}")),
+            None => dir.join("report"),
+        };
+        let rendered = covga::report::compare::render_all(dir, &filter, &comparisons, &out).map_err(error)?;
         let opts = covga::report::ReportOptions {
             by,
             filter,

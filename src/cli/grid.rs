@@ -78,11 +78,12 @@ fn show_run_done(bar: &indicatif::ProgressBar, terminal: bool, d: RunDone) {
     if terminal {
         bar.set_length(d.total as u64);
         bar.set_position(d.done as u64);
-        bar.set_message(format!("last cov {:.3} t {:.3}", d.result.0, d.result.1));
+        bar.set_message(format!("last cov_final_reach {:.3} t_final {:.3}", d.result.0, d.result.1));
     } else if let Some(why) = d.failure {
         eprintln!("{count} failed: {why}");
     } else {
-        eprintln!("{count} cov_final {:.4} t_final {:.4} {:.2} s", d.result.0, d.result.1, d.result.2);
+        // The common scorer's coverage of the reachable cells, named as runs.csv names it.
+        eprintln!("{count} cov_final_reach {:.4} t_final {:.4} {:.2} s", d.result.0, d.result.1, d.result.2);
     }
 }
 
@@ -375,7 +376,8 @@ pub fn report(a: ReportArgs) -> Result<(), CliError> {
     if a.design && comparisons.is_empty() {
         return Err(CliError::Input("--design: tells what a comparison can show; name one with --compare".into()));
     }
-    let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons).map_err(input)?;
+    let out = crate::report::analysis::study::report_folder(&a.dir, a.name.as_deref()).map_err(input)?;
+    let rendered = crate::report::compare::render_all(&a.dir, &filter, &comparisons, &out).map_err(input)?;
     let opts = crate::report::ReportOptions {
         by: a.by,
         filter,

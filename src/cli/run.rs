@@ -92,6 +92,17 @@ fn missed_goal(details: &serde_json::Map<String, serde_json::Value>, reached: f6
     })
 }
 
+/// The line that says the cell-order search returned the classical control's plan rather than
+/// its own (`classical_chosen` among the planner's `details`: with `classical_finalists`, the
+/// classical plans stand among the search's finalists, and one of them reached the goal first).
+fn classical_chosen(details: &serde_json::Map<String, serde_json::Value>) -> Option<String> {
+    details.get("classical_chosen").and_then(serde_json::Value::as_bool).filter(|&c| c).map(|_| {
+        "plan chosen: the classical control's (boustrophedon sweeps), faster to the goal than the search's \
+         own plan (cell_order.classical_finalists = true)"
+            .to_string()
+    })
+}
+
 /// The run's summary as `covga run` prints it.
 fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) {
     let (exp, origin) = (&prepared.experiment, &prepared.origin);
@@ -136,6 +147,9 @@ fn print_summary(prepared: &Prepared, summary: &Summary, dir: &std::path::Path) 
             }
             None => println!("robot: {}", summary.time_model),
         }
+        if let Some(line) = classical_chosen(&summary.details) {
+            println!("{line}");
+        }
         if s.executable {
             println!("executable: yes");
         } else {
@@ -161,5 +175,13 @@ mod tests {
         assert!(warning.contains("0.8480") && warning.contains("cell_order.coverage_goal = 0.9"), "{warning}");
         assert_eq!(missed_goal(&details, 0.9), None);
         assert_eq!(missed_goal(&serde_json::Map::new(), 0.1), None);
+    }
+
+    #[test]
+    fn a_classical_plan_chosen_over_the_search_is_said() {
+        let details = serde_json::json!({"classical_chosen": true}).as_object().cloned().unwrap();
+        let line = classical_chosen(&details).expect("a line");
+        assert!(line.contains("classical control") && line.contains("classical_finalists"), "{line}");
+        assert_eq!(classical_chosen(&serde_json::Map::new()), None, "the search's own plan says nothing");
     }
 }

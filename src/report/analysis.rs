@@ -11,6 +11,7 @@ pub mod best;
 pub(crate) mod bound;
 pub mod design;
 pub mod folder_record;
+pub mod level;
 pub mod rendered;
 pub mod runs;
 pub(crate) mod study;

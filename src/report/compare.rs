@@ -14,6 +14,7 @@
 
 mod findings;
 mod like;
+mod margin;
 mod pooled;
 mod power;
 mod strata;
@@ -26,6 +27,8 @@ use text::{executability, intro, p_text, section};
 
 use crate::report::analysis::ReportError;
 use crate::report::analysis::design::followed_by;
+use crate::report::analysis::folder_record::FolderRecords;
+use crate::report::analysis::level::{LEVEL_COLUMNS, TimeMeasure, add_level_columns};
 use crate::report::analysis::rendered::Rendered;
 use crate::report::analysis::runs::{
     cell_matches, cmp_group_values, param_columns, read_filtered_runs, with_failed_note,
@@ -92,10 +95,14 @@ struct Metric {
     decimals: usize,
 }
 
-const METRICS: [Metric; 2] = [
-    Metric { column: "cov_final_reach", higher_is_better: true, contrast: Contrast::MedianDifference, decimals: 4 },
-    Metric { column: "time_s", higher_is_better: false, contrast: Contrast::MedianRatio, decimals: 1 },
-];
+/// The metrics compared: reachable coverage, and time as `time` (the comparison's
+/// [`TimeMeasure`]: mission time between plans of equal coverage, else the time to a common level).
+fn metrics(time: &'static str) -> [Metric; 2] {
+    [
+        Metric { column: "cov_final_reach", higher_is_better: true, contrast: Contrast::MedianDifference, decimals: 4 },
+        Metric { column: time, higher_is_better: false, contrast: Contrast::MedianRatio, decimals: 1 },
+    ]
+}
 
 /// One value against the baseline in one stratum, for one metric.
 struct Row {
@@ -147,16 +154,20 @@ fn quoted(text: &str) -> String {
 
 /// Reads `dir`'s runs.csv (failed runs left out, the `--where` pairs of `filter` applied as
 /// the report applies them) and makes each comparison, writing nothing: a comparison that
-/// cannot be made is refused before the report folder is touched.
+/// cannot be made is refused before the report folder is touched. The plans' times to
+/// coverage come from the run folders, else from the record in the report folder `out`
+/// ([`FolderRecords`]).
 pub fn render_all(
     dir: &Path,
     filter: &[(String, String)],
     comparisons: &[Comparison],
+    out: &Path,
 ) -> Result<Vec<Rendered>, ReportError> {
     if comparisons.is_empty() {
         return Ok(Vec::new());
     }
-    let (t, recorded, failed) = read_filtered_runs(dir, filter)?;
+    let (mut t, recorded, failed) = read_filtered_runs(dir, filter)?;
+    add_level_columns(&mut t, &FolderRecords::open(dir, out)?);
     // A configuration recorded once pairs with every seed only in a finished study: in one
     // stopped part-way it may be a seeded configuration whose other seeds have not run.
     let expected = std::fs::read_to_string(dir.join("study.json"))
@@ -239,7 +250,7 @@ fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String
             set.join(", ")
         )));
     }
-    for m in &METRICS {
+    for m in &metrics("time_s") {
         if t.col(m.column).is_none() {
             return Err(input(format!("--compare: runs.csv has no `{}` column (written by an older covga)", m.column)));
         }
@@ -309,7 +320,9 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
     let _ = writeln!(md, "# `{}`: each value against `{}`{every}\n", cmp.key, cmp.baseline);
     let compared: Vec<String> = values.iter().filter(|v| **v != cmp.baseline).cloned().collect();
     let units = d.pooled().then(|| units::choose(&d.params, d.once_run()));
-    let _ = writeln!(md, "{}\n", intro(&d, cmp, units.as_ref(), &compared));
+    let measure = time_measure(t, &d, cmp.plans);
+    let metrics = metrics(measure.column);
+    let _ = writeln!(md, "{}\n", intro(&d, (cmp, &measure), units.as_ref(), &compared));
     md.push_str(&strongest_table(&d));
     let findings_at = md.len();
     let as_rows = |value_of: &dyn Fn(usize) -> f64, both_executable: bool| -> Vec<Row> {
@@ -332,13 +345,13 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
     let built = |value: &str| like::executable_by_construction(&cmp.key, value);
     if let Some(units) = &units {
         pooled::executability(&mut md, &mut csv, &pooled::pool(&executable_rows, units), (cmp, units), &built);
-        for m in &METRICS {
+        for m in &metrics {
             let rows = as_rows(&|r| num(r, m.column), both_executable);
             pooled::section(&mut md, &mut csv, m, &pooled::pool(&rows, units), (cmp, units));
         }
     }
     executability(&mut md, &mut csv, &executable_rows, cmp, &built);
-    for m in &METRICS {
+    for m in &metrics {
         let metric_rows = as_rows(&|r| num(r, m.column), both_executable);
         section(&mut md, &mut csv, m, &metric_rows, cmp);
     }
@@ -347,10 +360,28 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
         Plans::Executable => "",
         Plans::Every => "-every-plan",
     };
-    md.insert_str(findings_at, &findings::findings(&csv, &cmp.baseline, &effort(t, &d, &values)));
+    let time = (measure.column, measure.name());
+    md.insert_str(findings_at, &findings::findings(&csv, &cmp.baseline, &effort(t, &d, &values), time));
     let title = format!("`{}` against `{}`{every}", cmp.key, cmp.baseline);
-    let design = power::text(&title, &|column| as_rows(&|r| num(r, column), both_executable), units.as_ref());
+    let rows_of = |column: &str| as_rows(&|r| num(r, column), both_executable);
+    let design = power::text(&title, (&metrics, &rows_of), units.as_ref());
     Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv, design: Some(design) })
+}
+
+/// The time the comparison reads ([`TimeMeasure`]) over every run it compares: every plan,
+/// executable or not, is compared on mission time (what the planner optimised), as its curve
+/// is kept for the executable plans only.
+fn time_measure(t: &RunsTable, d: &Design, plans: Plans) -> TimeMeasure {
+    let mut rows: Vec<usize> = d.cells.values().flat_map(|runs| runs.values().copied()).collect();
+    rows.sort_unstable();
+    rows.dedup();
+    let measure = TimeMeasure::of(t, &rows);
+    match plans {
+        Plans::Every if LEVEL_COLUMNS.contains(&measure.column) => {
+            TimeMeasure { column: "time_s", basis: crate::report::analysis::level::Basis::Unavailable }
+        }
+        _ => measure,
+    }
 }
 
 /// Per value (the baseline's own values first where it stands for several controls), its runs

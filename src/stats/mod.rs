@@ -16,6 +16,7 @@ pub mod effect;
 pub mod exact;
 pub mod family;
 pub mod kruskal;
+pub mod margin;
 pub mod paired;
 pub mod rank_sum;
 

@@ -14,3 +14,4 @@ pub mod records;
 pub mod runner;
 pub mod shard_files;
 pub mod slurm;
+pub mod standalone;

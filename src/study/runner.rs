@@ -287,7 +287,8 @@ impl StudyLock {
 /// folder.
 pub fn write_study_files(study: &Study, out: &Path) -> Result<(), StudyError> {
     std::fs::create_dir_all(out).map_err(io(out))?;
-    crate::io::write_atomic(&out.join("grid.toml"), study.text.as_bytes()).map_err(io(out))?;
+    let text = super::standalone::grid_text(study);
+    crate::io::write_atomic(&out.join("grid.toml"), text.as_bytes()).map_err(io(out))?;
     let meta = serde_json::json!({
         "grid_file": study.path.display().to_string(),
         "grid_hash": grid_hash(study),

@@ -13,6 +13,7 @@ mod architecture;
 mod cell_order;
 mod cell_order_controls;
 mod citations;
+mod equal_coverage;
 mod eval_cli;
 mod floor_plan_recommendation;
 mod generated_maps;

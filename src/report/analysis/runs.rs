@@ -20,7 +20,9 @@ pub(crate) struct Group {
 /// `planner` key has the same name as the metric column `planner`, so the metric block is found
 /// by its length).
 pub fn param_columns(t: &RunsTable) -> Vec<String> {
-    let metrics = crate::study::records::metric_columns().len();
+    // The report's own columns (the times to coverage, [`super::level`]) follow the metrics.
+    let added = t.header.iter().rev().take_while(|h| super::level::LEVEL_COLUMNS.contains(&h.as_str())).count();
+    let metrics = crate::study::records::metric_columns().len() + added;
     match t.col("seed") {
         Some(a) if t.header.len() >= a + 1 + metrics => t.header[a + 1..t.header.len() - metrics].to_vec(),
         _ => Vec::new(),

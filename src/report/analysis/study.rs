@@ -231,7 +231,8 @@ pub(crate) struct Study<'a> {
 impl<'a> Study<'a> {
     /// Groups, facets, best runs and configurations of `loaded`.
     pub fn new(dir: &'a Path, by: &'a [String], loaded: Loaded, folders: FolderRecords) -> Self {
-        let Loaded { t, selected, out, incomplete, failed: _ } = loaded;
+        let Loaded { mut t, selected, out, incomplete, failed: _ } = loaded;
+        super::level::add_level_columns(&mut t, &folders);
         let mut study = Self {
             dir,
             by,
@@ -359,16 +360,38 @@ impl<'a> Study<'a> {
         rows
     }
 
-    /// Writes `configurations.csv`: each configuration's swept values and its means over seeds.
+    /// Writes `configurations.csv`: each configuration's planner, swept values and its means
+    /// over seeds, on the measures the summary uses: reachable coverage and mission time where
+    /// it compares planners on the common scorer ([`Study::common_measures`]), else 003's
+    /// coverage of all free cells, `t_final` and f.
     pub fn write_configurations(&self) -> Result<(), ReportError> {
+        let planner = !self.params.iter().any(|p| p == "planner");
         let mut csv = String::from("config_id,");
+        if planner {
+            csv.push_str("planner,");
+        }
         for p in &self.params {
             csv.push_str(&format!("{p},"));
         }
-        csv.push_str("n,cov_final_mean,cov_final_ci95,t_final_mean,t_final_ci95,fitness_mean\n");
+        let common = self.common_measures();
+        csv.push_str(match common {
+            true => "n,cov_final_reach_mean,cov_final_reach_ci95,time_s_mean,time_s_ci95\n",
+            false => "n,cov_final_mean,cov_final_ci95,t_final_mean,t_final_ci95,fitness_mean\n",
+        });
         for (id, rows, c, tf, f) in &self.configs {
-            let vals: Vec<String> = self.params.iter().map(|p| self.get(rows[0], p)).collect();
-            csv.push_str(&format!("{id},{},{},{},{},{},{},{}\n", vals.join(","), rows.len(), c.0, c.1, tf.0, tf.1, f));
+            let mut vals: Vec<String> = self.params.iter().map(|p| self.get(rows[0], p)).collect();
+            if planner {
+                vals.insert(0, self.get(rows[0], "planner"));
+            }
+            let means = match common {
+                true => {
+                    let of = |c: &str| mean_ci95(&rows.iter().map(|&r| self.num(r, c)).collect::<Vec<_>>());
+                    let (cov, time) = (of(COVERAGE), of(TIME));
+                    format!("{},{},{},{}", cov.0, cov.1, time.0, time.1)
+                }
+                false => format!("{},{},{},{},{}", c.0, c.1, tf.0, tf.1, f),
+            };
+            csv.push_str(&format!("{id},{},{},{means}\n", vals.join(","), rows.len()));
         }
         crate::io::write_atomic(&self.out.join("configurations.csv"), csv.as_bytes())
             .map_err(|e| ReportError::Io(e.to_string()))

@@ -8,8 +8,9 @@ use crate::study::records::RunsTable;
 use std::fmt::Write as _;
 
 /// The findings of the comparison whose table is `csv`, against `baseline`; `effort` gives, per
-/// compared value (and the baseline), its runs and the most evaluations one of them made.
-pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> String {
+/// compared value (and the baseline), its runs and the most evaluations one of them made;
+/// `time` the time column compared and its name ("time to 90 %").
+pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)], time: (&str, String)) -> String {
     let Ok(t) = RunsTable::parse(csv) else { return String::new() };
     let c = Columns::of(&t);
     let mut values: Vec<&str> = Vec::new();
@@ -20,7 +21,15 @@ pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> S
     }
     let mut out = String::from("## Findings\n\n");
     for v in values {
-        let _ = writeln!(out, "- **`{v}`**");
+        match v.is_empty() {
+            // Runs whose configuration leaves the key out (a conditional sets it for some only).
+            true => {
+                let _ = writeln!(out, "- **the runs that do not set the key**");
+            }
+            false => {
+                let _ = writeln!(out, "- **`{v}`**");
+            }
+        }
         let pooled_executable =
             t.rows.iter().find(|r| r[c.value] == v && r[c.metric] == "executable" && r[c.stratum] == "pooled");
         if let Some(p) = pooled_executable {
@@ -36,9 +45,25 @@ pub fn findings(csv: &str, baseline: &str, effort: &[(String, usize, u64)]) -> S
                 p[c.note]
             );
         }
-        for (m, what, as_ratio) in [("time_s", "time", true), ("cov_final_reach", "reachable coverage", false)] {
+        for (m, what, as_ratio) in [(time.0, time.1.as_str(), true), ("cov_final_reach", "reachable coverage", false)] {
             let rows: Vec<&Vec<String>> = t.rows.iter().filter(|r| r[c.value] == v && r[c.metric] == m).collect();
             metric_lines(&mut out, &c, &rows, baseline, (what, as_ratio));
+            let margin = format!("{m} margin");
+            if let Some(r) = t.rows.iter().find(|r| r[c.value] == v && r[c.metric] == margin) {
+                let _ = writeln!(
+                    out,
+                    "  - {what} against a margin, over the {} {}: median unit ratio {} [{}, {}]; below the margin in {}, \
+                     at or above it in {}; {}.",
+                    r[c.units],
+                    plural(&r[c.unit]),
+                    ratio(&r[c.estimate]),
+                    ratio(&r[c.low]),
+                    ratio(&r[c.high]),
+                    r[c.better],
+                    r[c.worse],
+                    r[c.note]
+                );
+            }
         }
     }
     if !effort.is_empty() {
@@ -145,6 +170,11 @@ fn metric_lines(out: &mut String, c: &Columns, rows: &[&Vec<String>], baseline: 
     out.push_str(".\n");
 }
 
+/// A ratio cell as the findings write it (`0.950×`), or the cell itself where it is no number.
+fn ratio(cell: &str) -> String {
+    cell.parse::<f64>().map_or_else(|_| cell.to_string(), |x| format!("{x:.3}×"))
+}
+
 /// The plural of a unit's name as the comparison table writes it.
 fn plural(unit: &str) -> String {
     match unit {
@@ -158,6 +188,16 @@ mod tests {
     use super::*;
 
     #[test]
+    fn runs_that_do_not_set_the_key_are_named_as_such() {
+        let csv = "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,unit,\
+                   units,estimate,ci_low,ci_high,value_better,value_worse,note\n\
+                   m=1,,time_s,10,10,9,10,10,seed,10,0.8,0.7,0.9,10,0,better than c (shown)\n";
+        let text = findings(csv, "c", &[], ("time_s", "time".into()));
+        assert!(text.contains("- **the runs that do not set the key**"), "{text}");
+        assert!(!text.contains("**``**"), "{text}");
+    }
+
+    #[test]
     fn findings_count_the_strata_and_quote_the_pooled_effect_from_the_table() {
         let csv = "stratum,value,metric,runs_baseline,runs_value,executable_baseline,executable_value,pairs,unit,\
                    units,estimate,ci_low,ci_high,value_better,value_worse,note\n\
@@ -166,7 +206,17 @@ mod tests {
                    m=1,ga,time_s,10,10,9,10,10,seed,10,0.8,0.7,0.9,10,0,better than c (shown)\n\
                    m=2,ga,time_s,10,10,9,10,10,seed,10,1.1,0.9,1.2,2,8,not shown\n\
                    m=1,ga,cov_final_reach,10,10,9,10,10,seed,10,0.001,0,0.002,2,1,not shown\n";
-        let text = findings(csv, "c", &[("ga".into(), 20, 50_009)]);
+        let csv = format!(
+            "{csv}pooled,ga,time_s margin,20,20,18,20,20,stratum,2,0.9,0.85,0.95,2,0,\"not shown at least 5 % faster\"\n"
+        );
+        let text = findings(&csv, "c", &[("ga".into(), 20, 50_009)], ("time_s", "time".into()));
+        assert!(
+            text.contains(
+                "time against a margin, over the 2 strata: median unit ratio 0.900× [0.850×, 0.950×]; below the margin \
+                 in 2, at or above it in 0; not shown at least 5 % faster."
+            ),
+            "{text}"
+        );
         assert!(
             text.contains(
                 "time, pooled over the 2 strata: median pair ratio 0.900× [0.850×, 0.950×] over 20 pairs; better in 2 \

@@ -12,6 +12,7 @@
 //! is the median pair effect with a bootstrap interval that resamples whole units (Davison and
 //! Hinkley 1997, §3.8). The pairs themselves are described, not tested.
 
+use super::margin::{MarginStats, margin_stats};
 use super::text::{Floor, floor};
 use super::units::Units;
 use super::{BOOTSTRAP_SEED, Comparison, LEVEL, Metric, RESAMPLES, Row, p_text};
@@ -27,16 +28,16 @@ type PairEffect = fn(f64, f64) -> f64;
 
 /// The pairs of every stratum for one value, by unit.
 pub(super) struct Pooled {
-    value: String,
+    pub(super) value: String,
     strata: usize,
     /// Every pair of every stratum (the description's).
     row: Row,
     /// The pairs of each unit that has any, in the units' order.
-    by_unit: Vec<Vec<(f64, f64)>>,
+    pub(super) by_unit: Vec<Vec<(f64, f64)>>,
 }
 
 impl Pooled {
-    fn lead_csv(&self, metric: &str, units: &Units) -> String {
+    pub(super) fn lead_csv(&self, metric: &str, units: &Units) -> String {
         self.row.lead_csv(metric, units.kind.names().0, self.by_unit.len())
     }
 }
@@ -79,7 +80,7 @@ pub(super) fn pool(rows: &[Row], units: &Units) -> Vec<Pooled> {
 }
 
 /// "1 value", "2 values": how many values a family compares.
-fn values(pooled: &[Pooled]) -> String {
+pub(super) fn values(pooled: &[Pooled]) -> String {
     match pooled.len() {
         1 => "1 value".into(),
         n => format!("{n} values"),
@@ -204,6 +205,8 @@ struct PooledStats {
     worse: usize,
     ci: Option<Interval>,
     test: Option<SignedRank>,
+    /// For time, the unit ratios against [`MARGIN`].
+    margin: Option<MarginStats>,
 }
 
 /// The pair effects and their interval (units resampled), and the signed-rank test of the unit
@@ -240,6 +243,7 @@ fn pooled_stats(m: &Metric, p: &Pooled) -> PooledStats {
         worse: effects.iter().filter(|&&e| sign * e < 0.0).count(),
         ci: cluster_bootstrap_ci(&clusters, crate::stats::median, LEVEL, RESAMPLES, BOOTSTRAP_SEED),
         test: test_units(&effects),
+        margin: (m.contrast == Contrast::MedianRatio).then(|| margin_stats(&effects)).flatten(),
     }
 }
 
@@ -339,4 +343,8 @@ pub(super) fn section(
         let _ = writeln!(csv, "{}", csv_row(m, p, s, units, (holm, floor.as_ref(), &finding)));
     }
     let _ = writeln!(md, "\n{}{}\n", family.statement(), floor.map_or(String::new(), |f| format!(" {}", f.sentence)));
+    if stats.iter().any(|s| s.margin.is_some()) {
+        let margins: Vec<Option<MarginStats>> = stats.iter().map(|s| s.margin).collect();
+        super::margin::section(md, csv, m, (pooled, &margins), (cmp, units));
+    }
 }

@@ -5,7 +5,7 @@
 //! small pilot) tells how many seeds, maps or settings the full study needs.
 
 use super::units::Units;
-use super::{LEVEL, METRICS, Row, p_text};
+use super::{LEVEL, Metric, Row, p_text};
 use crate::stats::Contrast;
 use crate::stats::design::{holm_min_p, log_ratio, signed_rank_min_p, unit_effects, units_for_effect, units_to_reach};
 use std::fmt::Write as _;
@@ -54,9 +54,12 @@ fn level_row(what: &str, tests: usize, units: usize) -> String {
     )
 }
 
+/// The rows of the comparison for one metric column, stratum by stratum.
+type RowsOf<'a> = &'a dyn Fn(&str) -> Vec<Row>;
+
 /// The design file of a comparison: `rows_of(metric)` gives each metric's stratum rows (the
 /// executable pairs); `units` the pooled units, where the comparison pools.
-pub(super) fn text(title: &str, rows_of: &dyn Fn(&str) -> Vec<Row>, units: Option<&Units>) -> String {
+pub(super) fn text(title: &str, (metrics, rows_of): (&[Metric], RowsOf), units: Option<&Units>) -> String {
     let alpha = 1.0 - LEVEL;
     let mut md = format!("# What {title} can show\n\n");
     let _ = writeln!(
@@ -79,7 +82,7 @@ pub(super) fn text(title: &str, rows_of: &dyn Fn(&str) -> Vec<Row>, units: Optio
     );
     let _ = writeln!(md, "|{}", " --- |".repeat(7 + EFFECTS.len()));
     let mut observed = String::new();
-    for m in &METRICS {
+    for m in metrics {
         let rows = rows_of(m.column);
         let with_pairs: Vec<&Row> = rows.iter().filter(|r| !r.pairs.is_empty()).collect();
         let most = with_pairs.iter().map(|r| r.pairs.len()).max().unwrap_or(0);

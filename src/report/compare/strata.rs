@@ -19,6 +19,11 @@ pub(super) struct Design {
     /// Parameters set under some compared values only (never on the baseline's runs): written
     /// into those values' labels.
     pub(super) nested: Vec<String>,
+    /// Settings of the planner that take one value on every baseline run and others elsewhere
+    /// (the seeding of a search variant: the local search is always seeded, the GA alone and
+    /// seeded), with that value: written into the other values' labels, so that every variant
+    /// is compared with the baseline rather than only the one that shares its setting.
+    pub(super) fixed_on_baseline: Vec<(String, String)>,
     /// With several controls as the baseline: the strongest in each stratum.
     pub(super) strongest: BTreeMap<String, String>,
     /// Whether a configuration recorded once pairs with every seed of the other side (a
@@ -55,6 +60,19 @@ pub(super) fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
     let (nested, candidates): (Vec<usize>, Vec<usize>) = others.into_iter().partition(|&c| {
         t.rows.iter().filter(|r| is_baseline(r)).all(|r| r[c].is_empty()) && t.rows.iter().any(|r| !r[c].is_empty())
     });
+    let fixed = |c: usize| {
+        let mut on_baseline = t.rows.iter().filter(|r| is_baseline(r)).map(|r| &r[c]);
+        let first = on_baseline.next();
+        let problem = ["map.", "robot.", "stations."].iter().any(|p| t.header[c].starts_with(p));
+        // The baseline's setting must be shared by another value's runs (the seeded GA's with the
+        // seeded local search): a parameter that only follows the key (a budget set per map)
+        // tells nothing apart.
+        first.is_some_and(|v| !v.is_empty() && on_baseline.all(|x| x == v))
+            && !problem
+            && t.rows.iter().any(|r| !is_baseline(r) && Some(&r[c]) != first)
+            && t.rows.iter().any(|r| !is_baseline(r) && Some(&r[c]) == first)
+    };
+    let (fixed_cols, candidates): (Vec<usize>, Vec<usize>) = candidates.into_iter().partition(|&c| fixed(c));
     let (kept, followers) = split_followers(t, &candidates);
     let strata: Vec<String> = kept.iter().map(|&c| t.header[c].clone()).collect();
     let followers: Vec<(String, String)> = followers.into_iter().map(|(c, of)| (t.header[c].clone(), of)).collect();
@@ -70,9 +88,19 @@ pub(super) fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
         for &c in nested.iter().filter(|&&c| !r[c].is_empty()) {
             let _ = write!(value, " ({}={})", t.header[c], r[c]);
         }
+        if !is_baseline(r) {
+            for &c in fixed_cols.iter().filter(|&&c| !r[c].is_empty()) {
+                let _ = write!(value, " ({}={})", t.header[c], r[c]);
+            }
+        }
         cells.entry((label, value)).or_default().insert(r[seed].clone(), i);
     }
     let nested = nested.iter().map(|&c| t.header[c].clone()).collect();
+    let baseline_row = t.rows.iter().find(|r| is_baseline(r));
+    let fixed_on_baseline = fixed_cols
+        .iter()
+        .map(|&c| (t.header[c].clone(), baseline_row.map(|r| r[c].clone()).unwrap_or_default()))
+        .collect();
     // Several controls: each stratum's strongest stands for the baseline there, the controls
     // themselves are not compared.
     let mut strongest = BTreeMap::new();
@@ -84,7 +112,7 @@ pub(super) fn design(t: &RunsTable, cmp: &Comparison, key: usize) -> Design {
         }
         cells.retain(|(_, v), _| !controls.contains(&v.as_str()));
     }
-    Design { strata, kept, followers, nested, strongest, once_run_pairs: true, cells, params }
+    Design { strata, kept, followers, nested, fixed_on_baseline, strongest, once_run_pairs: true, cells, params }
 }
 
 /// The pairs of a baseline's runs and a value's, by seed; where one side ran once and the other

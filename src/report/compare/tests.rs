@@ -65,6 +65,29 @@ fn control_table() -> RunsTable {
     RunsTable::parse(&text).unwrap()
 }
 
+/// Every search variant against a baseline search that is always seeded: the GA alone and the
+/// seeded GA both meet the seeded local search, seed by seed.
+#[test]
+fn every_search_variant_meets_a_baseline_whose_setting_is_fixed() {
+    let metrics = metric_columns();
+    let mut text = format!("run_id,config_id,replicate,seed,solver,seeded,{}\n", metrics.join(","));
+    for s in 0..6 {
+        for (solver, seeded, time) in [("ils", "true", 100.0), ("ga", "true", 101.0), ("ga", "false", 120.0)] {
+            let fields = executable_cell_order_run(time + s as f64);
+            let _ = writeln!(text, "{solver}{seeded}{s},c{solver}{seeded},{s},{},{solver},{seeded},{fields}", 100 + s);
+        }
+    }
+    let t = RunsTable::parse(&text).unwrap();
+    let r = render(&t, &Comparison::parse("solver=ils").unwrap()).unwrap();
+    assert!(r.markdown.contains("`seeded` is `true` on every run of the baseline"), "{}", r.markdown);
+    let csv = RunsTable::parse(&r.csv).unwrap();
+    let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
+    for value in ["ga (seeded=false)", "ga (seeded=true)"] {
+        let row = csv.rows.iter().find(|r| get(r, "metric") == "time_s" && get(r, "value") == value);
+        assert_eq!(row.map(|r| get(r, "pairs")), Some("6".to_string()), "{value}: {}", r.csv);
+    }
+}
+
 #[test]
 fn a_control_run_once_pairs_with_every_seed_and_nested_settings_label_the_values() {
     let dir = tempfile::tempdir().unwrap();
@@ -102,7 +125,7 @@ fn pairs_by_seed_within_strata_corrects_the_family_and_names_the_confounded_colu
     assert!(text.contains("`budget` follows map"), "{text}");
     let csv = RunsTable::parse(&std::fs::read_to_string(dir.path().join("compare-a.csv")).unwrap()).unwrap();
     let get = |r: &Vec<String>, c: &str| r[csv.col(c).unwrap()].clone();
-    assert_eq!(csv.rows.len(), 9, "pooled and two strata × executability and two metrics");
+    assert_eq!(csv.rows.len(), 10, "pooled and two strata × executability and two metrics, and the margin");
     let exec_m2 = csv.rows.iter().find(|r| get(r, "metric") == "executable" && get(r, "stratum") == "map=m2").unwrap();
     // Seed 0 of b on m2 is the only discordant pair: McNemar's exact p = 1.
     assert_eq!((get(exec_m2, "value_better"), get(exec_m2, "value_worse")), ("0".into(), "1".into()));

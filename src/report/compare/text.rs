@@ -5,7 +5,12 @@ use super::*;
 pub(super) use crate::stats::family::Floor;
 
 /// The paragraph saying how the comparison is made.
-pub(super) fn intro(d: &Design, cmp: &Comparison, units: Option<&super::units::Units>, values: &[String]) -> String {
+pub(super) fn intro(
+    d: &Design,
+    (cmp, measure): (&Comparison, &crate::report::analysis::level::TimeMeasure),
+    units: Option<&super::units::Units>,
+    values: &[String],
+) -> String {
     let strata = if d.strata.is_empty() {
         "one stratum (no other parameter varies)".to_string()
     } else {
@@ -22,17 +27,26 @@ pub(super) fn intro(d: &Design, cmp: &Comparison, units: Option<&super::units::U
         "Each value of `{}` against `{}`, {strata}. Runs are paired by seed (replicate `i` of every \
          configuration has the same seed); {which}. Coverage is \
          `cov_final_reach` (higher is better), compared as the median of the value's runs minus the \
-         baseline's; time is `time_s` (lower is better), compared as the ratio of medians. Intervals: \
+         baseline's; time is `{}` (lower is better), compared as the ratio of medians. {} Intervals: \
          {:.0} % percentile bootstrap over pairs ({RESAMPLES} resamples, seed {BOOTSTRAP_SEED}). Tests: \
          two-sided Wilcoxon signed-rank over the pairs (exact up to 50 pairs), Holm–Bonferroni over \
          the family of the metric's comparisons below; \"shown\" means a Holm-adjusted p below {:.2}.",
         cmp.key,
         cmp.baseline,
+        measure.column,
+        measure.sentence(),
         LEVEL * 100.0,
         1.0 - LEVEL
     );
     for (name, of) in &d.followers {
         let _ = write!(s, " `{name}` follows {of} (confounded with it: not a stratum of its own).");
+    }
+    for (name, value) in &d.fixed_on_baseline {
+        let _ = write!(
+            s,
+            " `{name}` is `{value}` on every run of the baseline and takes other values elsewhere: the values are \
+             told apart by it (every variant against the baseline), not stratified."
+        );
     }
     for name in &d.nested {
         let _ = write!(

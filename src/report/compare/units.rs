@@ -7,7 +7,10 @@
 //! control's one run ten times). Strata that differ only in the problem posed on a floor plan
 //! — the robot, the start station, the map's noise (a generated plan's clean and noisy twins,
 //! [`crate::map::generate::clean_twin`]) — stand on one floor plan and are not independent
-//! either: they form one unit with the planner's settings that tell them apart.
+//! either. Nor are strata of one floor plan that differ in the planner's settings (a search
+//! seeded with a control's tours can return the control's plan on that floor plan): wherever
+//! runs on one floor plan are pooled with runs on others, whatever differs among them, the
+//! unit is the floor plan, and its effect the median of every pair on it.
 
 use std::collections::BTreeMap;
 
@@ -19,8 +22,8 @@ const PROBLEM_SECTIONS: [&str; 3] = ["map.", "robot.", "stations."];
 pub(super) enum UnitKind {
     /// A stratum: one combination of the other parameters.
     Stratum,
-    /// A floor plan under one setting of the planner: the strata that differ only in the problem
-    /// posed on that plan, together.
+    /// A floor plan: every stratum on it together (over several floor plans, whatever else
+    /// differs; on one, the strata that differ only in the problem posed on it).
     FloorPlan,
 }
 
@@ -59,6 +62,9 @@ pub(super) fn choose(strata: &BTreeMap<String, Vec<(String, String)>>, once_run:
         }
         parts.join(", ")
     };
+    if let Some(units) = by_floor_plan(strata) {
+        return units;
+    }
     let of: BTreeMap<String, String> = strata.iter().map(|(s, p)| (s.clone(), unit_of(p))).collect();
     let units = of.values().collect::<std::collections::BTreeSet<_>>().len();
     if units < strata.len() {
@@ -111,6 +117,45 @@ pub(super) fn choose(strata: &BTreeMap<String, Vec<(String, String)>>, once_run:
     }
 }
 
+/// Over several floor plans, the floor plans as units, whatever else tells the strata on one
+/// apart; `None` where the strata stand on one floor plan (or do not name their map).
+fn by_floor_plan(strata: &BTreeMap<String, Vec<(String, String)>>) -> Option<Units> {
+    let plan_of = |params: &[(String, String)]| {
+        params.iter().find(|(c, _)| c == "map.source").map(|(_, v)| crate::map::generate::clean_twin(v).to_string())
+    };
+    let of: BTreeMap<String, String> = strata
+        .iter()
+        .map(|(s, p)| plan_of(p).map(|plan| (s.clone(), format!("map.source={plan}"))))
+        .collect::<Option<_>>()?;
+    let plans = of.values().collect::<std::collections::BTreeSet<_>>().len();
+    if plans < 2 || plans == strata.len() {
+        return None;
+    }
+    let mut differ: Vec<String> = strata
+        .values()
+        .flatten()
+        .filter(|(c, _)| c != "map.source")
+        .map(|(c, _)| format!("`{c}`"))
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    if strata.values().flatten().any(|(c, v)| c == "map.source" && crate::map::generate::clean_twin(v) != v.as_str()) {
+        differ.push("the map's noise (a generated plan's clean and noisy twins)".into());
+    }
+    Some(Units {
+        kind: UnitKind::FloorPlan,
+        of,
+        reason: format!(
+            "The pooled unit is the floor plan ({plans} units from {} strata): the strata on one floor plan, \
+             whatever tells them apart ({}), are not independent (they share the plan's rooms, clutter and \
+             start, and a search seeded with another plan can return it there), so each floor plan counts \
+             once; a unit's effect is the median of every pair on it.",
+            strata.len(),
+            differ.join(", ")
+        ),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -147,13 +192,19 @@ mod tests {
             &[("map.source", "b"), ("thesis.moves", "straight")],
         ]);
         let one_map = strata(&[&[("thesis.c_len", "0.1")], &[("thesis.c_len", "0.2")]]);
-        let table: [(&Strata, bool, UnitKind, usize); 6] = [
+        let one_plan_robots = strata(&[
+            &[("map.source", "a.yaml"), ("robot.rot_speed", "0"), ("thesis.moves", "straight")],
+            &[("map.source", "a.yaml"), ("robot.rot_speed", "0.5"), ("thesis.moves", "straight")],
+            &[("map.source", "a.yaml"), ("robot.rot_speed", "0"), ("thesis.moves", "routed")],
+        ]);
+        let table: [(&Strata, bool, UnitKind, usize); 7] = [
             (&maps_and_robots, true, UnitKind::FloorPlan, 2),
             (&maps_and_robots, false, UnitKind::FloorPlan, 2),
             (&twins, true, UnitKind::FloorPlan, 2),
-            (&settings, false, UnitKind::Stratum, 3),
-            (&settings, true, UnitKind::Stratum, 3),
+            (&settings, false, UnitKind::FloorPlan, 2),
+            (&settings, true, UnitKind::FloorPlan, 2),
             (&one_map, false, UnitKind::Stratum, 2),
+            (&one_plan_robots, true, UnitKind::FloorPlan, 2),
         ];
         for (i, (design, once, kind, count)) in table.into_iter().enumerate() {
             let u = choose(design, once);
@@ -161,12 +212,17 @@ mod tests {
             assert_eq!((u.kind, units), (kind, count), "design {i}: {}", u.reason);
         }
         let u = choose(&maps_and_robots, true);
-        assert!(u.reason.contains("differ only in `robot.rot_speed`"), "{}", u.reason);
+        assert!(u.reason.contains("(`robot.rot_speed`)"), "{}", u.reason);
         assert_eq!(u.of["map.source=a.yaml, robot.rot_speed=0.5"], "map.source=a.yaml");
         let u = choose(&twins, true);
         assert!(u.reason.contains("clean and noisy twins"), "{}", u.reason);
         assert_eq!(u.of["map.source=gen/house-1-noisy.yaml"], "map.source=gen/house-1.yaml");
-        assert!(choose(&settings, true).reason.contains("a side ran once per stratum"));
-        assert!(choose(&settings, false).reason.contains("across the settings"));
+        let u = choose(&settings, true);
+        assert_eq!(u.of["map.source=a, thesis.moves=routed"], "map.source=a", "a setting does not split a floor plan");
+        assert!(u.reason.contains("`thesis.moves`"), "{}", u.reason);
+        let u = choose(&one_plan_robots, true);
+        assert!(u.reason.contains("differ only in `robot.rot_speed`"), "{}", u.reason);
+        assert!(choose(&one_map, true).reason.contains("a side ran once per stratum"));
+        assert!(choose(&one_map, false).reason.contains("across the settings"));
     }
 }

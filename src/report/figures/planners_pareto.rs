@@ -4,6 +4,7 @@
 //! and covering as much or more, better in one) ringed, whichever planner made them. 003's
 //! `t_final` and `f` are one GA's own measures and do not compare planners.
 
+use crate::cell_order::controls::COVERAGE_TIE;
 use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -30,13 +31,18 @@ pub struct PlannersPareto {
 }
 
 const TITLE: &str = "Each run's plan: mission time against coverage of the reachable cells; ringed: no plan of \
-                     any planner on that map is as fast and covers as much (grey ×: not executable)";
+                     any planner on that map is as fast and covers as much, coverage within 0.005 counting as \
+                     equal (grey ×: not executable)";
 
 /// Indices of the executable points no other executable point dominates (time lower is better,
-/// coverage higher is better).
+/// coverage higher is better). Coverage within [`COVERAGE_TIE`] of another plan's counts as
+/// equal: a plan that overshoots a coverage goal by a few cells gains nothing from it, and the
+/// faster of two plans stopped at one goal dominates the other.
 pub fn non_dominated(points: &[PlanPoint]) -> Vec<usize> {
     let dominates = |a: &PlanPoint, b: &PlanPoint| {
-        a.time_s <= b.time_s && a.coverage >= b.coverage && (a.time_s < b.time_s || a.coverage > b.coverage)
+        let as_much = a.coverage >= b.coverage - COVERAGE_TIE;
+        let more = a.coverage > b.coverage + COVERAGE_TIE;
+        a.time_s <= b.time_s && as_much && (a.time_s < b.time_s || more)
     };
     (0..points.len())
         .filter(|&i| points[i].executable)
@@ -170,6 +176,8 @@ mod tests {
         assert_eq!(non_dominated(&points), vec![1, 2]);
         points.push(PlanPoint { executable: false, ..point(3, 10.0, 1.0) });
         assert_eq!(non_dominated(&points), vec![1, 2], "a plan a robot cannot drive dominates nothing");
+        let overshoot = vec![point(0, 3502.4, 0.9006), point(1, 3507.7, 0.9007), point(2, 12654.0, 0.943)];
+        assert_eq!(non_dominated(&overshoot), vec![0, 2], "a goal overshot by a few cells gains nothing");
     }
 
     /// The four study shapes: texts on the canvas, distinct ticks, every group in the legend,

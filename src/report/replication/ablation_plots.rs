@@ -20,11 +20,20 @@ type LoadedPanel = (crate::map::GridMap, CoverageGrid, Vec<Vec<crate::geom::Poin
 /// Draws the comparison's figures into `out`; `dir` holds the runs' folders.
 pub(super) fn draw(c: &Comparing, dir: &Path, out: &Path) -> Result<(), ReportError> {
     crate::plot::save(
-        &BoxFigure { metric: "cov_final over reachable cells".into(), panels: boxes(c, "cov_final_reach") },
+        &BoxFigure {
+            metric: "cov_final over reachable cells".into(),
+            panels: boxes(c, |_| ("cov_final_reach", String::new())),
+        },
         &out.join("boxplots_cov"),
     )?;
     crate::plot::save(
-        &BoxFigure { metric: "time [s]".into(), panels: boxes(c, "time_s") },
+        &BoxFigure {
+            metric: "time [s] to the panel's level".into(),
+            panels: boxes(c, |map| {
+                let m = c.time_measure(map);
+                (m.column, format!(": {}", m.name()))
+            }),
+        },
         &out.join("boxplots_time"),
     )?;
     crate::plot::save(&convergence(c, dir), &out.join("convergence"))?;
@@ -63,11 +72,13 @@ pub(super) fn draw(c: &Comparing, dir: &Path, out: &Path) -> Result<(), ReportEr
     Ok(())
 }
 
-/// The box plot panels of `metric`: per map, each variant's executable values and the others'.
-fn boxes(c: &Comparing, metric: &str) -> Vec<(String, Vec<BoxSeries>)> {
+/// The box plot panels of the metric `metric` gives per map (its column, and what the panel's
+/// title adds): per map, each variant's executable values and the others'.
+fn boxes<'a>(c: &Comparing, metric: impl Fn(&str) -> (&'a str, String)) -> Vec<(String, Vec<BoxSeries>)> {
     c.maps
         .iter()
         .map(|map| {
+            let (metric, title) = metric(map);
             let series = c
                 .variants
                 .iter()
@@ -83,7 +94,7 @@ fn boxes(c: &Comparing, metric: &str) -> Vec<(String, Vec<BoxSeries>)> {
                 })
                 .filter(|b| !b.values.is_empty() || !b.excluded.is_empty())
                 .collect();
-            (short_map(map), series)
+            (format!("{}{title}", short_map(map)), series)
         })
         .collect()
 }

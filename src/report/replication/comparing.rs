@@ -5,6 +5,7 @@
 
 use super::search_objective::{self, MapRuns};
 use crate::report::analysis::ReportError;
+use crate::report::analysis::level::{Basis, TimeMeasure};
 use crate::report::analysis::runs::param_columns;
 use crate::stats::{a12_magnitude, holm, mann_whitney_u, quartiles, vargha_delaney_a12};
 use crate::study::records::RunsTable;
@@ -26,9 +27,9 @@ const TABLE: [(&str, &str, usize); 10] = [
     ("obstacle_cells", "obstacle cells", 0),
 ];
 
-/// The metrics tested pairwise.
 /// The measures tested between planners: the common scorer's, which every planner shares
-/// (003's `t_final` and `f` are one GA's own and do not compare planners).
+/// (003's `t_final` and `f` are one GA's own and do not compare planners); `time_s` stands for
+/// the map's time measure ([`Comparing::time_measure`]).
 const TESTED: [&str; 3] = ["cov_final_reach", "time_s", "cam_walls_free"];
 
 /// A map's short name: its file stem.
@@ -44,18 +45,20 @@ fn against_seed(
     seed: &str,
     runs: &[usize],
     plan: &[usize],
-    num: impl Fn(usize, &str) -> f64,
+    (num, measure): (impl Fn(usize, &str) -> f64, &TimeMeasure),
 ) -> Option<String> {
     let &[p] = plan else { return None };
     if runs.is_empty() {
         return None;
     }
-    let (cp, tp) = (num(p, "cov_final_reach"), num(p, "time_s"));
+    let column = measure.column;
+    let (cp, tp) = (num(p, "cov_final_reach"), num(p, column));
     let median = |c: &str| quartiles(&runs.iter().map(|&r| num(r, c)).collect::<Vec<_>>()).1;
-    let (cov, time) = (median("cov_final_reach"), median("time_s"));
-    let both = runs.iter().filter(|&&r| num(r, "cov_final_reach") >= cp && num(r, "time_s") <= tp).count();
+    let (cov, time) = (median("cov_final_reach"), median(column));
+    let both = runs.iter().filter(|&&r| num(r, "cov_final_reach") >= cp && num(r, column) <= tp).count();
     Some(format!(
-        "On {map}, {variant}, whose initial population holds the {seed} plan, against that plan: median coverage {cov:.3} against {cp:.3}, median time {time:.0} s against {tp:.0} s ({:+.1} %); {both} of {} plans at least as good on both.",
+        "On {map}, {variant}, whose initial population holds the {seed} plan, against that plan: median coverage {cov:.3} against {cp:.3}, median {} {time:.0} s against {tp:.0} s ({:+.1} %); {both} of {} plans at least as good on both.",
+        measure.name(),
         100.0 * (time / tp - 1.0),
         runs.len()
     ))
@@ -190,6 +193,13 @@ impl<'a> Comparing<'a> {
         self.all_rows_of(map, v).into_iter().filter(|&r| self.flag(r, "executable")).collect()
     }
 
+    /// The time the plans on `map` are compared on: mission time where their reachable
+    /// coverage is equal, else the time to the highest level all of them reach.
+    pub fn time_measure(&self, map: &str) -> TimeMeasure {
+        let rows: Vec<usize> = (0..self.t.rows.len()).filter(|&r| self.t.rows[r][self.mc] == map).collect();
+        TimeMeasure::of(self.t, &rows)
+    }
+
     /// The variants with a run on `map` (`executable`: with an executable one).
     fn present(&self, map: &str, executable: bool) -> Vec<&String> {
         let rows = |v: &str| if executable { self.rows_of(map, v) } else { self.all_rows_of(map, v) };
@@ -199,19 +209,26 @@ impl<'a> Comparing<'a> {
     /// The table of one map: each variant's runs, executable and feasible shares, and the
     /// median [quartiles] of every metric of [`TABLE`].
     pub(super) fn map_table(&self, map: &str, name: &str, w: &mut Written) {
+        let measure = self.time_measure(map);
         let _ = writeln!(w.md, "### {name}\n");
+        let _ = writeln!(w.md, "{}\n", measure.sentence());
+        let level = matches!(measure.basis, Basis::Level(_)).then_some(measure.column);
+        let mut columns: Vec<(&str, String, usize)> = TABLE.iter().map(|&(c, h, d)| (c, h.to_string(), d)).collect();
+        if let Some(c) = level {
+            columns.push((c, format!("{} [s]", measure.name()), 0));
+        }
         let _ = writeln!(
             w.md,
             "| planner | runs | executable | planner-feasible | {} | cov (all plans) |",
-            TABLE.iter().map(|(_, h, _)| *h).collect::<Vec<_>>().join(" | ")
+            columns.iter().map(|(_, h, _)| h.as_str()).collect::<Vec<_>>().join(" | ")
         );
-        let _ = writeln!(w.md, "|---|---|---|---|{}---|", "---|".repeat(TABLE.len()));
+        let _ = writeln!(w.md, "|---|---|---|---|{}---|", "---|".repeat(columns.len()));
         for v in self.present(map, false) {
             let all = self.all_rows_of(map, v);
             let rows = self.rows_of(map, v);
             let feasible = all.iter().filter(|&&r| self.flag(r, "planner_feasible")).count();
             let mut cells = Vec::new();
-            for (c, _, d) in TABLE {
+            for &(c, _, d) in &columns {
                 let vals: Vec<f64> = rows.iter().map(|&r| self.num(r, c)).collect();
                 if vals.is_empty() {
                     cells.push("–".to_string());
@@ -248,7 +265,8 @@ impl<'a> Comparing<'a> {
         type Sample<'a> = (&'a String, Vec<usize>);
         let (samples, too_few): (Vec<Sample>, Vec<Sample>) =
             self.present(map, true).into_iter().map(|v| (v, self.rows_of(map, v))).partition(|(_, r)| r.len() >= 2);
-        for metric in TESTED {
+        let time = self.time_measure(map).column;
+        for metric in TESTED.map(|m| if m == "time_s" { time } else { m }) {
             let mut pairs = Vec::new();
             for i in 0..samples.len() {
                 for j in i + 1..samples.len() {
@@ -321,6 +339,7 @@ impl<'a> Comparing<'a> {
             (all, exec)
         };
         let num = |r: usize, c: &str| self.num(r, c);
+        let measure = self.time_measure(map);
         let cell_list: Vec<(&String, Option<(&'static str, &'static str)>)> = self
             .present(map, false)
             .into_iter()
@@ -336,7 +355,7 @@ impl<'a> Comparing<'a> {
         let mut found = cells.findings();
         for (v, seed) in &self.seeded {
             let (runs, plan) = (self.rows_of(map, v), self.rows_of(map, seed));
-            found.extend(against_seed(name, v, seed, &runs, &plan, num));
+            found.extend(against_seed(name, v, seed, &runs, &plan, (num, &measure)));
         }
         w.findings.extend(found);
     }
@@ -349,15 +368,33 @@ impl<'a> Comparing<'a> {
         };
         let mut by_cov: Vec<&String> = present.clone();
         by_cov.sort_by(|a, b| med(b, "cov_final_reach").total_cmp(&med(a, "cov_final_reach")));
+        let measure = self.time_measure(map);
+        let time = measure.column;
         let mut by_time: Vec<&String> = present.clone();
-        by_time.sort_by(|a, b| med(a, "time_s").total_cmp(&med(b, "time_s")));
+        by_time.sort_by(|a, b| med(a, time).total_cmp(&med(b, time)));
         if let (Some(first), Some(fast)) = (by_cov.first(), by_time.first()) {
             let ranking: Vec<String> = by_cov.iter().map(|v| format!("{v} {:.3}", med(v, "cov_final_reach"))).collect();
+            let (t_fast, t_first) = (med(fast, time), med(first, time));
+            let which = match measure.basis {
+                Basis::EqualCoverage => "shortest median mission time (every plan covers the same share)".to_string(),
+                Basis::Level(l) => format!(
+                    "shortest median time to {:.0} % of the reachable cells (the highest level every plan reaches; \
+                     mission times are not compared across unequal coverage)",
+                    l * 100.0
+                ),
+                Basis::Unavailable => "shortest median mission time, although the plans stop at different coverage \
+                                       (their curves are not here to compare them at one level)"
+                    .to_string(),
+            };
+            let leaders = match fast == first {
+                true => format!("{first} covers most and has the {which}: {t_fast:.0} s"),
+                false => format!(
+                    "{first} covers most, {fast} has the {which}: {t_fast:.0} s, against {t_first:.0} s for {first}"
+                ),
+            };
             w.findings.push(format!(
-                "On {name}, median coverage of the reachable cells ranks {}; {first} covers most, {fast} has the shortest median time ({:.0} s, against {:.0} s for {first}).",
+                "On {name}, median coverage of the reachable cells ranks {}; {leaders}.",
                 ranking.join(" > "),
-                med(fast, "time_s"),
-                med(first, "time_s"),
             ));
         }
         let count_of = |f: &dyn Fn(usize) -> bool| -> Vec<String> {
