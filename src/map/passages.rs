@@ -30,7 +30,7 @@ pub const MIN_SWEPT_SHARE: f64 = 0.99;
 pub const MAX_PASSAGE_CELLS: u64 = 1 << 21;
 
 /// The splits tried beyond [`refinement`]'s, as multiples of it.
-const PASSAGE_SPLITS: [usize; 5] = [2, 3, 4, 6, 8];
+pub const PASSAGE_SPLITS: [usize; 5] = [2, 3, 4, 6, 8];
 
 /// The share of the cells the scorer counts coverable from `start` ([`Reach`] on `map`) that
 /// lie within sweeping distance of a centre a planner reaches from `start` on `map` split
