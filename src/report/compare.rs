@@ -283,18 +283,17 @@ fn no_stratum(t: &RunsTable, key: usize, d: &Design, cmp: &Comparison) -> Report
     ))
 }
 
-/// [`render`]; `complete` says whether the study is finished (else a configuration recorded
-/// once is paired by seed like any other).
-fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Rendered, ReportError> {
-    let cmp = &numeric_baseline(t, cmp);
-    let (key, _) = compared_values(t, cmp)?;
-    let mut d = design(t, cmp, key);
-    d.once_run_pairs = complete;
-    // The compared values as labelled (with the parameters nested in them), in order.
-    let mut values: Vec<String> = d.cells.keys().map(|(_, v)| v.clone()).collect();
-    values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
-    values.dedup();
-    let executable = |r: usize| t.col("executable").is_none_or(|c| t.rows[r][c] == "true");
+/// Per stratum and compared value: the stratum, the value, the runs and executable runs on
+/// each side (baseline first), and the paired runs (row indices).
+type StratumPairs = (String, String, (usize, usize), (usize, usize), Vec<(usize, usize)>);
+
+/// The strata that hold the baseline and another of `values`, with their runs paired by seed.
+fn stratum_pairs(
+    d: &Design,
+    cmp: &Comparison,
+    values: &[String],
+    executable: &dyn Fn(usize) -> bool,
+) -> Vec<StratumPairs> {
     let mut rows = Vec::new();
     let mut strata: Vec<&String> = d.cells.keys().map(|(s, _)| s).collect();
     strata.dedup();
@@ -307,6 +306,22 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
             rows.push((stratum.clone(), value.clone(), (base.len(), other.len()), (exec(base), exec(other)), pairs));
         }
     }
+    rows
+}
+
+/// [`render`]; `complete` says whether the study is finished (else a configuration recorded
+/// once is paired by seed like any other).
+fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Rendered, ReportError> {
+    let cmp = &numeric_baseline(t, cmp);
+    let (key, _) = compared_values(t, cmp)?;
+    let mut d = design(t, cmp, key);
+    d.once_run_pairs = complete;
+    // The compared values as labelled (with the parameters nested in them), in order.
+    let mut values: Vec<String> = d.cells.keys().map(|(_, v)| v.clone()).collect();
+    values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
+    values.dedup();
+    let executable = |r: usize| t.col("executable").is_none_or(|c| t.rows[r][c] == "true");
+    let rows = stratum_pairs(&d, cmp, &values, &executable);
     if rows.is_empty() {
         return Err(no_stratum(t, key, &d, cmp));
     }

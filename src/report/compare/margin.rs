@@ -50,6 +50,33 @@ pub(super) fn margin_stats(effects: &[f64]) -> Option<MarginStats> {
     })
 }
 
+/// The margin table's heading, the paragraph on how it is made and the table's header row.
+fn heading(md: &mut String, m: &Metric, units: &Units) {
+    let (_, unit_plural) = units.kind.names();
+    let _ = writeln!(
+        md,
+        "## `{}` against a margin of {:.0} %, pooled over the {unit_plural}\n",
+        m.column,
+        (1.0 - MARGIN) * 100.0
+    );
+    let _ = writeln!(
+        md,
+        "Is the value at least {:.0} % faster? Each {}'s ratio is the exponential of its effect above (the median \
+         log-ratio of its pairs); the test is the one-sided signed-rank test that the ratios lie below {MARGIN} \
+         (zeros dropped, Wilcoxon's rule), Holm over the values. Beside it, the two-sided test of any difference \
+         above with Pratt's handling of zeros (ties ranked, then dropped), as a sensitivity line: a finding that \
+         rests on the ties a design builds in (a search seeded with its control's plan returns it) moves with it.\n",
+        (1.0 - MARGIN) * 100.0,
+        units.kind.names().0
+    );
+    let _ = writeln!(
+        md,
+        "| value | {unit_plural} | mean ratio | median ratio [{:.0} % CI, {unit_plural} resampled] | below {MARGIN} | at or above | p (ratio < {MARGIN}, one-sided) | p (Holm) | finding | p (any difference, Pratt's zeros) |",
+        LEVEL * 100.0
+    );
+    let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+}
+
 /// The margin table of a time comparison: per value, the mean and median unit ratio with its
 /// interval over the units, the one-sided test of the ratio against [`MARGIN`] (Holm over the
 /// values) and, as the sensitivity line of the test of any difference, its p with Pratt's
@@ -74,28 +101,7 @@ pub(super) fn section(
         }
     }
     let mut adjusted = family.adjusted().into_iter();
-    let _ = writeln!(
-        md,
-        "## `{}` against a margin of {:.0} %, pooled over the {unit_plural}\n",
-        m.column,
-        (1.0 - MARGIN) * 100.0
-    );
-    let _ = writeln!(
-        md,
-        "Is the value at least {:.0} % faster? Each {}'s ratio is the exponential of its effect above (the median \
-         log-ratio of its pairs); the test is the one-sided signed-rank test that the ratios lie below {MARGIN} \
-         (zeros dropped, Wilcoxon's rule), Holm over the values. Beside it, the two-sided test of any difference \
-         above with Pratt's handling of zeros (ties ranked, then dropped), as a sensitivity line: a finding that \
-         rests on the ties a design builds in (a search seeded with its control's plan returns it) moves with it.\n",
-        (1.0 - MARGIN) * 100.0,
-        units.kind.names().0
-    );
-    let _ = writeln!(
-        md,
-        "| value | {unit_plural} | mean ratio | median ratio [{:.0} % CI, {unit_plural} resampled] | below {MARGIN} | at or above | p (ratio < {MARGIN}, one-sided) | p (Holm) | finding | p (any difference, Pratt's zeros) |",
-        LEVEL * 100.0
-    );
-    let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    heading(md, m, units);
     let field = |x: Option<f64>| x.map_or(String::new(), |x| format!("{x}"));
     for (p, g) in pooled.iter().zip(margins) {
         let Some(g) = *g else { continue };

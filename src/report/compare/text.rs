@@ -38,6 +38,31 @@ pub(super) fn intro(
         LEVEL * 100.0,
         1.0 - LEVEL
     );
+    design_notes(&mut s, d, cmp);
+    if let Some(rules) = super::like::return_rules(&cmp.key, &cmp.baseline, values) {
+        let _ = write!(s, " {rules}");
+    }
+    s.push_str(
+        " Within a stratum the unit is the seed: each seed is a run of its own, and a control that reads \
+         no seed is one fixed value its seeds are compared with.",
+    );
+    if let (true, Some(units)) = (d.pooled(), units) {
+        let _ = write!(
+            s,
+            " The comparisons are made twice: first pooled over the {} (the pair effect is the difference, or \
+             for time the ratio, within each pair; its median over every pair with a bootstrap interval that \
+             resamples whole units; the signed-rank test of the unit effects, of their log-ratios for time; Holm \
+             over the values of each metric; the pairs are described, not tested), then stratum by stratum. {}",
+            units.kind.names().1,
+            units.reason
+        );
+    }
+    s
+}
+
+/// The sentences of [`intro`] on how the design was read: confounded, fixed and nested
+/// parameters, the strongest control, and configurations that ran once.
+fn design_notes(s: &mut String, d: &Design, cmp: &Comparison) {
     for (name, of) in &d.followers {
         let _ = write!(s, " `{name}` follows {of} (confounded with it: not a stratum of its own).");
     }
@@ -74,25 +99,6 @@ pub(super) fn intro(
              runs once in a grid) its one run pairs with every seed of the other.",
         );
     }
-    if let Some(rules) = super::like::return_rules(&cmp.key, &cmp.baseline, values) {
-        let _ = write!(s, " {rules}");
-    }
-    s.push_str(
-        " Within a stratum the unit is the seed: each seed is a run of its own, and a control that reads \
-         no seed is one fixed value its seeds are compared with.",
-    );
-    if let (true, Some(units)) = (d.pooled(), units) {
-        let _ = write!(
-            s,
-            " The comparisons are made twice: first pooled over the {} (the pair effect is the difference, or \
-             for time the ratio, within each pair; its median over every pair with a bootstrap interval that \
-             resamples whole units; the signed-rank test of the unit effects, of their log-ratios for time; Holm \
-             over the values of each metric; the pairs are described, not tested), then stratum by stratum. {}",
-            units.kind.names().1,
-            units.reason
-        );
-    }
-    s
 }
 
 /// Pairs where only the value's plan is executable, and where only the baseline's is.
