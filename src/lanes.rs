@@ -1,9 +1,11 @@
 //! The lanes every sweeping planner drives, below the planners so that they share them as
 //! peers: the boustrophedon decomposition into lanes and cells ([`boustrophedon`], which the
 //! boustrophedon pattern mows and the cell-order planner orders), the route that grows along
-//! them ([`GrowingRoute`]), coverage completion of the strips they leave ([`complete`]), and
-//! the cap on lanes across a map ([`check_lane_count`]).
+//! them ([`GrowingRoute`]), coverage completion of the strips they leave ([`complete`]), the
+//! route of a robot that fits only in a band thinner than the raster ([`band`]), and the cap on
+//! lanes across a map ([`check_lane_count`]).
 
+pub mod band;
 pub mod boustrophedon;
 pub mod complete;
 
@@ -14,7 +16,8 @@ use crate::map::clearance::Clearance;
 /// Why a pattern could not be planned.
 #[derive(Debug, thiserror::Error, PartialEq)]
 pub enum PatternError {
-    /// No place reachable from the start fits the robot.
+    /// No place reachable from the start fits the robot: no cell centre, and no straight move
+    /// through the start ([`band`]).
     #[error("no free area reachable from the start fits a robot {width} m wide")]
     NoRoom {
         /// The robot width.

@@ -9,10 +9,12 @@ pub mod planner;
 pub mod spiral;
 
 use crate::geom::Point;
+use crate::lanes::band::band_route;
 use crate::lanes::{GrowingRoute, PatternError, boustrophedon, check_lane_count};
 use crate::map::GridMap;
 use crate::map::clearance::Clearance;
 use crate::map::passages::planning_map_from;
+use crate::map::reach::Reach;
 use std::borrow::Cow;
 
 /// A coverage pattern.
@@ -64,11 +66,11 @@ pub fn plan_region(
     };
     let (map, region, targets) = (&*map, &*region, &*targets);
     let mut lanes = Clearance::new(region, width);
-    let region_reach = crate::map::reach::Reach::new(&lanes, &[start]);
+    let region_reach = Reach::new(&lanes, &[start]);
     let mut whole = Clearance::new(map, width);
-    let mut reach = crate::map::reach::Reach::new(&whole, &[start]);
+    let mut reach = Reach::new(&whole, &[start]);
     if reach.centres().iter().all(|c| !c) {
-        return Err(PatternError::NoRoom { width });
+        return band_plan(&whole, &reach, width, start, end);
     }
     whole.restrict(reach.centres().to_vec());
     let mut route = if region_reach.centres().iter().any(|c| *c) {
@@ -83,9 +85,9 @@ pub fn plan_region(
         let from = entry.unwrap_or(start);
         route.go(&whole, from);
         lanes.restrict(region_reach.centres().to_vec());
-        let lanes_route = match pattern {
-            Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&lanes, width, angle_deg, from)?,
-            Pattern::Spiral => spiral::plan(&lanes, width, from)?,
+        let lanes_route = match lanes_of(pattern, &lanes, width, from) {
+            Err(PatternError::NoRoom { .. }) => return band_plan(&whole, &reach, width, start, end),
+            other => other?,
         };
         // The lanes' route starts at `from`, which the route has reached.
         route.append(lanes_route);
@@ -101,6 +103,33 @@ pub fn plan_region(
         points: checked(&whole, width, route.into_points())?,
         pockets: reach.pocket_count(),
         pocket_area_m2: reach.pocket_area_m2(),
+    })
+}
+
+/// The route of `pattern`'s lanes over the centres of `clear` from `start`.
+fn lanes_of(pattern: Pattern, clear: &Clearance, width: f64, start: Point) -> Result<GrowingRoute, PatternError> {
+    match pattern {
+        Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(clear, width, angle_deg, start),
+        Pattern::Spiral => spiral::plan(clear, width, start),
+    }
+}
+
+/// The plan of a robot that fits at `start` only in a band holding no cell centre of the
+/// planning raster, or too few for a lane ([`crate::lanes::band`]): the band's route, checked
+/// by the body rule, or [`PatternError::NoRoom`] where the robot cannot move there.
+fn band_plan(
+    clear: &Clearance,
+    reach: &Reach,
+    width: f64,
+    start: Point,
+    end: Point,
+) -> Result<PatternPlan, PatternError> {
+    let points = band_route(clear.map(), width, start, end).ok_or(PatternError::NoRoom { width })?;
+    Ok(PatternPlan {
+        points: checked(clear, width, points)?,
+        pockets: reach.pocket_count(),
+        pocket_area_m2: reach.pocket_area_m2(),
+        skipped_targets: 0,
     })
 }
 
@@ -150,16 +179,15 @@ pub fn plan(
     // Planned on the refined raster where the map is coarse (`map::refine`).
     let map = &*planning_map_from(map, width, start);
     let mut clear = Clearance::new(map, width);
-    let reach = crate::map::reach::Reach::new(&clear, &[start]);
+    let reach = Reach::new(&clear, &[start]);
     if reach.centres().iter().all(|c| !c) {
-        return Err(PatternError::NoRoom { width });
+        return band_plan(&clear, &reach, width, start, end);
     }
     clear.restrict(reach.centres().to_vec());
-    let route = match pattern {
-        Pattern::Boustrophedon { angle_deg } => boustrophedon::plan(&clear, width, angle_deg, start)?,
-        Pattern::Spiral => spiral::plan(&clear, width, start)?,
+    let mut route = match lanes_of(pattern, &clear, width, start) {
+        Err(PatternError::NoRoom { .. }) => return band_plan(&clear, &reach, width, start, end),
+        other => other?,
     };
-    let mut route = route;
     if complete {
         crate::lanes::complete::complete(&clear, &reach, width, &mut route);
     }

@@ -117,3 +117,4 @@ pub fn runner_options<'a>(
     }
 }
 pub mod raster_cases;
+pub mod sweepable;

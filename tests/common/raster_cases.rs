@@ -58,6 +58,9 @@ pub enum Kind {
     NotExecutable,
     /// A plan short of [`MIN_REACHABLE_SHARE`] of the reachable cells.
     ShortCoverage,
+    /// A plan short of [`MIN_REACHABLE_SHARE`] also of the cells a straight axis-parallel move
+    /// can sweep ([`super::sweepable`]): the planner's own shortfall, not cells no move sweeps.
+    ShortOfSweepable,
     /// A refusal where the scorer counts reachable cells from a start the robot fits at.
     WrongRefusal,
 }
@@ -232,6 +235,12 @@ impl Case {
         if score.reachable_cells > 0 && score.cov_final_reach < MIN_REACHABLE_SHARE {
             let what = format!("covers {:.4} of {} reachable cells", score.cov_final_reach, score.reachable_cells);
             out.push((Kind::ShortCoverage, what));
+            let sweepable = super::sweepable::sweepable_cells(&self.map, self.width, self.start);
+            let share = score.unique_reach_cells as f64 / sweepable.max(1) as f64;
+            if share < MIN_REACHABLE_SHARE {
+                let what = format!("covers {share:.4} of the {sweepable} cells an axis-parallel move sweeps");
+                out.push((Kind::ShortOfSweepable, what));
+            }
         }
         let time = score.time_s;
         let area = score.unique_reach_cells as f64 * self.map.resolution().powi(2);

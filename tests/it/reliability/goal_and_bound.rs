@@ -95,5 +95,43 @@ fn no_scored_plan_is_below_its_bound() {
 #[test]
 fn planners_and_the_scorer_agree_on_a_sample_of_random_rasters() {
     use crate::common::raster_cases::{Kind, assert_cases};
-    assert_cases(0..120, 95, &[(Kind::NotExecutable, 0), (Kind::ShortCoverage, 2), (Kind::WrongRefusal, 0)]);
+    assert_cases(
+        0..120,
+        95,
+        &[(Kind::NotExecutable, 0), (Kind::ShortCoverage, 2), (Kind::ShortOfSweepable, 0), (Kind::WrongRefusal, 0)],
+    );
+}
+
+/// The drawn cases where a robot of 0.8–1.2 m fits at its start only in a band no split of the
+/// cells puts a centre in (a niche barely wider than the robot): the patterns drive the band
+/// instead of refusing a map the scorer counts coverable cells on (`lanes::band`).
+#[test]
+fn a_robot_that_fits_only_in_a_band_thinner_than_a_cell_is_planned_not_refused() {
+    use crate::common::raster_cases::{Kind, draw};
+    for index in [322, 747, 1240, 1597] {
+        let case = draw(index).expect("the case draws a map");
+        let found = case.check();
+        let refused: Vec<_> =
+            found.iter().filter(|f| f.0 == Kind::WrongRefusal || f.0 == Kind::NotExecutable).collect();
+        assert!(refused.is_empty(), "case {index}: {refused:?}");
+    }
+}
+
+/// The reach counts a room's corners that no move sweeps: in an empty 4 m room of 0.05 m
+/// cells, a 1 m robot's positions are the square [r, 4 − r]², whose horizontal and vertical
+/// runs sweep the room less its four corner squares r × r (15 m², 6 000 cells); the reach
+/// counts every cell within r of a position, the corners' quarter discs among them
+/// (16 − 4·r²·(1 − π/4) = 15.79 m²). The raster cases tell the two shortfalls apart by it.
+#[test]
+fn a_rooms_corners_are_reachable_but_not_sweepable() {
+    use covga::geom::Point;
+    use covga::map::{CellState, GridMap};
+    let map = GridMap::new("room", 80, 80, 0.05, Point::new(0.0, 0.0), vec![CellState::Free; 6400]).unwrap();
+    let start = Point::new(2.0, 2.0);
+    let sweepable = crate::common::sweepable::sweepable_cells(&map, 1.0, start) as f64;
+    let clear = covga::map::clearance::Clearance::new(&map, 1.0);
+    let reach = covga::map::reach::Reach::new(&clear, &[start]).coverable_count() as f64;
+    let quarter_discs = 16.0 - 4.0 * 0.25 * (1.0 - std::f64::consts::FRAC_PI_4);
+    assert!((sweepable / 6000.0 - 1.0).abs() < 0.02, "sweepable {sweepable} cells, about 6 000 expected");
+    assert!((reach * 0.0025 / quarter_discs - 1.0).abs() < 0.02, "reach {reach} cells, about {quarter_discs} m²");
 }
