@@ -1,11 +1,13 @@
 //! The lanes every sweeping planner drives, below the planners so that they share them as
 //! peers: the boustrophedon decomposition into lanes and cells ([`boustrophedon`], which the
 //! boustrophedon pattern mows and the cell-order planner orders), the route that grows along
-//! them ([`GrowingRoute`]), coverage completion of the strips they leave ([`complete`]), and
-//! the cap on lanes across a map ([`check_lane_count`]).
+//! them ([`GrowingRoute`]), coverage completion of the strips they leave ([`complete`]), a
+//! plan ended at its coverage goal ([`goal`]), and the cap on lanes across a map
+//! ([`check_lane_count`]).
 
 pub mod boustrophedon;
 pub mod complete;
+pub mod goal;
 
 use crate::geom::Point;
 use crate::map::GridMap;

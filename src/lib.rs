@@ -54,6 +54,7 @@ pub mod ga;
 pub mod geom;
 pub mod io;
 pub mod lanes;
+pub mod layouts;
 pub mod map;
 pub mod patterns;
 pub mod planner;
