@@ -127,3 +127,61 @@ impl LayoutsSection {
         unread_section(key, "layouts", &["layouts"])
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planner::{Budget, Checks, Scenario};
+
+    fn validated(section: &LayoutsSection) -> Result<LayoutsConfig, ConfigError> {
+        let map = crate::map::presets::preset("office").unwrap();
+        let start = crate::geom::Point::new(2.0, 2.0);
+        let s = Scenario {
+            map,
+            robot: crate::coverage::Footprint { width: 0.6, speed: 0.3, rot_speed: 0.52 },
+            start,
+            end: start,
+            projection: crate::coverage::fitness::Projection::F2,
+            camera: crate::coverage::score::CameraSpec {
+                scale: 0.1,
+                d_min: 0.2,
+                d_max: 7.0,
+                fov_deg: 69.4,
+                sections: 15,
+                band_m: 0.45,
+            },
+        };
+        let budget = Budget::iterations(1);
+        section.validate(&Context { origin: "t.toml", scenario: &s, budget: &budget, checks: Checks::Full })
+    }
+
+    #[test]
+    fn absent_spacing_tries_the_automatic_ones_and_a_given_one_alone() {
+        let auto = validated(&LayoutsSection::default()).unwrap();
+        assert_eq!(auto.spacings, AUTO_SPACINGS.iter().map(|f| f * 0.6).collect::<Vec<_>>());
+        assert_eq!(auto.min_lane_m, 0.6, "the width by default");
+        let given = validated(&LayoutsSection { lane_spacing: Some(0.55), ..LayoutsSection::default() }).unwrap();
+        assert_eq!(given.spacings, vec![0.55]);
+    }
+
+    #[test]
+    fn wall_directions_join_the_given_ones_once() {
+        let c = validated(&LayoutsSection { wall_directions: 2, ..LayoutsSection::default() }).unwrap();
+        assert!(c.directions.starts_with(&[0.0, 90.0]) && c.directions.len() <= 4, "{:?}", c.directions);
+    }
+
+    #[test]
+    fn out_of_range_settings_name_their_key() {
+        for (section, key) in [
+            (LayoutsSection { lane_spacing: Some(0.7), ..LayoutsSection::default() }, "layouts.lane_spacing"),
+            (LayoutsSection { lane_offsets: 0, ..LayoutsSection::default() }, "layouts.lane_offsets"),
+            (LayoutsSection { finalists: 0, ..LayoutsSection::default() }, "layouts.finalists"),
+            (LayoutsSection { min_lane: Some(-1.0), ..LayoutsSection::default() }, "layouts.min_lane"),
+            (LayoutsSection { coverage_goal: Some(0.0), ..LayoutsSection::default() }, "layouts.coverage_goal"),
+            (LayoutsSection { directions: vec![], ..LayoutsSection::default() }, "layouts.directions"),
+        ] {
+            let e = validated(&section).unwrap_err().to_string();
+            assert!(e.contains(key) && e.contains("t.toml"), "{key}: {e}");
+        }
+    }
+}

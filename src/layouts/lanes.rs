@@ -181,13 +181,16 @@ mod tests {
     }
 
     #[test]
-    fn a_piece_that_adds_too_little_is_dropped() {
+    fn a_piece_shorter_than_the_minimum_lane_is_dropped() {
+        // 5 m × 4 m inside the walls: lanes at 90° are 3.4 m long, at 0° 4.4 m.
         let map = room(100, 80);
-        let layout = Layout { direction_deg: 90.0, spacing_m: 0.6, offset: 3, offsets: 12 };
-        let all = laid(&map, layout, 0.0).0;
-        let long = laid(&map, layout, 3.0).0;
-        assert!(long.len() < all.len(), "{} of {}", long.len(), all.len());
-        assert!(long.iter().all(|p| p.length() >= 3.0));
+        let at = |direction_deg: f64, min: f64| {
+            laid(&map, Layout { direction_deg, spacing_m: 0.6, offset: 3, offsets: 12 }, min).0
+        };
+        assert!(!at(90.0, 0.0).is_empty());
+        assert!(at(90.0, 3.5).is_empty(), "every lane is shorter than 3.5 m");
+        let across = at(0.0, 3.5);
+        assert!(!across.is_empty() && across.iter().all(|p| p.length() >= 3.5), "{across:?}");
     }
 
     #[test]
