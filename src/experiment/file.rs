@@ -29,8 +29,8 @@ use std::time::Duration;
 pub struct ExperimentFile {
     /// The run's seed.
     pub seed: u64,
-    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral`, `cell_order` or
-    /// `random_search`.
+    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral`, `cell_order`,
+    /// `layouts` or `random_search`.
     pub planner: PlannerKind,
     /// The map.
     pub map: MapSection,
