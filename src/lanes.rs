@@ -1,13 +1,14 @@
 //! The lanes every sweeping planner drives, below the planners so that they share them as
 //! peers: the boustrophedon decomposition into lanes and cells ([`boustrophedon`], which the
 //! boustrophedon pattern mows and the cell-order planner orders), the route that grows along
-//! them ([`GrowingRoute`]), coverage completion of the strips they leave ([`complete`]), the
-//! route of a robot that fits only in a band thinner than the raster ([`band`]), and the cap on
-//! lanes across a map ([`check_lane_count`]).
+//! them ([`GrowingRoute`]), coverage completion of the strips they leave ([`complete`]), a
+//! plan ended at its coverage goal ([`goal`]), the route of a robot that fits only in a band
+//! thinner than the raster ([`band`]), and the cap on lanes across a map ([`check_lane_count`]).
 
 pub mod band;
 pub mod boustrophedon;
 pub mod complete;
+pub mod goal;
 
 use crate::geom::Point;
 use crate::map::GridMap;

@@ -30,7 +30,7 @@
 //!    completion, which the sweeping planners share;
 //! 5. [`plot`]: figure primitives (maps, paths, charts, legends);
 //! 6. [`planner`]: the `Planner` interface, its scenario, budget and outcome;
-//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], then [`random_search`],
+//! 7. [`thesis`], [`waypoint`], [`patterns`], [`cell_order`], [`layouts`], then [`random_search`],
 //!    [`seeded`] and [`fleet`]: the planners, peers that import none of each other, each
 //!    validating its own section and drawing its own figures; then the compositions of them
 //!    (random search draws the thesis genome at random, the thesis GA is seeded with other
@@ -54,6 +54,7 @@ pub mod ga;
 pub mod geom;
 pub mod io;
 pub mod lanes;
+pub mod layouts;
 pub mod map;
 pub mod patterns;
 pub mod planner;

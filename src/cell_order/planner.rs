@@ -248,7 +248,7 @@ impl CellOrderConfig {
         // The first of the fastest: a searching solver's best wins a tie.
         let index = (0..times.len()).fold(0, |best, i| if times[i] < times[best] { i } else { best });
         let (path, skipped) = candidates.into_iter().nth(index).expect("a solver hands over one plan at least");
-        let path = end_at_goal(&prepared.clear, &prepared.reach, grid, &s.robot, path, goal, s.end);
+        let path = crate::lanes::goal::end_at_goal(&prepared.clear, &prepared.reach, grid, &s.robot, path, goal, s.end);
         Chosen { index, path, skipped, goal: Some((goal, times[index], times)) }
     }
 }
@@ -259,41 +259,6 @@ impl CellOrderConfig {
 pub fn time_to_goal(curve: &CoverageCurve, goal: f64) -> f64 {
     let end = curve.points().last().map_or(0.0, |p| p.0);
     curve.time_to(goal).unwrap_or(UNREACHED_S * (1.0 + goal - curve.coverage_at(end)) + end)
-}
-
-/// `path` cut after the segment whose sweep brings the coverage of `reach`'s cells to `goal`
-/// (the whole path when none does), then driven to `end` on a wall-free route.
-fn end_at_goal(
-    clear: &Clearance,
-    reach: &Reach,
-    grid: &CoverageGrid,
-    robot: &crate::coverage::Footprint,
-    mut path: Vec<Point>,
-    goal: f64,
-    end: Point,
-) -> Vec<Point> {
-    let needed = (goal * reach.coverable_count() as f64 - 1e-9).ceil().max(0.0) as usize;
-    let mut covered = vec![false; grid.len()];
-    let mut count = 0usize;
-    let mut cut = None;
-    for (j, w) in path.windows(2).enumerate() {
-        crate::coverage::raster::for_each_swept_cell(grid.raster(), w[0], w[1], robot.width, |i| {
-            if !covered[i] && reach.is_coverable(i) {
-                covered[i] = true;
-                count += 1;
-            }
-        });
-        if count >= needed {
-            cut = Some(j + 2);
-            break;
-        }
-    }
-    let Some(keep) = cut else { return path };
-    path.truncate(keep);
-    let mut route = GrowingRoute::new(*path.last().expect("kept two points"));
-    route.finish(clear, end);
-    path.extend_from_slice(&route.points()[1..]);
-    path
 }
 
 /// A lower bound on the time any plan needs to cover the share `goal` of the cells the common

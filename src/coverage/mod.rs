@@ -8,6 +8,7 @@
 //! lengths live one layer up, in [`crate::routing`]. Planners build on this layer; it depends
 //! on none of them.
 
+pub mod account;
 pub mod bits;
 pub mod bound;
 pub mod camera;

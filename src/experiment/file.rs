@@ -10,6 +10,7 @@ use crate::cell_order::config::CellOrderSection;
 use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
+use crate::layouts::config::LayoutsSection;
 use crate::map::GridMap;
 use crate::patterns::planner::PatternSection;
 pub use crate::planner::sections::OutputSection;
@@ -28,8 +29,8 @@ use std::time::Duration;
 pub struct ExperimentFile {
     /// The run's seed.
     pub seed: u64,
-    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral`, `cell_order` or
-    /// `random_search`.
+    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral`, `cell_order`,
+    /// `layouts` or `random_search`.
     pub planner: PlannerKind,
     /// The map.
     pub map: MapSection,
@@ -49,6 +50,10 @@ pub struct ExperimentFile {
     /// written file (and a study's run ids, which hash it) of other planners stays as it was.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub cell_order: Option<CellOrderSection>,
+    /// Lane control settings (`planner = "layouts"`); absent from files that do not set them,
+    /// as `[cell_order]` is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub layouts: Option<LayoutsSection>,
     /// When to stop.
     pub budget: BudgetSection,
     /// Optional changing-environment retrain (thesis GA).
@@ -82,6 +87,7 @@ impl Default for ExperimentFile {
             waypoint: WaypointSection::default(),
             pattern: PatternSection::default(),
             cell_order: None,
+            layouts: None,
             budget: BudgetSection::default(),
             retrain: None,
             output: OutputSection::default(),
@@ -217,6 +223,9 @@ impl ExperimentFile {
         if name == "cell_order" {
             self.cell_order.get_or_insert_with(CellOrderSection::default);
         }
+        if name == "layouts" {
+            self.layouts.get_or_insert_with(LayoutsSection::default);
+        }
     }
 
     /// The seed, the robot's and the budget's numbers against their ranges.
@@ -315,6 +324,7 @@ impl crate::planner::entry::FileSections for ExperimentFile {
             "waypoint" => Some(&self.waypoint),
             "pattern" => Some(&self.pattern),
             "cell_order" => self.cell_order.as_ref().map(|s| s as &dyn Any),
+            "layouts" => self.layouts.as_ref().map(|s| s as &dyn Any),
             "retrain" => self.retrain.as_ref().map(|s| s as &dyn Any),
             "output" => Some(&self.output),
             "plugins" => Some(&self.plugins),

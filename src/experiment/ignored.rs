@@ -202,6 +202,7 @@ mod tests {
     fn every_planner_section_is_a_section_of_the_file() {
         let full = ExperimentFile {
             cell_order: Some(Default::default()),
+            layouts: Some(Default::default()),
             retrain: Some(crate::thesis::config::RetrainSection { at_iteration: 1, region: [0.0, 0.0, 1.0, 1.0] }),
             ..ExperimentFile::default()
         };

@@ -55,6 +55,7 @@ fn sections_with(defaults: &toml::Table) -> Vec<SectionDoc> {
 fn default_table() -> toml::Table {
     let file = ExperimentFile {
         cell_order: Some(Default::default()),
+        layouts: Some(Default::default()),
         fleet: Some(Default::default()),
         // `at_iteration` is required (the page says so); the rest of the table takes its defaults.
         retrain: Some(toml::from_str("at_iteration = 0").expect("a retrain table")),

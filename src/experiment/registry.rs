@@ -24,6 +24,7 @@ pub const PLANNERS: &[&dyn PlannerEntry] = &[
     &crate::patterns::entry::Pattern(crate::patterns::planner::PatternKind::Boustrophedon),
     &crate::patterns::entry::Pattern(crate::patterns::planner::PatternKind::Spiral),
     &crate::cell_order::entry::CellOrder,
+    &crate::layouts::entry::Layouts,
 ];
 
 /// A planner as an experiment file names it (`planner = "…"`): an entry of the registry.

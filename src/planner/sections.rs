@@ -72,7 +72,7 @@ pub struct PlannerSection {
 /// planner's module says which of them, and which of their keys, it reads with its settings
 /// (`why_unread`); the warnings about keys nothing reads (`experiment::ignored`) and the test
 /// that varies every unread key iterate this list, so a new section is one entry here.
-pub const PLANNER_SECTIONS: [PlannerSection; 5] = [
+pub const PLANNER_SECTIONS: [PlannerSection; 6] = [
     PlannerSection { name: "thesis", readers: "the thesis GA and random search read" },
     PlannerSection { name: "retrain", readers: "only the thesis GA reads" },
     PlannerSection {
@@ -87,6 +87,7 @@ pub const PLANNER_SECTIONS: [PlannerSection; 5] = [
         name: "cell_order",
         readers: "only the cell-order planner (and the thesis GA's cell_order seed plan) reads",
     },
+    PlannerSection { name: "layouts", readers: "only the lane control (planner = \"layouts\") reads" },
 ];
 
 /// The planner section called `name`, if there is one.

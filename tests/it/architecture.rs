@@ -22,7 +22,7 @@ const LAYERS: &[&[&str]] = &[
     &["routing", "lanes"],
     &["plot"],
     &["planner"],
-    &["thesis", "waypoint", "patterns", "cell_order"],
+    &["thesis", "waypoint", "patterns", "cell_order", "layouts"],
     &["random_search", "seeded"],
     &["fleet"],
     &["experiment"],

@@ -19,6 +19,7 @@ mod floor_plan_recommendation;
 mod generated_maps;
 mod grid_cli;
 mod init_cli;
+mod layouts;
 mod mutation_tooling;
 mod parent_schemes;
 mod planner_contract;

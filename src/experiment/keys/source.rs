@@ -28,7 +28,7 @@ pub struct Shape {
 }
 
 /// Every type that is a table of an experiment file, with the source that declares it.
-const SECTION_TYPES: [(&str, &str); 16] = [
+const SECTION_TYPES: [(&str, &str); 17] = [
     ("ExperimentFile", include_str!("../file.rs")),
     ("OutputSection", include_str!("../../planner/sections.rs")),
     ("MapSection", include_str!("../../planner/sections.rs")),
@@ -43,6 +43,7 @@ const SECTION_TYPES: [(&str, &str); 16] = [
     ("WaypointSection", include_str!("../../waypoint/config.rs")),
     ("PatternSection", include_str!("../../patterns/planner.rs")),
     ("CellOrderSection", include_str!("../../cell_order/config.rs")),
+    ("LayoutsSection", include_str!("../../layouts/config.rs")),
     ("RobotEntry", include_str!("../../fleet/config.rs")),
     ("FleetSection", include_str!("../../fleet/config.rs")),
 ];
