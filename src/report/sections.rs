@@ -131,6 +131,7 @@ struct Diversity;
 impl Section for Diversity {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
         let mut groups = Vec::new();
+        let colours = colours::RunColours::of(s);
         for (g, f) in s.groups.iter().zip(&s.facets) {
             let curves: Vec<Vec<(u32, f64)>> = f
                 .front
@@ -152,7 +153,9 @@ impl Section for Diversity {
                     (curves[0][i].0, median(&mut v), lo, hi)
                 })
                 .collect();
-            groups.push(DiversityGroup { label: g.label.clone(), runs: curves.len(), curve });
+            let ids: Vec<String> = g.rows.iter().map(|&r| s.get(r, "run_id")).collect();
+            let colour = colours.of_runs(ids.iter().map(String::as_str), groups.len());
+            groups.push(DiversityGroup { label: g.label.clone(), runs: curves.len(), curve, colour });
         }
         if !groups.is_empty() {
             crate::plot::save(&DiversityFigure { groups }, &s.out.join("diversity"))?;

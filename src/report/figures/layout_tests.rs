@@ -50,6 +50,7 @@ mod study {
                         label: l.to_string(),
                         runs: *n,
                         curve: (0..50).map(|i| (i * 10, 40.0, 30.0, 55.0)).collect(),
+                        colour: *n,
                     })
                     .collect(),
             };
