@@ -19,16 +19,22 @@ use std::path::Path;
 type LoadedPanel = (crate::map::GridMap, CoverageGrid, Vec<Vec<crate::geom::Point>>, f64, String);
 
 /// Each variant's colour: its first run's in the report (`colours`, by run id), else its
-/// place among the variants.
+/// place among the variants. Variants finer than the report's groups (the thesis GA's settings,
+/// where the report groups by planner) share their group's colour only in the first of them;
+/// the others take colours past the report's, so that no two boxes of one panel share one.
 fn variant_colours(c: &Comparing, colours: &BTreeMap<String, usize>) -> Vec<usize> {
-    c.variants
-        .iter()
-        .enumerate()
-        .map(|(i, v)| {
-            let ids = c.maps.iter().flat_map(|map| c.all_rows_of(map, v)).map(|r| &c.t.rows[r][0]);
-            ids.into_iter().find_map(|id| colours.get(id).copied()).unwrap_or(i)
-        })
-        .collect()
+    let mut next = colours.values().max().map_or(c.variants.len(), |&k| (k + 1).max(c.variants.len()));
+    let mut taken: Vec<usize> = Vec::new();
+    for (i, v) in c.variants.iter().enumerate() {
+        let ids = c.maps.iter().flat_map(|map| c.all_rows_of(map, v)).map(|r| &c.t.rows[r][0]);
+        let mut k = ids.into_iter().find_map(|id| colours.get(id).copied()).unwrap_or(i);
+        if taken.contains(&k) {
+            k = next;
+            next += 1;
+        }
+        taken.push(k);
+    }
+    taken
 }
 
 /// Draws the comparison's figures into `out`; `dir` holds the runs' folders; `colours` gives
