@@ -2,7 +2,10 @@
 //! (003 eqs. 3.1–3.3: length / speed + turning / rot_speed), written beside every plan's time
 //! so that a time reads as "× the bound". They hold for **every path the scorer can score**, at
 //! any cell size and width, wall-crossing paths included, because they count what the scorer
-//! counts: cells whose centres a segment's rectangle holds.
+//! counts: cells whose centres a segment's rectangle holds. The book's page
+//! `docs/src/concepts/lower-bound.md` gives the proofs below in full, what each term counts,
+//! why the length term keeps `w + √2·r` per metre (a strip holds `w + r`, but that is not
+//! proved for every path) and the test over every committed run.
 //!
 //! Notation: `w` the robot's width, `r` the cell size, `A` the area of the cells to cover (their
 //! count × `r²`), `K` the disc of radius `w/2` grown by a cell square of side `r` (area

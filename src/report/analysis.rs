@@ -8,7 +8,7 @@
 //! here reads from them.
 
 pub mod best;
-pub(crate) mod bound;
+pub mod bound;
 pub mod design;
 pub mod folder_record;
 pub mod level;

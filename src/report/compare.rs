@@ -13,29 +13,28 @@
 //! from the others (a budget set per map) are not strata of their own and are named.
 
 mod findings;
+mod forest;
 mod like;
 mod margin;
 mod pooled;
 mod power;
+mod setup;
 mod strata;
 mod strongest;
 mod text;
 mod units;
 
-use strata::{Design, design, seed_pairs};
+use setup::{compared_values, no_stratum, numeric_baseline, stratum_pairs};
+use strata::{Design, design};
 use text::{executability, intro, p_text, section};
 
 use crate::report::analysis::ReportError;
-use crate::report::analysis::design::followed_by;
 use crate::report::analysis::folder_record::FolderRecords;
 use crate::report::analysis::level::{LEVEL_COLUMNS, TimeMeasure, add_level_columns};
 use crate::report::analysis::rendered::Rendered;
-use crate::report::analysis::runs::{
-    cell_matches, cmp_group_values, param_columns, read_filtered_runs, with_failed_note,
-};
+use crate::report::analysis::runs::{cmp_group_values, read_filtered_runs, with_failed_note};
 use crate::stats::{Contrast, Family, bootstrap_ci, vargha_delaney_a12, wilcoxon_signed_rank};
 use crate::study::records::RunsTable;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -206,58 +205,6 @@ pub fn write(t: &RunsTable, cmp: &Comparison, out: &Path) -> Result<PathBuf, Rep
     render(t, cmp)?.save(out)
 }
 
-/// `cmp` with each control of its baseline written as runs.csv records it where they are equal
-/// as numbers (`thesis.c_len=0.10` finds the runs of `0.1`), as `--where` matches.
-fn numeric_baseline(t: &RunsTable, cmp: &Comparison) -> Comparison {
-    let Some(c) = t.col(&cmp.key) else { return cmp.clone() };
-    let recorded = |want: &str| {
-        if t.rows.iter().any(|r| r[c] == want) {
-            return want.to_string();
-        }
-        t.rows.iter().map(|r| &r[c]).find(|v| cell_matches(v, want)).cloned().unwrap_or_else(|| want.to_string())
-    };
-    let baseline = strongest::controls(&cmp.baseline).into_iter().map(recorded).collect::<Vec<_>>().join("|");
-    Comparison { baseline, ..cmp.clone() }
-}
-
-/// The column of `cmp`'s key and its values (sorted), refused when the key is not swept, the
-/// baseline is none of its values, or runs.csv lacks a compared metric.
-fn compared_values(t: &RunsTable, cmp: &Comparison) -> Result<(usize, Vec<String>), ReportError> {
-    let input = |m: String| ReportError::Input(m);
-    let mut params = param_columns(t);
-    // A grid that sweeps `planner` records it in the planner column, not among the parameters.
-    if let Some(c) = t.col("planner")
-        && t.rows.iter().any(|r| r[c] != t.rows[0][c])
-    {
-        params.push("planner".into());
-    }
-    let key = match t.col(&cmp.key) {
-        Some(c) if params.contains(&cmp.key) => c,
-        _ => return Err(input(format!("--compare {}: not a swept parameter; swept: {}", cmp.key, params.join(", ")))),
-    };
-    let mut values: Vec<String> = t.rows.iter().map(|r| r[key].clone()).collect();
-    values.sort_by(|a, b| cmp_group_values(std::slice::from_ref(a), std::slice::from_ref(b)));
-    values.dedup();
-    let controls = strongest::controls(&cmp.baseline);
-    if let Some(missing) = controls.iter().find(|c| !values.iter().any(|v| v == *c)) {
-        let which = if controls.len() > 1 { format!("the value {missing}") } else { "that value".to_string() };
-        let set: Vec<&str> = values.iter().map(String::as_str).filter(|v| !v.is_empty()).collect();
-        let unset = if set.len() < values.len() { " (and runs that do not set it)" } else { "" };
-        return Err(input(format!(
-            "--compare {}={}: no run has {which}; values: {}{unset}",
-            cmp.key,
-            cmp.baseline,
-            set.join(", ")
-        )));
-    }
-    for m in &metrics("time_s") {
-        if t.col(m.column).is_none() {
-            return Err(input(format!("--compare: runs.csv has no `{}` column (written by an older covga)", m.column)));
-        }
-    }
-    Ok((key, values))
-}
-
 /// The columns of `compare-KEY.csv`: `unit` is what its test counts (`seed` within a stratum,
 /// `stratum` or `floor plan` pooled), `units` how many; `p_floor_holm` the smallest p its family
 /// can reach after Holm.
@@ -268,45 +215,6 @@ const CSV_HEADER: &str = "stratum,value,metric,runs_baseline,runs_value,executab
 /// Makes the comparison `cmp` of the runs `t` of a finished study.
 pub fn render(t: &RunsTable, cmp: &Comparison) -> Result<Rendered, ReportError> {
     render_with(t, cmp, true)
-}
-
-/// Why no stratum of `d` holds both the baseline and another value of `cmp`'s key (column
-/// `key`): the key follows another parameter, or the grid never crosses it with the others.
-fn no_stratum(t: &RunsTable, key: usize, d: &Design, cmp: &Comparison) -> ReportError {
-    let why = match followed_by(t, key, &d.kept) {
-        Some(of) => format!("`{}` follows {of} (confounded with it)", cmp.key),
-        None => "the grid never crosses it with the other parameters".to_string(),
-    };
-    ReportError::Input(format!(
-        "--compare {}={}: no stratum of the other parameters holds both the baseline and another value: {why}",
-        cmp.key, cmp.baseline
-    ))
-}
-
-/// Per stratum and compared value: the stratum, the value, the runs and executable runs on
-/// each side (baseline first), and the paired runs (row indices).
-type StratumPairs = (String, String, (usize, usize), (usize, usize), Vec<(usize, usize)>);
-
-/// The strata that hold the baseline and another of `values`, with their runs paired by seed.
-fn stratum_pairs(
-    d: &Design,
-    cmp: &Comparison,
-    values: &[String],
-    executable: &dyn Fn(usize) -> bool,
-) -> Vec<StratumPairs> {
-    let mut rows = Vec::new();
-    let mut strata: Vec<&String> = d.cells.keys().map(|(s, _)| s).collect();
-    strata.dedup();
-    for stratum in strata {
-        let Some(base) = d.cells.get(&(stratum.clone(), cmp.baseline.clone())) else { continue };
-        for value in values.iter().filter(|v| **v != cmp.baseline) {
-            let Some(other) = d.cells.get(&(stratum.clone(), value.clone())) else { continue };
-            let exec = |m: &BTreeMap<String, usize>| m.values().filter(|&&r| executable(r)).count();
-            let pairs = seed_pairs(base, other, d.once_run_pairs);
-            rows.push((stratum.clone(), value.clone(), (base.len(), other.len()), (exec(base), exec(other)), pairs));
-        }
-    }
-    rows
 }
 
 /// [`render`]; `complete` says whether the study is finished (else a configuration recorded
@@ -358,11 +266,16 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
     let both_executable = cmp.plans == Plans::Executable;
     let executable_rows = as_rows(&|r| f64::from(u8::from(executable(r))), false);
     let built = |value: &str| like::executable_by_construction(&cmp.key, value);
+    let mut forest = None;
     if let Some(units) = &units {
         pooled::executability(&mut md, &mut csv, &pooled::pool(&executable_rows, units), (cmp, units), &built);
         for m in &metrics {
             let rows = as_rows(&|r| num(r, m.column), both_executable);
-            pooled::section(&mut md, &mut csv, m, &pooled::pool(&rows, units), (cmp, units));
+            let pooled = pooled::pool(&rows, units);
+            pooled::section(&mut md, &mut csv, m, &pooled, (cmp, units));
+            if m.contrast == Contrast::MedianRatio {
+                forest = forest::figure(&pooled, units, cmp, m);
+            }
         }
     }
     executability(&mut md, &mut csv, &executable_rows, cmp, &built);
@@ -376,11 +289,21 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
         Plans::Every => "-every-plan",
     };
     let time = (measure.column, measure.name());
+    if let Some(f) = &forest {
+        let line = format!(
+            "![Forest plot: `{}` value ÷ baseline per {}, the pooled median with its bootstrap interval, the mean \
+             and the margin {}](compare-{safe}{suffix}-forest.png)\n\n",
+            measure.column,
+            f.unit,
+            forest::MARGIN_TEXT
+        );
+        md.insert_str(findings_at, &line);
+    }
     md.insert_str(findings_at, &findings::findings(&csv, &cmp.baseline, &effort(t, &d, &values), time));
     let title = format!("`{}` against `{}`{every}", cmp.key, cmp.baseline);
     let rows_of = |column: &str| as_rows(&|r| num(r, column), both_executable);
     let design = power::text(&title, (&metrics, &rows_of), units.as_ref());
-    Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv, design: Some(design) })
+    Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv, design: Some(design), forest })
 }
 
 /// The time the comparison reads ([`TimeMeasure`]) over every run it compares: every plan,

@@ -8,6 +8,7 @@ pub mod boxes;
 pub mod convergence;
 pub mod curves;
 pub mod diversity;
+pub mod forest;
 pub mod panels;
 pub mod pareto;
 pub mod paths;

@@ -1,6 +1,7 @@
 //! The sections of a study's `summary.md`, in the order they are written: each a small type
 //! behind [`Section`], listed once in [`SECTIONS`]. A new section is a type and a line there.
 
+mod colours;
 mod curves;
 
 use crate::coverage::CoverageGrid;
@@ -99,22 +100,15 @@ impl Section for ParetoFronts {
     }
 }
 
-/// The Pareto view across planners: per map, each run's plan in its group's series.
+/// The Pareto view across planners: per map, each run's plan in its group's series, numbered
+/// as every figure of the report numbers them ([`colours::RunColours`]).
 fn planners_pareto(s: &Study) -> PlannersPareto {
-    let mut groups: Vec<String> = Vec::new();
+    let colours = colours::RunColours::of(s);
     let mut panels: Vec<(String, Vec<PlanPoint>)> = Vec::new();
     for g in &s.groups {
         for &r in &g.rows {
-            let label = curves::series_label(&g.label, &s.get(r, "planner"), false);
-            let group = match groups.iter().position(|l| *l == label) {
-                Some(k) => k,
-                None => {
-                    groups.push(label);
-                    groups.len() - 1
-                }
-            };
             let point = PlanPoint {
-                group,
+                group: colours.of_run[&s.get(r, "run_id")],
                 time_s: s.num(r, "time_s"),
                 coverage: s.num(r, "cov_final_reach"),
                 executable: s.executable(r),
@@ -126,7 +120,7 @@ fn planners_pareto(s: &Study) -> PlannersPareto {
             }
         }
     }
-    let names = curves::distinct_parts(&groups);
+    let names = curves::distinct_parts(&colours.keys);
     PlannersPareto { groups: names, panels }
 }
 
@@ -137,6 +131,7 @@ struct Diversity;
 impl Section for Diversity {
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
         let mut groups = Vec::new();
+        let colours = colours::RunColours::of(s);
         for (g, f) in s.groups.iter().zip(&s.facets) {
             let curves: Vec<Vec<(u32, f64)>> = f
                 .front
@@ -158,7 +153,9 @@ impl Section for Diversity {
                     (curves[0][i].0, median(&mut v), lo, hi)
                 })
                 .collect();
-            groups.push(DiversityGroup { label: g.label.clone(), runs: curves.len(), curve });
+            let ids: Vec<String> = g.rows.iter().map(|&r| s.get(r, "run_id")).collect();
+            let colour = colours.of_runs(ids.iter().map(String::as_str), groups.len());
+            groups.push(DiversityGroup { label: g.label.clone(), runs: curves.len(), curve, colour });
         }
         if !groups.is_empty() {
             crate::plot::save(&DiversityFigure { groups }, &s.out.join("diversity"))?;
@@ -251,7 +248,8 @@ impl Section for PlannerComparison {
         ablation::applies(&s.t)
     }
     fn write(&self, s: &Study, md: &mut String) -> Result<(), ReportError> {
-        md.push_str(&ablation::compare(s.dir, &s.t, &s.out)?.markdown);
+        let colours = colours::RunColours::of(s);
+        md.push_str(&ablation::compare(s.dir, &s.t, &s.out, &colours.of_run)?.markdown);
         Ok(())
     }
 }

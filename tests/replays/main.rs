@@ -22,6 +22,7 @@ macro_rules! per_study_tests {
     };
 }
 
+mod committed_bounds;
 mod committed_results;
 mod fuzz_corpus;
 mod raster_cases;

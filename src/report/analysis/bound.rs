@@ -33,7 +33,7 @@ enum Robots {
 }
 
 /// Each run's lower bound on its times to coverage, or why the study's runs have none.
-pub(crate) struct AreaBounds {
+pub struct AreaBounds {
     runs: BTreeMap<String, RunBound>,
     /// Why no bound is given, where some run has none.
     pub missing: Option<String>,
@@ -49,18 +49,55 @@ fn robots(file: &ExperimentFile) -> Robots {
     Robots::Fleet(file.robots.iter().map(|e| (e.width.unwrap_or(r.width), e.speed.unwrap_or(r.speed))).collect())
 }
 
+/// The study's grid: its folder's `grid.toml`, or where that copy names a `base` it cannot
+/// resolve from the study folder (a study committed before the copy inlined its base), the grid
+/// file `study.json` names, read from the repository root two folders up
+/// (`results/<study>/`), which expands to the same run ids.
+fn load_grid(dir: &Path) -> Result<(std::path::PathBuf, crate::study::grid::Study), String> {
+    let copy = dir.join("grid.toml");
+    let first = match crate::study::grid::Study::load(&copy) {
+        Ok(grid) => return Ok((copy, grid)),
+        Err(e) => e.to_string(),
+    };
+    let named = std::fs::read_to_string(dir.join("study.json"))
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .and_then(|meta| meta["grid_file"].as_str().map(|f| dir.join("../..").join(f)));
+    match named {
+        Some(original) if original.exists() => {
+            let grid = crate::study::grid::Study::load(&original).map_err(|e| format!("{first}; {e}"))?;
+            Ok((original, grid))
+        }
+        _ => Err(first),
+    }
+}
+
 impl AreaBounds {
     /// The bounds of the runs in `t`, read with the grid file of study folder `dir`.
     pub fn of(dir: &Path, t: &RunsTable) -> Self {
         match Self::read(dir, t) {
             Ok(runs) => Self { runs, missing: None },
-            Err(why) => Self { runs: BTreeMap::new(), missing: Some(why) },
+            Err(why) => Self::none(why),
         }
     }
 
+    /// No run has a bound, for the reason `why`.
+    pub fn none(why: String) -> Self {
+        Self { runs: BTreeMap::new(), missing: Some(why) }
+    }
+
+    /// Run `id`'s robot as a figure names it: "robot 0.60 m wide, 0.30 m/s, 0.52 rad/s" (or
+    /// "turning free"), or a fleet's size.
+    pub fn robot_text(&self, id: &str) -> Option<String> {
+        self.runs.get(id).map(|b| match &b.robot {
+            &Robots::One(w, v, o) if o > 0.0 => format!("robot {w:.2} m wide, {v:.2} m/s, {o:.2} rad/s"),
+            &Robots::One(w, v, _) => format!("robot {w:.2} m wide, {v:.2} m/s, turning free"),
+            Robots::Fleet(robots) => format!("fleet of {} robots", robots.len()),
+        })
+    }
+
     fn read(dir: &Path, t: &RunsTable) -> Result<BTreeMap<String, RunBound>, String> {
-        let grid_file = dir.join("grid.toml");
-        let grid = crate::study::grid::Study::load(&grid_file).map_err(|e| e.to_string())?;
+        let (grid_file, grid) = load_grid(dir)?;
         let files: BTreeMap<&str, &ExperimentFile> = grid.runs.iter().map(|r| (r.id.as_str(), &r.file)).collect();
         let (id_col, cells_col) = (t.col("run_id"), t.col("reachable_cells"));
         let (Some(id_col), Some(cells_col)) = (id_col, cells_col) else {

@@ -16,16 +16,25 @@ pub struct Rendered {
     pub csv: String,
     /// For a comparison, what its design can show (`power`), written by `--design`.
     pub design: Option<String>,
+    /// For a time comparison pooled over units, its forest plot, written beside as
+    /// `STEM-forest.png` (and `.svg`).
+    pub forest: Option<crate::report::figures::forest::ForestFigure>,
 }
 
 impl Rendered {
-    /// Writes `STEM.md` and `STEM.csv` into `out`; returns the markdown's path.
+    /// Writes `STEM.md` and `STEM.csv` into `out`, and the forest plot where there is one;
+    /// returns the markdown's path.
     pub fn save(&self, out: &Path) -> Result<PathBuf, ReportError> {
         let md = out.join(format!("{}.md", self.stem));
         let csv = out.join(format!("{}.csv", self.stem));
         for (path, text) in [(&md, &self.markdown), (&csv, &self.csv)] {
             crate::io::write_atomic(path, text.as_bytes())
                 .map_err(|e| ReportError::Io(format!("{}: {e}", path.display())))?;
+        }
+        if let Some(forest) = &self.forest {
+            // The stem holds the key's dots: the extension is given, for the figure's writer to
+            // replace, not the key's last part.
+            crate::plot::save(forest, &out.join(format!("{}-forest.png", self.stem)))?;
         }
         Ok(md)
     }

@@ -34,6 +34,8 @@ pub(super) struct Pooled {
     row: Row,
     /// The pairs of each unit that has any, in the units' order.
     pub(super) by_unit: Vec<Vec<(f64, f64)>>,
+    /// Those units' labels, in the same order.
+    pub(super) unit_names: Vec<String>,
 }
 
 impl Pooled {
@@ -57,7 +59,9 @@ pub(super) fn pool(rows: &[Row], units: &Units) -> Vec<Pooled> {
                     executable: (0, 0),
                     pairs: Vec::new(),
                 };
-                out.push((Pooled { value: r.value.clone(), strata: 0, row, by_unit: Vec::new() }, BTreeMap::new()));
+                let pooled =
+                    Pooled { value: r.value.clone(), strata: 0, row, by_unit: Vec::new(), unit_names: Vec::new() };
+                out.push((pooled, BTreeMap::new()));
                 out.len() - 1
             }
         };
@@ -73,6 +77,7 @@ pub(super) fn pool(rows: &[Row], units: &Units) -> Vec<Pooled> {
     }
     out.into_iter()
         .map(|(mut p, by_unit)| {
+            p.unit_names = by_unit.keys().cloned().collect();
             p.by_unit = by_unit.into_values().collect();
             p
         })

@@ -191,6 +191,15 @@ fn pooled_over_the_strata_pairs_every_strata_pair_in_one_test() {
     let time = pooled("time_s");
     assert_eq!((get(&time, "contrast"), get(&time, "value_worse")), ("pair ratio".into(), "2".into()));
     assert_eq!(get(&time, "estimate").parse::<f64>().unwrap(), 129.0 / 109.0);
+    // The forest plot beside the files: a panel for b, a row per map with its pairs' ratios
+    // (seeds 0–5 on m1: (120 + 3s)/(100 + 3s), from 1.2 down to 135/115), linked from the text.
+    let forest = dir.path().join("compare-a-forest.png");
+    assert!(forest.exists() && text.contains("(compare-a-forest.png)"), "{text}");
+    let rendered = render(&table(0.1), &Comparison::parse("a=a").unwrap()).unwrap();
+    let panel = &rendered.forest.as_ref().expect("a forest plot").panels[0];
+    assert!(panel.rows.len() == 2 && panel.rows[0].name.contains("m1") && panel.rows[1].name.contains("m2"));
+    assert!((panel.rows[0].high - 1.2).abs() < 1e-12 && (panel.rows[0].low - 135.0 / 115.0).abs() < 1e-12);
+    assert!(panel.rows.iter().all(|r| r.low <= r.ratio && r.ratio <= r.high) && panel.margin == 0.95);
     // Executability: m1 ties (effect 0), m2 one plan in six fewer: one unit differs.
     let exec = pooled("executable");
     assert_eq!(

@@ -14,6 +14,9 @@ pub struct BoxSeries {
     pub values: Vec<f64>,
     /// The values of its plans that are not executable: drawn as crosses beside the box.
     pub excluded: Vec<f64>,
+    /// Its colour's number ([`crate::plot::series_colour`]), the same in every figure of the
+    /// report.
+    pub colour: usize,
 }
 
 /// Box plots of one metric: one panel per map, one box per planner.
@@ -116,7 +119,7 @@ impl Figure for BoxFigure {
                     continue;
                 }
                 if b.values.len() == 1 {
-                    let point = Circle::new((k as f64 + 0.5, b.values[0]), 5, colour(k).filled());
+                    let point = Circle::new((k as f64 + 0.5, b.values[0]), 5, colour(b.colour).filled());
                     chart.draw_series([point]).map_err(err)?;
                     chart
                         .draw_series([Circle::new((k as f64 + 0.5, b.values[0]), 5, BLACK.stroke_width(1))])
@@ -127,7 +130,7 @@ impl Figure for BoxFigure {
                 let min = b.values.iter().copied().fold(f64::INFINITY, f64::min);
                 let max = b.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
                 let (x0, x1, xc) = (k as f64 + 0.2, k as f64 + 0.8, k as f64 + 0.5);
-                let c = colour(k);
+                let c = colour(b.colour);
                 let series: Vec<PathElement<(f64, f64)>> = vec![
                     PathElement::new(vec![(xc, min), (xc, q1)], BLACK.stroke_width(1)),
                     PathElement::new(vec![(xc, q3), (xc, max)], BLACK.stroke_width(1)),
@@ -137,8 +140,11 @@ impl Figure for BoxFigure {
                 chart.draw_series(series).map_err(err)?;
                 chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], c.mix(0.45).filled())]).map_err(err)?;
                 chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], BLACK.stroke_width(1))]).map_err(err)?;
+                // The median in the group's colour with a black core: a box of equal values (no
+                // height) still shows its colour.
+                chart.draw_series([PathElement::new(vec![(x0, med), (x1, med)], c.stroke_width(7))]).map_err(err)?;
                 chart
-                    .draw_series([PathElement::new(vec![(x0, med), (x1, med)], BLACK.stroke_width(3))])
+                    .draw_series([PathElement::new(vec![(x0, med), (x1, med)], BLACK.stroke_width(2))])
                     .map_err(err)?;
             }
         }

@@ -17,6 +17,9 @@ pub struct Curve {
     /// The median coverage of the same runs' plans as scored: above the curve's end where a
     /// completion pass after the search adds cells (drawn as a diamond at the end).
     pub scored: Option<f64>,
+    /// Its colour's number ([`crate::plot::series_colour`]), the same in every figure of the
+    /// report.
+    pub colour: usize,
 }
 
 /// The y range of a convergence panel: the bands and scored plans with a margin (the curves of
@@ -87,9 +90,9 @@ impl Figure for ConvergenceFigure {
         let (width, height) = root.dim_in_pixel();
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
         let series = self.series();
-        let index_of = |label: &str| series.iter().position(|(s, _)| s.label == label).unwrap_or(0);
         let labels: Vec<String> = series.iter().map(|(_, l)| l.clone()).collect();
-        draw_legend_strip(&strip, &labels, |k, (x, y)| {
+        draw_legend_strip(&strip, &labels, |entry, (x, y)| {
+            let k = series[entry].0.colour;
             let dashes: &[(i32, i32)] =
                 if crate::plot::series_dashed(k) { &[(0, 5), (9, 14), (18, 23)] } else { &[(0, 22)] };
             for &(a, b) in dashes {
@@ -124,7 +127,7 @@ impl Figure for ConvergenceFigure {
                 .draw()
                 .map_err(err)?;
             for (drawn, c) in curves.iter().enumerate() {
-                let k = index_of(&c.label);
+                let k = c.colour;
                 let col = colour(k);
                 // Earlier series wider, so that one lying on another still shows around it.
                 let stroke = 2 + 2 * (curves.len() - 1 - drawn) as u32;

@@ -12,6 +12,9 @@ pub struct DiversityGroup {
     pub runs: usize,
     /// The curve.
     pub curve: Vec<(u32, f64, f64, f64)>,
+    /// Its colour's number ([`crate::plot::series_colour`]), the same in every figure of the
+    /// report.
+    pub colour: usize,
 }
 
 /// Diversity over iterations of the runs on each group's front.
@@ -82,7 +85,7 @@ impl Figure for DiversityFigure {
                 .axis_desc_style(text(14.0))
                 .draw()
                 .map_err(err)?;
-            let colour = crate::plot::series_colour(k);
+            let colour = crate::plot::series_colour(g.colour);
             let band: Vec<(u32, f64)> =
                 g.curve.iter().map(|c| (c.0, c.3)).chain(g.curve.iter().rev().map(|c| (c.0, c.2))).collect();
             chart.draw_series([Polygon::new(band, colour.mix(0.18).filled())]).map_err(err)?;
@@ -99,7 +102,7 @@ mod tests {
     use super::*;
 
     fn group(top: f64) -> DiversityGroup {
-        DiversityGroup { label: String::new(), runs: 1, curve: vec![(0, top / 2.0, 0.0, top)] }
+        DiversityGroup { label: String::new(), runs: 1, curve: vec![(0, top / 2.0, 0.0, top)], colour: 0 }
     }
 
     /// Panels within a factor of ten share the highest top; wider spreads keep their own.

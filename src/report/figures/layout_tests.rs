@@ -50,6 +50,7 @@ mod study {
                         label: l.to_string(),
                         runs: *n,
                         curve: (0..50).map(|i| (i * 10, 40.0, 30.0, 55.0)).collect(),
+                        colour: *n,
                     })
                     .collect(),
             };
@@ -140,10 +141,12 @@ mod comparison {
                 .map(|(map, groups)| {
                     let boxes = groups
                         .iter()
-                        .map(|(label, values)| BoxSeries {
+                        .enumerate()
+                        .map(|(k, (label, values))| BoxSeries {
                             label: label.clone(),
                             values: values.clone(),
                             excluded: Vec::new(),
+                            colour: k,
                         })
                         .collect();
                     (map.clone(), boxes)
@@ -179,7 +182,7 @@ mod comparison {
                             let points = (0..20)
                                 .map(|k| (k as f64 * 150.0, top * 0.9, top * (0.9 + 0.005 * k as f64).min(1.0), top))
                                 .collect();
-                            Curve { label: label.clone(), runs: values.len(), points, scored: Some(top) }
+                            Curve { label: label.clone(), runs: values.len(), points, scored: Some(top), colour: 0 }
                         })
                         .collect();
                     (map.clone(), curves)
@@ -240,6 +243,8 @@ mod curves {
             label: label.into(),
             runs,
             curve: (0..=10).map(|k| (k as f64 * 400.0, (k as f64 / 10.0).min(0.95), 0.0, 1.0)).collect(),
+            colour: runs,
+            bound: (0..=10).map(|k| (k as f64 * 150.0, k as f64 / 10.0)).collect(),
         };
         type Panels = Vec<(String, Vec<Drawn>)>;
         let shapes: [(&str, Panels); 4] = [
@@ -258,7 +263,12 @@ mod curves {
         for (name, panels) in shapes {
             let mut expected: Vec<String> =
                 panels.iter().flat_map(|(_, d)| d.iter().map(|d| d.label.clone())).collect();
-            expected.extend(panels.iter().map(|(m, _)| crate::plot::panel_label(m)));
+            // Each panel titled as the section titles it: the map and its robot.
+            let robot = "robot 0.60 m wide, 0.30 m/s, 0.52 rad/s";
+            let panels: Vec<(String, Vec<Drawn>)> =
+                panels.into_iter().map(|(m, d)| (format!("{}: {robot}", crate::plot::panel_label(&m)), d)).collect();
+            expected.extend(panels.iter().map(|(t, _)| t.clone()));
+            expected.push(super::super::curves::BOUND_ENTRY.into());
             let figure = CurvesFigure { panels };
             let expected: Vec<&str> = expected.iter().map(String::as_str).collect();
             for p in crate::plot::layout::problems(&figure, &expected).unwrap() {

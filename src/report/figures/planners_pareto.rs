@@ -32,7 +32,8 @@ pub struct PlannersPareto {
 
 const TITLE: &str = "Each run's plan: mission time against coverage of the reachable cells; ringed: no plan of \
                      any planner on that map is as fast and covers as much, coverage within 0.005 counting as \
-                     equal (grey ×: not executable)";
+                     equal (grey ×: not executable; hollow markers, earlier groups larger, so that plans that \
+                     coincide all show)";
 
 /// Indices of the executable points no other executable point dominates (time lower is better,
 /// coverage higher is better). Coverage within [`COVERAGE_TIE`] of another plan's counts as
@@ -50,15 +51,28 @@ pub fn non_dominated(points: &[PlanPoint]) -> Vec<usize> {
         .collect()
 }
 
-/// The marker of group `k`: a circle, triangle, square or diamond, round after round.
-fn marker<DB: DrawingBackend>(k: usize, at: (i32, i32), area: &DrawingArea<DB, Shift>) -> Result<(), String> {
-    let style = crate::plot::series_colour(k).filled();
-    let (x, y) = at;
-    match k % 4 {
-        0 => area.draw(&Circle::new(at, 5, style)).map_err(err),
-        1 => area.draw(&Polygon::new(vec![(x, y - 6), (x - 6, y + 5), (x + 6, y + 5)], style)).map_err(err),
-        2 => area.draw(&Rectangle::new([(x - 5, y - 5), (x + 5, y + 5)], style)).map_err(err),
-        _ => area.draw(&Polygon::new(vec![(x, y - 7), (x - 6, y), (x, y + 7), (x + 6, y)], style)).map_err(err),
+/// The half-size in pixels of group `k`'s marker among `n` groups: earlier groups larger (by
+/// 2 px a step, at most 6 px larger), so that hollow markers of plans that coincide nest
+/// inside each other instead of hiding one another.
+fn marker_size(k: usize, n: usize) -> i32 {
+    4 + 2 * (n.saturating_sub(1 + k).min(3)) as i32
+}
+
+/// The marker of group `k` among `n`, hollow, half-size [`marker_size`]: a circle, triangle,
+/// square, diamond or downward triangle, round after round.
+fn marker<DB: DrawingBackend>(k: usize, n: usize, at: (i32, i32), area: &DrawingArea<DB, Shift>) -> Result<(), String> {
+    let style = crate::plot::series_colour(k).stroke_width(2);
+    let ((x, y), r) = (at, marker_size(k, n));
+    let outline = |points: Vec<(i32, i32)>| {
+        let closed = [points.clone(), vec![points[0]]].concat();
+        area.draw(&PathElement::new(closed, style)).map_err(err)
+    };
+    match k % 5 {
+        0 => area.draw(&Circle::new(at, r, style)).map_err(err),
+        1 => outline(vec![(x, y - r - 1), (x - r - 1, y + r), (x + r + 1, y + r)]),
+        2 => outline(vec![(x - r, y - r), (x + r, y - r), (x + r, y + r), (x - r, y + r)]),
+        3 => outline(vec![(x, y - r - 2), (x - r - 1, y), (x, y + r + 2), (x + r + 1, y)]),
+        _ => outline(vec![(x, y + r + 1), (x - r - 1, y - r), (x + r + 1, y - r)]),
     }
 }
 
@@ -95,9 +109,10 @@ impl Figure for PlannersPareto {
         let (width, height) = root.dim_in_pixel();
         let (panels, strip) = root.split_vertically(height - self.legend_height(width));
         let labels = self.legend_labels();
-        super::panels::draw_legend_strip(&strip, &labels, |k, (x, y)| marker(k, (x + 11, y), &strip))?;
+        let n = self.groups.len();
+        super::panels::draw_legend_strip(&strip, &labels, |k, (x, y)| marker(k, n, (x + 11, y), &strip))?;
         for (area, (map, points)) in panels.split_evenly(self.grid()).iter().zip(&self.panels) {
-            draw_panel(area, map, points)?;
+            draw_panel(area, map, points, n)?;
         }
         Ok(())
     }
@@ -119,6 +134,7 @@ fn draw_panel<DB: DrawingBackend>(
     area: &DrawingArea<DB, Shift>,
     map: &str,
     points: &[PlanPoint],
+    groups: usize,
 ) -> Result<(), String> {
     const TICKS: usize = 8;
     let (x0, x1) = padded(points.iter().map(|p| p.time_s));
@@ -151,13 +167,17 @@ fn draw_panel<DB: DrawingBackend>(
         points.iter().filter(|p| !p.executable).map(|p| Cross::new((p.time_s, p.coverage), 4, grey.stroke_width(1)));
     chart.draw_series(excluded).map_err(err)?;
     let (ax, ay) = area.get_base_pixel();
-    for p in points.iter().filter(|p| p.executable) {
+    // The larger markers first, each group's over the earlier ones'.
+    let mut drawn: Vec<&PlanPoint> = points.iter().filter(|p| p.executable).collect();
+    drawn.sort_by_key(|p| p.group);
+    for p in drawn {
         let (x, y) = chart.backend_coord(&(p.time_s, p.coverage));
-        marker(p.group, (x - ax, y - ay), area)?;
+        marker(p.group, groups, (x - ax, y - ay), area)?;
     }
+    let ring = marker_size(0, groups) + 5;
     for i in non_dominated(points) {
         let p = &points[i];
-        chart.draw_series([Circle::new((p.time_s, p.coverage), 9, BLACK.stroke_width(2))]).map_err(err)?;
+        chart.draw_series([Circle::new((p.time_s, p.coverage), ring, BLACK.stroke_width(1))]).map_err(err)?;
     }
     Ok(())
 }

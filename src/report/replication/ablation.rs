@@ -23,8 +23,15 @@ pub fn applies(t: &RunsTable) -> bool {
     t.rows.iter().map(|r| &r[c]).collect::<std::collections::BTreeSet<_>>().len() > 1
 }
 
-/// Writes the comparison's files into `out` and returns its markdown section.
-pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<PlannersCompared, ReportError> {
+/// Writes the comparison's files into `out` and returns its markdown section; `colours` gives
+/// each run's series colour in the report (a variant is drawn in its first run's; a variant
+/// with none there in its place among the variants).
+pub fn compare(
+    dir: &Path,
+    t: &RunsTable,
+    out: &Path,
+    colours: &std::collections::BTreeMap<String, usize>,
+) -> Result<PlannersCompared, ReportError> {
     let c = Comparing::new(t)?;
     let mut w = Written {
         csv: String::from("map,planner,metric,n,median,q1,q3,mean\n"),
@@ -52,7 +59,7 @@ pub fn compare(dir: &Path, t: &RunsTable, out: &Path) -> Result<PlannersCompared
     };
     write("planners.csv", &w.csv)?;
     write("pairwise.csv", &w.pair_csv)?;
-    ablation_plots::draw(&c, dir, out)?;
+    ablation_plots::draw(&c, dir, out, colours)?;
     let mut md = w.md;
     if !w.two_by_two.is_empty() {
         search_objective::table_head(&mut md);

@@ -12,31 +12,58 @@ use crate::report::figures::convergence::{ConvergenceFigure, Curve};
 use crate::report::figures::paths::PlannerPathsFigure;
 use crate::stats::quartiles;
 use crate::study::records::RunsTable;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// A best run loaded for its panel: map, visit grid, plan, robot width, title.
 type LoadedPanel = (crate::map::GridMap, CoverageGrid, Vec<Vec<crate::geom::Point>>, f64, String);
 
-/// Draws the comparison's figures into `out`; `dir` holds the runs' folders.
-pub(super) fn draw(c: &Comparing, dir: &Path, out: &Path) -> Result<(), ReportError> {
+/// Each variant's colour: its first run's in the report (`colours`, by run id), else its
+/// place among the variants. Variants finer than the report's groups (the thesis GA's settings,
+/// where the report groups by planner) share their group's colour only in the first of them;
+/// the others take colours past the report's, so that no two boxes of one panel share one.
+fn variant_colours(c: &Comparing, colours: &BTreeMap<String, usize>) -> Vec<usize> {
+    let mut next = colours.values().max().map_or(c.variants.len(), |&k| (k + 1).max(c.variants.len()));
+    let mut taken: Vec<usize> = Vec::new();
+    for (i, v) in c.variants.iter().enumerate() {
+        let ids = c.maps.iter().flat_map(|map| c.all_rows_of(map, v)).map(|r| &c.t.rows[r][0]);
+        let mut k = ids.into_iter().find_map(|id| colours.get(id).copied()).unwrap_or(i);
+        if taken.contains(&k) {
+            k = next;
+            next += 1;
+        }
+        taken.push(k);
+    }
+    taken
+}
+
+/// Draws the comparison's figures into `out`; `dir` holds the runs' folders; `colours` gives
+/// each run's colour in the report, by run id.
+pub(super) fn draw(
+    c: &Comparing,
+    dir: &Path,
+    out: &Path,
+    colours: &BTreeMap<String, usize>,
+) -> Result<(), ReportError> {
+    let colours = variant_colours(c, colours);
     crate::plot::save(
         &BoxFigure {
             metric: "cov_final over reachable cells".into(),
-            panels: boxes(c, |_| ("cov_final_reach", String::new())),
+            panels: boxes(c, &colours, |_| ("cov_final_reach", String::new())),
         },
         &out.join("boxplots_cov"),
     )?;
     crate::plot::save(
         &BoxFigure {
             metric: "time [s] to the panel's level".into(),
-            panels: boxes(c, |map| {
+            panels: boxes(c, &colours, |map| {
                 let m = c.time_measure(map);
                 (m.column, format!(": {}", m.name()))
             }),
         },
         &out.join("boxplots_time"),
     )?;
-    crate::plot::save(&convergence(c, dir), &out.join("convergence"))?;
+    crate::plot::save(&convergence(c, dir, &colours), &out.join("convergence"))?;
     let loaded = best_paths(c, dir);
     let missing = c
         .maps
@@ -74,7 +101,11 @@ pub(super) fn draw(c: &Comparing, dir: &Path, out: &Path) -> Result<(), ReportEr
 
 /// The box plot panels of the metric `metric` gives per map (its column, and what the panel's
 /// title adds): per map, each variant's executable values and the others'.
-fn boxes<'a>(c: &Comparing, metric: impl Fn(&str) -> (&'a str, String)) -> Vec<(String, Vec<BoxSeries>)> {
+fn boxes<'a>(
+    c: &Comparing,
+    colours: &[usize],
+    metric: impl Fn(&str) -> (&'a str, String),
+) -> Vec<(String, Vec<BoxSeries>)> {
     c.maps
         .iter()
         .map(|map| {
@@ -82,8 +113,10 @@ fn boxes<'a>(c: &Comparing, metric: impl Fn(&str) -> (&'a str, String)) -> Vec<(
             let series = c
                 .variants
                 .iter()
-                .map(|v| BoxSeries {
+                .zip(colours)
+                .map(|(v, &colour)| BoxSeries {
                     label: v.clone(),
+                    colour,
                     values: c.rows_of(map, v).iter().map(|&r| c.num(r, metric)).collect(),
                     excluded: c
                         .all_rows_of(map, v)
@@ -101,11 +134,11 @@ fn boxes<'a>(c: &Comparing, metric: impl Fn(&str) -> (&'a str, String)) -> Vec<(
 
 /// The convergence curves of the planners with a history: reachable coverage against
 /// evaluations, median and quartiles over the executable runs, per map.
-fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
+fn convergence(c: &Comparing, dir: &Path, colours: &[usize]) -> ConvergenceFigure {
     let mut panels = Vec::new();
     for map in &c.maps {
         let mut curves = Vec::new();
-        for v in &c.variants {
+        for (v, &colour) in c.variants.iter().zip(colours) {
             let with_history: Vec<(usize, Vec<(f64, f64)>)> = c
                 .rows_of(map, v)
                 .iter()
@@ -128,7 +161,7 @@ fn convergence(c: &Comparing, dir: &Path) -> ConvergenceFigure {
                 .filter(|p| p.2.is_finite())
                 .collect();
             let scored = Some(quartiles(&scored).1).filter(|m| m.is_finite());
-            curves.push(Curve { label: v.clone(), runs: hs.len(), points, scored });
+            curves.push(Curve { label: v.clone(), runs: hs.len(), points, scored, colour });
         }
         panels.push((short_map(map), curves));
     }

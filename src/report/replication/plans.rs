@@ -333,6 +333,7 @@ pub fn render(
         markdown: with_failed_note(markdown, &failed),
         csv: to_csv(&ids, &runs),
         design: None,
+        forest: None,
     })
 }
 

@@ -25,6 +25,10 @@ struct Series {
     /// Each run's lower bound on the time to each level ([`AreaBounds`]).
     bounds: Vec<Option<[f64; 3]>>,
     curves: Vec<CoverageCurve>,
+    /// Its colour in the report's figures ([`super::colours::RunColours`]).
+    colour: usize,
+    /// Its first run's id: the bound and the robot the figure draws for it.
+    first: String,
 }
 
 /// A run's curve, or what a report recorded of it.
@@ -111,6 +115,7 @@ pub(crate) fn series_label(group: &str, planner: &str, one_planner: bool) -> Str
 /// The panels: per map (and value of each [`panel_columns`] column), its series in the order
 /// the study lists them.
 fn panels(s: &Study, bounds: &AreaBounds) -> Panels {
+    let colours = super::colours::RunColours::of(s);
     let one_planner = s.kinds.len() <= 1;
     let splits = panel_columns(s);
     let mut by_panel: BTreeMap<String, BTreeMap<String, Vec<Run>>> = BTreeMap::new();
@@ -156,6 +161,8 @@ fn panels(s: &Study, bounds: &AreaBounds) -> Panels {
                 .iter()
                 .filter_map(|label| {
                     series.remove(label).map(|runs| Series {
+                        colour: colours.of_runs(runs.iter().map(|r| r.id.as_str()), 0),
+                        first: runs[0].id.clone(),
                         label: names[label].clone(),
                         times: runs.iter().map(|r| r.times).collect(),
                         bounds: runs.iter().map(|r| level_bounds(bounds, &r.id)).collect(),
@@ -192,8 +199,12 @@ impl Section for CoverageCurves {
         // Without the run folders the curves are not there to draw: the figure made with them
         // stays, and the table comes from what that report recorded.
         if s.folders.from_folders() {
-            let figure =
-                CurvesFigure { panels: panels.iter().map(|(m, series)| (m.clone(), summarise(series))).collect() };
+            let figure = CurvesFigure {
+                panels: panels
+                    .iter()
+                    .map(|(m, series)| (panel_title(m, series, &bounds), summarise(series, &bounds)))
+                    .collect(),
+            };
             crate::plot::save(&figure, &s.out.join("coverage_curves"))?;
         }
         let _ = writeln!(md, "## Time to coverage\n");
@@ -201,18 +212,20 @@ impl Section for CoverageCurves {
             md,
             "Reachable coverage against mission time along each executable plan (median over the runs, band \
              between the quartiles; a segment's cells count once it is driven). Times to a level are medians over \
-             the runs that reach it; in brackets, the median over them of the time over the lower bound (the \
-             level's share of the reachable cells' area over the robots' combined width × speed, plus for one \
-             robot that turns at a finite rate the turning any path covering that area inside the map needs: no \
-             plan covers it sooner).\n\n![Time-to-coverage curves](coverage_curves.png)\n"
+             the runs that reach it; in brackets, the median over them of the time over the lower bound, drawn \
+             dashed in the figure: its length term (the level's share of the reachable cells' area, less the \
+             footprint's start area, over the robots' summed (width + √2 × cell size) × speed) plus, for one robot \
+             that turns at a finite rate, its turning term (the turning any path sweeping that area within the \
+             map's diameter needs); no plan covers the level sooner (the book's \"The lower bound on a plan's \
+             time\").\n\n![Time-to-coverage curves](coverage_curves.png)\n"
         );
         if let Some(why) = &bounds.missing {
             let _ = writeln!(md, "The lower bound is not given: {why}.\n");
         }
         let _ = writeln!(
             md,
-            "| map | series | runs | reach 80 % | time to 80 % [s] (× bound) | reach 90 % | time to 90 % [s] (× bound) | \
-             reach 95 % | time to 95 % [s] (× bound) |"
+            "| map | series | runs | reach 80 % | time to 80 % [s] (× length + turning bound) | reach 90 % | time to \
+             90 % [s] (× length + turning bound) | reach 95 % | time to 95 % [s] (× length + turning bound) |"
         );
         let _ = writeln!(md, "| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
         for (map, series) in &panels {
@@ -258,14 +271,36 @@ fn level_cell(times: &[f64], ratios: &[f64]) -> String {
     }
 }
 
+/// A panel's title: its map and the robots of its series ([`AreaBounds::robot_text`]).
+fn panel_title(panel: &str, series: &[Series], bounds: &AreaBounds) -> String {
+    let mut robots: Vec<String> = Vec::new();
+    for text in series.iter().filter_map(|se| bounds.robot_text(&se.first)) {
+        if !robots.contains(&text) {
+            robots.push(text);
+        }
+    }
+    match robots.is_empty() {
+        true => crate::plot::panel_label(panel),
+        false => format!("{}: {}", crate::plot::panel_label(panel), robots.join("; ")),
+    }
+}
+
+/// The bound on the time to each coverage of run `id`, as `(time, coverage)` at every
+/// hundredth; empty where it has none.
+fn bound_curve(bounds: &AreaBounds, id: &str) -> Vec<(f64, f64)> {
+    (0..=100).filter_map(|k| bounds.to_level_s(id, k as f64 / 100.0).map(|t| (t, k as f64 / 100.0))).collect()
+}
+
 /// Samples every series of a panel at [`SAMPLES`] times up to the longest plan's end.
-fn summarise(series: &[Series]) -> Vec<Drawn> {
+fn summarise(series: &[Series], bounds: &AreaBounds) -> Vec<Drawn> {
     let end =
         series.iter().flat_map(|s| s.curves.iter().filter_map(|c| c.points().last().map(|p| p.0))).fold(0.0, f64::max);
     let end = if end > 0.0 { end } else { 1.0 };
     series
         .iter()
         .map(|s| Drawn {
+            colour: s.colour,
+            bound: bound_curve(bounds, &s.first),
             label: s.label.clone(),
             runs: s.curves.len(),
             curve: (0..=SAMPLES)
@@ -281,83 +316,5 @@ fn summarise(series: &[Series]) -> Vec<Drawn> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Every `--by` group is a series; the planner joins it where the study has several.
-    #[test]
-    fn each_group_is_a_series_with_its_planner() {
-        for (group, planner, one, series) in [
-            (
-                "planner=cell_order, cell_order.solver=ga",
-                "cell_order",
-                false,
-                "planner=cell_order, cell_order.solver=ga",
-            ),
-            ("cell_order.solver=ga", "cell_order", false, "planner=cell_order, cell_order.solver=ga"),
-            ("map.source=office", "spiral", false, "spiral"),
-            ("thesis.selection=elite", "thesis", true, "thesis.selection=elite"),
-        ] {
-            assert_eq!(series_label(group, planner, one), series, "{group}");
-        }
-    }
-
-    #[test]
-    fn legend_labels_keep_what_tells_the_series_apart() {
-        let labels: Vec<String> = [
-            "planner=cell_order, cell_order.solver=ga, cell_order.seed_directions=true",
-            "planner=cell_order, cell_order.solver=nearest, cell_order.seed_directions=",
-        ]
-        .map(String::from)
-        .to_vec();
-        assert_eq!(distinct_parts(&labels), ["solver=ga, seed_directions=true", "solver=nearest"]);
-        assert_eq!(distinct_parts(&["planner=thesis".to_string()]), ["planner=thesis"]);
-        // The panel names the map: a series told apart by its map alone is the panel's runs.
-        let by_map = ["map.source=office".to_string(), "map.source=thesis-2".to_string()];
-        assert_eq!(distinct_parts(&by_map), ["executable runs", "executable runs"]);
-        let both = ["map.source=office, thesis.moves=routed".to_string()];
-        assert_eq!(distinct_parts(&both), ["moves=routed"]);
-    }
-
-    #[test]
-    fn a_level_shows_the_median_time_and_its_median_ratio_to_the_bound() {
-        let times = vec![[Some(80.0), Some(100.0), None], [Some(40.0), None, None], [None, None, None]];
-        let b = |full: f64| Some(LEVELS.map(|l| l * full));
-        let se = Series { label: "a".into(), times, bounds: vec![b(100.0), b(50.0), None], curves: Vec::new() };
-        // 80 s over 0.8 × 100 s and 40 s over 0.8 × 50 s; the third run reaches no level.
-        assert_eq!(bound_ratios(&se, 0), vec![1.0, 1.0]);
-        assert_eq!(level_cell(&[80.0, 40.0], &bound_ratios(&se, 0)), "60 (1.00×)");
-        assert_eq!(level_cell(&[100.0], &bound_ratios(&se, 1)), "100 (1.11×)");
-        assert_eq!(level_cell(&[], &bound_ratios(&se, 2)), "–");
-        // A run that reaches the level without a bound: no ratio for anyone.
-        let se = Series { bounds: vec![b(100.0), None, None], ..se };
-        assert!(bound_ratios(&se, 0).is_empty());
-        assert_eq!(level_cell(&[80.0, 40.0], &[]), "60");
-    }
-
-    #[test]
-    fn curves_are_read_and_sampled_as_steps() {
-        let read_curve = |f: &std::path::Path| CoverageCurve::parse_csv(&std::fs::read_to_string(f).ok()?);
-        let dir = std::env::temp_dir().join(format!("covga-curves-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let file = dir.join("coverage_curve.csv");
-        std::fs::write(&file, "time_s,coverage_reach\n0,0\n10,0.5\n20,0.9\n30,0.95\n").unwrap();
-        let c = read_curve(&file).unwrap();
-        assert_eq!(c.points().len(), 4);
-        let at = |t| c.coverage_at(t);
-        assert_eq!((at(9.9), at(10.0), at(25.0), at(99.0)), (0.0, 0.5, 0.9, 0.95));
-        assert_eq!((c.time_to(0.8), c.time_to(0.95), c.time_to(0.96)), (Some(20.0), Some(30.0), None));
-        for bad in ["x,y\n0,0\n", "time_s,coverage_reach\n0,0\n10,x\n", "time_s,coverage_reach\n0,0.5\n10,0.4\n"] {
-            std::fs::write(&file, bad).unwrap();
-            assert!(read_curve(&file).is_none(), "{bad:?} is not a curve");
-        }
-        let slower = CoverageCurve::parse_csv("time_s,coverage_reach\n0,0\n20,0.5\n40,0.9\n60,0.95\n").unwrap();
-        let series = [Series { label: "a".into(), times: Vec::new(), bounds: Vec::new(), curves: vec![c, slower] }];
-        let drawn = summarise(&series);
-        assert_eq!(drawn[0].curve.len(), SAMPLES + 1);
-        // At the end of the longer plan both runs have reached 0.95.
-        let last = drawn[0].curve.last().unwrap();
-        assert_eq!((last.0, last.1), (60.0, 0.95));
-        std::fs::remove_dir_all(&dir).unwrap();
-    }
-}
+#[path = "curves/tests.rs"]
+mod tests;

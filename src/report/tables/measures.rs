@@ -294,7 +294,7 @@ pub(crate) fn render(
         let _ = writeln!(md, "Runs with {} only.\n", selected.join(", "));
     }
     md.push_str(&markdown(t, id, groups, &sources, &values));
-    Ok(Rendered { stem: STEM.into(), markdown: md, csv: csv(keys, &values), design: None })
+    Ok(Rendered { stem: STEM.into(), markdown: md, csv: csv(keys, &values), design: None, forest: None })
 }
 
 /// The body of `measures.md`: one row per group, one column per measure.
