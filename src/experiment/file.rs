@@ -6,25 +6,24 @@
 //! except to write `config.toml`.
 
 use super::registry::{PlannerConfig, PlannerKind};
-use crate::cell_order::config::CellOrderSection;
 use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
 use crate::map::GridMap;
-use crate::patterns::planner::PatternSection;
 pub use crate::planner::sections::OutputSection;
 use crate::planner::sections::{BudgetSection, MapSection, RobotSection, ScorerSection, StationsSection};
 use crate::planner::{Budget, Checks, Context, Scenario};
-use crate::thesis::config::{RetrainSection, ThesisSection};
-use crate::waypoint::config::WaypointSection;
-use serde::{Deserialize, Serialize};
+use crate::planner::section::PlannerSections;
 use std::any::Any;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-/// The file as written (all sections optional; defaults are the thesis's settings).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+mod written;
+
+/// The file as written (all sections optional; defaults are the thesis's settings). Its
+/// planner sections are those the registered planners declare ([`PlannerSections`]); the
+/// file reads and writes them by their declarations, unknown keys refused.
+#[derive(Clone, Debug, PartialEq)]
 pub struct ExperimentFile {
     /// The run's seed.
     pub seed: u64,
@@ -39,33 +38,22 @@ pub struct ExperimentFile {
     pub stations: StationsSection,
     /// How the common scorer measures every plan (projection, camera).
     pub scorer: ScorerSection,
-    /// Thesis GA parameters (random search draws its genomes with these too).
-    pub thesis: ThesisSection,
-    /// Waypoint planner parameters.
-    pub waypoint: WaypointSection,
-    /// Pattern planner settings.
-    pub pattern: PatternSection,
-    /// Cell-order planner settings; absent from files that do not set them, so that the
-    /// written file (and a study's run ids, which hash it) of other planners stays as it was.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub cell_order: Option<CellOrderSection>,
+    /// The planners' own sections (`[thesis]`, `[waypoint]`, `[pattern]`, `[cell_order]`,
+    /// `[retrain]`, …), each as its planner's entry declares it; a section that not every file
+    /// holds is absent from files that do not set it, so that the written file (and a study's
+    /// run ids, which hash it) of other planners stays as it was.
+    pub sections: PlannerSections,
     /// When to stop.
     pub budget: BudgetSection,
-    /// Optional changing-environment retrain (thesis GA).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub retrain: Option<RetrainSection>,
     /// Where results go.
     pub output: OutputSection,
     /// A fleet instead of one robot: `[[robots]]` entries (defaults from `[robot]` and
     /// `[stations]`), planned by the thesis GA as `[fleet]` says.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub robots: Vec<crate::fleet::config::RobotEntry>,
     /// How a fleet is planned.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub fleet: Option<crate::fleet::config::FleetSection>,
     /// The settings of planners added from outside covga, one table per planner
     /// (`[plugins.<name>]`, [`super::plugins`]); each checks its own.
-    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub plugins: std::collections::BTreeMap<String, toml::Table>,
 }
 
@@ -78,12 +66,8 @@ impl Default for ExperimentFile {
             robot: RobotSection::default(),
             stations: StationsSection::default(),
             scorer: ScorerSection::default(),
-            thesis: ThesisSection::default(),
-            waypoint: WaypointSection::default(),
-            pattern: PatternSection::default(),
-            cell_order: None,
+            sections: written::default_sections(),
             budget: BudgetSection::default(),
-            retrain: None,
             output: OutputSection::default(),
             robots: Vec::new(),
             fleet: None,
@@ -123,7 +107,7 @@ impl ExperimentFile {
         let mut table: toml::Table = text.parse().map_err(|e| ConfigError::from_toml(origin, text, &e))?;
         let file = if super::renamed::rename_in_table(&mut table, origin)?.is_empty() {
             // Straight from the text, so that a message names the line of a bad value.
-            toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))?
+            toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &written::in_place(text, &table, e)))?
         } else {
             toml::Value::Table(table).try_into().map_err(|e| ConfigError::new(origin, "", e.message().trim()))?
         };
@@ -172,9 +156,9 @@ impl ExperimentFile {
         checks: Checks,
     ) -> Result<Experiment, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-        if let Some(name) = self.planner.entry().written_in_full() {
+        if let Some(section) = self.planner.entry().written_in_full() {
             // The written config.toml shows every setting of the planner that ran.
-            self.fill_section(name);
+            self.sections.insert_default(section);
         }
         self.check_numbers(origin)?;
         super::plugins::check_sections(&self.plugins, origin)?;
@@ -210,13 +194,6 @@ impl ExperimentFile {
         }
         self.stations.end = Some([end.x, end.y]);
         Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, diversity_every })
-    }
-
-    /// Sets the optional planner section `[name]` to its defaults where the file leaves it out.
-    fn fill_section(&mut self, name: &str) {
-        if name == "cell_order" {
-            self.cell_order.get_or_insert_with(CellOrderSection::default);
-        }
     }
 
     /// The seed, the robot's and the budget's numbers against their ranges.
@@ -307,18 +284,13 @@ impl ExperimentFile {
 }
 
 impl crate::planner::entry::FileSections for ExperimentFile {
-    /// The planner sections, `[output]` and the plugins' tables, as the planners' entries read
-    /// them.
+    /// The planner sections the file holds, `[output]` and the plugins' tables, as the
+    /// planners' entries read them.
     fn section(&self, name: &str) -> Option<&dyn Any> {
         match name {
-            "thesis" => Some(&self.thesis),
-            "waypoint" => Some(&self.waypoint),
-            "pattern" => Some(&self.pattern),
-            "cell_order" => self.cell_order.as_ref().map(|s| s as &dyn Any),
-            "retrain" => self.retrain.as_ref().map(|s| s as &dyn Any),
             "output" => Some(&self.output),
             "plugins" => Some(&self.plugins),
-            _ => None,
+            _ => self.sections.get(name).map(|s| s.as_any()),
         }
     }
 }
