@@ -20,9 +20,7 @@ use std::time::Duration;
 
 mod written;
 
-/// The file as written (all sections optional; defaults are the thesis's settings). Its
-/// planner sections are those the registered planners declare ([`PlannerSections`]); the
-/// file reads and writes them by their declarations, unknown keys refused.
+/// The file as written (all sections optional; defaults are the thesis's settings).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ExperimentFile {
     /// The run's seed.
@@ -39,7 +37,8 @@ pub struct ExperimentFile {
     /// How the common scorer measures every plan (projection, camera).
     pub scorer: ScorerSection,
     /// The planners' own sections (`[thesis]`, `[waypoint]`, `[pattern]`, `[cell_order]`,
-    /// `[retrain]`, …), each as its planner's entry declares it; a section that not every file
+    /// `[retrain]`, …), each as its planner's entry declares it, read and written by its
+    /// declaration (unknown keys refused); a section that not every file
     /// holds is absent from files that do not set it, so that the written file (and a study's
     /// run ids, which hash it) of other planners stays as it was.
     pub sections: PlannerSections,
@@ -75,6 +74,12 @@ impl Default for ExperimentFile {
         }
     }
 }
+/// Whether `name` is a key of the experiment file's own (`seed`, `[map]`, `[budget]`, …),
+/// which no planner section may be called.
+pub fn is_shared_key(name: &str) -> bool {
+    written::is_shared(name)
+}
+
 /// Loads a map from its resolved source and how a bare image is read.
 pub type MapLoader<'a> = dyn Fn(&str, &crate::map::ros::BareImage) -> Result<GridMap, crate::map::MapError> + 'a;
 

@@ -22,6 +22,7 @@ mod init_cli;
 mod mutation_tooling;
 mod parent_schemes;
 mod planner_contract;
+mod planner_section;
 mod plugins;
 mod reachable;
 mod readme;

@@ -36,6 +36,11 @@ const BEFORE_SECTIONS: [&str; 6] = ["seed", "planner", "map", "robot", "stations
 /// The shared keys after the planner sections placed after `[budget]`.
 const AFTER_SECTIONS: [&str; 4] = ["output", "robots", "fleet", "plugins"];
 
+/// Whether `name` is a key of the file's own.
+pub(super) fn is_shared(name: &str) -> bool {
+    BEFORE_SECTIONS.contains(&name) || name == "budget" || AFTER_SECTIONS.contains(&name)
+}
+
 /// Every key of a file with the planner sections `sections`, in the file's order.
 fn keys(sections: &[&'static dyn SectionSpec]) -> Vec<Key> {
     let placed = |p: Placement| sections.iter().filter(move |s| s.placement() == p).map(|&s| Key::Section(s));
@@ -190,4 +195,63 @@ pub(super) fn in_place(text: &str, table: &toml::Table, e: toml::de::Error) -> t
         .filter(|s| table.contains_key(s.name()))
         .find_map(|s| s.check_text(text).err().filter(|precise| precise.message() == e.message()))
         .unwrap_or(e)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::planner::entry::FileSections;
+
+    /// The keys in the order the derived file type had them: the message of an unknown key
+    /// and the written file's order are what they were.
+    #[test]
+    fn an_unknown_key_is_refused_with_every_key_in_the_files_order() {
+        let e = ExperimentFile::parse("seed = 2\ncolour = 3\n", "t.toml").unwrap_err().to_string();
+        assert!(
+            e.contains(
+                "t.toml:2: unknown field `colour`, expected one of `seed`, `planner`, `map`, `robot`, `stations`, \
+                 `scorer`, `thesis`, `waypoint`, `pattern`, `cell_order`, `budget`, `retrain`, `output`, `robots`, \
+                 `fleet`, `plugins`"
+            ),
+            "{e}"
+        );
+    }
+
+    /// A planner section's own checks refuse its unknown keys and bad values, at the line of
+    /// the value, as the typed section says.
+    #[test]
+    fn a_planner_sections_errors_name_its_line_and_its_types_words() {
+        let bad_value = "seed = 2\n[thesis]\npop_min = 10\nc_len = \"long\"\n";
+        let e = ExperimentFile::parse(bad_value, "t.toml").unwrap_err().to_string();
+        assert!(e.starts_with("t.toml:4: invalid type: string \"long\", expected f64"), "{e}");
+        let unknown = "[cell_order]\nsolver = \"ga\"\ncolour = 1\n";
+        let e = ExperimentFile::parse(unknown, "t.toml").unwrap_err().to_string();
+        assert!(e.starts_with("t.toml:3: unknown field `colour`, expected one of `solver`"), "{e}");
+        // From a table (a study's run) the same words, without a line.
+        let table: toml::Table = unknown.parse().unwrap();
+        let e = toml::Value::Table(table).try_into::<ExperimentFile>().unwrap_err();
+        assert!(e.message().starts_with("unknown field `colour`, expected one of `solver`"), "{e}");
+    }
+
+    /// The sections every file holds are held at their defaults, the others only where written,
+    /// and a file reads back as it was written.
+    #[test]
+    fn sections_are_held_as_declared_and_read_back_as_written() {
+        let file = ExperimentFile::parse("planner = \"spiral\"\n", "t.toml").unwrap();
+        let held: Vec<&str> =
+            planner_sections().into_iter().map(|s| s.name()).filter(|n| file.section(n).is_some()).collect();
+        assert_eq!(held, ["thesis", "waypoint", "pattern"]);
+        let text = "seed = 4\n[retrain]\nat_iteration = 7\n[cell_order]\nsolver = \"exact\"\n[pattern]\nangle_deg = 30.0\n";
+        let file = ExperimentFile::parse(text, "t.toml").unwrap();
+        let written = toml::to_string(&file).unwrap();
+        let order: Vec<usize> =
+            ["[thesis]", "[waypoint]", "[pattern]", "[cell_order]", "[budget]", "[retrain]", "[output]"]
+                .iter()
+                .map(|t| written.find(t).unwrap_or_else(|| panic!("{t} in {written}")))
+                .collect();
+        assert!(order.windows(2).all(|w| w[0] < w[1]), "{written}");
+        assert!(written.contains("angle_deg = 30.0"), "{written}");
+        assert_eq!(ExperimentFile::parse(&written, "t.toml").unwrap(), file);
+        assert_ne!(ExperimentFile::parse("seed = 4\n", "t.toml").unwrap(), file);
+    }
 }
