@@ -48,8 +48,10 @@ impl PlannerEntry for Thesis {
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        let seeds =
-            Seeds { pattern: PATTERN_SECTION.get_or_default(file), cell_order: CELL_ORDER_SECTION.get_or_default(file) };
+        let seeds = Seeds {
+            pattern: PATTERN_SECTION.get_or_default(file),
+            cell_order: CELL_ORDER_SECTION.get_or_default(file),
+        };
         let alpha_cov = WAYPOINT_SECTION.get_or_default(file).alpha_cov;
         let retrain = RETRAIN_SECTION.get(file);
         let thesis = THESIS_SECTION.get_or_default(file).validate(retrain, &seeds, alpha_cov, ctx)?;

@@ -5,8 +5,8 @@ use super::config::{CELL_ORDER_SECTION, CellOrderConfig, Solver};
 use crate::config::ConfigError;
 use crate::map::GridMap;
 use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
-use crate::planner::section::SectionSpec;
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::SectionSpec;
 use crate::planner::{Budget, Context};
 use std::sync::Arc;
 

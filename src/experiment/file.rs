@@ -10,10 +10,10 @@ use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
 use crate::map::GridMap;
+use crate::planner::section::PlannerSections;
 pub use crate::planner::sections::OutputSection;
 use crate::planner::sections::{BudgetSection, MapSection, RobotSection, ScorerSection, StationsSection};
 use crate::planner::{Budget, Checks, Context, Scenario};
-use crate::planner::section::PlannerSections;
 use std::any::Any;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -112,7 +112,8 @@ impl ExperimentFile {
         let mut table: toml::Table = text.parse().map_err(|e| ConfigError::from_toml(origin, text, &e))?;
         let file = if super::renamed::rename_in_table(&mut table, origin)?.is_empty() {
             // Straight from the text, so that a message names the line of a bad value.
-            toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &written::in_place(text, &table, e)))?
+            toml::from_str(text)
+                .map_err(|e| ConfigError::from_toml(origin, text, &written::in_place(text, &table, e)))?
         } else {
             toml::Value::Table(table).try_into().map_err(|e| ConfigError::new(origin, "", e.message().trim()))?
         };

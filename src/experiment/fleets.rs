@@ -30,7 +30,13 @@ impl FileSections for TeamSections<'_> {
 
 /// Validates the file's planner for its `[[robots]]` and the `[fleet]` section into the fleet.
 pub fn validate(file: &ExperimentFile, ctx: &Context) -> Result<FleetPlanner, ConfigError> {
-    let waypoint = waypoint_team(&WAYPOINT_SECTION.get_or_default(file), &file.robots, file.fleet.as_ref(), file.stations.start, ctx.origin)?;
+    let waypoint = waypoint_team(
+        &WAYPOINT_SECTION.get_or_default(file),
+        &file.robots,
+        file.fleet.as_ref(),
+        file.stations.start,
+        ctx.origin,
+    )?;
     let single = file.planner.entry().validate(&TeamSections { file, waypoint }, ctx)?;
     let single: &dyn Any = single.as_ref();
     let section = file.fleet.clone().unwrap_or_default();

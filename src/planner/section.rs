@@ -190,7 +190,10 @@ where
         T::deserialize(value).map(|s| Box::new(s) as Box<dyn SectionValue>).map_err(|e| e.message().to_string())
     }
     fn check_text(&self, text: &str) -> Result<(), toml::de::Error> {
-        serde::de::DeserializeSeed::deserialize(OnlyKey::<T> { key: self.name, section: PhantomData }, toml::de::Deserializer::new(text))
+        serde::de::DeserializeSeed::deserialize(
+            OnlyKey::<T> { key: self.name, section: PhantomData },
+            toml::de::Deserializer::new(text),
+        )
     }
 }
 

@@ -438,7 +438,8 @@ mod tests {
         let text = "[base]\n[base.thesis]\npop_min = 20\nc_len = 0.4\n[base.budget]\niterations = 10\n\
                     [axes]\n\"thesis\" = [{ pop_min = 10 }, { pop_min = 30 }]\n";
         let study = parse(text).unwrap();
-        let got: Vec<(usize, f64)> = study.runs.iter().map(|r| THESIS_SECTION.get(&r.file).map(|t| (t.pop_min, t.c_len)).unwrap()).collect();
+        let got: Vec<(usize, f64)> =
+            study.runs.iter().map(|r| THESIS_SECTION.get(&r.file).map(|t| (t.pop_min, t.c_len)).unwrap()).collect();
         assert_eq!(got, [(10, 0.4), (30, 0.4)]);
     }
 

@@ -99,7 +99,9 @@ fn registered() {
 /// A file of `planner` on a small map, with `sections` after its own.
 fn experiment(planner: &str, sections: &str) -> ExperimentText {
     ExperimentText {
-        text: format!("planner = \"{planner}\"\n[map]\nsource = \"thesis-2\"\n[stations]\nstart = [1.3, 1.3]\n{sections}"),
+        text: format!(
+            "planner = \"{planner}\"\n[map]\nsource = \"thesis-2\"\n[stations]\nstart = [1.3, 1.3]\n{sections}"
+        ),
         origin: "stripe.toml".into(),
         stem: "stripe".into(),
     }
@@ -117,7 +119,8 @@ fn a_planner_declaring_its_section_is_read_checked_written_and_warned_about() {
     let path = std::fs::read_to_string(tmp.path().join("best_path.csv")).unwrap();
     assert!(path.contains("3.3"), "the planner read its section's length: {path}");
     // The section type's own checks, at the line of the key; then the entry's validation.
-    let refused = |text: &str| prepare(&experiment("stripe", text), None, None).err().map(|e| e.to_string()).unwrap_or_default();
+    let refused =
+        |text: &str| prepare(&experiment("stripe", text), None, None).err().map(|e| e.to_string()).unwrap_or_default();
     let unknown = refused("[stripe]\ncolour = 3\n");
     assert!(unknown.contains("stripe.toml:7: unknown field `colour`, expected `length_m` or `turns`"), "{unknown}");
     assert!(refused("[stripe]\nlength_m = 9.0\n").contains("stripe.length_m"));

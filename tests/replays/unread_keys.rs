@@ -6,11 +6,11 @@
 //! without an edit here; the warnings' rules (`covga::experiment::ignored`) are checked against
 //! what the planners do, not against another list.
 
+use covga::cell_order::config::CELL_ORDER_SECTION;
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::ignored::why_ignored;
 use covga::experiment::output::run_experiment;
 use covga::experiment::registry::PlannerKind;
-use covga::cell_order::config::CELL_ORDER_SECTION;
 use covga::experiment::registry::planner_sections;
 use covga::thesis::config::THESIS_SECTION;
 use covga::waypoint::config::WAYPOINT_SECTION;

@@ -241,7 +241,8 @@ mod tests {
         let held: Vec<&str> =
             planner_sections().into_iter().map(|s| s.name()).filter(|n| file.section(n).is_some()).collect();
         assert_eq!(held, ["thesis", "waypoint", "pattern"]);
-        let text = "seed = 4\n[retrain]\nat_iteration = 7\n[cell_order]\nsolver = \"exact\"\n[pattern]\nangle_deg = 30.0\n";
+        let text =
+            "seed = 4\n[retrain]\nat_iteration = 7\n[cell_order]\nsolver = \"exact\"\n[pattern]\nangle_deg = 30.0\n";
         let file = ExperimentFile::parse(text, "t.toml").unwrap();
         let written = toml::to_string(&file).unwrap();
         let order: Vec<usize> =
