@@ -88,7 +88,7 @@ fn default_table() -> toml::Table {
             let shape = source::shape_in(source, type_name);
             let required: toml::Table =
                 shape.fields.iter().filter(|f| f.required).map(|f| (f.name.clone(), toml::Value::Integer(0))).collect();
-            section.from_value(toml::Value::Table(required)).expect("a section of zeros")
+            section.read_value(toml::Value::Table(required)).expect("a section of zeros")
         });
         file.sections.insert(section.name(), value);
     }

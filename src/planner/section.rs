@@ -79,7 +79,7 @@ pub trait SectionSpec: Send + Sync {
     /// The section at its defaults, if it has them (a section with a required key has none).
     fn default_value(&self) -> Option<Box<dyn SectionValue>>;
     /// The section from its TOML table, unknown keys refused; the message is the type's own.
-    fn from_value(&self, value: toml::Value) -> Result<Box<dyn SectionValue>, String>;
+    fn read_value(&self, value: toml::Value) -> Result<Box<dyn SectionValue>, String>;
     /// The section as the TOML `text` writes it, checked alone, with the error's place in the
     /// text (the file's other keys are not looked at).
     fn check_text(&self, text: &str) -> Result<(), toml::de::Error>;
@@ -186,7 +186,7 @@ where
     fn default_value(&self) -> Option<Box<dyn SectionValue>> {
         self.default.map(|d| Box::new(d()) as Box<dyn SectionValue>)
     }
-    fn from_value(&self, value: toml::Value) -> Result<Box<dyn SectionValue>, String> {
+    fn read_value(&self, value: toml::Value) -> Result<Box<dyn SectionValue>, String> {
         T::deserialize(value).map(|s| Box::new(s) as Box<dyn SectionValue>).map_err(|e| e.message().to_string())
     }
     fn check_text(&self, text: &str) -> Result<(), toml::de::Error> {

@@ -181,7 +181,7 @@ impl<'de> DeserializeSeed<'de> for SectionSeed {
 
     fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Self::Value, D::Error> {
         let value = toml::Value::deserialize(d)?;
-        self.0.from_value(value).map_err(D::Error::custom)
+        self.0.read_value(value).map_err(D::Error::custom)
     }
 }
 
