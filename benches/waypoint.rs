@@ -23,7 +23,7 @@ fn bench(c: &mut Criterion) {
     let mut file = file;
     file.map.source = "office".into();
     file.stations.start = [2.0, 2.0];
-    file.waypoint.l_init = 200;
+    file.sections.get_mut(&covga::waypoint::config::WAYPOINT_SECTION).l_init = 200;
     let exp = file.validate("bench", Path::new("."), "bench").expect("valid");
     let plan = exp.planner.downcast_ref::<WaypointConfig>().expect("a waypoint experiment").clone();
     let map = preset("office").expect("preset");

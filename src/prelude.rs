@@ -35,6 +35,7 @@ pub use crate::config::{ConfigError, check_range};
 pub use crate::experiment::plugins::{PlannerPlugin, PluginError, register};
 pub use crate::experiment::registry::PlannerKind;
 pub use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
+pub use crate::planner::section::{Placement, Section, SectionDecl, SectionSpec};
 
 // Scoring a plan: the common scorer, and `covga eval` as a library call.
 pub use crate::coverage::score::{CameraSpec, Score, Scorer};

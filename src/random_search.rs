@@ -8,11 +8,11 @@ use crate::config::ConfigError;
 use crate::coverage::score::obstacle_violations;
 use crate::ga::observer::{GenerationRecord, Observer, Observers};
 use crate::ga::rng::{Purpose, stream};
-use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section_or_default};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 use crate::planner::executor::{Search, StopRules, execute};
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
 use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario};
-use crate::thesis::config::ThesisSection;
+use crate::thesis::config::{THESIS_SECTION, ThesisSection};
 use crate::thesis::genome::random_genome;
 use crate::thesis::individual::{Base, EvalScratch, EvaluationMode, Individual, InitParams, correct_and_evaluate};
 use crate::thesis::member::{Member, ReachMask};
@@ -38,10 +38,7 @@ const READ_FROM_THESIS: [&str; 4] =
 /// Why random search does not read `key` (a dotted key or a section of the planner sections),
 /// or `None` when it reads it.
 pub fn why_unread(key: &str) -> Option<String> {
-    use crate::planner::sections::{unread_section, within};
-    if let Some(why) = unread_section(key, "random_search", &["thesis"]) {
-        return Some(why);
-    }
+    use crate::planner::sections::within;
     (within(key, "thesis") && key != "thesis" && !READ_FROM_THESIS.contains(&key))
         .then(|| format!("random search reads only {} of [thesis]", READ_FROM_THESIS.join(", ")))
 }
@@ -82,12 +79,17 @@ impl PlannerEntry for RandomSearchEntry {
         "random_search"
     }
 
+    /// It reads `[thesis]`, which the thesis GA declares.
+    fn sections_read(&self, _file: &dyn FileSections) -> Vec<&'static str> {
+        vec![THESIS_SECTION.name()]
+    }
+
     fn why_unread(&self, _file: &dyn FileSections, key: &str) -> Option<String> {
         why_unread(key)
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        Ok(Arc::new(RandomSearch::validate(&section_or_default::<ThesisSection>(file, "thesis"), ctx)?))
+        Ok(Arc::new(RandomSearch::validate(&THESIS_SECTION.get_or_default(file), ctx)?))
     }
 }
 

@@ -5,17 +5,18 @@
 //! GA names the plans it asks for ([`SeedPlanner`]); this layer above the planners makes them,
 //! so that no planner imports another.
 
-use crate::cell_order::config::CellOrderSection;
+use crate::cell_order::config::{CELL_ORDER_SECTION, CellOrderSection};
 use crate::config::ConfigError;
 use crate::geom::Point;
-use crate::patterns::planner::{PatternKind, PatternSection};
+use crate::patterns::planner::{PATTERN_SECTION, PatternKind, PatternSection};
 use crate::patterns::{Pattern, plan};
-use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section, section_or_default};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section};
+use crate::planner::section::SectionSpec;
 use crate::planner::sections::OutputSection;
 use crate::planner::{Context, Scenario};
-use crate::thesis::config::{RetrainSection, ThesisConfig, ThesisSection};
+use crate::thesis::config::{RETRAIN_SECTION, THESIS_SECTION, ThesisConfig};
 use crate::thesis::seeding::{SeedPlan, SeedPlanner};
-use crate::waypoint::config::WaypointSection;
+use crate::waypoint::config::WAYPOINT_SECTION;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
@@ -32,16 +33,28 @@ impl PlannerEntry for Thesis {
         key == "output.population_genomes" || key == "output.diversity_every"
     }
 
+    fn sections(&self) -> &'static [&'static dyn SectionSpec] {
+        static SECTIONS: &[&dyn SectionSpec] = &[&THESIS_SECTION, &RETRAIN_SECTION];
+        SECTIONS
+    }
+
+    /// Its own sections, and those of the plans that seed it and of its camera objective.
+    fn sections_read(&self, file: &dyn FileSections) -> Vec<&'static str> {
+        THESIS_SECTION.get_or_default(file).sections_read()
+    }
+
     fn why_unread(&self, file: &dyn FileSections, key: &str) -> Option<String> {
-        section_or_default::<ThesisSection>(file, "thesis").why_unread(key)
+        THESIS_SECTION.get_or_default(file).why_unread(key)
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        let seeds =
-            Seeds { pattern: section_or_default(file, "pattern"), cell_order: section_or_default(file, "cell_order") };
-        let alpha_cov = section_or_default::<WaypointSection>(file, "waypoint").alpha_cov;
-        let retrain = section::<RetrainSection>(file, "retrain");
-        let thesis = section_or_default::<ThesisSection>(file, "thesis").validate(retrain, &seeds, alpha_cov, ctx)?;
+        let seeds = Seeds {
+            pattern: PATTERN_SECTION.get_or_default(file),
+            cell_order: CELL_ORDER_SECTION.get_or_default(file),
+        };
+        let alpha_cov = WAYPOINT_SECTION.get_or_default(file).alpha_cov;
+        let retrain = RETRAIN_SECTION.get(file);
+        let thesis = THESIS_SECTION.get_or_default(file).validate(retrain, &seeds, alpha_cov, ctx)?;
         let population_genomes =
             section::<OutputSection>(file, "output").and_then(|o| o.population_genomes).unwrap_or(false);
         Ok(Arc::new(ThesisConfig { population_genomes, ..thesis }))

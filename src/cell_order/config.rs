@@ -6,7 +6,23 @@ use crate::config::{ConfigError, check_range};
 use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
 use crate::planner::Context;
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::{Placement, Section, SectionDecl};
 use serde::{Deserialize, Serialize};
+
+/// `[cell_order]` as the cell-order planner's entry declares it: held where a file writes it,
+/// and written in full for a run of the cell-order planner.
+pub static CELL_ORDER_SECTION: Section<CellOrderSection> = Section::new(
+    SectionDecl {
+        name: "cell_order",
+        readers: "only the cell-order planner (and the thesis GA's cell_order seed plan) reads",
+        placement: Placement::BeforeBudget,
+        always_held: false,
+        type_name: "CellOrderSection",
+        tables: &[],
+        source: include_str!("config.rs"),
+    },
+    Some(CellOrderSection::default),
+);
 
 /// Which solver orders the cells.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -1,11 +1,12 @@
 //! The cell-order planner's entry in the registry of planners: `planner = "cell_order"` and
 //! its section `[cell_order]`, written in full whether the file sets it or not.
 
-use super::config::{CellOrderConfig, CellOrderSection, Solver};
+use super::config::{CELL_ORDER_SECTION, CellOrderConfig, Solver};
 use crate::config::ConfigError;
 use crate::map::GridMap;
-use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section, section_or_default};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::SectionSpec;
 use crate::planner::{Budget, Context};
 use std::sync::Arc;
 
@@ -17,25 +18,30 @@ impl PlannerEntry for CellOrder {
         "cell_order"
     }
 
+    fn sections(&self) -> &'static [&'static dyn SectionSpec] {
+        static SECTIONS: &[&dyn SectionSpec] = &[&CELL_ORDER_SECTION];
+        SECTIONS
+    }
+
     /// A solver that does not search (the exact solver and the controls) ignores the seed.
     fn ignores_seed(&self, file: &dyn FileSections) -> bool {
-        section::<CellOrderSection>(file, "cell_order").is_some_and(|c| !c.solver.searches())
+        CELL_ORDER_SECTION.get(file).is_some_and(|c| !c.solver.searches())
     }
 
     fn plans_on_refined_raster(&self) -> bool {
         true
     }
 
-    fn written_in_full(&self) -> Option<&'static str> {
-        Some("cell_order")
+    fn written_in_full(&self) -> Option<&'static dyn SectionSpec> {
+        Some(&CELL_ORDER_SECTION)
     }
 
     fn why_unread(&self, file: &dyn FileSections, key: &str) -> Option<String> {
-        section_or_default::<CellOrderSection>(file, "cell_order").why_unread(key)
+        CELL_ORDER_SECTION.get_or_default(file).why_unread(key)
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        Ok(Arc::new(section_or_default::<CellOrderSection>(file, "cell_order").validate(ctx)?))
+        Ok(Arc::new(CELL_ORDER_SECTION.get_or_default(file).validate(ctx)?))
     }
 }
 

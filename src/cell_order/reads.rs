@@ -3,7 +3,6 @@
 //! not use. The warnings about keys nothing reads follow from this (`experiment::ignored`).
 
 use super::config::{CellOrderSection, Solver};
-use crate::planner::sections::unread_section;
 
 /// The `[cell_order]` keys of its GA, which the other solvers do not read.
 const GA_KEYS: [&str; 12] = [
@@ -28,9 +27,6 @@ impl CellOrderSection {
     /// Why the cell-order planner with these settings does not read `key` (a dotted key or a
     /// section of the planner sections), or `None` when it reads it.
     pub fn why_unread(&self, key: &str) -> Option<String> {
-        if let Some(why) = unread_section(key, "cell_order", &["cell_order"]) {
-            return Some(why);
-        }
         let ga_key = GA_KEYS.contains(&key);
         match self.solver {
             Solver::Exact => ga_key.then(|| {

@@ -6,31 +6,27 @@
 //! except to write `config.toml`.
 
 use super::registry::{PlannerConfig, PlannerKind};
-use crate::cell_order::config::CellOrderSection;
 use crate::config::{ConfigError, check_range};
 use crate::coverage::Footprint;
 use crate::geom::Point;
-use crate::layouts::config::LayoutsSection;
 use crate::map::GridMap;
-use crate::patterns::planner::PatternSection;
+use crate::planner::section::PlannerSections;
 pub use crate::planner::sections::OutputSection;
 use crate::planner::sections::{BudgetSection, MapSection, RobotSection, ScorerSection, StationsSection};
 use crate::planner::{Budget, Checks, Context, Scenario};
-use crate::thesis::config::{RetrainSection, ThesisSection};
-use crate::waypoint::config::WaypointSection;
-use serde::{Deserialize, Serialize};
 use std::any::Any;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+mod written;
+
 /// The file as written (all sections optional; defaults are the thesis's settings).
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct ExperimentFile {
     /// The run's seed.
     pub seed: u64,
-    /// Which planner runs: `thesis`, `waypoint`, `boustrophedon`, `spiral`, `cell_order`,
-    /// `layouts` or `random_search`.
+    /// Which planner runs: the name of a registered planner (covga's own: `thesis`,
+    /// `waypoint`, `random_search`, `boustrophedon`, `spiral`, `cell_order`, `layouts`).
     pub planner: PlannerKind,
     /// The map.
     pub map: MapSection,
@@ -40,37 +36,23 @@ pub struct ExperimentFile {
     pub stations: StationsSection,
     /// How the common scorer measures every plan (projection, camera).
     pub scorer: ScorerSection,
-    /// Thesis GA parameters (random search draws its genomes with these too).
-    pub thesis: ThesisSection,
-    /// Waypoint planner parameters.
-    pub waypoint: WaypointSection,
-    /// Pattern planner settings.
-    pub pattern: PatternSection,
-    /// Cell-order planner settings; absent from files that do not set them, so that the
-    /// written file (and a study's run ids, which hash it) of other planners stays as it was.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub cell_order: Option<CellOrderSection>,
-    /// Lane control settings (`planner = "layouts"`); absent from files that do not set them,
-    /// as `[cell_order]` is.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub layouts: Option<LayoutsSection>,
+    /// The planners' own sections (`[thesis]`, `[waypoint]`, `[pattern]`, `[cell_order]`,
+    /// `[retrain]`, …), each as its planner's entry declares it, read and written by its
+    /// declaration (unknown keys refused); a section that not every file
+    /// holds is absent from files that do not set it, so that the written file (and a study's
+    /// run ids, which hash it) of other planners stays as it was.
+    pub sections: PlannerSections,
     /// When to stop.
     pub budget: BudgetSection,
-    /// Optional changing-environment retrain (thesis GA).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub retrain: Option<RetrainSection>,
     /// Where results go.
     pub output: OutputSection,
     /// A fleet instead of one robot: `[[robots]]` entries (defaults from `[robot]` and
     /// `[stations]`), planned by the thesis GA as `[fleet]` says.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
     pub robots: Vec<crate::fleet::config::RobotEntry>,
     /// How a fleet is planned.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub fleet: Option<crate::fleet::config::FleetSection>,
     /// The settings of planners added from outside covga, one table per planner
     /// (`[plugins.<name>]`, [`super::plugins`]); each checks its own.
-    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
     pub plugins: std::collections::BTreeMap<String, toml::Table>,
 }
 
@@ -83,13 +65,8 @@ impl Default for ExperimentFile {
             robot: RobotSection::default(),
             stations: StationsSection::default(),
             scorer: ScorerSection::default(),
-            thesis: ThesisSection::default(),
-            waypoint: WaypointSection::default(),
-            pattern: PatternSection::default(),
-            cell_order: None,
-            layouts: None,
+            sections: written::default_sections(),
             budget: BudgetSection::default(),
-            retrain: None,
             output: OutputSection::default(),
             robots: Vec::new(),
             fleet: None,
@@ -97,6 +74,12 @@ impl Default for ExperimentFile {
         }
     }
 }
+/// Whether `name` is a key of the experiment file's own (`seed`, `[map]`, `[budget]`, …),
+/// which no planner section may be called.
+pub fn is_shared_key(name: &str) -> bool {
+    written::is_shared(name)
+}
+
 /// Loads a map from its resolved source and how a bare image is read.
 pub type MapLoader<'a> = dyn Fn(&str, &crate::map::ros::BareImage) -> Result<GridMap, crate::map::MapError> + 'a;
 
@@ -129,7 +112,8 @@ impl ExperimentFile {
         let mut table: toml::Table = text.parse().map_err(|e| ConfigError::from_toml(origin, text, &e))?;
         let file = if super::renamed::rename_in_table(&mut table, origin)?.is_empty() {
             // Straight from the text, so that a message names the line of a bad value.
-            toml::from_str(text).map_err(|e| ConfigError::from_toml(origin, text, &e))?
+            toml::from_str(text)
+                .map_err(|e| ConfigError::from_toml(origin, text, &written::in_place(text, &table, e)))?
         } else {
             toml::Value::Table(table).try_into().map_err(|e| ConfigError::new(origin, "", e.message().trim()))?
         };
@@ -178,9 +162,9 @@ impl ExperimentFile {
         checks: Checks,
     ) -> Result<Experiment, ConfigError> {
         let err = |key: &str, msg: String| ConfigError::new(origin, key, msg);
-        if let Some(name) = self.planner.entry().written_in_full() {
+        if let Some(section) = self.planner.entry().written_in_full() {
             // The written config.toml shows every setting of the planner that ran.
-            self.fill_section(name);
+            self.sections.insert_default(section);
         }
         self.check_numbers(origin)?;
         super::plugins::check_sections(&self.plugins, origin)?;
@@ -216,16 +200,6 @@ impl ExperimentFile {
         }
         self.stations.end = Some([end.x, end.y]);
         Ok(Experiment { seed: self.seed, file: self, scenario, planner, budget, output_dir, diversity_every })
-    }
-
-    /// Sets the optional planner section `[name]` to its defaults where the file leaves it out.
-    fn fill_section(&mut self, name: &str) {
-        if name == "cell_order" {
-            self.cell_order.get_or_insert_with(CellOrderSection::default);
-        }
-        if name == "layouts" {
-            self.layouts.get_or_insert_with(LayoutsSection::default);
-        }
     }
 
     /// The seed, the robot's and the budget's numbers against their ranges.
@@ -316,19 +290,13 @@ impl ExperimentFile {
 }
 
 impl crate::planner::entry::FileSections for ExperimentFile {
-    /// The planner sections, `[output]` and the plugins' tables, as the planners' entries read
-    /// them.
+    /// The planner sections the file holds, `[output]` and the plugins' tables, as the
+    /// planners' entries read them.
     fn section(&self, name: &str) -> Option<&dyn Any> {
         match name {
-            "thesis" => Some(&self.thesis),
-            "waypoint" => Some(&self.waypoint),
-            "pattern" => Some(&self.pattern),
-            "cell_order" => self.cell_order.as_ref().map(|s| s as &dyn Any),
-            "layouts" => self.layouts.as_ref().map(|s| s as &dyn Any),
-            "retrain" => self.retrain.as_ref().map(|s| s as &dyn Any),
             "output" => Some(&self.output),
             "plugins" => Some(&self.plugins),
-            _ => None,
+            _ => self.sections.get(name).map(|s| s.as_any()),
         }
     }
 }

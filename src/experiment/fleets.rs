@@ -10,9 +10,9 @@ use crate::fleet::config::{Team, waypoint_team, wrong_planner};
 use crate::fleet::planner::FleetPlanner;
 use crate::planner::Context;
 use crate::planner::entry::FileSections;
-use crate::thesis::config::ThesisConfig;
+use crate::thesis::config::{RETRAIN_SECTION, ThesisConfig};
 use crate::thesis::objective::Objective;
-use crate::waypoint::config::{WaypointConfig, WaypointSection};
+use crate::waypoint::config::{WAYPOINT_SECTION, WaypointConfig, WaypointSection};
 use std::any::Any;
 
 /// The file as the planner of a fleet reads it: a waypoint team's section is the one the
@@ -24,13 +24,19 @@ struct TeamSections<'a> {
 
 impl FileSections for TeamSections<'_> {
     fn section(&self, name: &str) -> Option<&dyn Any> {
-        if name == "waypoint" { Some(&self.waypoint) } else { self.file.section(name) }
+        if name == WAYPOINT_SECTION.name() { Some(&self.waypoint) } else { self.file.section(name) }
     }
 }
 
 /// Validates the file's planner for its `[[robots]]` and the `[fleet]` section into the fleet.
 pub fn validate(file: &ExperimentFile, ctx: &Context) -> Result<FleetPlanner, ConfigError> {
-    let waypoint = waypoint_team(&file.waypoint, &file.robots, file.fleet.as_ref(), file.stations.start, ctx.origin)?;
+    let waypoint = waypoint_team(
+        &WAYPOINT_SECTION.get_or_default(file),
+        &file.robots,
+        file.fleet.as_ref(),
+        file.stations.start,
+        ctx.origin,
+    )?;
     let single = file.planner.entry().validate(&TeamSections { file, waypoint }, ctx)?;
     let single: &dyn Any = single.as_ref();
     let section = file.fleet.clone().unwrap_or_default();
@@ -41,7 +47,7 @@ pub fn validate(file: &ExperimentFile, ctx: &Context) -> Result<FleetPlanner, Co
     } else {
         return Err(wrong_planner(ctx.origin, file.planner.name(), section.mode));
     };
-    section.validate(&file.robots, file.stations.start, file.retrain.is_some(), team, ctx)
+    section.validate(&file.robots, file.stations.start, RETRAIN_SECTION.get(file).is_some(), team, ctx)
 }
 
 /// The thesis GA's parameters for a fleet's GAs, refusing what only the GA of one robot does.

@@ -47,20 +47,51 @@ pub fn sections() -> Vec<SectionDoc> {
 /// [`sections`] with the defaults of `defaults` (a written experiment file).
 fn sections_with(defaults: &toml::Table) -> Vec<SectionDoc> {
     let mut out = Vec::new();
-    collect(&mut out, "", "", &source::struct_shape("ExperimentFile"), defaults);
+    collect(&mut out, "", "", &file_shape(), defaults);
     out
+}
+
+/// The top level of an experiment file: its own keys, every one optional, with the planner
+/// sections where the file places them (before `[budget]`, or after it).
+fn file_shape() -> source::Shape {
+    use crate::planner::section::Placement;
+    let mut shape = source::struct_shape("ExperimentFile");
+    let sections = crate::experiment::registry::planner_sections();
+    let field = |p: Placement| {
+        sections.iter().filter(move |s| s.placement() == p).map(|s| Field {
+            name: s.name().to_string(),
+            ty: s.source().0.to_string(),
+            doc: String::new(),
+            variant: None,
+            required: false,
+        })
+    };
+    let at = shape.fields.iter().position(|f| f.name == "sections").expect("the file's planner sections");
+    shape.fields.splice(at..=at, field(Placement::BeforeBudget));
+    let budget = shape.fields.iter().position(|f| f.name == "budget").expect("[budget]");
+    let after: Vec<Field> = field(Placement::AfterBudget).collect();
+    shape.fields.splice(budget + 1..budget + 1, after);
+    for f in &mut shape.fields {
+        f.required = false;
+    }
+    shape
 }
 
 /// The written default file with every optional section present at its defaults.
 fn default_table() -> toml::Table {
-    let file = ExperimentFile {
-        cell_order: Some(Default::default()),
-        layouts: Some(Default::default()),
-        fleet: Some(Default::default()),
-        // `at_iteration` is required (the page says so); the rest of the table takes its defaults.
-        retrain: Some(toml::from_str("at_iteration = 0").expect("a retrain table")),
-        ..ExperimentFile::default()
-    };
+    let mut file = ExperimentFile { fleet: Some(Default::default()), ..ExperimentFile::default() };
+    for section in crate::experiment::registry::planner_sections() {
+        // A section with a required key (`retrain.at_iteration`, the page says so) sets it to
+        // zero; the rest of its table takes its defaults.
+        let value = section.default_value().unwrap_or_else(|| {
+            let (type_name, source) = section.source();
+            let shape = source::shape_in(source, type_name);
+            let required: toml::Table =
+                shape.fields.iter().filter(|f| f.required).map(|f| (f.name.clone(), toml::Value::Integer(0))).collect();
+            section.read_value(toml::Value::Table(required)).expect("a section of zeros")
+        });
+        file.sections.insert(section.name(), value);
+    }
     toml::Table::try_from(&file).expect("the default experiment file serialises")
 }
 

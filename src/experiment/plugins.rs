@@ -39,6 +39,9 @@ pub enum PluginError {
     /// The name could not be written as `planner = "…"` and a section name.
     #[error("`{0}` is not a planner name: lower-case letters, digits and `_`, starting with a letter")]
     BadName(&'static str),
+    /// A section it declares is named as a key of the file's own, or as another type's section.
+    #[error("the section `[{0}]` is a key of the experiment file or another planner's section of another type")]
+    SectionTaken(&'static str),
 }
 
 impl PlannerEntry for PlannerPlugin {
@@ -55,8 +58,8 @@ impl PlannerEntry for PlannerPlugin {
     }
 
     /// It reads none of the planner sections (its own table is the registry's to answer for).
-    fn why_unread(&self, _file: &dyn FileSections, key: &str) -> Option<String> {
-        crate::planner::sections::unread_section(key, self.name, &[])
+    fn why_unread(&self, _file: &dyn FileSections, _key: &str) -> Option<String> {
+        None
     }
 
     /// Checks `[plugins.<name>]`, an empty table where the file has none.
@@ -72,11 +75,14 @@ static PLUGINS: RwLock<Vec<&'static dyn PlannerEntry>> = RwLock::new(Vec::new())
 /// [`PlannerPlugin`], or any other [`PlannerEntry`].
 pub fn register(planner: &'static dyn PlannerEntry) -> Result<(), PluginError> {
     let name = planner.name();
-    let mut chars = name.chars();
-    let well_formed = chars.next().is_some_and(|c| c.is_ascii_lowercase())
-        && chars.all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
-    if !well_formed {
+    if !well_formed(name) {
         return Err(PluginError::BadName(name));
+    }
+    for section in planner.sections() {
+        let other = super::registry::planner_section(section.name()).filter(|o| o.type_id() != section.type_id());
+        if !well_formed(section.name()) || super::file::is_shared_key(section.name()) || other.is_some() {
+            return Err(PluginError::SectionTaken(section.name()));
+        }
     }
     let built_in = super::registry::PLANNERS.iter().any(|p| p.name() == name);
     let mut plugins = PLUGINS.write().unwrap_or_else(std::sync::PoisonError::into_inner);
@@ -85,6 +91,14 @@ pub fn register(planner: &'static dyn PlannerEntry) -> Result<(), PluginError> {
     }
     plugins.push(planner);
     Ok(())
+}
+
+/// Whether `name` can be written as `planner = "…"` and as a section's name: lower-case
+/// letters, digits and `_`, starting with a letter.
+fn well_formed(name: &str) -> bool {
+    let mut chars = name.chars();
+    chars.next().is_some_and(|c| c.is_ascii_lowercase())
+        && chars.all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
 }
 
 /// The planner registered from outside under `name`.

@@ -11,6 +11,7 @@ use super::file::ExperimentFile;
 use crate::config::ConfigError;
 use crate::planner::entry::{PlannerEntry, RegisteredPlanner};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::SectionSpec;
 use crate::planner::{Budget, Context, Planner};
 use std::any::Any;
 use std::sync::Arc;
@@ -122,8 +123,34 @@ impl PlannerKind {
         if key == "plugins" || key.starts_with("plugins.") {
             return super::plugins::why_unread(self.name(), self.0.plugin_keys(), key);
         }
+        let name = key.split('.').next().unwrap_or(key);
+        if let Some(section) = planner_section(name)
+            && !self.0.sections_read(file).contains(&name)
+        {
+            return Some(format!("{} [{name}]; planner = \"{}\"", section.readers(), self.name()));
+        }
         self.0.why_unread(file, key)
     }
+}
+
+/// Every planner section: those the registered planners declare
+/// ([`PlannerEntry::sections`]), each once, in the order of the planners (covga's own, then
+/// those registered from outside). The experiment file holds, checks and writes these.
+pub fn planner_sections() -> Vec<&'static dyn SectionSpec> {
+    let mut out: Vec<&'static dyn SectionSpec> = Vec::new();
+    for kind in PlannerKind::all() {
+        for &section in kind.entry().sections() {
+            if !out.iter().any(|s| s.name() == section.name()) {
+                out.push(section);
+            }
+        }
+    }
+    out
+}
+
+/// The planner section `[name]`, if a registered planner declares one.
+pub fn planner_section(name: &str) -> Option<&'static dyn SectionSpec> {
+    PlannerKind::all().into_iter().flat_map(|k| k.entry().sections().iter().copied()).find(|s| s.name() == name)
 }
 
 /// The validated planner of a run: the chosen planner's, or a fleet of it.

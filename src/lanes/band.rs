@@ -11,7 +11,13 @@
 
 use crate::geom::{Point, Vector};
 use crate::map::GridMap;
-use crate::planner::executable::segment_executable;
+use crate::map::body::touched_cells;
+
+/// Whether a robot `width` metres wide driving `a → b` on `map` passes the body rule.
+fn segment_executable(map: &GridMap, a: Point, b: Point, width: f64) -> bool {
+    let (cells, off_map) = touched_cells(map, &[a, b], width);
+    cells.is_empty() && !off_map
+}
 
 /// Directions tried for the band's axis, evenly over half a turn (every 2°).
 const AXIS_DIRECTIONS: usize = 90;

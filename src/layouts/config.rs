@@ -3,7 +3,7 @@
 
 use crate::config::{ConfigError, check_range};
 use crate::planner::Context;
-use crate::planner::sections::unread_section;
+use crate::planner::section::{Placement, Section, SectionDecl};
 use serde::{Deserialize, Serialize};
 
 /// The lane spacings tried where `lane_spacing` is absent, as shares of the robot's width: a
@@ -11,6 +11,21 @@ use serde::{Deserialize, Serialize};
 /// 102's model on basement: 87 % of the reachable cells at 0.6 m for a 0.6 m robot, 90 % at
 /// 0.55 m), so narrower spacings compete by their time to the goal.
 pub const AUTO_SPACINGS: [f64; 4] = [1.0, 0.95, 0.9, 0.85];
+
+/// `[layouts]` as the lane control's entry declares it: held where a file writes it, and
+/// written in full for a run of the lane control.
+pub static LAYOUTS_SECTION: Section<LayoutsSection> = Section::new(
+    SectionDecl {
+        name: "layouts",
+        readers: "only the lane control (planner = \"layouts\") reads",
+        placement: Placement::BeforeBudget,
+        always_held: false,
+        type_name: "LayoutsSection",
+        tables: &[],
+        source: include_str!("config.rs"),
+    },
+    Some(LayoutsSection::default),
+);
 
 /// `[layouts]`: straight lanes at the best of a few directions, spacings and offsets, in the
 /// greedy nearest order, completed up to the coverage goal (issue 102, item 1).
@@ -119,12 +134,6 @@ impl LayoutsSection {
             finalists: self.finalists,
             coverage_goal: self.coverage_goal,
         })
-    }
-
-    /// Why the lane control does not read `key` (a dotted key or a section of the planner
-    /// sections): it reads `[layouts]` alone, every key of it.
-    pub fn why_unread(&self, key: &str) -> Option<String> {
-        unread_section(key, "layouts", &["layouts"])
     }
 }
 

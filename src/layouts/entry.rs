@@ -1,11 +1,12 @@
 //! The lane control's entry in the registry of planners: `planner = "layouts"` and its section
 //! `[layouts]`, written in full whether the file sets it or not.
 
-use super::config::{LayoutsConfig, LayoutsSection};
+use super::config::{LAYOUTS_SECTION, LayoutsConfig};
 use crate::config::ConfigError;
 use crate::map::GridMap;
-use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section_or_default};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::SectionSpec;
 use crate::planner::{Budget, Context};
 use std::sync::Arc;
 
@@ -29,16 +30,22 @@ impl PlannerEntry for Layouts {
         true
     }
 
-    fn written_in_full(&self) -> Option<&'static str> {
-        Some("layouts")
+    fn sections(&self) -> &'static [&'static dyn SectionSpec] {
+        static SECTIONS: &[&dyn SectionSpec] = &[&LAYOUTS_SECTION];
+        SECTIONS
     }
 
-    fn why_unread(&self, file: &dyn FileSections, key: &str) -> Option<String> {
-        section_or_default::<LayoutsSection>(file, "layouts").why_unread(key)
+    fn written_in_full(&self) -> Option<&'static dyn SectionSpec> {
+        Some(&LAYOUTS_SECTION)
+    }
+
+    /// It reads every key of `[layouts]`.
+    fn why_unread(&self, _file: &dyn FileSections, _key: &str) -> Option<String> {
+        None
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        Ok(Arc::new(section_or_default::<LayoutsSection>(file, "layouts").validate(ctx)?))
+        Ok(Arc::new(LAYOUTS_SECTION.get_or_default(file).validate(ctx)?))
     }
 }
 

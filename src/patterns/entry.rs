@@ -1,11 +1,12 @@
 //! The patterns' entries in the registry of planners: `planner = "boustrophedon"` and
 //! `planner = "spiral"`, both set by `[pattern]`.
 
-use super::planner::{PatternConfig, PatternKind, PatternSection};
+use super::planner::{PATTERN_SECTION, PatternConfig, PatternKind};
 use crate::config::ConfigError;
 use crate::map::GridMap;
-use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section_or_default};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::SectionSpec;
 use crate::planner::{Budget, Context};
 use std::sync::Arc;
 
@@ -28,11 +29,16 @@ impl PlannerEntry for Pattern {
     fn plans_on_refined_raster(&self) -> bool {
         true
     }
-    fn why_unread(&self, _file: &dyn FileSections, key: &str) -> Option<String> {
-        super::planner::why_unread(self.name(), key)
+    fn sections(&self) -> &'static [&'static dyn SectionSpec] {
+        static SECTIONS: &[&dyn SectionSpec] = &[&PATTERN_SECTION];
+        SECTIONS
+    }
+    /// Every key of `[pattern]` is read.
+    fn why_unread(&self, _file: &dyn FileSections, _key: &str) -> Option<String> {
+        None
     }
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        Ok(Arc::new(section_or_default::<PatternSection>(file, "pattern").validate(self.0, ctx)?))
+        Ok(Arc::new(PATTERN_SECTION.get_or_default(file).validate(self.0, ctx)?))
     }
 }
 

@@ -6,9 +6,24 @@ use super::{Pattern, plan};
 use crate::config::{ConfigError, check_range};
 use crate::ga::observer::{GenerationRecord, Observer};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::{Placement, Section, SectionDecl};
 use crate::planner::{Budget, Context, Planner, PlannerError, RunOutcome, Scenario, StopReason};
 use serde::{Deserialize, Serialize};
 use std::time::Instant;
+
+/// `[pattern]` as the patterns' entries declare it.
+pub static PATTERN_SECTION: Section<PatternSection> = Section::new(
+    SectionDecl {
+        name: "pattern",
+        readers: "only the boustrophedon and spiral patterns (and the thesis GA's seed plans) read",
+        placement: Placement::BeforeBudget,
+        always_held: true,
+        type_name: "PatternSection",
+        tables: &[],
+        source: include_str!("planner.rs"),
+    },
+    Some(PatternSection::default),
+);
 
 /// `[pattern]`: the boustrophedon and spiral patterns (and the thesis GA's seed plans made from
 /// them).
@@ -25,12 +40,6 @@ impl Default for PatternSection {
     fn default() -> Self {
         Self { angle_deg: 0.0, complete: true }
     }
-}
-
-/// Why a pattern planner (`planner`: `boustrophedon` or `spiral`) does not read `key` (a
-/// dotted key or a section of the planner sections): it reads `[pattern]` alone.
-pub fn why_unread(planner: &str, key: &str) -> Option<String> {
-    crate::planner::sections::unread_section(key, planner, &["pattern"])
 }
 
 /// A validated pattern planner.

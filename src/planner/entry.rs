@@ -9,6 +9,7 @@
 //! own section types.
 
 use super::memory::MemoryEstimate;
+use super::section::SectionSpec;
 use super::{Budget, Context, Planner};
 use crate::config::ConfigError;
 use crate::map::GridMap;
@@ -98,16 +99,30 @@ pub trait PlannerEntry: Send + Sync {
     }
     /// A section of its own that the written `config.toml` shows in full even where the file
     /// leaves it out (every setting of the planner that ran); none by default.
-    fn written_in_full(&self) -> Option<&'static str> {
+    fn written_in_full(&self) -> Option<&'static dyn SectionSpec> {
         None
+    }
+    /// The sections of its own it declares (`[cell_order]`, say): the experiment file holds,
+    /// checks and writes them from these declarations alone. A section several planners read
+    /// is declared by one of them (the thesis GA declares `[thesis]`, which random search
+    /// reads too); none by default.
+    fn sections(&self) -> &'static [&'static dyn SectionSpec] {
+        &[]
+    }
+    /// The planner sections it reads with `file`'s settings: a key of any other is named as
+    /// unread, with who reads it. Its own sections by default.
+    fn sections_read(&self, file: &dyn FileSections) -> Vec<&'static str> {
+        let _ = file;
+        self.sections().iter().map(|s| s.name()).collect()
     }
     /// The keys of its table `[plugins.<name>]`, for a planner added from outside covga;
     /// `None` (by default) for a planner that has no such table.
     fn plugin_keys(&self) -> Option<&'static [&'static str]> {
         None
     }
-    /// Why it does not read `key` (a dotted key or a section of the planner sections) with
-    /// `file`'s settings, or `None` when it reads it.
+    /// Why it does not read `key` (a dotted key of a planner section it reads, see
+    /// [`sections_read`](Self::sections_read)) with `file`'s settings, or `None` when it reads
+    /// it.
     fn why_unread(&self, file: &dyn FileSections, key: &str) -> Option<String>;
     /// Checks its settings in `file` against the run's scenario and budget, and makes the
     /// planner; a refusal names the key and the range.

@@ -18,6 +18,7 @@ pub mod executable;
 pub mod executor;
 pub mod legs;
 pub mod memory;
+pub mod section;
 pub mod sections;
 
 use crate::config::ConfigError;

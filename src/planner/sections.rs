@@ -59,54 +59,9 @@ pub struct StationsSection {
     pub end: Option<[f64; 2]>,
 }
 
-/// A section of an experiment file that belongs to planners, and who reads it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PlannerSection {
-    /// The section's name (`[thesis]`, say).
-    pub name: &'static str,
-    /// Who reads it, as the warnings say it ("only the thesis GA reads").
-    pub readers: &'static str,
-}
-
-/// The sections of an experiment file that belong to planners: the one list of them. Each
-/// planner's module says which of them, and which of their keys, it reads with its settings
-/// (`why_unread`); the warnings about keys nothing reads (`experiment::ignored`) and the test
-/// that varies every unread key iterate this list, so a new section is one entry here.
-pub const PLANNER_SECTIONS: [PlannerSection; 6] = [
-    PlannerSection { name: "thesis", readers: "the thesis GA and random search read" },
-    PlannerSection { name: "retrain", readers: "only the thesis GA reads" },
-    PlannerSection {
-        name: "waypoint",
-        readers: "only the waypoint planner (and the thesis GA's camera objective, alpha_cov) reads",
-    },
-    PlannerSection {
-        name: "pattern",
-        readers: "only the boustrophedon and spiral patterns (and the thesis GA's seed plans) read",
-    },
-    PlannerSection {
-        name: "cell_order",
-        readers: "only the cell-order planner (and the thesis GA's cell_order seed plan) reads",
-    },
-    PlannerSection { name: "layouts", readers: "only the lane control (planner = \"layouts\") reads" },
-];
-
-/// The planner section called `name`, if there is one.
-pub fn planner_section(name: &str) -> Option<&'static PlannerSection> {
-    PLANNER_SECTIONS.iter().find(|s| s.name == name)
-}
-
 /// Whether a dotted `key` is the section or key `prefix`, or lies within it.
 pub fn within(key: &str, prefix: &str) -> bool {
     key == prefix || key.strip_prefix(prefix).is_some_and(|rest| rest.starts_with('.'))
-}
-
-/// Why `planner`, which reads only the planner sections `reads`, does not read `key`: a key
-/// (or the whole) of another planner section. `None` for a key of a section it reads and for
-/// the shared sections (map, robot, stations, scorer, budget, output, fleet).
-pub fn unread_section(key: &str, planner: &str, reads: &[&str]) -> Option<String> {
-    let name = key.split('.').next().unwrap_or(key);
-    let section = planner_section(name).filter(|s| !reads.contains(&s.name))?;
-    Some(format!("{} [{name}]; planner = \"{planner}\"", section.readers))
 }
 
 /// `[scorer]`: how the common scorer measures every plan, whichever planner made it. Planners

@@ -190,7 +190,7 @@ impl Section for BestPaths {
                 }
             };
             let mut grid = CoverageGrid::new(&map);
-            if let Some(rt) = cfg.retrain {
+            if let Some(rt) = crate::thesis::config::RETRAIN_SECTION.get(&cfg) {
                 let [x0, y0, x1, y1] = rt.region;
                 grid.premark_rect(x0, y0, x1, y1);
             }

@@ -425,6 +425,7 @@ fn conditionals(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::thesis::config::THESIS_SECTION;
 
     fn parse(text: &str) -> Result<Study, ConfigError> {
         Study::parse(text, Path::new("g.toml"))
@@ -437,7 +438,8 @@ mod tests {
         let text = "[base]\n[base.thesis]\npop_min = 20\nc_len = 0.4\n[base.budget]\niterations = 10\n\
                     [axes]\n\"thesis\" = [{ pop_min = 10 }, { pop_min = 30 }]\n";
         let study = parse(text).unwrap();
-        let got: Vec<(usize, f64)> = study.runs.iter().map(|r| (r.file.thesis.pop_min, r.file.thesis.c_len)).collect();
+        let got: Vec<(usize, f64)> =
+            study.runs.iter().map(|r| THESIS_SECTION.get(&r.file).map(|t| (t.pop_min, t.c_len)).unwrap()).collect();
         assert_eq!(got, [(10, 0.4), (30, 0.4)]);
     }
 
@@ -484,7 +486,7 @@ mod tests {
         assert_eq!(ids.len(), s.runs.len());
         // The default C_child is 2: with c_len 0.1 the second conditional does not apply
         // (c_len differs), so the 0.1 configuration keeps its defaults.
-        assert_eq!(s.runs.iter().filter(|r| r.file.thesis.c_len == 0.1).count(), 2);
+        assert_eq!(s.runs.iter().filter(|r| THESIS_SECTION.get(&r.file).unwrap().c_len == 0.1).count(), 2);
     }
 
     #[test]

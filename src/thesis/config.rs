@@ -13,8 +13,37 @@ use crate::config::{ConfigError, check_range, check_unit};
 use crate::ga::control::AdaptiveConstants;
 use crate::ga::parents::{DrawParams, Param, ParentDraw, SchemeName};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::{Placement, Section, SectionDecl};
 use crate::planner::{Checks, Context};
 use serde::{Deserialize, Serialize};
+
+/// `[thesis]` as the thesis GA's entry declares it (random search reads it too).
+pub static THESIS_SECTION: Section<ThesisSection> = Section::new(
+    SectionDecl {
+        name: "thesis",
+        readers: "the thesis GA and random search read",
+        placement: Placement::BeforeBudget,
+        always_held: true,
+        type_name: "ThesisSection",
+        tables: &["ControlSection"],
+        source: include_str!("config.rs"),
+    },
+    Some(ThesisSection::default),
+);
+
+/// `[retrain]` as the thesis GA's entry declares it: held only where a file writes it.
+pub static RETRAIN_SECTION: Section<RetrainSection> = Section::new(
+    SectionDecl {
+        name: "retrain",
+        readers: "only the thesis GA reads",
+        placement: Placement::AfterBudget,
+        always_held: false,
+        type_name: "RetrainSection",
+        tables: &[],
+        source: include_str!("config.rs"),
+    },
+    None,
+);
 
 /// `[thesis]`: the parameters of 003 Tables 4.1–4.3.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -5,7 +5,7 @@
 
 use super::config::{SelectionName, ThesisSection};
 use super::seeding::SeedPlan;
-use crate::planner::sections::{unread_section, within};
+use crate::planner::sections::within;
 
 /// The `[thesis]` keys Elite's families and NSGA-II do not read (003 §3.4: Elite keeps the
 /// `Pop_min` best of parents and children; architecture (a) draws `Select` pairs of parents).
@@ -25,9 +25,10 @@ fn unread_by_selection(s: SelectionName, key: &str) -> bool {
 }
 
 impl ThesisSection {
-    /// Why the thesis GA with these settings does not read `key` (a dotted key or a section of
-    /// the planner sections), or `None` when it reads it.
-    pub fn why_unread(&self, key: &str) -> Option<String> {
+    /// The planner sections the thesis GA with these settings reads: its own (`[thesis]`,
+    /// `[retrain]`), `[pattern]` and `[cell_order]` where they make its seed plans,
+    /// `[waypoint]` where its camera objective weighs by `alpha_cov`.
+    pub fn sections_read(&self) -> Vec<&'static str> {
         let plans = self.seed_population.plans();
         let mut reads = vec!["thesis", "retrain"];
         if plans.iter().any(|p| matches!(p, SeedPlan::Boustrophedon | SeedPlan::Spiral)) {
@@ -39,9 +40,12 @@ impl ThesisSection {
         if self.objective == super::objective::Objective::Camera {
             reads.push("waypoint");
         }
-        if let Some(why) = unread_section(key, "thesis", &reads) {
-            return Some(why);
-        }
+        reads
+    }
+
+    /// Why the thesis GA with these settings does not read `key`, a dotted key of a planner
+    /// section it reads ([`Self::sections_read`]), or `None` when it reads it.
+    pub fn why_unread(&self, key: &str) -> Option<String> {
         if within(key, "cell_order") && key != "cell_order" && !READ_BY_CELL_ORDER_SEED.iter().any(|k| within(key, k)) {
             return Some(format!(
                 "the thesis GA's cell_order seed plan reads only {}",

@@ -7,7 +7,22 @@ use crate::geom::Point;
 use crate::map::GridMap;
 use crate::planner::Context;
 use crate::planner::memory::{MemoryEstimate, bitset_bytes};
+use crate::planner::section::{Placement, Section, SectionDecl};
 use serde::{Deserialize, Serialize};
+
+/// `[waypoint]` as the waypoint planner's entry declares it.
+pub static WAYPOINT_SECTION: Section<WaypointSection> = Section::new(
+    SectionDecl {
+        name: "waypoint",
+        readers: "only the waypoint planner (and the thesis GA's camera objective, alpha_cov) reads",
+        placement: Placement::BeforeBudget,
+        always_held: true,
+        type_name: "WaypointSection",
+        tables: &[],
+        source: include_str!("config.rs"),
+    },
+    Some(WaypointSection::default),
+);
 
 /// `[waypoint]`: 000 Table I as reconciled (waypoint §18–19); metres, degrees. The camera and its
 /// raster are the common scorer's (`[scorer.camera]`), which the planner's camera objective
@@ -168,9 +183,6 @@ impl WaypointSection {
     /// Why the waypoint planner with these settings does not read `key` (a dotted key or a
     /// section of the planner sections), or `None` when it reads it.
     pub fn why_unread(&self, key: &str) -> Option<String> {
-        if let Some(why) = crate::planner::sections::unread_section(key, "waypoint", &["waypoint"]) {
-            return Some(why);
-        }
         if key == "waypoint.alpha_cov" && self.objective == super::world::ObjectiveKind::Footprint {
             return Some(
                 "waypoint.objective = \"footprint\" measures the swept area; only the camera objective blends walls and open floor by alpha_cov".into(),

@@ -1,11 +1,12 @@
 //! The waypoint planner's entry in the registry of planners: `planner = "waypoint"` and its
 //! section `[waypoint]`.
 
-use super::config::{WaypointConfig, WaypointSection};
+use super::config::{WAYPOINT_SECTION, WaypointConfig};
 use crate::config::ConfigError;
 use crate::map::GridMap;
-use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner, section_or_default};
+use crate::planner::entry::{FileSections, PlannerEntry, RegisteredPlanner};
 use crate::planner::memory::MemoryEstimate;
+use crate::planner::section::SectionSpec;
 use crate::planner::{Budget, Context};
 use std::sync::Arc;
 
@@ -17,12 +18,17 @@ impl PlannerEntry for Waypoint {
         "waypoint"
     }
 
+    fn sections(&self) -> &'static [&'static dyn SectionSpec] {
+        static SECTIONS: &[&dyn SectionSpec] = &[&WAYPOINT_SECTION];
+        SECTIONS
+    }
+
     fn why_unread(&self, file: &dyn FileSections, key: &str) -> Option<String> {
-        section_or_default::<WaypointSection>(file, "waypoint").why_unread(key)
+        WAYPOINT_SECTION.get_or_default(file).why_unread(key)
     }
 
     fn validate(&self, file: &dyn FileSections, ctx: &Context) -> Result<Arc<dyn RegisteredPlanner>, ConfigError> {
-        Ok(Arc::new(section_or_default::<WaypointSection>(file, "waypoint").validate(ctx)?))
+        Ok(Arc::new(WAYPOINT_SECTION.get_or_default(file).validate(ctx)?))
     }
 }
 

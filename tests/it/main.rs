@@ -23,6 +23,7 @@ mod layouts;
 mod mutation_tooling;
 mod parent_schemes;
 mod planner_contract;
+mod planner_section;
 mod plugins;
 mod reachable;
 mod readme;

@@ -6,11 +6,14 @@
 //! without an edit here; the warnings' rules (`covga::experiment::ignored`) are checked against
 //! what the planners do, not against another list.
 
+use covga::cell_order::config::CELL_ORDER_SECTION;
 use covga::experiment::file::ExperimentFile;
 use covga::experiment::ignored::why_ignored;
 use covga::experiment::output::run_experiment;
 use covga::experiment::registry::PlannerKind;
-use covga::planner::sections::PLANNER_SECTIONS;
+use covga::experiment::registry::planner_sections;
+use covga::thesis::config::THESIS_SECTION;
+use covga::waypoint::config::WAYPOINT_SECTION;
 use std::path::Path;
 use toml::{Table, Value};
 
@@ -40,19 +43,20 @@ const SMALL: &str = "seed = 3\n[map]\nsource = \"thesis-1\"\n[budget]\nevaluatio
 fn full_table(variant: &str) -> Table {
     let (planner, sections) = variant.split_once('\n').expect("a planner line first");
     let mut file = ExperimentFile::parse(&format!("{planner}\n{SMALL}{sections}"), "u.toml").unwrap();
-    file.thesis.pop_min = 10;
-    file.thesis.init_individuals = 20;
-    file.thesis.init_actions = 15;
-    file.thesis.select = 8;
-    file.thesis.keep = 2;
-    file.waypoint.population = 6;
-    file.waypoint.l_init = 20;
-    file.waypoint.l_min = 10;
-    let mut cell_order = file.cell_order.clone().unwrap_or_default();
+    let thesis = file.sections.get_mut(&THESIS_SECTION);
+    thesis.pop_min = 10;
+    thesis.init_individuals = 20;
+    thesis.init_actions = 15;
+    thesis.select = 8;
+    thesis.keep = 2;
+    let waypoint = file.sections.get_mut(&WAYPOINT_SECTION);
+    waypoint.population = 6;
+    waypoint.l_init = 20;
+    waypoint.l_min = 10;
+    let cell_order = file.sections.get_mut(&CELL_ORDER_SECTION);
     cell_order.population = 10;
     cell_order.best_parents = 4;
     cell_order.keep = 2;
-    file.cell_order = Some(cell_order);
     Table::try_from(file).unwrap()
 }
 
@@ -98,7 +102,7 @@ fn a_key_reported_unread_changes_nothing_in_the_run() {
         let table = full_table(variant);
         let file: ExperimentFile = Value::Table(table.clone()).try_into().unwrap();
         let reference = outcome(&table).unwrap_or_else(|| panic!("{variant}: the reference run fails"));
-        for section in PLANNER_SECTIONS.map(|s| s.name) {
+        for section in planner_sections().iter().map(|s| s.name()) {
             let Some(Value::Table(keys)) = table.get(section) else { continue };
             for (key, value) in keys {
                 let dotted = format!("{section}.{key}");

@@ -49,12 +49,12 @@ pub fn allowed(key: &str, kind: &str, variant: Option<&str>) -> String {
 /// A file whose planner reads `key`, with what that key's table needs to be read at all.
 fn base_file(key: &str, variant: Option<&str>) -> toml::Table {
     let section = key.split('.').next().unwrap_or(key);
-    let planner = match section {
-        "waypoint" => "waypoint",
-        "pattern" => "boustrophedon",
-        "cell_order" => "cell_order",
-        _ => "thesis",
-    };
+    // The first registered planner that declares the section reads it; the file's own tables
+    // are read by the thesis GA, the first of them.
+    let declares =
+        |k: &crate::experiment::registry::PlannerKind| k.entry().sections().iter().any(|s| s.name() == section);
+    let kinds = crate::experiment::registry::PlannerKind::all();
+    let planner = kinds.iter().find(|k| declares(k)).map_or("thesis", |k| k.name());
     let mut file = toml::Table::new();
     file.insert("planner".into(), Value::String(planner.into()));
     match section {

@@ -27,8 +27,9 @@ pub struct Shape {
     pub fields: Vec<Field>,
 }
 
-/// Every type that is a table of an experiment file, with the source that declares it.
-const SECTION_TYPES: [(&str, &str); 17] = [
+/// Every type that is a table of an experiment file outside the planner sections, with the
+/// source that declares it.
+const SECTION_TYPES: [(&str, &str); 10] = [
     ("ExperimentFile", include_str!("../file.rs")),
     ("OutputSection", include_str!("../../planner/sections.rs")),
     ("MapSection", include_str!("../../planner/sections.rs")),
@@ -37,16 +38,22 @@ const SECTION_TYPES: [(&str, &str); 17] = [
     ("ScorerSection", include_str!("../../planner/sections.rs")),
     ("CameraSection", include_str!("../../planner/sections.rs")),
     ("BudgetSection", include_str!("../../planner/sections.rs")),
-    ("ThesisSection", include_str!("../../thesis/config.rs")),
-    ("ControlSection", include_str!("../../thesis/config.rs")),
-    ("RetrainSection", include_str!("../../thesis/config.rs")),
-    ("WaypointSection", include_str!("../../waypoint/config.rs")),
-    ("PatternSection", include_str!("../../patterns/planner.rs")),
-    ("CellOrderSection", include_str!("../../cell_order/config.rs")),
-    ("LayoutsSection", include_str!("../../layouts/config.rs")),
     ("RobotEntry", include_str!("../../fleet/config.rs")),
     ("FleetSection", include_str!("../../fleet/config.rs")),
 ];
+
+/// Every type that is a table of an experiment file with the source that declares it: those of
+/// [`SECTION_TYPES`], then each planner section's type and the types of its own tables, as
+/// its declaration names them.
+fn section_types() -> Vec<(&'static str, &'static str)> {
+    let mut all = SECTION_TYPES.to_vec();
+    for section in crate::experiment::registry::planner_sections() {
+        let (name, source) = section.source();
+        all.push((name, source));
+        all.extend(section.tables().iter().map(|&t| (t, source)));
+    }
+    all
+}
 
 /// The section type a field of type `ty` holds, and whether it is an array of tables:
 /// `Option<CellOrderSection>` → `CellOrderSection`; `Vec<…::RobotEntry>` → `RobotEntry`, an
@@ -58,13 +65,13 @@ pub fn section_type(ty: &str) -> Option<(&'static str, bool)> {
     let array = ty.starts_with("Vec<");
     let inner = ty.trim_start_matches("Option<").trim_start_matches("Vec<").trim_end_matches('>');
     let name = inner.rsplit("::").next().unwrap_or(inner);
-    SECTION_TYPES.iter().find(|(n, _)| *n == name).map(|(n, _)| (*n, array))
+    section_types().into_iter().find(|(n, _)| *n == name).map(|(n, _)| (n, array))
 }
 
 /// The fields of section type `name` (a struct, or a tagged enum whose `kind` picks the
 /// variant).
 pub fn struct_shape(name: &str) -> Shape {
-    let source = SECTION_TYPES.iter().find(|(n, _)| *n == name).map(|(_, s)| *s).expect("a section type");
+    let source = section_types().into_iter().find(|(n, _)| *n == name).map(|(_, s)| s).expect("a section type");
     shape_in(source, name)
 }
 
@@ -74,7 +81,7 @@ pub fn fields_in(source: &str, name: &str) -> Vec<Field> {
 }
 
 /// The shape of struct or tagged enum `name` declared in `source`.
-fn shape_in(source: &str, name: &str) -> Shape {
+pub fn shape_in(source: &str, name: &str) -> Shape {
     let lines: Vec<&str> = source.lines().collect();
     let struct_at = lines.iter().position(|l| *l == format!("pub struct {name} {{"));
     let enum_at = lines.iter().position(|l| *l == format!("pub enum {name} {{"));

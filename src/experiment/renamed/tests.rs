@@ -1,4 +1,5 @@
 use super::*;
+use crate::cell_order::config::CELL_ORDER_SECTION;
 
 fn parse(text: &str) -> ExperimentFile {
     ExperimentFile::parse(text, "t.toml").unwrap()
@@ -94,7 +95,7 @@ fn keys_renamed_in_place_read_hash_and_migrate_alike() {
         "planner = \"cell_order\"\n[cell_order]\nselection = \"best\"\nsp = 1.4  # gentle\nselect = 6\nkeep = 1\n";
     let new = "planner = \"cell_order\"\n[cell_order]\nselection = \"best\"\nselection_pressure = 1.4\nbest_parents = 6\nkeep = 1\n";
     assert_eq!(parse(old), parse(new));
-    let section = parse(new).cell_order.unwrap();
+    let section = CELL_ORDER_SECTION.get(&parse(new)).unwrap().clone();
     assert_eq!((section.selection_pressure, section.best_parents), (1.4, 6));
     let text = id_text(&parse(new));
     let cell_order = &text[text.find("[cell_order]").unwrap()..];
@@ -121,7 +122,7 @@ fn a_value_renamed_reads_hashes_warns_and_migrates() {
     let old = "planner = \"cell_order\"\n[cell_order]\nselection = \"elite\"  # from the best\n";
     let new = "planner = \"cell_order\"\n[cell_order]\nselection = \"best\"\n";
     assert_eq!(parse(old), parse(new));
-    assert_eq!(parse(new).cell_order.unwrap().selection.as_str(), "best");
+    assert_eq!(CELL_ORDER_SECTION.get(&parse(new)).unwrap().selection.as_str(), "best");
     assert!(id_text(&parse(new)).contains("[cell_order]\nsolver = \"ga\"\ndirections = [0.0, 45.0, 90.0, 135.0]\npopulation = 100\nselection = \"elite\"\n"));
     assert_eq!(renamed_values_in_text(old), [(RENAMED_VALUES[0].said_old, RENAMED_VALUES[0].said_new)]);
     assert!(renamed_values_in_text(new).is_empty());

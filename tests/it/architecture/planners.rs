@@ -123,3 +123,43 @@ fn the_registry_list_is_the_one_place_that_names_a_planner() {
     let guide = std::fs::read_to_string(root.join("docs/src/developer/adding-a-planner.md")).unwrap();
     assert!(guide.contains("its folder and its line in `PLANNERS`"), "the guide's count");
 }
+
+/// The sources of the experiment file (`experiment/file.rs`, `experiment/file/`).
+fn experiment_file(path: &str) -> bool {
+    path == "experiment/file.rs" || path.starts_with("experiment/file/")
+}
+
+/// Every import from a planner (its floor, and the compositions just above it) in the
+/// experiment file's sources among `files`.
+fn planners_named_by_the_file(files: &[(String, String)]) -> Vec<String> {
+    let floor = layer("thesis").expect("the planners' floor");
+    let planners: Vec<&str> = LAYERS[floor].iter().chain(LAYERS[floor + 1]).copied().collect();
+    files
+        .iter()
+        .filter(|(path, _)| experiment_file(path))
+        .flat_map(|(path, source)| {
+            imported_modules(source)
+                .into_iter()
+                .filter(|m| planners.contains(&m.as_str()))
+                .map(move |m| format!("src/{path} names the planner `{m}`"))
+        })
+        .collect()
+}
+
+/// A planner's section is its entry's declaration: the experiment file holds, checks and writes
+/// every planner section from the declarations alone and names no planner, so that a planner
+/// with a section of its own is its folder and its line in `PLANNERS` too.
+#[test]
+fn the_experiment_file_names_no_planner() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    source_files(&root, &root, &mut files);
+    assert!(files.iter().filter(|(p, _)| experiment_file(p)).count() >= 2);
+    let problems = planners_named_by_the_file(&files);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // The check fails where it should: a section's type named in the file.
+    let typed = [("experiment/file.rs".to_string(), "use crate::cell_order::config::CellOrderSection;\n".to_string())];
+    assert_eq!(planners_named_by_the_file(&typed).len(), 1);
+    let composed = [("experiment/file/written.rs".to_string(), "crate::seeded::Thesis".to_string())];
+    assert_eq!(planners_named_by_the_file(&composed).len(), 1);
+}
