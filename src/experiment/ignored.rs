@@ -200,7 +200,7 @@ mod tests {
 
     #[test]
     fn every_planner_section_is_a_section_of_the_file() {
-        let text = "[cell_order]\n[retrain]\nat_iteration = 1\n";
+        let text = "[cell_order]\n[layouts]\n[retrain]\nat_iteration = 1\n";
         let table = toml::Table::try_from(ExperimentFile::parse(text, "t.toml").unwrap()).unwrap();
         let sections = crate::experiment::registry::planner_sections();
         assert!(sections.len() >= 5, "{}", sections.len());

@@ -85,10 +85,8 @@ pub fn plan_region(
         let from = entry.unwrap_or(start);
         route.go(&whole, from);
         lanes.restrict(region_reach.centres().to_vec());
-        let lanes_route = match lanes_of(pattern, &lanes, width, from) {
-            Err(PatternError::NoRoom { .. }) => return band_plan(&whole, &reach, width, start, end),
-            other => other?,
-        };
+        // A region that holds no lane is the caller's to name (a fleet's share too small).
+        let lanes_route = lanes_of(pattern, &lanes, width, from)?;
         // The lanes' route starts at `from`, which the route has reached.
         route.append(lanes_route);
         route

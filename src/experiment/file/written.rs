@@ -210,8 +210,8 @@ mod tests {
         assert!(
             e.contains(
                 "t.toml:2: unknown field `colour`, expected one of `seed`, `planner`, `map`, `robot`, `stations`, \
-                 `scorer`, `thesis`, `waypoint`, `pattern`, `cell_order`, `budget`, `retrain`, `output`, `robots`, \
-                 `fleet`, `plugins`"
+                 `scorer`, `thesis`, `waypoint`, `pattern`, `cell_order`, `layouts`, `budget`, `retrain`, `output`, \
+                 `robots`, `fleet`, `plugins`"
             ),
             "{e}"
         );
