@@ -290,20 +290,23 @@ fn render_with(t: &RunsTable, cmp: &Comparison, complete: bool) -> Result<Render
     };
     let time = (measure.column, measure.name());
     if let Some(f) = &forest {
-        let line = format!(
-            "![Forest plot: `{}` value ÷ baseline per {}, the pooled median with its bootstrap interval, the mean \
-             and the margin {}](compare-{safe}{suffix}-forest.png)\n\n",
-            measure.column,
-            f.unit,
-            forest::MARGIN_TEXT
-        );
-        md.insert_str(findings_at, &line);
+        md.insert_str(findings_at, &forest_link(measure.column, &f.unit, &format!("compare-{safe}{suffix}")));
     }
     md.insert_str(findings_at, &findings::findings(&csv, &cmp.baseline, &effort(t, &d, &values), time));
     let title = format!("`{}` against `{}`{every}", cmp.key, cmp.baseline);
     let rows_of = |column: &str| as_rows(&|r| num(r, column), both_executable);
     let design = power::text(&title, (&metrics, &rows_of), units.as_ref());
     Ok(Rendered { stem: format!("compare-{safe}{suffix}"), markdown: md, csv, design: Some(design), forest })
+}
+
+/// The markdown line that shows the forest plot of the time `column` per `unit`, drawn beside
+/// the comparison's files named `stem`.
+fn forest_link(column: &str, unit: &str, stem: &str) -> String {
+    format!(
+        "![Forest plot: `{column}` value ÷ baseline per {unit}, the pooled median with its bootstrap interval, the \
+         mean and the margin {}]({stem}-forest.png)\n\n",
+        forest::MARGIN_TEXT
+    )
 }
 
 /// The time the comparison reads ([`TimeMeasure`]) over every run it compares: every plan,

@@ -3,6 +3,7 @@
 use super::panels::{Y_TICKS, colour, two_columns};
 use crate::plot::{Figure, err, text};
 use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
@@ -111,43 +112,50 @@ impl Figure for BoxFigure {
                 area.draw(&Text::new(label.clone(), (x - ax, y - ay + 8), upwards.clone())).map_err(err)?;
             }
             for (k, b) in boxes.iter().enumerate() {
-                let grey = RGBColor(120, 120, 120);
-                chart
-                    .draw_series(b.excluded.iter().map(|&v| Cross::new((k as f64 + 0.85, v), 4, grey.stroke_width(1))))
-                    .map_err(err)?;
-                if b.values.is_empty() {
-                    continue;
-                }
-                if b.values.len() == 1 {
-                    let point = Circle::new((k as f64 + 0.5, b.values[0]), 5, colour(b.colour).filled());
-                    chart.draw_series([point]).map_err(err)?;
-                    chart
-                        .draw_series([Circle::new((k as f64 + 0.5, b.values[0]), 5, BLACK.stroke_width(1))])
-                        .map_err(err)?;
-                    continue;
-                }
-                let (q1, med, q3) = crate::stats::quartiles(&b.values);
-                let min = b.values.iter().copied().fold(f64::INFINITY, f64::min);
-                let max = b.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                let (x0, x1, xc) = (k as f64 + 0.2, k as f64 + 0.8, k as f64 + 0.5);
-                let c = colour(b.colour);
-                let series: Vec<PathElement<(f64, f64)>> = vec![
-                    PathElement::new(vec![(xc, min), (xc, q1)], BLACK.stroke_width(1)),
-                    PathElement::new(vec![(xc, q3), (xc, max)], BLACK.stroke_width(1)),
-                    PathElement::new(vec![(x0 + 0.15, min), (x1 - 0.15, min)], BLACK.stroke_width(1)),
-                    PathElement::new(vec![(x0 + 0.15, max), (x1 - 0.15, max)], BLACK.stroke_width(1)),
-                ];
-                chart.draw_series(series).map_err(err)?;
-                chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], c.mix(0.45).filled())]).map_err(err)?;
-                chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], BLACK.stroke_width(1))]).map_err(err)?;
-                // The median in the group's colour with a black core: a box of equal values (no
-                // height) still shows its colour.
-                chart.draw_series([PathElement::new(vec![(x0, med), (x1, med)], c.stroke_width(7))]).map_err(err)?;
-                chart
-                    .draw_series([PathElement::new(vec![(x0, med), (x1, med)], BLACK.stroke_width(2))])
-                    .map_err(err)?;
+                draw_box(&mut chart, k, b)?;
             }
         }
         Ok(())
     }
+}
+
+/// Draws box `b` in slot `k` of `chart`: its plans that are not executable as grey crosses
+/// beside it, a group of one run as a point, else whiskers, box and median.
+fn draw_box<DB: DrawingBackend>(
+    chart: &mut ChartContext<'_, DB, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    k: usize,
+    b: &BoxSeries,
+) -> Result<(), String> {
+    let grey = RGBColor(120, 120, 120);
+    chart
+        .draw_series(b.excluded.iter().map(|&v| Cross::new((k as f64 + 0.85, v), 4, grey.stroke_width(1))))
+        .map_err(err)?;
+    if b.values.is_empty() {
+        return Ok(());
+    }
+    if b.values.len() == 1 {
+        let point = Circle::new((k as f64 + 0.5, b.values[0]), 5, colour(b.colour).filled());
+        chart.draw_series([point]).map_err(err)?;
+        chart.draw_series([Circle::new((k as f64 + 0.5, b.values[0]), 5, BLACK.stroke_width(1))]).map_err(err)?;
+        return Ok(());
+    }
+    let (q1, med, q3) = crate::stats::quartiles(&b.values);
+    let min = b.values.iter().copied().fold(f64::INFINITY, f64::min);
+    let max = b.values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    let (x0, x1, xc) = (k as f64 + 0.2, k as f64 + 0.8, k as f64 + 0.5);
+    let c = colour(b.colour);
+    let series: Vec<PathElement<(f64, f64)>> = vec![
+        PathElement::new(vec![(xc, min), (xc, q1)], BLACK.stroke_width(1)),
+        PathElement::new(vec![(xc, q3), (xc, max)], BLACK.stroke_width(1)),
+        PathElement::new(vec![(x0 + 0.15, min), (x1 - 0.15, min)], BLACK.stroke_width(1)),
+        PathElement::new(vec![(x0 + 0.15, max), (x1 - 0.15, max)], BLACK.stroke_width(1)),
+    ];
+    chart.draw_series(series).map_err(err)?;
+    chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], c.mix(0.45).filled())]).map_err(err)?;
+    chart.draw_series([Rectangle::new([(x0, q1), (x1, q3)], BLACK.stroke_width(1))]).map_err(err)?;
+    // The median in the group's colour with a black core: a box of equal values (no
+    // height) still shows its colour.
+    chart.draw_series([PathElement::new(vec![(x0, med), (x1, med)], c.stroke_width(7))]).map_err(err)?;
+    chart.draw_series([PathElement::new(vec![(x0, med), (x1, med)], BLACK.stroke_width(2))]).map_err(err)?;
+    Ok(())
 }
